@@ -1,0 +1,95 @@
+// The Flattener's output: every drawn solid with its half-spaces in DEVICE space (DESIGN.md).
+//
+// Device space: x = column in pixels, y = row in pixels (row 0 at the top), pixel centres at
+// (i+½, j+½), rays parallel to +z, z grows away from the viewer. Perspective is folded in as a
+// projective map, so quadrics stay quadrics and planes planes; the region behind the eye is removed
+// by transparent clipping planes appended to every body (seed 001 §3.3).
+//
+// Solids are CSG trees over bodies; a plain body is a solid whose tree is one leaf. Trees are
+// n-ary (chains of one operator are merged) so that a union of 10,000 spheres is one node with
+// 10,000 children, not a 10,000-deep chain.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "quadrix/math/mat4.h"
+#include "quadrix/math/quadric.h"
+#include "quadrix/math/vec.h"
+#include "quadrix/scene/scene.h"
+
+namespace quadrix {
+
+struct FlatHalfSpace {
+    bool isPlane = true;
+    Plane plane;        // device space, when isPlane
+    Quadric quadric;    // device space, when !isPlane
+    bool transparent = false;
+    bool isClip = false;  // a clipping plane added by the Flattener (front/back/near/far)
+    std::string name;     // path for diagnostics, e.g. "stack_of_bundles[1]/bundle_of_tubes[3]/outer_tube"
+
+    double Evaluate(const Vec3& p) const {
+        return isPlane ? plane.Evaluate(p) : quadric.Evaluate(p);
+    }
+    // Homogeneous gradient (covector) at a device point; its xyz is the device normal direction.
+    Vec4 HomogeneousGradient(const Vec3& p) const {
+        return isPlane ? plane.AsVec4() : quadric.HomogeneousGradient(p);
+    }
+};
+
+struct FlatLiteral {
+    int halfSpace = -1;  // index into FlatScene::halfSpaces
+    bool complemented = false;
+};
+
+struct FlatBody {
+    std::vector<FlatLiteral> literals;
+    scene::Color color;        // resolved: the body's color, else its CSG solid's, else white
+    int solid = -1;            // the FlatSolid this body belongs to
+    std::string name;
+    Box3 bounds;               // conservative device-space bounds (may be infinite)
+};
+
+struct FlatCsgNode {
+    bool isLeaf = true;
+    int body = -1;                          // when isLeaf
+    scene::CsgOp op = scene::CsgOp::kUnion; // when !isLeaf
+    // Children when !isLeaf. For kDifference the first child is the minuend and every other child
+    // is subtracted; kUnion/kIntersection are n-ary.
+    std::vector<int> children;
+    Box3 bounds;                            // conservative device-space bounds
+};
+
+struct FlatSolid {
+    int root = -1;  // index into FlatScene::nodes
+    std::string name;
+    Box3 bounds;    // conservative device-space bounds, clipped to the image in x and y
+};
+
+// How the world was projected; the shader needs it to express normals in world space.
+struct Projection {
+    bool perspective = false;
+    Transform deviceFromWorld;  // projective when perspective
+    Vec3 eye;                   // world-space cop (perspective)
+    Vec3 towardViewer;          // world-space unit direction toward the viewer (parallel)
+};
+
+struct FlatScene {
+    int width = 0, height = 0;
+    std::vector<FlatHalfSpace> halfSpaces;
+    std::vector<FlatBody> bodies;
+    std::vector<FlatCsgNode> nodes;
+    std::vector<FlatSolid> solids;
+    std::vector<scene::Light> lights;  // world space, defaults applied
+    Projection projection;
+    std::string viewName;
+    // One tolerance for the scene, in device units of depth (see docs/engines.md): used for
+    // ties between coincident surfaces.
+    double depthTolerance = 1e-9;
+
+    // World-space unit normal of half-space `hs` at device point `p`, oriented toward the viewer.
+    // Normals are covectors: n_world = (deviceFromWorld)ᵀ g where g is the device gradient.
+    Vec3 WorldNormal(int hs, const Vec3& devicePoint) const;
+};
+
+}  // namespace quadrix

@@ -1,0 +1,42 @@
+// Flattener (seed 001 §3.3): scene hierarchy to world space, view to device space.
+//
+// Steps:
+//  1. Depth-first traversal of instances/arrays, composing transforms (copy k of an array is
+//     placed by delta^k * init; deltas accumulate) and applying the composed transform to each
+//     body's half-spaces (planes p' = M^-T p, quadrics Q' = M^-T Q M^-1, DESIGN.md).
+//  2. The view (defaults of §2.1.6 applied) gives viewFromWorld; parallel projection is affine,
+//     perspective a projective map with the eye at the origin of a left-handed (u, v, n) frame.
+//  3. Clipping: fbp adds a front and a back transparent plane to every body; perspective adds a
+//     near plane (and the plane at infinity's image) so nothing behind the eye survives.
+//  4. Window: whh/whw give the window on the view plane, centred on vrp; a missing one is taken
+//     from the scene's extent (conservative device-space bounds of every body). Pixels stay
+//     square: the window is fitted inside the image and centred.
+//  5. Device: x = column, y = row (row 0 at the top), z grows away from the viewer.
+//  6. Bounds: every body, CSG node and solid gets conservative device-space bounds.
+//
+// Errors (user tier): unknown view, unbounded geometry with no window, a view whose vectors are
+// degenerate (vup parallel to vpn, zero vectors, cop on the view plane), an empty scene.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "quadrix/flatten/flat_scene.h"
+#include "quadrix/scene/diagnostics.h"
+#include "quadrix/scene/scene.h"
+
+namespace quadrix {
+
+struct FlattenOptions {
+    int width = 512;
+    int height = 512;
+    std::string viewName;  // empty = the last view defined (or the default view)
+    // Fraction of the image left free around an auto-fitted scene, per side.
+    double autoFitMargin = 0.02;
+};
+
+// nullopt (with errors in diags) when the scene cannot be flattened.
+std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,
+                                 Diagnostics& diags);
+
+}  // namespace quadrix

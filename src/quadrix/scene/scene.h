@@ -1,0 +1,164 @@
+// The scene model: what a scene file says, independent of any file format and with no
+// transform applied (seed 001 §3.2: "Reader does no coordinate transformation").
+//
+// Readers (the UniQuadrix language, importers) build a Scene; the Flattener turns it into a
+// FlatScene in device space. Everything here is plain data; ids are kept for diagnostics and for
+// lookups by name (views, lights).
+//
+// Hierarchy (seed 001 §2.1.3-2.1.4): the top level of a scene and each definition are Scopes.
+// A scope holds half-spaces (HSBs), bodies, instances/arrays and CSG solids. Half-space and solid
+// ids are local to their scope. Definitions are global and are instanced by index.
+//
+// What is drawn: every body, instance/array and CSG solid of the top-level scope that is not used
+// as an operand of a CSG solid; instancing a definition draws, likewise, its scope's non-operand
+// solids under the instance's transform.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "quadrix/math/mat4.h"
+#include "quadrix/math/quadric.h"
+#include "quadrix/scene/source_loc.h"
+
+namespace quadrix::scene {
+
+struct Color {
+    double r = 1, g = 1, b = 1;  // linear intensities in [0, 1]
+    bool operator==(const Color&) const = default;
+};
+
+// A half-space bound (HSB), seed 001 §2.1.1: a surface that is drawn (when opaque) and bounds the
+// other surfaces of the bodies that name it.
+struct HalfSpace {
+    enum class Kind { kPlane, kQuadric };
+    std::string id;
+    Kind kind = Kind::kPlane;
+    Plane plane;        // when kind == kPlane
+    Quadric quadric;    // when kind == kQuadric
+    bool transparent = false;  // =t: bounds others but is not drawn
+    SourceLoc loc;
+};
+
+// One entry of a body's list: a half-space of the same scope, possibly complemented ("!").
+struct Literal {
+    int halfSpace = -1;  // index into Scope::halfSpaces
+    bool complemented = false;
+};
+
+// The intersection of its literals (seed 001 §2.1.2).
+struct Body {
+    std::string id;
+    std::vector<Literal> literals;
+    std::optional<Color> color;
+    bool usedAsOperand = false;  // set by the reader when a CSG solid names this body
+    SourceLoc loc;
+};
+
+// `instance` and `array` (seed 001 §2.1.4). An instance is an array of one copy. Copy k (0-based)
+// is placed by delta^k * init (init applied first, then k deltas): deltas accumulate.
+struct Instance {
+    std::string id;
+    int definition = -1;  // index into Scene::definitions
+    Transform init;
+    int count = 1;
+    Transform delta;
+    bool isArray = false;
+    bool usedAsOperand = false;
+    SourceLoc loc;
+};
+
+enum class CsgOp { kUnion, kIntersection, kDifference };
+
+// What a CSG leaf names: a body, an instance/array or another CSG solid of the same scope.
+struct SolidRef {
+    enum class Kind { kBody, kInstance, kCsg };
+    Kind kind = Kind::kBody;
+    int index = -1;
+};
+
+// A CSG expression tree stored as nodes; node 0 is not special, Csg::root is.
+struct CsgNode {
+    bool isLeaf = true;
+    SolidRef ref;                // when isLeaf
+    CsgOp op = CsgOp::kUnion;    // when !isLeaf
+    int left = -1, right = -1;   // when !isLeaf: indices into Csg::nodes
+    SourceLoc loc;
+};
+
+// The CSG extension statement (docs/language.md): a solid combining bodies, instances and other
+// CSG solids with union, intersection and difference.
+struct Csg {
+    std::string id;
+    std::vector<CsgNode> nodes;
+    int root = -1;
+    std::optional<Color> color;
+    bool usedAsOperand = false;
+    SourceLoc loc;
+};
+
+struct Scope {
+    std::string id;  // definition id; empty for the top level
+    std::vector<HalfSpace> halfSpaces;
+    std::vector<Body> bodies;
+    std::vector<Instance> instances;
+    std::vector<Csg> csgs;
+    SourceLoc loc;
+};
+
+// Lights (seed 001 §2.1.5). Ambient lights are isotropic; parallel lights shine from `direction`
+// (the vector *to* the light, world space). Intensities are already truncated to [0, 1].
+struct Light {
+    enum class Kind { kAmbient, kParallel };
+    std::string id;
+    Kind kind = Kind::kAmbient;
+    double intensity = 0;
+    Vec3 direction;
+    bool isDefault = false;  // the automatic `light default 1 0 0 -1`
+    SourceLoc loc;
+};
+
+// A view (seed 001 §2.1.6) with `=p`/`=r` options already resolved against the vrp given before
+// them, so every vector here is a direction and cop is absolute. Missing parameters stay nullopt;
+// the Flattener applies the defaults of §2.1.6.
+//
+// Orientation convention (docs/language.md): vpn points from the viewer into the scene; dop is the
+// direction from the scene toward the viewer (so `dop 0 1 1` looks down from above, as the paper's
+// `view top_down dop 0 1 1`). Screen right is vup × vpn, screen up is vpn × right: for the default
+// vpn (0 0 1) and vup (0 1 0), x is right, y up and the eye looks along +z (a left-handed viewing
+// frame, as in Foley and van Dam's 1982 SGP and POV-Ray).
+struct View {
+    std::string id;
+    std::optional<Vec3> vrp, vpn, vup, dop, cop;
+    std::optional<double> whh, whw;
+    std::optional<double> front, back;  // fbp d1 d2, distances from vrp along vpn
+    bool isDefault = false;             // the automatic `view default dop .3 .3 -1`
+    SourceLoc loc;
+};
+
+struct Scene {
+    Scope top;
+    std::vector<Scope> definitions;
+    std::vector<Light> lights;
+    std::vector<View> views;
+
+    // Lookups by id; -1 when absent.
+    int FindDefinition(const std::string& id) const;
+    int FindView(const std::string& id) const;
+    int FindLight(const std::string& id) const;
+
+    // The view used for rendering: `name` if given, else the last view defined, else the default
+    // view `dop .3 .3 -1`. nullopt when `name` is not a view.
+    std::optional<View> ViewToUse(const std::string& name = {}) const;
+    // The lights used for shading: all ambient lights and all parallel lights; when there is no
+    // parallel light, the default `light default 1 0 0 -1` is added.
+    std::vector<Light> LightsToUse() const;
+    // True when nothing would be drawn (no drawable solid in the top scope).
+    bool Empty() const;
+};
+
+View DefaultView();
+Light DefaultLight();
+
+}  // namespace quadrix::scene
