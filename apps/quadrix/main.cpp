@@ -1,1 +1,43 @@
-int main() { return 0; }
+// quadrix: the command-line tool. Subcommands live in their own files (render_command.cpp, ...);
+// this file only wires them into one CLI11 application.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Quadrix draws solids made of quadric surfaces and planes, and CSG combinations of them,\n"
+        "exactly: no tessellation.\n\n"
+        "Examples:\n"
+        "  quadrix render examples/machined_part.uq -o part.png\n"
+        "  quadrix render examples/stack_of_bundles.uq -o stack.png --size 800x600 --fast\n"
+        "  quadrix render - -o out.ppm < scene.uq\n"
+        "  quadrix export --to pov examples/machined_part.uq -o part.pov\n",
+        "quadrix"};
+    app.set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
+    app.require_subcommand(1);
+    app.fallthrough(false);
+
+    quadrix::cli::RenderArgs renderArgs;
+    quadrix::cli::AddRenderCommand(app, renderArgs);
+    quadrix::cli::ExportArgs exportArgs;
+    quadrix::cli::AddExportCommand(app, exportArgs);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "quadrix: error: %s\n(run 'quadrix --help' for usage)\n", e.what());
+        return 2;
+    }
+    if (app.got_subcommand("render")) return quadrix::cli::RunRender(renderArgs);
+    if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
+    return 2;
+}

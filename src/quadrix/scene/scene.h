@@ -65,6 +65,9 @@ struct Instance {
     int count = 1;
     Transform delta;
     bool isArray = false;
+    // Color given to the bodies of the instanced definition that have none of their own
+    // (`=c r g b` after the parenthesised transforms).
+    std::optional<Color> color;
     bool usedAsOperand = false;
     SourceLoc loc;
 };
@@ -89,6 +92,9 @@ struct CsgNode {
 
 // The CSG extension statement (docs/language.md): a solid combining bodies, instances and other
 // CSG solids with union, intersection and difference.
+//
+// Color precedence (docs/language.md): a body's own color; else the innermost enclosing CSG solid
+// or instance that has one; else white.
 struct Csg {
     std::string id;
     std::vector<CsgNode> nodes;

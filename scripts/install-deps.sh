@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs what Quadrix needs to build and test, from Debian packages only (docs/dependencies.md).
+# Idempotent: packages already present are skipped; apt-get runs only when something is missing.
+set -euo pipefail
+
+PACKAGES=(
+  cmake ninja-build g++ pkg-config   # build
+  libfmt-dev                         # formatting of messages and numbers
+  libcli11-dev                       # command-line parsing
+  libpng-dev                         # PNG output
+  libtbb-dev                         # oneTBB: parallel tiles
+  libgtest-dev                       # GoogleTest
+  povray                             # the independent exact renderer the tests compare against
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+if ! $SUDO apt-get install -y --no-install-recommends "${missing[@]}"; then
+  $SUDO apt-get update
+  $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,147 @@
+#include "quadrix/io/pov_export.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace quadrix {
+
+namespace {
+
+std::string Num(double v) { return fmt::format("{:.17g}", v); }
+
+class PovWriter {
+public:
+    PovWriter(const FlatScene& scene, const PovExportOptions& options)
+        : scene_(scene), options_(options) {}
+
+    std::string Run() {
+        Header();
+        out_ += "union {\n";
+        for (std::size_t s = 0; s < scene_.solids.size(); ++s) Node(scene_.solids[s].root, 1);
+        out_ += "  scale <1,-1,1>\n}\n";
+        return out_;
+    }
+
+private:
+    void Header() {
+        const double w = scene_.width, h = scene_.height;
+        double zmin = HUGE_VAL;
+        for (const FlatSolid& s : scene_.solids)
+            if (std::isfinite(s.bounds.lo.z)) zmin = std::fmin(zmin, s.bounds.lo.z);
+        double camZ = std::isfinite(zmin) ? zmin - 1.0 - std::fabs(zmin) * 1e-3 : -1e7;
+        out_ += "// Written by quadrix export --to pov (device space; see docs/pov-export.md)\n";
+        out_ += "#version 3.7;\n";
+        out_ += fmt::format(
+            "camera {{ orthographic location <{0},{1},{2}> right <{3},0,0> up <0,{4},0> "
+            "direction <0,0,1> }}\n",
+            Num(w / 2), Num(-h / 2), Num(camZ), Num(w), Num(h));
+        out_ += "background { color rgb <0,0,0> }\n";
+        double ambient = 0;
+        for (const scene::Light& l : scene_.lights)
+            if (l.kind == scene::Light::Kind::kAmbient) ambient += l.intensity;
+        if (options_.mask) {
+            out_ += "global_settings { assumed_gamma 1.0 ambient_light rgb <1,1,1> }\n";
+            out_ += "#default { finish { ambient 1 diffuse 0 specular 0 phong 0 } pigment { color rgb <1,1,1> } }\n";
+            return;
+        }
+        out_ += fmt::format("global_settings {{ assumed_gamma 1.0 ambient_light rgb <{0},{0},{0}> }}\n",
+                            Num(ambient));
+        out_ += "#default { finish { ambient 1 diffuse 1 specular 0 phong 0 } }\n";
+        const Mat4& m = scene_.projection.deviceFromWorld.Matrix();
+        for (const scene::Light& l : scene_.lights) {
+            if (l.kind != scene::Light::Kind::kParallel) continue;
+            // Direction toward the light in device space, then into POV space (y flipped).
+            Vec3 d = Normalize(m.MapVector(l.direction));
+            Vec3 p = d * 1e7;
+            out_ += fmt::format(
+                "light_source {{ <{0},{1},{2}> color rgb <{3},{3},{3}> parallel point_at <0,0,0> }}\n",
+                Num(p.x), Num(-p.y), Num(p.z), Num(l.intensity));
+        }
+    }
+
+    void Indent(int depth) { out_.append(static_cast<std::size_t>(depth) * 2, ' '); }
+
+    void HalfSpace(const FlatLiteral& lit, int depth) {
+        const FlatHalfSpace& h = scene_.halfSpaces[lit.halfSpace];
+        Indent(depth);
+        if (h.isPlane) {
+            double len = Length(h.plane.Normal());
+            out_ += fmt::format("plane {{ <{},{},{}>, {}", Num(h.plane.a), Num(h.plane.b),
+                                Num(h.plane.c), Num(len > 0 ? -h.plane.d / len : 0));
+        } else {
+            const Quadric& q = h.quadric;
+            out_ += fmt::format("quadric {{ <{},{},{}>, <{},{},{}>, <{},{},{}>, {}", Num(q.A()),
+                                Num(q.B()), Num(q.C()), Num(2 * q.D()), Num(2 * q.F()),
+                                Num(2 * q.E()), Num(2 * q.G()), Num(2 * q.H()), Num(2 * q.J()),
+                                Num(q.K()));
+        }
+        out_ += lit.complemented ? " inverse }\n" : " }\n";
+    }
+
+    void Body(int b, int depth) {
+        const FlatBody& body = scene_.bodies[b];
+        std::vector<FlatLiteral> opaque, bounding;
+        for (const FlatLiteral& l : body.literals)
+            (scene_.halfSpaces[l.halfSpace].transparent ? bounding : opaque).push_back(l);
+        Indent(depth);
+        out_ += "intersection {\n";
+        if (opaque.empty()) {
+            // Nothing is drawn, but the body must stay a valid (empty) solid.
+            Indent(depth + 1);
+            out_ += "sphere { <0,0,0>, 1 inverse } sphere { <0,0,0>, 1 }\n";
+        }
+        for (const FlatLiteral& l : opaque) HalfSpace(l, depth + 1);
+        if (opaque.size() == 1) {
+            // POV-Ray wants at least two members in an intersection; a second copy is harmless.
+            HalfSpace(opaque[0], depth + 1);
+        }
+        if (!bounding.empty()) {
+            Indent(depth + 1);
+            out_ += "clipped_by { intersection {\n";
+            for (const FlatLiteral& l : bounding) HalfSpace(l, depth + 2);
+            if (bounding.size() == 1) HalfSpace(bounding[0], depth + 2);
+            Indent(depth + 1);
+            out_ += "} }\n";
+        }
+        if (!options_.mask) {
+            const scene::Color& c = body.color;
+            Indent(depth + 1);
+            out_ += fmt::format("pigment {{ color rgb <{},{},{}> }}\n", Num(c.r), Num(c.g), Num(c.b));
+        }
+        Indent(depth);
+        out_ += "}\n";
+    }
+
+    void Node(int n, int depth) {
+        const FlatCsgNode& node = scene_.nodes[n];
+        if (node.isLeaf) {
+            Body(node.body, depth);
+            return;
+        }
+        if (node.children.size() == 1) {
+            Node(node.children[0], depth);
+            return;
+        }
+        const char* op = node.op == scene::CsgOp::kUnion          ? "union"
+                         : node.op == scene::CsgOp::kIntersection ? "intersection"
+                                                                  : "difference";
+        Indent(depth);
+        out_ += fmt::format("{} {{\n", op);
+        for (int c : node.children) Node(c, depth + 1);
+        Indent(depth);
+        out_ += "}\n";
+    }
+
+    const FlatScene& scene_;
+    const PovExportOptions& options_;
+    std::string out_;
+};
+
+}  // namespace
+
+std::string ExportPov(const FlatScene& scene, const PovExportOptions& options) {
+    return PovWriter(scene, options).Run();
+}
+
+}  // namespace quadrix

@@ -1,0 +1,35 @@
+// Export to POV-Ray (Persistence of Vision 3.7) scene text.
+//
+// The export is written in DEVICE space with an orthographic camera looking along +z: the flat
+// scene's planes and quadrics are exported with their device-space coefficients, so POV-Ray
+// traces exactly the rays our engines trace (pixel centres, z away from the viewer), for parallel
+// and perspective views alike (a perspective view is a projective map, and the image of a quadric
+// under it is still a quadric). POV-Ray's space is left-handed with y up; device y runs down, so
+// the whole scene is wrapped in `scale <1,-1,1>`.
+//
+// Mapping (our convention → POV-Ray):
+//   plane  A x + B y + C z + D <= 0          → plane { <A,B,C>, -D/|(A,B,C)| }
+//   quadric <A B C D E F G H J K>            → quadric { <A,B,C>, <2D,2F,2E>, <2G,2H,2J>, K }
+//   complemented literal                     → the object with `inverse`
+//   body: opaque literals                    → intersection { … }
+//         transparent literals (and clips)   → clipped_by { intersection { … } } (bound, not drawn)
+//   CSG union / intersection / difference    → union / intersection / difference
+// Lights: ambient lights sum into global ambient_light; parallel lights become `parallel` light
+// sources far away in their (device-space) direction. Shading therefore matches for parallel
+// views; for perspective views device-space normals differ from world normals (coverage and depth
+// are still exact). Mask mode writes every solid as unlit white for coverage comparisons.
+#pragma once
+
+#include <string>
+
+#include "quadrix/flatten/flat_scene.h"
+
+namespace quadrix {
+
+struct PovExportOptions {
+    bool mask = false;  // white, ambient 1, no lights: coverage masks
+};
+
+std::string ExportPov(const FlatScene& scene, const PovExportOptions& options = {});
+
+}  // namespace quadrix

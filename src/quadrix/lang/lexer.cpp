@@ -1,0 +1,275 @@
+#include "quadrix/lang/lexer.h"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace quadrix::lang {
+
+bool IsIdStart(int c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '#' || c == '_';
+}
+bool IsIdChar(int c) { return IsIdStart(c) || (c >= '0' && c <= '9'); }
+
+namespace {
+
+bool IsDigit(int c) { return c >= '0' && c <= '9'; }
+bool IsSpace(int c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+// Bytes that may begin a token (or white space / a comment). Anything else is garbage; '.' and
+// '+' only begin numbers and are checked there.
+bool StartsToken(int c) {
+    if (IsSpace(c) || IsIdChar(c)) return true;
+    switch (c) {
+        case '{': case '}': case '"': case '=': case ';': case '(': case ')': case '<':
+        case '>': case '!': case '|': case '&': case '-': return true;
+        default: return false;
+    }
+}
+
+std::string ShowByte(int c) {
+    if (c >= 0x21 && c <= 0x7e) return fmt::format("'{}'", static_cast<char>(c));
+    return fmt::format("byte 0x{:02x}", c);
+}
+
+// The decimal order of magnitude of a number written as digits[.digits] with exponent `exp`
+// (the power of ten of its leading non-zero digit), used to tell an overflow from an underflow
+// when from_chars reports "out of range". Saturates instead of overflowing.
+long long DecimalOrder(std::string_view mantissa, long long exp) {
+    long long intDigits = 0, leadingFractionZeros = 0;
+    bool seenNonZero = false, inFraction = false;
+    for (char c : mantissa) {
+        if (c == '.') {
+            inFraction = true;
+            continue;
+        }
+        if (!inFraction) {
+            if (seenNonZero || c != '0') ++intDigits;
+            seenNonZero |= c != '0';
+        } else if (!seenNonZero) {
+            if (c != '0') {
+                seenNonZero = true;
+                break;
+            }
+            ++leadingFractionZeros;
+        }
+    }
+    long long order = intDigits > 0 ? intDigits - 1 : -leadingFractionZeros - 1;
+    return order + exp;
+}
+
+}  // namespace
+
+Lexer::Lexer(Source& source, Diagnostics& diags) : source_(source), diags_(diags) {}
+
+int Lexer::PeekChar(std::size_t ahead) {
+    if (!source_.Has(pos_ + ahead)) return -1;
+    return static_cast<unsigned char>(source_.At(pos_ + ahead));
+}
+
+void Lexer::Advance() {
+    if (!source_.Has(pos_)) return;
+    if (source_.At(pos_) == '\n') {
+        ++line_;
+        column_ = 1;
+    } else {
+        ++column_;
+    }
+    ++pos_;
+}
+
+SourceLoc Lexer::Here() const { return SourceLoc{source_.Name(), line_, column_}; }
+
+std::string Lexer::LineOf(const SourceLoc& loc) const {
+    return source_.LineForDiagnostic(loc.line, loc.column);
+}
+
+Token Lexer::ErrorToken(const SourceLoc& loc, std::string message, bool evenWhenQuiet) {
+    if (!quiet_ || evenWhenQuiet) diags_.Error(loc, std::move(message), LineOf(loc), "syntax");
+    Token t;
+    t.kind = TokenKind::kError;
+    t.loc = loc;
+    return t;
+}
+
+void Lexer::SkipSpaceAndComments() {
+    for (;;) {
+        int c = PeekChar();
+        if (IsSpace(c)) {
+            Advance();
+            continue;
+        }
+        if (c != '{') return;
+        // Nested comment (§2.1.8): a depth counter, so nesting depth costs no stack.
+        SourceLoc start = Here();
+        long long depth = 0;
+        do {
+            c = PeekChar();
+            if (c == '{') ++depth;
+            if (c == '}') --depth;
+            if (c < 0) {
+                ErrorToken(start, "unterminated comment (a '{' has no matching '}')", true);
+                return;
+            }
+            Advance();
+        } while (depth > 0);
+    }
+}
+
+Token Lexer::Next() {
+    SkipSpaceAndComments();
+    SourceLoc start = Here();
+    int c = PeekChar();
+    Token t;
+    t.loc = start;
+    if (c < 0) return t;  // kEnd
+    auto single = [&](TokenKind kind) {
+        t.kind = kind;
+        t.text = static_cast<char>(c);
+        Advance();
+        return t;
+    };
+    switch (c) {
+        case ';': return single(TokenKind::kSemicolon);
+        case '(': return single(TokenKind::kLParen);
+        case ')': return single(TokenKind::kRParen);
+        case '<': return single(TokenKind::kLAngle);
+        case '>': return single(TokenKind::kRAngle);
+        case '!': return single(TokenKind::kBang);
+        case '|': return single(TokenKind::kPipe);
+        case '&': return single(TokenKind::kAmp);
+        case '"': return LexString(start);
+        case '=': return LexOption(start);
+        case '}':
+            Advance();
+            return ErrorToken(start, "unmatched '}' (no comment is open)");
+        default: break;
+    }
+    if (IsDigit(c) || c == '.' || c == '+' || c == '-') {
+        int d = PeekChar(1);
+        bool number = IsDigit(c) || (c == '.' && IsDigit(d)) ||
+                      ((c == '+' || c == '-') && (IsDigit(d) || (d == '.' && IsDigit(PeekChar(2)))));
+        if (number) return LexNumber(start);
+        if (c == '-') return single(TokenKind::kMinus);
+    }
+    if (IsIdStart(c)) return LexWord(start);
+    return LexGarbage(start);
+}
+
+Token Lexer::LexNumber(SourceLoc start) {
+    std::string text;
+    auto take = [&] {
+        text += static_cast<char>(PeekChar());
+        Advance();
+    };
+    bool negative = PeekChar() == '-';
+    if (PeekChar() == '+' || PeekChar() == '-') take();
+    std::size_t mantissaStart = text.size();
+    while (IsDigit(PeekChar())) take();
+    if (PeekChar() == '.') {
+        take();
+        while (IsDigit(PeekChar())) take();
+    }
+    std::size_t mantissaEnd = text.size();
+    long long exponent = 0;
+    int e = PeekChar();
+    int afterE = PeekChar(1);
+    if ((e == 'e' || e == 'E') &&
+        (IsDigit(afterE) || ((afterE == '+' || afterE == '-') && IsDigit(PeekChar(2))))) {
+        take();
+        bool negExp = false;
+        if (PeekChar() == '+' || PeekChar() == '-') {
+            negExp = PeekChar() == '-';
+            take();
+        }
+        while (IsDigit(PeekChar())) {
+            if (exponent < 1000000) exponent = exponent * 10 + (PeekChar() - '0');
+            take();
+        }
+        if (negExp) exponent = -exponent;
+    }
+    // A number glued to more id characters or dots ("1x", "1.2.3", "2e") is one malformed token.
+    if (IsIdChar(PeekChar()) || PeekChar() == '.') {
+        while (IsIdChar(PeekChar()) || PeekChar() == '.') take();
+        std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
+        return ErrorToken(start, fmt::format("malformed number '{}'", shown));
+    }
+    Token t;
+    t.kind = TokenKind::kNumber;
+    t.loc = start;
+    const char* first = text.data() + mantissaStart;
+    const char* last = text.data() + text.size();
+    double value = 0;
+    auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
+    if (ec == std::errc::result_out_of_range) {
+        std::string_view mantissa(first, mantissaEnd - mantissaStart);
+        if (DecimalOrder(mantissa, exponent) > 0) {
+            std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
+            return ErrorToken(start, fmt::format("number '{}' is too large", shown));
+        }
+        value = 0;  // underflow: below the smallest double, as good as zero
+    } else if (ec != std::errc() || ptr != last || !std::isfinite(value)) {
+        return ErrorToken(start, fmt::format("malformed number '{}'", text));
+    }
+    t.number = negative ? -value : value;
+    t.text = std::move(text);
+    return t;
+}
+
+Token Lexer::LexWord(SourceLoc start) {
+    Token t;
+    t.loc = start;
+    while (IsIdChar(PeekChar())) {
+        t.text += static_cast<char>(PeekChar());
+        Advance();
+    }
+    t.keyword = LookupKeyword(t.text);
+    t.kind = t.keyword == Keyword::kNone ? TokenKind::kId : TokenKind::kKeyword;
+    return t;
+}
+
+Token Lexer::LexString(SourceLoc start) {
+    Advance();  // the opening quote
+    Token t;
+    t.kind = TokenKind::kString;
+    t.loc = start;
+    for (;;) {
+        int c = PeekChar();
+        if (c < 0 || c == '\n') {
+            return ErrorToken(start, "unterminated string (a '\"' has no closing '\"' on its line)",
+                              true);
+        }
+        Advance();
+        if (c == '"') return t;
+        t.text += static_cast<char>(c);
+    }
+}
+
+Token Lexer::LexOption(SourceLoc start) {
+    Advance();  // '='
+    Token t;
+    t.kind = TokenKind::kOption;
+    t.loc = start;
+    while (IsIdChar(PeekChar())) {
+        t.text += static_cast<char>(PeekChar());
+        Advance();
+    }
+    if (t.text.empty())
+        return ErrorToken(start, "expected an option name right after '=' (as in =t, =tx, =c)");
+    return t;
+}
+
+Token Lexer::LexGarbage(SourceLoc start) {
+    int first = PeekChar();
+    int count = 0;
+    do {
+        Advance();
+        ++count;
+    } while (PeekChar() >= 0 && !StartsToken(PeekChar()) && PeekChar() != '"');
+    if (count == 1) return ErrorToken(start, fmt::format("unexpected character {}", ShowByte(first)));
+    return ErrorToken(start,
+                      fmt::format("unexpected characters (starting with {})", ShowByte(first)));
+}
+
+}  // namespace quadrix::lang

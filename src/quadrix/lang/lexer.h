@@ -1,0 +1,66 @@
+// Lexer of the UniQuadrix language (seed 001 §2.1): turns a Source into tokens tagged with
+// file:line:column.
+//
+//  - White space is ' ', tab, CR, LF, FF and VT. Comments are { ... }, nest to any depth and count
+//    as white space (§2.1.8); an unterminated comment is an error at its '{'.
+//  - Ids: letters, digits, '#', '_', not starting with a digit (§2.1.1). Words found in the keyword
+//    table (keywords.h) come back as kKeyword.
+//  - Numbers: [+-] digits [. digits] [(e|E) [+-] digits], or [+-] . digits [...]: `.3`, `-4`,
+//    `1e-3`. A number that overflows a double is an error; one that underflows becomes 0.
+//    A number glued to a letter or another '.' (`1x`, `1.2.3`) is malformed.
+//  - Strings: "..." on one line, no escapes (they hold path names, §2.1.7).
+//  - Options: '=' followed at once by letters/digits: `=t`, `=0`, `=tx`, `=vxy`, `=c`.
+//
+// Lexical errors go to Diagnostics (kind "syntax") and come back as a kError token. A run of
+// unexpected bytes (binary garbage) is one error. While the parser is skipping to the next ';'
+// after an error it sets quiet mode: malformed tokens are then not reported again, except for
+// unterminated comments and strings, which swallow the rest of the input and must be seen.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "quadrix/lang/source.h"
+#include "quadrix/lang/token.h"
+#include "quadrix/scene/diagnostics.h"
+
+namespace quadrix::lang {
+
+class Lexer {
+public:
+    Lexer(Source& source, Diagnostics& diags);
+
+    // The next token; kEnd forever once the input is exhausted.
+    Token Next();
+
+    void SetQuiet(bool quiet) { quiet_ = quiet; }
+    Source& GetSource() { return source_; }
+
+    // The source line of `loc` for a diagnostic (see Source::LineForDiagnostic).
+    std::string LineOf(const SourceLoc& loc) const;
+
+private:
+    int PeekChar(std::size_t ahead = 0);  // -1 at end of input
+    void Advance();
+    SourceLoc Here() const;
+    void SkipSpaceAndComments();
+    Token LexNumber(SourceLoc start);
+    Token LexWord(SourceLoc start);
+    Token LexString(SourceLoc start);
+    Token LexOption(SourceLoc start);
+    Token LexGarbage(SourceLoc start);
+    Token ErrorToken(const SourceLoc& loc, std::string message, bool evenWhenQuiet = false);
+
+    Source& source_;
+    Diagnostics& diags_;
+    std::size_t pos_ = 0;
+    int line_ = 1;
+    int column_ = 1;
+    bool quiet_ = false;
+};
+
+// Character classes shared with the parser (e.g. to explain why a path needs quotes).
+bool IsIdStart(int c);
+bool IsIdChar(int c);
+
+}  // namespace quadrix::lang

@@ -1,0 +1,91 @@
+// Parser of the UniQuadrix language (seed 001 §2.1, §2.3): reads the statements of one Source
+// into the scene held by a ReaderState.
+//
+// The statement loop looks at the first token of each statement and calls the small function
+// registered for that keyword in the statement table (statements.h); each such function parses
+// one statement up to and including its ';'. This class gives those functions a token cursor,
+// error reporting, and the grammar pieces they share (numbers, ids, colors, the final ';').
+//
+// Error recovery (seed 001 §2.3: "If an error is noted, all input is ignored ... until the next
+// semi-colon"): a statement function returns false after a syntax error it has reported; the loop
+// then skips to the next ';' and goes on. Errors about meaning (unknown ids, bad values) are
+// reported where they are found and the statement goes on, so one statement may report several.
+//
+// The cursor lexes lazily: after a statement's ';' nothing more is read until the next statement
+// is wanted, so statements typed on standard input run as soon as they are complete.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "quadrix/lang/lexer.h"
+#include "quadrix/lang/reader_state.h"
+#include "quadrix/lang/source.h"
+
+namespace quadrix::lang {
+
+// Diagnostic kinds used by the reader (the end-of-session summary counts them, seed 001 §2.3):
+inline constexpr const char* kSyntax = "syntax";  // malformed tokens, unexpected tokens
+inline constexpr const char* kInput = "input";    // well-formed statements that mean nothing valid
+inline constexpr const char* kParser = "parser";  // files, nesting limits, too many errors
+
+class Parser {
+public:
+    Parser(ReaderState& state, Source& source);
+
+    // Reads statements to the end of the source, a `quit`, or until reading is aborted.
+    void Run();
+
+    ReaderState& State() { return state_; }
+    Source& GetSource() { return source_; }
+    // Stops reading this source after the current statement (quit).
+    void Stop() { stopped_ = true; }
+
+    // --- token cursor -----------------------------------------------------------------------
+    const Token& Peek();
+    Token Take();
+    bool PeekIs(TokenKind kind) { return Peek().kind == kind; }
+    bool PeekIsKeyword(Keyword keyword) {
+        return Peek().kind == TokenKind::kKeyword && Peek().keyword == keyword;
+    }
+    bool PeekIsOption(std::string_view name) {
+        return Peek().kind == TokenKind::kOption && Peek().text == name;
+    }
+
+    // --- diagnostics ------------------------------------------------------------------------
+    void Error(const SourceLoc& loc, std::string message, const char* kind = kInput);
+    void Warning(const SourceLoc& loc, std::string message, const char* kind = kInput);
+    // "expected <what>, found <next token>" at the next token (kind syntax); returns false so that
+    // statement functions can `return Expected(...)`. Silent when the next token is a lexical
+    // error, which the lexer has already reported.
+    bool Expected(std::string_view what);
+
+    // --- shared grammar pieces --------------------------------------------------------------
+    // A number; `what` names it in the error message ("coefficient B of the plane").
+    std::optional<double> ExpectNumber(std::string_view what);
+    // The ';' that ends a statement; `after` completes "expected ';' after ...".
+    bool ExpectSemicolon(std::string_view after);
+    // The optional id after a statement keyword. Returns false on a reserved word (reported);
+    // leaves `id` empty when the next token is not an id. Keywords for which
+    // `keywordMayFollow(keyword)` is true are not ids but the start of what follows.
+    bool OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow)(Keyword) = nullptr);
+    // A required id (`what` names it: "definition id").
+    bool ExpectId(std::string_view what, std::string& id, SourceLoc& loc);
+    // `=c r g b` after its option token has been taken: three numbers in [0, 1].
+    std::optional<scene::Color> ParseColor(const Token& option);
+
+private:
+    bool RunStatement();
+    void SkipToSemicolon();
+    void CheckUnclosedDefinition();
+    bool ReservedWord(const Token& token);
+
+    ReaderState& state_;
+    Source& source_;
+    Lexer lexer_;
+    std::optional<Token> next_;
+    bool stopped_ = false;
+};
+
+}  // namespace quadrix::lang

@@ -1,0 +1,166 @@
+#include "quadrix/lang/reader_state.h"
+
+namespace quadrix::lang {
+
+namespace {
+void IndexScope(const scene::Scope& scope, ScopeIndex& index) {
+    using Kind = scene::SolidRef::Kind;
+    for (int i = 0; i < static_cast<int>(scope.halfSpaces.size()); ++i)
+        index.halfSpaces[scope.halfSpaces[i].id] = i;
+    for (int i = 0; i < static_cast<int>(scope.bodies.size()); ++i)
+        index.solids[scope.bodies[i].id] = {Kind::kBody, i};
+    for (int i = 0; i < static_cast<int>(scope.instances.size()); ++i)
+        index.solids[scope.instances[i].id] = {Kind::kInstance, i};
+    for (int i = 0; i < static_cast<int>(scope.csgs.size()); ++i)
+        index.solids[scope.csgs[i].id] = {Kind::kCsg, i};
+}
+template <class T>
+void IndexGlobal(const std::vector<T>& items, std::unordered_map<std::string, int>& index) {
+    for (int i = 0; i < static_cast<int>(items.size()); ++i) index[items[i].id] = i;
+}
+int Lookup(const std::unordered_map<std::string, int>& index, const std::string& id) {
+    auto it = index.find(id);
+    return it == index.end() ? -1 : it->second;
+}
+}  // namespace
+
+ReaderState::ReaderState(scene::Scene& scene_, Diagnostics& diags_, ReadOptions options_)
+    : scene(scene_), diags(diags_), options(options_) {
+    // A Reader may add to a scene that already holds statements (several files, interactive
+    // sessions): index what is there so that ids stay unique and can be referred to.
+    IndexScope(scene.top, topIndex_);
+    IndexGlobal(scene.definitions, definitions_);
+    IndexGlobal(scene.lights, lights_);
+    IndexGlobal(scene.views, views_);
+}
+
+scene::Scope& ReaderState::CurrentScope() {
+    return openDefinition_ ? openDefinition_->scope : scene.top;
+}
+ScopeIndex& ReaderState::CurrentIndex() {
+    return openDefinition_ ? openDefinition_->index : topIndex_;
+}
+const ScopeIndex& ReaderState::CurrentIndex() const {
+    return openDefinition_ ? openDefinition_->index : topIndex_;
+}
+
+const Source* ReaderState::DefinitionSource() const {
+    return openDefinition_ ? openDefinition_->source : nullptr;
+}
+
+void ReaderState::OpenDefinition(scene::Scope scope, const Source* source) {
+    openDefinition_ = OpenDef{std::move(scope), {}, source};
+}
+
+int ReaderState::CloseDefinition() {
+    int index = static_cast<int>(scene.definitions.size());
+    definitions_[openDefinition_->scope.id] = index;
+    scene.definitions.push_back(std::move(openDefinition_->scope));
+    openDefinition_.reset();
+    return index;
+}
+
+int ReaderState::FindHalfSpace(const std::string& id) const {
+    return Lookup(CurrentIndex().halfSpaces, id);
+}
+
+std::optional<scene::SolidRef> ReaderState::FindSolid(const std::string& id) const {
+    const auto& solids = CurrentIndex().solids;
+    auto it = solids.find(id);
+    if (it == solids.end()) return std::nullopt;
+    return it->second;
+}
+
+SourceLoc ReaderState::SolidLoc(const scene::SolidRef& ref) const {
+    const scene::Scope& scope = openDefinition_ ? openDefinition_->scope : scene.top;
+    switch (ref.kind) {
+        case scene::SolidRef::Kind::kBody: return scope.bodies[ref.index].loc;
+        case scene::SolidRef::Kind::kInstance: return scope.instances[ref.index].loc;
+        case scene::SolidRef::Kind::kCsg: return scope.csgs[ref.index].loc;
+    }
+    return {};
+}
+
+void ReaderState::MarkOperand(const scene::SolidRef& ref) {
+    scene::Scope& scope = CurrentScope();
+    switch (ref.kind) {
+        case scene::SolidRef::Kind::kBody: scope.bodies[ref.index].usedAsOperand = true; break;
+        case scene::SolidRef::Kind::kInstance:
+            scope.instances[ref.index].usedAsOperand = true;
+            break;
+        case scene::SolidRef::Kind::kCsg: scope.csgs[ref.index].usedAsOperand = true; break;
+    }
+}
+
+int ReaderState::AddHalfSpace(scene::HalfSpace hs) {
+    auto& v = CurrentScope().halfSpaces;
+    int index = static_cast<int>(v.size());
+    CurrentIndex().halfSpaces[hs.id] = index;
+    v.push_back(std::move(hs));
+    return index;
+}
+
+int ReaderState::AddBody(scene::Body body) {
+    auto& v = CurrentScope().bodies;
+    int index = static_cast<int>(v.size());
+    CurrentIndex().solids[body.id] = {scene::SolidRef::Kind::kBody, index};
+    v.push_back(std::move(body));
+    return index;
+}
+
+int ReaderState::AddInstance(scene::Instance instance) {
+    auto& v = CurrentScope().instances;
+    int index = static_cast<int>(v.size());
+    CurrentIndex().solids[instance.id] = {scene::SolidRef::Kind::kInstance, index};
+    v.push_back(std::move(instance));
+    return index;
+}
+
+int ReaderState::AddCsg(scene::Csg csg) {
+    auto& v = CurrentScope().csgs;
+    int index = static_cast<int>(v.size());
+    CurrentIndex().solids[csg.id] = {scene::SolidRef::Kind::kCsg, index};
+    v.push_back(std::move(csg));
+    return index;
+}
+
+int ReaderState::FindDefinition(const std::string& id) const { return Lookup(definitions_, id); }
+int ReaderState::FindLight(const std::string& id) const { return Lookup(lights_, id); }
+int ReaderState::FindView(const std::string& id) const { return Lookup(views_, id); }
+
+int ReaderState::AddLight(scene::Light light) {
+    int index = static_cast<int>(scene.lights.size());
+    lights_[light.id] = index;
+    scene.lights.push_back(std::move(light));
+    return index;
+}
+
+int ReaderState::AddView(scene::View view) {
+    int index = static_cast<int>(scene.views.size());
+    views_[view.id] = index;
+    scene.views.push_back(std::move(view));
+    return index;
+}
+
+bool ReaderState::Taken(const std::string& id, Namespace ns) const {
+    switch (ns) {
+        case Namespace::kHalfSpace: return FindHalfSpace(id) >= 0;
+        case Namespace::kSolid: return FindSolid(id).has_value();
+        case Namespace::kDefinition:
+            return FindDefinition(id) >= 0 ||
+                   (openDefinition_ && openDefinition_->scope.id == id);
+        case Namespace::kLight: return FindLight(id) >= 0;
+        case Namespace::kView: return FindView(id) >= 0;
+    }
+    return false;
+}
+
+std::string ReaderState::GenerateId(const std::string& prefix, Namespace ns) {
+    int& counter = idCounters_[prefix];
+    for (;;) {
+        std::string id = prefix + "#" + std::to_string(++counter);
+        if (!Taken(id, ns)) return id;
+    }
+}
+
+}  // namespace quadrix::lang

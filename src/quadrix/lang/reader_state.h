@@ -1,0 +1,98 @@
+// What the reader remembers across statements and across the files of one Reader: the scope that
+// statements add to (the top level or the open definition), the id tables of each scope, the
+// global id tables (definitions, lights, views), generated ids and the stack of files being read.
+//
+// Id namespaces (seed 001 §2.1.3; docs/language.md "Ids"):
+//   - per scope: half-spaces (planes and quadrics share one table, since bodies name both),
+//     solids (bodies, instances, arrays and CSG solids share one table, since CSG operands name
+//     all of them);
+//   - global: definitions, lights, views.
+// The same id may name one object of each namespace (the paper's `definition tube` holds a
+// `body tube`).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "quadrix/lang/reader.h"
+
+namespace quadrix::lang {
+
+class Source;
+
+struct ScopeIndex {
+    std::unordered_map<std::string, int> halfSpaces;
+    std::unordered_map<std::string, scene::SolidRef> solids;
+};
+
+// One file (or text) being read; the stack of them detects cycles and limits nesting (§2.1.7).
+struct IncludeFrame {
+    std::string key;          // canonical path (cycle detection), "-" for standard input
+    std::string displayName;  // as shown in diagnostics
+};
+
+class ReaderState {
+public:
+    ReaderState(scene::Scene& scene, Diagnostics& diags, ReadOptions options);
+
+    scene::Scene& scene;
+    Diagnostics& diags;
+    ReadOptions options;
+
+    // --- scopes -----------------------------------------------------------------------------
+    bool InDefinition() const { return openDefinition_.has_value(); }
+    scene::Scope& CurrentScope();
+    // The open definition's source (to require `enddef` in the file that opened it).
+    const Source* DefinitionSource() const;
+    void OpenDefinition(scene::Scope scope, const Source* source);
+    // Moves the open definition into scene.definitions and returns its index.
+    int CloseDefinition();
+
+    int FindHalfSpace(const std::string& id) const;
+    std::optional<scene::SolidRef> FindSolid(const std::string& id) const;
+    SourceLoc SolidLoc(const scene::SolidRef& ref) const;
+    // Sets usedAsOperand on the solid `ref` of the current scope.
+    void MarkOperand(const scene::SolidRef& ref);
+
+    int AddHalfSpace(scene::HalfSpace hs);
+    int AddBody(scene::Body body);
+    int AddInstance(scene::Instance instance);
+    int AddCsg(scene::Csg csg);
+
+    // --- global objects ---------------------------------------------------------------------
+    int FindDefinition(const std::string& id) const;
+    int FindLight(const std::string& id) const;
+    int FindView(const std::string& id) const;
+    int AddLight(scene::Light light);
+    int AddView(scene::View view);
+
+    // An id "<prefix>#<n>" for an object written without one, unused in its namespace: prefix "l"
+    // gives l#1, l#2, ... (seed 001 §2.3 session: "warning: id l#1 created").
+    enum class Namespace { kHalfSpace, kSolid, kDefinition, kLight, kView };
+    std::string GenerateId(const std::string& prefix, Namespace ns);
+
+    // --- reading ----------------------------------------------------------------------------
+    std::vector<IncludeFrame> includeStack;
+    // Set when reading must stop everywhere (too many errors).
+    bool aborted = false;
+
+private:
+    ScopeIndex& CurrentIndex();
+    const ScopeIndex& CurrentIndex() const;
+    bool Taken(const std::string& id, Namespace ns) const;
+
+    struct OpenDef {
+        scene::Scope scope;
+        ScopeIndex index;
+        const Source* source = nullptr;
+    };
+    std::optional<OpenDef> openDefinition_;
+    ScopeIndex topIndex_;
+    std::unordered_map<std::string, int> definitions_, lights_, views_;
+    std::map<std::string, int> idCounters_;
+};
+
+}  // namespace quadrix::lang

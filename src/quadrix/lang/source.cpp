@@ -1,0 +1,51 @@
+#include "quadrix/lang/source.h"
+
+#include <algorithm>
+
+namespace quadrix::lang {
+
+Source::Source(std::string name, std::string text)
+    : name_(std::make_shared<const std::string>(std::move(name))), text_(std::move(text)) {
+    IndexLines(0);
+}
+
+Source::Source(std::string name, LineReader readLine)
+    : name_(std::make_shared<const std::string>(std::move(name))), readLine_(std::move(readLine)) {}
+
+bool Source::Has(std::size_t pos) {
+    while (pos >= text_.size() && readLine_) {
+        std::size_t before = text_.size();
+        if (!readLine_(text_)) {
+            readLine_ = nullptr;  // end of input: never ask again
+            break;
+        }
+        IndexLines(before);
+    }
+    return pos < text_.size();
+}
+
+void Source::IndexLines(std::size_t from) {
+    for (std::size_t i = from; i < text_.size(); ++i)
+        if (text_[i] == '\n') lineStarts_.push_back(i + 1);
+}
+
+std::string Source::LineForDiagnostic(int line, int column) const {
+    if (line < 1 || line > static_cast<int>(lineStarts_.size()) || column > kMaxShownColumn)
+        return {};
+    std::size_t start = lineStarts_[line - 1];
+    std::size_t end = start;
+    while (end < text_.size() && text_[end] != '\n') ++end;
+    // Keep at least a little context after the caret, but never print megabytes of one line.
+    std::size_t keep = static_cast<std::size_t>(std::max(column + 80, 160));
+    bool cut = end - start > keep;
+    std::string s = text_.substr(start, std::min(end - start, keep));
+    if (!s.empty() && s.back() == '\r') s.pop_back();
+    for (char& c : s) {
+        unsigned char u = static_cast<unsigned char>(c);
+        if ((u < 0x20 && c != '\t') || u == 0x7f) c = '?';
+    }
+    if (cut) s += " ...";
+    return s;
+}
+
+}  // namespace quadrix::lang

@@ -1,0 +1,105 @@
+// body statement (seed 001 §2.1.2) with the Quadrix color extension:
+//   body [id] ( [!]hsId ... ) [=c r g b];
+// The list may also be written with angle brackets, < ... >, as in the paper's tube example.
+// A body is the intersection of the half-spaces it names; '!' takes the complement of one.
+// Bodies may name only half-spaces of their own scope (§2.1.3).
+#include <fmt/format.h>
+
+#include <unordered_map>
+
+#include "quadrix/lang/parser.h"
+#include "quadrix/lang/statements.h"
+
+namespace quadrix::lang {
+
+namespace {
+
+// Reads one literal and appends it to `body` unless its id is unknown (reported).
+bool ParseLiteral(Parser& p, scene::Body& body, std::unordered_map<int, SourceLoc>& seen) {
+    bool complemented = false;
+    if (p.PeekIs(TokenKind::kBang)) {
+        p.Take();
+        complemented = true;
+    }
+    std::string id;
+    SourceLoc loc;
+    if (!p.ExpectId(complemented ? "a half-space id after '!'" : "a half-space id or '!'", id,
+                    loc))
+        return false;
+    ReaderState& s = p.State();
+    int index = s.FindHalfSpace(id);
+    if (index < 0) {
+        std::string where = s.InDefinition()
+                                ? fmt::format(" in definition '{}' (a body may name only the "
+                                              "half-spaces of its own definition)",
+                                              s.CurrentScope().id)
+                                : std::string();
+        p.Error(loc, fmt::format("unknown half-space '{}'{}", id, where));
+        return true;
+    }
+    if (auto it = seen.find(index); it != seen.end())
+        p.Warning(loc, fmt::format("half-space '{}' is named twice in this body (first at {})", id,
+                                   it->second.ToString()));
+    else
+        seen.emplace(index, loc);
+    body.literals.push_back({index, complemented});
+    return true;
+}
+
+}  // namespace
+
+bool ParseBody(Parser& p, const Token& keyword) {
+    scene::Body body;
+    body.loc = keyword.loc;
+    SourceLoc idLoc = keyword.loc;
+    if (!p.OptionalId(body.id, idLoc)) return false;
+
+    Token open = p.Peek();
+    if (!p.PeekIs(TokenKind::kLParen) && !p.PeekIs(TokenKind::kLAngle))
+        return p.Expected("'(' or '<' to start the body's list of half-spaces");
+    p.Take();
+    TokenKind closeKind = open.kind == TokenKind::kLParen ? TokenKind::kRParen : TokenKind::kRAngle;
+    const char* closeText = open.kind == TokenKind::kLParen ? "')'" : "'>'";
+    std::unordered_map<int, SourceLoc> seen;
+    bool sawLiteral = false;
+    while (!p.PeekIs(closeKind)) {
+        if (!p.PeekIs(TokenKind::kId) && !p.PeekIs(TokenKind::kBang) &&
+            !p.PeekIs(TokenKind::kKeyword))
+            return p.Expected(sawLiteral ? fmt::format("a half-space id or {} to end the list "
+                                                       "opened at {}",
+                                                       closeText, open.loc.ToString())
+                                         : std::string("a half-space id or '!'"));
+        if (!ParseLiteral(p, body, seen)) return false;
+        sawLiteral = true;
+    }
+    p.Take();
+    if (!sawLiteral) p.Error(open.loc, "a body must name at least one half-space");
+
+    while (p.PeekIs(TokenKind::kOption)) {
+        Token option = p.Take();
+        if (option.text != "c") {
+            p.Error(option.loc,
+                    fmt::format("unknown option {} for a body (expected =c r g b)", Describe(option)),
+                    kSyntax);
+            return false;
+        }
+        if (body.color) p.Warning(option.loc, "color given twice; the last one is used");
+        auto color = p.ParseColor(option);
+        if (!color) return false;
+        body.color = color;
+    }
+    if (!p.ExpectSemicolon("body list")) return false;
+
+    ReaderState& s = p.State();
+    if (body.id.empty()) body.id = s.GenerateId("b", ReaderState::Namespace::kSolid);
+    if (auto first = s.FindSolid(body.id)) {
+        p.Error(idLoc, fmt::format("solid '{}' is already defined at {}", body.id,
+                                   s.SolidLoc(*first).ToString()));
+        return true;
+    }
+    if (!sawLiteral) return true;
+    s.AddBody(std::move(body));
+    return true;
+}
+
+}  // namespace quadrix::lang

@@ -1,0 +1,41 @@
+// Tokens of the UniQuadrix language, each tagged with its file:line:column.
+#pragma once
+
+#include <string>
+
+#include "quadrix/lang/keywords.h"
+#include "quadrix/scene/source_loc.h"
+
+namespace quadrix::lang {
+
+enum class TokenKind {
+    kEnd,        // end of the current input
+    kId,         // letters, digits, '#', '_', not starting with a digit; not a keyword
+    kKeyword,    // a reserved word or synonym (Token::keyword says which)
+    kNumber,     // decimal number with optional sign, fraction and exponent (Token::number)
+    kString,     // "..." (Token::text holds the contents without quotes)
+    kOption,     // '=' immediately followed by letters/digits: =t =0 =tx =c ... (text without '=')
+    kSemicolon,  // ;
+    kLParen,     // (
+    kRParen,     // )
+    kLAngle,     // <
+    kRAngle,     // >
+    kBang,       // !
+    kPipe,       // |  CSG union
+    kAmp,        // &  CSG intersection
+    kMinus,      // -  CSG difference (a '-' not starting a number); also `read -;`
+    kError,      // malformed input; the lexer has already reported it
+};
+
+struct Token {
+    TokenKind kind = TokenKind::kEnd;
+    Keyword keyword = Keyword::kNone;
+    std::string text;   // the spelling as written (strings: the contents)
+    double number = 0;  // kNumber only; always finite
+    SourceLoc loc;
+};
+
+// How a token is named in "expected X, found Y" messages: 'quadric', '1.5', "path", end of input.
+std::string Describe(const Token& token);
+
+}  // namespace quadrix::lang

@@ -1,0 +1,192 @@
+#include "quadrix/math/interval_list.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace quadrix {
+
+IntervalList::IntervalList(const IntervalList& o) { *this = o; }
+
+IntervalList& IntervalList::operator=(const IntervalList& o) {
+    if (this == &o) return *this;
+    size_ = 0;
+    reserve(o.size_);
+    std::copy(o.data_, o.data_ + o.size_, data_);
+    size_ = o.size_;
+    return *this;
+}
+
+IntervalList::IntervalList(IntervalList&& o) noexcept { *this = std::move(o); }
+
+IntervalList& IntervalList::operator=(IntervalList&& o) noexcept {
+    if (this == &o) return *this;
+    if (o.heap_) {
+        heap_ = std::move(o.heap_);
+        data_ = heap_.get();
+        capacity_ = o.capacity_;
+        o.data_ = o.inline_;
+        o.capacity_ = kInlineCapacity;
+    } else {
+        // o's intervals are inline: copy them into our storage (inline fits, heap fits too).
+        std::copy(o.data_, o.data_ + o.size_, data_);
+    }
+    size_ = o.size_;
+    o.size_ = 0;
+    return *this;
+}
+
+IntervalList IntervalList::All() {
+    IntervalList r;
+    r.Append(-HUGE_VAL, Interval::kNoId, HUGE_VAL, Interval::kNoId);
+    return r;
+}
+
+IntervalList IntervalList::Single(double lo, std::int32_t loId, double hi, std::int32_t hiId) {
+    IntervalList r;
+    r.Append(lo, loId, hi, hiId);
+    return r;
+}
+
+void IntervalList::reserve(std::size_t n) {
+    if (n > capacity_) Grow(n);
+}
+
+void IntervalList::Grow(std::size_t minCapacity) {
+    std::size_t cap = std::max(minCapacity, 2 * capacity_);
+    std::unique_ptr<Interval[]> h(new Interval[cap]);
+    std::copy(data_, data_ + size_, h.get());
+    heap_ = std::move(h);
+    data_ = heap_.get();
+    capacity_ = cap;
+}
+
+void IntervalList::Append(double lo, std::int32_t loId, double hi, std::int32_t hiId) {
+    if (!(lo < hi)) return;  // a point, an inverted interval or a NaN: not part of a regular set
+    if (size_ > 0 && lo <= data_[size_ - 1].hi) {
+        Interval& last = data_[size_ - 1];
+        if (hi > last.hi) {
+            last.hi = hi;
+            last.hiId = hiId;
+        }
+        return;
+    }
+    if (size_ == capacity_) Grow(size_ + 1);
+    data_[size_++] = Interval{lo, hi, loId, hiId};
+}
+
+bool IntervalList::Contains(double t) const {
+    // Lists are short; a linear scan beats a binary search in practice.
+    for (std::size_t i = 0; i < size_; ++i) {
+        if (t < data_[i].lo) return false;
+        if (t <= data_[i].hi) return true;
+    }
+    return false;
+}
+
+bool IntervalList::IsCanonical() const {
+    for (std::size_t i = 0; i < size_; ++i) {
+        const Interval& v = data_[i];
+        if (std::isnan(v.lo) || std::isnan(v.hi) || !(v.lo < v.hi)) return false;
+        if (i > 0 && !(data_[i - 1].hi < v.lo)) return false;
+        if (v.lo == HUGE_VAL || v.hi == -HUGE_VAL) return false;
+    }
+    return true;
+}
+
+bool IntervalList::operator==(const IntervalList& o) const {
+    return size_ == o.size_ && std::equal(data_, data_ + size_, o.data_);
+}
+
+namespace {
+
+// One endpoint event of a canonical list: endpoint k of the list is interval k/2's lo (a start)
+// when k is even and its hi (an end) when k is odd.
+struct Cursor {
+    const IntervalList& list;
+    std::size_t k = 0;
+
+    bool Done() const { return k == 2 * list.size(); }
+    bool IsStart() const { return (k & 1) == 0; }
+    double T() const { return IsStart() ? list[k / 2].lo : list[k / 2].hi; }
+    std::int32_t Id() const { return IsStart() ? list[k / 2].loId : list[k / 2].hiId; }
+};
+
+// The boolean sweep ("weave"): walks the endpoints of both lists in increasing t and emits the
+// pieces where op(inA, inB) holds. Ties: starts before ends (so touching intervals stay joined
+// while they are being united, and a touching point of an intersection opens and closes a
+// degenerate piece that Append drops), and a before b. Requires op(false, false) == false.
+template <class Op>
+void Sweep(const IntervalList& a, const IntervalList& b, IntervalList& out, Op op) {
+    out.clear();
+    Cursor ca{a}, cb{b};
+    bool inA = false, inB = false, inOut = false;
+    double startT = 0;
+    std::int32_t startId = Interval::kNoId;
+    while (!ca.Done() || !cb.Done()) {
+        bool takeA;
+        if (cb.Done()) {
+            takeA = true;
+        } else if (ca.Done()) {
+            takeA = false;
+        } else {
+            double ta = ca.T(), tb = cb.T();
+            takeA = ta != tb ? ta < tb : (ca.IsStart() || !cb.IsStart());
+        }
+        Cursor& c = takeA ? ca : cb;
+        double t = c.T();
+        std::int32_t id = c.Id();
+        (takeA ? inA : inB) = c.IsStart();
+        ++c.k;
+        bool now = op(inA, inB);
+        if (now == inOut) continue;
+        inOut = now;
+        if (now) {
+            startT = t;
+            startId = id;
+        } else {
+            out.Append(startT, startId, t, id);
+        }
+    }
+}
+
+}  // namespace
+
+void Union(const IntervalList& a, const IntervalList& b, IntervalList& out) {
+    if (b.empty()) {
+        out = a;
+    } else if (a.empty()) {
+        out = b;
+    } else {
+        Sweep(a, b, out, [](bool x, bool y) { return x || y; });
+    }
+}
+
+void Intersection(const IntervalList& a, const IntervalList& b, IntervalList& out) {
+    if (a.empty() || b.empty()) {
+        out.clear();
+    } else {
+        Sweep(a, b, out, [](bool x, bool y) { return x && y; });
+    }
+}
+
+void Difference(const IntervalList& a, const IntervalList& b, IntervalList& out) {
+    if (a.empty() || b.empty()) {
+        out = a;
+    } else {
+        Sweep(a, b, out, [](bool x, bool y) { return x && !y; });
+    }
+}
+
+void Complement(const IntervalList& a, IntervalList& out) {
+    out.clear();
+    double lo = -HUGE_VAL;
+    std::int32_t loId = Interval::kNoId;
+    for (const Interval& v : a) {
+        out.Append(lo, loId, v.lo, v.loId);  // drops the empty piece before a leading −∞
+        lo = v.hi;
+        loId = v.hiId;
+    }
+    out.Append(lo, loId, HUGE_VAL, Interval::kNoId);
+}
+
+}  // namespace quadrix

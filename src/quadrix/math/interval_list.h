@@ -1,0 +1,97 @@
+// Sorted lists of closed intervals of the extended reals, the per-ray sets of the raycast engine
+// (DESIGN.md "Engines in more detail": union, intersection and difference of sorted interval lists,
+// as BRL-CAD's boolean weave does).
+//
+// Convention (regularised sets). A list stands for a *regular closed* subset of ℝ: a finite union
+// of closed intervals [lo, hi] with lo < hi, where lo may be −∞ and hi +∞ (an infinite end is
+// simply "unbounded"). The canonical form is sorted and strictly separated:
+//     lo₀ < hi₀ < lo₁ < hi₁ < … ,   no NaN.
+// Operations return the regularisation (closure of the interior) of the set-theoretic result:
+//   - union merges touching intervals: [a,b] ∪ [b,c] = [a,c] (tangent spheres become one piece);
+//   - intersection drops isolated points: [a,b] ∩ [b,c] = ∅ (touching solids share no volume);
+//   - difference and complement return closures: [a,c] − [b,d] = [a,b] for b < c < d, and
+//     the complement of [a,b] is [−∞,a] ∪ [b,+∞].
+// This is the 1-D version of the regularised Boolean operations of solid modelling, so a solid's
+// boundary points along a ray are exactly the finite interval endpoints.
+//
+// Ids. Every endpoint carries an int32 id chosen by the caller (the raycast engine stores a literal
+// index, from which the half-space and body follow); infinite endpoints carry kNoId. Results keep
+// the id of the endpoint that bounds them. Ties are resolved by a fixed symbolic rule, never by an
+// epsilon: events at equal t are processed starts before ends, and the left operand before the
+// right one; the id recorded is that of the event that changes the result. Hence A ∪ ∅ = A, A ∩ ℝ
+// = A, A − ∅ = A exactly (ids included), and left-to-right folds give the same ids whether or not
+// empty operands were dropped beforehand (which the engine's bounds culling relies on).
+//
+// Storage is allocation-light: up to kInlineCapacity intervals live inside the object; longer
+// lists move to the heap once and keep that capacity when cleared, so a list reused per pixel does
+// not allocate after warm-up. Outputs must not alias inputs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+namespace quadrix {
+
+struct Interval {
+    static constexpr std::int32_t kNoId = -1;
+    double lo = 0, hi = 0;
+    std::int32_t loId = kNoId, hiId = kNoId;
+    bool operator==(const Interval&) const = default;
+};
+
+class IntervalList {
+public:
+    static constexpr std::size_t kInlineCapacity = 4;
+
+    IntervalList() = default;
+    IntervalList(const IntervalList& o);
+    IntervalList& operator=(const IntervalList& o);
+    IntervalList(IntervalList&& o) noexcept;
+    IntervalList& operator=(IntervalList&& o) noexcept;
+    ~IntervalList() = default;
+
+    // The whole line [−∞, +∞] and a single interval (dropped when lo >= hi).
+    static IntervalList All();
+    static IntervalList Single(double lo, std::int32_t loId, double hi, std::int32_t hiId);
+
+    std::size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    std::size_t capacity() const { return capacity_; }
+    const Interval& operator[](std::size_t i) const { return data_[i]; }
+    const Interval* begin() const { return data_; }
+    const Interval* end() const { return data_ + size_; }
+    const Interval& front() const { return data_[0]; }
+    const Interval& back() const { return data_[size_ - 1]; }
+
+    void clear() { size_ = 0; }
+    void reserve(std::size_t n);
+
+    // Appends [lo, hi] after the current last interval, keeping the canonical form: an interval
+    // with lo >= hi (a point or a NaN) is dropped, and one that touches or overlaps the last
+    // interval (lo <= back().hi) is merged into it. Precondition: lo >= back().lo.
+    void Append(double lo, std::int32_t loId, double hi, std::int32_t hiId);
+
+    // Closed membership: t lies in some [lo, hi].
+    bool Contains(double t) const;
+    // True when the list is in canonical form (see the file comment); for tests and DCHECKs.
+    bool IsCanonical() const;
+    bool operator==(const IntervalList& o) const;
+
+private:
+    void Grow(std::size_t minCapacity);
+
+    Interval inline_[kInlineCapacity];
+    std::unique_ptr<Interval[]> heap_;
+    Interval* data_ = inline_;
+    std::size_t size_ = 0;
+    std::size_t capacity_ = kInlineCapacity;
+};
+
+// Regularised Boolean operations (see the file comment). `out` must not alias an input.
+void Union(const IntervalList& a, const IntervalList& b, IntervalList& out);
+void Intersection(const IntervalList& a, const IntervalList& b, IntervalList& out);
+void Difference(const IntervalList& a, const IntervalList& b, IntervalList& out);  // a − b
+void Complement(const IntervalList& a, IntervalList& out);
+
+}  // namespace quadrix

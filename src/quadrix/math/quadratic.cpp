@@ -1,0 +1,112 @@
+#include "quadrix/math/quadratic.h"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+namespace quadrix {
+namespace {
+
+// 2^e for e in [-1022, 1023], built from its bit pattern (exact, no libm call).
+double Pow2(int e) {
+    return std::bit_cast<double>(static_cast<std::uint64_t>(e + 1023) << 52);
+}
+
+// floor(log2 |x|) for a finite, non-zero, normal x.
+int Exponent(double x) {
+    return static_cast<int>((std::bit_cast<std::uint64_t>(x) >> 52) & 0x7ff) - 1023;
+}
+
+// Veltkamp's split: x = hi + lo exactly, each half with at most 26 significant bits, so that
+// products of halves are exact. Needs |x| < 2^996 (the factor 2^27 + 1 must not overflow).
+void Split(double x, double& hi, double& lo) {
+    constexpr double kSplitter = 134217729.0;  // 2^27 + 1
+    double t = kSplitter * x;
+    hi = t - (t - x);
+    lo = x - hi;
+}
+
+}  // namespace
+
+TwoProductResult TwoProduct(double a, double b) {
+    // Dekker (1971): the rounding error of a·b is recovered exactly from the split halves. This is
+    // written without std::fma so that it does not depend on hardware FMA (and the project builds
+    // with -ffp-contract=off, so the compiler may not fuse these operations either).
+    double p = a * b;
+    double ah, al, bh, bl;
+    Split(a, ah, al);
+    Split(b, bh, bl);
+    double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return {p, e};
+}
+
+double DifferenceOfProducts(double a, double b, double c, double d) {
+    // a·b − c·d = (p1 − p2) + (e1 − e2) exactly. With u = 2^-53 and S = |a b| + |c d|:
+    // |e1 − e2| <= u S, so rounding the two differences and the final sum costs at most
+    // 2u |result| + 2u² S, i.e. about 2 ulps unless the result is below u·S (cancellation of 16
+    // digits), where the absolute error 2u²·S still holds.
+    TwoProductResult x = TwoProduct(a, b);
+    TwoProductResult y = TwoProduct(c, d);
+    return (x.p - y.p) + (x.e - y.e);
+}
+
+QuadraticRoots SolveQuadratic(double a, double h, double c) {
+    QuadraticRoots r;
+    if (!std::isfinite(a) || !std::isfinite(h) || !std::isfinite(c)) return r;  // kNone
+
+    // 1. Scale by a power of two so that max(|a|, |h|, |c|) lies in [1, 2): exact, roots unchanged.
+    double m = std::fmax(std::fabs(a), std::fmax(std::fabs(h), std::fabs(c)));
+    if (m == 0) {
+        r.kind = RootKind::kAll;
+        return r;
+    }
+    if (m < 0x1p-1000) {  // tiny or subnormal: bring into the normal range first (exact)
+        a *= 0x1p600;
+        h *= 0x1p600;
+        c *= 0x1p600;
+        m *= 0x1p600;
+    }
+    int e = Exponent(m);
+    if (e != 0) {
+        // Two steps keep each factor a normal double for any e in [-1022, 1023].
+        double f1 = Pow2(-e / 2), f2 = Pow2(-e - (-e / 2));
+        a = a * f1 * f2;
+        h = h * f1 * f2;
+        c = c * f1 * f2;
+    }
+
+    // 2. Linear or constant equation.
+    if (a == 0) {
+        if (h == 0) {
+            r.kind = c == 0 ? RootKind::kAll : RootKind::kNone;
+            return r;
+        }
+        r.kind = RootKind::kSingle;
+        r.t0 = r.t1 = -c / (2.0 * h);  // 2.0 * h is exact
+        return r;
+    }
+
+    // 3. Reduced discriminant, error-compensated.
+    double disc = DifferenceOfProducts(h, h, a, c);
+    if (disc < 0) return r;  // kNone
+    if (disc == 0) {
+        r.kind = RootKind::kDouble;
+        r.t0 = r.t1 = -h / a;
+        return r;
+    }
+
+    // 4. Stable roots. Error budget (u = 2^-53, κ = (h² + |a c|)/Δ): Δ has relative error
+    // <= 2u + 2u²κ (DifferenceOfProducts), √Δ <= u + ½ that, q adds one rounding to terms of one
+    // sign, and the final division one more: <= 4u + u²κ for each root.
+    double s = std::sqrt(disc);
+    double q = -(h + std::copysign(s, h));  // |q| >= s > 0
+    double t0 = q / a, t1 = c / q;
+    if (t1 < t0) std::swap(t0, t1);
+    r.kind = RootKind::kTwo;
+    r.t0 = t0;
+    r.t1 = t1;
+    return r;
+}
+
+}  // namespace quadrix

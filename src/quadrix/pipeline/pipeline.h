@@ -1,0 +1,44 @@
+// The whole pipeline in one call (DESIGN.md "Pipeline"): Reader → Scene → Flattener → Engine →
+// Frame. The CLI, the tests and the benchmarks all render through this, so they exercise the same
+// path. Shading and writing stay separate (shade/, io/): a Frame is the product.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "quadrix/engines/engine.h"
+#include "quadrix/flatten/flat_scene.h"
+#include "quadrix/frame/frame.h"
+#include "quadrix/scene/diagnostics.h"
+#include "quadrix/scene/scene.h"
+
+namespace quadrix {
+
+struct PipelineOptions {
+    std::vector<std::string> scenePaths;  // "-" = standard input
+    std::string sceneText;                // used instead of files when scenePaths is empty
+    int width = 512, height = 512;
+    std::string viewName;
+    std::string engine = "raycast";
+    int threads = 0;
+};
+
+struct PipelineResult {
+    scene::Scene scene;
+    FlatScene flat;
+    Frame frame;
+    RenderStats stats;
+    double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0;
+};
+
+// Largest image accepted (pixels); larger requests are a user error, not an allocation failure.
+inline constexpr long long kMaxPixels = 8192LL * 8192LL;
+inline constexpr int kMaxSide = 16384;
+
+// Checks a requested image size; returns an error message or empty.
+std::string CheckImageSize(long long width, long long height);
+
+// Reads, flattens and renders. Returns false with errors in diags.
+bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags);
+
+}  // namespace quadrix

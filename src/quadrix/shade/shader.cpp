@@ -1,0 +1,79 @@
+#include "quadrix/shade/shader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace quadrix {
+
+double LambertIntensity(const FlatScene& scene, const Vec3& n) {
+    double sum = 0;
+    for (const scene::Light& l : scene.lights) {
+        if (l.kind == scene::Light::Kind::kAmbient) {
+            sum += l.intensity;
+        } else {
+            double c = Dot(n, Normalize(l.direction));
+            if (c > 0) sum += l.intensity * c;  // seed 001 (6.1): only θ < π/2 contributes
+        }
+    }
+    return std::min(sum, 1.0);
+}
+
+namespace {
+
+std::uint8_t ToByte(double v) {
+    v = std::clamp(v, 0.0, 1.0);
+    return static_cast<std::uint8_t>(std::lround(v * 255.0));
+}
+
+bool AnyColor(const FlatScene& scene, const ShadeOptions& options) {
+    if (options.forceColor) return true;
+    auto gray = [](const scene::Color& c) { return c.r == c.g && c.g == c.b; };
+    if (!gray(options.background)) return true;
+    for (const FlatBody& b : scene.bodies)
+        if (!(b.color == scene::Color{})) return true;
+    return false;
+}
+
+}  // namespace
+
+Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
+    const bool color = AnyColor(scene, options);
+    Image image(frame.width, frame.height, color ? 3 : 1);
+
+    // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
+    std::map<std::pair<int, int>, Vec3> meanNormal;
+    if (options.fast) {
+        for (std::size_t i = 0; i < frame.surface.size(); ++i)
+            if (frame.surface[i] != Frame::kNone)
+                meanNormal[{frame.surface[i], frame.body[i]}] += frame.normal[i];
+        for (auto& [key, n] : meanNormal) n = Normalize(n);
+    }
+
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x) {
+            std::size_t i = frame.Index(x, y);
+            scene::Color c = options.background;
+            if (frame.surface[i] != Frame::kNone) {
+                Vec3 n = options.fast ? meanNormal[{frame.surface[i], frame.body[i]}]
+                                      : frame.normal[i];
+                double intensity = LambertIntensity(scene, n);
+                scene::Color base;
+                if (frame.body[i] >= 0 && frame.body[i] < static_cast<int>(scene.bodies.size()))
+                    base = scene.bodies[frame.body[i]].color;
+                c = {base.r * intensity, base.g * intensity, base.b * intensity};
+            }
+            std::uint8_t* p = image.At(x, y);
+            if (color) {
+                p[0] = ToByte(c.r);
+                p[1] = ToByte(c.g);
+                p[2] = ToByte(c.b);
+            } else {
+                p[0] = ToByte(c.r);
+            }
+        }
+    return image;
+}
+
+}  // namespace quadrix

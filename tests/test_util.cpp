@@ -1,0 +1,80 @@
+#include "test_util.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace quadrix::testing {
+
+namespace {
+std::string Slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+}  // namespace
+
+CommandResult RunShell(const std::string& commandLine) {
+    TempDir tmp;
+    std::string outPath = tmp.File("stdout"), errPath = tmp.File("stderr");
+    std::string full = "(" + commandLine + ") >'" + outPath + "' 2>'" + errPath + "'";
+    int status = std::system(full.c_str());
+    CommandResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    r.out = Slurp(outPath);
+    r.err = Slurp(errPath);
+    return r;
+}
+
+std::string QuadrixBinary() { return std::string("'") + QUADRIX_BINARY + "'"; }
+
+std::string SourcePath(const std::string& relative) {
+    return std::string(QUADRIX_SOURCE_DIR) + "/" + relative;
+}
+
+TempDir::TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "quadrix-test-XXXXXX").string();
+    std::vector<char> buf(tmpl.begin(), tmpl.end());
+    buf.push_back('\0');
+    if (mkdtemp(buf.data())) path_ = buf.data();
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ec);
+}
+
+std::string TempDir::Write(const std::string& name, const std::string& contents) const {
+    std::string p = File(name);
+    std::ofstream(p, std::ios::binary) << contents;
+    return p;
+}
+
+bool FileExists(const std::string& path) { return std::filesystem::exists(path); }
+
+bool ReadPnm(const std::string& path, Image& image) {
+    std::ifstream in(path, std::ios::binary);
+    std::string magic;
+    int w, h, maxval;
+    if (!(in >> magic >> w >> h >> maxval) || (magic != "P5" && magic != "P6") || maxval != 255 ||
+        w <= 0 || h <= 0)
+        return false;
+    in.get();
+    image = Image(w, h, magic == "P6" ? 3 : 1);
+    in.read(reinterpret_cast<char*>(image.pixels.data()),
+            static_cast<std::streamsize>(image.pixels.size()));
+    return static_cast<std::size_t>(in.gcount()) == image.pixels.size();
+}
+
+bool HaveProgram(const std::string& name) {
+    return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+}  // namespace quadrix::testing

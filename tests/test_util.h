@@ -1,0 +1,47 @@
+// Helpers shared by the scene-level tests: running the quadrix binary, temporary directories,
+// reading PNM images back.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "quadrix/io/image.h"
+
+namespace quadrix::testing {
+
+struct CommandResult {
+    int exitCode = -1;
+    std::string out;  // standard output
+    std::string err;  // standard error
+};
+
+// Runs a shell command line; captures both streams.
+CommandResult RunShell(const std::string& commandLine);
+
+// The quadrix binary built with the tests, quoted for the shell.
+std::string QuadrixBinary();
+// Path of a file under the source tree (e.g. "examples/tube.uq").
+std::string SourcePath(const std::string& relative);
+
+// A fresh empty directory, removed when the object dies.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::string& path() const { return path_; }
+    std::string File(const std::string& name) const { return path_ + "/" + name; }
+    // Writes a file inside the directory and returns its path.
+    std::string Write(const std::string& name, const std::string& contents) const;
+
+private:
+    std::string path_;
+};
+
+bool FileExists(const std::string& path);
+// Binary PGM/PPM (P5/P6, maxval 255). Returns false on any problem.
+bool ReadPnm(const std::string& path, Image& image);
+bool HaveProgram(const std::string& name);
+
+}  // namespace quadrix::testing
