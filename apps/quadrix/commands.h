@@ -18,6 +18,7 @@ struct RenderArgs {
     bool stats = false;
     int threads = 0;
     std::string dumpFrame;
+    std::vector<std::string> engineOptions;  // key=value
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 int RunRender(const RenderArgs& args);

@@ -38,6 +38,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_option("--threads", args.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024));
+    cmd->add_option("--engine-opt", args.engineOptions,
+                    "Engine-specific setting KEY=VALUE (repeatable; see docs/ for each engine)");
     cmd->add_option("--dump-frame", args.dumpFrame,
                     "Also write the Frame (depth, normal, ids) as a .qxf text dump");
 }
@@ -61,6 +63,15 @@ int RunRender(const RenderArgs& args) {
     po.viewName = args.view;
     po.engine = args.engine;
     po.threads = args.threads;
+    for (const std::string& kv : args.engineOptions) {
+        auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            std::fprintf(stderr, "quadrix: error: --engine-opt: expected KEY=VALUE, found '%s'\n",
+                         kv.c_str());
+            return 2;
+        }
+        po.engineOptions[kv.substr(0, eq)] = kv.substr(eq + 1);
+    }
 
     PipelineResult result;
     bool ok = RunPipeline(po, result, diags);
@@ -100,6 +111,7 @@ int RunRender(const RenderArgs& args) {
                      writeSeconds);
         for (const auto& [name, value] : result.stats.counters)
             std::fprintf(stderr, "  %s: %.17g\n", name.c_str(), value);
+        if (!result.stats.report.empty()) std::fprintf(stderr, "%s\n", result.stats.report.c_str());
     }
     return 0;
 }

@@ -1,8 +1,9 @@
 #include "quadrix/lang/lexer.h"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
-#include <fmt/format.h>
 
 namespace quadrix::lang {
 
@@ -22,9 +23,22 @@ bool IsSpace(int c) {
 bool StartsToken(int c) {
     if (IsSpace(c) || IsIdChar(c)) return true;
     switch (c) {
-        case '{': case '}': case '"': case '=': case ';': case '(': case ')': case '<':
-        case '>': case '!': case '|': case '&': case '-': return true;
-        default: return false;
+        case '{':
+        case '}':
+        case '"':
+        case '=':
+        case ';':
+        case '(':
+        case ')':
+        case '<':
+        case '>':
+        case '!':
+        case '|':
+        case '&':
+        case '-':
+            return true;
+        default:
+            return false;
     }
 }
 
@@ -61,7 +75,10 @@ long long DecimalOrder(std::string_view mantissa, long long exp) {
 
 }  // namespace
 
-Lexer::Lexer(Source& source, Diagnostics& diags) : source_(source), diags_(diags) {}
+Lexer::Lexer(Source& source, Diagnostics& diags) : source_(source), diags_(diags) {
+    // A UTF-8 byte order mark, as some editors write, is not part of the scene.
+    if (PeekChar(0) == 0xEF && PeekChar(1) == 0xBB && PeekChar(2) == 0xBF) pos_ = 3;
+}
 
 int Lexer::PeekChar(std::size_t ahead) {
     if (!source_.Has(pos_ + ahead)) return -1;
@@ -131,25 +148,37 @@ Token Lexer::Next() {
         return t;
     };
     switch (c) {
-        case ';': return single(TokenKind::kSemicolon);
-        case '(': return single(TokenKind::kLParen);
-        case ')': return single(TokenKind::kRParen);
-        case '<': return single(TokenKind::kLAngle);
-        case '>': return single(TokenKind::kRAngle);
-        case '!': return single(TokenKind::kBang);
-        case '|': return single(TokenKind::kPipe);
-        case '&': return single(TokenKind::kAmp);
-        case '"': return LexString(start);
-        case '=': return LexOption(start);
+        case ';':
+            return single(TokenKind::kSemicolon);
+        case '(':
+            return single(TokenKind::kLParen);
+        case ')':
+            return single(TokenKind::kRParen);
+        case '<':
+            return single(TokenKind::kLAngle);
+        case '>':
+            return single(TokenKind::kRAngle);
+        case '!':
+            return single(TokenKind::kBang);
+        case '|':
+            return single(TokenKind::kPipe);
+        case '&':
+            return single(TokenKind::kAmp);
+        case '"':
+            return LexString(start);
+        case '=':
+            return LexOption(start);
         case '}':
             Advance();
             return ErrorToken(start, "unmatched '}' (no comment is open)");
-        default: break;
+        default:
+            break;
     }
     if (IsDigit(c) || c == '.' || c == '+' || c == '-') {
         int d = PeekChar(1);
-        bool number = IsDigit(c) || (c == '.' && IsDigit(d)) ||
-                      ((c == '+' || c == '-') && (IsDigit(d) || (d == '.' && IsDigit(PeekChar(2)))));
+        bool number =
+            IsDigit(c) || (c == '.' && IsDigit(d)) ||
+            ((c == '+' || c == '-') && (IsDigit(d) || (d == '.' && IsDigit(PeekChar(2)))));
         if (number) return LexNumber(start);
         if (c == '-') return single(TokenKind::kMinus);
     }
@@ -266,10 +295,14 @@ Token Lexer::LexGarbage(SourceLoc start) {
     do {
         Advance();
         ++count;
-    } while (PeekChar() >= 0 && !StartsToken(PeekChar()) && PeekChar() != '"');
-    if (count == 1) return ErrorToken(start, fmt::format("unexpected character {}", ShowByte(first)));
-    return ErrorToken(start,
-                      fmt::format("unexpected characters (starting with {})", ShowByte(first)));
+    } while (PeekChar() >= 0 && !StartsToken(PeekChar()));
+    // A '.' or '/' here is most often an unquoted file name after `read` (seed 001 §2.1.7).
+    const char* hint =
+        first == '.' || first == '/' ? " (file names with '.' or '/' must be in quotes)" : "";
+    if (count == 1)
+        return ErrorToken(start, fmt::format("unexpected character {}{}", ShowByte(first), hint));
+    return ErrorToken(
+        start, fmt::format("unexpected characters (starting with {}){}", ShowByte(first), hint));
 }
 
 }  // namespace quadrix::lang

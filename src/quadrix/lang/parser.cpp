@@ -1,8 +1,9 @@
 #include "quadrix/lang/parser.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
-#include <fmt/format.h>
 
 #include "quadrix/lang/statements.h"
 
@@ -18,6 +19,7 @@ const Token& Parser::Peek() {
 
 Token Parser::Take() {
     Peek();
+    lastLine_ = next_->loc.line;
     Token t = std::move(*next_);
     next_.reset();
     return t;
@@ -28,6 +30,13 @@ void Parser::Error(const SourceLoc& loc, std::string message, const char* kind) 
     // Only positions in this source have their line at hand.
     std::string line = loc.file == source_.Name() ? lexer_.LineOf(loc) : std::string();
     state_.diags.Error(loc, std::move(message), std::move(line), kind);
+    CheckErrorLimit();
+}
+
+void Parser::CheckErrorLimit() {
+    if (state_.aborted || state_.diags.ErrorCount() < Diagnostics::kMaxStored) return;
+    state_.aborted = true;
+    state_.diags.Note(SourceLoc{source_.Name(), 0, 0}, "too many errors; reading stopped");
 }
 
 void Parser::Warning(const SourceLoc& loc, std::string message, const char* kind) {
@@ -51,7 +60,8 @@ std::optional<double> Parser::ExpectNumber(std::string_view what) {
         std::transform(lower.begin(), lower.end(), lower.begin(),
                        [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
         if (lower == "nan" || lower == "inf" || lower == "infinity") {
-            Error(t.loc, fmt::format("expected {}, found '{}': numbers must be finite", what, t.text),
+            Error(t.loc,
+                  fmt::format("expected {}, found '{}': numbers must be finite", what, t.text),
                   kSyntax);
             return std::nullopt;
         }
@@ -61,17 +71,30 @@ std::optional<double> Parser::ExpectNumber(std::string_view what) {
 }
 
 bool Parser::ExpectSemicolon(std::string_view after) {
+    return ExpectStatementEnd(fmt::format("';' after {}", after));
+}
+
+bool Parser::ExpectStatementEnd(std::string_view expected) {
     if (PeekIs(TokenKind::kSemicolon)) {
         Take();
         return true;
     }
-    return Expected(fmt::format("';' after {}", after));
+    Expected(expected);
+    // The most common slip is a forgotten ';' at the end of a line. When a statement keyword
+    // follows, the statement is complete: keep it and read on from that keyword, instead of
+    // skipping (and losing) the next statement too.
+    return AtStatementKeyword();
+}
+
+bool Parser::AtStatementKeyword() {
+    return Peek().kind == TokenKind::kKeyword && FindStatement(Peek().keyword) != nullptr;
 }
 
 bool Parser::ReservedWord(const Token& token) {
     std::string_view canonical = KeywordName(token.keyword);
     if (canonical == token.text)
-        Error(token.loc, fmt::format("'{}' is a reserved word and cannot be used as an id", token.text),
+        Error(token.loc,
+              fmt::format("'{}' is a reserved word and cannot be used as an id", token.text),
               kSyntax);
     else
         Error(token.loc,
@@ -89,9 +112,12 @@ bool Parser::OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow
         Take();
         return true;
     }
-    if (t.kind == TokenKind::kKeyword && !(keywordMayFollow && keywordMayFollow(t.keyword)))
-        return ReservedWord(t);
-    return true;
+    if (t.kind != TokenKind::kKeyword || (keywordMayFollow && keywordMayFollow(t.keyword)))
+        return true;
+    // A statement keyword on a later line is the next statement after a forgotten ';' (which
+    // the caller reports), not an attempt to use a reserved word as an id.
+    if (t.loc.line > lastLine_ && AtStatementKeyword()) return true;
+    return ReservedWord(t);
 }
 
 bool Parser::ExpectId(std::string_view what, std::string& id, SourceLoc& loc) {
@@ -111,7 +137,8 @@ std::optional<scene::Color> Parser::ParseColor(const Token& option) {
     double rgb[3];
     for (int i = 0; i < 3; ++i) {
         SourceLoc at = Peek().loc;
-        auto v = ExpectNumber(fmt::format("the {} component after {}", kNames[i], Describe(option)));
+        auto v =
+            ExpectNumber(fmt::format("the {} component after {}", kNames[i], Describe(option)));
         if (!v) return std::nullopt;
         if (*v < 0 || *v > 1) {
             Error(at, fmt::format("color component {} is outside [0, 1]", *v));
@@ -125,9 +152,13 @@ std::optional<scene::Color> Parser::ParseColor(const Token& option) {
 bool Parser::RunStatement() {
     const Token& t = Peek();
     switch (t.kind) {
-        case TokenKind::kSemicolon: Take(); return true;  // an empty statement
-        case TokenKind::kError: return false;             // already reported
-        case TokenKind::kKeyword: break;
+        case TokenKind::kSemicolon:
+            Take();
+            return true;  // an empty statement
+        case TokenKind::kError:
+            return false;  // already reported
+        case TokenKind::kKeyword:
+            break;
         case TokenKind::kId:
             Error(t.loc,
                   fmt::format("expected a statement (plane, quadric, body, definition, instance, "
@@ -135,7 +166,8 @@ bool Parser::RunStatement() {
                               t.text),
                   kSyntax);
             return false;
-        default: return Expected("a statement");
+        default:
+            return Expected("a statement");
     }
     const StatementEntry* entry = FindStatement(t.keyword);
     if (!entry) {
@@ -169,8 +201,8 @@ void Parser::SkipToSemicolon() {
 void Parser::CheckUnclosedDefinition() {
     if (!state_.InDefinition() || state_.DefinitionSource() != &source_) return;
     const scene::Scope& def = state_.CurrentScope();
-    Error(def.loc,
-          fmt::format("definition '{}' has no enddef (end of {} reached)", def.id, *source_.Name()));
+    Error(def.loc, fmt::format("definition '{}' has no enddef (end of {} reached)", def.id,
+                               *source_.Name()));
     // Keep it, so that later statements naming it do not report more errors.
     state_.CloseDefinition();
 }
@@ -179,11 +211,7 @@ void Parser::Run() {
     while (!stopped_ && !state_.aborted) {
         if (PeekIs(TokenKind::kEnd)) break;
         if (!RunStatement()) SkipToSemicolon();
-        if (state_.diags.ErrorCount() >= Diagnostics::kMaxStored && !state_.aborted) {
-            state_.aborted = true;
-            state_.diags.Note(SourceLoc{source_.Name(), 0, 0},
-                              "too many errors; reading stopped");
-        }
+        CheckErrorLimit();  // lexical errors go to Diagnostics directly
     }
     if (!state_.aborted) CheckUnclosedDefinition();
 }

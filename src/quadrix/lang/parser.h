@@ -8,8 +8,10 @@
 //
 // Error recovery (seed 001 §2.3: "If an error is noted, all input is ignored ... until the next
 // semi-colon"): a statement function returns false after a syntax error it has reported; the loop
-// then skips to the next ';' and goes on. Errors about meaning (unknown ids, bad values) are
-// reported where they are found and the statement goes on, so one statement may report several.
+// then skips to the next ';' and goes on (except for a ';' missing before the next statement's
+// keyword: that statement is kept and reading resumes at the keyword). Errors about meaning
+// (unknown ids, bad values) are reported where they are found and the statement goes on, so one
+// statement may report several.
 //
 // The cursor lexes lazily: after a statement's ';' nothing more is read until the next statement
 // is wanted, so statements typed on standard input run as soon as they are complete.
@@ -64,8 +66,14 @@ public:
     // --- shared grammar pieces --------------------------------------------------------------
     // A number; `what` names it in the error message ("coefficient B of the plane").
     std::optional<double> ExpectNumber(std::string_view what);
-    // The ';' that ends a statement; `after` completes "expected ';' after ...".
+    // The ';' that ends a statement; `after` completes "expected ';' after ...". When it is
+    // missing but a statement keyword follows, the error is reported and true is returned: the
+    // statement is kept and reading resumes at that keyword.
     bool ExpectSemicolon(std::string_view after);
+    // The same with the whole expectation spelled out: "expected <expected>, found ...".
+    bool ExpectStatementEnd(std::string_view expected);
+    // True when the next token starts a statement.
+    bool AtStatementKeyword();
     // The optional id after a statement keyword. Returns false on a reserved word (reported);
     // leaves `id` empty when the next token is not an id. Keywords for which
     // `keywordMayFollow(keyword)` is true are not ids but the start of what follows.
@@ -79,12 +87,15 @@ private:
     bool RunStatement();
     void SkipToSemicolon();
     void CheckUnclosedDefinition();
+    // Stops reading everywhere once Diagnostics::kMaxStored errors have been reported.
+    void CheckErrorLimit();
     bool ReservedWord(const Token& token);
 
     ReaderState& state_;
     Source& source_;
     Lexer lexer_;
     std::optional<Token> next_;
+    int lastLine_ = 0;  // line of the last token taken
     bool stopped_ = false;
 };
 

@@ -74,21 +74,48 @@ std::optional<scene::SolidRef> ReaderState::FindSolid(const std::string& id) con
 SourceLoc ReaderState::SolidLoc(const scene::SolidRef& ref) const {
     const scene::Scope& scope = openDefinition_ ? openDefinition_->scope : scene.top;
     switch (ref.kind) {
-        case scene::SolidRef::Kind::kBody: return scope.bodies[ref.index].loc;
-        case scene::SolidRef::Kind::kInstance: return scope.instances[ref.index].loc;
-        case scene::SolidRef::Kind::kCsg: return scope.csgs[ref.index].loc;
+        case scene::SolidRef::Kind::kBody:
+            return scope.bodies[ref.index].loc;
+        case scene::SolidRef::Kind::kInstance:
+            return scope.instances[ref.index].loc;
+        case scene::SolidRef::Kind::kCsg:
+            return scope.csgs[ref.index].loc;
     }
     return {};
+}
+
+std::string ReaderState::SolidKindName(const scene::SolidRef& ref) const {
+    const scene::Scope& scope = openDefinition_ ? openDefinition_->scope : scene.top;
+    switch (ref.kind) {
+        case scene::SolidRef::Kind::kBody:
+            return "body";
+        case scene::SolidRef::Kind::kInstance:
+            return scope.instances[ref.index].isArray ? "array" : "instance";
+        case scene::SolidRef::Kind::kCsg:
+            return "csg solid";
+    }
+    return "solid";
+}
+
+std::string ReaderState::DuplicateSolidMessage(const std::string& id) const {
+    auto first = FindSolid(id);
+    if (!first) return {};
+    return "id '" + id + "' is already used by the " + SolidKindName(*first) + " at " +
+           SolidLoc(*first).ToString();
 }
 
 void ReaderState::MarkOperand(const scene::SolidRef& ref) {
     scene::Scope& scope = CurrentScope();
     switch (ref.kind) {
-        case scene::SolidRef::Kind::kBody: scope.bodies[ref.index].usedAsOperand = true; break;
+        case scene::SolidRef::Kind::kBody:
+            scope.bodies[ref.index].usedAsOperand = true;
+            break;
         case scene::SolidRef::Kind::kInstance:
             scope.instances[ref.index].usedAsOperand = true;
             break;
-        case scene::SolidRef::Kind::kCsg: scope.csgs[ref.index].usedAsOperand = true; break;
+        case scene::SolidRef::Kind::kCsg:
+            scope.csgs[ref.index].usedAsOperand = true;
+            break;
     }
 }
 
@@ -144,13 +171,16 @@ int ReaderState::AddView(scene::View view) {
 
 bool ReaderState::Taken(const std::string& id, Namespace ns) const {
     switch (ns) {
-        case Namespace::kHalfSpace: return FindHalfSpace(id) >= 0;
-        case Namespace::kSolid: return FindSolid(id).has_value();
+        case Namespace::kHalfSpace:
+            return FindHalfSpace(id) >= 0;
+        case Namespace::kSolid:
+            return FindSolid(id).has_value();
         case Namespace::kDefinition:
-            return FindDefinition(id) >= 0 ||
-                   (openDefinition_ && openDefinition_->scope.id == id);
-        case Namespace::kLight: return FindLight(id) >= 0;
-        case Namespace::kView: return FindView(id) >= 0;
+            return FindDefinition(id) >= 0 || (openDefinition_ && openDefinition_->scope.id == id);
+        case Namespace::kLight:
+            return FindLight(id) >= 0;
+        case Namespace::kView:
+            return FindView(id) >= 0;
     }
     return false;
 }

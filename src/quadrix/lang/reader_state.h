@@ -54,6 +54,10 @@ public:
     int FindHalfSpace(const std::string& id) const;
     std::optional<scene::SolidRef> FindSolid(const std::string& id) const;
     SourceLoc SolidLoc(const scene::SolidRef& ref) const;
+    // "body", "instance", "array" or "csg solid", for messages.
+    std::string SolidKindName(const scene::SolidRef& ref) const;
+    // Reports nothing; returns the message for a duplicate solid id, or empty when `id` is free.
+    std::string DuplicateSolidMessage(const std::string& id) const;
     // Sets usedAsOperand on the solid `ref` of the current scope.
     void MarkOperand(const scene::SolidRef& ref);
 

@@ -20,6 +20,7 @@
 namespace quadrix::lang {
 
 class Parser;
+struct Command;
 
 using StatementFn = bool (*)(Parser& parser, const Token& keyword);
 
@@ -47,5 +48,15 @@ bool ParseRedef(Parser& p, const Token& keyword);
 bool ParseDevice(Parser& p, const Token& keyword);
 bool ParseShow(Parser& p, const Token& keyword);
 bool ParseQuit(Parser& p, const Token& keyword);
+
+// The two forms of `redef` (§2.3), called by ParseRedef after `redef light` / `redef view`.
+bool ParseRedefLight(Parser& p, const Token& keyword);
+bool ParseRedefView(Parser& p, const Token& keyword);
+
+// Hands an interactive statement to ReadOptions::commands (stopping this input when it returns
+// false). Without a handler, warns that the statement has no effect in batch rendering unless
+// `changedScene` (a redef that gave new values has changed the scene); `quit` still stops
+// reading the current input.
+void RunCommand(Parser& p, const Command& command, bool changedScene);
 
 }  // namespace quadrix::lang

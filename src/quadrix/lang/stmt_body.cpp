@@ -23,17 +23,16 @@ bool ParseLiteral(Parser& p, scene::Body& body, std::unordered_map<int, SourceLo
     }
     std::string id;
     SourceLoc loc;
-    if (!p.ExpectId(complemented ? "a half-space id after '!'" : "a half-space id or '!'", id,
-                    loc))
+    if (!p.ExpectId(complemented ? "a half-space id after '!'" : "a half-space id or '!'", id, loc))
         return false;
     ReaderState& s = p.State();
     int index = s.FindHalfSpace(id);
     if (index < 0) {
-        std::string where = s.InDefinition()
-                                ? fmt::format(" in definition '{}' (a body may name only the "
-                                              "half-spaces of its own definition)",
-                                              s.CurrentScope().id)
-                                : std::string();
+        std::string where = s.InDefinition() ? fmt::format(
+                                                   " in definition '{}' (a body may name only the "
+                                                   "half-spaces of its own definition)",
+                                                   s.CurrentScope().id)
+                                             : std::string();
         p.Error(loc, fmt::format("unknown half-space '{}'{}", id, where));
         return true;
     }
@@ -78,9 +77,10 @@ bool ParseBody(Parser& p, const Token& keyword) {
     while (p.PeekIs(TokenKind::kOption)) {
         Token option = p.Take();
         if (option.text != "c") {
-            p.Error(option.loc,
-                    fmt::format("unknown option {} for a body (expected =c r g b)", Describe(option)),
-                    kSyntax);
+            p.Error(
+                option.loc,
+                fmt::format("unknown option {} for a body (expected =c r g b)", Describe(option)),
+                kSyntax);
             return false;
         }
         if (body.color) p.Warning(option.loc, "color given twice; the last one is used");
@@ -92,12 +92,13 @@ bool ParseBody(Parser& p, const Token& keyword) {
 
     ReaderState& s = p.State();
     if (body.id.empty()) body.id = s.GenerateId("b", ReaderState::Namespace::kSolid);
-    if (auto first = s.FindSolid(body.id)) {
-        p.Error(idLoc, fmt::format("solid '{}' is already defined at {}", body.id,
-                                   s.SolidLoc(*first).ToString()));
+    if (std::string dup = s.DuplicateSolidMessage(body.id); !dup.empty()) {
+        p.Error(idLoc, dup);
         return true;
     }
-    if (!sawLiteral) return true;
+    // A body whose ids were all unknown (reported) is dropped; one with some known ids is kept,
+    // so that statements naming it do not report more errors.
+    if (body.literals.empty()) return true;
     s.AddBody(std::move(body));
     return true;
 }

@@ -3,10 +3,10 @@
 //   quadric [id] <A B C D E F G H J K> [=t] [=0];   xᵀQx <= 0 inside (DESIGN.md "Coefficients")
 // =t makes the half-space bound transparent, =0 (or =o) opaque; opaque is the default and the
 // last option given wins.
+#include <fmt/format.h>
+
 #include <array>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/statements.h"
@@ -16,16 +16,16 @@ namespace quadrix::lang {
 namespace {
 
 // Reads "<" n numbers ">" into `out`; `names` holds one letter per coefficient.
-bool ParseCoefficients(Parser& p, std::string_view statement, std::string_view names,
-                       double* out, SourceLoc& listLoc) {
+bool ParseCoefficients(Parser& p, std::string_view statement, std::string_view names, double* out,
+                       SourceLoc& listLoc) {
     listLoc = p.Peek().loc;
     if (!p.PeekIs(TokenKind::kLAngle))
         return p.Expected(fmt::format("'<' before the {} coefficients", statement));
     p.Take();
     for (std::size_t i = 0; i < names.size(); ++i) {
-        auto v = p.ExpectNumber(
-            fmt::format("coefficient {} of the {} ({} numbers between '<' and '>')", names[i],
-                        statement, names.size()));
+        auto v =
+            p.ExpectNumber(fmt::format("coefficient {} of the {} ({} numbers between '<' and '>')",
+                                       names[i], statement, names.size()));
         if (!v) return false;
         out[i] = *v;
     }
@@ -70,8 +70,8 @@ bool ParseHalfSpace(Parser& p, const Token& keyword, scene::HalfSpace hs, std::s
     ReaderState& s = p.State();
     // Generated ids: p#1, q#1, ... (quietly; only lights announce theirs).
     if (hs.id.empty())
-        hs.id = s.GenerateId(std::string(statement.substr(0, 1)),
-                             ReaderState::Namespace::kHalfSpace);
+        hs.id =
+            s.GenerateId(std::string(statement.substr(0, 1)), ReaderState::Namespace::kHalfSpace);
     if (!check(hs, listLoc)) return true;  // reported; the statement itself was well formed
     if (int first = s.FindHalfSpace(hs.id); first >= 0) {
         p.Error(idLoc, fmt::format("half-space '{}' is already defined at {}", hs.id,

@@ -15,11 +15,16 @@ std::string Shortened(const std::string& s) {
 
 std::string Describe(const Token& token) {
     switch (token.kind) {
-        case TokenKind::kEnd: return "end of input";
-        case TokenKind::kString: return fmt::format("\"{}\"", Shortened(token.text));
-        case TokenKind::kOption: return fmt::format("'={}'", Shortened(token.text));
-        case TokenKind::kError: return "malformed input";
-        default: return fmt::format("'{}'", Shortened(token.text));
+        case TokenKind::kEnd:
+            return "end of input";
+        case TokenKind::kString:
+            return fmt::format("\"{}\"", Shortened(token.text));
+        case TokenKind::kOption:
+            return fmt::format("'={}'", Shortened(token.text));
+        case TokenKind::kError:
+            return "malformed input";
+        default:
+            return fmt::format("'{}'", Shortened(token.text));
     }
 }
 

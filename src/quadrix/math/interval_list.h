@@ -20,7 +20,9 @@
 // epsilon: events at equal t are processed starts before ends, and the left operand before the
 // right one; the id recorded is that of the event that changes the result. Hence A ∪ ∅ = A, A ∩ ℝ
 // = A, A − ∅ = A exactly (ids included), and left-to-right folds give the same ids whether or not
-// empty operands were dropped beforehand (which the engine's bounds culling relies on).
+// empty operands were dropped beforehand (which the engine's bounds culling relies on). Unions and
+// intersections are moreover associative ids included; differences are not (where c starts exactly
+// where a − b ends, (a − b) − c names c and a − (b ∪ c) names b).
 //
 // Storage is allocation-light: up to kInlineCapacity intervals live inside the object; longer
 // lists move to the heap once and keep that capacity when cleared, so a list reused per pixel does

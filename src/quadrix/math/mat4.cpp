@@ -117,10 +117,15 @@ Transform Transform::Scale(const Vec3& s) {
 }
 
 void SinCosDegrees(double degrees, double& s, double& c) {
-    // Reduce to [0, 360) exactly (fmod is exact), then handle the quadrants so that multiples of
-    // 90 degrees give exact 0 and ±1 and the other angles are symmetric.
-    double a = std::fmod(degrees, 360.0);
-    if (a < 0) a += 360.0;
+    // Reduce |degrees| to [0, 360) exactly (fmod is exact), then handle the quadrants so that
+    // multiples of 90 degrees give exact 0 and ±1. Working on |degrees| and restoring the sign at
+    // the end makes sin(−x) = −sin(x) and cos(−x) = cos(x) bit for bit (reducing a negative angle
+    // by adding 360 would round). Non-finite angles give NaN (and must not reach the int cast).
+    if (!std::isfinite(degrees)) {
+        s = c = std::nan("");
+        return;
+    }
+    double a = std::fmod(std::fabs(degrees), 360.0);
     int quadrant = static_cast<int>(a / 90.0);
     double r = a - 90.0 * quadrant;  // in [0, 90)
     double rs, rc;
@@ -146,6 +151,7 @@ void SinCosDegrees(double degrees, double& s, double& c) {
         case 2: s = -rs; c = -rc; break;
         default: s = -rc; c = rs; break;
     }
+    if (degrees < 0) s = -s;
 }
 
 Transform Transform::Rotate(int axis, double degrees) {

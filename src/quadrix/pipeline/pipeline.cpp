@@ -38,6 +38,14 @@ bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnos
         return false;
     }
 
+    RenderOptions ro;
+    ro.threads = options.threads;
+    ro.engineOptions = options.engineOptions;
+    if (auto e = engine->ValidateOptions(ro); !e.empty()) {
+        diags.Error({}, e, {}, "command line");
+        return false;
+    }
+
     auto t0 = std::chrono::steady_clock::now();
     {
         lang::Reader reader(result.scene, diags);
@@ -61,8 +69,6 @@ bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnos
     result.flat = std::move(*flat);
 
     t0 = std::chrono::steady_clock::now();
-    RenderOptions ro;
-    ro.threads = options.threads;
     result.stats = engine->Render(result.flat, ro, result.frame);
     result.renderSeconds = SecondsSince(t0);
     return true;

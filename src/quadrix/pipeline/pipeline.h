@@ -3,6 +3,7 @@
 // path. Shading and writing stay separate (shade/, io/): a Frame is the product.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct PipelineOptions {
     std::string viewName;
     std::string engine = "raycast";
     int threads = 0;
+    std::map<std::string, std::string> engineOptions;  // --engine-opt key=value
 };
 
 struct PipelineResult {

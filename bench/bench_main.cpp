@@ -1,0 +1,255 @@
+// quadrix_bench: the benchmark suite of issue 8. One command (bench/run.sh) runs it.
+//
+// For every scene and image size it measures, side by side in the same run:
+//   * each Quadrix engine in process: frame time after one warm-up render, median of several;
+//   * the whole `quadrix render` process (read, flatten, render, shade, PNG), median;
+//   * POV-Ray 3.7 on the exported scene (`quadrix export --to pov`, no antialiasing, 2 threads),
+//     whole process, alternating with the Quadrix process runs so both see the same machine state;
+// and writes a Markdown table with ratios and a CSV to the output directory. Nothing is asserted:
+// benchmarks report, they do not fail on time.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "quadrix/engines/engine.h"
+#include "quadrix/pipeline/pipeline.h"
+#include "scenes.h"
+
+extern char** environ;
+
+namespace quadrix::bench {
+namespace {
+
+struct ProcessRun {
+    double seconds = 0;
+    double peakMiB = 0;
+    int exitCode = -1;
+};
+
+// Runs argv with stdout/stderr to /dev/null; wall time and the child's peak RSS.
+ProcessRun Spawn(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    ProcessRun r;
+    auto t0 = std::chrono::steady_clock::now();
+    pid_t pid;
+    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) != 0) {
+        posix_spawn_file_actions_destroy(&actions);
+        return r;
+    }
+    int status = 0;
+    struct rusage usage {};
+    wait4(pid, &status, 0, &usage);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.peakMiB = usage.ru_maxrss / 1024.0;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    posix_spawn_file_actions_destroy(&actions);
+    return r;
+}
+
+double Median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+struct Size {
+    int w, h;
+};
+
+struct Row {
+    std::string scene;
+    int primitives = 0;
+    Size size{};
+    std::vector<std::pair<std::string, double>> engineMs;  // in-process frame time per engine
+    double flattenMs = 0;
+    double quadrixProcessMs = 0, quadrixPeakMiB = 0;
+    double povProcessMs = 0, povPeakMiB = 0;
+    bool povOk = false;
+};
+
+std::string Ratio(double slow, double fast) {
+    if (slow <= 0 || fast <= 0) return "–";
+    return fmt::format("{:.1f}×", slow / fast);
+}
+
+}  // namespace
+}  // namespace quadrix::bench
+
+int main(int argc, char** argv) {
+    using namespace quadrix;
+    using namespace quadrix::bench;
+    CLI::App app{"Quadrix benchmark suite (issue 8): engines vs each other and vs POV-Ray"};
+    std::string outDir = "bench/results", quadrixBin = "build/quadrix", sourceDir = ".";
+    bool quick = false, noPov = false;
+    int reps = 5, povReps = 3;
+    std::string only;
+    app.add_option("--out", outDir, "Directory for results and generated scenes");
+    app.add_option("--quadrix", quadrixBin, "The quadrix binary to time as a whole process");
+    app.add_option("--source", sourceDir, "Source tree (for examples/)");
+    app.add_flag("--quick", quick, "Small subset: one size, fewer repetitions");
+    app.add_flag("--no-pov", noPov, "Do not run POV-Ray");
+    app.add_option("--reps", reps, "Repetitions of Quadrix measurements (median)");
+    app.add_option("--pov-reps", povReps, "Repetitions of POV-Ray runs (median; 1 for slow scenes)");
+    app.add_option("--only", only, "Run only scenes whose name contains this text");
+    CLI11_PARSE(app, argc, argv);
+
+    std::filesystem::create_directories(outDir + "/scenes");
+    std::vector<BenchScene> scenes = {
+        FromFile("machined_part", sourceDir + "/examples/machined_part.uq"),
+        TwoCylinders('|'),
+        TwoCylinders('-'),
+        TwoCylinders('&'),
+        FromFile("stack_of_bundles", sourceDir + "/examples/stack_of_bundles.uq"),
+        MiteredKnot(36),
+        SpheresMinusCylinder(100),
+        SpheresMinusCylinder(1000),
+        SpheresMinusCylinder(10000),
+        SumOfProductsExplosion(8),
+        SumOfProductsExplosion(16),
+    };
+    std::vector<Size> sizes = {{512, 512}, {1280, 720}, {1920, 1080}};
+    if (quick) {
+        sizes = {{1280, 720}};
+        reps = std::min(reps, 3);
+        povReps = 1;
+    }
+    bool havePov = !noPov && std::system("command -v povray >/dev/null 2>&1") == 0;
+
+    std::vector<Row> rows;
+    for (const BenchScene& scene : scenes) {
+        if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
+        std::string scenePath = outDir + "/scenes/" + scene.name + ".uq";
+        std::ofstream(scenePath) << scene.text;
+        for (Size size : sizes) {
+            Row row;
+            row.scene = scene.name;
+            row.primitives = scene.primitives;
+            row.size = size;
+            std::fprintf(stderr, "%-22s %4dx%-4d ", scene.name.c_str(), size.w, size.h);
+
+            // In process: read + flatten once, then each engine warm.
+            PipelineOptions po;
+            po.scenePaths = {scenePath};
+            po.width = size.w;
+            po.height = size.h;
+            PipelineResult pr;
+            Diagnostics diags;
+            if (!RunPipeline(po, pr, diags)) {
+                diags.Print(stderr);
+                continue;
+            }
+            row.flattenMs = pr.flattenSeconds * 1e3;
+            for (const std::string& name : EngineNames()) {
+                auto engine = MakeEngine(name);
+                RenderOptions ro;
+                Frame frame;
+                engine->Render(pr.flat, ro, frame);  // warm-up
+                std::vector<double> ms;
+                for (int i = 0; i < reps; ++i) {
+                    auto t0 = std::chrono::steady_clock::now();
+                    engine->Render(pr.flat, ro, frame);
+                    ms.push_back(std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - t0)
+                                     .count());
+                }
+                row.engineMs.emplace_back(name, Median(ms));
+            }
+
+            // Whole processes, Quadrix and POV-Ray alternating.
+            std::string sizeArg = fmt::format("{}x{}", size.w, size.h);
+            std::string png = outDir + "/scenes/" + scene.name + ".png";
+            std::string pov = outDir + "/scenes/" + scene.name + ".pov";
+            if (havePov) {
+                ProcessRun ex = Spawn({quadrixBin, "export", "--to", "pov", scenePath, "--size",
+                                       sizeArg, "-o", pov});
+                row.povOk = ex.exitCode == 0;
+            }
+            std::vector<double> qMs, pMs;
+            int rounds = std::max(reps, havePov ? povReps : 0);
+            for (int i = 0; i < rounds; ++i) {
+                if (i < reps) {
+                    ProcessRun q = Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png});
+                    if (q.exitCode == 0) {
+                        qMs.push_back(q.seconds * 1e3);
+                        row.quadrixPeakMiB = std::max(row.quadrixPeakMiB, q.peakMiB);
+                    }
+                }
+                // POV-Ray at 10,000 primitives takes a minute a run: one run is enough there.
+                bool slow = scene.primitives > 5000;
+                if (row.povOk && i < (slow ? 1 : povReps)) {
+                    ProcessRun p = Spawn({"povray", "+I" + pov, "+O" + outDir + "/scenes/" + scene.name + "_pov.png",
+                                          fmt::format("+W{}", size.w), fmt::format("+H{}", size.h),
+                                          "-A", "-D", "-V", "-GA", "+WT2"});
+                    if (p.exitCode == 0) {
+                        pMs.push_back(p.seconds * 1e3);
+                        row.povPeakMiB = std::max(row.povPeakMiB, p.peakMiB);
+                    }
+                }
+            }
+            row.quadrixProcessMs = Median(qMs);
+            row.povProcessMs = Median(pMs);
+            std::fprintf(stderr, "engine %.1f ms  process %.1f ms  povray %.1f ms\n",
+                         row.engineMs.empty() ? 0.0 : row.engineMs[0].second,
+                         row.quadrixProcessMs, row.povProcessMs);
+            rows.push_back(row);
+        }
+    }
+
+    // Results: Markdown table and CSV.
+    char stamp[32];
+    std::time_t now = std::time(nullptr);
+    std::strftime(stamp, sizeof stamp, "%Y-%m-%d_%H%M%S", std::gmtime(&now));
+    std::string md = fmt::format("# Quadrix benchmark results {}\n\n", stamp);
+    md += "Frame = in-process render of a flattened scene (warm, median); process = whole "
+          "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "
+          "process. Peak = maximum resident set of the process.\n\n";
+    md += "| scene | prims | size | flatten ms |";
+    for (const auto& e : EngineNames()) md += fmt::format(" {} frame ms |", e);
+    md += " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB |\n|---|---|---|---|";
+    for (std::size_t i = 0; i < EngineNames().size(); ++i) md += "---|";
+    md += "---|---|---|---|---|\n";
+    std::string csv = "scene,primitives,width,height,flatten_ms";
+    for (const auto& e : EngineNames()) csv += "," + e + "_frame_ms";
+    csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib\n";
+    for (const Row& r : rows) {
+        md += fmt::format("| {} | {} | {}×{} | {:.1f} |", r.scene, r.primitives, r.size.w, r.size.h,
+                          r.flattenMs);
+        csv += fmt::format("{},{},{},{},{:.3f}", r.scene, r.primitives, r.size.w, r.size.h, r.flattenMs);
+        for (const auto& [name, ms] : r.engineMs) {
+            md += fmt::format(" {:.1f} |", ms);
+            csv += fmt::format(",{:.3f}", ms);
+        }
+        md += fmt::format(" {:.1f} | {} | {} | {:.0f} | {} |\n", r.quadrixProcessMs,
+                          r.povProcessMs > 0 ? fmt::format("{:.1f}", r.povProcessMs) : "–",
+                          Ratio(r.povProcessMs, r.quadrixProcessMs), r.quadrixPeakMiB,
+                          r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–");
+        csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f}\n", r.quadrixProcessMs, r.povProcessMs,
+                           r.quadrixPeakMiB, r.povPeakMiB);
+    }
+    std::ofstream(outDir + "/results_" + std::string(stamp) + ".md") << md;
+    std::ofstream(outDir + "/results_" + std::string(stamp) + ".csv") << csv;
+    std::ofstream(outDir + "/latest.md") << md;
+    std::fputs(md.c_str(), stdout);
+    return 0;
+}

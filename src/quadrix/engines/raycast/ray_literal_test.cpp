@@ -1,0 +1,97 @@
+#include "quadrix/engines/raycast/ray_literal.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace quadrix::raycast {
+namespace {
+
+constexpr double kInf = HUGE_VAL;
+constexpr std::int32_t kNo = Interval::kNoId;
+
+FlatHalfSpace PlaneHs(double a, double b, double c, double d) {
+    FlatHalfSpace h;
+    h.isPlane = true;
+    h.plane = {a, b, c, d};
+    return h;
+}
+FlatHalfSpace QuadricHs(const std::array<double, 10>& k) {
+    FlatHalfSpace h;
+    h.isPlane = false;
+    h.quadric = Quadric::FromCoefficients(k);
+    return h;
+}
+
+IntervalList Set(const FlatHalfSpace& h, bool complemented, double x, double y) {
+    IntervalList out;
+    LiteralCounters counters;
+    LiteralSetOnRay(RayHalfSpace::From(h), complemented, x, y, 7, out, counters);
+    EXPECT_TRUE(out.IsCanonical());
+    return out;
+}
+
+TEST(RaycastLiteral, PlanesGiveHalfLinesOrAllOrNothing) {
+    // 2z − 10 <= 0: t <= 5.
+    EXPECT_EQ(Set(PlaneHs(0, 0, 2, -10), false, 3, 4), IntervalList::Single(-kInf, kNo, 5, 7));
+    EXPECT_EQ(Set(PlaneHs(0, 0, 2, -10), true, 3, 4), IntervalList::Single(5, 7, kInf, kNo));
+    // −z + x <= 0 at x = 3: t >= 3.
+    EXPECT_EQ(Set(PlaneHs(1, 0, -1, 0), false, 3, 4), IntervalList::Single(3, 7, kInf, kNo));
+    // Edge-on plane x − 3 <= 0 (parallel to the rays): all, nothing, or on the plane all for H and
+    // nothing for !H (regularised complement).
+    EXPECT_EQ(Set(PlaneHs(1, 0, 0, -3), false, 2.5, 0), IntervalList::All());
+    EXPECT_TRUE(Set(PlaneHs(1, 0, 0, -3), true, 2.5, 0).empty());
+    EXPECT_TRUE(Set(PlaneHs(1, 0, 0, -3), false, 3.5, 0).empty());
+    EXPECT_EQ(Set(PlaneHs(1, 0, 0, -3), true, 3.5, 0), IntervalList::All());
+    EXPECT_EQ(Set(PlaneHs(1, 0, 0, -3), false, 3, 0), IntervalList::All());
+    EXPECT_TRUE(Set(PlaneHs(1, 0, 0, -3), true, 3, 0).empty());
+    // NaN coefficients: empty both ways.
+    EXPECT_TRUE(Set(PlaneHs(NAN, 0, 1, 0), false, 1, 1).empty());
+    EXPECT_TRUE(Set(PlaneHs(NAN, 0, 1, 0), true, 1, 1).empty());
+}
+
+TEST(RaycastLiteral, SphereGivesAnIntervalOrNothing) {
+    // x² + y² + z² − 25 <= 0 at (3, 0): t in [−4, 4]; at (5, 0) the ray is tangent: nothing.
+    auto sphere = QuadricHs({1, 1, 1, 0, 0, 0, 0, 0, 0, -25});
+    EXPECT_EQ(Set(sphere, false, 3, 0), IntervalList::Single(-4, 7, 4, 7));
+    IntervalList outside = Set(sphere, true, 3, 0);
+    ASSERT_EQ(outside.size(), 2u);
+    EXPECT_EQ(outside[0], (Interval{-kInf, -4, kNo, 7}));
+    EXPECT_EQ(outside[1], (Interval{4, kInf, 7, kNo}));
+    EXPECT_TRUE(Set(sphere, false, 5, 0).empty());
+    EXPECT_EQ(Set(sphere, true, 5, 0), IntervalList::All());
+    EXPECT_TRUE(Set(sphere, false, 6, 0).empty());
+}
+
+TEST(RaycastLiteral, ConesCylindersAndParaboloids) {
+    // Double cone along z: x² + y² − z² <= 0. At distance 3 from the axis: two half-lines.
+    auto cone = QuadricHs({1, 1, -1, 0, 0, 0, 0, 0, 0, 0});
+    IntervalList c = Set(cone, false, 3, 0);
+    ASSERT_EQ(c.size(), 2u);
+    EXPECT_EQ(c[0], (Interval{-kInf, -3, kNo, 7}));
+    EXPECT_EQ(c[1], (Interval{3, kInf, 7, kNo}));
+    // Through the apex (the axis): a double root with a < 0, the whole ray; !H nothing.
+    EXPECT_EQ(Set(cone, false, 0, 0), IntervalList::All());
+    EXPECT_TRUE(Set(cone, true, 0, 0).empty());
+    // Cylinder along z, x² + y² − 4 <= 0: constant along the ray (c = 0, b = 0).
+    auto cyl = QuadricHs({1, 1, 0, 0, 0, 0, 0, 0, 0, -4});
+    EXPECT_EQ(Set(cyl, false, 1, 1), IntervalList::All());
+    EXPECT_TRUE(Set(cyl, false, 3, 0).empty());
+    EXPECT_EQ(Set(cyl, false, 2, 0), IntervalList::All());  // on the surface: Q ≡ 0, inside
+    EXPECT_TRUE(Set(cyl, true, 2, 0).empty());
+    // Cylinder along x, y² + z² − 4 <= 0, seen sideways: an interval, complement two pieces.
+    auto side = QuadricHs({0, 1, 1, 0, 0, 0, 0, 0, 0, -4});
+    EXPECT_EQ(Set(side, false, 10, 0), IntervalList::Single(-2, 7, 2, 7));
+    EXPECT_EQ(Set(side, true, 10, 0).size(), 2u);
+    // Paraboloid x² + y² − 2z <= 0 (2J = −2): linear along the ray, t >= (x² + y²)/2.
+    auto bowl = QuadricHs({1, 1, 0, 0, 0, 0, 0, 0, -1, 0});
+    EXPECT_EQ(Set(bowl, false, 2, 2), IntervalList::Single(4, 7, kInf, kNo));
+    EXPECT_EQ(Set(bowl, true, 2, 2), IntervalList::Single(-kInf, kNo, 4, 7));
+    // Hyperbolic "no real root" with a < 0: −z² − 1 <= 0 everywhere.
+    EXPECT_EQ(Set(QuadricHs({0, 0, -1, 0, 0, 0, 0, 0, 0, -1}), false, 0, 0), IntervalList::All());
+    // The empty quadric 0 <= 0 holds everywhere.
+    EXPECT_EQ(Set(QuadricHs({}), false, 1, 2), IntervalList::All());
+}
+
+}  // namespace
+}  // namespace quadrix::raycast

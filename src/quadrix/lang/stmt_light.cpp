@@ -1,0 +1,129 @@
+// Light statements (seed 001 §2.1.5, §2.3):
+//   light [id] intensity;          ambient (isotropic)
+//   light [id] intensity x y z;    parallel; (x y z) is the direction TO the light
+//   redef light id [intensity [x y z]];
+// Intensities outside [0, 1] are truncated with a warning ("UniQuadrix truncates values outside
+// this range"). A light written without an id gets one, announced by a warning as in the paper's
+// session ("warning: id l#1 created").
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "quadrix/lang/parser.h"
+#include "quadrix/lang/statements.h"
+
+namespace quadrix::lang {
+
+namespace {
+
+struct LightValues {
+    std::optional<double> intensity;
+    std::optional<Vec3> direction;
+    SourceLoc intensityLoc, directionLoc;
+};
+
+// intensity [x y z], or nothing at all when `optional` (redef). False on a syntax error.
+bool ParseLightValues(Parser& p, LightValues& v, bool optional) {
+    if (optional && !p.PeekIs(TokenKind::kNumber)) return true;
+    v.intensityLoc = p.Peek().loc;
+    v.intensity = p.ExpectNumber("the light's intensity");
+    if (!v.intensity) return false;
+    if (!p.PeekIs(TokenKind::kNumber)) return true;
+    v.directionLoc = p.Peek().loc;
+    Vec3 d;
+    static constexpr const char* kAxes[3] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i) {
+        auto c =
+            p.ExpectNumber(fmt::format("the {} component of the direction to the light "
+                                       "(a light has 1 or 4 numbers)",
+                                       kAxes[i]));
+        if (!c) return false;
+        d[i] = *c;
+    }
+    v.direction = d;
+    return true;
+}
+
+// Truncation and direction checks shared by light and redef light.
+void ApplyLightValues(Parser& p, const LightValues& v, scene::Light& light) {
+    if (v.intensity) {
+        double clamped = std::clamp(*v.intensity, 0.0, 1.0);
+        if (clamped != *v.intensity)
+            p.Warning(v.intensityLoc, fmt::format("light intensity {} is outside [0, 1]; "
+                                                  "truncated to {}",
+                                                  *v.intensity, clamped));
+        light.intensity = clamped;
+    }
+    if (v.direction) {
+        if (*v.direction == Vec3{0, 0, 0}) {
+            p.Error(v.directionLoc,
+                    fmt::format("the direction to light '{}' is the zero vector", light.id));
+        } else {
+            light.kind = scene::Light::Kind::kParallel;
+            light.direction = *v.direction;
+        }
+    }
+}
+
+}  // namespace
+
+bool ParseLight(Parser& p, const Token& keyword) {
+    scene::Light light;
+    light.loc = keyword.loc;
+    SourceLoc idLoc = keyword.loc;
+    if (!p.OptionalId(light.id, idLoc)) return false;
+    LightValues values;
+    if (!ParseLightValues(p, values, false)) return false;
+    if (!p.ExpectSemicolon("the light")) return false;
+
+    ReaderState& s = p.State();
+    if (light.id.empty()) {
+        light.id = s.GenerateId("l", ReaderState::Namespace::kLight);
+        p.Warning(keyword.loc, fmt::format("id {} created", light.id));
+    } else if (int first = s.FindLight(light.id); first >= 0) {
+        p.Error(idLoc, fmt::format("light '{}' is already defined at {} (use redef light to "
+                                   "change it)",
+                                   light.id, s.scene.lights[first].loc.ToString()));
+        return true;
+    }
+    light.kind = scene::Light::Kind::kAmbient;
+    ApplyLightValues(p, values, light);
+    if (values.direction && light.kind != scene::Light::Kind::kParallel) return true;  // reported
+    s.AddLight(std::move(light));
+    return true;
+}
+
+bool ParseRedefLight(Parser& p, const Token& keyword) {
+    Command command;
+    command.kind = Command::Kind::kRedefLight;
+    command.loc = keyword.loc;
+    SourceLoc idLoc;
+    if (!p.ExpectId("the id of the light to redefine", command.id, idLoc)) return false;
+    LightValues values;
+    if (!ParseLightValues(p, values, true)) return false;
+    if (!p.ExpectSemicolon("the redef light statement")) return false;
+
+    ReaderState& s = p.State();
+    int index = s.FindLight(command.id);
+    bool changed = values.intensity.has_value();
+    if (index < 0 && command.id != "default") {
+        p.Error(idLoc, fmt::format("unknown light '{}'", command.id));
+        return true;
+    }
+    if (changed) {
+        // Redefining the automatic default light makes it an ordinary light of the scene.
+        scene::Light light = index >= 0 ? s.scene.lights[index] : scene::DefaultLight();
+        light.isDefault = false;
+        int errors = s.diags.ErrorCount();
+        ApplyLightValues(p, values, light);
+        if (s.diags.ErrorCount() != errors) return true;
+        if (index >= 0)
+            s.scene.lights[index] = std::move(light);
+        else
+            s.AddLight(std::move(light));
+    }
+    RunCommand(p, command, changed);
+    return true;
+}
+
+}  // namespace quadrix::lang
