@@ -47,7 +47,7 @@ std::string Plane(const std::string& id, V q, V n) {
     return fmt::format("plane {} <{:.9g} {:.9g} {:.9g} {:.9g}>;\n", id, n.x, n.y, n.z, -Dot(n, q));
 }
 
-const char* kLights = "light .25;\nlight .8 .5 .9 -1;\n";
+const char* kLights = "light fill .25;\nlight key .8 .5 .9 -1;\n";
 
 }  // namespace
 
@@ -78,9 +78,9 @@ BenchScene TwoCylinders(char op) {
     BenchScene s;
     s.name = op == '|' ? "two_cyl_union" : op == '&' ? "two_cyl_intersection" : "two_cyl_difference";
     std::ostringstream out;
-    out << "quadric a <1 0 1 0 0 0 0 0 0 -4>;\nplane at <0 1 0 -4>;\nplane ab <0 -1 0 -4>;\n"
-           "quadric b <0 1 1 0 0 0 0 0 0 -2.25>;\nplane br <1 0 0 -4>;\nplane bl <-1 0 0 -4>;\n"
-           "body ca (a at ab);\nbody cb (b br bl);\n";
+    out << "quadric qa <1 0 1 0 0 0 0 0 0 -4>;\nplane at <0 1 0 -4>;\nplane ab <0 -1 0 -4>;\n"
+           "quadric qb <0 1 1 0 0 0 0 0 0 -2.25>;\nplane br <1 0 0 -4>;\nplane bl <-1 0 0 -4>;\n"
+           "body ca (qa at ab);\nbody cb (qb br bl);\n";
     out << fmt::format("csg both (ca {} cb) =c .7 .8 1;\n", op) << kLights
         << "view v dop .5 .6 -1;\n";
     s.text = out.str();

@@ -26,36 +26,36 @@ std::string IncludeChain(int depth, std::map<std::string, std::string>& files) {
     // main.uq reads f1.uq, f1 reads f2, …, f<depth> holds a sphere.
     for (int i = 1; i <= depth; ++i) {
         std::string next = i < depth ? "read \"f" + std::to_string(i + 1) + ".uq\";\n"
-                                     : "quadric s <1 1 1 0 0 0 0 0 0 -1>; body b (s);\n";
+                                     : "quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);\n";
         files["f" + std::to_string(i) + ".uq"] = next;
     }
     return "read \"f1.uq\";\n";
 }
 
 std::vector<BadInput> Table() {
-    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody b (s);\n";
+    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
     std::vector<BadInput> t = {
-        {"MissingCloseAngle", {{"main.uq", "plane p <1 0 0 1;\nbody b (p);\n"}}, "",
+        {"MissingCloseAngle", {{"main.uq", "plane pl <1 0 0 1;\nbody ball (pl);\n"}}, "",
          R"(main\.uq:1:\d+: error)"},
-        {"MissingSemicolon", {{"main.uq", "quadric s <1 1 1 0 0 0 0 0 0 -1>\nbody b (s);\n"}}, "",
+        {"MissingSemicolon", {{"main.uq", "quadric s <1 1 1 0 0 0 0 0 0 -1>\nbody ball (s);\n"}}, "",
          R"(main\.uq:2:\d+: error)"},
         {"UnknownHalfSpace", {{"main.uq", sphere + "body c (s nope);\n"}}, "",
          R"(main\.uq:3:\d+: error.*nope)"},
         {"UnknownDefinition", {{"main.uq", "instance i1 (nodef =tx 1);\n"}}, "",
          R"(main\.uq:1:\d+: error.*nodef)"},
-        {"UnknownCsgOperand", {{"main.uq", sphere + "csg c (b - ghost);\n"}}, "",
+        {"UnknownCsgOperand", {{"main.uq", sphere + "csg c (ball - ghost);\n"}}, "",
          R"(main\.uq:3:\d+: error.*ghost)"},
         {"IncludeCycle",
          {{"main.uq", "read \"a.uq\";\n"}, {"a.uq", "read \"b.uq\";\n"}, {"b.uq", "read \"a.uq\";\n"}},
          "", R"(b\.uq:1:\d+: error)"},
         {"IncludeDepth17", {}, "", R"(f17\.uq:1:\d+: error|f16\.uq:1:\d+: error)"},
-        {"InfiniteCoefficient", {{"main.uq", "quadric s <1e999 1 1 0 0 0 0 0 0 -1>;\nbody b (s);\n"}},
+        {"InfiniteCoefficient", {{"main.uq", "quadric s <1e999 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n"}},
          "", R"(main\.uq:1:\d+: error)"},
-        {"NanCoefficient", {{"main.uq", "plane p <nan 0 0 1>;\nbody b (p);\n"}}, "",
+        {"NanCoefficient", {{"main.uq", "plane pl <nan 0 0 1>;\nbody ball (pl);\n"}}, "",
          R"(main\.uq:1:\d+: error)"},
-        {"ZeroQuadric", {{"main.uq", "quadric z <0 0 0 0 0 0 0 0 0 0>;\nbody b (z);\n"}}, "",
+        {"ZeroQuadric", {{"main.uq", "quadric z <0 0 0 0 0 0 0 0 0 0>;\nbody ball (z);\n"}}, "",
          R"(main\.uq:1:\d+: error)"},
-        {"ZeroPlaneNormal", {{"main.uq", "plane p <0 0 0 1>;\nbody b (p);\n"}}, "",
+        {"ZeroPlaneNormal", {{"main.uq", "plane pl <0 0 0 1>;\nbody ball (pl);\n"}}, "",
          R"(main\.uq:1:\d+: error)"},
         {"UnterminatedComment", {{"main.uq", sphere + "{ never closed\n"}}, "",
          R"(main\.uq:3:1: error)"},
@@ -82,10 +82,10 @@ std::vector<BadInput> Table() {
          R"(main\.uq:1:\d+: error)"},
         {"BinaryGarbage", {{"main.uq", std::string("\x01\x02\xff\xfe<<>>;;\0\x7f", 12)}}, "",
          R"(main\.uq:1:\d+: error)"},
-        {"UnboundedWithoutWindow", {{"main.uq", "plane p <0 1 0 0>;\nbody half (p);\n"}}, "",
+        {"UnboundedWithoutWindow", {{"main.uq", "plane pl <0 1 0 0>;\nbody half (pl);\n"}}, "",
          R"(main\.uq:2:\d+: error.*unbounded)"},
         {"EmptyScene", {{"main.uq", "{ nothing here }\n"}}, "", R"(error.*nothing to draw)"},
-        {"OnlyLightsAndViews", {{"main.uq", "light .5;\nview v dop 0 0 -1;\n"}}, "",
+        {"OnlyLightsAndViews", {{"main.uq", "light amb .5;\nview v dop 0 0 -1;\n"}}, "",
          R"(error.*nothing to draw)"},
         // Command-line problems: no position, still one clear line.
         {"UnknownView", {{"main.uq", sphere}}, "--view nope", R"(error.*view.*nope)"},
@@ -124,9 +124,20 @@ TEST_P(BadInputTest, OneLineErrorNonZeroExitNoOutput) {
     CommandResult r = RunShell(cmd);
     EXPECT_NE(r.exitCode, 0) << cmd << "\n" << r.err;
     EXPECT_LT(r.exitCode, 128) << "killed by a signal: " << r.err;
-    std::string first = r.err.substr(0, r.err.find('\n'));
+    // The first line that is an error (warnings, e.g. about generated ids, may come before it).
+    std::string first;
+    for (std::size_t pos = 0; pos < r.err.size();) {
+        std::size_t end = r.err.find('\n', pos);
+        std::string line = r.err.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+        if (line.find("error") != std::string::npos) {
+            first = line;
+            break;
+        }
+        if (end == std::string::npos) break;
+        pos = end + 1;
+    }
     EXPECT_TRUE(std::regex_search(first, std::regex(b.expectFirstLine)))
-        << "first line of stderr: '" << first << "'\nexpected /" << b.expectFirstLine
+        << "first error line of stderr: '" << first << "'\nexpected /" << b.expectFirstLine
         << "/\nfull stderr:\n"
         << r.err;
     EXPECT_FALSE(FileExists(out));

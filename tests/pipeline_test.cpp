@@ -67,7 +67,7 @@ TEST(Pipeline, StackOfBundlesYields18Tubes) {
 // Sphere of radius 1 with a window of half-size 1.28 at 256×256: radius 100 px exactly.
 TEST(Pipeline, SphereAreaThroughTheLanguage) {
     PipelineResult r = Render(
-        "quadric s <1 1 1 0 0 0 0 0 0 -1>; body b (s);\n"
+        "quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);\n"
         "view v dop 0 0 -1 whh 1.28 whw 1.28;\n",
         256, 256);
     double area = static_cast<double>(r.frame.CoveredCount());
@@ -80,8 +80,8 @@ TEST(Pipeline, SphereAreaThroughTheLanguage) {
 TEST(Pipeline, CoincidentArrayCopiesGiveTheFirstCopysImage) {
     const std::string def =
         "definition ball; quadric s <1 1 1 0 0 0 0 0 -.5 -.75>; plane cut <1 0 0 -.5>;\n"
-        "body b (s cut); enddef;\n";  // a sphere cut by a plane: the cut is not axis-symmetric
-    const std::string view = "light .2; light .8 .3 .5 -1; view v dop .2 .4 -1 whh 1.5 whw 1.5;\n";
+        "body ball (s cut); enddef;\n";  // a sphere cut by a plane: the cut is not axis-symmetric
+    const std::string view = "light amb .2; light key .8 .3 .5 -1; view v dop .2 .4 -1 whh 1.5 whw 1.5;\n";
     PipelineResult many = Render(def + "array (ball =rx 0) 7 =rz 360;\n" + view, 160, 160);
     PipelineResult one = Render(def + "instance (ball =rx 0);\n" + view, 160, 160);
     ASSERT_EQ(many.flat.bodies.size(), 7u);
@@ -105,7 +105,7 @@ TEST(Pipeline, PerspectiveSpheresShrinkAsOneOverDistance) {
     double radiusAt10 = 0;
     for (double d : distances) {
         std::string s = "quadric s <1 1 1 0 0 0 0 0 " + std::to_string(-d) + " " +
-                        std::to_string(d * d - 1) + ">; body b (s);\n" +
+                        std::to_string(d * d - 1) + ">; body ball (s);\n" +
                         "view v vrp 0 0 1 cop 0 0 0 whh .25 whw .25;\n";
         PipelineResult r = Render(s, 400, 400);
         ExpectNoNan(r.frame);

@@ -80,9 +80,9 @@ TEST_P(PovrayTest, CoverageMatchesExceptOnSilhouettes) {
 
 const std::string kPerspectiveBalls =
     "text:quadric s1 <1 1 1 0 0 0 2 0 -10 100>; quadric s2 <1 1 1 0 0 0 -2 0 -14 193>;\n"
-    "quadric c <1 1 0 0 0 0 0 0 0 -.25>; plane f <0 0 -1 9>; plane b <0 0 1 -16>;\n"
-    "body a (s1); body bb (s2); body rod (c f b);\n"
-    "csg both ((a | bb) - rod);\n"
+    "quadric c <1 1 0 0 0 0 0 0 0 -.25>; plane fr <0 0 -1 9>; plane bk <0 0 1 -16>;\n"
+    "body ba (s1); body bb (s2); body rod (c fr bk);\n"
+    "csg both ((ba | bb) - rod);\n"
     "view v vrp 0 0 1 cop 0 0 0;\n";
 
 INSTANTIATE_TEST_SUITE_P(

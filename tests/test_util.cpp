@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -61,12 +62,29 @@ bool FileExists(const std::string& path) { return std::filesystem::exists(path);
 
 bool ReadPnm(const std::string& path, Image& image) {
     std::ifstream in(path, std::ios::binary);
-    std::string magic;
-    int w, h, maxval;
-    if (!(in >> magic >> w >> h >> maxval) || (magic != "P5" && magic != "P6") || maxval != 255 ||
-        w <= 0 || h <= 0)
-        return false;
-    in.get();
+    // Header fields separated by whitespace, with '#' comments to the end of a line (POV-Ray
+    // writes "# Software: POV-Ray ..." after the magic number).
+    auto field = [&](std::string& out) {
+        out.clear();
+        int c;
+        while ((c = in.get()) != EOF) {
+            if (c == '#') {
+                while ((c = in.get()) != EOF && c != '\n') {
+                }
+                continue;
+            }
+            if (std::isspace(c)) {
+                if (!out.empty()) return true;
+                continue;
+            }
+            out += static_cast<char>(c);
+        }
+        return !out.empty();
+    };
+    std::string magic, ws, hs, ms;
+    if (!field(magic) || !field(ws) || !field(hs) || !field(ms)) return false;
+    int w = std::atoi(ws.c_str()), h = std::atoi(hs.c_str()), maxval = std::atoi(ms.c_str());
+    if ((magic != "P5" && magic != "P6") || maxval != 255 || w <= 0 || h <= 0) return false;
     image = Image(w, h, magic == "P6" ? 3 : 1);
     in.read(reinterpret_cast<char*>(image.pixels.data()),
             static_cast<std::streamsize>(image.pixels.size()));

@@ -7,44 +7,49 @@
 // A quadric is f(p) = pᵀAp + 2bᵀp + k with A the upper-left 3×3 block of the UniQuadrix matrix
 // (DESIGN.md "Coefficients"), b = (G H J) and k = K.
 //
-// A body's box is found in two stages.
-//  (a) Analytic boxes of single literals, intersected into B0:
+// A body's box is found in stages; each stage only ever shrinks a box that is already valid.
+//  (a) Analytic boxes of single literals, intersected into B0 (bounds_math.cpp):
 //      - an axis-aligned plane n_i x_i + d <= 0 bounds axis i by -d/n_i;
 //      - a quadric whose A, restricted to the axes it depends on, is positive definite is an
 //        ellipsoid (or an elliptic cylinder along the axes it ignores): centre c = -A⁻¹b and
-//        half-extent_i = sqrt(R · (A⁻¹)_ii) with R = bᵀA⁻¹b - k (the set is (p-c)ᵀA(p-c) <= R;
-//        the extent along e_i is the support function sqrt(R e_iᵀA⁻¹e_i)). R < 0: empty.
-//  (b) Where B0 is still infinite, or where more than one literal shapes the body (so B0 may be
-//      loose), a best-first branch-and-bound per direction (±x, ±y, ±z) over boxes.
-//      Each box (centre c, half-widths h) is tested against each literal with the centred form,
-//      exact to second order for quadrics:
+//        half-extent_i = sqrt(R · (A⁻¹)_ii) with R = -f(c) = bᵀA⁻¹b - k (the set is
+//        (p-c)ᵀA(p-c) <= R, whose support along e_i is sqrt(R e_iᵀA⁻¹e_i)); R < 0: empty.
+//      Literals containing all of B0 are dropped; when a single ellipsoid (or axis cylinder) is
+//      left, B0 is exact and we stop (10,000 spheres: ~5 ms).
+//  (b1) The convex relaxation (bounds_relaxation.cpp): planes, positive semidefinite quadrics
+//      (ellipsoids, cylinders, paraboloids) and "nappes" (one nappe of a cone or the inside of one
+//      sheet of a two-sheet hyperboloid: convex, and proven to contain the body by a separating
+//      plane constraint or an LP), plus the search region's faces. For each of ±x, ±y, ±z a
+//      log-barrier interior-point method finds the extreme point, Newton on the KKT system of the
+//      active constraints polishes it, and Lagrangian weak duality certifies the bound:
+//          e·x <= e·x - Σ λ_i f_i(x) - μ f_ball(x)  <=  L(x̂) + sup_d (r·d - dᵀMd),
+//      for any λ >= 0, any x̂ (r = ∇L(x̂), M = Σλ_i A_i + μ I/R²), evaluated with rounding
+//      allowances; a nappe enters as its supporting plane through the apex. Exact (to ~1e-9 of the
+//      size) for convex bodies: capped and mitered cylinders, capped cones, tubes (whose
+//      complemented inner literal is left out and checked at the extreme point). Measured
+//      (bounds_test.cpp, -O3, one core of a loaded 2-core machine): ~150-250 µs per mitered pipe
+//      or cone frustum.
+//  (b2) Where (b1) cannot settle a side (a non-convex literal cuts off the relaxation's extreme
+//      or bounds a side it leaves unbounded: hyperboloids of one sheet, complemented quadrics
+//      reaching the outside), a best-first branch-and-bound per direction over boxes
+//      (bounds_search.cpp). Each box (centre c, half-widths h) is tested against each literal with
+//      the centred form, exact to second order for quadrics:
 //          f(c + d) = f(c) + g·d + dᵀAd,  g = ∇f(c),  |d_i| <= h_i,
-//          g·d      ∈ ±Σ|g_i| h_i,
-//          dᵀAd     ∈ [max(λmin⁻|h|², -hᵀ|A|h off the PSD diagonal ...), ...]
-//      (both the Rayleigh bound λmin|d|² <= dᵀAd <= λmax|d|² and the entrywise bound are valid,
-//      the tighter one is used; for convex quadrics λmin >= 0 so the lower bound is f(c) - Σ|g_i|h_i,
-//      independent of the box's size along directions where g vanishes). A rounding margin relative
-//      to the magnitudes of the terms is added. A box is discarded only when some literal's lower
-//      bound is certainly > 0; NaN or inf in a bound means "unknown", never "outside".
-//      Boxes are popped in order of their extreme coordinate in the searched direction, so the
-//      popped box's face is always a valid (conservative) bound. The search stops when
-//        - the popped box is entirely inside the set (the bound is then attained, exact), or
-//        - the bound is within relTolerance × (size of the inner box) of a point certified to be
-//          in the set, the inner box being the box of all such points found so far, or
-//        - the box budget is spent (the bound is still conservative, only looser).
-//      Boxes are split in two across the axis that contributes most to the undecided literals'
-//      slack (normalised per literal), with a bias toward the searched axis, which is what narrows
-//      the bound; thin slabs are fine where the gradient is along the searched axis (the typical
-//      case near an extreme point of a smooth surface).
-//      A set that reaches the search limit (BoundsOptions::searchLimit, set from the scene scale)
-//      on a side is reported unbounded there (±inf).
+//      with g·d in ±Σ|g_i|h_i and dᵀAd bounded by the tighter of the entrywise and the Rayleigh
+//      (eigenvalue) bounds, plus a rounding margin; a box is discarded only when some literal (or
+//      a non-negative combination of the undecided ones, with weights making its gradient point
+//      along the searched direction as KKT multipliers do) is certainly > 0. NaN or inf means
+//      "unknown", never "outside". Boxes pop in order of their extreme coordinate, so the popped
+//      face is always a valid bound; the search stops when the popped box lies inside the set
+//      (exact), within relTolerance × (size of the certified inner box) of a point of the set,
+//      or when the box budget is spent (still conservative). A capped one-sheet hyperboloid
+//      takes a few milliseconds.
+// A side beyond 1e-3 × searchLimit is reported unbounded (±inf): a set cut off only by the
+// search box can leave it through another face, so its extent along an axis oblique to its
+// recession direction is large but below the limit itself.
 //
 // Tree bounds: union → union of the children's boxes; intersection → intersection; difference →
 // the minuend's. Solids' boxes are clipped to the image rectangle [0, width] × [0, height].
-//
-// Speed (measured in bounds_test.cpp, Release, one core): spheres and ellipsoids take the
-// analytic path (about a microsecond each); a capped or mitered oblique cylinder takes a few hundred
-// boxes per direction.
 #pragma once
 
 #include <cstdint>
@@ -57,11 +62,11 @@
 namespace quadrix {
 
 struct BoundsOptions {
-    // A set reaching |coordinate| >= searchLimit is reported unbounded on that side. The
-    // Flattener sets this to 1e6 × the scene's scale.
+    // The search region is |coordinate| <= searchLimit; a side beyond 1e-3 × searchLimit is
+    // reported unbounded. The Flattener sets this to 1e6 × the scene's scale.
     double searchLimit = 1e12;
-    // The branch-and-bound stops when the bound is within relTolerance × the size of the part of
-    // the set found so far (a point-certified inner box).
+    // The branch-and-bound (stage (b2)) stops when the bound is within relTolerance × the size
+    // of the part of the set found so far (a point-certified inner box).
     double relTolerance = 1e-3;
     // Boxes popped per direction before giving up (the bound returned is still conservative).
     int maxBoxesPerDirection = 4000;

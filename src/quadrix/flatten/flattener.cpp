@@ -1,9 +1,368 @@
-// STUB — to be replaced by the Flattener implementation.
+// The Flattener (seed 001 §3.3); the steps are listed in flattener.h. The pieces:
+//   view_setup.{h,cpp}  the view → provisional device space (projection matrices, clip planes)
+//   hierarchy.{h,cpp}   definitions, instances, arrays and CSG → FlatSolids (explosion guard)
+//   bounds.{h,cpp}      conservative boxes of bodies, CSG nodes and solids
+// This file strings them together: walk in provisional device space, add the clip planes,
+// bound, fit the window (auto-fit where whh/whw are missing), map to device space with a
+// uniform scale and a translation, cull solids that cannot reach the image.
+//
+// Window fit. In provisional space x and y are view-plane coordinates centred on vrp (y down).
+// An axis with a window half-size w (whw for x, whh for y) asks for scale W/(2w) (or H/(2w))
+// centred on vrp; an axis without one asks for the scene's extent on that axis, E, to fill the
+// image less autoFitMargin per side: scale W(1 - 2m)/E, centred on the extent's middle. Pixels
+// are square, so the scale k is the smallest asked for, and each axis is centred in the image.
+// The extent ignores fbp (seed 001 §2.1.6: "It has no effect on auto-scaling").
+//
+// Device map: x_dev = k x + ox, y_dev = k y + oy, z_dev = k z (the same k for depth, so for
+// parallel views device space is a similarity of view space up to the reflection of y, and for
+// perspective dz/dn_e = k at the view plane).
+//
+// depthTolerance = 1e-9 × the scene's depth extent in device units (the finite z-range of all
+// solids, at least max(width, height) and, for perspective, k·d, the depth from the view plane to
+// infinity): coincident surfaces computed in different ways agree to far better than that.
+//
+// Solids whose clipped bounds are empty (behind the eye, outside the window, provably empty)
+// are dropped: they cannot cover a pixel.
 #include "quadrix/flatten/flattener.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "quadrix/flatten/bounds.h"
+#include "quadrix/flatten/hierarchy.h"
+#include "quadrix/flatten/view_setup.h"
+
 namespace quadrix {
-std::optional<FlatScene> Flatten(const scene::Scene&, const FlattenOptions&, Diagnostics& diags) {
-    diags.Error({}, "flattener not implemented");
-    return std::nullopt;
+
+namespace {
+
+constexpr double kInf = HUGE_VAL;
+
+// The search limit of the bounds: 1e6 × the scene's scale (bounds.h), the scale being the
+// largest of the bodies' half-spaces' characteristic lengths, the window and the eye distance.
+// (The perspective near plane, at depth -1e4 d, would inflate it for nothing.)
+double SceneScale(const FlatScene& flat, const ViewSetup& view) {
+    double s = 0;
+    for (const FlatHalfSpace& h : flat.halfSpaces)
+        if (!h.isClip) s = std::fmax(s, HalfSpaceScale(h));
+    if (view.whh) s = std::fmax(s, *view.whh);
+    if (view.whw) s = std::fmax(s, *view.whw);
+    s = std::fmax(s, view.d);
+    return s > 0 && std::isfinite(s) ? s : 1.0;
 }
+
+struct Fit {
+    double k = 1, ox = 0, oy = 0;
+};
+
+class FlattenerImpl {
+  public:
+    FlattenerImpl(const scene::Scene& scene, const FlattenOptions& options, Diagnostics& diags)
+        : scene_(scene), options_(options), diags_(diags) {}
+
+    std::optional<FlatScene> Run() {
+        if (!CheckOptions()) return std::nullopt;
+        std::optional<scene::View> view = scene_.ViewToUse(options_.viewName);
+        if (!view) {
+            diags_.Error({}, fmt::format("unknown view '{}'", options_.viewName), {},
+                         "command line");
+            return std::nullopt;
+        }
+        std::optional<ViewSetup> setup = ResolveView(*view, diags_);
+        if (!setup) return std::nullopt;
+        view_ = std::move(*setup);
+
+        FlatScene& flat = flat_;
+        flat.width = options_.width;
+        flat.height = options_.height;
+        flat.viewName = view_.id;
+        flat.lights = scene_.LightsToUse();
+        // The clip planes come first in halfSpaces: shared by every body.
+        for (const Plane& p : view_.finalClips) {
+            FlatHalfSpace h;
+            h.isPlane = true;
+            h.plane = p;
+            h.transparent = true;
+            h.isClip = true;
+            h.name = fmt::format("clip#{}", flat.halfSpaces.size());
+            flat.halfSpaces.push_back(std::move(h));
+        }
+        const int nClip = static_cast<int>(flat.halfSpaces.size());
+        HierarchyLimits limits;
+        limits.clipLiteralsPerBody = nClip;
+        if (!FlattenHierarchy(scene_, view_.provFromWorld, limits, flat, hierarchy_, diags_))
+            return std::nullopt;
+        if (flat.solids.empty()) {
+            diags_.Error({},
+                         "nothing to draw: the scene has no body, instance or csg solid "
+                         "outside definitions that is not a CSG operand");
+            return std::nullopt;
+        }
+        for (FlatBody& b : flat.bodies)
+            for (int c = 0; c < nClip; ++c) b.literals.push_back({c, false});
+
+        BoundsOptions bo;
+        bo.searchLimit = 1e6 * SceneScale(flat, view_);
+        std::vector<Box3> bodyBoxes(flat.bodies.size());
+        for (std::size_t i = 0; i < flat.bodies.size(); ++i)
+            bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo);
+        std::vector<Box3> fitBoxes = FitSolidBoxes(bodyBoxes, bo);
+
+        std::optional<Fit> fit = FitWindow(fitBoxes);
+        if (!fit) return std::nullopt;
+        ToDevice(*fit, bodyBoxes);
+        Cull();
+        SetDepthTolerance(*fit);
+        return std::move(flat_);
+    }
+
+  private:
+    bool CheckOptions() {
+        bool ok = true;
+        if (options_.width < 1 || options_.height < 1) {
+            diags_.Error({},
+                         fmt::format("image size {}x{}: both sides must be at least 1",
+                                     options_.width, options_.height),
+                         {}, "command line");
+            ok = false;
+        }
+        if (!(options_.autoFitMargin >= 0 && options_.autoFitMargin < 0.5)) {
+            diags_.Error(
+                {}, fmt::format("auto-fit margin {} must be in [0, 0.5)", options_.autoFitMargin),
+                {}, "command line");
+            ok = false;
+        }
+        return ok;
+    }
+
+    // Solid boxes for the window fit: like the final ones, except that the fit ignores fbp, so
+    // where the view's fit clip planes differ from the final ones the bodies are bounded again
+    // with their own literals and the fit planes.
+    std::vector<Box3> FitSolidBoxes(const std::vector<Box3>& finalBodyBoxes,
+                                    const BoundsOptions& bo) {
+        const FlatScene& flat = flat_;
+        bool same = view_.fitClips.size() == view_.finalClips.size();
+        for (std::size_t i = 0; same && i < view_.fitClips.size(); ++i)
+            same = view_.fitClips[i] == view_.finalClips[i];
+        std::vector<Box3> bodyBoxes = finalBodyBoxes;
+        if (!same) {
+            std::vector<FlatHalfSpace> fitPlanes;
+            for (const Plane& p : view_.fitClips) {
+                FlatHalfSpace h;
+                h.plane = p;
+                fitPlanes.push_back(h);
+            }
+            const std::size_t nClip = view_.finalClips.size();
+            std::vector<BoundLiteral> lits;
+            for (std::size_t i = 0; i < flat.bodies.size(); ++i) {
+                const FlatBody& b = flat.bodies[i];
+                lits.clear();
+                for (std::size_t l = 0; l + nClip < b.literals.size(); ++l)
+                    lits.push_back(
+                        {&flat.halfSpaces[b.literals[l].halfSpace], b.literals[l].complemented});
+                for (const FlatHalfSpace& h : fitPlanes) lits.push_back({&h, false});
+                bodyBoxes[i] = IntersectionBounds(lits, bo);
+            }
+        }
+        std::vector<Box3> nodeBoxes = TreeBounds(flat, bodyBoxes);
+        std::vector<Box3> solidBoxes(flat.solids.size());
+        for (std::size_t i = 0; i < flat.solids.size(); ++i)
+            solidBoxes[i] = nodeBoxes[flat.solids[i].root];
+        return solidBoxes;
+    }
+
+    std::optional<Fit> FitWindow(const std::vector<Box3>& solidBoxes) {
+        const double w = options_.width, h = options_.height, m = options_.autoFitMargin;
+        const bool needX = !view_.whw, needY = !view_.whh;
+        Box3 extent;
+        if (needX || needY) {
+            for (std::size_t i = 0; i < solidBoxes.size(); ++i) {
+                const Box3& b = solidBoxes[i];
+                if (b.Empty()) continue;
+                bool unboundedX = needX && !(std::isfinite(b.lo.x) && std::isfinite(b.hi.x));
+                bool unboundedY = needY && !(std::isfinite(b.lo.y) && std::isfinite(b.hi.y));
+                if (unboundedX || unboundedY) {
+                    const SourceLoc& loc = hierarchy_.solidLocs[i];
+                    bool isBody = !hierarchy_.solidIsCsg[i];
+                    diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view; give "
+                                                  "the view a window with whh and whw",
+                                                  isBody ? "body" : "csg solid",
+                                                  flat_.solids[i].name, loc.ToString()));
+                    return std::nullopt;
+                }
+                extent.Extend(b);
+            }
+            if (extent.Empty()) {
+                diags_.Error(view_.loc,
+                             fmt::format("nothing to draw in view '{}': every solid is empty or "
+                                         "behind the eye",
+                                         view_.id));
+                return std::nullopt;
+            }
+        }
+        double scaleX = kInf, scaleY = kInf, cx = 0, cy = 0;
+        if (view_.whw) {
+            scaleX = 0.5 * w / *view_.whw;
+        } else {
+            double span = extent.hi.x - extent.lo.x;
+            cx = 0.5 * (extent.lo.x + extent.hi.x);
+            if (span > 0) scaleX = w * (1 - 2 * m) / span;
+        }
+        if (view_.whh) {
+            scaleY = 0.5 * h / *view_.whh;
+        } else {
+            double span = extent.hi.y - extent.lo.y;
+            cy = 0.5 * (extent.lo.y + extent.hi.y);
+            if (span > 0) scaleY = h * (1 - 2 * m) / span;
+        }
+        Fit fit;
+        fit.k = std::fmin(scaleX, scaleY);
+        if (!(fit.k < kInf) || !(fit.k > 0)) {
+            diags_.Error(view_.loc, fmt::format("the scene has no extent in view '{}' (it is "
+                                                "flat or a point seen edge-on); give the view a "
+                                                "window with whh and whw",
+                                                view_.id));
+            return std::nullopt;
+        }
+        fit.ox = 0.5 * w - fit.k * cx;
+        fit.oy = 0.5 * h - fit.k * cy;
+        return fit;
+    }
+
+    // Maps everything from provisional to device space: D = T(ox, oy, 0) · S(k, k, k).
+    void ToDevice(const Fit& fit, const std::vector<Box3>& bodyBoxes) {
+        FlatScene& flat = flat_;
+        Transform dev =
+            Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
+        for (FlatHalfSpace& h : flat.halfSpaces) {
+            if (h.isPlane)
+                h.plane = h.plane.Transformed(dev);
+            else
+                h.quadric = h.quadric.Transformed(dev);
+        }
+        // A box maps exactly under a positive scale and a translation, up to rounding: pad by a
+        // few ulps of the coordinates.
+        auto mapBox = [&](const Box3& b) {
+            if (b.Empty()) return Box3{};
+            Box3 r;
+            const double o[3] = {fit.ox, fit.oy, 0};
+            for (int i = 0; i < 3; ++i) {
+                double lo = fit.k * b.lo[i] + o[i], hi = fit.k * b.hi[i] + o[i];
+                r.lo[i] = lo - 4e-16 * (std::fabs(lo) + std::fabs(o[i])) - 1e-300;
+                r.hi[i] = hi + 4e-16 * (std::fabs(hi) + std::fabs(o[i])) + 1e-300;
+            }
+            return r;
+        };
+        std::vector<Box3> devBodies(bodyBoxes.size());
+        for (std::size_t i = 0; i < bodyBoxes.size(); ++i) {
+            devBodies[i] = mapBox(bodyBoxes[i]);
+            flat.bodies[i].bounds = devBodies[i];
+        }
+        std::vector<Box3> nodes = TreeBounds(flat, devBodies);
+        for (std::size_t i = 0; i < nodes.size(); ++i) flat.nodes[i].bounds = nodes[i];
+        Box3 image{{0, 0, -kInf}, {double(flat.width), double(flat.height), kInf}};
+        for (FlatSolid& s : flat.solids) {
+            Box3 b = nodes[s.root].Intersected(image);
+            s.bounds = b.Empty() ? Box3{} : b;
+        }
+        flat.projection.perspective = view_.perspective;
+        flat.projection.deviceFromWorld = dev * view_.provFromWorld;
+        flat.projection.eye = view_.eye;
+        flat.projection.towardViewer = view_.towardViewer;
+    }
+
+    // Drops solids with empty bounds and renumbers what remains (half-spaces no longer used are
+    // dropped too, except the shared clip planes).
+    void Cull() {
+        FlatScene& flat = flat_;
+        bool any = false;
+        for (const FlatSolid& s : flat.solids) any |= s.bounds.Empty();
+        if (!any) return;
+        FlatScene out;
+        out.width = flat.width;
+        out.height = flat.height;
+        out.lights = std::move(flat.lights);
+        out.projection = flat.projection;
+        out.viewName = flat.viewName;
+        std::vector<int> hsMap(flat.halfSpaces.size(), -1);
+        for (std::size_t i = 0; i < flat.halfSpaces.size(); ++i)
+            if (flat.halfSpaces[i].isClip) {
+                hsMap[i] = static_cast<int>(out.halfSpaces.size());
+                out.halfSpaces.push_back(flat.halfSpaces[i]);
+            }
+        std::vector<int> nodeMap(flat.nodes.size(), -1);
+        for (const FlatSolid& s : flat.solids) {
+            if (s.bounds.Empty()) continue;
+            int solidIndex = static_cast<int>(out.solids.size());
+            FlatSolid ns = s;
+            ns.root = CopyNode(flat, s.root, solidIndex, out, hsMap, nodeMap);
+            out.solids.push_back(std::move(ns));
+        }
+        flat_ = std::move(out);
+    }
+
+    // Copies a subtree (children before parents, as the walk emitted them). Iterative: a union
+    // of 10,000 bodies is one node, but nodes can still nest deeply.
+    int CopyNode(const FlatScene& from, int root, int solid, FlatScene& to, std::vector<int>& hsMap,
+                 std::vector<int>& nodeMap) {
+        std::vector<std::pair<int, bool>> stack{{root, false}};
+        while (!stack.empty()) {
+            auto [n, expanded] = stack.back();
+            stack.pop_back();
+            if (nodeMap[n] >= 0) continue;
+            const FlatCsgNode& node = from.nodes[n];
+            if (!expanded && !node.isLeaf) {
+                stack.push_back({n, true});
+                for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
+                    stack.push_back({*it, false});
+                continue;
+            }
+            FlatCsgNode copy = node;
+            if (node.isLeaf) {
+                FlatBody body = from.bodies[node.body];
+                body.solid = solid;
+                for (FlatLiteral& l : body.literals) {
+                    if (hsMap[l.halfSpace] < 0) {
+                        hsMap[l.halfSpace] = static_cast<int>(to.halfSpaces.size());
+                        to.halfSpaces.push_back(from.halfSpaces[l.halfSpace]);
+                    }
+                    l.halfSpace = hsMap[l.halfSpace];
+                }
+                to.bodies.push_back(std::move(body));
+                copy.body = static_cast<int>(to.bodies.size()) - 1;
+            } else {
+                for (int& c : copy.children) c = nodeMap[c];
+            }
+            to.nodes.push_back(std::move(copy));
+            nodeMap[n] = static_cast<int>(to.nodes.size()) - 1;
+        }
+        return nodeMap[root];
+    }
+
+    void SetDepthTolerance(const Fit& fit) {
+        double extent = std::fmax(options_.width, options_.height);
+        Box3 all;
+        for (const FlatSolid& s : flat_.solids) all.Extend(s.bounds);
+        if (!all.Empty() && std::isfinite(all.lo.z) && std::isfinite(all.hi.z))
+            extent = std::fmax(extent, all.hi.z - all.lo.z);
+        if (view_.perspective) extent = std::fmax(extent, fit.k * view_.d);
+        flat_.depthTolerance = 1e-9 * extent;
+    }
+
+    const scene::Scene& scene_;
+    const FlattenOptions& options_;
+    Diagnostics& diags_;
+    ViewSetup view_;
+    FlatScene flat_;
+    HierarchyResult hierarchy_;
+};
+
+}  // namespace
+
+std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,
+                                 Diagnostics& diags) {
+    return FlattenerImpl(scene, options, diags).Run();
+}
+
 }  // namespace quadrix

@@ -12,15 +12,19 @@ namespace {
 
 // Scratch space for de Casteljau; small cases stay on the stack.
 class Scratch {
-public:
+  public:
     explicit Scratch(std::size_t n) {
-        if (n > kStack) heap_.resize(n);
-        data_ = n > kStack ? heap_.data() : stack_;
+        if (n > kStack) {
+            heap_.resize(n);
+            data_ = heap_.data();
+        } else {
+            data_ = stack_;
+        }
     }
     double* data() { return data_; }
 
-private:
-    static constexpr std::size_t kStack = 256;
+  private:
+    static constexpr std::size_t kStack = 64;
     double stack_[kStack];
     std::vector<double> heap_;
     double* data_;
@@ -30,15 +34,25 @@ private:
 
 void DeCasteljau(const double* c, int n, int dim, double s, double* out) {
     std::size_t size = static_cast<std::size_t>((n + 1) * dim);
+    double r = 1 - s;
+    if (dim == 1 && n < 64) {
+        // Scalar fast path (the Δ² curves): one row of at most 64 values on the stack.
+        double w[64];
+        for (int i = 0; i <= n; ++i) w[i] = c[i];
+        for (int level = n; level > 0; --level)
+            for (int i = 0; i < level; ++i) w[i] = r * w[i] + s * w[i + 1];
+        out[0] = w[0];
+        return;
+    }
     Scratch scratch(size);
     double* w = scratch.data();
-    std::memcpy(w, c, size * sizeof(double));
-    double r = 1 - s;
-    for (int level = n; level > 0; --level)
-        for (int i = 0; i < level; ++i)
-            for (int k = 0; k < dim; ++k)
-                w[i * dim + k] = r * w[i * dim + k] + s * w[(i + 1) * dim + k];
-    std::memcpy(out, w, static_cast<std::size_t>(dim) * sizeof(double));
+    for (std::size_t i = 0; i < size; ++i) w[i] = c[i];
+    for (int level = n; level > 0; --level) {
+        std::size_t len = static_cast<std::size_t>(level * dim);
+        for (std::size_t i = 0; i < len; ++i)
+            w[i] = r * w[i] + s * w[i + static_cast<std::size_t>(dim)];
+    }
+    for (int k = 0; k < dim; ++k) out[k] = w[k];
 }
 
 void SubdivideInto(const double* c, int n, int dim, double s, double* left, double* right) {
@@ -50,7 +64,8 @@ void SubdivideInto(const double* c, int n, int dim, double s, double* left, doub
     // The de Casteljau triangle: after row j, the first point is left_j and the last one
     // right_{n-j} (Farin §3.3).
     auto put = [&](double* dst, int index, const double* src) {
-        if (dst) std::memcpy(dst + index * dim, src, static_cast<std::size_t>(dim) * sizeof(double));
+        if (dst)
+            std::memcpy(dst + index * dim, src, static_cast<std::size_t>(dim) * sizeof(double));
     };
     put(left, 0, w);
     put(right, n, w + n * dim);

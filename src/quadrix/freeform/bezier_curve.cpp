@@ -48,8 +48,7 @@ BezierCurve BezierCurve::FromPoints(std::span<const Vec3> points, double t0, dou
 }
 
 BezierCurve BezierCurve::FromWeightedPoints(std::span<const Vec3> points,
-                                            std::span<const double> weights, double t0,
-                                            double t1) {
+                                            std::span<const double> weights, double t0, double t1) {
     assert(points.size() == weights.size());
     std::vector<double> c;
     c.reserve(points.size() * 4);

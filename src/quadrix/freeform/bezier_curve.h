@@ -29,7 +29,7 @@ namespace quadrix::freeform {
 double Binomial(int n, int k);
 
 class BezierCurve {
-public:
+  public:
     BezierCurve() = default;
     // `coefficients` holds (degree + 1) * dim values, point after point.
     BezierCurve(int dim, int degree, std::vector<double> coefficients, double t0 = 0,
@@ -82,7 +82,7 @@ public:
     double MinCoefficient(int k = 0) const;
     double MaxCoefficient(int k = 0) const;
 
-private:
+  private:
     int dim_ = 0;
     int degree_ = 0;
     double t0_ = 0, t1_ = 1;

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "quadrix/freeform/power_form.h"
 #include "quadrix/freeform/test_oracles.h"
 
 namespace quadrix::freeform {
@@ -56,8 +57,7 @@ TEST(FreeformBezierCurve, EvaluationMatchesBernsteinSum) {
             EXPECT_LT(MaxAbsDiff(c.Evaluate(t), Oracle(c, t)), kTol) << "degree " << degree;
         }
         // Endpoint interpolation.
-        EXPECT_LT(MaxAbsDiff(c.Evaluate(c.T0()),
-                             std::vector<double>(c.Point(0), c.Point(0) + dim)),
+        EXPECT_LT(MaxAbsDiff(c.Evaluate(c.T0()), std::vector<double>(c.Point(0), c.Point(0) + dim)),
                   kTol);
     }
 }
@@ -142,6 +142,21 @@ TEST(FreeformBezierCurve, HullBoundsAndConstants) {
         EXPECT_GE(v, -2);
         EXPECT_LE(v, 3);
         EXPECT_NEAR(c.PlusConstant(4).EvaluateScalar(t), v + 4, 1e-14);
+    }
+}
+
+TEST(FreeformBezierCurve, PowerFormMatchesDeCasteljau) {
+    std::mt19937_64 rng(6);
+    for (int trial = 0; trial < 100; ++trial) {
+        BezierCurve c = RandomCurve(rng, 1 + trial % 4, trial % 9);
+        PowerForm p(c);
+        for (int k = 0; k < 5; ++k) {
+            double t = Uniform(rng, c.T0(), c.T1());
+            std::vector<double> got(static_cast<std::size_t>(c.Dim()));
+            p.Evaluate(t, got.data());
+            // Control points O(5), degree <= 8: conversion roundoff <= 3^8 ulps of 5 ≈ 7e-12.
+            EXPECT_LT(MaxAbsDiff(got, c.Evaluate(t)), 1e-11);
+        }
     }
 }
 

@@ -21,8 +21,7 @@ BezierSurface::BezierSurface(int dim, int degreeU, int degreeV, std::vector<doub
     assert(c_.size() == static_cast<std::size_t>((degreeU_ + 1) * (degreeV_ + 1) * dim_));
 }
 
-BezierSurface BezierSurface::FromPoints(int degreeU, int degreeV,
-                                        const std::vector<Vec3>& points) {
+BezierSurface BezierSurface::FromPoints(int degreeU, int degreeV, const std::vector<Vec3>& points) {
     assert(points.size() == static_cast<std::size_t>((degreeU + 1) * (degreeV + 1)));
     std::vector<double> c;
     c.reserve(points.size() * 3);
@@ -48,8 +47,8 @@ BezierCurve BezierSurface::RowsAsCurveInV() const {
     return BezierCurve((degreeU_ + 1) * dim_, degreeV_, c_, v0_, v1_);
 }
 
-BezierSurface BezierSurface::FromRowsCurve(const BezierCurve& rows, int dim, int degreeU,
-                                           double u0, double u1) {
+BezierSurface BezierSurface::FromRowsCurve(const BezierCurve& rows, int dim, int degreeU, double u0,
+                                           double u1) {
     assert(rows.Dim() == (degreeU + 1) * dim);
     return BezierSurface(dim, degreeU, rows.Degree(), rows.Coefficients(), u0, u1, rows.T0(),
                          rows.T1());
@@ -104,7 +103,8 @@ BezierSurface BezierSurface::DerivativeU() const { return Transposed().Derivativ
 
 std::pair<BezierSurface, BezierSurface> BezierSurface::SplitV(double v) const {
     auto [lo, hi] = RowsAsCurveInV().Split(v);
-    return {FromRowsCurve(lo, dim_, degreeU_, u0_, u1_), FromRowsCurve(hi, dim_, degreeU_, u0_, u1_)};
+    return {FromRowsCurve(lo, dim_, degreeU_, u0_, u1_),
+            FromRowsCurve(hi, dim_, degreeU_, u0_, u1_)};
 }
 
 std::pair<BezierSurface, BezierSurface> BezierSurface::SplitU(double u) const {
@@ -198,17 +198,15 @@ void AccumulateProduct2D(const BezierSurface& a, int ka, const BezierSurface& b,
 
 BezierSurface ProductShape(const BezierSurface& a, const BezierSurface& b, int dim) {
     int m = a.DegreeU() + b.DegreeU(), n = a.DegreeV() + b.DegreeV();
-    return BezierSurface(dim, m, n,
-                         std::vector<double>(static_cast<std::size_t>((m + 1) * (n + 1) * dim), 0.0),
-                         a.U0(), a.U1(), a.V0(), a.V1());
+    return BezierSurface(
+        dim, m, n, std::vector<double>(static_cast<std::size_t>((m + 1) * (n + 1) * dim), 0.0),
+        a.U0(), a.U1(), a.V0(), a.V1());
 }
 
 }  // namespace
 
 BezierSurface Add(const BezierSurface& a, const BezierSurface& b) { return Combine(a, b, 1); }
-BezierSurface Subtract(const BezierSurface& a, const BezierSurface& b) {
-    return Combine(a, b, -1);
-}
+BezierSurface Subtract(const BezierSurface& a, const BezierSurface& b) { return Combine(a, b, -1); }
 
 BezierSurface Multiply(const BezierSurface& scalar, const BezierSurface& s) {
     assert(scalar.Dim() == 1);

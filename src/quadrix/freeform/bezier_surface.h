@@ -1,15 +1,16 @@
-// Tensor-product Bézier surfaces of any degrees and any dimension (bezier_curve.h has the notation).
+// Tensor-product Bézier surfaces of any degrees and any dimension (bezier_curve.h has the
+// notation).
 //
 //     S(u, v) = Σ_i Σ_j P_ij B_i^m(s) B_j^n(r),  s, r the local parameters of [u0,u1] × [v0,v1].
 //
-// Control point P_ij (i = 0..m along u, j = 0..n along v) is stored at index j (m + 1) + i: u varies
-// fastest, the order of the OBJ and Geomview formats. Because the rows are contiguous, a surface is
-// also a Bézier curve in v whose "points" are whole rows (dimension (m + 1) d); every v operation
-// (evaluation of an isocurve, subdivision, elevation, derivative) is done that way, and u operations
-// on the transpose.
+// Control point P_ij (i = 0..m along u, j = 0..n along v) is stored at index j (m + 1) + i: u
+// varies fastest, the order of the OBJ and Geomview formats. Because the rows are contiguous, a
+// surface is also a Bézier curve in v whose "points" are whole rows (dimension (m + 1) d); every v
+// operation (evaluation of an isocurve, subdivision, elevation, derivative) is done that way, and u
+// operations on the transpose.
 //
-// A rational surface is the polynomial surface of its homogeneous coordinates (d = 4, control points
-// (w x, w y, w z, w)); NormalField gives a polynomial normal field for both kinds.
+// A rational surface is the polynomial surface of its homogeneous coordinates (d = 4, control
+// points (w x, w y, w z, w)); NormalField gives a polynomial normal field for both kinds.
 #pragma once
 
 #include <utility>
@@ -21,7 +22,7 @@
 namespace quadrix::freeform {
 
 class BezierSurface {
-public:
+  public:
     BezierSurface() = default;
     BezierSurface(int dim, int degreeU, int degreeV, std::vector<double> coefficients,
                   double u0 = 0, double u1 = 1, double v0 = 0, double v1 = 1);
@@ -80,7 +81,7 @@ public:
     static BezierSurface FromRowsCurve(const BezierCurve& rows, int dim, int degreeU, double u0,
                                        double u1);
 
-private:
+  private:
     int dim_ = 0;
     int degreeU_ = 0, degreeV_ = 0;
     double u0_ = 0, u1_ = 1, v0_ = 0, v1_ = 1;

@@ -21,16 +21,17 @@ std::vector<double> Oracle(const BezierSurface& s, double u, double v) {
     for (int j = 0; j <= s.DegreeV(); ++j)
         for (int i = 0; i <= s.DegreeU(); ++i) {
             double f = BernsteinOracle(s.DegreeU(), i, a) * BernsteinOracle(s.DegreeV(), j, b);
-            for (int k = 0; k < s.Dim(); ++k) r[static_cast<std::size_t>(k)] += f * s.Point(i, j)[k];
+            for (int k = 0; k < s.Dim(); ++k)
+                r[static_cast<std::size_t>(k)] += f * s.Point(i, j)[k];
         }
     return r;
 }
 
 BezierSurface RandomSurface(std::mt19937_64& rng, int dim, int m, int n) {
     double u0 = Uniform(rng, -1, 1), v0 = Uniform(rng, -1, 1);
-    return BezierSurface(dim, m, n,
-                         RandomVector(rng, static_cast<std::size_t>((m + 1) * (n + 1) * dim), -3, 3),
-                         u0, u0 + Uniform(rng, 0.2, 2), v0, v0 + Uniform(rng, 0.2, 2));
+    return BezierSurface(
+        dim, m, n, RandomVector(rng, static_cast<std::size_t>((m + 1) * (n + 1) * dim), -3, 3), u0,
+        u0 + Uniform(rng, 0.2, 2), v0, v0 + Uniform(rng, 0.2, 2));
 }
 
 // A rational surface with weights in [0.5, 2] (positive, so the Euclidean surface is finite).
@@ -101,7 +102,8 @@ TEST(FreeformBezierSurface, SymbolicOperationsMatchPointwise) {
         BezierSurface a = RandomSurface(rng, 3, trial % 4, (trial / 4) % 3);
         BezierSurface b = RandomSurface(rng, 3, (trial / 2) % 3, trial % 3)
                               .Reparametrized(a.U0(), a.U1(), a.V0(), a.V1());
-        BezierSurface s = RandomSurface(rng, 1, 2, 1).Reparametrized(a.U0(), a.U1(), a.V0(), a.V1());
+        BezierSurface s =
+            RandomSurface(rng, 1, 2, 1).Reparametrized(a.U0(), a.U1(), a.V0(), a.V1());
         BezierSurface sum = Add(a, b), diff = Subtract(a, b), prod = Multiply(s, a);
         BezierSurface dot = Dot(a, b), cross = Cross(a, b);
         for (int k = 0; k < 4; ++k) {

@@ -14,8 +14,8 @@ std::string CheckKnots(const std::vector<double>& knots, int degree, int count) 
                std::to_string(degree) + ", got " + std::to_string(count);
     std::size_t expected = static_cast<std::size_t>(count + degree + 1);
     if (knots.size() != expected)
-        return "expected " + std::to_string(expected) + " knots (control points + degree + 1), got " +
-               std::to_string(knots.size());
+        return "expected " + std::to_string(expected) +
+               " knots (control points + degree + 1), got " + std::to_string(knots.size());
     for (std::size_t i = 0; i < knots.size(); ++i) {
         if (!std::isfinite(knots[i])) return "knot " + std::to_string(i + 1) + " is not finite";
         if (i > 0 && knots[i] < knots[i - 1]) return "knots must not decrease";
@@ -104,13 +104,11 @@ BSplineCurve::BSplineCurve(int dim, int degree, std::vector<double> knots,
     : dim_(dim), degree_(degree), knots_(std::move(knots)), c_(std::move(coefficients)) {
     assert(dim_ > 0 && degree_ >= 0);
     assert(c_.size() % static_cast<std::size_t>(dim_) == 0);
-    assert(knots_.size() == c_.size() / static_cast<std::size_t>(dim_) +
-                                static_cast<std::size_t>(degree_) + 1);
+    assert(knots_.size() ==
+           c_.size() / static_cast<std::size_t>(dim_) + static_cast<std::size_t>(degree_) + 1);
 }
 
-BSplineCurve BSplineCurve::FromBezier(const BezierCurve& c) {
-    return JoinSegments({c}, {});
-}
+BSplineCurve BSplineCurve::FromBezier(const BezierCurve& c) { return JoinSegments({c}, {}); }
 
 BSplineCurve BSplineCurve::FromBezierSegments(const std::vector<BezierCurve>& segments) {
     std::vector<BezierCurve> e = ElevatedToCommonDegree(segments);
@@ -121,7 +119,8 @@ int BSplineCurve::FindSpan(double t) const {
     int p = degree_, n = Count();
     if (t >= knots_[static_cast<std::size_t>(n)]) {
         int k = n - 1;
-        while (k > p && knots_[static_cast<std::size_t>(k)] == knots_[static_cast<std::size_t>(k + 1)])
+        while (k > p &&
+               knots_[static_cast<std::size_t>(k)] == knots_[static_cast<std::size_t>(k + 1)])
             --k;
         return k;
     }
@@ -180,7 +179,8 @@ BSplineCurve BSplineCurve::Derivative() const {
     }
     std::vector<double> q(static_cast<std::size_t>((n - 1) * dim_));
     for (int i = 0; i + 1 < n; ++i) {
-        double den = knots_[static_cast<std::size_t>(i + p + 1)] - knots_[static_cast<std::size_t>(i + 1)];
+        double den =
+            knots_[static_cast<std::size_t>(i + p + 1)] - knots_[static_cast<std::size_t>(i + 1)];
         for (int k = 0; k < dim_; ++k)
             q[static_cast<std::size_t>(i * dim_ + k)] =
                 den > 0 ? p * (Point(i + 1)[k] - Point(i)[k]) / den : 0.0;
@@ -198,7 +198,8 @@ BSplineCurve BSplineCurve::WithKnotInserted(double t, int times) const {
         if (mult >= p + 1) return r;
         // k: the last index with t_k <= t (a multiple knot t is passed over).
         int k = static_cast<int>(std::upper_bound(r.knots_.begin(), r.knots_.end(), t) -
-                                 r.knots_.begin()) - 1;
+                                 r.knots_.begin()) -
+                1;
         std::vector<double> q(static_cast<std::size_t>((n + 1) * dim_));
         for (int i = 0; i <= n; ++i) {
             for (int c = 0; c < dim_; ++c) {
@@ -440,8 +441,8 @@ PatchGrid BSplineSurface::ToPatches() const {
 std::vector<BSplineSurface> BSplineSurface::SplitIntoUSpans() const {
     std::vector<BSplineSurface> out;
     for (const BezierCurve& seg : Transposed().RowsAsCurveInV().ToBezier())
-        out.push_back(FromRowsCurve(BSplineCurve::FromBezier(seg), dim_, degreeV_, knotsV_)
-                          .Transposed());
+        out.push_back(
+            FromRowsCurve(BSplineCurve::FromBezier(seg), dim_, degreeV_, knotsV_).Transposed());
     return out;
 }
 
@@ -458,7 +459,8 @@ namespace {
 
 int SpanOf(const std::vector<double>& breaks, double t) {
     int n = static_cast<int>(breaks.size()) - 1;
-    int k = static_cast<int>(std::upper_bound(breaks.begin(), breaks.end(), t) - breaks.begin()) - 1;
+    int k =
+        static_cast<int>(std::upper_bound(breaks.begin(), breaks.end(), t) - breaks.begin()) - 1;
     return std::clamp(k, 0, n - 1);
 }
 

@@ -13,8 +13,8 @@
 //
 // (Piegl & Tiller, The NURBS Book, eq. 3.8 / §5.2). Degree elevation and the symbolic operations go
 // through Bézier extraction: the result is a piecewise Bézier curve written back as a B-spline with
-// interior knots of multiplicity p (p + 1 where the pieces do not meet), which is exact but does not
-// try to remove knots again.
+// interior knots of multiplicity p (p + 1 where the pieces do not meet), which is exact but does
+// not try to remove knots again.
 //
 // Surfaces store control point (i, j) (i along u, j along v) at index j nu + i (u fastest, as in
 // OBJ). As for BezierSurface, v operations treat the rows as the points of a curve in v.
@@ -34,7 +34,7 @@ namespace quadrix::freeform {
 std::string CheckKnots(const std::vector<double>& knots, int degree, int count);
 
 class BSplineCurve {
-public:
+  public:
     BSplineCurve() = default;
     BSplineCurve(int dim, int degree, std::vector<double> knots, std::vector<double> coefficients);
     static BSplineCurve FromBezier(const BezierCurve& c);
@@ -70,7 +70,7 @@ public:
     // The curve on [a, b] ⊆ [T0, T1] (as Bézier pieces joined again; clamped ends).
     BSplineCurve Restricted(double a, double b) const;
 
-private:
+  private:
     int dim_ = 0;
     int degree_ = 0;
     std::vector<double> knots_;
@@ -91,7 +91,7 @@ std::vector<BezierCurve> BezierPiecesOn(const BSplineCurve& c, const std::vector
 class PatchGrid;
 
 class BSplineSurface {
-public:
+  public:
     BSplineSurface() = default;
     BSplineSurface(int dim, int degreeU, int degreeV, std::vector<double> knotsU,
                    std::vector<double> knotsV, std::vector<double> coefficients);
@@ -140,7 +140,7 @@ public:
     static BSplineSurface FromRowsCurve(const BSplineCurve& rows, int dim, int degreeU,
                                         std::vector<double> knotsU);
 
-private:
+  private:
     int dim_ = 0;
     int degreeU_ = 0, degreeV_ = 0;
     std::vector<double> knotsU_, knotsV_;
@@ -151,7 +151,7 @@ private:
 // breaksV[b+1]]. The result of Bézier extraction, and the form of symbolic products of surfaces
 // (e.g. the normal field), which need not be as smooth as their factors.
 class PatchGrid {
-public:
+  public:
     PatchGrid() = default;
     PatchGrid(std::vector<double> breaksU, std::vector<double> breaksV,
               std::vector<BezierSurface> patches);
@@ -177,7 +177,7 @@ public:
     // exactly, p + 1 elsewhere).
     BSplineSurface ToBSpline() const;
 
-private:
+  private:
     std::vector<double> breaksU_, breaksV_;
     std::vector<BezierSurface> patches_;
 };

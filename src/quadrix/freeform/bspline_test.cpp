@@ -53,7 +53,7 @@ constexpr double kTol = 1e-12;
 
 TEST(FreeformBSpline, CheckKnotsExplainsProblems) {
     EXPECT_EQ(CheckKnots({0, 0, 0, 1, 1, 1}, 2, 3), "");
-    EXPECT_NE(CheckKnots({0, 0, 1, 1}, 2, 3), "");      // too short
+    EXPECT_NE(CheckKnots({0, 0, 1, 1}, 2, 3), "");          // too short
     EXPECT_NE(CheckKnots({0, 0, 0, 1, 0.5, 1}, 2, 3), "");  // decreasing
     EXPECT_NE(CheckKnots({0, 0, 0, 0, 0, 0}, 2, 3), "");    // empty domain
     EXPECT_NE(CheckKnots({0, 0, 0, 1, 1, 1}, 2, 2), "");    // too few points
@@ -162,7 +162,8 @@ std::vector<double> Oracle(const BSplineSurface& s, double u, double v) {
         if (bv == 0) continue;
         for (int i = 0; i < s.CountU(); ++i) {
             double b = bv * CoxDeBoor(s.KnotsU(), i, s.DegreeU(), u, s.U1());
-            for (int k = 0; k < s.Dim(); ++k) r[static_cast<std::size_t>(k)] += b * s.Point(i, j)[k];
+            for (int k = 0; k < s.Dim(); ++k)
+                r[static_cast<std::size_t>(k)] += b * s.Point(i, j)[k];
         }
     }
     return r;
@@ -212,8 +213,10 @@ TEST(FreeformBSplineSurface, DerivativesKnotInsertionElevation) {
             EXPECT_LT(MaxAbsDiff(el.Evaluate(u, v), o), 1e-11);
             // Derivatives inside a patch (away from knots).
             int a = g.SpanU(u), b = g.SpanV(v);
-            double ua = g.BreaksU()[static_cast<std::size_t>(a)], ub = g.BreaksU()[static_cast<std::size_t>(a + 1)];
-            double va = g.BreaksV()[static_cast<std::size_t>(b)], vb = g.BreaksV()[static_cast<std::size_t>(b + 1)];
+            double ua = g.BreaksU()[static_cast<std::size_t>(a)],
+                   ub = g.BreaksU()[static_cast<std::size_t>(a + 1)];
+            double va = g.BreaksV()[static_cast<std::size_t>(b)],
+                   vb = g.BreaksV()[static_cast<std::size_t>(b + 1)];
             if (ub - ua < 0.02 || vb - va < 0.02) continue;
             u = std::clamp(u, ua + 0.005, ub - 0.005);
             v = std::clamp(v, va + 0.005, vb - 0.005);

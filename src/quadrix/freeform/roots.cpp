@@ -32,7 +32,7 @@ Variation CountVariation(const std::vector<double>& c) {
 }
 
 class RootFinder {
-public:
+  public:
     RootFinder(const RootOptions& options) : options_(options) {}
 
     // Roots of the polynomial with local coefficients c on the global interval [a, b].
@@ -62,7 +62,7 @@ public:
         return roots_;
     }
 
-private:
+  private:
     bool Add(double t) {
         roots_.push_back(t);
         return static_cast<int>(roots_.size()) <= options_.maxRoots;
@@ -99,17 +99,34 @@ std::optional<std::vector<double>> SignChanges(const BezierCurve& f, const RootO
 
 namespace {
 
-bool AtMost(const std::vector<double>& c, double bound, double width, double tolerance) {
-    double hi = *std::max_element(c.begin(), c.end());
-    if (hi <= bound) return true;
-    // The end coefficients are values of f: one of them above the bound settles it.
-    if (c.front() > bound || c.back() > bound) return false;
-    if (width <= tolerance) return false;  // undecided at the resolution: conservative
-    int n = static_cast<int>(c.size()) - 1;
-    std::vector<double> left(c.size()), right(c.size());
-    SubdivideInto(c.data(), n, 1, 0.5, left.data(), right.data());
-    return AtMost(left, bound, 0.5 * width, tolerance) &&
-           AtMost(right, bound, 0.5 * width, tolerance);
+// Depth-first with a budget of pieces: a polynomial that touches the bound along a stretch would
+// otherwise split into exponentially many undecided pieces.
+bool AtMost(const std::vector<double>& c0, double bound, double width0, double tolerance) {
+    struct Piece {
+        std::vector<double> c;
+        double width;
+    };
+    std::vector<Piece> stack = {{c0, width0}};
+    int n = static_cast<int>(c0.size()) - 1;
+    for (int budget = 20000; !stack.empty(); --budget) {
+        if (budget == 0) return false;  // undecided: conservative
+        Piece p = std::move(stack.back());
+        stack.pop_back();
+        double hi = -HUGE_VAL;
+        for (double x : p.c) {
+            if (!std::isfinite(x)) return false;
+            hi = std::max(hi, x);
+        }
+        if (hi <= bound) continue;
+        // The end coefficients are values of f: one of them above the bound settles it.
+        if (p.c.front() > bound || p.c.back() > bound) return false;
+        if (p.width <= tolerance) return false;  // undecided at the resolution: conservative
+        std::vector<double> left(p.c.size()), right(p.c.size());
+        SubdivideInto(p.c.data(), n, 1, 0.5, left.data(), right.data());
+        stack.push_back({std::move(right), 0.5 * p.width});
+        stack.push_back({std::move(left), 0.5 * p.width});
+    }
+    return true;
 }
 
 }  // namespace

@@ -28,7 +28,8 @@ struct RootOptions {
 };
 
 // The parameters in the open interval (T0, T1) where the scalar curve f changes sign, sorted.
-std::optional<std::vector<double>> SignChanges(const BezierCurve& f, const RootOptions& options = {});
+std::optional<std::vector<double>> SignChanges(const BezierCurve& f,
+                                               const RootOptions& options = {});
 
 // True when f(t) <= bound for every t of the interval, decided by subdivision down to `tolerance`
 // (parameter width); an interval that cannot be decided at that width counts as "above" when the

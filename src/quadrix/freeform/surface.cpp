@@ -7,6 +7,10 @@
 
 namespace quadrix::freeform {
 
+namespace {
+bool ExtendByPatch(const BezierSurface& p, int depth, Box3& box);
+}  // namespace
+
 Surface::Surface(BSplineSurface net, std::string name)
     : net_(std::move(net)), name_(std::move(name)) {
     assert(net_.Dim() == 3 || net_.Dim() == 4);
@@ -14,6 +18,12 @@ Surface::Surface(BSplineSurface net, std::string name)
     normals_ = freeform::NormalField(net_);
     for (const BezierSurface& p : normals_.Patches())
         for (double c : p.Coefficients()) normalScale_ = std::max(normalScale_, std::fabs(c));
+    if (Rational()) {
+        for (const BezierSurface& p : patches_.Patches()) {
+            Box3 unused;
+            weightPositive_ = weightPositive_ && ExtendByPatch(p, 6, unused);
+        }
+    }
 }
 
 Surface Surface::FromBezier(const BezierSurface& patch, std::string name) {
@@ -90,7 +100,8 @@ bool ExtendByPatch(const BezierSurface& p, int depth, Box3& box) {
         return true;
     }
     bool positive = true;
-    for (int k = 0; k < count; ++k) positive = positive && p.Coefficients()[static_cast<std::size_t>(k * 4 + 3)] > 0;
+    for (int k = 0; k < count; ++k)
+        positive = positive && p.Coefficients()[static_cast<std::size_t>(k * 4 + 3)] > 0;
     if (positive) {
         // With positive weights the rational patch lies in the hull of its Euclidean points.
         for (int k = 0; k < count; ++k) {

@@ -17,7 +17,7 @@
 namespace quadrix::freeform {
 
 class Surface {
-public:
+  public:
     Surface() = default;
     // `net` must have dimension 3 (polynomial) or 4 (homogeneous, rational).
     explicit Surface(BSplineSurface net, std::string name = {});
@@ -64,12 +64,17 @@ public:
 
     // Smallest weight over the control points of the patches (1 for polynomial surfaces).
     double MinWeight() const;
+    // True when the weight function is proven positive on the whole domain (always for
+    // polynomial surfaces): the weights of every patch become positive after at most 6 levels of
+    // subdivision. False for surfaces that reach infinity (or come too close to it to tell).
+    bool WeightPositive() const { return weightPositive_; }
 
-private:
+  private:
     BSplineSurface net_;
     PatchGrid patches_;
     PatchGrid normals_;
     double normalScale_ = 0;  // largest |coefficient| of the normal field
+    bool weightPositive_ = true;
     std::string name_;
 };
 

@@ -44,7 +44,8 @@ inline std::vector<double> FiniteDifference(const std::function<std::vector<doub
                                             double t, double h) {
     std::vector<double> a = f(t - 2 * h), b = f(t - h), c = f(t + h), d = f(t + 2 * h);
     std::vector<double> r(a.size());
-    for (std::size_t k = 0; k < a.size(); ++k) r[k] = (a[k] - 8 * b[k] + 8 * c[k] - d[k]) / (12 * h);
+    for (std::size_t k = 0; k < a.size(); ++k)
+        r[k] = (a[k] - 8 * b[k] + 8 * c[k] - d[k]) / (12 * h);
     return r;
 }
 

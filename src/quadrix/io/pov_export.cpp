@@ -84,25 +84,24 @@ private:
         std::vector<FlatLiteral> opaque, bounding;
         for (const FlatLiteral& l : body.literals)
             (scene_.halfSpaces[l.halfSpace].transparent ? bounding : opaque).push_back(l);
+        // One opaque literal is written as a plain object: POV-Ray decides intersection membership
+        // of surface points by evaluating the other members, so repeating a member to satisfy the
+        // "two members" rule would make on-surface points flicker between inside and outside.
         Indent(depth);
-        out_ += "intersection {\n";
+        out_ += opaque.size() == 1 ? "object {\n" : "intersection {\n";
         if (opaque.empty()) {
             // Nothing is drawn, but the body must stay a valid (empty) solid.
             Indent(depth + 1);
             out_ += "sphere { <0,0,0>, 1 inverse } sphere { <0,0,0>, 1 }\n";
         }
         for (const FlatLiteral& l : opaque) HalfSpace(l, depth + 1);
-        if (opaque.size() == 1) {
-            // POV-Ray wants at least two members in an intersection; a second copy is harmless.
-            HalfSpace(opaque[0], depth + 1);
-        }
         if (!bounding.empty()) {
+            // clipped_by with several objects keeps what is inside all of them.
             Indent(depth + 1);
-            out_ += "clipped_by { intersection {\n";
+            out_ += "clipped_by {\n";
             for (const FlatLiteral& l : bounding) HalfSpace(l, depth + 2);
-            if (bounding.size() == 1) HalfSpace(bounding[0], depth + 2);
             Indent(depth + 1);
-            out_ += "} }\n";
+            out_ += "}\n";
         }
         if (!options_.mask) {
             const scene::Color& c = body.color;

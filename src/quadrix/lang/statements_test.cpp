@@ -264,6 +264,51 @@ TEST(LangStatements, SeveralFilesShareIds) {
     EXPECT_NE(diags.Items()[0].message.find("one.uq:1:1"), std::string::npos);
 }
 
+// The synonyms of seed 001 §2.1.9 read exactly like their keywords.
+TEST(LangStatements, SynonymsReadLikeTheirKeywords) {
+    const char* longForm =
+        "plane pl <1 0 0 -1>; quadric qu <1 1 1 0 0 0 0 0 0 -4>; body bo (pl !qu);\n"
+        "definition d; plane x <0 1 0 0>; body y (x); enddef;\n"
+        "instance (d =tx 1); array (d) 2 =ty 1; light .5 0 0 -1;\n"
+        "view v vrp 1 2 3 dop 0 0 1; view w cop 0 0 -5;\n"
+        "device dummy; read;\n";
+    const char* shortForm =
+        "p pl <1 0 0 -1>; q qu <1 1 1 0 0 0 0 0 0 -4>; b bo (pl !qu);\n"
+        "def d; p x <0 1 0 0>; b y (x); end;\n"
+        "i (d =tx 1); a (d) 2 =ty 1; l .5 0 0 -1;\n"
+        "vw v vc 1 2 3 ed 0 0 1; vw w ep 0 0 -5;\n"
+        "dev dummy; include;\n";
+    Parsed a = Parse(longForm);
+    Parsed b = Parse(shortForm);
+    ASSERT_TRUE(a.ok) << a.All();
+    ASSERT_TRUE(b.ok) << b.All();
+    EXPECT_EQ(a.diags.WarningCount(), b.diags.WarningCount());
+    const scene::Scene& x = a.scene;
+    const scene::Scene& y = b.scene;
+    ASSERT_EQ(x.top.halfSpaces.size(), y.top.halfSpaces.size());
+    for (std::size_t i = 0; i < x.top.halfSpaces.size(); ++i) {
+        EXPECT_EQ(x.top.halfSpaces[i].id, y.top.halfSpaces[i].id);
+        EXPECT_EQ(x.top.halfSpaces[i].kind, y.top.halfSpaces[i].kind);
+        EXPECT_EQ(x.top.halfSpaces[i].plane, y.top.halfSpaces[i].plane);
+        EXPECT_EQ(x.top.halfSpaces[i].quadric, y.top.halfSpaces[i].quadric);
+    }
+    ASSERT_EQ(y.top.bodies.size(), 1u);
+    EXPECT_TRUE(y.top.bodies[0].literals[1].complemented);
+    ASSERT_EQ(y.definitions.size(), 1u);
+    EXPECT_EQ(y.definitions[0].bodies.size(), 1u);
+    ASSERT_EQ(y.top.instances.size(), 2u);
+    EXPECT_FALSE(y.top.instances[0].isArray);
+    EXPECT_TRUE(y.top.instances[1].isArray);
+    EXPECT_EQ(x.top.instances[0].init.Matrix(), y.top.instances[0].init.Matrix());
+    EXPECT_EQ(x.top.instances[1].delta.Matrix(), y.top.instances[1].delta.Matrix());
+    ASSERT_EQ(y.lights.size(), 1u);
+    EXPECT_EQ(y.lights[0].kind, scene::Light::Kind::kParallel);
+    ASSERT_EQ(y.views.size(), 2u);
+    EXPECT_EQ(*y.views[0].vrp, (Vec3{1, 2, 3}));
+    EXPECT_EQ(*y.views[0].dop, (Vec3{0, 0, 1}));
+    EXPECT_EQ(*y.views[1].cop, (Vec3{0, 0, -5}));
+}
+
 TEST(LangStatements, EmptyStatementsAndCommentsAnywhere) {
     Parsed r = Parse(";;{c}plane{c}ha{c}<{c}1{c}0 0 0>{c}={t}t{c};;");
     // "={t}t" is not an option: '=' must be followed at once by its name.

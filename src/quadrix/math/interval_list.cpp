@@ -177,6 +177,30 @@ void Difference(const IntervalList& a, const IntervalList& b, IntervalList& out)
     }
 }
 
+void ClipTo(IntervalList& list, const Interval& w) {
+    // The sweep's tie rules for one interval v of the list (operand a) against w (operand b):
+    // it opens at the later start, w's on a tie (a's start is processed first, but only w's start
+    // makes the result true); it closes at the earlier end, v's on a tie (a's end comes first).
+    // A piece that shrinks to a point is dropped. Pieces stay sorted and separated.
+    Interval* d = list.mutable_data();
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        Interval v = d[i];
+        if (v.hi < w.lo) continue;
+        if (v.lo > w.hi) break;
+        if (!(v.lo > w.lo)) {
+            v.lo = w.lo;
+            v.loId = w.loId;
+        }
+        if (!(v.hi <= w.hi)) {
+            v.hi = w.hi;
+            v.hiId = w.hiId;
+        }
+        if (v.lo < v.hi) d[n++] = v;
+    }
+    list.Truncate(n);
+}
+
 void Complement(const IntervalList& a, IntervalList& out) {
     out.clear();
     double lo = -HUGE_VAL;

@@ -43,7 +43,7 @@ struct Interval {
 };
 
 class IntervalList {
-public:
+  public:
     static constexpr std::size_t kInlineCapacity = 4;
 
     IntervalList() = default;
@@ -67,6 +67,9 @@ public:
     const Interval& back() const { return data_[size_ - 1]; }
 
     void clear() { size_ = 0; }
+    // Keeps the first n intervals (n <= size()).
+    void Truncate(std::size_t n) { size_ = n; }
+    Interval* mutable_data() { return data_; }
     void reserve(std::size_t n);
 
     // Appends [lo, hi] after the current last interval, keeping the canonical form: an interval
@@ -80,7 +83,7 @@ public:
     bool IsCanonical() const;
     bool operator==(const IntervalList& o) const;
 
-private:
+  private:
     void Grow(std::size_t minCapacity);
 
     Interval inline_[kInlineCapacity];
@@ -95,5 +98,9 @@ void Union(const IntervalList& a, const IntervalList& b, IntervalList& out);
 void Intersection(const IntervalList& a, const IntervalList& b, IntervalList& out);
 void Difference(const IntervalList& a, const IntervalList& b, IntervalList& out);  // a − b
 void Complement(const IntervalList& a, IntervalList& out);
+// In place: list = list ∩ [window.lo, window.hi], the same result as Intersection(list,
+// IntervalList with the single interval `window`) ids included, without a second list (the raycast
+// engine clips a body's set by each half-line or interval literal this way).
+void ClipTo(IntervalList& list, const Interval& window);
 
 }  // namespace quadrix

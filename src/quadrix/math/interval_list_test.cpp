@@ -1,5 +1,7 @@
 #include "quadrix/math/interval_list.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <map>
@@ -7,14 +9,13 @@
 #include <random>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 namespace quadrix {
 
 // Readable failure messages (found by ADL from gtest).
 void PrintTo(const IntervalList& l, std::ostream* os) {
     *os << "{";
-    for (const Interval& v : l) *os << " [" << v.lo << "#" << v.loId << ", " << v.hi << "#" << v.hiId << "]";
+    for (const Interval& v : l)
+        *os << " [" << v.lo << "#" << v.loId << ", " << v.hi << "#" << v.hiId << "]";
     *os << " }";
 }
 
@@ -37,7 +38,7 @@ TEST(MathIntervalList, AppendKeepsCanonicalForm) {
     l.Append(NAN, 12, 1, 13);
     EXPECT_TRUE(l.empty());
     l.Append(0, 1, 2, 2);
-    l.Append(2, 3, 4, 4);  // touches: merged, keeps the outer ids
+    l.Append(2, 3, 4, 4);    // touches: merged, keeps the outer ids
     l.Append(3, 5, 3.5, 6);  // inside: absorbed
     l.Append(5, 7, 6, 8);
     ASSERT_EQ(l.size(), 2u);
@@ -128,7 +129,8 @@ TEST(MathIntervalList, HeapStorageCopiesAndMoves) {
 // Random lists whose finite endpoints lie on the integers -8..8 (so that ties and touching
 // intervals are frequent), sometimes unbounded. Every endpoint gets a unique id; `idT` records
 // which t each id was given to, so results can be checked to carry ids of endpoints at their t.
-IntervalList RandomList(std::mt19937& rng, std::int32_t& nextId, std::map<std::int32_t, double>& idT) {
+IntervalList RandomList(std::mt19937& rng, std::int32_t& nextId,
+                        std::map<std::int32_t, double>& idT) {
     std::uniform_int_distribution<int> count(0, 4), step(0, 3), coin(0, 5);
     IntervalList l;
     int n = count(rng);
@@ -195,6 +197,12 @@ TEST(MathIntervalList, RandomOperationsMatchBruteForceMembership) {
                                                  : op.pred(a.Contains(t), b.Contains(t));
                 ASSERT_EQ(out.Contains(t), expect) << op.name << " at " << t;
             }
+        }
+        if (b.size() == 1) {  // ClipTo is Intersection with a one-interval list, ids included
+            IntervalList clipped = a, expect;
+            ClipTo(clipped, b[0]);
+            Intersection(a, b, expect);
+            ASSERT_EQ(clipped, expect);
         }
         IntervalList c;
         Complement(a, c);

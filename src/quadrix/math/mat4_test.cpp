@@ -1,9 +1,9 @@
 #include "quadrix/math/mat4.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "quadrix/math/math_test_util.h"
 
@@ -118,7 +118,8 @@ TEST(MathMat4, SinCosDegreesSymmetricAndAccurate) {
         ASSERT_EQ(c1, c2) << d;   // even, bit for bit
         // Against long double: the reduction is exact, so only the conversion to radians and the
         // libm call round (a few ulps of 1).
-        long double rad = static_cast<long double>(d) * 3.14159265358979323846264338327950288L / 180;
+        long double rad =
+            static_cast<long double>(d) * 3.14159265358979323846264338327950288L / 180;
         ASSERT_NEAR(s1, std::sin(rad), 8 * kUnitRoundoff);
         ASSERT_NEAR(c1, std::cos(rad), 8 * kUnitRoundoff);
     }

@@ -27,8 +27,12 @@ inline RandomTransform MakeRandomTransform(std::mt19937_64& rng, int count = 6) 
     for (int i = 0; i < count; ++i) {
         Transform f;
         switch (kind(rng)) {
-            case 0: f = Transform::Translate({100 * u(rng), 100 * u(rng), 100 * u(rng)}); break;
-            case 1: f = Transform::Rotate(axis(rng), 360 * u(rng)); break;
+            case 0:
+                f = Transform::Translate({100 * u(rng), 100 * u(rng), 100 * u(rng)});
+                break;
+            case 1:
+                f = Transform::Rotate(axis(rng), 360 * u(rng));
+                break;
             case 2: {
                 auto s = [&] { return std::pow(10.0, u(rng)) * (u(rng) < 0 ? -1 : 1); };
                 f = Transform::Scale({s(), s(), s()});

@@ -9,37 +9,14 @@ namespace quadrix {
 namespace {
 
 // 2^e for e in [-1022, 1023], built from its bit pattern (exact, no libm call).
-double Pow2(int e) {
-    return std::bit_cast<double>(static_cast<std::uint64_t>(e + 1023) << 52);
-}
+double Pow2(int e) { return std::bit_cast<double>(static_cast<std::uint64_t>(e + 1023) << 52); }
 
 // floor(log2 |x|) for a finite, non-zero, normal x.
 int Exponent(double x) {
     return static_cast<int>((std::bit_cast<std::uint64_t>(x) >> 52) & 0x7ff) - 1023;
 }
 
-// Veltkamp's split: x = hi + lo exactly, each half with at most 26 significant bits, so that
-// products of halves are exact. Needs |x| < 2^996 (the factor 2^27 + 1 must not overflow).
-void Split(double x, double& hi, double& lo) {
-    constexpr double kSplitter = 134217729.0;  // 2^27 + 1
-    double t = kSplitter * x;
-    hi = t - (t - x);
-    lo = x - hi;
-}
-
 }  // namespace
-
-TwoProductResult TwoProduct(double a, double b) {
-    // Dekker (1971): the rounding error of a·b is recovered exactly from the split halves. This is
-    // written without std::fma so that it does not depend on hardware FMA (and the project builds
-    // with -ffp-contract=off, so the compiler may not fuse these operations either).
-    double p = a * b;
-    double ah, al, bh, bl;
-    Split(a, ah, al);
-    Split(b, bh, bl);
-    double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    return {p, e};
-}
 
 double DifferenceOfProducts(double a, double b, double c, double d) {
     // a·b − c·d = (p1 − p2) + (e1 − e2) exactly. With u = 2^-53 and S = |a b| + |c d|:
@@ -56,7 +33,8 @@ QuadraticRoots SolveQuadratic(double a, double h, double c) {
     if (!std::isfinite(a) || !std::isfinite(h) || !std::isfinite(c)) return r;  // kNone
 
     // 1. Scale by a power of two so that max(|a|, |h|, |c|) lies in [1, 2): exact, roots unchanged.
-    double m = std::fmax(std::fabs(a), std::fmax(std::fabs(h), std::fabs(c)));
+    double m = std::fabs(a) > std::fabs(h) ? std::fabs(a) : std::fabs(h);
+    if (std::fabs(c) > m) m = std::fabs(c);
     if (m == 0) {
         r.kind = RootKind::kAll;
         return r;
@@ -87,8 +65,11 @@ QuadraticRoots SolveQuadratic(double a, double h, double c) {
         return r;
     }
 
-    // 3. Reduced discriminant, error-compensated.
-    double disc = DifferenceOfProducts(h, h, a, c);
+    // 3. Reduced discriminant: plain when the products do not cancel (error <= u|p1| + u|p2| +
+    // u|Δ| <= 3u|Δ| under the test below), error-compensated otherwise.
+    double p1 = h * h, p2 = a * c;
+    double disc = p1 - p2;
+    if (!(p1 + std::fabs(p2) <= 2.0 * std::fabs(disc))) disc = DifferenceOfProducts(h, h, a, c);
     if (disc < 0) return r;  // kNone
     if (disc == 0) {
         r.kind = RootKind::kDouble;
@@ -97,8 +78,8 @@ QuadraticRoots SolveQuadratic(double a, double h, double c) {
     }
 
     // 4. Stable roots. Error budget (u = 2^-53, κ = (h² + |a c|)/Δ): Δ has relative error
-    // <= 2u + 2u²κ (DifferenceOfProducts), √Δ <= u + ½ that, q adds one rounding to terms of one
-    // sign, and the final division one more: <= 4u + u²κ for each root.
+    // <= 3u (plain, κ <= 2) or 2u + 2u²κ (compensated), √Δ <= u + ½ that, q adds one rounding to
+    // terms of one sign, and the final division one more: <= 4.5u + u²κ for each root.
     double s = std::sqrt(disc);
     double q = -(h + std::copysign(s, h));  // |q| >= s > 0
     double t0 = q / a, t1 = c / q;

@@ -12,10 +12,12 @@
 //     [1, 2). Scaling by 2^k changes no root and rounds nothing (unless a coefficient is more than
 //     2^1000 times smaller than the largest, when it becomes subnormal), and afterwards no product
 //     of two coefficients can overflow.
-//  2. Δ = h·h − a·c is computed with Dekker's error-free products (Veltkamp splitting, no FMA, so
+//  2. Δ = h·h − a·c. When the two products do not cancel much (|h²| + |a c| <= 2|Δ|, which
+//     includes every a c <= 0) the plain difference is accurate to 3u relative (u = 2^-53).
+//     Otherwise Δ is recomputed with Dekker's error-free products (Veltkamp splitting, no FMA, so
 //     the result is identical on every machine whatever -ffp-contract says): both products are
-//     exact as unevaluated sums p + e, and Δ = (p₁ − p₂) + (e₁ − e₂) is accurate to about 2 ulps
-//     of Δ itself, even when h² and a c nearly cancel (near-tangent rays).
+//     exact as unevaluated sums p + e, and Δ = (p₁ − p₂) + (e₁ − e₂) is accurate to about 2u
+//     relative even when h² and a c nearly cancel (near-tangent rays).
 //  3. q = −(h + sign(h)·√Δ) adds two numbers of one sign, so it suffers no cancellation; the roots
 //     are q/a and c/q (Vieta), each with a relative error of a few ulps.
 //
@@ -29,11 +31,25 @@
 namespace quadrix {
 
 // An exact product: a·b = p + e exactly, p = fl(a·b), unless a·b overflows or e underflows
-// (|a·b| below about 2^-969).
+// (|a·b| below about 2^-969), or |a| or |b| exceeds 2^996 (the split would overflow).
 struct TwoProductResult {
     double p = 0, e = 0;
 };
-TwoProductResult TwoProduct(double a, double b);
+
+// Dekker (1971) with Veltkamp's split: each factor is cut into two halves of at most 26
+// significant bits, whose products are exact, and the rounding error of a·b is recovered from
+// them. Written without std::fma so that it does not depend on hardware FMA (and the project
+// builds with -ffp-contract=off, so the compiler may not fuse these operations either). Inline:
+// it runs per pixel.
+inline TwoProductResult TwoProduct(double a, double b) {
+    constexpr double kSplitter = 134217729.0;  // 2^27 + 1
+    double p = a * b;
+    double ta = kSplitter * a, tb = kSplitter * b;
+    double ah = ta - (ta - a), bh = tb - (tb - b);
+    double al = a - ah, bl = b - bh;
+    double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return {p, e};
+}
 
 // a·b − c·d with an error of about 2 ulps of the result (no catastrophic cancellation), computed
 // with TwoProduct; same range caveats as TwoProduct.
@@ -54,13 +70,14 @@ struct QuadraticRoots {
 
     // Number of distinct roots reported (0, 1 or 2; 0 for kAll).
     int Count() const {
-        return kind == RootKind::kTwo ? 2 : (kind == RootKind::kSingle || kind == RootKind::kDouble);
+        return kind == RootKind::kTwo ? 2
+                                      : (kind == RootKind::kSingle || kind == RootKind::kDouble);
     }
 };
 
 // Real roots of a t² + 2 h t + c = 0 (see the file comment). Accuracy: for finite coefficients
 // whose magnitudes lie within a factor 2^1000 of the largest, each reported root of the given
-// (already rounded) coefficients has a relative error of at most about 4u + u²·(h² + |a c|)/Δ,
+// (already rounded) coefficients has a relative error of at most about 5u + u²·(h² + |a c|)/Δ,
 // u = 2^-53 (error analysis in quadratic.cpp; the second term only matters for rays within ~1e-16
 // of tangency); roots overflow to ±inf only when their exact value is out of range.
 QuadraticRoots SolveQuadratic(double a, double h, double c);

@@ -1,9 +1,9 @@
 #include "quadrix/math/quadric.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "quadrix/math/math_test_util.h"
 
@@ -42,12 +42,12 @@ TEST(MathQuadric, TransformedQuadricHasTheSameValueAtMappedPoints) {
         auto rt = MakeRandomTransform(rng);
         Quadric q = RandomQuadric(rng);
         Quadric qt = q.Transformed(rt.t);
+        const Mat4 amp = AbsProduct(rt.factors, true) * AbsProduct(rt.factors, false);
         for (int m = 0; m < 10; ++m) {
             Vec3 x{u(rng), u(rng), u(rng)};
             double before = q.Evaluate(x);
             double after = qt.Evaluate(rt.t.MapPoint(x));
-            Vec4 v = (AbsProduct(rt.factors, true) * AbsProduct(rt.factors, false)) *
-                     Abs(Vec4(x, 1));
+            Vec4 v = amp * Abs(Vec4(x, 1));
             double tol = kGamma * AbsForm(q, v);
             ASSERT_LE(std::fabs(after - before), tol) << before << " vs " << after;
             if (std::fabs(before) > tol) {
@@ -67,11 +67,11 @@ TEST(MathQuadric, TransformedPlaneHasTheSameValueAtMappedPoints) {
         auto rt = MakeRandomTransform(rng);
         Plane p{c(rng), c(rng), c(rng), 10 * c(rng)};
         Plane pt = p.Transformed(rt.t);
+        const Mat4 amp = AbsProduct(rt.factors, true) * AbsProduct(rt.factors, false);
         for (int m = 0; m < 10; ++m) {
             Vec3 x{u(rng), u(rng), u(rng)};
             double before = p.Evaluate(x), after = pt.Evaluate(rt.t.MapPoint(x));
-            Vec4 v = (AbsProduct(rt.factors, true) * AbsProduct(rt.factors, false)) *
-                     Abs(Vec4(x, 1));
+            Vec4 v = amp * Abs(Vec4(x, 1));
             double tol = kGamma * Dot(Abs(p.AsVec4()), v);
             ASSERT_LE(std::fabs(after - before), tol);
             if (std::fabs(before) > tol) {
@@ -157,7 +157,8 @@ TEST(MathQuadric, PlaneProductIsTheProductOfThePlanes) {
         Plane p1{u(rng), u(rng), u(rng), u(rng)}, p2{u(rng), u(rng), u(rng), u(rng)};
         Quadric q = Quadric::FromPlaneProduct(p1, p2);
         Vec3 x{u(rng), u(rng), u(rng)};
-        double mag = Dot(Abs(p1.AsVec4()), Abs(Vec4(x, 1))) * Dot(Abs(p2.AsVec4()), Abs(Vec4(x, 1)));
+        double mag =
+            Dot(Abs(p1.AsVec4()), Abs(Vec4(x, 1))) * Dot(Abs(p2.AsVec4()), Abs(Vec4(x, 1)));
         EXPECT_NEAR(q.Evaluate(x), p1.Evaluate(x) * p2.Evaluate(x), 32 * kUnitRoundoff * mag);
     }
     EXPECT_TRUE(Quadric::FromPlaneProduct({0, 0, 0, 1}, {0, 0, 0, 1}).IsDegenerateToLinear());

@@ -96,8 +96,8 @@ inline CutSignals CuttingPlaneLogic(const PlaneSignals& s) {
     const bool back = slanted && !s.sgnCp;
     // Both depths: perpendicular plane with ZP < 0; front plane with ZP - ZB >= 0; back plane
     // with ZP - ZF < 0 (corrected, see the file comment).
-    const bool both = (s.perpendicular && s.sgnZp) || (front && !s.sgnZpMinusZb) ||
-                      (back && s.sgnZpMinusZf);
+    const bool both =
+        (s.perpendicular && s.sgnZp) || (front && !s.sgnZpMinusZb) || (back && s.sgnZpMinusZf);
     return {both || (front && !s.sgnZpMinusZf), both || (back && s.sgnZpMinusZb)};
 }
 

@@ -136,8 +136,8 @@ namespace {
 void FormatTable(const CostTable& t, std::string& out) {
     out += t.title + "\n";
     for (const CostLine& l : t.lines) {
-        std::string lhs = l.count == 1 ? fmt::format("{}", l.unit)
-                                       : fmt::format("{} x {}", l.count, l.unit);
+        std::string lhs =
+            l.count == 1 ? fmt::format("{}", l.unit) : fmt::format("{} x {}", l.count, l.unit);
         out += fmt::format("  {:<34}{:>16} = {:>7}", l.cell, lhs, l.Total());
         if (l.paper) out += fmt::format("   paper {:>7}", *l.paper);
         out += "\n";
@@ -150,8 +150,9 @@ void FormatTable(const CostTable& t, std::string& out) {
 }  // namespace
 
 std::string FormatCost(const CostModel& m) {
-    std::string out = fmt::format("Cost model (transistors; depth {} bits, normals {} bits, {} planes)\n",
-                                  m.widths.depthBits, m.widths.normalBits, m.planes);
+    std::string out =
+        fmt::format("Cost model (transistors; depth {} bits, normals {} bits, {} planes)\n",
+                    m.widths.depthBits, m.widths.normalBits, m.planes);
     for (const CostTable* t : {&m.basicCells, &m.ep1, &m.ep2, &m.sre, &m.multiplier, &m.processor})
         FormatTable(*t, out);
     return out;

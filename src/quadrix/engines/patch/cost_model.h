@@ -45,9 +45,9 @@
 namespace quadrix::patch {
 
 struct CostLine {
-    std::string cell;          // "24-bit adder", "4 multiplexers", ...
-    std::int64_t count = 1;    // how many
-    std::int64_t unit = 0;     // transistors each
+    std::string cell;        // "24-bit adder", "4 multiplexers", ...
+    std::int64_t count = 1;  // how many
+    std::int64_t unit = 0;   // transistors each
     std::int64_t Total() const { return count * unit; }
     std::optional<std::int64_t> paper;  // the published figure for this line, at the paper's widths
 };
@@ -62,12 +62,12 @@ struct CostTable {
 struct CostModel {
     DatapathWidths widths;
     int planes = 4;
-    CostTable basicCells;   // 1.1
-    CostTable ep1;          // 1.2
-    CostTable ep2;          // 1.3
-    CostTable sre;          // 1.4
-    CostTable multiplier;   // 1.5
-    CostTable processor;    // 1.7
+    CostTable basicCells;  // 1.1
+    CostTable ep1;         // 1.2
+    CostTable ep2;         // 1.3
+    CostTable sre;         // 1.4
+    CostTable multiplier;  // 1.5
+    CostTable processor;   // 1.7
     std::int64_t Total() const { return processor.Total(); }
 };
 

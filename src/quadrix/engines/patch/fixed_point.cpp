@@ -22,9 +22,9 @@ std::int64_t Wrap(std::int64_t v, int bits) {
 }
 
 std::int64_t AddWrapped(std::int64_t a, std::int64_t b, int bits) {
-    return Wrap(static_cast<std::int64_t>(static_cast<std::uint64_t>(a) +
-                                          static_cast<std::uint64_t>(b)),
-                bits);
+    return Wrap(
+        static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b)),
+        bits);
 }
 
 std::int64_t MaxWord(int bits) { return (std::int64_t{1} << (bits - 1)) - 1; }

@@ -69,14 +69,14 @@ struct Ep1Program {
 };
 
 class Ep1 {
-public:
+  public:
     void Load(const Ep1Program& program, int bits);
     std::int64_t Value() const { return pixel_; }
     void StepPixel() { pixel_ = AddWrapped(pixel_, program_.stepX, bits_); }
     // Next line: the RAM's line word adds stepY and is copied into the pixel register.
     void StepLine();
 
-private:
+  private:
     Ep1Program program_;
     int bits_ = 24;
     std::int64_t line_ = 0, pixel_ = 0;
@@ -93,7 +93,7 @@ struct Ep2Program {
 };
 
 class Ep2 {
-public:
+  public:
     void Load(const Ep2Program& program, int wordBits);
     std::int64_t Value() const { return v_; }
     void StepPixel();
@@ -101,7 +101,7 @@ public:
     // The 2w-bit addition as two pipelined w-bit adders (low half, then high half plus carry).
     static std::int64_t PipelinedAdd(std::int64_t a, std::int64_t b, int wordBits);
 
-private:
+  private:
     Ep2Program program_;
     int bits_ = 48;
     // Line state (RAM words) and pixel state (the two calculation cells).

@@ -13,8 +13,8 @@ FloatPixel EvaluatePixelFloat(const QuadricPatch& patch, double x, double y) {
     // Along the ray: C z² + 2 hb z + a0 = 0 (UniQuadrix half coefficients; the paper's
     // β = 2 hb, α = a0, c = C).
     const double hb = q.F() * x + q.E() * y + q.J();
-    const double a0 = q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y + 2 * q.G() * x +
-                      2 * q.H() * y + q.K();
+    const double a0 =
+        q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y + 2 * q.G() * x + 2 * q.H() * y + q.K();
     const double c = q.C();
     px.f1 = -hb / c;
     px.f2 = DifferenceOfProducts(hb, hb, c, a0) / (c * c);

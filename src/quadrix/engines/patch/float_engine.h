@@ -32,7 +32,7 @@ struct FloatPixel {
 FloatPixel EvaluatePixelFloat(const QuadricPatch& patch, double x, double y);
 
 struct FloatStats {
-    std::int64_t windowPixels = 0;  // pixels scanned
+    std::int64_t windowPixels = 0;   // pixels scanned
     std::int64_t surfacePixels = 0;  // pixels where ZOUT != ZMAX
     std::int64_t backSheetPixels = 0;
 };

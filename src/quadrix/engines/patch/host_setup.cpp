@@ -29,12 +29,18 @@ void Extend(Range& r, const Range& o) {
 
 bool FitsWord(std::int64_t v, int bits) { return v >= MinWord(bits) && v <= MaxWord(bits); }
 
-// EP1 words for l(x, y) · scale - offset, starting at the first pixel centre.
+// EP1 words for l(x, y) · scale - offset over a window of w × h pixels starting at the pixel
+// centre (x0, y0). The rounded steps drift by i·δx + j·δy at pixel (i, j); the start word is
+// moved by the middle of that drift's range over the window, which halves the worst error.
 std::optional<Ep1Program> Ep1Words(const Linear2& l, double x0, double y0, double scale,
-                                   double offset, int bits) {
-    const auto start = Quantize(l(x0, y0) * scale - offset);
+                                   double offset, int bits, int w, int h) {
     const auto sx = Quantize(l.a * scale), sy = Quantize(l.b * scale);
-    if (!start || !sx || !sy) return std::nullopt;
+    if (!sx || !sy) return std::nullopt;
+    const double dx = static_cast<double>(*sx) - l.a * scale;
+    const double dy = static_cast<double>(*sy) - l.b * scale;
+    const double mid = 0.5 * (dx * (w - 1) + dy * (h - 1));
+    const auto start = Quantize(l(x0, y0) * scale - offset - mid);
+    if (!start) return std::nullopt;
     if (!FitsWord(*start, bits) || !FitsWord(*sx, bits) || !FitsWord(*sy, bits))
         return std::nullopt;
     return Ep1Program{*start, *sx, *sy};
@@ -138,6 +144,7 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
     const PatchPolynomials& p = analysis.poly;
     const double X0 = patch.window.x0 + 0.5, Y0 = patch.window.y0 + 0.5;
     const double ulp = format.ulp, u2 = ulp * ulp;
+    const int W = patch.window.Width(), H = patch.window.Height();
     HostPatch hp;
     FixedPatch& fp = hp.program;
     fp.window = patch.window;
@@ -151,12 +158,11 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
     const double f1Start = -hb / q.C();
     const double f2Start = DifferenceOfProducts(hb, hb, q.C(), a0) / (q.C() * q.C());
     {
-        const auto start = Quantize((f1Start - format.origin) / ulp);
-        const auto sx = Quantize(p.f1.a / ulp), sy = Quantize(p.f1.b / ulp);
-        if (!start || !sx || !sy || !FitsWord(*start, d) || !FitsWord(*sx, d) ||
-            !FitsWord(*sy, d))
-            return std::nullopt;
-        fp.f1 = {*start, *sx, *sy};
+        // The start from the direct form, the steps from eq. 1.3.
+        const Linear2 f1{p.f1.a, p.f1.b, f1Start - p.f1.a * X0 - p.f1.b * Y0};
+        const auto words = Ep1Words(f1, X0, Y0, 1 / ulp, format.origin / ulp, d, W, H);
+        if (!words) return std::nullopt;
+        fp.f1 = *words;
     }
     {
         // Local polynomial F(u, v) = a u² + b v² + c uv + d u + e v + f around (X0, Y0).
@@ -164,11 +170,20 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
         const double la = g.xx, lb = g.yy, lc = g.xy;
         const double ld = 2 * g.xx * X0 + g.xy * Y0 + g.x;
         const double le = 2 * g.yy * Y0 + g.xy * X0 + g.y;
-        const auto q0 = Quantize(f2Start / u2), r0 = Quantize((le - lb) / u2),
-                   s0 = Quantize((ld - la) / u2), twoA = Quantize(2 * la / u2),
-                   twoB = Quantize(2 * lb / u2), c = Quantize(lc / u2);
+        const auto r0 = Quantize((le - lb) / u2), s0 = Quantize((ld - la) / u2),
+                   twoA = Quantize(2 * la / u2), twoB = Quantize(2 * lb / u2),
+                   c = Quantize(lc / u2);
+        if (!r0 || !s0 || !twoA || !twoB || !c) return std::nullopt;
+        // Drift of the rounded differences at pixel (i, j), as a polynomial (integer_reference.h
+        // form); the start word is moved by the middle of its range over the window.
+        const double er0 = *r0 - (le - lb) / u2, es0 = *s0 - (ld - la) / u2,
+                     e2a = *twoA - 2 * la / u2, e2b = *twoB - 2 * lb / u2, ec = *c - lc / u2;
+        const Quadratic2 drift{e2a / 2, e2b / 2, ec, es0 + e2a / 2, er0 + e2b / 2, 0};
+        const Range dr = RangeOnRectangle(drift, 0, W - 1, 0, H - 1);
+        const auto q0 = Quantize(f2Start / u2 - 0.5 * (dr.lo + dr.hi));
+        if (!q0) return std::nullopt;
         for (const auto& w : {q0, r0, s0, twoA, twoB, c})
-            if (!w || !FitsWord(*w, w2)) return std::nullopt;
+            if (!FitsWord(*w, w2)) return std::nullopt;
         fp.f2 = {*q0, *r0, *s0, *twoA, *twoB, *c};
     }
 
@@ -190,9 +205,9 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
             const Range z = RangeOnRectangle(zp, r.x0, r.x1, r.y0, r.y1);
             const double m = std::max(std::fabs(z.lo), std::fabs(z.hi));
             const double scale = m > 0 ? kFill * std::ldexp(1.0, d - 2) / m : 1.0;
-            words = Ep1Words(zp, X0, Y0, scale, 0, d);
+            words = Ep1Words(zp, X0, Y0, scale, 0, d, W, H);
         } else {
-            words = Ep1Words(zp, X0, Y0, 1 / ulp, format.origin / ulp, d);
+            words = Ep1Words(zp, X0, Y0, 1 / ulp, format.origin / ulp, d, W, H);
         }
         if (!words) return std::nullopt;
         unit.zp = *words;
@@ -207,10 +222,10 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
         for (double y : {r.y0, r.y1})
             for (double z : {analysis.rootDepths.lo, analysis.rootDepths.hi, format.origin}) {
                 const double dz = z - format.origin;
-                nMax = std::max({nMax, std::fabs(nxB(x, y) + p.e * dz),
-                                 std::fabs(nyB(x, y) + p.f * dz),
-                                 std::fabs(nzB(x, y) + p.twoC * dz), std::fabs(nxB(x, y)),
-                                 std::fabs(nyB(x, y)), std::fabs(nzB(x, y))});
+                nMax =
+                    std::max({nMax, std::fabs(nxB(x, y) + p.e * dz),
+                              std::fabs(nyB(x, y) + p.f * dz), std::fabs(nzB(x, y) + p.twoC * dz),
+                              std::fabs(nxB(x, y)), std::fabs(nyB(x, y)), std::fabs(nzB(x, y))});
             }
     const double coefMax = std::max({std::fabs(p.e), std::fabs(p.f), std::fabs(p.twoC)});
     const double room = kFill * std::ldexp(1.0, n - 1);
@@ -219,9 +234,9 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
     if (!(unit > 0) || !std::isfinite(unit)) unit = 1;
     hp.normalUnit = unit;
     const double guard = std::ldexp(1.0, s);
-    const auto nx = Ep1Words(nxB, X0, Y0, guard / unit, 0, d);
-    const auto ny = Ep1Words(nyB, X0, Y0, guard / unit, 0, d);
-    const auto nz = Ep1Words(nzB, X0, Y0, guard / unit, 0, d);
+    const auto nx = Ep1Words(nxB, X0, Y0, guard / unit, 0, d, W, H);
+    const auto ny = Ep1Words(nyB, X0, Y0, guard / unit, 0, d, W, H);
+    const auto nz = Ep1Words(nzB, X0, Y0, guard / unit, 0, d, W, H);
     const auto e = Quantize(p.e * coefScale / unit), f = Quantize(p.f * coefScale / unit),
                twoC = Quantize(p.twoC * coefScale / unit);
     if (!nx || !ny || !nz || !e || !f || !twoC) return std::nullopt;
@@ -237,7 +252,7 @@ std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const Host
 
 double DepthErrorBoundLsb(const PixelWindow& window) {
     const double i = std::max(0, window.Width() - 1), j = std::max(0, window.Height() - 1);
-    const double f1 = 0.5 * (1 + i + j);
+    const double f1 = 0.5 + 0.25 * (i + j);  // centred drift: half of |δx| i + |δy| j
     const double f2 = 0.5 * (1 + j + j * (j + 1) / 2 + i + i * j + i * (i + 1) / 2);
     return f1 + std::sqrt(f2) + 1;
 }

@@ -18,10 +18,11 @@
 //     the hardware has no floating point, and a nearly edge-on plane would otherwise force a
 //     huge depth range on the whole frame.
 //
-// Quantisation: every word is the nearest integer to the exact value in its unit (ties away from
-// zero). Words are loaded for the first pixel centre (x0 + ½, y0 + ½) of the window; steps are per
-// pixel. The normals use one unit per patch (directions need no common scale), chosen so that
-// NX, NY, NZ over the window and depth range, and e, f, 2c in the multipliers' format, fit.
+// Quantisation: every step word is the nearest integer to the exact value in its unit (ties away
+// from zero). Start words are for the first pixel centre (x0 + ½, y0 + ½) of the window, moved by
+// the middle of the steps' rounding drift over the window so that the drift is centred. The normals
+// use one unit per patch (directions need no common scale), chosen so that NX, NY, NZ over the
+// window and depth range, and e, f, 2c in the multipliers' format, fit.
 #pragma once
 
 #include <cmath>
@@ -36,12 +37,12 @@ namespace quadrix::patch {
 
 // What the host knows about a patch before choosing the depth format.
 struct HostAnalysis {
-    bool empty = false;        // no pixel of the window can show the surface
-    PatchPolynomials poly;     // with the prepared planes
-    Range rootDepths;          // every ZF, ZB the window can have (where F2 >= 0)
-    Range depthWords;          // every depth quantity held by the datapath (F1, roots, ZP)
-    double sqrtMaxAbsF2 = 0;   // sqrt of max |F2| over the window
-    int planesDropped = 0;     // never cut inside the window
+    bool empty = false;       // no pixel of the window can show the surface
+    PatchPolynomials poly;    // with the prepared planes
+    Range rootDepths;         // every ZF, ZB the window can have (where F2 >= 0)
+    Range depthWords;         // every depth quantity held by the datapath (F1, roots, ZP)
+    double sqrtMaxAbsF2 = 0;  // sqrt of max |F2| over the window
+    int planesDropped = 0;    // never cut inside the window
     int planesMadePerpendicular = 0;
 };
 
@@ -57,11 +58,11 @@ struct DepthFormat {
 // The format fitting all the analysed patches (ignoring empty ones). A frame with no patch gets
 // the range [0, 1].
 class DepthFormatBuilder {
-public:
+  public:
     void Add(const HostAnalysis& analysis);
     DepthFormat Build(const DatapathWidths& widths) const;
 
-private:
+  private:
     double lo_ = HUGE_VAL, hi_ = -HUGE_VAL, halfF2_ = 0;
 };
 
@@ -73,14 +74,14 @@ struct HostPatch {
 // The RAM contents; nullopt when a word does not fit its width (cannot happen with a format built
 // from this patch's analysis, but a caller may pass any format).
 std::optional<HostPatch> PrepareFixedPatch(const QuadricPatch& patch, const HostAnalysis& analysis,
-                                           const DepthFormat& format,
-                                           const DatapathWidths& widths);
+                                           const DepthFormat& format, const DatapathWidths& widths);
 
 // A priori bound, in depth LSBs, of |ZOUT - exact depth| at a pixel of a window of this size where
-// the fixed-point and the exact algorithm pick the same sheet: the EP1 drift of F1 (each of its
-// three words is off by at most ½ LSB, the steps count i and j times), plus the square root of
-// the EP2's drift (its six words counted 1, j, j(j+1)/2, i, i·j and i(i+1)/2 times, in LSB²;
-// |sqrt(a + δ) - sqrt(a)| <= sqrt|δ|), plus 1 for the square root's floor.
+// the fixed-point and the exact algorithm pick the same sheet: the EP1 drift of F1 (its steps are
+// off by at most ½ LSB each and counted i and j times; the start word centres the drift, so
+// ½ + (i + j)/4), plus the square root of the EP2's drift (its six words, off by ½ LSB² each,
+// counted 1, j, j(j+1)/2, i, i·j and i(i+1)/2 times; |sqrt(a + δ) - sqrt(a)| <= sqrt|δ|), plus 1
+// for the square root's floor; i, j up to the window's width and height minus one.
 double DepthErrorBoundLsb(const PixelWindow& window);
 
 // Nearest integer, ties away from zero; nullopt when not finite or beyond ±2^62.

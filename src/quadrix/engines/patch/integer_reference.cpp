@@ -44,7 +44,8 @@ PixelSignals ReferencePixel(const FixedPatch& patch, const DatapathWidths& width
     PixelSignals px;
     px.f2 = Quadratic(patch.f2, i, j, w2);
     px.sgnF2 = px.f2 < 0;
-    const std::uint64_t radicand = static_cast<std::uint64_t>(px.f2) & ((std::uint64_t{1} << w2) - 1);
+    const std::uint64_t radicand =
+        static_cast<std::uint64_t>(px.f2) & ((std::uint64_t{1} << w2) - 1);
     px.root = static_cast<std::int64_t>(IntegerSqrt(radicand));
     px.f1 = Linear(patch.f1, i, j, d);
     px.zf = Diff(px.f1, px.root, d);

@@ -53,15 +53,26 @@ PixelWindow WindowOfBox(const Box3& box, int width, int height) {
 
 std::string_view RejectionName(Rejection why) {
     switch (why) {
-        case Rejection::kNone: return "converted";
-        case Rejection::kEmpty: return "empty";
-        case Rejection::kInvisible: return "invisible (transparent quadric)";
-        case Rejection::kNoQuadric: return "no quadric";
-        case Rejection::kSeveralQuadrics: return "more than one quadric";
-        case Rejection::kTooManyPlanes: return "more than four cutting planes";
-        case Rejection::kOpaquePlaneFace: return "opaque plane face (caps=skip)";
-        case Rejection::kViewAlongSurface: return "C = 0 (view direction along the quadric)";
-        case Rejection::kNotFinite: return "non-finite coefficients";
+        case Rejection::kNone:
+            return "converted";
+        case Rejection::kEmpty:
+            return "empty";
+        case Rejection::kInvisible:
+            return "invisible (transparent quadric)";
+        case Rejection::kNoQuadric:
+            return "no quadric";
+        case Rejection::kSeveralQuadrics:
+            return "more than one quadric";
+        case Rejection::kTooManyPlanes:
+            return "more than four cutting planes";
+        case Rejection::kOpaquePlaneFace:
+            return "opaque plane face (caps=skip)";
+        case Rejection::kViewAlongSurface:
+            return "C = 0 (view direction along the quadric)";
+        case Rejection::kNotFinite:
+            return "non-finite coefficients";
+        case Rejection::kMalformed:
+            return "literal naming no half-space";
     }
     return "?";
 }
@@ -81,6 +92,10 @@ Conversion ConvertBody(const FlatScene& scene, int bodyIndex, CapPolicy caps) {
     };
     std::vector<KeptPlane> kept;
     for (const FlatLiteral& lit : body.literals) {
+        if (lit.halfSpace < 0 || lit.halfSpace >= static_cast<int>(scene.halfSpaces.size())) {
+            out.why = Rejection::kMalformed;
+            return out;
+        }
         const FlatHalfSpace& hs = scene.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
         if (!hs.isPlane) {
             ++quadrics;
@@ -97,6 +112,14 @@ Conversion ConvertBody(const FlatScene& scene, int bodyIndex, CapPolicy caps) {
         }
         Plane p = hs.plane;
         if (lit.complemented) p = Plane::FromVec4(-p.AsVec4());
+        if (p.IsZeroNormal()) {  // 0 x + 0 y + 0 z + d <= 0: everywhere or nowhere
+            if (p.d <= 0) {
+                ++out.planesDropped;
+                continue;
+            }
+            out.why = Rejection::kEmpty;
+            return out;
+        }
         // Redundant when the plane's function is negative over the whole box: its boundary does
         // not meet the box, which contains the body. The margin covers the rounding of the sum.
         const PlaneMax m = MaxOverBox(p, body.bounds);
@@ -104,11 +127,8 @@ Conversion ConvertBody(const FlatScene& scene, int bodyIndex, CapPolicy caps) {
             ++out.planesDropped;
             continue;
         }
-        if (p.IsZeroNormal()) {  // 0 x + 0 y + 0 z + d <= 0 with d > 0 (else it was dropped)
-            out.why = Rejection::kEmpty;
-            return out;
-        }
-        kept.push_back({{p, lit.halfSpace}, !hs.transparent});
+        // Clipping planes bound but are never drawn, like transparent ones.
+        kept.push_back({{p, lit.halfSpace}, !hs.transparent && !hs.isClip});
     }
 
     if (quadrics == 0) {
@@ -122,9 +142,9 @@ Conversion ConvertBody(const FlatScene& scene, int bodyIndex, CapPolicy caps) {
     const bool anyOpaquePlane =
         std::any_of(kept.begin(), kept.end(), [](const KeptPlane& k) { return k.opaque; });
     const FlatHalfSpace& qhs = scene.halfSpaces[static_cast<std::size_t>(quadricLiteral)];
-    if (qhs.transparent) {
+    if (qhs.transparent || qhs.isClip) {
         out.why = anyOpaquePlane && caps == CapPolicy::kSkip ? Rejection::kOpaquePlaneFace
-                                                               : Rejection::kInvisible;
+                                                             : Rejection::kInvisible;
         return out;
     }
     if (anyOpaquePlane) {

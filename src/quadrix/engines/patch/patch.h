@@ -82,6 +82,7 @@ enum class Rejection : std::uint8_t {
     kOpaquePlaneFace,   // an opaque plane cuts the body, so one of its faces would be visible
     kViewAlongSurface,  // C = 0: the ray meets the quadric at most once (§1.2.1 needs c != 0)
     kNotFinite,         // NaN or infinite coefficients
+    kMalformed,         // a literal names no half-space
 };
 std::string_view RejectionName(Rejection why);
 

@@ -25,7 +25,7 @@ namespace {
 
 using namespace patch;
 
-constexpr int kBandRows = 16;  // rows per parallel task; bands never share a pixel
+constexpr int kBandRows = 16;       // rows per parallel task; bands never share a pixel
 constexpr int kHistogramBins = 12;  // error bins [0,1), [1,2), [2,4), ... LSB, the last open
 
 struct Settings {
@@ -54,7 +54,8 @@ bool ParseOnOff(const std::string& s, bool& out) {
 // Empty when every option is known and valid.
 std::string ParseSettings(const RenderOptions& options, Settings& st) {
     for (const auto& [key, value] : options.engineOptions) {
-        const std::string bad = "engine 'patch': invalid value '" + value + "' for option '" + key + "'";
+        const std::string bad =
+            "engine 'patch': invalid value '" + value + "' for option '" + key + "'";
         if (key == "mode") {
             if (value == "float")
                 st.fixed = false;
@@ -138,8 +139,7 @@ struct FixedJob {
 };
 
 void ScanFixedBand(const FixedJob& job, const FlatScene& scene, const Settings& st,
-                   const DepthFormat& format, int yBegin, int yEnd, Frame& frame,
-                   BandStats& bs) {
+                   const DepthFormat& format, int yBegin, int yEnd, Frame& frame, BandStats& bs) {
     const FixedPatch& fp = job.host.program;
     const PixelWindow& w = fp.window;
     const int y0 = std::max(yBegin, w.y0), y1 = std::min(yEnd, w.y1);
@@ -220,7 +220,7 @@ BandStats ForEachBand(int height, int threads, Fn&& bandFn) {
 }
 
 class PatchEngine final : public Engine {
-public:
+  public:
     std::string_view Name() const override { return "patch"; }
 
     std::string ValidateOptions(const RenderOptions& options) const override {
@@ -228,8 +228,7 @@ public:
         return ParseSettings(options, st);
     }
 
-    RenderStats Render(const FlatScene& scene, const RenderOptions& options,
-                       Frame& frame) override;
+    RenderStats Render(const FlatScene& scene, const RenderOptions& options, Frame& frame) override;
 };
 
 RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& options,
@@ -271,6 +270,7 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
     BandStats bs;
     std::string fixedReport;
     std::int64_t hostOverflow = 0, hostEmpty = 0, planesPerpendicular = 0, planesNeverCut = 0;
+    double depthUlp = 0;
 
     if (!st.fixed) {
         for (const QuadricPatch& p : patches) timing.AddPatch(p.window.Pixels(), latency);
@@ -288,6 +288,7 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
             builder.Add(analyses.back());
         }
         const DepthFormat format = builder.Build(st.widths);
+        depthUlp = format.ulp;
         std::vector<FixedJob> jobs;
         for (std::size_t k = 0; k < patches.size(); ++k) {
             const HostAnalysis& a = analyses[k];
@@ -340,10 +341,12 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
             for (int b = 0; b < kHistogramBins; ++b) {
                 if (bs.histogram[static_cast<std::size_t>(b)] == 0) continue;
                 const std::string label =
-                    b == 0 ? "[0,1)"
-                           : (b == kHistogramBins - 1 ? fmt::format(">={}", 1 << (b - 1))
-                                                      : fmt::format("[{},{})", 1 << (b - 1), 1 << b));
-                fixedReport += fmt::format(" {}:{}", label, bs.histogram[static_cast<std::size_t>(b)]);
+                    b == 0
+                        ? "[0,1)"
+                        : (b == kHistogramBins - 1 ? fmt::format(">={}", 1 << (b - 1))
+                                                   : fmt::format("[{},{})", 1 << (b - 1), 1 << b));
+                fixedReport +=
+                    fmt::format(" {}:{}", label, bs.histogram[static_cast<std::size_t>(b)]);
             }
             fixedReport += "\n";
         }
@@ -361,7 +364,8 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
     c.push_back({"csg solids skipped", static_cast<double>(csgSkipped)});
     std::int64_t notDrawable = 0;
     for (const auto& [why, count] : rejected) {
-        c.push_back({"bodies skipped: " + std::string(RejectionName(why)), static_cast<double>(count)});
+        c.push_back(
+            {"bodies skipped: " + std::string(RejectionName(why)), static_cast<double>(count)});
         if (why != Rejection::kEmpty && why != Rejection::kInvisible) notDrawable += count;
     }
     c.push_back({"window pixels", static_cast<double>(bs.flt.windowPixels)});
@@ -371,32 +375,35 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
     c.push_back({"streamed cycles", static_cast<double>(timing.streamedCycles)});
     c.push_back({"estimated seconds", timing.Seconds()});
     c.push_back({"transistors", static_cast<double>(cost.Total())});
-    if (st.fixed && st.verify) c.push_back({"reference mismatches", static_cast<double>(bs.verifyMismatch)});
+    if (st.fixed && st.verify)
+        c.push_back({"reference mismatches", static_cast<double>(bs.verifyMismatch)});
     if (st.fixed && st.compare) c.push_back({"max depth error lsb", bs.maxErrorLsb});
+    if (st.fixed) c.push_back({"depth ulp", depthUlp});
 
     std::string& r = stats.report;
     r += fmt::format("Engine patch (seed 000, quadric patch processor), mode={}\n",
                      st.fixed ? "fixed" : "float");
-    r += fmt::format("  patches drawn {} ({} open: opaque plane faces missing); CSG solids skipped "
-                     "{} (the patch processor cannot do CSG); bodies not drawable {}\n",
-                     patches.size(), drawnOpen, csgSkipped, notDrawable);
+    r += fmt::format(
+        "  patches drawn {} ({} open: opaque plane faces missing); CSG solids skipped "
+        "{} (the patch processor cannot do CSG); bodies not drawable {}\n",
+        patches.size(), drawnOpen, csgSkipped, notDrawable);
     for (const auto& [why, count] : rejected)
         r += fmt::format("    skipped, {}: {}\n", RejectionName(why), count);
     r += fmt::format(
         "Timing: {} patches, {} window pixels at 1 pixel/clock, pipeline latency {} cycles\n",
         timing.patches, timing.pixels, latency);
-    r += fmt::format("  {} cycles = {:.6f} s at {:g} MHz ({} cycles = {:.6f} s with patches "
-                     "streamed back to back)\n",
-                     timing.cycles, timing.Seconds(), st.clockHz / 1e6, timing.streamedCycles,
-                     timing.StreamedSeconds());
+    r += fmt::format(
+        "  {} cycles = {:.6f} s at {:g} MHz ({} cycles = {:.6f} s with patches "
+        "streamed back to back)\n",
+        timing.cycles, timing.Seconds(), st.clockHz / 1e6, timing.streamedCycles,
+        timing.StreamedSeconds());
     r += FormatSchedule(st.widths);
     r += FormatCost(cost);
     if (!(st.widths == DatapathWidths{}))
         r += fmt::format("  (the paper's widths 24/16 give {} transistors)\n",
                          ComputeCost(DatapathWidths{}).Total());
     r += fixedReport;
-    stats.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return stats;
 }
 

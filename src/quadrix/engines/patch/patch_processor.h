@@ -40,7 +40,7 @@ struct FixedPatch {
     Ep2Program f2;
     Ep1Program f1;
     std::array<PlaneUnitProgram, kMaxPlanes> planes{};
-    Ep1Program nxBase, nyBase, nzBase;  // with NormalGuardBits() fraction bits
+    Ep1Program nxBase, nyBase, nzBase;    // with NormalGuardBits() fraction bits
     std::int64_t e = 0, f = 0, twoC = 0;  // multiplier coefficients, normalBits wide
 };
 
@@ -58,7 +58,7 @@ struct PixelSignals {
 };
 
 class PatchProcessor {
-public:
+  public:
     explicit PatchProcessor(const DatapathWidths& widths) : widths_(widths) {}
 
     // Loads the RAMs and rewinds to the window's first line.
@@ -71,7 +71,7 @@ public:
     int CurrentLine() const { return line_; }  // 0-based, relative to the window
     const DatapathWidths& Widths() const { return widths_; }
 
-private:
+  private:
     void StepLine();
 
     DatapathWidths widths_;

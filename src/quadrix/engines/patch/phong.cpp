@@ -26,7 +26,8 @@ PhongTerms PhongAt(const FlatScene& scene, const Vec3& normal, const Vec3& towar
         t.diffuse += light.intensity * options.diffuse * nl;
         const Vec3 r = normal * (2 * nl) - l;  // mirror direction of l about n
         const double rv = Dot(r, towardViewer);
-        if (rv > 0) t.specular += light.intensity * options.specular * std::pow(rv, options.shininess);
+        if (rv > 0)
+            t.specular += light.intensity * options.specular * std::pow(rv, options.shininess);
     }
     t.diffuse = std::min(t.diffuse, 1.0);
     return t;

@@ -20,9 +20,9 @@
 namespace quadrix::patch {
 
 struct PhongOptions {
-    double diffuse = 0.8;     // kd
-    double specular = 0.4;    // ks
-    double shininess = 24;    // Phong exponent
+    double diffuse = 0.8;   // kd
+    double specular = 0.4;  // ks
+    double shininess = 24;  // Phong exponent
     scene::Color background{0, 0, 0};
 };
 

@@ -15,7 +15,7 @@
 //   Multiplier    normalBits cycles, one array row per cycle (41/57), holding ZOUT each cycle
 //   NXBASE...     1 cycle, ending with the multiplier (56/57)
 //   NXOUT...      1        (57/58), holding ZOUT
-// The pipeline latency is 2 + SRE + 4 + normalBits + 1 = 58 cycles for the paper's widths, and
+// The pipeline latency is 2 + SRE + 3 + normalBits + 1 = 58 cycles for the paper's widths, and
 // the extra storage 2 + 2 + normalBits + 1 = 21 depth registers (§1.5.6).
 //
 // Per patch: the window is scanned at one pixel per clock after the pipeline fills, so a patch
@@ -37,10 +37,10 @@ namespace quadrix::patch {
 inline constexpr double kPaperClockHz = 50e6;  // seed 000 (the chip "was designed for 50MHz")
 
 struct ScheduleStep {
-    int start = 0, end = 0;       // cycles, as in Table 1.6's "Timing" column
-    std::string step;             // the step's name as in the paper
-    std::string extraStorage;     // what is held while it runs
-    int extraRegisters = 0;       // depth registers that holding takes
+    int start = 0, end = 0;    // cycles, as in Table 1.6's "Timing" column
+    std::string step;          // the step's name as in the paper
+    std::string extraStorage;  // what is held while it runs
+    int extraRegisters = 0;    // depth registers that holding takes
 };
 
 // Table 1.6 for the given widths.

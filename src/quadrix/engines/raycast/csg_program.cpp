@@ -15,12 +15,10 @@ Rect RectOf(const Box3& b) { return {b.lo.x, b.hi.x, b.lo.y, b.hi.y}; }
 double ZloOf(const Box3& b) { return std::isnan(b.lo.z) ? -kInf : b.lo.z; }
 
 Rect Intersect(const Rect& a, const Rect& b) {
-    return {std::max(a.x0, b.x0), std::min(a.x1, b.x1), std::max(a.y0, b.y0),
-            std::min(a.y1, b.y1)};
+    return {std::max(a.x0, b.x0), std::min(a.x1, b.x1), std::max(a.y0, b.y0), std::min(a.y1, b.y1)};
 }
 Rect Hull(const Rect& a, const Rect& b) {
-    return {std::min(a.x0, b.x0), std::max(a.x1, b.x1), std::min(a.y0, b.y0),
-            std::max(a.y1, b.y1)};
+    return {std::min(a.x0, b.x0), std::max(a.x1, b.x1), std::min(a.y0, b.y0), std::max(a.y1, b.y1)};
 }
 bool IsEmpty(const Rect& r) { return r.x0 > r.x1 || r.y0 > r.y1; }
 
@@ -93,7 +91,8 @@ std::int32_t Copy(const Source& src, std::int32_t n, const Rect& r, int depth, C
             continue;
         }
         // An empty operand empties an intersection, and a difference whose minuend it is.
-        if (proto.kind == NodeKind::kIntersection || (proto.kind == NodeKind::kDifference && i == 0)) {
+        if (proto.kind == NodeKind::kIntersection ||
+            (proto.kind == NodeKind::kDifference && i == 0)) {
             stack.resize(base);
             return -1;
         }
@@ -123,9 +122,15 @@ struct SceneSource {
             return true;
         }
         switch (node.op) {
-            case scene::CsgOp::kUnion: out.kind = NodeKind::kUnion; break;
-            case scene::CsgOp::kIntersection: out.kind = NodeKind::kIntersection; break;
-            case scene::CsgOp::kDifference: out.kind = NodeKind::kDifference; break;
+            case scene::CsgOp::kUnion:
+                out.kind = NodeKind::kUnion;
+                break;
+            case scene::CsgOp::kIntersection:
+                out.kind = NodeKind::kIntersection;
+                break;
+            case scene::CsgOp::kDifference:
+                out.kind = NodeKind::kDifference;
+                break;
         }
         return true;
     }
@@ -144,9 +149,12 @@ struct ProgramSource {
         out = program.nodes[static_cast<std::size_t>(n)];
         return true;
     }
-    int ChildCount(std::int32_t n) const { return program.nodes[static_cast<std::size_t>(n)].count; }
+    int ChildCount(std::int32_t n) const {
+        return program.nodes[static_cast<std::size_t>(n)].count;
+    }
     std::int32_t Child(std::int32_t n, int i) const {
-        return program.children[static_cast<std::size_t>(program.nodes[static_cast<std::size_t>(n)].first + i)];
+        return program.children[static_cast<std::size_t>(
+            program.nodes[static_cast<std::size_t>(n)].first + i)];
     }
 };
 

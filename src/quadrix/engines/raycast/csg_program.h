@@ -30,8 +30,8 @@ struct Rect {
 };
 
 struct ProgNode {
-    Rect xy;               // pixel centres outside it see the empty set
-    double zlo = 0;        // no point of the node's set is nearer than this (−inf if unknown)
+    Rect xy;         // pixel centres outside it see the empty set
+    double zlo = 0;  // no point of the node's set is nearer than this (−inf if unknown)
     NodeKind kind = NodeKind::kBody;
     std::int32_t first = 0;  // kBody: the FlatScene body index; else first child in `children`
     std::int32_t count = 0;  // number of children (0 for kBody)

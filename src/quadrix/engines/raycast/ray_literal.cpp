@@ -6,7 +6,7 @@
 
 namespace quadrix::raycast {
 
-RayHalfSpace RayHalfSpace::From(const FlatHalfSpace& hs) {
+RayHalfSpace RayHalfSpace::From(const FlatHalfSpace& hs, const Vec3& p0) {
     RayHalfSpace r;
     r.isPlane = hs.isPlane;
     if (hs.isPlane) {
@@ -14,20 +14,49 @@ RayHalfSpace RayHalfSpace::From(const FlatHalfSpace& hs) {
         r.px = hs.plane.a;
         r.py = hs.plane.b;
         r.pd = hs.plane.d;
-    } else {
-        const Quadric& q = hs.quadric;
-        r.c = q.C();
-        r.hx = q.F();
-        r.hy = q.E();
-        r.h0 = q.J();
-        r.axx = q.A();
-        r.axy = 2.0 * q.D();
-        r.ax = 2.0 * q.G();
-        r.byy = q.B();
-        r.by = 2.0 * q.H();
-        r.k0 = q.K();
+        return r;
     }
+    const Quadric& q = hs.quadric;
+    // b' = A p0 + b and K' = Q(p0) = p0ᵀ A p0 + 2 bᵀ p0 + K = p0ᵀ (b' + b) + K.
+    double g = q.A() * p0.x + q.D() * p0.y + q.F() * p0.z + q.G();
+    double h = q.D() * p0.x + q.B() * p0.y + q.E() * p0.z + q.H();
+    double j = q.F() * p0.x + q.E() * p0.y + q.C() * p0.z + q.J();
+    double k = p0.x * (g + q.G()) + p0.y * (h + q.H()) + p0.z * (j + q.J()) + q.K();
+    r.c = q.C();
+    r.x0 = p0.x;
+    r.y0 = p0.y;
+    r.z0 = p0.z;
+    r.hx = q.F();
+    r.hy = q.E();
+    r.h0 = j;
+    r.axx = q.A();
+    r.axy = 2.0 * q.D();
+    r.ax = 2.0 * g;
+    r.byy = q.B();
+    r.by = 2.0 * h;
+    r.k0 = k;
     return r;
+}
+
+std::optional<Vec3> RayHalfSpace::Centre(const Quadric& q) {
+    if (!q.AllFinite()) return std::nullopt;
+    const double a = q.A(), b = q.B(), c = q.C(), d = q.D(), e = q.E(), f = q.F();
+    // Adjugate of the symmetric [[a d f] [d b e] [f e c]].
+    double c00 = b * c - e * e, c01 = f * e - d * c, c02 = d * e - b * f;
+    double c11 = a * c - f * f, c12 = d * f - a * e, c22 = a * b - d * d;
+    double det = a * c00 + d * c01 + f * c02;
+    double scale = std::fmax(
+        std::fmax(std::fabs(a), std::fabs(b)),
+        std::fmax(std::fabs(c), std::fmax(std::fabs(d), std::fmax(std::fabs(e), std::fabs(f)))));
+    // Well enough conditioned (|det| is a product of three eigenvalues): otherwise a cylinder or
+    // paraboloid, whose "centre" is a line or does not exist.
+    if (!(std::fabs(det) > 1e-9 * scale * scale * scale)) return std::nullopt;
+    const double g = q.G(), h = q.H(), j = q.J();
+    Vec3 p{-(c00 * g + c01 * h + c02 * j) / det, -(c01 * g + c11 * h + c12 * j) / det,
+           -(c02 * g + c12 * h + c22 * j) / det};
+    if (!IsFinite(p) || std::fabs(p.x) > 1e12 || std::fabs(p.y) > 1e12 || std::fabs(p.z) > 1e12)
+        return std::nullopt;
+    return Vec3{std::round(p.x), std::round(p.y), std::round(p.z)};
 }
 
 namespace {
@@ -35,77 +64,107 @@ namespace {
 constexpr double kInf = HUGE_VAL;
 constexpr std::int32_t kNoId = Interval::kNoId;
 
+// Adds [lo, hi] unless it is a point or empty (the regularised convention); ids of infinite ends
+// are kNoId.
+void Add(RaySet& s, double lo, double hi, std::int32_t id) {
+    if (!(lo < hi)) return;
+    s.piece[s.count++] = {lo, hi, std::isinf(lo) ? kNoId : id, std::isinf(hi) ? kNoId : id};
+}
+
 // The set where  c t + e <= 0  (a plane, or a quadric that is linear along this ray).
-void LinearSet(double c, double e, std::int32_t id, IntervalList& out) {
+void LinearSet(double c, double e, std::int32_t id, RaySet& s) {
     if (c == 0) {
-        if (e <= 0) out.Append(-kInf, kNoId, kInf, kNoId);  // the plane contains or misses the ray
+        if (e <= 0) Add(s, -kInf, kInf, id);  // the plane contains or misses the ray
         return;
     }
     double r = -e / c;  // may overflow to ±inf when c is tiny: then the set is all or nothing
     if (c > 0) {
-        out.Append(-kInf, kNoId, r, std::isinf(r) ? kNoId : id);
+        Add(s, -kInf, r, id);
     } else {
-        out.Append(r, std::isinf(r) ? kNoId : id, kInf, kNoId);
+        Add(s, r, kInf, id);
     }
 }
 
-// The set where  a t² + 2 h t + k <= 0.
-void QuadraticSet(double a, double h, double k, std::int32_t id, IntervalList& out) {
+// The set where  a t² + 2 h t + k <= 0, shifted by z0.
+void QuadraticSet(double a, double h, double k, double z0, std::int32_t id, RaySet& s) {
     QuadraticRoots roots = SolveQuadratic(a, h, k);
-    auto idOf = [id](double t) { return std::isinf(t) ? kNoId : id; };
+    double t0 = z0 + roots.t0, t1 = z0 + roots.t1;
     switch (roots.kind) {
         case RootKind::kAll:  // Q vanishes identically on the ray: Q <= 0 holds everywhere
-            out.Append(-kInf, kNoId, kInf, kNoId);
+            Add(s, -kInf, kInf, id);
             return;
         case RootKind::kNone:
             // No sign change, so Q has the sign of Q(0) = k (for a quadratic, h² − a k < 0 forces
             // a and k to share their sign; for a constant, Q = k).
-            if (k < 0) out.Append(-kInf, kNoId, kInf, kNoId);
+            if (k < 0) Add(s, -kInf, kInf, id);
             return;
         case RootKind::kSingle:  // linear along the ray (a = 0 after scaling): 2 h t + k <= 0
             if (h > 0) {
-                out.Append(-kInf, kNoId, roots.t0, idOf(roots.t0));
+                Add(s, -kInf, t0, id);
             } else {
-                out.Append(roots.t0, idOf(roots.t0), kInf, kNoId);
+                Add(s, t0, kInf, id);
             }
             return;
         case RootKind::kDouble:
             // a (t − r)² <= 0: only the touching point when a > 0 (regularised away), everything
             // when a < 0 (the ray grazes the surface from inside).
-            if (a < 0) out.Append(-kInf, kNoId, kInf, kNoId);
+            if (a < 0) Add(s, -kInf, kInf, id);
             return;
         case RootKind::kTwo:
             if (a > 0) {
-                out.Append(roots.t0, idOf(roots.t0), roots.t1, idOf(roots.t1));
-            } else {
-                // Two pieces; Append merges them if the roots rounded to the same double.
-                out.Append(-kInf, kNoId, roots.t0, idOf(roots.t0));
-                out.Append(roots.t1, idOf(roots.t1), kInf, kNoId);
+                Add(s, t0, t1, id);
+            } else if (t0 < t1) {
+                Add(s, -kInf, t0, id);
+                Add(s, t1, kInf, id);
+            } else {  // the roots rounded to one double: the two pieces touch
+                Add(s, -kInf, kInf, id);
             }
             return;
     }
 }
 
+// The closure of the complement of a canonical set of at most two pieces (again at most two).
+RaySet Complemented(const RaySet& in) {
+    RaySet out;
+    double lo = -kInf;
+    std::int32_t loId = kNoId;
+    for (int i = 0; i < in.count; ++i) {
+        const Interval& v = in.piece[i];
+        if (lo < v.lo) out.piece[out.count++] = {lo, v.lo, loId, v.loId};
+        lo = v.hi;
+        loId = v.hiId;
+    }
+    if (lo < kInf) out.piece[out.count++] = {lo, kInf, loId, kNoId};
+    return out;
+}
+
 }  // namespace
 
-void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y,
-                     std::int32_t id, IntervalList& out, LiteralCounters& counters) {
-    out.clear();
-    IntervalList inside;
-    IntervalList& target = complemented ? inside : out;
+RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
+                    LiteralCounters& counters) {
+    RaySet inside;
     if (hs.isPlane) {
         ++counters.planes;
         double e = hs.px * x + hs.py * y + hs.pd;
-        if (!std::isfinite(e) || !std::isfinite(hs.c)) return;
-        LinearSet(hs.c, e, id, target);
+        if (!std::isfinite(e) || !std::isfinite(hs.c)) return inside;  // empty both ways
+        LinearSet(hs.c, e, id, inside);
     } else {
         ++counters.quadrics;
-        double h = hs.hx * x + hs.hy * y + hs.h0;
-        double k = x * (hs.axx * x + hs.axy * y + hs.ax) + y * (hs.byy * y + hs.by) + hs.k0;
-        if (!std::isfinite(h) || !std::isfinite(k) || !std::isfinite(hs.c)) return;
-        QuadraticSet(hs.c, h, k, id, target);
+        double dx = x - hs.x0, dy = y - hs.y0;
+        double h = hs.hx * dx + hs.hy * dy + hs.h0;
+        double k = dx * (hs.axx * dx + hs.axy * dy + hs.ax) + dy * (hs.byy * dy + hs.by) + hs.k0;
+        if (!std::isfinite(h) || !std::isfinite(k) || !std::isfinite(hs.c)) return inside;
+        QuadraticSet(hs.c, h, k, hs.z0, id, inside);
     }
-    if (complemented) Complement(inside, out);
+    return complemented ? Complemented(inside) : inside;
+}
+
+void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
+                     IntervalList& out, LiteralCounters& counters) {
+    RaySet s = LiteralOnRay(hs, complemented, x, y, id, counters);
+    out.clear();
+    for (int i = 0; i < s.count; ++i)
+        out.Append(s.piece[i].lo, s.piece[i].loId, s.piece[i].hi, s.piece[i].hiId);
 }
 
 }  // namespace quadrix::raycast

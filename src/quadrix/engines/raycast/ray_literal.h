@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/math/interval_list.h"
@@ -26,16 +27,34 @@
 namespace quadrix::raycast {
 
 // A half-space's coefficients regrouped for evaluation along rays parallel to z.
+//
+// Quadrics are re-centred (STYLE.md "re-centre before solving") on a reference point p0, the
+// quadric's centre rounded to integers when it has one (see Centre): Q(p0 + d) = dᵀA d +
+// 2 (A p0 + b)ᵀ d + Q(p0), so along the ray t = z0 + t'
+//   Q = C t'² + 2 (F x' + E y' + J') t' + (x' (A x' + 2D y' + 2G') + y' (B y' + 2H') + K'),
+//   x' = x − x0, y' = y − y0, (G' H' J') = A p0 + b, K' = Q(p0).
+// Without it, a sphere of radius r at depth z solves h² − a c with h² ≈ a c ≈ z² ≫ r²: the
+// discriminant is a difference of nearly equal numbers for every pixel (slow compensated path of
+// SolveQuadratic, and per-pixel rounding noise of u·z² in c); re-centred, h ≈ 0 and the plain
+// discriminant is exact to 3u. The rounding of K' (about u·|p0|²·|A|, once per surface) is of the
+// size the coefficients already carry.
 struct RayHalfSpace {
     bool isPlane = true;
-    // Plane: P = c t + (ax x + by y + d).
-    // Quadric: Q = c t² + 2 (hx x + hy y + h0) t + (x (axx x + axy y + ax) + y (byy y + by) + k0).
+    // Plane: P = c t + (px x + py y + pd), not re-centred (no cancellation to avoid).
+    // Quadric: as above, with c = C.
     double c = 0;
-    double hx = 0, hy = 0, h0 = 0;                  // quadric half-linear term
-    double axx = 0, axy = 0, ax = 0, byy = 0, by = 0, k0 = 0;  // quadric constant term
-    double px = 0, py = 0, pd = 0;                  // plane constant term
+    double x0 = 0, y0 = 0, z0 = 0;                             // quadric reference point p0
+    double hx = 0, hy = 0, h0 = 0;                             // F, E, J'
+    double axx = 0, axy = 0, ax = 0, byy = 0, by = 0, k0 = 0;  // A, 2D, 2G', B, 2H', K'
+    double px = 0, py = 0, pd = 0;
 
-    static RayHalfSpace From(const FlatHalfSpace& hs);
+    // `reference` is p0 for a quadric (ignored for a plane); integers keep the shift exact.
+    static RayHalfSpace From(const FlatHalfSpace& hs, const Vec3& reference = {});
+
+    // The centre −A⁻¹b of a quadric whose quadratic part A (3×3) is safely invertible (spheres,
+    // ellipsoids, cones, hyperboloids), rounded to integers; nullopt for cylinders, paraboloids,
+    // degenerate or non-finite quadrics and centres beyond 1e12.
+    static std::optional<Vec3> Centre(const Quadric& q);
 };
 
 // What evaluating a literal cost (for RenderStats).
@@ -44,9 +63,19 @@ struct LiteralCounters {
     std::uint64_t quadrics = 0;
 };
 
-// Writes into `out` the set of t where the literal holds on the ray through (x, y); finite
-// endpoints carry `id`, infinite ones Interval::kNoId.
-void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y,
-                     std::int32_t id, IntervalList& out, LiteralCounters& counters);
+// A literal's set on one ray: at most two pieces, canonical (see interval_list.h).
+struct RaySet {
+    Interval piece[2];
+    int count = 0;
+};
+
+// The set of t where the literal holds on the ray through (x, y); finite endpoints carry `id`,
+// infinite ones Interval::kNoId.
+RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
+                    LiteralCounters& counters);
+
+// The same as an IntervalList (for tests and callers that want a list).
+void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
+                     IntervalList& out, LiteralCounters& counters);
 
 }  // namespace quadrix::raycast

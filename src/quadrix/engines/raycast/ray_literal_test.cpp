@@ -1,8 +1,9 @@
 #include "quadrix/engines/raycast/ray_literal.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 
 namespace quadrix::raycast {
 namespace {
@@ -91,6 +92,64 @@ TEST(RaycastLiteral, ConesCylindersAndParaboloids) {
     EXPECT_EQ(Set(QuadricHs({0, 0, -1, 0, 0, 0, 0, 0, 0, -1}), false, 0, 0), IntervalList::All());
     // The empty quadric 0 <= 0 holds everywhere.
     EXPECT_EQ(Set(QuadricHs({}), false, 1, 2), IntervalList::All());
+}
+
+TEST(RaycastLiteral, QuadricCentres) {
+    // (x − 3)² + 2 (y + 7)² + (z − 1000)² − 4 <= 0.
+    auto c = RayHalfSpace::Centre(
+        Quadric::FromCoefficients({1, 2, 1, 0, 0, 0, -3, 14, -1000, 9 + 98 + 1e6 - 4}));
+    ASSERT_TRUE(c.has_value());
+    EXPECT_EQ(*c, Vec3(3, -7, 1000));
+    // Rounded to integers.
+    c = RayHalfSpace::Centre(Quadric::FromCoefficients({1, 1, 1, 0, 0, 0, -0.25, 0, -10.75, 0}));
+    ASSERT_TRUE(c.has_value());
+    EXPECT_EQ(*c, Vec3(0, 0, 11));
+    // Cylinders and paraboloids have no centre point; a cone's apex is its centre.
+    EXPECT_FALSE(RayHalfSpace::Centre(Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, 0, -1})));
+    EXPECT_FALSE(RayHalfSpace::Centre(Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, -1, 0})));
+    EXPECT_EQ(RayHalfSpace::Centre(Quadric::FromCoefficients({1, 1, -1, 0, 0, 0, -5, 0, 6, 0})),
+              Vec3(5, 0, 6));
+    EXPECT_FALSE(RayHalfSpace::Centre(Quadric::FromCoefficients({NAN, 1, 1, 0, 0, 0, 0, 0, 0, 0})));
+}
+
+TEST(RaycastLiteral, RecentringKeepsTheRoots) {
+    // Random ellipsoids far from the origin: the set on a ray is the same whether the quadric is
+    // evaluated about the origin or about its centre, to the accuracy of the un-centred
+    // evaluation (its per-pixel rounding is about u·|centre|²·|A| in Q, i.e. 1e-10 here, which
+    // moves a root by that over |dQ/dt| = a·(chord length), i.e. by < 1e-8 for chords over 0.1;
+    // shorter chords, near tangency, are skipped).
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> u(0, 1);
+    int compared = 0;
+    for (int n = 0; n < 2000; ++n) {
+        Vec3 c{500 * u(rng), 500 * u(rng), 200 + 800 * u(rng)};
+        double r = 5 + 50 * u(rng);
+        Transform t = Transform::Translate(c) * Transform::Rotate(0, 360 * u(rng)) *
+                      Transform::Rotate(1, 360 * u(rng)) *
+                      Transform::Scale({r, r * (0.3 + u(rng)), r * (0.3 + u(rng))});
+        FlatHalfSpace h;
+        h.isPlane = false;
+        h.quadric = Quadric::FromCoefficients({1, 1, 1, 0, 0, 0, 0, 0, 0, -1}).Transformed(t);
+        auto centre = RayHalfSpace::Centre(h.quadric);
+        ASSERT_TRUE(centre.has_value());
+        EXPECT_LE(Length(*centre - c), 1.0);  // rounded to integers: within √3/2
+        double x = c.x + r * (2 * u(rng) - 1), y = c.y + r * (2 * u(rng) - 1);
+        LiteralCounters counters;
+        RaySet a = LiteralOnRay(RayHalfSpace::From(h, {}), false, x, y, 1, counters);
+        RaySet b = LiteralOnRay(RayHalfSpace::From(h, *centre), false, x, y, 1, counters);
+        if (a.count != b.count) {
+            // Only possible for a nearly tangent ray.
+            RaySet& hit = a.count ? a : b;
+            EXPECT_LT(hit.piece[0].hi - hit.piece[0].lo, 0.1) << n;
+            continue;
+        }
+        if (a.count == 0 || a.piece[0].hi - a.piece[0].lo < 0.1) continue;
+        ASSERT_EQ(a.count, 1);
+        EXPECT_NEAR(a.piece[0].lo, b.piece[0].lo, 1e-9 * c.z);
+        EXPECT_NEAR(a.piece[0].hi, b.piece[0].hi, 1e-9 * c.z);
+        ++compared;
+    }
+    EXPECT_GT(compared, 500);
 }
 
 }  // namespace

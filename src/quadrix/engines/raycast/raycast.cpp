@@ -1,18 +1,20 @@
 // Engine `raycast` (see raycast.h). Structure of a render:
 //
 //  1. Tables: per half-space its coefficients regrouped for rays along z (RayHalfSpace); per
-//     literal of every body a global "tag" naming (half-space, body, complemented, opaque). Tags are
-//     the ids carried by interval endpoints, so the visible endpoint names its surface and body.
+//     literal of every body a global "tag" naming (half-space, body, complemented, opaque). Tags
+//     are the ids carried by interval endpoints, so the visible endpoint names its surface and
+//     body.
 //  2. The scene's solids become one CsgProgram (csg_program.h), sorted by nearest depth.
-//  3. The image is cut into 64×64 tiles run in parallel (oneTBB; RenderOptions::threads > 0 runs
-//     them in a task_arena of that many threads). Each tile prunes the program against its pixel
-//     centres, then each 16×16 sub-tile prunes the tile's program again, so a sub-tile sees only
-//     the solids and leaves whose bounds reach it (two levels keep the pruning of a 10,000-leaf
-//     union cheap: the big program is walked once per tile, not once per sub-tile).
+//  3. The image is cut into 256×256 blocks, 64×64 tiles and 16×16 sub-tiles, run in parallel
+//     (oneTBB, nested parallel_for; RenderOptions::threads > 0 runs them in a task_arena of that
+//     many threads). Each level prunes its parent's program against its pixel centres, so a
+//     sub-tile sees only the solids and leaves whose bounds reach it, and pruning a 10,000-leaf
+//     union costs one walk per block rather than one per sub-tile.
 //  4. Per pixel, solids are visited by nearest depth until the best depth found is nearer than the
 //     next solid can be. A solid's interval list is computed by recursion over its pruned tree
-//     (bodies intersect their literals' sets, operators fold their operands left to right, with
-//     short cuts on ∅) using lists preallocated per thread, so no pixel allocates once warm. The
+//     (bodies clip their literals' sets into each other, operators fold their operands left to
+//     right, with short cuts on ∅) using lists preallocated per thread, so no pixel allocates once
+//     warm. The
 //     solid's visible point is its first finite endpoint whose surface is opaque (transparent
 //     half-spaces and clipping planes bound but are not drawn); across solids the nearest wins and
 //     exact ties keep the lower solid index.
@@ -21,17 +23,17 @@
 // thread that ran it, so renders are bit-for-bit reproducible for any thread count.
 #include "quadrix/engines/raycast/raycast.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
-
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "quadrix/engines/raycast/csg_program.h"
 #include "quadrix/engines/raycast/ray_literal.h"
@@ -41,8 +43,9 @@ namespace quadrix {
 namespace raycast {
 namespace {
 
-constexpr int kTile = 64;     // parallel work unit (pixels per side)
-constexpr int kSubTile = 16;  // pruning granularity inside a tile
+constexpr int kBlock = 256;   // first pruning level (pixels per side)
+constexpr int kTile = 64;     // second level
+constexpr int kSubTile = 16;  // last level: the pixels of a sub-tile share one program
 
 // Per-literal facts looked up from an endpoint's tag.
 struct Tag {
@@ -59,8 +62,10 @@ struct SceneTables {
     std::vector<bool> bodyValid;             // false when a literal names a missing half-space
 
     explicit SceneTables(const FlatScene& scene) {
+        std::vector<Vec3> reference = ReferencePoints(scene);
         halfSpaces.reserve(scene.halfSpaces.size());
-        for (const FlatHalfSpace& hs : scene.halfSpaces) halfSpaces.push_back(RayHalfSpace::From(hs));
+        for (std::size_t h = 0; h < scene.halfSpaces.size(); ++h)
+            halfSpaces.push_back(RayHalfSpace::From(scene.halfSpaces[h], reference[h]));
         bodyFirstTag.reserve(scene.bodies.size() + 1);
         bodyValid.assign(scene.bodies.size(), true);
         for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -78,14 +83,27 @@ struct SceneTables {
         }
         bodyFirstTag.push_back(static_cast<std::int32_t>(tags.size()));
     }
+
+    // Re-centring points for the quadrics (ray_literal.h): the quadric's own centre when it has
+    // one (RayHalfSpace::Centre), else the image centre at depth 0. They depend on nothing but the
+    // half-space, so bounds (culling) cannot change a single bit of the result.
+    static std::vector<Vec3> ReferencePoints(const FlatScene& scene) {
+        Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
+        std::vector<Vec3> ref;
+        ref.reserve(scene.halfSpaces.size());
+        for (const FlatHalfSpace& hs : scene.halfSpaces)
+            ref.push_back(hs.isPlane ? anchor : RayHalfSpace::Centre(hs.quadric).value_or(anchor));
+        return ref;
+    }
 };
 
 struct Counters {
-    std::uint64_t coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0, pixelSolids = 0,
-                  zStops = 0, bodies = 0, csgOps = 0, covered = 0;
+    std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
+                  pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
+        blocks += o.blocks;
         coarseTiles += o.coarseTiles;
         tiles += o.tiles;
         pixels += o.pixels;
@@ -108,10 +126,12 @@ struct Hit {
 
 // Everything one thread needs; reused across tiles and pixels.
 class Worker {
-public:
+  public:
     Worker(const SceneTables* tables, int maxDepth) : tables_(*tables) {
-        // Slot d holds the result of a node at depth d; a body at depth d also uses d+1 and d+2.
+        // Slot d holds the result of a node at depth d; a node at depth d also uses d+1 and d+2
+        // (operand and scratch). Results move between slots by swapping pointers.
         lists_.resize(static_cast<std::size_t>(maxDepth) + 3);
+        for (IntervalList& l : lists_) slots_.push_back(&l);
     }
 
     CsgProgram tileProgram, subTileProgram;
@@ -130,7 +150,7 @@ public:
             Evaluate(program, s.root, x, y, 0);
             double t;
             std::int32_t tag;
-            if (!FirstVisible(lists_[0], t, tag)) continue;
+            if (!FirstVisible(*slots_[0], t, tag)) continue;
             if (t < best.t || (t == best.t && s.solid < best.solid)) best = {t, tag, s.solid};
         }
         return best;
@@ -138,7 +158,7 @@ public:
 
     const Tag& TagOf(std::int32_t tag) const { return tables_.tags[static_cast<std::size_t>(tag)]; }
 
-private:
+  private:
     // The first finite endpoint on an opaque surface.
     bool FirstVisible(const IntervalList& list, double& t, std::int32_t& tag) const {
         for (const Interval& v : list) {
@@ -156,25 +176,30 @@ private:
         return false;
     }
 
-    // lists_[slot] = the set of node n on the ray through (x, y).
+    // *slots_[slot] = the set of node n on the ray through (x, y).
     void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot) {
         const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
-        IntervalList& out = lists_[slot];
         if (node.MissesPoint(x, y)) {
-            out.clear();
+            slots_[slot]->clear();
             return;
         }
         if (node.kind == NodeKind::kBody) {
             EvaluateBody(node.first, x, y, slot);
             return;
         }
-        IntervalList& operand = lists_[slot + 1];
-        IntervalList& scratch = lists_[slot + 2];
         const std::int32_t* child = p.children.data() + node.first;
         Evaluate(p, child[0], x, y, slot);
         for (std::int32_t i = 1; i < node.count; ++i) {
+            IntervalList& out = *slots_[slot];
             if (out.empty() && node.kind != NodeKind::kUnion) return;  // ∅ ∩ B = ∅ − B = ∅
-            Evaluate(p, child[i], x, y, slot + 1);
+            // The operand's bounds are tested here as well as in the call, to skip the call for
+            // the many operands of a big union that miss this pixel.
+            if (p.nodes[static_cast<std::size_t>(child[i])].MissesPoint(x, y)) {
+                slots_[slot + 1]->clear();
+            } else {
+                Evaluate(p, child[i], x, y, slot + 1);
+            }
+            IntervalList& operand = *slots_[slot + 1];
             if (operand.empty()) {
                 if (node.kind == NodeKind::kIntersection) {
                     out.clear();
@@ -183,63 +208,87 @@ private:
                 continue;  // A ∪ ∅ = A − ∅ = A
             }
             if (out.empty()) {  // union: ∅ ∪ B = B
-                std::swap(out, operand);
+                std::swap(slots_[slot], slots_[slot + 1]);
                 continue;
             }
             ++counters.csgOps;
+            IntervalList& scratch = *slots_[slot + 2];
             switch (node.kind) {
-                case NodeKind::kUnion: Union(out, operand, scratch); break;
-                case NodeKind::kIntersection: Intersection(out, operand, scratch); break;
-                default: Difference(out, operand, scratch); break;
+                case NodeKind::kUnion:
+                    Union(out, operand, scratch);
+                    break;
+                case NodeKind::kIntersection:
+                    Intersection(out, operand, scratch);
+                    break;
+                default:
+                    Difference(out, operand, scratch);
+                    break;
             }
-            std::swap(out, scratch);
+            std::swap(slots_[slot], slots_[slot + 2]);
         }
     }
 
+    // A body is the intersection of its literals: the first literal's set, clipped by each
+    // following one (ClipTo for one piece; a general intersection for two).
     void EvaluateBody(std::int32_t body, double x, double y, std::size_t slot) {
         ++counters.bodies;
-        IntervalList& out = lists_[slot];
-        out.clear();
+        slots_[slot]->clear();  // a body without literals is empty
         if (!tables_.bodyValid[static_cast<std::size_t>(body)]) return;
-        IntervalList& literal = lists_[slot + 1];
-        IntervalList& scratch = lists_[slot + 2];
         std::int32_t first = tables_.bodyFirstTag[static_cast<std::size_t>(body)];
         std::int32_t last = tables_.bodyFirstTag[static_cast<std::size_t>(body) + 1];
-        if (first == last) return;  // a body without literals is empty
         for (std::int32_t tag = first; tag < last; ++tag) {
             const Tag& t = TagOf(tag);
             const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-            if (tag == first) {
-                LiteralSetOnRay(hs, t.complemented, x, y, tag, out, counters.literals);
-            } else {
-                LiteralSetOnRay(hs, t.complemented, x, y, tag, literal, counters.literals);
-                Intersection(out, literal, scratch);
-                std::swap(out, scratch);
+            RaySet set = LiteralOnRay(hs, t.complemented, x, y, tag, counters.literals);
+            IntervalList& out = *slots_[slot];
+            if (set.count == 0) {
+                out.clear();
+                return;
             }
-            if (out.empty()) return;
+            if (tag == first) {
+                for (int i = 0; i < set.count; ++i) AppendPiece(out, set.piece[i]);
+            } else if (set.count == 1) {
+                ClipTo(out, set.piece[0]);
+            } else {
+                IntervalList& literal = *slots_[slot + 1];
+                literal.clear();
+                for (int i = 0; i < set.count; ++i) AppendPiece(literal, set.piece[i]);
+                Intersection(out, literal, *slots_[slot + 2]);
+                std::swap(slots_[slot], slots_[slot + 2]);
+            }
+            if (slots_[slot]->empty()) return;
         }
+    }
+
+    static void AppendPiece(IntervalList& l, const Interval& v) {
+        l.Append(v.lo, v.loId, v.hi, v.hiId);
     }
 
     const SceneTables& tables_;
     std::vector<IntervalList> lists_;
+    std::vector<IntervalList*> slots_;
 };
 
-// Renders the tiles of one 64×64 tile (pixel rectangle [x0, x1) × [y0, y1)).
-void RenderTile(const FlatScene& scene, const CsgProgram& full, int x0, int y0, int x1, int y1,
+// The pixel centres of the pixel rectangle [x0, x1) × [y0, y1).
+Rect Centres(int x0, int y0, int x1, int y1) { return {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5}; }
+
+// Renders one 64×64 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
+void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0, int x1, int y1,
                 Worker& w, Frame& frame) {
     ++w.counters.coarseTiles;
-    auto centres = [](int a0, int b0, int a1, int b1) {
-        return Rect{a0 + 0.5, a1 - 0.5, b0 + 0.5, b1 - 0.5};
-    };
-    PruneProgram(full, centres(x0, y0, x1, y1), w.tileProgram, w.stack);
+    PruneProgram(block, Centres(x0, y0, x1, y1), w.tileProgram, w.stack);
+    if (w.tileProgram.solids.empty()) {
+        w.counters.pixels += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
+        return;  // the frame is already background
+    }
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
             int ex = std::min(sx + kSubTile, x1), ey = std::min(sy + kSubTile, y1);
             ++w.counters.tiles;
-            PruneProgram(w.tileProgram, centres(sx, sy, ex, ey), w.subTileProgram, w.stack);
+            PruneProgram(w.tileProgram, Centres(sx, sy, ex, ey), w.subTileProgram, w.stack);
             w.counters.tileSolids += w.subTileProgram.solids.size();
             w.counters.pixels += static_cast<std::uint64_t>((ex - sx) * (ey - sy));
-            if (w.subTileProgram.solids.empty()) continue;  // the frame is already background
+            if (w.subTileProgram.solids.empty()) continue;
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
@@ -260,7 +309,7 @@ void RenderTile(const FlatScene& scene, const CsgProgram& full, int x0, int y0, 
 }
 
 class RaycastEngine final : public Engine {
-public:
+  public:
     std::string_view Name() const override { return "raycast"; }
 
     RenderStats Render(const FlatScene& scene, const RenderOptions& options,
@@ -272,17 +321,39 @@ public:
         CsgProgram full;
         BuildProgram(scene, full);
 
-        int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
+        int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
+        constexpr int kTilesPerBlock = kBlock / kTile;
         tbb::enumerable_thread_specific<Worker> workers(&tables, full.maxDepth);
-        auto run = [&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
+        // Blocks own their pruned program (not the thread: a thread waiting in the nested loop may
+        // run another block); tiles use per-thread scratch, held by no task across a wait.
+        auto renderBlock = [&](int b) {
+            int bx0 = (b % blocksX) * kBlock, by0 = (b / blocksX) * kBlock;
+            int bx1 = std::min(bx0 + kBlock, width), by1 = std::min(by0 + kBlock, height);
+            CsgProgram block;
+            std::vector<std::int32_t> stack;
+            PruneProgram(full, Centres(bx0, by0, bx1, by1), block, stack);
+            ++workers.local().counters.blocks;
+            if (block.solids.empty()) {
+                workers.local().counters.pixels +=
+                    static_cast<std::uint64_t>((bx1 - bx0) * (by1 - by0));
+                return;
+            }
+            tbb::parallel_for(tbb::blocked_range<int>(0, kTilesPerBlock * kTilesPerBlock, 1),
                               [&](const tbb::blocked_range<int>& range) {
                                   Worker& w = workers.local();
                                   for (int k = range.begin(); k < range.end(); ++k) {
-                                      int x0 = (k % tilesX) * kTile, y0 = (k / tilesX) * kTile;
-                                      RenderTile(scene, full, x0, y0, std::min(x0 + kTile, width),
-                                                 std::min(y0 + kTile, height), w, frame);
+                                      int x0 = bx0 + (k % kTilesPerBlock) * kTile;
+                                      int y0 = by0 + (k / kTilesPerBlock) * kTile;
+                                      if (x0 >= bx1 || y0 >= by1) continue;
+                                      RenderTile(scene, block, x0, y0, std::min(x0 + kTile, bx1),
+                                                 std::min(y0 + kTile, by1), w, frame);
                                   }
+                              });
+        };
+        auto run = [&] {
+            tbb::parallel_for(tbb::blocked_range<int>(0, blocksX * blocksY, 1),
+                              [&](const tbb::blocked_range<int>& range) {
+                                  for (int b = range.begin(); b < range.end(); ++b) renderBlock(b);
                               });
         };
         if (options.threads > 0) {
@@ -295,12 +366,14 @@ public:
         Counters total;
         for (const Worker& w : workers) total.Add(w.counters);
         RenderStats stats;
-        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto add = [&](const char* name, std::uint64_t v) {
             stats.counters.emplace_back(name, static_cast<double>(v));
         };
         add("solids", full.solids.size());
         add("program_nodes", full.nodes.size());
+        add("blocks_256", total.blocks);
         add("tiles_64", total.coarseTiles);
         add("tiles_16", total.tiles);
         add("pixels", total.pixels);

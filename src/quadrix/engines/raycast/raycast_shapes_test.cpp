@@ -1,9 +1,9 @@
 // Analytic scenes through the raycast engine, built by hand in device space with
 // deviceFromWorld = identity (so the Frame's world normals are device normals).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
-
-#include <gtest/gtest.h>
 
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/engines/raycast/test_scene_builder.h"
@@ -52,7 +52,8 @@ void CheckPixels(const Frame& f, const std::function<int(double, double)>& class
             if (c == 0) continue;
             bool covered = f.Covered(i, j);
             if (covered != (c > 0)) {
-                if (++mismatches < 5) ADD_FAILURE() << "pixel " << i << "," << j << " covered " << covered;
+                if (++mismatches < 5)
+                    ADD_FAILURE() << "pixel " << i << "," << j << " covered " << covered;
                 continue;
             }
             if (covered && check) check(x, y, f.Index(i, j));
@@ -150,8 +151,8 @@ TEST(RaycastShapes, DoubleConeSeenSidewaysWithItsApexOnAPixelCentre) {
     // the ray of pixel (64, 64), which only touches the cone there (not drawn).
     const double cx = 64.5, cy = 64.5, cz = 200, m = 0.75;
     TestSceneBuilder b(129, 129);
-    int cone = b.AddQuadric({-m * m, 1, 1, 0, 0, 0, m * m * cx, -cy, -cz,
-                             cy * cy + cz * cz - m * m * cx * cx});
+    int cone = b.AddQuadric(
+        {-m * m, 1, 1, 0, 0, 0, m * m * cx, -cy, -cz, cy * cy + cz * cz - m * m * cx * cx});
     int right = b.AddPlane(1, 0, 0, -(cx + 50));
     int left = b.AddPlane(-1, 0, 0, cx - 50);
     b.AddSolidOfBody(b.AddBody({{cone, false}, {right, false}, {left, false}}));
@@ -248,7 +249,8 @@ TEST(RaycastShapes, TangentSpheresMergeInAUnion) {
     TestSceneBuilder b(65, 65);
     int sa = b.AddSphere(ca, 50), sb = b.AddSphere(cb, 50);
     int cut = b.AddPlane(0, 0, -1, 420, true);
-    int ba = b.AddBody({{sa, false}}), bb = b.AddBody({{sb, false}}), bc = b.AddBody({{cut, false}});
+    int ba = b.AddBody({{sa, false}}), bb = b.AddBody({{sb, false}}),
+        bc = b.AddBody({{cut, false}});
     int u = b.AddNode(CsgOp::kUnion, {b.AddLeaf(ba), b.AddLeaf(bb)});
     b.AddSolid(b.AddNode(CsgOp::kIntersection, {u, b.AddLeaf(bc)}));
     Frame f = Render(b.scene());
@@ -265,8 +267,8 @@ TEST(RaycastShapes, TangentSpheresMergeInAUnion) {
     TestSceneBuilder s(128, 64);
     const Vec3 c1{30.5, 32.5, 300}, c2{90.5, 32.5, 300};
     int h1 = s.AddSphere(c1, 30), h2 = s.AddSphere(c2, 30);
-    int u2 = s.AddNode(CsgOp::kUnion, {s.AddLeaf(s.AddBody({{h1, false}})),
-                                       s.AddLeaf(s.AddBody({{h2, false}}))});
+    int u2 = s.AddNode(CsgOp::kUnion,
+                       {s.AddLeaf(s.AddBody({{h1, false}})), s.AddLeaf(s.AddBody({{h2, false}}))});
     s.AddSolid(u2);
     Frame g = Render(s.scene());
     EXPECT_FALSE(g.Covered(60, 32));
@@ -286,10 +288,11 @@ TEST(RaycastShapes, SphereMinusSphereShowsTheInsideBackSheet) {
     int sa = b.AddSphere(ca, 80), sb = b.AddSphere(cbv, 40);
     int ba = b.AddBody({{sa, false}}, SphereBounds(ca, 80));
     int bb = b.AddBody({{sb, false}}, SphereBounds(cbv, 40));
-    b.AddSolid(b.AddNode(CsgOp::kDifference, {b.AddLeaf(ba, SphereBounds(ca, 80)),
-                                              b.AddLeaf(bb, SphereBounds(cbv, 40))},
-                         SphereBounds(ca, 80)),
-               SphereBounds(ca, 80));
+    b.AddSolid(
+        b.AddNode(CsgOp::kDifference,
+                  {b.AddLeaf(ba, SphereBounds(ca, 80)), b.AddLeaf(bb, SphereBounds(cbv, 40))},
+                  SphereBounds(ca, 80)),
+        SphereBounds(ca, 80));
     Frame f = Render(b.scene());
     CheckPixels(
         f,
@@ -457,7 +460,7 @@ TEST(RaycastShapes, DegenerateInputsDrawNothingAndNeverNaN) {
     int huge = b.AddQuadric({1e300, 1e300, 1e300, 0, 0, 0, 0, 0, 0, 1e300});
     b.AddSolidOfBody(b.AddBody({{nan, false}}));
     b.AddSolidOfBody(b.AddBody({{nan, true}}));
-    b.AddSolidOfBody(b.AddBody({}));             // no literals: empty
+    b.AddSolidOfBody(b.AddBody({}));              // no literals: empty
     b.AddSolidOfBody(b.AddBody({{999, false}}));  // a missing half-space: empty
     b.AddSolidOfBody(b.AddBody({{huge, false}}));
     b.AddSolidOfBody(b.AddBody({{huge, true}}, Box3{}));  // empty bounds: culled

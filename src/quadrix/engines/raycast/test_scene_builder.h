@@ -19,7 +19,7 @@
 namespace quadrix::testing_util {
 
 class TestSceneBuilder {
-public:
+  public:
     TestSceneBuilder(int width, int height) {
         scene_.width = width;
         scene_.height = height;
@@ -53,7 +53,7 @@ public:
 
     // A body: the intersection of literals (half-space index, complemented).
     int AddBody(const std::vector<std::pair<int, bool>>& literals,
-             const Box3& bounds = Box3::Everything()) {
+                const Box3& bounds = Box3::Everything()) {
         FlatBody b;
         for (auto [hs, complemented] : literals) b.literals.push_back({hs, complemented});
         b.bounds = bounds;
@@ -70,7 +70,8 @@ public:
         scene_.nodes.push_back(std::move(n));
         return static_cast<int>(scene_.nodes.size() - 1);
     }
-    int AddNode(scene::CsgOp op, std::vector<int> children, const Box3& bounds = Box3::Everything()) {
+    int AddNode(scene::CsgOp op, std::vector<int> children,
+                const Box3& bounds = Box3::Everything()) {
         FlatCsgNode n;
         n.isLeaf = false;
         n.op = op;
@@ -107,7 +108,7 @@ public:
         return s;
     }
 
-private:
+  private:
     int Add(FlatHalfSpace h) {
         scene_.halfSpaces.push_back(std::move(h));
         return static_cast<int>(scene_.halfSpaces.size() - 1);
@@ -148,11 +149,10 @@ inline std::string FrameDifference(const Frame& a, const Frame& b) {
             a.surface[i] != b.surface[i] || a.body[i] != b.body[i] || a.solid[i] != b.solid[i]) {
             return "pixel (" + std::to_string(i % static_cast<std::size_t>(a.width)) + ", " +
                    std::to_string(i / static_cast<std::size_t>(a.width)) + "): depth " +
-                   std::to_string(a.depth[i]) + " vs " + std::to_string(b.depth[i]) +
-                   ", surface " + std::to_string(a.surface[i]) + " vs " +
-                   std::to_string(b.surface[i]) + ", body " + std::to_string(a.body[i]) + " vs " +
-                   std::to_string(b.body[i]) + ", solid " + std::to_string(a.solid[i]) + " vs " +
-                   std::to_string(b.solid[i]);
+                   std::to_string(a.depth[i]) + " vs " + std::to_string(b.depth[i]) + ", surface " +
+                   std::to_string(a.surface[i]) + " vs " + std::to_string(b.surface[i]) +
+                   ", body " + std::to_string(a.body[i]) + " vs " + std::to_string(b.body[i]) +
+                   ", solid " + std::to_string(a.solid[i]) + " vs " + std::to_string(b.solid[i]);
         }
     }
     return {};

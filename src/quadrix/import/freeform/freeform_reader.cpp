@@ -12,11 +12,16 @@ namespace quadrix::import {
 
 std::string_view FreeformFormatName(FreeformFormat format) {
     switch (format) {
-        case FreeformFormat::kAuto: return "auto";
-        case FreeformFormat::kNewell: return "newell";
-        case FreeformFormat::kBpt: return "bpt";
-        case FreeformFormat::kGeomview: return "geomview";
-        case FreeformFormat::kObj: return "obj";
+        case FreeformFormat::kAuto:
+            return "auto";
+        case FreeformFormat::kNewell:
+            return "newell";
+        case FreeformFormat::kBpt:
+            return "bpt";
+        case FreeformFormat::kGeomview:
+            return "geomview";
+        case FreeformFormat::kObj:
+            return "obj";
     }
     return "?";
 }
@@ -30,7 +35,8 @@ std::string Lower(std::string_view s) {
 }
 
 bool EndsWith(const std::string& s, std::string_view suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // The file name without directories and extension: the base of surface names.
@@ -87,17 +93,26 @@ std::optional<FreeformModel> ReadFreeformText(std::string_view text, const std::
     FreeformModel model;
     model.format = format;
     switch (format) {
-        case FreeformFormat::kNewell: model.surfaces = detail::ReadNewell(scanner, base); break;
-        case FreeformFormat::kBpt: model.surfaces = detail::ReadBpt(scanner, base); break;
-        case FreeformFormat::kGeomview: model.surfaces = detail::ReadGeomview(scanner, base); break;
-        case FreeformFormat::kObj: model.surfaces = detail::ReadObj(scanner, base); break;
-        case FreeformFormat::kAuto: break;
+        case FreeformFormat::kNewell:
+            model.surfaces = detail::ReadNewell(scanner, base);
+            break;
+        case FreeformFormat::kBpt:
+            model.surfaces = detail::ReadBpt(scanner, base);
+            break;
+        case FreeformFormat::kGeomview:
+            model.surfaces = detail::ReadGeomview(scanner, base);
+            break;
+        case FreeformFormat::kObj:
+            model.surfaces = detail::ReadObj(scanner, base);
+            break;
+        case FreeformFormat::kAuto:
+            break;
     }
     if (diagnostics.ErrorCount() > errorsBefore) return std::nullopt;
     if (model.surfaces.empty()) {
-        diagnostics.Error(SourceLoc{std::make_shared<const std::string>(fileName), 0, 0},
-                          "no freeform surface found (read as " +
-                              std::string(FreeformFormatName(format)) + ")");
+        diagnostics.Error(
+            SourceLoc{std::make_shared<const std::string>(fileName), 0, 0},
+            "no freeform surface found (read as " + std::string(FreeformFormatName(format)) + ")");
         return std::nullopt;
     }
     return model;

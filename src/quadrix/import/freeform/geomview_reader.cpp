@@ -12,9 +12,9 @@ namespace {
 
 struct Header {
     int degreeU = 3, degreeV = 3;
-    int coords = 3;         // 3, or 4 for homogeneous x y z w
-    bool st = false;        // 4 (s, t) pairs follow each patch
-    bool colors = false;    // 4 RGBA colours follow each patch
+    int coords = 3;       // 3, or 4 for homogeneous x y z w
+    bool st = false;      // 4 (s, t) pairs follow each patch
+    bool colors = false;  // 4 RGBA colours follow each patch
 };
 
 bool IsDigit16(char c) { return c >= '1' && c <= '6'; }
@@ -98,8 +98,10 @@ std::vector<freeform::Surface> ReadGeomview(TextScanner& s, const std::string& b
             s.Next(t);
             std::optional<Header> h = ParseHeader(t.text);
             if (!h) {
-                s.Error(t, "expected a Geomview patch header ([ST]BBP or [C]BEZ<u><v><3|4>[_ST]) "
-                           "or patch data, found '" + std::string(t.text) + "'");
+                s.Error(t,
+                        "expected a Geomview patch header ([ST]BBP or [C]BEZ<u><v><3|4>[_ST]) "
+                        "or patch data, found '" +
+                            std::string(t.text) + "'");
                 return out;
             }
             header = h;
@@ -128,8 +130,8 @@ std::vector<freeform::Surface> ReadGeomview(TextScanner& s, const std::string& b
         ScanToken first = s.Last();
         if (header->st && !SkipNumbers(s, 8, "a texture coordinate")) return out;
         if (header->colors && !SkipNumbers(s, 16, "a colour component")) return out;
-        freeform::BezierSurface patch(header->coords == 4 ? 4 : 3, header->degreeU,
-                                      header->degreeV, std::move(c));
+        freeform::BezierSurface patch(header->coords == 4 ? 4 : 3, header->degreeU, header->degreeV,
+                                      std::move(c));
         if (header->coords == 4) {
             bool allZero = true;
             for (std::size_t k = 3; k < patch.Coefficients().size(); k += 4)

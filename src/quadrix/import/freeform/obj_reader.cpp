@@ -33,7 +33,7 @@ struct PendingSurface {
 };
 
 class ObjReader {
-public:
+  public:
     ObjReader(TextScanner& s, std::string baseName) : s_(s), baseName_(std::move(baseName)) {}
 
     std::vector<freeform::Surface> Read() {
@@ -43,7 +43,7 @@ public:
         return std::move(out_);
     }
 
-private:
+  private:
     void Statement(const std::vector<ScanToken>& line) {
         std::string_view kw = line[0].text;
         if (kw == "v") return Vertex(line);
@@ -58,8 +58,9 @@ private:
                 s_.Error(line[0], "'" + std::string(kw) + "' outside a surf ... end block");
             } else if (!pending_->trimWarned) {
                 pending_->trimWarned = true;
-                s_.Warning(line[0], "trimming and special curves are not supported; the surface "
-                                    "is drawn untrimmed");
+                s_.Warning(line[0],
+                           "trimming and special curves are not supported; the surface "
+                           "is drawn untrimmed");
             }
             return;
         }
@@ -77,15 +78,16 @@ private:
             return;
         }
         if (kw == "bmat" || kw == "step") {
-            WarnOnce(line[0], "'" + std::string(kw) + "' is only used by basis-matrix and cardinal "
-                              "curves, which are not supported; ignored");
+            WarnOnce(line[0], "'" + std::string(kw) +
+                                  "' is only used by basis-matrix and cardinal "
+                                  "curves, which are not supported; ignored");
             return;
         }
         // Display and grouping attributes that do not change the geometry.
         static const std::set<std::string_view> kIgnored = {
-            "s",      "mg",        "usemtl",    "mtllib",  "lod",     "shadow_obj", "trace_obj",
-            "bevel",  "c_interp",  "d_interp",  "ctech",   "stech",   "con",        "maplib",
-            "usemap", "call",      "csh"};
+            "s",         "mg",     "usemtl",   "mtllib",   "lod",   "shadow_obj",
+            "trace_obj", "bevel",  "c_interp", "d_interp", "ctech", "stech",
+            "con",       "maplib", "usemap",   "call",     "csh"};
         if (kIgnored.count(kw)) return;
         WarnOnce(line[0], "unknown OBJ statement '" + std::string(kw) + "' is ignored");
     }
@@ -192,8 +194,8 @@ private:
         }
         double range[4];
         for (int k = 0; k < 4; ++k) {
-            std::optional<double> x = s_.Number(line[static_cast<std::size_t>(k + 1)],
-                                                "a parameter range value");
+            std::optional<double> x =
+                s_.Number(line[static_cast<std::size_t>(k + 1)], "a parameter range value");
             if (!x) return;
             range[k] = *x;
         }
@@ -322,8 +324,9 @@ private:
             }
         }
         if (nonPositive)
-            s_.Warning(p.at, "a control point has a weight <= 0; the surface may pass through "
-                             "infinity there");
+            s_.Warning(p.at,
+                       "a control point has a weight <= 0; the surface may pass through "
+                       "infinity there");
         freeform::BSplineSurface net(p.rational ? 4 : 3, p.degreeU, p.degreeV, *ku, *kv,
                                      std::move(c));
         double u0 = net.U0(), u1 = net.U1(), v0 = net.V0(), v1 = net.V1();

@@ -61,7 +61,8 @@ std::vector<freeform::Surface> ReadNewell(TextScanner& s, const std::string& bas
                              ": expected 16 vertex indices");
                 return out;
             }
-            std::optional<long long> i = s.Integer(tokens[static_cast<std::size_t>(k)], "vertex index");
+            std::optional<long long> i =
+                s.Integer(tokens[static_cast<std::size_t>(k)], "vertex index");
             if (!i) return out;
             idx[static_cast<std::size_t>(k)] = *i;
         }
@@ -93,8 +94,8 @@ std::vector<freeform::Surface> ReadNewell(TextScanner& s, const std::string& bas
             cp.push_back(points[static_cast<std::size_t>(i - 1)]);
         }
         if (ok)
-            out.push_back(freeform::Surface::FromBezier(freeform::BezierSurface::FromPoints(3, 3, cp),
-                                                        SurfaceName(baseName, p)));
+            out.push_back(freeform::Surface::FromBezier(
+                freeform::BezierSurface::FromPoints(3, 3, cp), SurfaceName(baseName, p)));
     }
     return out;
 }
@@ -106,8 +107,8 @@ std::vector<freeform::Surface> ReadBpt(TextScanner& s, const std::string& baseNa
     for (long long p = 0; p < *patches; ++p) {
         ScanToken at;
         if (!s.Peek(at)) {
-            s.ErrorAtEnd("unexpected end of file: expected patch " + std::to_string(p + 1) + " of " +
-                         std::to_string(*patches));
+            s.ErrorAtEnd("unexpected end of file: expected patch " + std::to_string(p + 1) +
+                         " of " + std::to_string(*patches));
             return out;
         }
         int degree[2];

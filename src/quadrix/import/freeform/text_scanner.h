@@ -22,7 +22,7 @@ struct ScanToken {
 };
 
 class TextScanner {
-public:
+  public:
     // `commasSeparate`: commas count as white space (the Newell format).
     TextScanner(std::string_view text, std::string fileName, Diagnostics& diagnostics,
                 bool commasSeparate);
@@ -52,7 +52,7 @@ public:
     // The last token returned (for messages about what follows it).
     const ScanToken& Last() const { return last_; }
 
-private:
+  private:
     void SkipSpaceAndComments(bool acrossLines);
     bool IsSeparator(char c) const;
 

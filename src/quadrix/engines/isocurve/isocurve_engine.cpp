@@ -1,0 +1,53 @@
+#include "quadrix/engines/isocurve/isocurve_engine.h"
+
+#include "quadrix/engines/isocurve/compare.h"
+
+namespace quadrix::isocurve {
+
+IsocurveEngine::IsocurveEngine(std::unique_ptr<Engine> quadrics,
+                               std::vector<freeform::Surface> surfaces,
+                               std::vector<std::int32_t> bodyIds)
+    : quadrics_(std::move(quadrics)),
+      surfaces_(std::move(surfaces)),
+      bodyIds_(std::move(bodyIds)) {}
+
+std::string IsocurveEngine::ValidateOptions(const RenderOptions& options) const {
+    IsocurveOptions o;
+    return ParseIsocurveOptions(options.engineOptions, o);
+}
+
+RenderStats IsocurveEngine::Render(const FlatScene& scene, const RenderOptions& options,
+                                   Frame& frame) {
+    RenderStats stats;
+    IsocurveOptions o;
+    std::string error = ParseIsocurveOptions(options.engineOptions, o);
+    if (!error.empty()) {
+        // ValidateOptions reports this before any work; never throw from Render.
+        stats.report = error + "\n";
+        frame.Reset(scene.width, scene.height);
+        return stats;
+    }
+    if (quadrics_ && !scene.solids.empty()) {
+        RenderOptions inner;
+        inner.threads = options.threads;
+        stats = quadrics_->Render(scene, inner, frame);
+    } else {
+        frame.Reset(scene.width, scene.height);
+    }
+    std::vector<FreeformDrawable> drawables;
+    for (std::size_t k = 0; k < surfaces_.size(); ++k) {
+        FrameIds ids;
+        ids.surface = static_cast<std::int32_t>(scene.halfSpaces.size() + k);
+        ids.body = k < bodyIds_.size() ? bodyIds_[k] : Frame::kNone;
+        ids.solid = Frame::kNone;
+        drawables.push_back({&surfaces_[k], ids});
+    }
+    IsocurveStats st = RenderFreeform(drawables, scene.projection, o, frame);
+    FillRenderStats(st, stats);
+    if (o.compare)
+        stats.report +=
+            CompareCoverage(drawables, scene.projection, o, scene.width, scene.height).Format();
+    return stats;
+}
+
+}  // namespace quadrix::isocurve

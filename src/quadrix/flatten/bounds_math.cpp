@@ -1,0 +1,387 @@
+// Inside functions, their evaluation and the analytic boxes (stage (a) of bounds.h).
+#include <algorithm>
+#include <cmath>
+
+#include "quadrix/flatten/bounds_internal.h"
+
+namespace quadrix::bounds_detail {
+
+void SymmetricEigen(const double a[3][3], double vals[3], double vecs[3][3], double& offDiagonal) {
+    double m[3][3], v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    double frob = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            m[i][j] = a[i][j];
+            frob += m[i][j] * m[i][j];
+        }
+    for (int sweep = 0; sweep < 12 && frob > 0; ++sweep) {
+        double off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
+        if (off <= 1e-34 * frob) break;
+        for (int p = 0; p < 2; ++p)
+            for (int q = p + 1; q < 3; ++q) {
+                if (m[p][q] == 0) continue;
+                // Jacobi rotation annihilating m[p][q] (Golub & Van Loan, §8.5).
+                double theta = (m[q][q] - m[p][p]) / (2 * m[p][q]);
+                double t =
+                    (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
+                double c = 1 / std::sqrt(t * t + 1), s = t * c;
+                for (int r = 0; r < 3; ++r) {
+                    double mrp = m[r][p], mrq = m[r][q];
+                    m[r][p] = c * mrp - s * mrq;
+                    m[r][q] = s * mrp + c * mrq;
+                }
+                for (int r = 0; r < 3; ++r) {
+                    double mpr = m[p][r], mqr = m[q][r];
+                    m[p][r] = c * mpr - s * mqr;
+                    m[q][r] = s * mpr + c * mqr;
+                }
+                for (int r = 0; r < 3; ++r) {
+                    double vrp = v[r][p], vrq = v[r][q];
+                    v[r][p] = c * vrp - s * vrq;
+                    v[r][q] = s * vrp + c * vrq;
+                }
+            }
+    }
+    offDiagonal = 0;
+    for (int i = 0; i < 3; ++i) {
+        double radius = 0;
+        for (int j = 0; j < 3; ++j)
+            if (j != i) radius += std::fabs(m[i][j]);
+        offDiagonal = std::fmax(offDiagonal, radius);
+    }
+    int order[3] = {0, 1, 2};
+    std::sort(order, order + 3, [&](int x, int y) { return m[x][x] < m[y][y]; });
+    for (int i = 0; i < 3; ++i) {
+        vals[i] = m[order[i]][order[i]];
+        for (int r = 0; r < 3; ++r) vecs[r][i] = v[r][order[i]];
+    }
+}
+
+namespace {
+
+// Eigenvalue bounds widened by the Gershgorin remainder and a rounding allowance relative to
+// ‖A‖ (Jacobi is backward stable: a few ulps of ‖A‖ per sweep).
+void ComputeEigenBounds(InsideFn& f) {
+    double frob = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) frob += f.a[i][j] * f.a[i][j];
+    frob = std::sqrt(frob);
+    if (frob == 0) {
+        f.lamMin = f.lamMax = 0;
+        return;
+    }
+    if (!std::isfinite(frob)) {
+        f.lamMin = -kInf;
+        f.lamMax = kInf;
+        return;
+    }
+    double vals[3], vecs[3][3], off;
+    SymmetricEigen(f.a, vals, vecs, off);
+    double safety = 64 * kEps * frob + off;
+    f.lamMin = vals[0] - safety;
+    f.lamMax = vals[2] + safety;
+}
+
+}  // namespace
+
+InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented) {
+    InsideFn f;
+    double sign = complemented ? -1.0 : 1.0;
+    if (hs.isPlane) {
+        const Plane& p = hs.plane;
+        double s = std::fmax(std::fmax(std::fabs(p.a), std::fabs(p.b)),
+                             std::fmax(std::fabs(p.c), std::fabs(p.d)));
+        if (!(s > 0) || !std::isfinite(s)) s = 1;
+        s = sign / s;
+        f.isPlane = true;
+        f.b[0] = 0.5 * (p.a * s);
+        f.b[1] = 0.5 * (p.b * s);
+        f.b[2] = 0.5 * (p.c * s);
+        f.k = p.d * s;
+        return f;
+    }
+    const Quadric& q = hs.quadric;
+    double s = q.MaxAbs();
+    if (!(s > 0) || !std::isfinite(s)) s = 1;
+    s = sign / s;
+    f.isPlane = false;
+    f.a[0][0] = q.A() * s;
+    f.a[1][1] = q.B() * s;
+    f.a[2][2] = q.C() * s;
+    f.a[0][1] = f.a[1][0] = q.D() * s;
+    f.a[1][2] = f.a[2][1] = q.E() * s;
+    f.a[0][2] = f.a[2][0] = q.F() * s;
+    f.b[0] = q.G() * s;
+    f.b[1] = q.H() * s;
+    f.b[2] = q.J() * s;
+    f.k = q.K() * s;
+    ComputeEigenBounds(f);
+    return f;
+}
+
+double EvaluateAt(const InsideFn& f, const double p[3]) {
+    if (f.isPlane) return f.k + 2 * (f.b[0] * p[0] + f.b[1] * p[1] + f.b[2] * p[2]);
+    double v = f.k;
+    for (int i = 0; i < 3; ++i)
+        v += p[i] * (f.a[i][0] * p[0] + f.a[i][1] * p[1] + f.a[i][2] * p[2] + 2 * f.b[i]);
+    return v;
+}
+
+Local EvaluateLocal(const InsideFn& f, const double c[3]) {
+    Local l;
+    if (f.isPlane) {
+        l.v = f.k + 2 * (f.b[0] * c[0] + f.b[1] * c[1] + f.b[2] * c[2]);
+        l.mag = std::fabs(f.k) + 2 * (std::fabs(f.b[0] * c[0]) + std::fabs(f.b[1] * c[1]) +
+                                      std::fabs(f.b[2] * c[2]));
+        for (int i = 0; i < 3; ++i) l.g[i] = 2 * f.b[i];
+        return l;
+    }
+    l.v = f.k;
+    l.mag = std::fabs(f.k);
+    for (int i = 0; i < 3; ++i) {
+        double ac = f.a[i][0] * c[0] + f.a[i][1] * c[1] + f.a[i][2] * c[2];
+        l.v += c[i] * (ac + 2 * f.b[i]);
+        l.g[i] = 2 * (ac + f.b[i]);
+        for (int j = 0; j < 3; ++j) l.mag += std::fabs(f.a[i][j] * c[i] * c[j]);
+        l.mag += 2 * std::fabs(f.b[i] * c[i]);
+    }
+    return l;
+}
+
+// The centred form over |d_i| <= h_i (bounds.h): f(c+d) = f(c) + g·d + dᵀAd with the tighter of
+// the entrywise and the Rayleigh bounds for dᵀAd. `slack` (optional) receives each axis' share
+// of what lowers the lower bound, used to choose the split axis.
+Range RangeFromLocal(const Local& l, const double a[3][3], double lamMin, double lamMax,
+                     const double h[3], double* slack) {
+    double lini[3], lin = 0;
+    for (int i = 0; i < 3; ++i) {
+        lini[i] = std::fabs(l.g[i]) * h[i];
+        lin += lini[i];
+    }
+    double qloE = 0, qhiE = 0;
+    for (int i = 0; i < 3; ++i) {
+        double t = a[i][i] * h[i] * h[i];
+        if (t < 0)
+            qloE += t;
+        else
+            qhiE += t;
+        for (int j = i + 1; j < 3; ++j) {
+            double cross = 2 * std::fabs(a[i][j]) * h[i] * h[j];
+            qloE -= cross;
+            qhiE += cross;
+        }
+    }
+    double hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    double qlo = std::fmax(qloE, std::fmin(0.0, lamMin) * hh);
+    double qhi = std::fmin(qhiE, std::fmax(0.0, lamMax) * hh);
+    if (slack) {
+        for (int i = 0; i < 3; ++i)
+            slack[i] = lini[i] + (hh > 0 && qlo < 0 ? -qlo * (h[i] * h[i] / hh) : 0.0);
+    }
+    double mag = l.mag + lin + std::fabs(qlo) + std::fabs(qhi);
+    return {l.v - lin + qlo, l.v + lin + qhi, 32 * kEps * mag};
+}
+
+bool Cholesky(const InsideFn& f, const int* idx, int m, double l[3][3], double& condition,
+              double maxCondition) {
+    double minPivot = kInf, maxDiag = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) l[i][j] = 0;
+    for (int j = 0; j < m; ++j) {
+        maxDiag = std::fmax(maxDiag, std::fabs(f.a[idx[j]][idx[j]]));
+        double s = f.a[idx[j]][idx[j]];
+        for (int k = 0; k < j; ++k) s -= l[j][k] * l[j][k];
+        if (!(s > 0) || !std::isfinite(s)) return false;
+        minPivot = std::fmin(minPivot, s);
+        l[j][j] = std::sqrt(s);
+        for (int i = j + 1; i < m; ++i) {
+            double t = f.a[idx[i]][idx[j]];
+            for (int k = 0; k < j; ++k) t -= l[i][k] * l[j][k];
+            l[i][j] = t / l[j][j];
+        }
+    }
+    condition = maxDiag / minPivot;
+    return condition < maxCondition;
+}
+
+void CholeskySolve(const double l[3][3], int m, const double* rhs, double* x) {
+    double y[3];
+    for (int i = 0; i < m; ++i) {
+        double s = rhs[i];
+        for (int k = 0; k < i; ++k) s -= l[i][k] * y[k];
+        y[i] = s / l[i][i];
+    }
+    for (int i = m - 1; i >= 0; --i) {
+        double s = y[i];
+        for (int k = i + 1; k < m; ++k) s -= l[k][i] * x[k];
+        x[i] = s / l[i][i];
+    }
+}
+
+Box3 AnalyticPlaneBox(const InsideFn& f) {
+    int nonZero = 0, axis = -1;
+    for (int i = 0; i < 3; ++i)
+        if (f.b[i] != 0) {
+            ++nonZero;
+            axis = i;
+        }
+    if (nonZero == 0) return f.k <= 0 ? Box3::Everything() : Box3{};
+    Box3 box = Box3::Everything();
+    if (nonZero == 1) {
+        double bound = -f.k / (2 * f.b[axis]);
+        if (!std::isfinite(bound)) return box;
+        // One rounded division: step one ulp outward to stay conservative.
+        if (f.b[axis] > 0)
+            box.hi[axis] = std::nextafter(bound, kInf);
+        else
+            box.lo[axis] = std::nextafter(bound, -kInf);
+    }
+    return box;
+}
+
+// Stage (a) for one inside function. `centre` receives the ellipsoid's centre (0 on free axes)
+// when there is one: a good seed for the inner box.
+Box3 AnalyticBox(const InsideFn& f, Vec3* centre, bool* hasCentre) {
+    *hasCentre = false;
+    if (f.isPlane) return AnalyticPlaneBox(f);
+    // Axes the quadric does not depend on are free (an elliptic cylinder along them).
+    int idx[3], m = 0;
+    for (int i = 0; i < 3; ++i) {
+        bool freeAxis = f.b[i] == 0 && f.a[i][0] == 0 && f.a[i][1] == 0 && f.a[i][2] == 0;
+        if (!freeAxis) idx[m++] = i;
+    }
+    if (m == 0) return f.k <= 0 ? Box3::Everything() : Box3{};
+    double l[3][3], condition = 0;
+    if (!Cholesky(f, idx, m, l, condition)) return Box3::Everything();
+    double rhs[3], cs[3];
+    for (int i = 0; i < m; ++i) rhs[i] = -f.b[idx[i]];
+    CholeskySolve(l, m, rhs, cs);
+    double p[3] = {0, 0, 0};
+    for (int i = 0; i < m; ++i) p[idx[i]] = cs[i];
+    // R = bᵀA⁻¹b - k computed as -f(c̃) at the computed centre c̃: f is stationary at the true
+    // centre, so the centre's error (relative cond·eps) enters R only to second order, and the
+    // cancellation between bᵀA⁻¹b and k (a small ellipsoid far from the origin) costs only the
+    // rounding of one evaluation. The centre's own error is covered by the padding below.
+    Local at = EvaluateLocal(f, p);
+    double rErr = 32 * kEps * at.mag;
+    double r = -at.v;
+    if (r < -rErr) return Box3{};  // provably empty
+    r = std::fmax(r, 0.0) + rErr;
+    double rel = 64 * kEps * condition;
+    Box3 box = Box3::Everything();
+    for (int i = 0; i < m; ++i) {
+        double e[3] = {0, 0, 0}, col[3];
+        e[i] = 1;
+        CholeskySolve(l, m, e, col);  // column i of A⁻¹ (restricted to the bounded axes)
+        double half = std::sqrt(r * std::fmax(col[i], 0.0)) * (1 + rel);
+        double pad = rel * (std::fabs(cs[i]) + half) + 1e-300;
+        box.lo[idx[i]] = cs[i] - half - pad;
+        box.hi[idx[i]] = cs[i] + half + pad;
+    }
+    *centre = Vec3{p[0], p[1], p[2]};
+    *hasCentre = true;
+    return box;
+}
+
+// Solves the k×k system m x = r (k <= 3) by Gaussian elimination with partial pivoting; false
+// when (nearly) singular.
+bool SolveSmall(int k, double m[3][3], double r[3], double x[3]) {
+    for (int col = 0; col < k; ++col) {
+        int piv = col;
+        for (int i = col + 1; i < k; ++i)
+            if (std::fabs(m[i][col]) > std::fabs(m[piv][col])) piv = i;
+        if (!(std::fabs(m[piv][col]) > 1e-12)) return false;
+        for (int j = 0; j < k; ++j) std::swap(m[piv][j], m[col][j]);
+        std::swap(r[piv], r[col]);
+        for (int i = col + 1; i < k; ++i) {
+            double f = m[i][col] / m[col][col];
+            for (int j = col; j < k; ++j) m[i][j] -= f * m[col][j];
+            r[i] -= f * r[col];
+        }
+    }
+    for (int i = k - 1; i >= 0; --i) {
+        double s = r[i];
+        for (int j = i + 1; j < k; ++j) s -= m[i][j] * x[j];
+        x[i] = s / m[i][i];
+    }
+    return true;
+}
+
+// Non-negative multipliers λ (at most 3 non-zero, by Carathéodory in R³) minimising
+// |Σ λ_i g_i - t| over the given gradients (n <= kMaxSurrogate), by enumerating supports.
+// Returns false when no support of at least minSupport members has positive multipliers.
+bool NonNegativeCombination(int n, const double g[][3], const double t[3], double lambda[],
+                            int minSupport) {
+    double bestResidual = kInf;
+    bool found = false;
+    for (int subset = 1; subset < (1 << n); ++subset) {
+        int members[3], k = 0;
+        bool tooMany = false;
+        for (int i = 0; i < n; ++i)
+            if (subset >> i & 1) {
+                if (k == 3) {
+                    tooMany = true;
+                    break;
+                }
+                members[k++] = i;
+            }
+        if (tooMany || k < minSupport) continue;
+        // Normal equations GᵀG x = Gᵀt over the support.
+        double m[3][3], r[3], x[3];
+        for (int i = 0; i < k; ++i) {
+            const double* gi = g[members[i]];
+            r[i] = gi[0] * t[0] + gi[1] * t[1] + gi[2] * t[2];
+            for (int j = 0; j < k; ++j) {
+                const double* gj = g[members[j]];
+                m[i][j] = gi[0] * gj[0] + gi[1] * gj[1] + gi[2] * gj[2];
+            }
+        }
+        if (!SolveSmall(k, m, r, x)) continue;
+        bool positive = true;
+        for (int i = 0; i < k; ++i) positive &= x[i] > 0;
+        if (!positive) continue;
+        double res[3] = {-t[0], -t[1], -t[2]};
+        for (int i = 0; i < k; ++i)
+            for (int j = 0; j < 3; ++j) res[j] += x[i] * g[members[i]][j];
+        double residual = res[0] * res[0] + res[1] * res[1] + res[2] * res[2];
+        if (residual < bestResidual) {
+            bestResidual = residual;
+            for (int i = 0; i < n; ++i) lambda[i] = 0;
+            for (int i = 0; i < k; ++i) lambda[members[i]] = x[i];
+            found = true;
+        }
+    }
+    return found;
+}
+
+Nappe DetectNappe(const InsideFn& f) {
+    Nappe n;
+    if (f.isPlane) return n;
+    double vals[3], vecs[3][3], off;
+    SymmetricEigen(f.a, vals, vecs, off);
+    double big = std::fmax(std::fabs(vals[0]), std::fabs(vals[2]));
+    // Exactly one clearly negative eigenvalue, the others clearly positive.
+    if (!(big > 0) || !(vals[0] < -1e-9 * big) || !(vals[1] > 1e-9 * big)) return n;
+    double m[3][3], r[3], apex[3];
+    for (int i = 0; i < 3; ++i) {
+        r[i] = -f.b[i];
+        for (int j = 0; j < 3; ++j) m[i][j] = f.a[i][j];
+    }
+    if (!SolveSmall(3, m, r, apex)) return n;
+    Local at = EvaluateLocal(f, apex);
+    // R = -f(apex) <= 0 up to rounding: a cone (0) or a hyperboloid of two sheets (< 0).
+    double rValue = -at.v, tolerance = 64 * kEps * at.mag;
+    if (rValue > tolerance) return n;  // one sheet: not convex
+    n.ok = true;
+    n.apex = Vec3{apex[0], apex[1], apex[2]};
+    n.axis = Normalize(Vec3{vecs[0][0], vecs[1][0], vecs[2][0]});
+    n.rPlus = std::fmax(rValue, 0.0) + tolerance;
+    n.beta = -vals[0];
+    for (int i = 0; i < 3; ++i) {
+        n.vals[i] = vals[i];
+        n.vecs[i] = Normalize(Vec3{vecs[0][i], vecs[1][i], vecs[2][i]});
+    }
+    return n;
+}
+
+}  // namespace quadrix::bounds_detail

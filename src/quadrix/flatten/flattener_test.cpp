@@ -1,0 +1,502 @@
+// Tests of the Flattener (flattener.h, view_setup.h): view orientation and defaults, the window
+// fit, perspective, clipping planes, culling and user errors. Scenes are built programmatically.
+#include "quadrix/flatten/flattener.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "quadrix/flatten/bounds.h"
+#include "quadrix/flatten/flatten_test_util.h"
+
+namespace quadrix {
+namespace {
+
+using namespace flatten_test;
+
+struct Result {
+    std::optional<FlatScene> flat;
+    Diagnostics diags;
+    std::string Messages() const {
+        std::string s;
+        for (const Diagnostic& d : diags.Items()) s += d.Format(false) + "\n";
+        return s;
+    }
+};
+
+Result RunFlatten(const scene::Scene& s, int w = 400, int h = 400, std::string viewName = {}) {
+    Result r;
+    FlattenOptions o;
+    o.width = w;
+    o.height = h;
+    o.viewName = std::move(viewName);
+    r.flat = Flatten(s, o, r.diags);
+    return r;
+}
+
+scene::View MakeView(const std::string& id) {
+    scene::View v;
+    v.id = id;
+    v.loc = Loc(9, 1);
+    return v;
+}
+
+scene::Scene OneSphere(const Vec3& c = {0, 0, 0}, double r = 1) {
+    scene::Scene s;
+    int q = AddSphere(s.top, "s", c, r);
+    AddBody(s.top, "ball", {q}, std::nullopt, 1);
+    return s;
+}
+
+// The quadric of a body's first literal, normalised so that its x² coefficient is 1: for a
+// sphere imaged by a similarity it reads (x-cx)² + (y-cy)² + (z-cz)² - R² in device pixels.
+double NormalisedValue(const FlatScene& f, int body, const Vec3& p) {
+    const Quadric& q = f.halfSpaces[f.bodies[body].literals[0].halfSpace].quadric;
+    return q.Evaluate(p) / q.A();
+}
+
+TEST(FlattenView, DefaultViewOrientation) {
+    Result r = RunFlatten(OneSphere());
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const Transform& m = r.flat->projection.deviceFromWorld;
+    Vec3 o = m.MapPoint({0, 0, 0}), x = m.MapPoint({1, 0, 0}), y = m.MapPoint({0, 1, 0}),
+         z = m.MapPoint({0, 0, 1});
+    EXPECT_GT(x.x - o.x, 0);  // world +x to the right
+    EXPECT_LT(y.y - o.y, 0);  // world +y up (smaller rows)
+    EXPECT_GT(z.z - o.z, 0);  // world +z away: the eye is on the -z side
+    EXPECT_FALSE(r.flat->projection.perspective);
+    Vec3 toward = r.flat->projection.towardViewer;
+    Vec3 expected = Normalize({0.3, 0.3, -1});
+    EXPECT_NEAR(Length(toward - expected), 0, 1e-15);
+    EXPECT_EQ(r.flat->viewName, "default");
+    // The default light is added when there is no parallel light.
+    ASSERT_EQ(r.flat->lights.size(), 1u);
+    EXPECT_TRUE(r.flat->lights[0].isDefault);
+}
+
+TEST(FlattenView, DopZeroOneOneLooksDownFromAbove) {
+    scene::Scene s = OneSphere();
+    scene::View v = MakeView("top_down");
+    v.dop = Vec3{0, 1, 1};
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const Transform& m = r.flat->projection.deviceFromWorld;
+    // A point above the scene is nearer the viewer than one below.
+    EXPECT_LT(m.MapPoint({0, 1, 0}).z, m.MapPoint({0, -1, 0}).z);
+    EXPECT_NEAR(Length(r.flat->projection.towardViewer - Normalize({0, 1, 1})), 0, 1e-15);
+    // Rays are along +z in device space: world points along -dop keep x and y.
+    Vec3 a = m.MapPoint({0.2, 0.3, 0.4}), b = m.MapPoint(Vec3{0.2, 0.3, 0.4} - Vec3{0, 1, 1});
+    EXPECT_NEAR(a.x, b.x, 1e-9);
+    EXPECT_NEAR(a.y, b.y, 1e-9);
+    EXPECT_GT(b.z, a.z);
+}
+
+TEST(FlattenView, ObliqueParallelProjectionShearsRaysOntoZ) {
+    scene::Scene s = OneSphere();
+    scene::View v = MakeView("oblique");
+    v.vpn = Vec3{0, 0, 1};
+    v.dop = Vec3{0.5, -0.25, -1};  // toward the viewer, not along -vpn
+    v.whh = v.whw = 2;
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const Transform& m = r.flat->projection.deviceFromWorld;
+    Vec3 p{0.3, -0.2, 0.1};
+    Vec3 a = m.MapPoint(p), b = m.MapPoint(p - Vec3{0.5, -0.25, -1} * 3);
+    EXPECT_NEAR(a.x, b.x, 1e-9);
+    EXPECT_NEAR(a.y, b.y, 1e-9);
+    EXPECT_GT(b.z, a.z);
+    // Points of the view plane (z = 0 through vrp) are not sheared: exact window scale.
+    Vec3 c = m.MapPoint({2, 0, 0});
+    EXPECT_NEAR(c.x, 400, 1e-9);
+    EXPECT_NEAR(c.y, 200, 1e-9);
+}
+
+TEST(FlattenFit, ParallelAutoFitCentresASphereWithTheMargin) {
+    scene::Scene s = OneSphere({3, -2, 5}, 1);
+    scene::View v = MakeView("front");
+    v.dop = Vec3{0, 0, -1};
+    s.views.push_back(v);
+    for (auto [w, h] : {std::pair{400, 400}, std::pair{400, 200}}) {
+        Result r = RunFlatten(s, w, h);
+        ASSERT_TRUE(r.flat) << r.Messages();
+        // Default margin 2% per side: the diameter fills 96% of the smaller side.
+        double radius = 0.96 * std::min(w, h) / 2;
+        const Box3& b = r.flat->solids[0].bounds;
+        // Analytic sphere bounds: exact up to a 1e-10 relative pad.
+        EXPECT_NEAR(b.lo.x, w / 2.0 - radius, 1e-7);
+        EXPECT_NEAR(b.hi.x, w / 2.0 + radius, 1e-7);
+        EXPECT_NEAR(b.lo.y, h / 2.0 - radius, 1e-7);
+        EXPECT_NEAR(b.hi.y, h / 2.0 + radius, 1e-7);
+        // The device quadric is a sphere of that radius around the image centre (the parallel
+        // device map is a similarity); its centre's depth is k·5.
+        double k = radius, zc = 5 * k;
+        EXPECT_NEAR(NormalisedValue(*r.flat, 0, {w / 2.0, h / 2.0, zc}), -radius * radius, 1e-6);
+        EXPECT_NEAR(NormalisedValue(*r.flat, 0, {w / 2.0 + radius, h / 2.0, zc}), 0, 1e-6);
+        EXPECT_NEAR(NormalisedValue(*r.flat, 0, {w / 2.0, h / 2.0 - radius, zc}), 0, 1e-6);
+        EXPECT_GT(r.flat->depthTolerance, 0);
+        EXPECT_LT(r.flat->depthTolerance, 1e-5);
+    }
+}
+
+TEST(FlattenFit, WindowGivesTheExactPixelScale) {
+    scene::Scene s = OneSphere();
+    scene::View v = MakeView("window");
+    v.dop = Vec3{0, 0, -1};
+    v.whh = v.whw = 2;
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    // 400 px over 4 units: the unit sphere has radius 100 px.
+    EXPECT_NEAR(NormalisedValue(*r.flat, 0, {300, 200, 0}), 0, 1e-9);
+    EXPECT_NEAR(NormalisedValue(*r.flat, 0, {200, 100, 0}), 0, 1e-9);
+    EXPECT_NEAR(NormalisedValue(*r.flat, 0, {200, 200, 100}), 0, 1e-9);
+    EXPECT_NEAR(r.flat->solids[0].bounds.lo.x, 100, 1e-7);
+    EXPECT_NEAR(r.flat->solids[0].bounds.hi.y, 300, 1e-7);
+    // A window on one axis only: that axis fixes the scale when it is the smaller one.
+    s.views.back().whw.reset();
+    s.views.back().whh = 4;  // 400 px over 8 units: 50 px per unit (the fit would give 192)
+    Result r2 = RunFlatten(s);
+    ASSERT_TRUE(r2.flat) << r2.Messages();
+    EXPECT_NEAR(NormalisedValue(*r2.flat, 0, {250, 200, 0}), 0, 1e-9);
+}
+
+TEST(FlattenPerspective, SpheresShrinkAsOneOverDistanceAndBehindTheEyeIsRemoved) {
+    scene::Scene s;
+    const double distances[] = {10, 20, 40};
+    for (double d : distances) {
+        int q = AddSphere(s.top, "s", {0, 0, d}, 1);
+        AddBody(s.top, "ball", {q});
+    }
+    int behind = AddSphere(s.top, "back", {0, 0, -10}, 1);
+    AddBody(s.top, "behind", {behind});
+    scene::View v = MakeView("persp");
+    v.vrp = Vec3{0, 0, 1};
+    v.cop = Vec3{0, 0, 0};
+    v.whh = v.whw = 0.25;
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const FlatScene& f = *r.flat;
+    EXPECT_TRUE(f.projection.perspective);
+    ASSERT_EQ(f.solids.size(), 3u);  // the sphere behind the eye is culled
+    // Near and far clip planes, shared by every body.
+    int clips = 0;
+    for (const FlatHalfSpace& h : f.halfSpaces) clips += h.isClip && h.transparent;
+    EXPECT_EQ(clips, 2);
+    const double k = 400 / 0.5;  // pixels per unit on the view plane (d = 1)
+    double previousDepth = -HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+        double d = distances[i];
+        ASSERT_EQ(f.bodies[i].literals.size(), 3u);
+        // The silhouette: the tangent cone of half-angle asin(1/d) meets the view plane in a
+        // circle of radius 1/sqrt(d²-1). The device quadric is an ellipsoid (positive definite
+        // quadratic part) whose box is exact, so the bounds give the radius to rounding.
+        const FlatHalfSpace& q = f.halfSpaces[f.bodies[i].literals[0].halfSpace];
+        Box3 box = LiteralBox(q, false);
+        ASSERT_TRUE(box.Finite());
+        double expected = k / std::sqrt(d * d - 1);
+        EXPECT_NEAR(0.5 * (box.hi.x - box.lo.x), expected, 1e-6 * expected);
+        EXPECT_NEAR(0.5 * (box.hi.y - box.lo.y), expected, 1e-6 * expected);
+        EXPECT_NEAR(0.5 * (box.hi.x + box.lo.x), 200, 1e-6);
+        // The centre projects to the image centre; depth grows with distance.
+        Vec3 c = f.projection.deviceFromWorld.MapPoint({0, 0, d});
+        EXPECT_NEAR(c.x, 200, 1e-9);
+        EXPECT_GT(c.z, previousDepth);
+        previousDepth = c.z;
+        EXPECT_LT(q.quadric.Evaluate(c), 0);
+    }
+    // Radii scale as 1/sqrt(d²-1) ≈ 1/d.
+    // A world point projects centrally: x = 200 + k·x/z, y = 200 - k·y/z.
+    Vec3 p = f.projection.deviceFromWorld.MapPoint({0.5, 0.3, 10});
+    EXPECT_NEAR(p.x, 200 + k * 0.05, 1e-9);
+    EXPECT_NEAR(p.y, 200 - k * 0.03, 1e-9);
+    // Depth: 0 on the view plane, k·d (= 800) at infinity.
+    EXPECT_NEAR(f.projection.deviceFromWorld.MapPoint({0, 0, 1}).z, 0, 1e-9);
+    EXPECT_NEAR(f.projection.deviceFromWorld.MapPoint({0, 0, 1e12}).z, k, 1e-6);
+}
+
+TEST(FlattenPerspective, AutoFitAndTheFarPlaneExcludesPointsBehindTheEye) {
+    scene::Scene s = OneSphere({0, 0, 10}, 1);
+    scene::View v = MakeView("persp");
+    v.cop = Vec3{0, 0, 0};
+    v.vrp = Vec3{0, 0, 5};
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const FlatScene& f = *r.flat;
+    // Auto-fitted: the silhouette fills 96% of the image.
+    EXPECT_NEAR(f.solids[0].bounds.lo.x, 8, 1e-5);
+    EXPECT_NEAR(f.solids[0].bounds.hi.x, 392, 1e-5);
+    // A point behind the eye maps beyond the far plane; one in front inside it.
+    auto insideClips = [&](const Vec3& world) {
+        Vec3 p = f.projection.deviceFromWorld.MapPoint(world);
+        for (const FlatHalfSpace& h : f.halfSpaces)
+            if (h.isClip && h.Evaluate(p) > 0) return false;
+        return true;
+    };
+    EXPECT_TRUE(insideClips({0.3, 0.1, 3}));
+    EXPECT_TRUE(insideClips({0.3, 0.1, 1e6}));
+    EXPECT_FALSE(insideClips({0.3, 0.1, -3}));
+    EXPECT_FALSE(insideClips({0.3, 0.1, -1e6}));
+    EXPECT_FALSE(insideClips({0.3, 0.1, 1e-5}));  // nearer than 1e-4 d (d = 5)
+}
+
+TEST(FlattenClip, FbpAddsTwoTransparentClipPlanesToEveryBody) {
+    scene::Scene s = OneSphere();
+    int q = AddSphere(s.top, "t", {0.5, 0, 0}, 1);
+    AddBody(s.top, "other", {q});
+    scene::View v = MakeView("clipped");
+    v.dop = Vec3{0, 0, -1};
+    v.whh = v.whw = 2;
+    v.front = 0.5;  // given in reverse order: front = min, back = max
+    v.back = -0.25;
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const FlatScene& f = *r.flat;
+    std::vector<int> clips;
+    for (std::size_t i = 0; i < f.halfSpaces.size(); ++i)
+        if (f.halfSpaces[i].isClip) clips.push_back(int(i));
+    ASSERT_EQ(clips.size(), 2u);
+    for (int c : clips) EXPECT_TRUE(f.halfSpaces[c].transparent);
+    for (const FlatBody& b : f.bodies) {
+        ASSERT_EQ(b.literals.size(), 3u);
+        EXPECT_EQ(b.literals[1].halfSpace, clips[0]);
+        EXPECT_EQ(b.literals[2].halfSpace, clips[1]);
+    }
+    auto inside = [&](double worldZ) {
+        Vec3 p = f.projection.deviceFromWorld.MapPoint({0, 0, worldZ});
+        for (int c : clips)
+            if (f.halfSpaces[c].Evaluate(p) > 0) return false;
+        return true;
+    };
+    EXPECT_TRUE(inside(0));
+    EXPECT_TRUE(inside(0.49));
+    EXPECT_FALSE(inside(0.51));
+    EXPECT_FALSE(inside(-0.26));
+    // Bodies are bounded by the clip planes in depth: k = 100 px per unit.
+    EXPECT_NEAR(f.solids[0].bounds.lo.z, -25, 1e-6);
+    EXPECT_NEAR(f.solids[0].bounds.hi.z, 50, 1e-6);
+}
+
+TEST(FlattenClip, PerspectiveFbpNearAndBackPlanes) {
+    scene::Scene s;
+    for (double z : {3.0, 7.0, 20.0}) {
+        int q = AddSphere(s.top, "s", {0, 0, z}, 0.5);
+        AddBody(s.top, "ball", {q});
+    }
+    scene::View v = MakeView("persp");
+    v.vrp = Vec3{0, 0, 1};
+    v.cop = Vec3{0, 0, 0};
+    v.whh = v.whw = 1;
+    v.front = 4;  // eye distances 5 and 10
+    v.back = 9;
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    // The spheres at 3 and 20 lie entirely outside [5, 10]: culled.
+    ASSERT_EQ(r.flat->solids.size(), 1u);
+    EXPECT_EQ(r.flat->bodies.size(), 1u);
+    Vec3 c = r.flat->projection.deviceFromWorld.MapPoint({0, 0, 7});
+    EXPECT_LT(r.flat->halfSpaces[r.flat->bodies[0].literals[0].halfSpace].Evaluate(c), 0);
+}
+
+TEST(FlattenErrors, UnboundedBodyWithoutWindowNamesTheBody) {
+    scene::Scene s;
+    int p = AddPlane(s.top, "p", {0, 1, 0, 0});
+    AddBody(s.top, "half", {p}, std::nullopt, 2);
+    Result r = RunFlatten(s);
+    EXPECT_FALSE(r.flat);
+    ASSERT_EQ(r.diags.ErrorCount(), 1);
+    const Diagnostic& d = r.diags.Items()[0];
+    EXPECT_EQ(d.loc.line, 2);
+    EXPECT_NE(d.message.find("body 'half' at test.uq:2:1 is unbounded in the view"),
+              std::string::npos)
+        << d.message;
+    // With a window it is fine; its solid covers the whole image in x and y.
+    scene::View v = MakeView("window");
+    v.whh = v.whw = 3;
+    s.views.push_back(v);
+    Result ok = RunFlatten(s);
+    ASSERT_TRUE(ok.flat) << ok.Messages();
+    const Box3& b = ok.flat->solids[0].bounds;
+    EXPECT_EQ(b.lo.x, 0);
+    EXPECT_EQ(b.hi.x, 400);
+}
+
+TEST(FlattenErrors, UnboundedCsgSolidIsNamedAsSuch) {
+    // A union with a half-space is unbounded; a difference with one is not (the minuend rules).
+    scene::Scene s = OneSphere();
+    int p = AddPlane(s.top, "p", {0, 1, 0, 0});
+    AddBody(s.top, "half", {p});
+    CsgBuilder b;
+    int n = b.Op(scene::CsgOp::kUnion, b.Body(0), b.Body(1));
+    AddCsg(s.top, "u", b, n);
+    s.top.csgs.back().loc = Loc(4, 2);
+    Result r = RunFlatten(s);
+    EXPECT_FALSE(r.flat);
+    EXPECT_NE(r.Messages().find("csg solid 'u' at test.uq:4:2 is unbounded"), std::string::npos)
+        << r.Messages();
+    s.top.csgs.back().nodes.back().op = scene::CsgOp::kDifference;
+    Result ok = RunFlatten(s);
+    ASSERT_TRUE(ok.flat) << ok.Messages();
+    EXPECT_NEAR(ok.flat->solids[0].bounds.hi.x - ok.flat->solids[0].bounds.lo.x, 384, 1e-6);
+}
+
+TEST(FlattenErrors, UnboundedOnlyInDepthIsFine) {
+    // An uncapped cylinder along the viewing direction: bounded on screen.
+    scene::Scene s;
+    int q = AddQuadric(s.top, "c", {1, 1, 0, 0, 0, 0, 0, 0, 0, -1});
+    AddBody(s.top, "tube", {q});
+    scene::View v = MakeView("along");
+    v.dop = Vec3{0, 0, -1};
+    s.views.push_back(v);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    const Box3& b = r.flat->solids[0].bounds;
+    EXPECT_NEAR(b.lo.x, 8, 1e-6);
+    EXPECT_NEAR(b.hi.x, 392, 1e-6);
+    EXPECT_EQ(b.lo.z, -HUGE_VAL);
+    EXPECT_EQ(b.hi.z, HUGE_VAL);
+}
+
+TEST(FlattenErrors, DegenerateViewsAreErrorsAtTheViewsPosition) {
+    struct Case {
+        const char* what;
+        std::function<void(scene::View&)> set;
+        const char* expect;
+    };
+    const Case cases[] = {
+        {"vup parallel to vpn",
+         [](scene::View& v) {
+             v.vpn = Vec3{0, 1, 0};
+             v.vup = Vec3{0, 2, 0};
+         },
+         "parallel"},
+        {"zero dop",
+         [](scene::View& v) {
+             v.dop = Vec3{0, 0, 0};
+         },
+         "zero vector"},
+        {"zero vup",
+         [](scene::View& v) {
+             v.vup = Vec3{0, 0, 0};
+         },
+         "zero vector"},
+        {"eye behind the view plane",
+         [](scene::View& v) {
+             v.vrp = Vec3{0, 0, 1};
+             v.cop = Vec3{0, 0, 2};
+             v.vpn = Vec3{0, 0, 1};
+         },
+         "in front of the view plane"},
+        {"cop on vrp",
+         [](scene::View& v) {
+             v.cop = Vec3{0, 0, 0};
+         },
+         "coincides with vrp"},
+        {"dop in the view plane",
+         [](scene::View& v) {
+             v.vpn = Vec3{0, 0, 1};
+             v.dop = Vec3{1, 0, 0};
+         },
+         "parallel"},
+        {"dop away from the viewer",
+         [](scene::View& v) {
+             v.vpn = Vec3{0, 0, 1};
+             v.dop = Vec3{0, 0, 1};
+         },
+         "away from the viewer"},
+        {"negative window", [](scene::View& v) { v.whh = -1.0; }, "positive"},
+        {"nan vrp",
+         [](scene::View& v) {
+             v.vrp = Vec3{NAN, 0, 0};
+         },
+         "not finite"},
+        {"fbp behind the eye",
+         [](scene::View& v) {
+             v.vrp = Vec3{0, 0, 1};
+             v.cop = Vec3{0, 0, 0};
+             v.front = -5;
+             v.back = -2;
+         },
+         "nothing in front of the eye"},
+    };
+    for (const Case& c : cases) {
+        scene::Scene s = OneSphere({0, 0, 5});
+        scene::View v = MakeView("bad");
+        c.set(v);
+        s.views.push_back(v);
+        Result r = RunFlatten(s);
+        EXPECT_FALSE(r.flat) << c.what;
+        ASSERT_GE(r.diags.ErrorCount(), 1) << c.what;
+        EXPECT_EQ(r.diags.Items()[0].loc.line, 9) << c.what;
+        EXPECT_NE(r.diags.Items()[0].message.find(c.expect), std::string::npos)
+            << c.what << ": " << r.diags.Items()[0].message;
+    }
+}
+
+TEST(FlattenErrors, EmptySceneUnknownViewAndBadSizes) {
+    scene::Scene empty;
+    Result r = RunFlatten(empty);
+    EXPECT_FALSE(r.flat);
+    ASSERT_EQ(r.diags.ErrorCount(), 1);
+    EXPECT_NE(r.diags.Items()[0].message.find("nothing to draw"), std::string::npos);
+    // Only operands: nothing drawn either.
+    scene::Scene ops = OneSphere();
+    ops.top.bodies[0].usedAsOperand = true;
+    EXPECT_FALSE(RunFlatten(ops).flat);
+    Result unknown = RunFlatten(OneSphere(), 100, 100, "nope");
+    EXPECT_FALSE(unknown.flat);
+    EXPECT_NE(unknown.Messages().find("unknown view 'nope'"), std::string::npos);
+    EXPECT_FALSE(RunFlatten(OneSphere(), 0, 100).flat);
+}
+
+TEST(FlattenErrors, ExplosionGuardThroughFlatten) {
+    scene::Scene s;
+    scene::Scope a;
+    int q = AddSphere(a, "s", {0, 0, 0}, 1);
+    AddBody(a, "b", {q});
+    s.definitions.push_back(a);
+    scene::Scope b;
+    AddInstance(b, "row_array", 0, Transform(), 2000, Transform::Translate({1, 0, 0}));
+    s.definitions.push_back(b);
+    AddInstance(s.top, "grid_array", 1, Transform(), 2000, Transform::Translate({0, 1, 0}));
+    Result r = RunFlatten(s);
+    EXPECT_FALSE(r.flat);
+    EXPECT_NE(r.Messages().find("4e+06 bodies"), std::string::npos) << r.Messages();
+}
+
+TEST(FlattenNormals, WorldNormalOfASphereFacesTheViewer) {
+    // Through the shared FlatScene::WorldNormal: the device gradient pulled back to world space
+    // is the sphere's outward normal at the visible point, for parallel and perspective views.
+    for (bool perspective : {false, true}) {
+        scene::Scene s = OneSphere({1, 2, 3}, 1);
+        scene::View v = MakeView("v");
+        if (perspective) {
+            v.cop = Vec3{1, 2, -7};
+            v.vrp = Vec3{1, 2, -6};
+        } else {
+            v.dop = Vec3{0.2, 0.1, -1};
+        }
+        s.views.push_back(v);
+        Result r = RunFlatten(s);
+        ASSERT_TRUE(r.flat) << r.Messages();
+        const FlatScene& f = *r.flat;
+        Vec3 toward = perspective ? Vec3{0, 0, -1} : Normalize({0.2, 0.1, -1});
+        Vec3 world = Vec3{1, 2, 3} + toward;  // the point facing the viewer (along the view)
+        if (perspective) world = Vec3{1, 2, 2};
+        Vec3 dev = f.projection.deviceFromWorld.MapPoint(world);
+        int hs = f.bodies[0].literals[0].halfSpace;
+        EXPECT_NEAR(f.halfSpaces[hs].Evaluate(dev) / f.halfSpaces[hs].quadric.MaxAbs(), 0, 1e-12);
+        Vec3 n = f.WorldNormal(hs, dev);
+        Vec3 expected = Normalize(world - Vec3{1, 2, 3});
+        EXPECT_NEAR(Length(n - expected), 0, 1e-9) << "perspective " << perspective;
+    }
+}
+
+}  // namespace
+}  // namespace quadrix

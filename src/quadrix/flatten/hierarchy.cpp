@@ -1,0 +1,562 @@
+// Traversal of the scene hierarchy and CSG solids; see hierarchy.h.
+#include "quadrix/flatten/hierarchy.h"
+
+#include <fmt/format.h>
+
+#include <deque>
+#include <memory>
+#include <optional>
+
+namespace quadrix {
+
+namespace {
+
+using scene::Color;
+using scene::CsgOp;
+using scene::SolidRef;
+
+std::string BodyName(const scene::Body& b, int index) {
+    return b.id.empty() ? fmt::format("body#{}", index) : b.id;
+}
+std::string CsgName(const scene::Csg& c, int index) {
+    return c.id.empty() ? fmt::format("csg#{}", index) : c.id;
+}
+std::string InstanceName(const scene::Scene& s, const scene::Instance& inst) {
+    if (!inst.id.empty()) return inst.id;
+    if (inst.definition >= 0 && inst.definition < static_cast<int>(s.definitions.size()))
+        return s.definitions[inst.definition].id;
+    return "instance";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Counting pass (the explosion guard). Scope key: -1 = top, else the definition index.
+
+struct Counts {
+    double bodies = 0, literals = 0;
+    Counts& operator+=(const Counts& o) {
+        bodies += o.bodies;
+        literals += o.literals;
+        return *this;
+    }
+    Counts operator*(double k) const { return {bodies * k, literals * k}; }
+};
+
+class Counter {
+  public:
+    Counter(const scene::Scene& scene, int clipPerBody, Diagnostics& diags)
+        : scene_(scene), clip_(clipPerBody), diags_(diags) {
+        int n = static_cast<int>(scene.definitions.size());
+        defState_.assign(n, 0);
+        defCounts_.resize(n);
+        csgState_.resize(n + 1);
+        csgCounts_.resize(n + 1);
+        for (int key = -1; key < n; ++key) {
+            csgState_[key + 1].assign(ScopeOf(key).csgs.size(), 0);
+            csgCounts_[key + 1].resize(ScopeOf(key).csgs.size());
+        }
+    }
+
+    bool ok() const { return ok_; }
+
+    const scene::Scope& ScopeOf(int key) const {
+        return key < 0 ? scene_.top : scene_.definitions[key];
+    }
+
+    // Everything a scope draws.
+    Counts Drawn(int key, int depth) {
+        const scene::Scope& s = ScopeOf(key);
+        Counts c;
+        for (std::size_t i = 0; i < s.bodies.size() && ok_; ++i)
+            if (!s.bodies[i].usedAsOperand) c += Ref(key, {SolidRef::Kind::kBody, int(i)}, depth);
+        for (std::size_t i = 0; i < s.instances.size() && ok_; ++i)
+            if (!s.instances[i].usedAsOperand)
+                c += Ref(key, {SolidRef::Kind::kInstance, int(i)}, depth);
+        for (std::size_t i = 0; i < s.csgs.size() && ok_; ++i)
+            if (!s.csgs[i].usedAsOperand) c += Ref(key, {SolidRef::Kind::kCsg, int(i)}, depth);
+        return c;
+    }
+
+    Counts Ref(int key, const SolidRef& ref, int depth) {
+        const scene::Scope& s = ScopeOf(key);
+        switch (ref.kind) {
+            case SolidRef::Kind::kBody:
+                if (ref.index < 0 || ref.index >= int(s.bodies.size())) return Bad(s.loc);
+                return {1, double(s.bodies[ref.index].literals.size()) + clip_};
+            case SolidRef::Kind::kInstance: {
+                if (ref.index < 0 || ref.index >= int(s.instances.size())) return Bad(s.loc);
+                const scene::Instance& inst = s.instances[ref.index];
+                if (inst.count <= 0) return {};
+                return Definition(inst, depth) * double(inst.count);
+            }
+            case SolidRef::Kind::kCsg:
+                if (ref.index < 0 || ref.index >= int(s.csgs.size())) return Bad(s.loc);
+                return Csg(key, ref.index, depth);
+        }
+        return {};
+    }
+
+  private:
+    Counts Bad(const SourceLoc& loc) {
+        if (ok_) diags_.Error(loc, "internal error: a solid reference is out of range");
+        ok_ = false;
+        return {};
+    }
+
+    Counts Definition(const scene::Instance& inst, int depth) {
+        int def = inst.definition;
+        if (def < 0 || def >= int(scene_.definitions.size())) {
+            if (ok_) diags_.Error(inst.loc, fmt::format("'{}' names no definition", inst.id));
+            ok_ = false;
+            return {};
+        }
+        if (defState_[def] == 2) return defCounts_[def];
+        if (defState_[def] == 1 || depth >= kMaxNesting) {
+            if (ok_)
+                diags_.Error(
+                    inst.loc,
+                    defState_[def] == 1
+                        ? fmt::format("definition '{}' instances itself (directly or "
+                                      "through other definitions)",
+                                      scene_.definitions[def].id)
+                        : fmt::format("definitions are nested more than {} deep", kMaxNesting));
+            ok_ = false;
+            return {};
+        }
+        defState_[def] = 1;
+        Counts c = Drawn(def, depth + 1);
+        defState_[def] = 2;
+        defCounts_[def] = c;
+        return c;
+    }
+
+    Counts Csg(int key, int index, int depth) {
+        int& state = csgState_[key + 1][index];
+        const scene::Csg& csg = ScopeOf(key).csgs[index];
+        if (state == 2) return csgCounts_[key + 1][index];
+        if (state == 1 || depth >= kMaxNesting) {
+            if (ok_)
+                diags_.Error(csg.loc, state == 1
+                                          ? fmt::format("csg '{}' refers to itself", csg.id)
+                                          : fmt::format("CSG solids are nested more than {} deep",
+                                                        kMaxNesting));
+            ok_ = false;
+            return {};
+        }
+        state = 1;
+        Counts c;
+        // Iterative walk over the expression's nodes (a long chain must not recurse).
+        std::vector<int> stack{csg.root};
+        std::size_t visited = 0;
+        while (!stack.empty() && ok_) {
+            int n = stack.back();
+            stack.pop_back();
+            if (n < 0 || n >= int(csg.nodes.size()) || ++visited > csg.nodes.size()) {
+                Bad(csg.loc);
+                break;
+            }
+            const scene::CsgNode& node = csg.nodes[n];
+            if (node.isLeaf) {
+                c += Ref(key, node.ref, depth + 1);
+            } else {
+                stack.push_back(node.right);
+                stack.push_back(node.left);
+            }
+        }
+        state = 2;
+        csgCounts_[key + 1][index] = c;
+        return c;
+    }
+
+    const scene::Scene& scene_;
+    double clip_;
+    Diagnostics& diags_;
+    bool ok_ = true;
+    std::vector<int> defState_;
+    std::vector<Counts> defCounts_;
+    std::vector<std::vector<int>> csgState_;
+    std::vector<std::vector<Counts>> csgCounts_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The walk.
+
+// One visit of a scope under a transform: its half-spaces are transformed lazily, once.
+struct ScopeInst {
+    const scene::Scope* scope = nullptr;
+    Transform t;       // target from object
+    std::string path;  // name prefix, "" or "a[1]/b/"
+    std::vector<int> hsMap;
+};
+
+// The state of an array used as a CSG operand, expanded copy by copy.
+struct InstanceIter {
+    ScopeInst* parent = nullptr;
+    const scene::Instance* inst = nullptr;
+    int k = 0;
+    Transform deltaK;  // delta^k
+};
+
+// An item of work while collecting the operands of an n-ary node.
+struct Term {
+    enum class Kind { kRef, kNode, kInstanceCopy, kPopScope };
+    Kind kind = Kind::kRef;
+    ScopeInst* si = nullptr;
+    SolidRef ref;                        // kRef
+    int csg = -1;                        // kNode: csg index in si->scope
+    int node = -1;                       // kNode: node index in that csg
+    std::optional<Color> color;          // innermost enclosing csg/instance color
+    std::string path;                    // csg ids inside the scope instance, "" or "c/"
+    std::shared_ptr<InstanceIter> iter;  // kInstanceCopy
+};
+
+class Walker {
+  public:
+    Walker(const scene::Scene& scene, FlatScene& out, HierarchyResult& result, Diagnostics& diags)
+        : scene_(scene), out_(out), result_(result), diags_(diags) {}
+
+    bool Run(const Transform& targetFromWorld) {
+        ScopeInst top{&scene_.top, targetFromWorld, "", {}};
+        top.hsMap.assign(scene_.top.halfSpaces.size(), -1);
+        DrawScope(top, std::nullopt);
+        return !failed_;
+    }
+
+  private:
+    static constexpr int kMaxDepth = 1000;  // CSG expression recursion (alternating operators)
+
+    void Fail(const SourceLoc& loc, std::string message) {
+        if (!failed_) diags_.Error(loc, std::move(message));
+        failed_ = true;
+    }
+
+    void DrawScope(ScopeInst& si, const std::optional<Color>& color) {
+        const scene::Scope& s = *si.scope;
+        for (std::size_t i = 0; i < s.bodies.size() && !failed_; ++i) {
+            if (s.bodies[i].usedAsOperand) continue;
+            Term t = RefTerm(si, {SolidRef::Kind::kBody, int(i)}, color);
+            AddSolid(t, si.path + BodyName(s.bodies[i], int(i)), s.bodies[i].loc);
+        }
+        for (std::size_t i = 0; i < s.instances.size() && !failed_; ++i) {
+            const scene::Instance& inst = s.instances[i];
+            if (inst.usedAsOperand || inst.count <= 0) continue;
+            const scene::Scope& def = scene_.definitions[inst.definition];
+            std::optional<Color> c = inst.color ? inst.color : color;
+            Transform deltaK;
+            for (int k = 0; k < inst.count && !failed_; ++k) {
+                ScopeInst child{&def, si.t * deltaK * inst.init, CopyPath(si.path, inst, k), {}};
+                child.hsMap.assign(def.halfSpaces.size(), -1);
+                DrawScope(child, c);
+                deltaK = inst.delta * deltaK;
+            }
+        }
+        for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i) {
+            if (s.csgs[i].usedAsOperand) continue;
+            Term t = RefTerm(si, {SolidRef::Kind::kCsg, int(i)}, color);
+            AddSolid(t, si.path + CsgName(s.csgs[i], int(i)), s.csgs[i].loc);
+        }
+    }
+
+    static Term RefTerm(ScopeInst& si, SolidRef ref, const std::optional<Color>& color) {
+        Term t;
+        t.kind = Term::Kind::kRef;
+        t.si = &si;
+        t.ref = ref;
+        t.color = color;
+        return t;
+    }
+
+    // The name prefix of copy k: the enclosing prefix (scope instance path plus CSG ids), the
+    // instance's id and, for arrays, the copy index.
+    std::string CopyPath(const std::string& prefix, const scene::Instance& inst, int k) const {
+        std::string name = InstanceName(scene_, inst);
+        if (inst.isArray) name += fmt::format("[{}]", k);
+        return prefix + name + "/";
+    }
+
+    void AddSolid(const Term& t, std::string name, const SourceLoc& loc) {
+        currentSolid_ = static_cast<int>(out_.solids.size());
+        std::size_t scopes = scopes_.size();
+        int root = Emit(t, 0);
+        scopes_.resize(scopes);  // operand instance copies are done with
+        if (failed_) return;
+        FlatSolid solid;
+        solid.root = root;
+        solid.name = std::move(name);
+        out_.solids.push_back(std::move(solid));
+        result_.solidLocs.push_back(loc);
+        result_.solidIsCsg.push_back(t.ref.kind == SolidRef::Kind::kCsg);
+    }
+
+    // Follows leaves and references to CSG solids until t is a body or instance reference or an
+    // internal node.
+    void Normalize(Term& t) {
+        for (int guard = 0; guard < 100000; ++guard) {
+            const scene::Scope& s = *t.si->scope;
+            if (t.kind == Term::Kind::kNode) {
+                const scene::CsgNode& node = s.csgs[t.csg].nodes[t.node];
+                if (!node.isLeaf) return;
+                t.kind = Term::Kind::kRef;
+                t.ref = node.ref;
+                continue;
+            }
+            if (t.kind != Term::Kind::kRef || t.ref.kind != SolidRef::Kind::kCsg) return;
+            const scene::Csg& c = s.csgs[t.ref.index];
+            t.kind = Term::Kind::kNode;
+            t.csg = t.ref.index;
+            t.node = c.root;
+            if (c.color) t.color = c.color;
+            t.path += CsgName(c, t.csg) + "/";
+        }
+        Fail(t.si->scope->loc, "internal error: CSG references loop");
+    }
+
+    Term Child(const Term& t, int node) const {
+        Term c;
+        c.kind = Term::Kind::kNode;
+        c.si = t.si;
+        c.csg = t.csg;
+        c.node = node;
+        c.color = t.color;
+        c.path = t.path;
+        return c;
+    }
+
+    const scene::CsgNode& NodeOf(const Term& t) const {
+        return t.si->scope->csgs[t.csg].nodes[t.node];
+    }
+
+    int AddNode(CsgOp op, std::vector<int> children) {
+        FlatCsgNode n;
+        n.isLeaf = false;
+        n.op = op;
+        n.children = std::move(children);
+        out_.nodes.push_back(std::move(n));
+        return static_cast<int>(out_.nodes.size()) - 1;
+    }
+
+    int Emit(Term t, int depth) {
+        if (failed_) return -1;
+        if (depth > kMaxDepth) {
+            Fail(t.si->scope->loc,
+                 fmt::format("CSG expressions are nested more than {} deep", kMaxDepth));
+            return -1;
+        }
+        Normalize(t);
+        if (failed_) return -1;
+        if (t.kind == Term::Kind::kRef) {
+            if (t.ref.kind == SolidRef::Kind::kBody) return Leaf(t);
+            std::vector<int> children;
+            Collect(CsgOp::kUnion, t, children, depth);
+            return children.size() == 1 ? children[0] : AddNode(CsgOp::kUnion, std::move(children));
+        }
+        const scene::CsgNode& node = NodeOf(t);
+        if (node.op != CsgOp::kDifference) {
+            std::vector<int> children;
+            Collect(node.op, Child(t, node.left), children, depth);
+            Collect(node.op, Child(t, node.right), children, depth);
+            return children.size() == 1 ? children[0] : AddNode(node.op, std::move(children));
+        }
+        // (a - b) - c → [a, b, c]: walk down the left spine.
+        std::vector<Term> subtrahends;
+        Term cur = t;
+        for (;;) {
+            Normalize(cur);
+            if (failed_) return -1;
+            if (cur.kind != Term::Kind::kNode || NodeOf(cur).op != CsgOp::kDifference) break;
+            subtrahends.push_back(Child(cur, NodeOf(cur).right));
+            cur = Child(cur, NodeOf(cur).left);
+        }
+        std::vector<int> children{Emit(cur, depth + 1)};
+        // a - (b | c) = a - b - c: subtrahends that are unions are spliced.
+        for (auto it = subtrahends.rbegin(); it != subtrahends.rend(); ++it)
+            Collect(CsgOp::kUnion, *it, children, depth);
+        if (children.size() == 1) return children[0];
+        return AddNode(CsgOp::kDifference, std::move(children));
+    }
+
+    // Appends the operands of an `op` node to `out`, splicing terms of the same associative
+    // operator and, for unions, instances (the union of what they draw). Iterative, so long
+    // chains and big arrays do not recurse.
+    void Collect(CsgOp op, const Term& first, std::vector<int>& out, int depth) {
+        std::vector<Term> stack{first};
+        while (!stack.empty() && !failed_) {
+            Term t = std::move(stack.back());
+            stack.pop_back();
+            if (t.kind == Term::Kind::kPopScope) {
+                scopes_.pop_back();
+                continue;
+            }
+            if (t.kind == Term::Kind::kInstanceCopy) {
+                ExpandCopy(t, stack);
+                continue;
+            }
+            Normalize(t);
+            if (failed_) return;
+            if (t.kind == Term::Kind::kNode && NodeOf(t).op == op && op != CsgOp::kDifference) {
+                const scene::CsgNode& node = NodeOf(t);
+                stack.push_back(Child(t, node.right));
+                stack.push_back(Child(t, node.left));
+                continue;
+            }
+            if (t.kind == Term::Kind::kRef && t.ref.kind == SolidRef::Kind::kInstance &&
+                op == CsgOp::kUnion) {
+                const scene::Instance& inst = t.si->scope->instances[t.ref.index];
+                if (inst.count <= 0) continue;
+                Term copy;
+                copy.kind = Term::Kind::kInstanceCopy;
+                copy.si = t.si;
+                copy.color = inst.color ? inst.color : t.color;
+                copy.path = t.path;
+                copy.iter = std::make_shared<InstanceIter>();
+                copy.iter->parent = t.si;
+                copy.iter->inst = &inst;
+                stack.push_back(std::move(copy));
+                continue;
+            }
+            out.push_back(Emit(std::move(t), depth + 1));
+        }
+    }
+
+    // Pushes copy k of an operand instance: the next copy (processed after this one), the
+    // scope's end marker and the copy's drawn items (LIFO: items first, in statement order).
+    void ExpandCopy(const Term& t, std::vector<Term>& stack) {
+        InstanceIter& it = *t.iter;
+        const scene::Instance& inst = *it.inst;
+        if (it.k >= inst.count) return;
+        const scene::Scope& def = scene_.definitions[inst.definition];
+        scopes_.push_back(std::make_unique<ScopeInst>());
+        ScopeInst& si = *scopes_.back();
+        si.scope = &def;
+        si.t = it.parent->t * it.deltaK * inst.init;
+        si.path = CopyPath(it.parent->path + t.path, inst, it.k);
+        si.hsMap.assign(def.halfSpaces.size(), -1);
+        Term next = t;
+        next.iter = std::make_shared<InstanceIter>(it);
+        next.iter->k = it.k + 1;
+        next.iter->deltaK = inst.delta * it.deltaK;
+        stack.push_back(std::move(next));
+        Term pop;
+        pop.kind = Term::Kind::kPopScope;
+        stack.push_back(std::move(pop));
+        std::vector<Term> items;
+        auto add = [&](SolidRef::Kind kind, int index) {
+            Term item;
+            item.kind = Term::Kind::kRef;
+            item.si = &si;
+            item.ref = {kind, index};
+            item.color = t.color;
+            items.push_back(std::move(item));
+        };
+        for (std::size_t i = 0; i < def.bodies.size(); ++i)
+            if (!def.bodies[i].usedAsOperand) add(SolidRef::Kind::kBody, int(i));
+        for (std::size_t i = 0; i < def.instances.size(); ++i)
+            if (!def.instances[i].usedAsOperand) add(SolidRef::Kind::kInstance, int(i));
+        for (std::size_t i = 0; i < def.csgs.size(); ++i)
+            if (!def.csgs[i].usedAsOperand) add(SolidRef::Kind::kCsg, int(i));
+        for (auto r = items.rbegin(); r != items.rend(); ++r) stack.push_back(std::move(*r));
+    }
+
+    int Leaf(const Term& t) {
+        ScopeInst& si = *t.si;
+        const scene::Body& body = si.scope->bodies[t.ref.index];
+        FlatBody fb;
+        fb.literals.reserve(body.literals.size());
+        for (const scene::Literal& l : body.literals) {
+            int hs = HalfSpaceIndex(si, l.halfSpace, body.loc);
+            if (failed_) return -1;
+            fb.literals.push_back({hs, l.complemented});
+        }
+        fb.color = body.color ? *body.color : (t.color ? *t.color : Color{});
+        fb.solid = currentSolid_;
+        fb.name = si.path + t.path + BodyName(body, t.ref.index);
+        out_.bodies.push_back(std::move(fb));
+        result_.bodyLocs.push_back(body.loc);
+        FlatCsgNode leaf;
+        leaf.isLeaf = true;
+        leaf.body = static_cast<int>(out_.bodies.size()) - 1;
+        out_.nodes.push_back(std::move(leaf));
+        return static_cast<int>(out_.nodes.size()) - 1;
+    }
+
+    int HalfSpaceIndex(ScopeInst& si, int local, const SourceLoc& bodyLoc) {
+        if (local < 0 || local >= static_cast<int>(si.hsMap.size())) {
+            Fail(bodyLoc, "internal error: a body names a half-space out of range");
+            return -1;
+        }
+        if (si.hsMap[local] >= 0) return si.hsMap[local];
+        const scene::HalfSpace& hs = si.scope->halfSpaces[local];
+        FlatHalfSpace f;
+        f.isPlane = hs.kind == scene::HalfSpace::Kind::kPlane;
+        bool finite;
+        if (f.isPlane) {
+            f.plane = hs.plane.Transformed(si.t);
+            finite = f.plane.AllFinite();
+        } else {
+            f.quadric = hs.quadric.Transformed(si.t);
+            finite = f.quadric.AllFinite();
+        }
+        f.transparent = hs.transparent;
+        f.name = si.path + hs.id;
+        if (!finite) {
+            Fail(hs.loc, fmt::format("half-space '{}' has non-finite coefficients after its "
+                                     "transforms and the view transformation",
+                                     f.name));
+            return -1;
+        }
+        out_.halfSpaces.push_back(std::move(f));
+        si.hsMap[local] = static_cast<int>(out_.halfSpaces.size()) - 1;
+        return si.hsMap[local];
+    }
+
+    const scene::Scene& scene_;
+    FlatScene& out_;
+    HierarchyResult& result_;
+    Diagnostics& diags_;
+    bool failed_ = false;
+    int currentSolid_ = -1;
+    std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded
+};
+
+}  // namespace
+
+bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorld,
+                      const HierarchyLimits& limits, FlatScene& out, HierarchyResult& result,
+                      Diagnostics& diags) {
+    // The guard first: nothing is built for a scene that would explode.
+    Counter counter(scene, limits.clipLiteralsPerBody, diags);
+    Counts total;
+    const scene::Scope& top = scene.top;
+    Counts worst;
+    SourceLoc worstLoc = top.loc;
+    auto consider = [&](const SolidRef& ref, bool operand, const SourceLoc& loc) {
+        if (operand || !counter.ok()) return;
+        Counts c = counter.Ref(-1, ref, 0);
+        total += c;
+        if (c.bodies + c.literals > worst.bodies + worst.literals) {
+            worst = c;
+            worstLoc = loc;
+        }
+    };
+    for (std::size_t i = 0; i < top.bodies.size(); ++i)
+        consider({SolidRef::Kind::kBody, int(i)}, top.bodies[i].usedAsOperand, top.bodies[i].loc);
+    for (std::size_t i = 0; i < top.instances.size(); ++i)
+        consider({SolidRef::Kind::kInstance, int(i)}, top.instances[i].usedAsOperand,
+                 top.instances[i].loc);
+    for (std::size_t i = 0; i < top.csgs.size(); ++i)
+        consider({SolidRef::Kind::kCsg, int(i)}, top.csgs[i].usedAsOperand, top.csgs[i].loc);
+    if (!counter.ok()) return false;
+    if (total.bodies > limits.maxBodies || total.literals > limits.maxLiterals) {
+        diags.Error(
+            worstLoc,
+            fmt::format("the flattened scene would have {:.4g} bodies and {:.4g} "
+                        "half-space literals (limits {:.4g} and {:.4g}); arrays of "
+                        "arrays multiply their counts: reduce them",
+                        total.bodies, total.literals, limits.maxBodies, limits.maxLiterals));
+        return false;
+    }
+    out.bodies.reserve(out.bodies.size() + static_cast<std::size_t>(total.bodies));
+    Walker walker(scene, out, result, diags);
+    return walker.Run(targetFromWorld);
+}
+
+}  // namespace quadrix
