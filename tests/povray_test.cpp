@@ -17,6 +17,7 @@ struct PovCase {
     const char* name;
     std::string scene;  // path under the source tree, or inline text when it starts with "text:"
     int width, height;
+    friend void PrintTo(const PovCase& c, std::ostream* os) { *os << c.name; }
 };
 
 class PovrayTest : public ::testing::TestWithParam<PovCase> {};
