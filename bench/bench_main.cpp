@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -82,6 +83,9 @@ struct Row {
     int primitives = 0;
     Size size{};
     std::vector<std::pair<std::string, double>> engineMs;  // in-process frame time per engine
+    // Per engine: percentage of pixels whose coverage differs from raycast's (the exact
+    // reference); an engine that skips what it cannot draw shows it here instead of looking fast.
+    std::vector<double> engineDiffPct;
     double flattenMs = 0;
     double quadrixProcessMs = 0, quadrixPeakMiB = 0;
     double povProcessMs = 0, povPeakMiB = 0;
@@ -91,6 +95,49 @@ struct Row {
 std::string Ratio(double slow, double fast) {
     if (slow <= 0 || fast <= 0) return "–";
     return fmt::format("{:.1f}×", slow / fast);
+}
+
+// Growth of the default engine's frame time: with pixels (each scene, smallest to largest size)
+// and with primitives (the sphere series at each size), as exponents of power laws: time ∝ n^e.
+// e ≈ 1 for pixels and e < 1 for primitives mean cost ∝ pixels + covered area, not their product.
+std::string Scaling(const std::vector<Row>& rows) {
+    auto frameMs = [](const Row& r) { return r.engineMs.empty() ? 0.0 : r.engineMs[0].second; };
+    std::string out = "\n## Scaling of the default engine's frame time\n\n";
+    out += "| scene | from | to | pixels × | time × | exponent |\n|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Row* lo = &rows[i];
+        const Row* hi = nullptr;
+        if (i > 0 && rows[i - 1].scene == lo->scene) continue;  // first row of each scene
+        for (std::size_t j = i; j < rows.size() && rows[j].scene == lo->scene; ++j) hi = &rows[j];
+        if (!hi || hi == lo || frameMs(*lo) <= 0 || frameMs(*hi) <= 0) continue;
+        const double px = double(hi->size.w) * hi->size.h / (double(lo->size.w) * lo->size.h);
+        const double t = frameMs(*hi) / frameMs(*lo);
+        out += fmt::format("| {} | {}×{} | {}×{} | {:.1f} | {:.2f} | {:.2f} |\n", lo->scene,
+                           lo->size.w, lo->size.h, hi->size.w, hi->size.h, px, t,
+                           std::log(t) / std::log(px));
+    }
+    out += "\n| size | spheres from | to | primitives × | time × | exponent |\n"
+           "|---|---|---|---|---|---|\n";
+    for (const Row& a : rows) {
+        if (a.scene.rfind("spheres", 0) != 0) continue;
+        const Row* best = nullptr;
+        for (const Row& b : rows)
+            if (b.scene.rfind("spheres", 0) == 0 && b.size.w == a.size.w &&
+                b.size.h == a.size.h && b.primitives > a.primitives &&
+                (!best || b.primitives > best->primitives))
+                best = &b;
+        bool smallest = true;
+        for (const Row& b : rows)
+            if (b.scene.rfind("spheres", 0) == 0 && b.size.w == a.size.w &&
+                b.size.h == a.size.h && b.primitives < a.primitives)
+                smallest = false;
+        if (!best || !smallest || frameMs(a) <= 0 || frameMs(*best) <= 0) continue;
+        const double n = double(best->primitives) / a.primitives;
+        const double t = frameMs(*best) / frameMs(a);
+        out += fmt::format("| {}×{} | {} | {} | {:.0f} | {:.2f} | {:.2f} |\n", a.size.w, a.size.h,
+                           a.scene, best->scene, n, t, std::log(t) / std::log(n));
+    }
+    return out;
 }
 
 }  // namespace
@@ -160,11 +207,23 @@ int main(int argc, char** argv) {
                 continue;
             }
             row.flattenMs = pr.flattenSeconds * 1e3;
+            Frame reference;
             for (const std::string& name : EngineNames()) {
                 auto engine = MakeEngine(name);
                 RenderOptions ro;
                 Frame frame;
                 engine->Render(pr.flat, ro, frame);  // warm-up
+                if (name == "raycast") reference = frame;
+                std::size_t differ = 0;
+                for (std::size_t i = 0; i < frame.surface.size() && i < reference.surface.size();
+                     ++i)
+                    differ += (frame.surface[i] == Frame::kNone) !=
+                              (reference.surface[i] == Frame::kNone);
+                row.engineDiffPct.push_back(
+                    frame.surface.size() == reference.surface.size() && !frame.surface.empty()
+                        ? 100.0 * static_cast<double>(differ) /
+                              static_cast<double>(frame.surface.size())
+                        : 100.0);
                 std::vector<double> ms;
                 for (int i = 0; i < reps; ++i) {
                     auto t0 = std::chrono::steady_clock::now();
@@ -223,7 +282,9 @@ int main(int argc, char** argv) {
     std::string md = fmt::format("# Quadrix benchmark results {}\n\n", stamp);
     md += "Frame = in-process render of a flattened scene (warm, median); process = whole "
           "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "
-          "process. Peak = maximum resident set of the process.\n\n";
+          "process. Peak = maximum resident set of the process. An engine time marked (≠ p %) "
+          "comes from a frame whose coverage differs from raycast's on p % of the pixels: that "
+          "engine does not draw the whole scene (e.g. `patch` skips CSG solids).\n\n";
     md += "| scene | prims | size | flatten ms |";
     for (const auto& e : EngineNames()) md += fmt::format(" {} frame ms |", e);
     md += " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB |\n|---|---|---|---|";
@@ -236,8 +297,12 @@ int main(int argc, char** argv) {
         md += fmt::format("| {} | {} | {}×{} | {:.1f} |", r.scene, r.primitives, r.size.w, r.size.h,
                           r.flattenMs);
         csv += fmt::format("{},{},{},{},{:.3f}", r.scene, r.primitives, r.size.w, r.size.h, r.flattenMs);
-        for (const auto& [name, ms] : r.engineMs) {
-            md += fmt::format(" {:.1f} |", ms);
+        for (std::size_t e = 0; e < r.engineMs.size(); ++e) {
+            const double ms = r.engineMs[e].second, diff = r.engineDiffPct[e];
+            // Coverage differing on more than 0.5 % of the pixels (more than silhouette
+            // rounding): the engine did not draw the whole scene, so its time is not comparable.
+            md += diff > 0.5 ? fmt::format(" {:.1f} (≠{:.0f} %) |", ms, diff)
+                             : fmt::format(" {:.1f} |", ms);
             csv += fmt::format(",{:.3f}", ms);
         }
         md += fmt::format(" {:.1f} | {} | {} | {:.0f} | {} |\n", r.quadrixProcessMs,
@@ -247,6 +312,7 @@ int main(int argc, char** argv) {
         csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f}\n", r.quadrixProcessMs, r.povProcessMs,
                            r.quadrixPeakMiB, r.povPeakMiB);
     }
+    md += Scaling(rows);
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".md") << md;
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".csv") << csv;
     std::ofstream(outDir + "/latest.md") << md;

@@ -10,6 +10,7 @@ PACKAGES=(
   libpng-dev                         # PNG output
   libtbb-dev                         # oneTBB: parallel tiles
   libgtest-dev                       # GoogleTest
+  libedit-dev                        # line editing at the uq> prompt (BSD license)
   povray                             # the independent exact renderer the tests compare against
 )
 

@@ -19,6 +19,11 @@ struct RenderArgs {
     int threads = 0;
     std::string dumpFrame;
     std::vector<std::string> engineOptions;  // key=value
+    // Importers and rt-style views (docs/import.md).
+    std::vector<std::string> top;
+    bool strict = false;
+    std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
+    std::string rtView;                                     // file of rt view commands
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 int RunRender(const RenderArgs& args);
@@ -33,6 +38,27 @@ struct ExportArgs {
 };
 void AddExportCommand(CLI::App& app, ExportArgs& args);
 int RunExport(const ExportArgs& args);
+
+// `quadrix uq [options] [files]` and `quadrix -i`: UniQuadrix batch and interactive modes with the
+// paper's option syntax (uq_command.cpp, interactive.h).
+void AddUqCommand(CLI::App& app);
+int RunUq(const std::vector<std::string>& args);
+// Runs uq when argv[1] is "uq" or "-i" (before CLI11, which cannot parse glued values such as
+// -dpng); returns false otherwise.
+bool MaybeRunUq(int argc, char** argv, int& exitCode);
+
+// `quadrix pipe`: tubes along polylines as UniQuadrix text (pipe_command.cpp, model/pipe.h).
+struct PipeArgs {
+    std::string input;
+    std::string output;
+    std::string definition;
+    std::string prefix = "e";
+    std::string generate;
+    double radius = 0.25;
+    double ball = 0;
+};
+void AddPipeCommand(CLI::App& app, PipeArgs& args);
+int RunPipe(const PipeArgs& args);
 
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);

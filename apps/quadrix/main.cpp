@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
         "  quadrix render examples/machined_part.uq -o part.png\n"
         "  quadrix render examples/stack_of_bundles.uq -o stack.png --size 800x600 --fast\n"
         "  quadrix render - -o out.ppm < scene.uq\n"
-        "  quadrix export --to pov examples/machined_part.uq -o part.pov\n",
+        "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
+        "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n",
         "quadrix"};
     app.set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
     app.require_subcommand(1);
@@ -24,7 +25,11 @@ int main(int argc, char** argv) {
     quadrix::cli::AddRenderCommand(app, renderArgs);
     quadrix::cli::ExportArgs exportArgs;
     quadrix::cli::AddExportCommand(app, exportArgs);
+    quadrix::cli::AddUqCommand(app);
+    quadrix::cli::PipeArgs pipeArgs;
+    quadrix::cli::AddPipeCommand(app, pipeArgs);
 
+    if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -39,5 +44,6 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("render")) return quadrix::cli::RunRender(renderArgs);
     if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
+    if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
     return 2;
 }

@@ -42,7 +42,62 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Engine-specific setting KEY=VALUE (repeatable; see docs/ for each engine)");
     cmd->add_option("--dump-frame", args.dumpFrame,
                     "Also write the Frame (depth, normal, ids) as a .qxf text dump");
+    cmd->add_option("--top", args.top,
+                    "Objects to draw from BRL-CAD/OpenSCAD files (repeatable or comma-separated; "
+                    "default: every top-level object)")
+        ->delimiter(',')
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    cmd->add_flag("--strict", args.strict,
+                  "Primitives that cannot be drawn exactly (torus, ...) are an error");
+    cmd->add_option("--az", args.az, "Azimuth in degrees (rt convention), orthographic fit")
+        ->expected(1);
+    cmd->add_option("--el", args.el, "Elevation in degrees (rt convention)")->expected(1);
+    cmd->add_option("--viewsize", args.viewsize, "rt view size in mm (with --az/--el or --eye-pt)")
+        ->expected(1);
+    cmd->add_option("--eye-pt", args.eyePt, "rt eye point X Y Z in model mm")->expected(3);
+    cmd->add_option("--viewrot", args.viewrot, "rt view rotation: 16 numbers, row-major")
+        ->expected(16);
+    cmd->add_option("--rt-view", args.rtView,
+                    "File of rt view commands (viewsize; eye_pt; viewrot or orientation)");
 }
+
+namespace {
+// The rt-style view options → PipelineOptions; returns an error message or empty.
+std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnostics& diags) {
+    if (!args.az.empty()) po.azimuth = args.az[0];
+    if (!args.el.empty()) po.elevation = args.el[0];
+    if (!args.viewsize.empty()) {
+        if (!(args.viewsize[0] > 0)) return "--viewsize must be positive";
+        po.viewsize = args.viewsize[0];
+    }
+    bool explicitView = !args.eyePt.empty() || !args.viewrot.empty();
+    if (explicitView) {
+        if (args.eyePt.size() != 3 || args.viewrot.size() != 16 || !po.viewsize)
+            return "an explicit rt view needs --viewsize, --eye-pt (3 numbers) and --viewrot (16)";
+        import::RtView rt;
+        rt.viewsize = *po.viewsize;
+        rt.eye = {args.eyePt[0], args.eyePt[1], args.eyePt[2]};
+        for (int k = 0; k < 16; ++k) rt.viewrot.m[k / 4][k % 4] = args.viewrot[k];
+        po.rtView = rt;
+    }
+    if (!args.rtView.empty()) {
+        std::FILE* f = std::fopen(args.rtView.c_str(), "rb");
+        if (!f) return fmt::format("--rt-view: cannot open '{}'", args.rtView);
+        std::string text;
+        char buf[4096];
+        std::size_t n = 0;
+        while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+        std::fclose(f);
+        auto rt = import::ParseRtViewScript(text, args.rtView, diags);
+        if (!rt) return "--rt-view: the view file has errors";
+        po.rtView = *rt;
+    }
+    if ((po.rtView || po.azimuth || po.elevation) && !args.view.empty())
+        return "--view cannot be combined with --az/--el or an rt view";
+    return {};
+}
+}  // namespace
 
 int RunRender(const RenderArgs& args) {
     Diagnostics diags;
@@ -63,6 +118,13 @@ int RunRender(const RenderArgs& args) {
     po.viewName = args.view;
     po.engine = args.engine;
     po.threads = args.threads;
+    po.topObjects = args.top;
+    po.strict = args.strict;
+    if (auto e = RtViewOptions(args, po, diags); !e.empty()) {
+        diags.Print(stderr);
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
     for (const std::string& kv : args.engineOptions) {
         auto eq = kv.find('=');
         if (eq == std::string::npos || eq == 0) {
@@ -109,6 +171,9 @@ int RunRender(const RenderArgs& args) {
                      result.flat.halfSpaces.size(), result.frame.CoveredCount(),
                      result.readSeconds, result.flattenSeconds, result.renderSeconds,
                      writeSeconds);
+        for (const auto& [path, r] : result.inputs.imports)
+            std::fprintf(stderr, "%s: %s, %d solids drawn; %s\n", path.c_str(), r.format.c_str(),
+                         r.solids, r.CensusText().c_str());
         for (const auto& [name, value] : result.stats.counters)
             std::fprintf(stderr, "  %s: %.17g\n", name.c_str(), value);
         if (!result.stats.report.empty()) std::fprintf(stderr, "%s\n", result.stats.report.c_str());

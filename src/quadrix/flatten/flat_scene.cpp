@@ -17,4 +17,13 @@ Vec3 FlatScene::WorldNormal(int hs, const Vec3& p) const {
     return Normalize(n);
 }
 
+scene::Color FlatScene::SurfaceColor(int surface, int body) const {
+    if (body >= 0 && static_cast<std::size_t>(body) < bodies.size())
+        return bodies[static_cast<std::size_t>(body)].color;
+    const long long k = static_cast<long long>(surface) - static_cast<long long>(halfSpaces.size());
+    if (k >= 0 && k < static_cast<long long>(freeforms.size()))
+        return freeforms[static_cast<std::size_t>(k)].color;
+    return {};
+}
+
 }  // namespace quadrix

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/freeform/surface.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/quadric.h"
 #include "quadrix/math/vec.h"
@@ -66,6 +67,16 @@ struct FlatSolid {
     Box3 bounds;    // conservative device-space bounds, clipped to the image in x and y
 };
 
+// A freeform surface to draw (scene::FreeformSurface under its instance transforms). It stays in
+// WORLD coordinates: the isocurve renderer projects it with `Projection` (exactly, through
+// homogeneous control points). Frame ids for freeform k: surface = halfSpaces.size() + k,
+// body = solid = Frame::kNone (FlatScene::SurfaceColor gives its color).
+struct FlatFreeform {
+    freeform::Surface surface;  // world coordinates
+    scene::Color color;         // resolved like a body's
+    std::string name;
+};
+
 // How the world was projected; the shader needs it to express normals in world space.
 struct Projection {
     bool perspective = false;
@@ -80,6 +91,7 @@ struct FlatScene {
     std::vector<FlatBody> bodies;
     std::vector<FlatCsgNode> nodes;
     std::vector<FlatSolid> solids;
+    std::vector<FlatFreeform> freeforms;
     std::vector<scene::Light> lights;  // world space, defaults applied
     Projection projection;
     std::string viewName;
@@ -90,6 +102,10 @@ struct FlatScene {
     // World-space unit normal of half-space `hs` at device point `p`, oriented toward the viewer.
     // Normals are covectors: n_world = (deviceFromWorld)ᵀ g where g is the device gradient.
     Vec3 WorldNormal(int hs, const Vec3& devicePoint) const;
+
+    // The base color of a pixel with Frame ids (surface, body): the body's, else the freeform
+    // surface's (surface ids past the half-spaces), else white.
+    scene::Color SurfaceColor(int surface, int body) const;
 };
 
 }  // namespace quadrix

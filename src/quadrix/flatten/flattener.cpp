@@ -93,7 +93,7 @@ class FlattenerImpl {
         limits.clipLiteralsPerBody = nClip;
         if (!FlattenHierarchy(scene_, view_.provFromWorld, limits, flat, hierarchy_, diags_))
             return std::nullopt;
-        if (flat.solids.empty()) {
+        if (flat.solids.empty() && flat.freeforms.empty()) {
             diags_.Error({},
                          "nothing to draw: the scene has no body, instance or csg solid "
                          "outside definitions that is not a CSG operand");
@@ -108,6 +108,15 @@ class FlattenerImpl {
         for (std::size_t i = 0; i < flat.bodies.size(); ++i)
             bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo);
         std::vector<Box3> fitBoxes = FitSolidBoxes(bodyBoxes, bo);
+        // Freeform surfaces take part in the fit through the hull of their control points in
+        // provisional space (exact image of the surface, conservative bounds).
+        for (const FlatFreeform& f : flat.freeforms) {
+            Box3 b = f.surface.Transformed(view_.provFromWorld.Matrix()).Bounds();
+            fitBoxes.push_back(b);
+            hierarchy_.solidLocs.push_back({});
+            hierarchy_.solidIsCsg.push_back(false);
+            freeformNames_.push_back(f.name);
+        }
 
         std::optional<Fit> fit = FitWindow(fitBoxes);
         if (!fit) return std::nullopt;
@@ -183,6 +192,13 @@ class FlattenerImpl {
                 bool unboundedX = needX && !(std::isfinite(b.lo.x) && std::isfinite(b.hi.x));
                 bool unboundedY = needY && !(std::isfinite(b.lo.y) && std::isfinite(b.hi.y));
                 if (unboundedX || unboundedY) {
+                    if (i >= flat_.solids.size()) {
+                        diags_.Error({}, fmt::format("freeform surface '{}' reaches infinity in "
+                                                     "the view (a weight vanishes); give the view "
+                                                     "a window with whh and whw",
+                                                     freeformNames_[i - flat_.solids.size()]));
+                        return std::nullopt;
+                    }
                     const SourceLoc& loc = hierarchy_.solidLocs[i];
                     bool isBody = !hierarchy_.solidIsCsg[i];
                     diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view; give "
@@ -285,6 +301,7 @@ class FlattenerImpl {
         out.lights = std::move(flat.lights);
         out.projection = flat.projection;
         out.viewName = flat.viewName;
+        out.freeforms = std::move(flat.freeforms);
         std::vector<int> hsMap(flat.halfSpaces.size(), -1);
         for (std::size_t i = 0; i < flat.halfSpaces.size(); ++i)
             if (flat.halfSpaces[i].isClip) {
@@ -356,6 +373,7 @@ class FlattenerImpl {
     ViewSetup view_;
     FlatScene flat_;
     HierarchyResult hierarchy_;
+    std::vector<std::string> freeformNames_;  // fit boxes past the solids
 };
 
 }  // namespace

@@ -215,6 +215,7 @@ class Walker {
         : scene_(scene), out_(out), result_(result), diags_(diags) {}
 
     bool Run(const Transform& targetFromWorld) {
+        worldFromTarget_ = targetFromWorld.Inverted();
         ScopeInst top{&scene_.top, targetFromWorld, "", {}};
         top.hsMap.assign(scene_.top.halfSpaces.size(), -1);
         DrawScope(top, std::nullopt);
@@ -223,6 +224,7 @@ class Walker {
 
   private:
     static constexpr int kMaxDepth = 1000;  // CSG expression recursion (alternating operators)
+    static constexpr std::size_t kMaxFreeforms = 100000;
 
     void Fail(const SourceLoc& loc, std::string message) {
         if (!failed_) diags_.Error(loc, std::move(message));
@@ -248,6 +250,21 @@ class Walker {
                 DrawScope(child, c);
                 deltaK = inst.delta * deltaK;
             }
+        }
+        for (const scene::FreeformSurface& f : s.freeforms) {
+            if (failed_) break;
+            if (out_.freeforms.size() >= kMaxFreeforms) {
+                Fail(f.loc, fmt::format("more than {} freeform surfaces to draw (instances and "
+                                        "arrays multiply them)",
+                                        kMaxFreeforms));
+                break;
+            }
+            FlatFreeform ff;
+            // The walk composes target-from-object; freeform surfaces stay in world space.
+            ff.surface = f.surface.Transformed((worldFromTarget_ * si.t).Matrix());
+            ff.color = f.color ? *f.color : color ? *color : Color{};
+            ff.name = si.path + f.id;
+            out_.freeforms.push_back(std::move(ff));
         }
         for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i) {
             if (s.csgs[i].usedAsOperand) continue;
@@ -512,6 +529,7 @@ class Walker {
     FlatScene& out_;
     HierarchyResult& result_;
     Diagnostics& diags_;
+    Transform worldFromTarget_;
     bool failed_ = false;
     int currentSolid_ = -1;
     std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded

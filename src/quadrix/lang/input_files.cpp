@@ -42,9 +42,19 @@ bool LoadFile(const std::string& path, std::string& text, std::string& reason) {
         reason = std::strerror(errno);
         return false;
     }
+    // A scene file larger than this is refused rather than read until memory runs out: `read
+    // "/dev/zero";` (or any endless device or pipe) would otherwise never end (issue 7 fuzzing).
+    constexpr std::size_t kMaxFileBytes = std::size_t{256} << 20;
     char buffer[1 << 16];
     std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
+    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
+        text.append(buffer, n);
+        if (text.size() > kMaxFileBytes) {
+            std::fclose(f);
+            reason = "it is larger than 256 MiB";
+            return false;
+        }
+    }
     bool failed = std::ferror(f) != 0;
     std::fclose(f);
     if (failed) {
@@ -123,6 +133,17 @@ void ReadTopLevelText(ReaderState& state, std::string_view text, const std::stri
     if (!error.empty()) TopLevelError(state, shown, error);
 }
 
+std::string ResolveAgainstIncluder(Parser& includer, const std::string& path) {
+    // Relative paths are relative to the including file (not to the working directory), so a
+    // scene and the files it reads can move together.
+    fs::path resolved(path);
+    const std::string& includerName = *includer.GetSource().Name();
+    bool includerIsFile = includerName != kStdinName && includerName != "<input>";
+    if (resolved.is_relative() && includerIsFile)
+        resolved = (fs::path(includerName).parent_path() / resolved).lexically_normal();
+    return resolved.string();
+}
+
 void ReadIncluded(ReaderState& state, Parser& includer, const std::string& path,
                   const SourceLoc& at) {
     if (path == "-") {
@@ -131,14 +152,7 @@ void ReadIncluded(ReaderState& state, Parser& includer, const std::string& path,
         if (!error.empty()) includer.Error(at, error, kParser);
         return;
     }
-    // Relative paths are relative to the including file (not to the working directory), so a
-    // scene and the files it reads can move together.
-    fs::path resolved(path);
-    const std::string& includerName = *includer.GetSource().Name();
-    bool includerIsFile = includerName != kStdinName && includerName != "<input>";
-    if (resolved.is_relative() && includerIsFile)
-        resolved = (fs::path(includerName).parent_path() / resolved).lexically_normal();
-    std::string shown = resolved.string();
+    std::string shown = ResolveAgainstIncluder(includer, path);
     // Check nesting and cycles before touching the file, so a cycle is reported as a cycle.
     IncludeFrame frame{CanonicalKey(shown), shown};
     if (std::string why = CheckCanRead(state, frame); !why.empty()) {

@@ -26,6 +26,9 @@ class Parser;
 void ReadTopLevelFile(ReaderState& state, const std::string& path);
 // Reads a top-level text; `name` names it in diagnostics and anchors relative reads.
 void ReadTopLevelText(ReaderState& state, std::string_view text, const std::string& name);
+// `path` as a file named in a statement of `includer`'s source: relative paths are taken
+// relative to that file's directory (standard input and unnamed texts: the working directory).
+std::string ResolveAgainstIncluder(Parser& includer, const std::string& path);
 // Executes `read path;` found by `includer` at `at`.
 void ReadIncluded(ReaderState& state, Parser& includer, const std::string& path,
                   const SourceLoc& at);

@@ -27,6 +27,11 @@ enum class Keyword {
     kShow,
     kQuit,
     kCsg,
+    kSolid,  // solids by dimensions (extension, stmt_solids.cpp)
+    kPatch,     // quadric patch (extension, stmt_patch.cpp)
+    kBezier,    // freeform surfaces (extension, stmt_freeform.cpp)
+    kBspline,
+    kPatches,
     // View parameters (§2.1.6).
     kVrp,
     kVpn,

@@ -210,6 +210,14 @@ void Parser::CheckUnclosedDefinition() {
 void Parser::Run() {
     while (!stopped_ && !state_.aborted) {
         if (PeekIs(TokenKind::kEnd)) break;
+        if (++state_.statementCount > ReaderState::kMaxStatements) {
+            Error(Peek().loc,
+                  fmt::format("more than {} statements; reading stopped",
+                              ReaderState::kMaxStatements),
+                  kParser);
+            state_.aborted = true;
+            break;
+        }
         if (!RunStatement()) SkipToSemicolon();
         CheckErrorLimit();  // lexical errors go to Diagnostics directly
     }

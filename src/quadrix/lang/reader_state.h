@@ -82,6 +82,10 @@ public:
     std::vector<IncludeFrame> includeStack;
     // Set when reading must stop everywhere (too many errors).
     bool aborted = false;
+    // Statements read by this reader, over all its inputs. Beyond kMaxStatements reading stops
+    // with a message: an endless generated input must not grow the scene until memory runs out.
+    long long statementCount = 0;
+    static constexpr long long kMaxStatements = 10'000'000;
 
 private:
     ScopeIndex& CurrentIndex();

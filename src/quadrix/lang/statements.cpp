@@ -10,6 +10,11 @@ constexpr std::array kStatements = {
     StatementEntry{Keyword::kQuadric, ParseQuadric, true},
     StatementEntry{Keyword::kBody, ParseBody, true},
     StatementEntry{Keyword::kCsg, ParseCsg, true},
+    StatementEntry{Keyword::kSolid, ParseSolid, true},
+    StatementEntry{Keyword::kPatch, ParsePatch, true},
+    StatementEntry{Keyword::kBezier, ParseBezier, true},
+    StatementEntry{Keyword::kBspline, ParseBspline, true},
+    StatementEntry{Keyword::kPatches, ParsePatches, true},
     StatementEntry{Keyword::kDefinition, ParseDefinition, true},  // reports nesting itself
     StatementEntry{Keyword::kEnddef, ParseEnddef, true},
     StatementEntry{Keyword::kInstance, ParseInstance, true},

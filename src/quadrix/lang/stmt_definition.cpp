@@ -129,7 +129,8 @@ bool ParseEnddef(Parser& p, const Token& keyword) {
     if (!id.empty() && id != def.id)
         p.Error(idLoc, fmt::format("enddef '{}' does not match definition '{}' opened at {}", id,
                                    def.id, def.loc.ToString()));
-    if (def.halfSpaces.empty() && def.bodies.empty() && def.instances.empty() && def.csgs.empty())
+    if (def.halfSpaces.empty() && def.bodies.empty() && def.instances.empty() && def.csgs.empty() &&
+        def.freeforms.empty())
         p.Warning(keyword.loc, fmt::format("definition '{}' is empty", def.id));
     s.CloseDefinition();
     return true;

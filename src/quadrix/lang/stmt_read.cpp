@@ -26,6 +26,9 @@ bool ParseRead(Parser& p, const Token& keyword) {
     }
     std::string path;
     const Token& t = p.Peek();
+    // `t` refers to the parser's look-ahead, which Take() destroys: keep its position (a fuzzed
+    // `include "";` once reported "empty file name" with no position, issue 7).
+    const SourceLoc nameLoc = t.loc;
     if (t.kind == TokenKind::kString || t.kind == TokenKind::kId) {
         path = p.Take().text;
     } else if (t.kind == TokenKind::kMinus) {
@@ -45,7 +48,7 @@ bool ParseRead(Parser& p, const Token& keyword) {
         return p.Expected("a file name (in quotes unless it is an id) or ';' after 'read'");
     }
     if (path.empty()) {
-        p.Error(t.loc, "empty file name");
+        p.Error(nameLoc, "empty file name");
         return false;
     }
     if (!p.ExpectSemicolon("the file name")) return false;

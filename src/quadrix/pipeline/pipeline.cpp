@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/lang/reader.h"
 
@@ -47,22 +48,37 @@ bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnos
     }
 
     auto t0 = std::chrono::steady_clock::now();
-    {
+    std::string viewName = options.viewName;
+    if (options.scenePaths.empty()) {
         lang::Reader reader(result.scene, diags);
-        if (options.scenePaths.empty()) {
-            reader.ReadText(options.sceneText, "<text>");
-        } else {
-            for (const std::string& path : options.scenePaths) reader.ReadFile(path);
-        }
+        reader.ReadText(options.sceneText, "<text>");
+    } else {
+        // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
+        import::InputOptions io;
+        io.import.topObjects = options.topObjects;
+        io.import.strict = options.strict;
+        import::ReadSceneInputs(options.scenePaths, io, result.scene, diags, result.inputs);
     }
     result.readSeconds = SecondsSince(t0);
     if (diags.HasErrors()) return false;
+    if (options.rtView || options.azimuth || options.elevation) {
+        scene::View view =
+            options.rtView
+                ? import::MakeRtView(*options.rtView, options.width, options.height)
+                : import::MakeAzElView(options.azimuth.value_or(35),
+                                       options.elevation.value_or(25),
+                                       result.inputs.importedBounds, options.viewsize,
+                                       options.width, options.height);
+        import::AddRtLights(result.scene, view);
+        result.scene.views.push_back(view);
+        viewName = view.id;
+    }
 
     t0 = std::chrono::steady_clock::now();
     FlattenOptions fo;
     fo.width = options.width;
     fo.height = options.height;
-    fo.viewName = options.viewName;
+    fo.viewName = viewName;
     auto flat = Flatten(result.scene, fo, diags);
     result.flattenSeconds = SecondsSince(t0);
     if (!flat || diags.HasErrors()) return false;
@@ -70,6 +86,16 @@ bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnos
 
     t0 = std::chrono::steady_clock::now();
     result.stats = engine->Render(result.flat, ro, result.frame);
+    if (engine->Name() != "isocurve" && !result.flat.freeforms.empty()) {
+        // Freeform surfaces are drawn by adaptive isocurves (seed 002) over any engine's solids,
+        // with the isocurve engine's default tolerance (curves at most one pixel apart).
+        isocurve::IsocurveStats st = isocurve::RenderFreeform(
+            isocurve::SceneDrawables(result.flat), result.flat.projection, {}, result.frame);
+        result.stats.report += fmt::format(
+            "freeform surfaces: {} drawn by adaptive isocurves after engine '{}' ({} curves, "
+            "delta {:.3g}; --engine isocurve gives the isocurve options and statistics)\n",
+            st.surfaces, engine->Name(), st.curves, st.delta);
+    }
     result.renderSeconds = SecondsSince(t0);
     return true;
 }

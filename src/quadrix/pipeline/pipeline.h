@@ -4,12 +4,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
+#include "quadrix/import/scene_input.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 
@@ -23,6 +25,14 @@ struct PipelineOptions {
     std::string engine = "raycast";
     int threads = 0;
     std::map<std::string, std::string> engineOptions;  // --engine-opt key=value
+    // Importers (docs/import.md): objects to draw from BRL-CAD/OpenSCAD files (--top) and whether
+    // primitives that cannot be drawn exactly are an error (--strict).
+    std::vector<std::string> topObjects;
+    bool strict = false;
+    // rt-style views (FORMAT.md §9.4), in the imported model's coordinates; they replace
+    // viewName. azimuth/elevation in degrees, fitted to the imported model's bounding box.
+    std::optional<double> azimuth, elevation, viewsize;
+    std::optional<import::RtView> rtView;
 };
 
 struct PipelineResult {
@@ -30,6 +40,7 @@ struct PipelineResult {
     FlatScene flat;
     Frame frame;
     RenderStats stats;
+    import::InputReport inputs;  // what the importers found (census, skipped primitives, bounds)
     double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0;
 };
 

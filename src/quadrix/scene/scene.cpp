@@ -64,6 +64,7 @@ std::vector<Light> Scene::LightsToUse() const {
 }
 
 bool Scene::Empty() const {
+    if (!top.freeforms.empty()) return false;
     for (const Body& b : top.bodies)
         if (!b.usedAsOperand) return false;
     for (const Instance& i : top.instances)

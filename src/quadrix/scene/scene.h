@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/freeform/surface.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/quadric.h"
 #include "quadrix/scene/source_loc.h"
@@ -104,12 +105,24 @@ struct Csg {
     SourceLoc loc;
 };
 
+// A freeform surface (Bézier, B-spline or NURBS; docs/language.md "Freeform surfaces") in object
+// coordinates of its scope, so that definitions, instances and arrays replicate it. It has no
+// inside: it is drawn (by adaptive isocurves, seed 002) but never bounds or combines with solids,
+// and a body or csg naming it is an error.
+struct FreeformSurface {
+    std::string id;
+    freeform::Surface surface;
+    std::optional<Color> color;
+    SourceLoc loc;
+};
+
 struct Scope {
     std::string id;  // definition id; empty for the top level
     std::vector<HalfSpace> halfSpaces;
     std::vector<Body> bodies;
     std::vector<Instance> instances;
     std::vector<Csg> csgs;
+    std::vector<FreeformSurface> freeforms;
     SourceLoc loc;
 };
 

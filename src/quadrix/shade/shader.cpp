@@ -1,5 +1,8 @@
 #include "quadrix/shade/shader.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -33,6 +36,8 @@ bool AnyColor(const FlatScene& scene, const ShadeOptions& options) {
     if (!gray(options.background)) return true;
     for (const FlatBody& b : scene.bodies)
         if (!(b.color == scene::Color{})) return true;
+    for (const FlatFreeform& f : scene.freeforms)
+        if (!(f.color == scene::Color{})) return true;
     return false;
 }
 
@@ -51,28 +56,32 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
         for (auto& [key, n] : meanNormal) n = Normalize(n);
     }
 
-    for (int y = 0; y < frame.height; ++y)
-        for (int x = 0; x < frame.width; ++x) {
-            std::size_t i = frame.Index(x, y);
-            scene::Color c = options.background;
-            if (frame.surface[i] != Frame::kNone) {
-                Vec3 n = options.fast ? meanNormal[{frame.surface[i], frame.body[i]}]
-                                      : frame.normal[i];
-                double intensity = LambertIntensity(scene, n);
-                scene::Color base;
-                if (frame.body[i] >= 0 && frame.body[i] < static_cast<int>(scene.bodies.size()))
-                    base = scene.bodies[frame.body[i]].color;
-                c = {base.r * intensity, base.g * intensity, base.b * intensity};
+    // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
+    // is the same for any thread count.
+    auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                const std::size_t i = frame.Index(x, y);
+                scene::Color c = options.background;
+                if (frame.surface[i] != Frame::kNone) {
+                    const Vec3 n = options.fast
+                                       ? meanNormal.find({frame.surface[i], frame.body[i]})->second
+                                       : frame.normal[i];
+                    const double intensity = LambertIntensity(scene, n);
+                    const scene::Color base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
+                    c = {base.r * intensity, base.g * intensity, base.b * intensity};
+                }
+                std::uint8_t* p = image.At(x, y);
+                if (color) {
+                    p[0] = ToByte(c.r);
+                    p[1] = ToByte(c.g);
+                    p[2] = ToByte(c.b);
+                } else {
+                    p[0] = ToByte(c.r);
+                }
             }
-            std::uint8_t* p = image.At(x, y);
-            if (color) {
-                p[0] = ToByte(c.r);
-                p[1] = ToByte(c.g);
-                p[2] = ToByte(c.b);
-            } else {
-                p[0] = ToByte(c.r);
-            }
-        }
+    };
+    tbb::parallel_for(tbb::blocked_range<int>(0, frame.height, 16), shadeRows);
     return image;
 }
 

@@ -4,6 +4,18 @@
 
 namespace quadrix::isocurve {
 
+std::vector<FreeformDrawable> SceneDrawables(const FlatScene& scene) {
+    std::vector<FreeformDrawable> drawables;
+    for (std::size_t k = 0; k < scene.freeforms.size(); ++k) {
+        FrameIds ids;
+        ids.surface = static_cast<std::int32_t>(scene.halfSpaces.size() + k);
+        ids.body = Frame::kNone;
+        ids.solid = Frame::kNone;
+        drawables.push_back({&scene.freeforms[k].surface, ids});
+    }
+    return drawables;
+}
+
 IsocurveEngine::IsocurveEngine(std::unique_ptr<Engine> quadrics,
                                std::vector<freeform::Surface> surfaces,
                                std::vector<std::int32_t> bodyIds)
@@ -34,10 +46,11 @@ RenderStats IsocurveEngine::Render(const FlatScene& scene, const RenderOptions& 
     } else {
         frame.Reset(scene.width, scene.height);
     }
-    std::vector<FreeformDrawable> drawables;
+    std::vector<FreeformDrawable> drawables = SceneDrawables(scene);
     for (std::size_t k = 0; k < surfaces_.size(); ++k) {
         FrameIds ids;
-        ids.surface = static_cast<std::int32_t>(scene.halfSpaces.size() + k);
+        ids.surface =
+            static_cast<std::int32_t>(scene.halfSpaces.size() + scene.freeforms.size() + k);
         ids.body = k < bodyIds_.size() ? bodyIds_[k] : Frame::kNone;
         ids.solid = Frame::kNone;
         drawables.push_back({&surfaces_[k], ids});

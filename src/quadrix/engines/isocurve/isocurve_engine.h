@@ -1,11 +1,11 @@
 // Engine `isocurve` (DESIGN.md): quadric solids by an inner engine, freeform surfaces by adaptive
 // isocurves drawn over them into the same Frame.
 //
-// Until FlatScene carries freeform surfaces, the surfaces (world coordinates) are handed to the
-// engine when it is made; the lead's integration replaces that list by the FlatScene's (see
-// docs/isocurve.md, "Integration"). Frame ids written for freeform surface k: surface =
-// scene.halfSpaces.size() + k (past every half-space id), body = bodyIds[k] when given (for its
-// colour) else Frame::kNone, solid = Frame::kNone.
+// The surfaces drawn are the FlatScene's freeforms (from the scene language and the freeform
+// file formats), then any surfaces handed to the constructor (tests). Frame ids written for
+// FlatScene freeform k: surface = scene.halfSpaces.size() + k (past every half-space id), body =
+// solid = Frame::kNone (FlatScene::SurfaceColor gives the color); constructor surface k follows
+// them, with body = bodyIds[k] when given.
 #pragma once
 
 #include <memory>
@@ -16,6 +16,9 @@
 #include "quadrix/freeform/surface.h"
 
 namespace quadrix::isocurve {
+
+// The FlatScene's freeform surfaces with their Frame ids (see above).
+std::vector<FreeformDrawable> SceneDrawables(const FlatScene& scene);
 
 class IsocurveEngine : public Engine {
   public:

@@ -47,8 +47,7 @@ Image PhongShade(const Frame& frame, const FlatScene& scene, const PhongOptions&
             scene::Color c = options.background;
             if (frame.surface[i] != Frame::kNone) {
                 scene::Color base;
-                if (frame.body[i] >= 0 && frame.body[i] < static_cast<int>(scene.bodies.size()))
-                    base = scene.bodies[static_cast<std::size_t>(frame.body[i])].color;
+                base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
                 const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
                 const PhongTerms t =
                     PhongAt(scene, frame.normal[i], TowardViewer(scene, p), options);

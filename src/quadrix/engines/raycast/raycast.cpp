@@ -99,7 +99,8 @@ struct SceneTables {
 
 struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
-                  pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0;
+                  pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
+                  cutRetries = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -113,6 +114,7 @@ struct Counters {
         bodies += o.bodies;
         csgOps += o.csgOps;
         covered += o.covered;
+        cutRetries += o.cutRetries;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -138,6 +140,36 @@ class Worker {
     std::vector<std::int32_t> stack;
     Counters counters;
 
+    // Depth cuts of the current sub-tile (see SetCuts), ascending, the last one +inf.
+    std::vector<double> cuts{HUGE_VAL};
+
+    // Cut levels for a sub-tile program: the 8th, 32nd, 128th and 512th nearest leaf depths
+    // (zlo) when the program has more leaves than that, then +inf.
+    void SetCuts(const CsgProgram& program) {
+        cuts.clear();
+        zlos_.clear();
+        for (const ProgNode& n : program.nodes)
+            if (n.kind == NodeKind::kBody) zlos_.push_back(n.zlo);
+        for (std::size_t k : {8u, 32u, 128u, 512u}) {
+            if (zlos_.size() <= k) break;
+            std::nth_element(zlos_.begin(), zlos_.begin() + static_cast<std::ptrdiff_t>(k),
+                             zlos_.end());
+            const double cut = zlos_[k];
+            if (std::isfinite(cut) && (cuts.empty() || cut > cuts.back())) cuts.push_back(cut);
+        }
+        cuts.push_back(HUGE_VAL);
+    }
+
+    // The visible point of the pixel (x, y): per solid in order of nearest depth, its first
+    // opaque endpoint.
+    //
+    // Depth cuts: evaluating a tree with every node whose zlo >= T replaced by ∅ gives its set
+    // exactly on t < T (set operations are pointwise in t, and a node with zlo >= T is empty
+    // there), ids included (the dropped nodes have no endpoints before T, so no sweep sees a
+    // different event before T). A first visible endpoint found below T is therefore the
+    // exact one. Big unions (thousands of spheres) are evaluated with growing cuts and most
+    // pixels stop at the first: cost grows with the depth complexity near the visible surface,
+    // not with every primitive behind it.
     Hit Trace(const CsgProgram& program, double x, double y) {
         Hit best;
         for (const ProgSolid& s : program.solids) {
@@ -147,11 +179,20 @@ class Worker {
             }
             if (x < s.xy.x0 || x > s.xy.x1 || y < s.xy.y0 || y > s.xy.y1) continue;
             ++counters.pixelSolids;
-            Evaluate(program, s.root, x, y, 0);
-            double t;
-            std::int32_t tag;
-            if (!FirstVisible(*slots_[0], t, tag)) continue;
-            if (t < best.t || (t == best.t && s.solid < best.solid)) best = {t, tag, s.solid};
+            for (double cut : cuts) {
+                if (cut <= s.zlo) continue;  // the whole solid is cut away
+                Evaluate(program, s.root, x, y, 0, cut);
+                double t;
+                std::int32_t tag;
+                if (FirstVisible(*slots_[0], t, tag) && t < cut) {
+                    if (t < best.t || (t == best.t && s.solid < best.solid))
+                        best = {t, tag, s.solid};
+                    break;
+                }
+                // Nothing visible before the cut: this solid cannot beat a best nearer than it.
+                if (best.t < cut) break;
+                if (cut != HUGE_VAL) ++counters.cutRetries;
+            }
         }
         return best;
     }
@@ -176,10 +217,12 @@ class Worker {
         return false;
     }
 
-    // *slots_[slot] = the set of node n on the ray through (x, y).
-    void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot) {
+    // *slots_[slot] = the set of node n on the ray through (x, y), exact on t < cut (nodes with
+    // zlo >= cut are taken as ∅; see Trace).
+    void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
+                  double cut) {
         const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
-        if (node.MissesPoint(x, y)) {
+        if (node.MissesPoint(x, y) || node.zlo >= cut) {
             slots_[slot]->clear();
             return;
         }
@@ -188,16 +231,17 @@ class Worker {
             return;
         }
         const std::int32_t* child = p.children.data() + node.first;
-        Evaluate(p, child[0], x, y, slot);
+        Evaluate(p, child[0], x, y, slot, cut);
         for (std::int32_t i = 1; i < node.count; ++i) {
             IntervalList& out = *slots_[slot];
             if (out.empty() && node.kind != NodeKind::kUnion) return;  // ∅ ∩ B = ∅ − B = ∅
             // The operand's bounds are tested here as well as in the call, to skip the call for
             // the many operands of a big union that miss this pixel.
-            if (p.nodes[static_cast<std::size_t>(child[i])].MissesPoint(x, y)) {
+            const ProgNode& c = p.nodes[static_cast<std::size_t>(child[i])];
+            if (c.MissesPoint(x, y) || c.zlo >= cut) {
                 slots_[slot + 1]->clear();
             } else {
-                Evaluate(p, child[i], x, y, slot + 1);
+                Evaluate(p, child[i], x, y, slot + 1, cut);
             }
             IntervalList& operand = *slots_[slot + 1];
             if (operand.empty()) {
@@ -228,31 +272,96 @@ class Worker {
         }
     }
 
-    // A body is the intersection of its literals: the first literal's set, clipped by each
-    // following one (ClipTo for one piece; a general intersection for two).
+    // A body is the intersection of its literals, taken in the body's order: each literal's set
+    // clips the running set. While that set is one interval (always, for bodies of planes and of
+    // quadrics cut by planes, the common case) it is kept in registers and planes are evaluated
+    // inline; the first literal whose set has two pieces switches to interval lists. The tie rules
+    // are ClipTo's in both paths (a later literal wins a tie at the near end, an earlier one at
+    // the far end), so the result does not depend on the path taken.
     void EvaluateBody(std::int32_t body, double x, double y, std::size_t slot) {
         ++counters.bodies;
-        slots_[slot]->clear();  // a body without literals is empty
+        IntervalList& result = *slots_[slot];
+        result.clear();  // a body without literals is empty
         if (!tables_.bodyValid[static_cast<std::size_t>(body)]) return;
-        std::int32_t first = tables_.bodyFirstTag[static_cast<std::size_t>(body)];
-        std::int32_t last = tables_.bodyFirstTag[static_cast<std::size_t>(body) + 1];
+        const std::int32_t first = tables_.bodyFirstTag[static_cast<std::size_t>(body)];
+        const std::int32_t last = tables_.bodyFirstTag[static_cast<std::size_t>(body) + 1];
+        if (first == last) return;
+        Interval run{-HUGE_VAL, HUGE_VAL, Interval::kNoId, Interval::kNoId};
         for (std::int32_t tag = first; tag < last; ++tag) {
             const Tag& t = TagOf(tag);
             const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-            RaySet set = LiteralOnRay(hs, t.complemented, x, y, tag, counters.literals);
+            Interval w;
+            if (hs.isPlane) {
+                // LiteralOnRay's plane case, inline: c t + e <= 0 (or its closed complement).
+                ++counters.literals.planes;
+                const double e = hs.px * x + hs.py * y + hs.pd;
+                if (!std::isfinite(e) || !std::isfinite(hs.c)) return;  // empty both ways
+                if (hs.c == 0) {
+                    if ((e <= 0) == t.complemented) return;  // holds nowhere on this ray
+                    continue;                                 // holds everywhere
+                }
+                const double r = -e / hs.c;
+                const bool below = (hs.c > 0) != t.complemented;  // the set is t <= r
+                w = below ? Interval{-HUGE_VAL, r, Interval::kNoId, tag}
+                          : Interval{r, HUGE_VAL, tag, Interval::kNoId};
+                if (std::isinf(r)) {
+                    if (!(w.lo < w.hi)) return;  // r overflowed to the empty side
+                    continue;                    // r overflowed to the full side
+                }
+            } else {
+                RaySet set = LiteralOnRay(hs, t.complemented, x, y, tag, counters.literals);
+                if (set.count == 0) return;
+                if (set.count == 2) {
+                    EvaluateBodyLists(run, set, tag + 1, last, x, y, slot);
+                    return;
+                }
+                w = set.piece[0];
+            }
+            // ClipTo's rules for one piece.
+            if (!(run.lo > w.lo)) {
+                run.lo = w.lo;
+                run.loId = w.loId;
+            }
+            if (!(run.hi <= w.hi)) {
+                run.hi = w.hi;
+                run.hiId = w.hiId;
+            }
+            if (!(run.lo < run.hi)) return;
+        }
+        AppendPiece(result, run);
+    }
+
+    // The rest of a body from the first literal with a two-piece set: the running interval `run`
+    // intersected with `set`, then literals [next, last) as interval lists.
+    void EvaluateBodyLists(const Interval& run, const RaySet& set, std::int32_t next,
+                           std::int32_t last, double x, double y, std::size_t slot) {
+        {
             IntervalList& out = *slots_[slot];
-            if (set.count == 0) {
+            out.clear();
+            for (int i = 0; i < set.count; ++i) AppendPiece(out, set.piece[i]);
+            // run ∩ set, the running set first (the earlier operand), as in the loop below.
+            IntervalList& runList = *slots_[slot + 1];
+            runList.clear();
+            AppendPiece(runList, run);
+            Intersection(runList, out, *slots_[slot + 2]);
+            std::swap(slots_[slot], slots_[slot + 2]);
+            if (slots_[slot]->empty()) return;
+        }
+        for (std::int32_t tag = next; tag < last; ++tag) {
+            const Tag& t = TagOf(tag);
+            const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+            RaySet s = LiteralOnRay(hs, t.complemented, x, y, tag, counters.literals);
+            IntervalList& out = *slots_[slot];
+            if (s.count == 0) {
                 out.clear();
                 return;
             }
-            if (tag == first) {
-                for (int i = 0; i < set.count; ++i) AppendPiece(out, set.piece[i]);
-            } else if (set.count == 1) {
-                ClipTo(out, set.piece[0]);
+            if (s.count == 1) {
+                ClipTo(out, s.piece[0]);
             } else {
                 IntervalList& literal = *slots_[slot + 1];
                 literal.clear();
-                for (int i = 0; i < set.count; ++i) AppendPiece(literal, set.piece[i]);
+                for (int i = 0; i < s.count; ++i) AppendPiece(literal, s.piece[i]);
                 Intersection(out, literal, *slots_[slot + 2]);
                 std::swap(slots_[slot], slots_[slot + 2]);
             }
@@ -265,6 +374,7 @@ class Worker {
     }
 
     const SceneTables& tables_;
+    std::vector<double> zlos_;  // SetCuts scratch
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
 };
@@ -289,6 +399,7 @@ void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0,
             w.counters.tileSolids += w.subTileProgram.solids.size();
             w.counters.pixels += static_cast<std::uint64_t>((ex - sx) * (ey - sy));
             if (w.subTileProgram.solids.empty()) continue;
+            w.SetCuts(w.subTileProgram);
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
@@ -386,6 +497,7 @@ class RaycastEngine final : public Engine {
         add("plane_evaluations", total.literals.planes);
         add("quadric_solves", total.literals.quadrics);
         add("csg_operations", total.csgOps);
+        add("depth_cut_retries", total.cutRetries);
         return stats;
     }
 };

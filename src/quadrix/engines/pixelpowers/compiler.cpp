@@ -1,0 +1,478 @@
+#include "quadrix/engines/pixelpowers/compiler.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+
+namespace quadrix::pixelpowers {
+
+Vec3 RaycastReferencePoint(const FlatScene& scene, std::size_t h) {
+    // Same rule as raycast's SceneTables::ReferencePoints.
+    Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
+    const FlatHalfSpace& hs = scene.halfSpaces[h];
+    return hs.isPlane ? anchor : raycast::RayHalfSpace::Centre(hs.quadric).value_or(anchor);
+}
+
+namespace {
+
+constexpr std::uint8_t kF1 = 0, kF2 = 1, kF3 = 2;
+using Coeffs = std::array<double, 6>;  // A x² + B xy + C y² + D x + E y + F
+
+// A quadric along the rays of its pixels (DESIGN.md "Depth of a quadric at a pixel"):
+// Q = c z² + 2 b(x,y) z + a(x,y), roots z = L ± sqrt(Δ)/|c| with L = −b/c, Δ = b² − c a.
+struct RayForm {
+    double c = 0;
+    Coeffs b{}, a{};  // b uses only D E F (linear)
+};
+
+RayForm RayFormOf(const Quadric& q) {
+    RayForm r;
+    r.c = q.C();
+    r.b = {0, 0, 0, q.F(), q.E(), q.J()};
+    r.a = {q.A(), 2 * q.D(), q.B(), 2 * q.G(), 2 * q.H(), q.K()};
+    return r;
+}
+
+Coeffs Discriminant(const RayForm& r) {
+    const double bx = r.b[3], by = r.b[4], b0 = r.b[5];
+    Coeffs b2{bx * bx, 2 * bx * by, by * by, 2 * bx * b0, 2 * by * b0, b0 * b0};
+    Coeffs d;
+    for (int i = 0; i < 6; ++i) d[static_cast<std::size_t>(i)] = b2[i] - r.c * r.a[i];
+    return d;
+}
+
+double Eval(const Coeffs& q, double x, double y) {
+    return q[0] * x * x + q[1] * x * y + q[2] * y * y + q[3] * x + q[4] * y + q[5];
+}
+
+// Tangent points u_i of sqrt so that min_i T_i(v²) − v <= e for v in [0, vmax], where
+// T_u(Δ) = u/2 + Δ/(2u) is the tangent of sqrt at Δ = u² (sqrt is concave, so every tangent lies
+// above it and the minimum over tangents is the best: the envelope of seed 004 §III step 2).
+// The error of T_u at v is (u − v)²/(2u): T_u covers [u − sqrt(2ue), u + sqrt(2ue)], and the first
+// point u0 = 2e covers [0, 4e].
+std::vector<double> TangentPoints(double vmax, double e, int maxStrips, bool& capped) {
+    std::vector<double> u;
+    capped = false;
+    double covered = 0;
+    double t = 2 * e;
+    while (true) {
+        u.push_back(t);
+        covered = t + std::sqrt(2 * t * e);
+        if (covered >= vmax) break;
+        if (static_cast<int>(u.size()) >= maxStrips) {
+            capped = true;
+            break;
+        }
+        // Next u with u − sqrt(2ue) = covered: w = sqrt(u) solves w² − sqrt(2e) w − covered = 0.
+        double w = 0.5 * (std::sqrt(2 * e) + std::sqrt(2 * e + 4 * covered));
+        t = w * w;
+    }
+    return u;
+}
+
+class Compiler {
+  public:
+    Compiler(const FlatScene& scene, const CompileOptions& options, Program& program,
+             CompileStats& stats)
+        : scene_(scene), options_(options), program_(program), stats_(stats) {}
+
+    void Run() {
+        program_ = Program{};
+        stats_ = CompileStats{};
+        boxes_ = csg::BodyBoxes(scene_);
+        std::set<int> bodies, halfSpaces;
+        for (std::size_t s = 0; s < scene_.solids.size(); ++s) {
+            csg::Tree tree = csg::TreeOfSolid(scene_, static_cast<int>(s));
+            csg::NormalizeOptions no;
+            no.maxProducts = options_.maxProducts;
+            no.boxes = boxes_;
+            // A solid's own bounds bound every product of it.
+            const Box3& sb = scene_.solids[s].bounds;
+            csg::NormalForm nf = csg::Normalize(tree, no);
+            Accumulate(nf.stats);
+            if (!nf.ok) {
+                stats_.errors.push_back("solid '" + scene_.solids[s].name + "': " + nf.error);
+                continue;
+            }
+            products_ = &nf.products;
+            for (const csg::Product& p : nf.products) {
+                for (const csg::Factor& f : p) {
+                    bodies.insert(f.primitive);
+                    if (ValidBody(f.primitive))
+                        for (const FlatLiteral& l : Body(f.primitive).literals)
+                            halfSpaces.insert(l.halfSpace);
+                }
+                CompileProduct(p, static_cast<std::int32_t>(s), sb);
+            }
+        }
+        stats_.primitives = bodies.size();
+        stats_.halfSpaces = halfSpaces.size();
+        stats_.patches = program_.blocks.size();
+    }
+
+  private:
+    void Accumulate(const csg::NormalFormStats& s) {
+        csg::NormalFormStats& t = stats_.normalForm;
+        t.treePrimitives += s.treePrimitives;
+        t.treeOperators += s.treeOperators;
+        t.products += s.products;
+        t.factors += s.factors;
+        t.terms += s.terms;
+        t.prunedProducts += s.prunedProducts;
+        t.prunedFactors += s.prunedFactors;
+        t.prunedSubtrahends += s.prunedSubtrahends;
+        t.contradictions += s.contradictions;
+        t.duplicates += s.duplicates;
+    }
+
+    const FlatBody& Body(int b) const { return scene_.bodies[static_cast<std::size_t>(b)]; }
+
+    // raycast treats a body with a missing half-space, or without literals, as empty.
+    bool ValidBody(int b) const {
+        if (b < 0 || static_cast<std::size_t>(b) >= scene_.bodies.size()) return false;
+        const FlatBody& body = Body(b);
+        if (body.literals.empty()) return false;
+        for (const FlatLiteral& l : body.literals)
+            if (l.halfSpace < 0 || static_cast<std::size_t>(l.halfSpace) >= scene_.halfSpaces.size())
+                return false;
+        return true;
+    }
+
+    std::int32_t LiteralIndex(const FlatLiteral& l) {
+        auto key = std::make_pair(l.halfSpace, l.complemented);
+        auto it = literalIndex_.find(key);
+        if (it != literalIndex_.end()) return it->second;
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+        MachineLiteral m;
+        m.ray = raycast::RayHalfSpace::From(
+            hs, RaycastReferencePoint(scene_, static_cast<std::size_t>(l.halfSpace)));
+        m.complemented = l.complemented;
+        m.isPlane = hs.isPlane;
+        program_.literals.push_back(m);
+        auto index = static_cast<std::int32_t>(program_.literals.size() - 1);
+        literalIndex_.emplace(key, index);
+        return index;
+    }
+
+    // Pixels whose centres lie in the box's xy range, clipped to the image.
+    PixelRect RectOf(const Box3& b) const {
+        auto lo = [](double v, int n) {
+            if (std::isnan(v)) return 0;
+            double c = std::ceil(v - 0.5);
+            return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(n)));
+        };
+        auto hi = [](double v, int n) {
+            if (std::isnan(v)) return n;
+            double c = std::floor(v - 0.5) + 1;
+            return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(n)));
+        };
+        if (b.Empty()) return {};
+        return {lo(b.lo.x, scene_.width), lo(b.lo.y, scene_.height), hi(b.hi.x, scene_.width),
+                hi(b.hi.y, scene_.height)};
+    }
+
+    bool Opaque(const FlatLiteral& l) const {
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+        return !hs.transparent && !hs.isClip;
+    }
+
+    Box3 BoxOf(int body) const { return boxes_[static_cast<std::size_t>(body)]; }
+
+    void CompileProduct(const csg::Product& p, std::int32_t solid, const Box3& solidBox) {
+        for (const csg::Factor& f : p)
+            if (!f.subtracted && !ValidBody(f.primitive)) return;  // an empty ∩ factor
+        Box3 productBox = solidBox.Empty() ? Box3{} : Box3::Everything();
+        for (const csg::Factor& f : p)
+            if (!f.subtracted) productBox = productBox.Intersected(BoxOf(f.primitive));
+        // Exit terms are needed where the first opaque boundary point on a ray may be one where
+        // the product is left: after a transparent surface (a clipping plane), or when the ray
+        // starts inside the product (a box unbounded toward the viewer).
+        bool exits = !(productBox.lo.z > -HUGE_VAL);
+        for (const csg::Factor& f : p)
+            if (ValidBody(f.primitive))
+                for (const FlatLiteral& l : Body(f.primitive).literals)
+                    exits = exits || !Opaque(l);
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const csg::Factor& xi = p[i];
+            if (!ValidBody(xi.primitive)) continue;  // an empty − factor draws nothing
+            Box3 termBox = productBox.Intersected(BoxOf(xi.primitive));
+            PixelRect rect = RectOf(termBox);
+            if (termBox.Empty() || rect.Empty()) {
+                ++stats_.prunedTerms;
+                continue;
+            }
+            ++stats_.terms;
+            std::vector<csg::Factor> paring;
+            for (std::size_t j = 0; j < p.size(); ++j) {
+                if (j == i) continue;
+                const csg::Factor& y = p[j];
+                if (y.subtracted &&
+                    (!ValidBody(y.primitive) || termBox.Intersected(BoxOf(y.primitive)).Empty())) {
+                    ++stats_.prunedParings;
+                    continue;
+                }
+                paring.push_back(y);
+            }
+            // Display theorem: front (entry) face for ∩ factors, back (exit) face for − ones;
+            // with `exits`, also the opposite faces (raycast draws the first opaque endpoint).
+            const FlatBody& body = Body(xi.primitive);
+            for (int face = 0; face < (exits ? 2 : 1); ++face) {
+                bool exitFace = xi.subtracted != (face == 1);
+                for (std::size_t k = 0; k < body.literals.size(); ++k) {
+                    const FlatLiteral& lit = body.literals[k];
+                    if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
+                    EmitPatch(xi.primitive, k, exitFace, paring, exits ? Others(p, termBox)
+                                                                       : std::vector<const csg::Product*>{},
+                              rect, solid);
+                }
+            }
+        }
+    }
+
+    Instruction& Emit(Opcode op, std::uint8_t a, std::uint8_t b = 0, std::int32_t arg = -1) {
+        Instruction in;
+        in.op = op;
+        in.a = a;
+        in.b = b;
+        in.arg = arg;
+        program_.code.push_back(in);
+        return program_.code.back();
+    }
+    void EmitQ(Opcode op, std::uint8_t a, const Coeffs& q) {
+        Instruction& in = Emit(op, a);
+        for (int i = 0; i < 6; ++i) in.q[i] = q[static_cast<std::size_t>(i)];
+    }
+
+    // The other products of the solid that may meet `box` (for exit terms: a boundary point of
+    // one product inside another is no boundary of their union).
+    std::vector<const csg::Product*> Others(const csg::Product& p, const Box3& box) const {
+        std::vector<const csg::Product*> out;
+        for (const csg::Product& q : *products_) {
+            if (&q == &p) continue;
+            Box3 b = box;
+            bool valid = true;
+            for (const csg::Factor& f : q) {
+                if (f.subtracted) continue;
+                valid = valid && ValidBody(f.primitive);
+                if (valid) b = b.Intersected(BoxOf(f.primitive));
+            }
+            if (valid && !b.Empty()) out.push_back(&q);
+        }
+        return out;
+    }
+
+    void EmitPatch(int bodyIndex, std::size_t k, bool exitFace,
+                   const std::vector<csg::Factor>& paring,
+                   const std::vector<const csg::Product*>& others, const PixelRect& rect,
+                   std::int32_t solid) {
+        const FlatBody& body = Body(bodyIndex);
+        const FlatLiteral& lit = body.literals[k];
+        Block block;
+        block.rect = rect;
+        currentRect_ = rect;
+        block.first = static_cast<std::int32_t>(program_.code.size());
+        // Scan conversion and depth: F1 = the sheet exists here, ZTEMP = its depth.
+        if (!EmitSheet(lit, exitFace, rect)) {
+            program_.code.resize(static_cast<std::size_t>(block.first));
+            return;  // this literal has no such sheet anywhere
+        }
+        // Early depth test: ZMIN does not change within a block, so dropping hidden pixels now
+        // gives the same result as the final test and spares them the paring.
+        Emit(Opcode::kZTest, kF1);
+        // The patch is the part of the sheet inside the primitive's other literals.
+        for (std::size_t m = 0; m < body.literals.size(); ++m)
+            if (m != k) EmitInside(body.literals[m], kF1);
+        // CSG operation: pare with the other factors of the product.
+        for (const csg::Factor& y : paring) {
+            const FlatBody& other = Body(y.primitive);
+            if (!y.subtracted) {
+                for (const FlatLiteral& l : other.literals) EmitInside(l, kF1);
+            } else {
+                Emit(Opcode::kFlagCopy, kF2, kF1);
+                for (const FlatLiteral& l : other.literals) EmitInside(l, kF2);
+                Emit(Opcode::kFlagAndNot, kF1, kF2);
+            }
+        }
+        // With exit terms: keep only points outside the solid's other products (F2 = inside Q,
+        // F3 = inside a − factor of Q). "Inside Q" is its interior along the ray, so that a
+        // boundary point shared by two products (the same literal's root, the same double) is
+        // kept. The root unit does these tests in both modes: approximate depths err outward
+        // (near sheets nearer, far sheets farther), so shared boundaries stay outside.
+        for (const csg::Product* q : others) {
+            Emit(Opcode::kFlagCopy, kF2, kF1);
+            for (const csg::Factor& y : *q) {
+                if (!ValidBody(y.primitive)) continue;
+                const FlatBody& other = Body(y.primitive);
+                if (!y.subtracted) {
+                    for (const FlatLiteral& l : other.literals) EmitRootUnitInside(l, kF2, true);
+                } else {
+                    Emit(Opcode::kFlagCopy, kF3, kF2);
+                    for (const FlatLiteral& l : other.literals) EmitRootUnitInside(l, kF3, false);
+                    Emit(Opcode::kFlagAndNot, kF2, kF3);
+                }
+            }
+            Emit(Opcode::kFlagAndNot, kF1, kF2);
+        }
+        // Z-buffer merge (the union of terms, seed 004 §II.a) and COLOR.
+        Emit(Opcode::kZTest, kF1);
+        program_.patches.push_back({lit.halfSpace, bodyIndex, solid});
+        Emit(Opcode::kZWrite, kF1, 0, static_cast<std::int32_t>(program_.patches.size() - 1));
+        block.count = static_cast<std::int32_t>(program_.code.size()) - block.first;
+        program_.blocks.push_back(block);
+    }
+
+    // Loads the entry (or exit) sheet of literal `lit` into ZTEMP, F1 = where it exists. Returns
+    // false when it exists nowhere.
+    bool EmitSheet(const FlatLiteral& lit, bool exitFace, const PixelRect& rect) {
+        std::int32_t li = LiteralIndex(lit);
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
+        if (hs.isPlane) {
+            // The host knows a plane's facing (seed 003 §3: patches are split into front and
+            // back after the eye transformation): inside C z + e <= 0 is z >= r (entered there)
+            // when C < 0, z <= r (left there) when C > 0; a complement flips; C = 0 (seen
+            // edge-on) has no sheet.
+            const Plane& pl = hs.plane;
+            if (pl.c == 0) return false;
+            bool entry = (pl.c < 0) != lit.complemented;
+            if (entry == exitFace) return false;
+        }
+        if (options_.mode == DepthMode::kExact) {
+            Emit(Opcode::kRoot, kF1, exitFace ? 1 : 0, li);
+            return true;
+        }
+        if (hs.isPlane) {
+            const Plane& pl = hs.plane;
+            if (!pl.AllFinite()) {
+                Emit(Opcode::kRoot, kF1, exitFace ? 1 : 0, li);
+                return true;
+            }
+            Emit(Opcode::kFlagSet, kF1);
+            EmitQ(Opcode::kZLoad, kF1, {0, 0, 0, -pl.a / pl.c, -pl.b / pl.c, -pl.d / pl.c});
+            return true;
+        }
+        RayForm r = RayFormOf(hs.quadric);
+        if (r.c == 0 || !hs.quadric.AllFinite()) {  // linear along rays: z = −a / 2b
+            ++stats_.extendedFallbacks;
+            Emit(Opcode::kRoot, kF1, exitFace ? 1 : 0, li);
+            return true;
+        }
+        // With c > 0 the inside is [L − s, L + s] (entered at the near sheet); with c < 0 it is
+        // outside that; a complement flips entry and exit.
+        bool nearSheet = (!exitFace) == ((r.c > 0) != lit.complemented);
+        Coeffs disc = Discriminant(r);
+        std::vector<Coeffs> sheets = Strips(r, disc, nearSheet, rect);
+        if (sheets.empty()) return false;
+        Emit(Opcode::kFlagSet, kF1);
+        EmitQ(Opcode::kQeeKeepPositive, kF1, disc);
+        EmitQ(Opcode::kZLoad, kF1, sheets[0]);
+        for (std::size_t i = 1; i < sheets.size(); ++i)
+            EmitQ(nearSheet ? Opcode::kZMax : Opcode::kZMin, kF1, sheets[i]);
+        return true;
+    }
+
+    // The parabolic strips z_i = L ∓ T_i(Δ)/|c| of a quadric's near (−) or far (+) sheet over
+    // `rect` (seed 004 §III step 2). Empty when Δ <= 0 over the whole rectangle (sampled).
+    std::vector<Coeffs> Strips(const RayForm& r, const Coeffs& disc, bool nearSheet,
+                               const PixelRect& rect) {
+        // The host bounds max Δ over the rectangle by sampling (17 × 17 and the corners); beyond
+        // the last tangent the envelope still bounds the sheet, only less tightly.
+        double maxDisc = -HUGE_VAL;
+        for (int sy = 0; sy <= 16; ++sy) {
+            for (int sx = 0; sx <= 16; ++sx) {
+                double x = rect.x0 + (rect.x1 - rect.x0) * sx / 16.0;
+                double y = rect.y0 + (rect.y1 - rect.y0) * sy / 16.0;
+                maxDisc = std::max(maxDisc, Eval(disc, x, y));
+            }
+        }
+        if (!(maxDisc > 0)) return {};
+        double ac = std::fabs(r.c);
+        double e = std::max(options_.tolerance, 1e-9) * ac;  // tolerance in sqrt(Δ) units
+        bool capped = false;
+        std::vector<double> us = TangentPoints(std::sqrt(maxDisc) * 1.01, e, options_.maxStrips,
+                                               capped);
+        stats_.stripsCapped += capped;
+        stats_.strips += us.size();
+        double sign = nearSheet ? -1 : 1;
+        std::vector<Coeffs> out;
+        for (double u : us) {
+            // z = −b/c + sign (u/2 + Δ/(2u)) / |c|
+            Coeffs z;
+            for (int i = 0; i < 6; ++i) {
+                auto k = static_cast<std::size_t>(i);
+                z[k] = -r.b[k] / r.c + sign * disc[k] / (2 * u * ac);
+            }
+            z[5] += sign * 0.5 * u / ac;
+            out.push_back(z);
+        }
+        return out;
+    }
+
+    void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, bool open) {
+        if (options_.mode != DepthMode::kExact) ++stats_.extendedFallbacks;
+        Emit(Opcode::kInside, f, open ? 1 : 0, LiteralIndex(lit));
+    }
+
+    // F[f] ∧= (ZTEMP inside literal `lit`), on pixels where F[f] is set.
+    void EmitInside(const FlatLiteral& lit, std::uint8_t f) {
+        std::int32_t li = LiteralIndex(lit);
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
+        if (options_.mode == DepthMode::kExact) {
+            Emit(Opcode::kInside, f, 0, li);
+            return;
+        }
+        if (hs.isPlane) {
+            const Plane& pl = hs.plane;
+            if (!pl.AllFinite()) {
+                Emit(Opcode::kInside, f, 0, li);
+                return;
+            }
+            if (pl.c == 0) {  // inside iff A x + B y + D <= 0 along the whole ray
+                EmitQ(lit.complemented ? Opcode::kQeeKeepPositive : Opcode::kQeeKeepNonPositive,
+                      f, {0, 0, 0, pl.a, pl.b, pl.d});
+                return;
+            }
+            Coeffs r{0, 0, 0, -pl.a / pl.c, -pl.b / pl.c, -pl.d / pl.c};
+            bool below = (pl.c > 0) != lit.complemented;  // inside is z <= r
+            EmitQ(below ? Opcode::kZKeepLE : Opcode::kZKeepGE, f, r);
+            return;
+        }
+        RayForm r = RayFormOf(hs.quadric);
+        if (r.c == 0 || !hs.quadric.AllFinite()) {
+            ++stats_.extendedFallbacks;
+            Emit(Opcode::kInside, f, 0, li);
+            return;
+        }
+        // F3 = between the sheets (Δ > 0, z >= near envelope, z <= far envelope), then inside is
+        // F3 when c > 0, ¬F3 when c < 0, flipped by a complement.
+        Coeffs disc = Discriminant(r);
+        std::vector<Coeffs> nearS = Strips(r, disc, true, currentRect_);
+        std::vector<Coeffs> farS = Strips(r, disc, false, currentRect_);
+        Emit(Opcode::kFlagCopy, kF3, f);
+        EmitQ(Opcode::kQeeKeepPositive, kF3, disc);
+        for (const Coeffs& z : nearS) EmitQ(Opcode::kZKeepGE, kF3, z);
+        for (const Coeffs& z : farS) EmitQ(Opcode::kZKeepLE, kF3, z);
+        bool insideIsBetween = (r.c > 0) != lit.complemented;
+        Emit(insideIsBetween ? Opcode::kFlagAnd : Opcode::kFlagAndNot, f, kF3);
+    }
+
+    const FlatScene& scene_;
+    const CompileOptions& options_;
+    Program& program_;
+    CompileStats& stats_;
+    std::vector<Box3> boxes_;
+    std::map<std::pair<int, bool>, std::int32_t> literalIndex_;
+    PixelRect currentRect_;
+    const std::vector<csg::Product>* products_ = nullptr;
+};
+
+}  // namespace
+
+void Compile(const FlatScene& scene, const CompileOptions& options, Program& program,
+             CompileStats& stats) {
+    Compiler(scene, options, program, stats).Run();
+}
+
+}  // namespace quadrix::pixelpowers

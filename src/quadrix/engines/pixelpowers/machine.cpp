@@ -1,0 +1,333 @@
+#include "quadrix/engines/pixelpowers/machine.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+
+namespace quadrix::pixelpowers {
+namespace {
+
+constexpr int kTile = 64;
+constexpr std::size_t kTilePixels = static_cast<std::size_t>(kTile) * kTile;
+
+// The registers of one tile's pixels (structure of arrays).
+struct TileRegisters {
+    std::array<double, kTilePixels> ztemp;
+    std::array<double, kTilePixels> zmin;
+    std::array<std::int32_t, kTilePixels> color;
+    std::array<std::array<std::uint8_t, kTilePixels>, 3> flag;
+
+    void Reset() {
+        zmin.fill(HUGE_VAL);
+        color.fill(-1);
+        ztemp.fill(HUGE_VAL);
+        for (auto& f : flag) f.fill(0);
+    }
+};
+
+double Qee(const double* q, double x, double y) {
+    return (q[0] * x + q[1] * y + q[3]) * x + (q[2] * y + q[4]) * y + q[5];
+}
+
+// Plane literals inline, with exactly the arithmetic of raycast::LiteralOnRay (ray_literal.cpp:
+// e = A x + B y + D, r = −e/C, the set (−∞, r] for C > 0, [r, ∞) for C < 0, all or nothing for
+// C = 0, empty both ways for non-finite values, closure of the complement when complemented), so
+// results stay bit-identical to the oracle; this only skips the call and the interval bookkeeping.
+bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y,
+                 double z, bool open) {
+    double e = h.px * x + h.py * y + h.pd;
+    if (!std::isfinite(e) || !std::isfinite(h.c)) return false;
+    if (h.c == 0) return (e <= 0) != complemented;
+    double r = -e / h.c;
+    bool below = (h.c > 0) != complemented;  // the set is (−∞, r] (else [r, ∞))
+    // A piece with lo == hi is dropped (regularised), which only happens for r = ±∞.
+    // `open`: the interior along the ray (the endpoint itself excluded).
+    if (below) return r > -HUGE_VAL && (open ? z < r : z <= r);
+    return r < HUGE_VAL && (open ? z > r : z >= r);
+}
+
+// The plane's finite entry (exit) point, if any.
+bool PlaneRoot(const raycast::RayHalfSpace& h, bool complemented, bool exit, double x, double y,
+               double& t) {
+    double e = h.px * x + h.py * y + h.pd;
+    if (!std::isfinite(e) || !std::isfinite(h.c) || h.c == 0) return false;
+    double r = -e / h.c;
+    if (!std::isfinite(r)) return false;
+    bool below = (h.c > 0) != complemented;  // (−∞, r]: r is an exit; [r, ∞): an entry
+    if (below != exit) return false;
+    t = r;
+    return true;
+}
+
+bool ClearsF1(const Instruction& in) {
+    if (in.a != 0) return false;
+    switch (in.op) {
+        case Opcode::kRoot:
+        case Opcode::kInside:
+        case Opcode::kQeeKeepPositive:
+        case Opcode::kQeeKeepNonPositive:
+        case Opcode::kZKeepGE:
+        case Opcode::kZKeepLE:
+        case Opcode::kFlagAnd:
+        case Opcode::kFlagAndNot:
+        case Opcode::kFlagClear:
+        case Opcode::kZTest:
+            return true;
+        default:
+            return false;
+    }
+}
+
+class TileRunner {
+  public:
+    TileRunner(const Program& program, TileRegisters& regs, MachineCounters& counters)
+        : program_(program), r_(regs), counters_(counters) {}
+
+    void Run(int tx0, int ty0, int tx1, int ty1) {
+        tx0_ = tx0;
+        ty0_ = ty0;
+        PixelRect tile{tx0, ty0, tx1, ty1};
+        for (const Block& b : program_.blocks) {
+            PixelRect rect = b.rect.Intersected(tile);
+            if (rect.Empty()) continue;
+            ++counters_.blockRuns;
+            for (std::int32_t k = b.first; k < b.first + b.count; ++k) {
+                const Instruction& in = program_.code[static_cast<std::size_t>(k)];
+                ++counters_.instructions;
+                Execute(in, rect);
+                if (ClearsF1(in) && !AnyF1(rect)) {
+                    ++counters_.blocksAbandoned;
+                    break;
+                }
+            }
+        }
+    }
+
+  private:
+    template <class Fn>
+    void ForEach(const PixelRect& rect, Fn&& fn) {
+        for (int j = rect.y0; j < rect.y1; ++j) {
+            double y = j + 0.5;
+            std::size_t row = static_cast<std::size_t>(j - ty0_) * kTile;
+            for (int i = rect.x0; i < rect.x1; ++i)
+                fn(row + static_cast<std::size_t>(i - tx0_), i + 0.5, y);
+        }
+    }
+
+    bool AnyF1(const PixelRect& rect) {
+        for (int j = rect.y0; j < rect.y1; ++j) {
+            std::size_t row = static_cast<std::size_t>(j - ty0_) * kTile;
+            const std::uint8_t* f = r_.flag[0].data() + row + static_cast<std::size_t>(rect.x0 - tx0_);
+            for (int i = 0; i < rect.x1 - rect.x0; ++i)
+                if (f[i]) return true;
+        }
+        return false;
+    }
+
+    const MachineLiteral& Literal(std::int32_t i) const {
+        return program_.literals[static_cast<std::size_t>(i)];
+    }
+
+    void Execute(const Instruction& in, const PixelRect& rect) {
+        auto& fa = r_.flag[in.a];
+        auto& fb = r_.flag[in.b < 3 ? in.b : 0];
+        std::uint64_t ops = 0;
+        switch (in.op) {
+            case Opcode::kFlagSet:
+                ForEach(rect, [&](std::size_t k, double, double) { fa[k] = 1; });
+                break;
+            case Opcode::kFlagClear:
+                ForEach(rect, [&](std::size_t k, double, double) { fa[k] = 0; });
+                break;
+            case Opcode::kFlagCopy:
+                ForEach(rect, [&](std::size_t k, double, double) { fa[k] = fb[k]; });
+                break;
+            case Opcode::kFlagAnd:
+                ForEach(rect, [&](std::size_t k, double, double) { fa[k] &= fb[k]; });
+                break;
+            case Opcode::kFlagAndNot:
+                ForEach(rect, [&](std::size_t k, double, double) { fa[k] &= !fb[k]; });
+                break;
+            case Opcode::kFlagOr:
+                ForEach(rect, [&](std::size_t k, double, double) { fa[k] |= fb[k]; });
+                break;
+            case Opcode::kQeeKeepPositive:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = Qee(in.q, x, y) > 0, ++ops;
+                });
+                break;
+            case Opcode::kQeeKeepNonPositive:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = Qee(in.q, x, y) <= 0, ++ops;
+                });
+                break;
+            case Opcode::kZLoad:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) r_.ztemp[k] = Qee(in.q, x, y), ++ops;
+                });
+                break;
+            case Opcode::kZMax:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) r_.ztemp[k] = std::max(r_.ztemp[k], Qee(in.q, x, y)), ++ops;
+                });
+                break;
+            case Opcode::kZMin:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) r_.ztemp[k] = std::min(r_.ztemp[k], Qee(in.q, x, y)), ++ops;
+                });
+                break;
+            case Opcode::kZKeepGE:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] >= Qee(in.q, x, y), ++ops;
+                });
+                break;
+            case Opcode::kZKeepLE:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] <= Qee(in.q, x, y), ++ops;
+                });
+                break;
+            case Opcode::kRoot: {
+                const MachineLiteral& lit = Literal(in.arg);
+                bool exit = in.b != 0;
+                if (lit.isPlane) {
+                    ForEach(rect, [&](std::size_t k, double x, double y) {
+                        double t = 0;
+                        fa[k] = PlaneRoot(lit.ray, lit.complemented, exit, x, y, t);
+                        if (fa[k]) r_.ztemp[k] = t;
+                        ++ops;
+                    });
+                    break;
+                }
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    raycast::RaySet s =
+                        raycast::LiteralOnRay(lit.ray, lit.complemented, x, y, 0, literalCounters_);
+                    ++ops;
+                    // A literal has at most one finite entry and one finite exit on a ray
+                    // (ray_literal.h: at most two pieces, infinite at the outer ends).
+                    bool found = false;
+                    for (int p = 0; p < s.count && !found; ++p) {
+                        double t = exit ? s.piece[p].hi : s.piece[p].lo;
+                        if (std::isfinite(t)) {
+                            r_.ztemp[k] = t;
+                            found = true;
+                        }
+                    }
+                    fa[k] = found;
+                });
+                counters_.rootSolves += ops;
+                break;
+            }
+            case Opcode::kInside: {
+                const MachineLiteral& lit = Literal(in.arg);
+                bool open = in.b != 0;
+                if (lit.isPlane) {
+                    ForEach(rect, [&](std::size_t k, double x, double y) {
+                        if (!fa[k]) return;
+                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], open);
+                        ++ops;
+                    });
+                    break;
+                }
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (!fa[k]) return;
+                    raycast::RaySet s =
+                        raycast::LiteralOnRay(lit.ray, lit.complemented, x, y, 0, literalCounters_);
+                    ++ops;
+                    double z = r_.ztemp[k];
+                    bool in = false;
+                    for (int p = 0; p < s.count; ++p) {
+                        const Interval& v = s.piece[p];
+                        in = in || (open ? v.lo < z && z < v.hi : v.lo <= z && z <= v.hi);
+                    }
+                    fa[k] = in;
+                });
+                counters_.rootSolves += ops;
+                break;
+            }
+            case Opcode::kZTest:
+                ForEach(rect, [&](std::size_t k, double, double) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] < r_.zmin[k], ++ops;
+                });
+                break;
+            case Opcode::kZWrite:
+                ForEach(rect, [&](std::size_t k, double, double) {
+                    if (!fa[k]) return;
+                    r_.zmin[k] = r_.ztemp[k];
+                    r_.color[k] = in.arg;
+                    ++ops;
+                });
+                counters_.writes += ops;
+                break;
+        }
+        counters_.pixelOps += ops;
+    }
+
+    const Program& program_;
+    TileRegisters& r_;
+    MachineCounters& counters_;
+    raycast::LiteralCounters literalCounters_;
+    int tx0_ = 0, ty0_ = 0;
+};
+
+struct Worker {
+    TileRegisters regs;
+    MachineCounters counters;
+};
+
+}  // namespace
+
+MachineCounters Execute(const Program& program, const FlatScene& scene, int threads,
+                        Frame& frame) {
+    int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
+    frame.Reset(width, height);
+    int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
+    tbb::enumerable_thread_specific<Worker> workers;
+    auto runTile = [&](int t) {
+        Worker& w = workers.local();
+        int x0 = (t % tilesX) * kTile, y0 = (t / tilesX) * kTile;
+        int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+        ++w.counters.tiles;
+        w.regs.Reset();
+        TileRunner(program, w.regs, w.counters).Run(x0, y0, x1, y1);
+        // Scan-out: COLOR names the patch; normals are computed at ZMIN (deferred shading).
+        for (int j = y0; j < y1; ++j) {
+            for (int i = x0; i < x1; ++i) {
+                std::size_t k = static_cast<std::size_t>(j - y0) * kTile +
+                                static_cast<std::size_t>(i - x0);
+                std::int32_t c = w.regs.color[k];
+                if (c < 0) continue;
+                const PatchInfo& p = program.patches[static_cast<std::size_t>(c)];
+                std::size_t f = frame.Index(i, j);
+                double z = w.regs.zmin[k];
+                frame.depth[f] = z;
+                frame.normal[f] = scene.WorldNormal(p.halfSpace, {i + 0.5, j + 0.5, z});
+                frame.surface[f] = p.halfSpace;
+                frame.body[f] = p.body;
+                frame.solid[f] = p.solid;
+            }
+        }
+    };
+    auto run = [&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
+                          [&](const tbb::blocked_range<int>& range) {
+                              for (int t = range.begin(); t < range.end(); ++t) runTile(t);
+                          });
+    };
+    if (threads > 0) {
+        tbb::task_arena arena(threads);
+        arena.execute(run);
+    } else {
+        run();
+    }
+    MachineCounters total;
+    for (const Worker& w : workers) total.Add(w.counters);
+    return total;
+}
+
+}  // namespace quadrix::pixelpowers

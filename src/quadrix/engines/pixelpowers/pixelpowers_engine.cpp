@@ -1,0 +1,263 @@
+#include "quadrix/engines/pixelpowers/pixelpowers_engine.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "quadrix/engines/pixelpowers/compiler.h"
+#include "quadrix/engines/pixelpowers/machine.h"
+#include "quadrix/engines/raycast/raycast.h"
+
+namespace quadrix {
+namespace pixelpowers {
+namespace {
+
+// Seed 004 Table 1: 1854 equations in 7.5 ms, 170 in .68 ms, 46 in .19 ms — about 4.05 µs per
+// equation (a 30-bit bit-serial QEE evaluation at 10 MHz, seed 004 §I "under 4 microseconds").
+constexpr double kMicrosecondsPerEquation = 7500.0 / 1854.0;
+
+// Per-pixel memory (bits). The paper's machine: F1–F3, ZTEMP and ZMIN of 30 bits, COLOR 24 (seed
+// 004 §II) = 87 of 128. This simulation keeps depths as doubles (64 bits each, needed for exact
+// agreement with raycast) and COLOR as a 32-bit patch id resolved at scan-out.
+constexpr int kPaperBits = 3 + 30 + 30 + 24;
+constexpr int kSimulatedBits = 3 + 64 + 64 + 32;
+
+struct Settings {
+    CompileOptions compile;
+    bool compare = false;
+};
+
+bool ParseOnOff(const std::string& v, bool& out) {
+    if (v == "on" || v == "1" || v == "true") return out = true, true;
+    if (v == "off" || v == "0" || v == "false") return out = false, true;
+    return false;
+}
+
+std::string ParseSettings(const RenderOptions& options, Settings& st) {
+    bool compareSet = false;
+    for (const auto& [key, value] : options.engineOptions) {
+        char* end = nullptr;
+        if (key == "mode") {
+            if (value == "exact") {
+                st.compile.mode = DepthMode::kExact;
+            } else if (value == "approx") {
+                st.compile.mode = DepthMode::kApprox;
+            } else {
+                return "engine 'pixelpowers': mode must be exact or approx, not '" + value + "'";
+            }
+        } else if (key == "tolerance") {
+            double t = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end || !(t > 0) || !std::isfinite(t))
+                return "engine 'pixelpowers': tolerance must be a positive number, not '" + value +
+                       "'";
+            st.compile.tolerance = t;
+        } else if (key == "max-products") {
+            long n = std::strtol(value.c_str(), &end, 10);
+            if (value.empty() || *end || n < 1 || n > 10000000)
+                return "engine 'pixelpowers': max-products must be 1..10000000, not '" + value +
+                       "'";
+            st.compile.maxProducts = static_cast<std::size_t>(n);
+        } else if (key == "max-strips") {
+            long n = std::strtol(value.c_str(), &end, 10);
+            if (value.empty() || *end || n < 1 || n > 4096)
+                return "engine 'pixelpowers': max-strips must be 1..4096, not '" + value + "'";
+            st.compile.maxStrips = static_cast<int>(n);
+        } else if (key == "compare") {
+            if (!ParseOnOff(value, st.compare))
+                return "engine 'pixelpowers': compare must be on or off, not '" + value + "'";
+            compareSet = true;
+        } else {
+            return "engine 'pixelpowers' has no option '" + key +
+                   "' (mode, tolerance, max-products, max-strips, compare)";
+        }
+    }
+    if (!compareSet) st.compare = st.compile.mode == DepthMode::kApprox;
+    return {};
+}
+
+struct Agreement {
+    std::uint64_t coveredBoth = 0, coveredOnlyHere = 0, coveredOnlyReference = 0;
+    std::uint64_t sameSolid = 0, sameSurface = 0;
+    double maxDepthError = 0, sumDepthError = 0;  // over pixels with the same surface
+};
+
+Agreement CompareFrames(const Frame& here, const Frame& ref) {
+    Agreement a;
+    for (std::size_t i = 0; i < here.depth.size(); ++i) {
+        bool h = here.surface[i] != Frame::kNone, r = ref.surface[i] != Frame::kNone;
+        if (h && r) {
+            ++a.coveredBoth;
+            a.sameSolid += here.solid[i] == ref.solid[i];
+            if (here.surface[i] == ref.surface[i]) {
+                ++a.sameSurface;
+                double e = std::fabs(here.depth[i] - ref.depth[i]);
+                a.maxDepthError = std::fmax(a.maxDepthError, e);
+                a.sumDepthError += e;
+            }
+        } else if (h) {
+            ++a.coveredOnlyHere;
+        } else if (r) {
+            ++a.coveredOnlyReference;
+        }
+    }
+    return a;
+}
+
+std::string Table1(const CompileStats& cs, const Program& program, const std::string& view) {
+    std::string s;
+    char line[256];
+    s += "Pixel-Powers estimate (layout of seed 004 Table 1; 10 MHz, ~4.05 us per equation)\n";
+    s += "Part Name          Source        Primitives  Opcodes  Equations     Time\n";
+    double ms = static_cast<double>(program.Equations()) * kMicrosecondsPerEquation / 1000.0;
+    std::snprintf(line, sizeof line, "%-18s %-13s %10zu %8llu %10llu %7.2f msec\n",
+                  (view.empty() ? std::string("this scene") : view).substr(0, 18).c_str(),
+                  "quadrix", cs.primitives, static_cast<unsigned long long>(program.Opcodes()),
+                  static_cast<unsigned long long>(program.Equations()), ms);
+    s += line;
+    s += "-- the paper's figures --\n";
+    struct Row {
+        const char* name;
+        const char* source;
+        int primitives, opcodes, equations;
+        double ms;
+    };
+    static const Row rows[] = {{"Union", "local", 2, 54, 46, .19},
+                               {"Difference", "local", 2, 182, 170, .68},
+                               {"Intersection", "local", 2, 178, 170, .68},
+                               {"Tube", "Okino 84", 11, 1205, 1065, 4.3},
+                               {"Cut Tube", "Okino 84", 12, 1969, 1733, 7.0},
+                               {"MBB", "Okino 84", 24, 2139, 1854, 7.5},
+                               {"Tie Rod", "BRL", 17, 2660, 2309, 9.3}};
+    for (const Row& r : rows) {
+        std::snprintf(line, sizeof line, "%-18s %-13s %10d %8d %10d %7.2f msec\n", r.name, r.source,
+                      r.primitives, r.opcodes, r.equations, r.ms);
+        s += line;
+    }
+    return s;
+}
+
+class PixelPowersEngine final : public Engine {
+  public:
+    std::string_view Name() const override { return "pixelpowers"; }
+
+    std::string ValidateOptions(const RenderOptions& options) const override {
+        Settings st;
+        return ParseSettings(options, st);
+    }
+
+    RenderStats Render(const FlatScene& scene, const RenderOptions& options,
+                       Frame& frame) override {
+        auto start = std::chrono::steady_clock::now();
+        RenderStats stats;
+        Settings st;
+        if (std::string err = ParseSettings(options, st); !err.empty()) {
+            frame.Reset(std::max(scene.width, 0), std::max(scene.height, 0));
+            stats.report = err + "\n";
+            return stats;
+        }
+        Program program;
+        CompileStats cs;
+        auto t0 = std::chrono::steady_clock::now();
+        Compile(scene, st.compile, program, cs);
+        auto t1 = std::chrono::steady_clock::now();
+        MachineCounters mc = Execute(program, scene, options.threads, frame);
+        auto t2 = std::chrono::steady_clock::now();
+        stats.seconds = std::chrono::duration<double>(t2 - start).count();
+
+        auto add = [&](const char* name, double v) { stats.counters.emplace_back(name, v); };
+        auto count = [&](const char* name, std::uint64_t v) {
+            add(name, static_cast<double>(v));
+        };
+        const csg::NormalFormStats& nf = cs.normalForm;
+        add("exact_mode", st.compile.mode == DepthMode::kExact ? 1 : 0);
+        count("primitives", cs.primitives);
+        count("half_spaces", cs.halfSpaces);
+        count("tree_primitives", nf.treePrimitives);
+        count("tree_operators", nf.treeOperators);
+        count("products", nf.products);
+        count("product_factors", nf.factors);
+        count("pruned_products", nf.prunedProducts);
+        count("pruned_factors", nf.prunedFactors + nf.prunedSubtrahends);
+        count("terms", cs.terms);
+        count("pruned_terms", cs.prunedTerms);
+        count("pruned_parings", cs.prunedParings);
+        count("patches", cs.patches);
+        count("opcodes", program.Opcodes());
+        count("equations", program.Equations());
+        add("estimated_ms_10mhz",
+            static_cast<double>(program.Equations()) * kMicrosecondsPerEquation / 1000.0);
+        if (st.compile.mode == DepthMode::kApprox) {
+            count("strips", cs.strips);
+            count("strip_sheets_capped", cs.stripsCapped);
+            count("extended_fallbacks", cs.extendedFallbacks);
+        }
+        count("tiles", mc.tiles);
+        count("block_runs", mc.blockRuns);
+        count("blocks_abandoned", mc.blocksAbandoned);
+        count("instructions_executed", mc.instructions);
+        count("pixel_operations", mc.pixelOps);
+        count("root_solves", mc.rootSolves);
+        count("z_writes", mc.writes);
+        count("covered_pixels", frame.CoveredCount());
+        count("bits_per_pixel_paper", kPaperBits);
+        count("bits_per_pixel_simulated", kSimulatedBits);
+        add("compile_seconds", std::chrono::duration<double>(t1 - t0).count());
+        add("machine_seconds", std::chrono::duration<double>(t2 - t1).count());
+        count("normalisation_failures", cs.errors.size());
+
+        std::string report = Table1(cs, program, scene.viewName);
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "normal form: %zu products, %zu factors (tree: %zu primitives, %zu "
+                      "operators); display terms %zu, patches %zu\n",
+                      nf.products, nf.factors, nf.treePrimitives, nf.treeOperators, cs.terms,
+                      cs.patches);
+        report += line;
+        std::snprintf(line, sizeof line,
+                      "per-pixel memory: paper %d of 128 bits (F1-F3, ZTEMP 30, ZMIN 30, COLOR 24);"
+                      " simulated %d bits (F1-F3, ZTEMP 64, ZMIN 64, patch id 32)\n",
+                      kPaperBits, kSimulatedBits);
+        report += line;
+        for (const std::string& e : cs.errors) report += "error: " + e + "\n";
+
+        if (st.compare) {
+            Frame ref;
+            auto reference = MakeRaycastEngine();
+            RenderOptions ro;
+            ro.threads = options.threads;
+            reference->Render(scene, ro, ref);
+            Agreement a = CompareFrames(frame, ref);
+            std::uint64_t union_ = a.coveredBoth + a.coveredOnlyHere + a.coveredOnlyReference;
+            double same = a.coveredBoth ? static_cast<double>(a.sameSolid) / a.coveredBoth : 1.0;
+            double mean = a.sameSurface ? a.sumDepthError / static_cast<double>(a.sameSurface) : 0;
+            count("cmp_covered_both", a.coveredBoth);
+            count("cmp_covered_only_here", a.coveredOnlyHere);
+            count("cmp_covered_only_raycast", a.coveredOnlyReference);
+            add("cmp_same_solid_share", same);
+            add("cmp_depth_error_max", a.maxDepthError);
+            add("cmp_depth_error_mean", mean);
+            std::snprintf(line, sizeof line,
+                          "vs raycast: %llu covered pixels, %.4f%% same solid, coverage differs on "
+                          "%llu; depth error (same surface) max %.4g mean %.4g device z "
+                          "(tolerance %.4g)\n",
+                          static_cast<unsigned long long>(union_), 100.0 * same,
+                          static_cast<unsigned long long>(a.coveredOnlyHere +
+                                                          a.coveredOnlyReference),
+                          a.maxDepthError, mean, st.compile.tolerance);
+            report += line;
+        }
+        stats.report = report;
+        return stats;
+    }
+};
+
+}  // namespace
+}  // namespace pixelpowers
+
+std::unique_ptr<Engine> MakePixelPowersEngine() {
+    return std::make_unique<pixelpowers::PixelPowersEngine>();
+}
+
+}  // namespace quadrix

@@ -1,0 +1,589 @@
+// Database → Scene conversion; the rules are summarised in brlcad_import.h.
+#include "quadrix/import/brlcad/brlcad_import.h"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "quadrix/import/brlcad/primitives.h"
+#include "quadrix/import/brlcad/readers.h"
+#include "quadrix/import/scene_input.h"
+
+namespace quadrix::import {
+
+using namespace brlcad;
+
+std::string ImportReport::CensusText() const {
+    std::string s;
+    for (const auto& [type, n] : census) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", type, n);
+    return s.empty() ? "no primitives" : s;
+}
+
+namespace {
+
+// Limits that keep a hostile or exploding file from exhausting memory.
+constexpr std::size_t kMaxBodies = 2'000'000;
+constexpr std::size_t kMaxTerms = 200'000;
+constexpr int kMaxDepth = 1000;
+
+// Types that are not solids at all: ignored silently (FORMAT.md §6.2 last row).
+bool IsNotASolid(const std::string& type) {
+    return type == "grip" || type == "joint" || type == "annot" || type == "datum" ||
+           type == "script";
+}
+
+struct Expr {
+    bool leaf = true;
+    std::vector<int> bodies;  // leaf: union of these scene bodies
+    scene::CsgOp op = scene::CsgOp::kUnion;
+    int left = -1, right = -1;
+    Box3 box;
+};
+
+struct ColorCtx {
+    std::optional<std::array<int, 3>> rgb;
+    bool locked = false;
+};
+
+struct Term {
+    int expr = -1;
+    std::string name;
+    std::optional<std::array<int, 3>> rgb;
+    SourceLoc loc;
+};
+
+class Converter {
+  public:
+    Converter(const Database& db, const ImportOptions& options, scene::Scene& scene,
+              Diagnostics& diags, ImportReport& report)
+        : db_(db), options_(options), scene_(scene), diags_(diags), report_(report) {
+        combOnPath_.assign(db.combinations.size(), 0);
+        converted_.resize(db.primitives.size());
+    }
+
+    bool Run() {
+        Census();
+        if (!CheckCycles()) return false;
+        std::vector<std::string> tops = TopObjects();
+        std::vector<Term> terms;
+        for (const std::string& name : tops) {
+            auto t = Terms(name, Mat4::Identity(), {}, 0, nullptr);
+            for (Term& x : t) terms.push_back(std::move(x));
+            if (aborted_) return false;
+        }
+        report_.topObjects = tops;
+        Emit(terms);
+        ReportSkipped();
+        return !aborted_;
+    }
+
+  private:
+    void Census() {
+        for (const Primitive& p : db_.primitives) {
+            std::string type = p.type;
+            if (type == "tgc") type = ConvertPrimitive(p).censusName;
+            ++report_.census[type];
+        }
+    }
+
+    // Every combination, reachable or not, must be free of cycles (an iterative depth-first
+    // search: 0 = unvisited, 1 = on the stack, 2 = done).
+    bool CheckCycles() {
+        std::vector<char> state(db_.combinations.size(), 0);
+        for (std::size_t start = 0; start < db_.combinations.size(); ++start) {
+            if (state[start]) continue;
+            std::vector<std::pair<int, std::size_t>> stack{{static_cast<int>(start), 0}};
+            state[start] = 1;
+            while (!stack.empty()) {
+                auto& [ci, next] = stack.back();
+                const Combination& c = db_.combinations[ci];
+                if (next == c.nodes.size()) {
+                    state[ci] = 2;
+                    stack.pop_back();
+                    continue;
+                }
+                const TreeNode& n = c.nodes[next++];
+                if (n.op != TreeNode::Op::kLeaf) continue;
+                auto it = db_.objects.find(n.name);
+                if (it == db_.objects.end() || !it->second.first) continue;
+                int child = it->second.second;
+                if (state[child] == 1) {
+                    std::string path;
+                    bool on = false;
+                    for (const auto& [k, unused] : stack) {
+                        on = on || k == child;
+                        if (on) path += db_.combinations[k].name + " → ";
+                    }
+                    diags_.Error(n.loc, fmt::format("combination '{}' contains itself: {}{}",
+                                                    n.name, path, n.name),
+                                 c.sourceLine);
+                    return false;
+                }
+                if (state[child] == 0) {
+                    state[child] = 1;
+                    stack.push_back({child, 0});
+                }
+            }
+        }
+        return true;
+    }
+
+    std::vector<std::string> TopObjects() {
+        std::vector<std::string> out;
+        auto allTops = [&]() {
+            std::set<std::string> referenced;
+            for (const Combination& c : db_.combinations)
+                for (const TreeNode& n : c.nodes)
+                    if (n.op == TreeNode::Op::kLeaf) referenced.insert(n.name);
+            std::vector<std::string> tops;
+            // File order: combinations first (the usual top objects), then bare primitives.
+            for (const Combination& c : db_.combinations)
+                if (!referenced.count(c.name) && db_.objects.at(c.name).second ==
+                                                     &c - db_.combinations.data())
+                    tops.push_back(c.name);
+            for (const Primitive& p : db_.primitives)
+                if (!referenced.count(p.name) && !db_.objects.at(p.name).first &&
+                    db_.objects.at(p.name).second == &p - db_.primitives.data())
+                    tops.push_back(p.name);
+            return tops;
+        };
+        // A COMGEOM deck is its regions: solids no region uses are not drawn (comgeom-g's "all").
+        if (options_.topObjects.empty() && db_.format == "comgeom") return {"all"};
+        if (options_.topObjects.empty()) return allTops();
+        for (const std::string& name : options_.topObjects) {
+            if (db_.objects.count(name)) {
+                out.push_back(name);
+            } else if (name == "all") {
+                for (auto& t : allTops()) out.push_back(t);
+            } else {
+                report_.missingTops.push_back(name);
+            }
+        }
+        return out;
+    }
+
+    int AddExpr(Expr e) {
+        exprs_.push_back(std::move(e));
+        return static_cast<int>(exprs_.size()) - 1;
+    }
+
+    int Combine(scene::CsgOp op, int l, int r) {
+        // Empty operands (missing members, skipped primitives, air) follow rt's NOP rules:
+        // A ∪ ∅ = A, A ∩ ∅ = ∅, A − ∅ = A, ∅ − B = ∅.
+        switch (op) {
+            case scene::CsgOp::kUnion:
+                if (l < 0) return r;
+                if (r < 0) return l;
+                break;
+            case scene::CsgOp::kIntersection:
+                if (l < 0 || r < 0) return -1;
+                break;
+            case scene::CsgOp::kDifference:
+                if (l < 0) return -1;
+                if (r < 0) return l;
+                break;
+        }
+        Expr e;
+        e.leaf = false;
+        e.op = op;
+        e.left = l;
+        e.right = r;
+        const Box3 &a = exprs_[l].box, &b = exprs_[r].box;
+        if (op == scene::CsgOp::kUnion) {
+            e.box = a;
+            if (IsEverything(b) || IsEverything(a)) e.box = Box3::Everything();
+            else e.box.Extend(b);
+        } else if (op == scene::CsgOp::kIntersection) {
+            e.box = a.Intersected(b);
+        } else {
+            e.box = a;
+        }
+        return AddExpr(std::move(e));
+    }
+
+    static bool IsEverything(const Box3& b) { return !b.Empty() && !b.Finite(); }
+
+    // The path matrix normalised so that m15 = 1 (FORMAT.md §2.4: m15 is an inverse scale).
+    std::optional<Mat4> Normalised(const Mat4& m, const SourceLoc& loc, const std::string& who) {
+        double w = m.m[3][3];
+        if (!(std::fabs(w) > 1e-300) || !m.AllFinite()) {
+            diags_.Error(loc, fmt::format("the matrix of '{}' has m15 = {} (must be non-zero)",
+                                          who, w));
+            return std::nullopt;
+        }
+        Mat4 out = m;
+        for (auto& row : out.m)
+            for (double& x : row) x /= w;
+        return out;
+    }
+
+    int Leaf(int primIndex, const Mat4& pathMatrix, const SourceLoc& refLoc) {
+        const Primitive& p = db_.primitives[primIndex];
+        if (!converted_[primIndex]) converted_[primIndex] = ConvertPrimitive(p);
+        const ConvertResult& cr = *converted_[primIndex];
+        if (IsNotASolid(p.type)) return -1;
+        if (cr.status != ConvertResult::Status::kOk) {
+            if (reachedSkipped_.insert(primIndex).second) {
+                std::string label = cr.status == ConvertResult::Status::kInvalid
+                                        ? cr.censusName + " (degenerate)"
+                                        : cr.censusName;
+                ++report_.skipped[label];
+                if (cr.status == ConvertResult::Status::kInvalid)
+                    diags_.Warning(p.loc, fmt::format("primitive '{}' ({}) is degenerate: {}; "
+                                                      "it is left out",
+                                                      p.name, p.type, cr.problem),
+                                   p.sourceLine);
+            }
+            return -1;
+        }
+        auto norm = Normalised(pathMatrix, refLoc, p.name);
+        if (!norm) {
+            aborted_ = true;
+            return -1;
+        }
+        Mat4 total = QuadrixFromZUp() * *norm;
+        std::array<double, 17> key{};
+        for (int i = 0; i < 16; ++i) key[i] = total.m[i / 4][i % 4];
+        key[16] = primIndex;
+        if (auto it = leafCache_.find(key); it != leafCache_.end()) return it->second;
+        auto t = Transform::FromMatrix(total);
+        if (!t) {
+            diags_.Error(refLoc, fmt::format("the matrices on the path to '{}' are singular",
+                                             p.name));
+            aborted_ = true;
+            return -1;
+        }
+        if (scene_.top.bodies.size() > kMaxBodies) {
+            diags_.Error(refLoc, fmt::format("the model expands to more than {} primitive "
+                                             "instances; refusing to go on",
+                                             kMaxBodies));
+            aborted_ = true;
+            return -1;
+        }
+        Expr e;
+        for (const ShapeBody& sb : cr.shape.bodies) {
+            scene::Body body;
+            body.id = p.name;
+            body.loc = p.loc;
+            body.usedAsOperand = true;
+            for (const ShapeHalfSpace& h : sb) {
+                scene::HalfSpace hs;
+                hs.id = fmt::format("{}.{}", p.name, scene_.top.halfSpaces.size());
+                hs.loc = p.loc;
+                hs.transparent = h.transparent;
+                if (h.isPlane) {
+                    hs.kind = scene::HalfSpace::Kind::kPlane;
+                    Plane pl = h.plane.Transformed(*t);
+                    double n = Length(pl.Normal());
+                    if (n > 0) pl = Plane{pl.a / n, pl.b / n, pl.c / n, pl.d / n};
+                    hs.plane = pl;
+                } else {
+                    hs.kind = scene::HalfSpace::Kind::kQuadric;
+                    Quadric q = h.quadric.Transformed(*t);
+                    double s = q.MaxAbs();
+                    if (s > 0)
+                        for (double& k : q.k) k /= s;
+                    hs.quadric = q;
+                }
+                body.literals.push_back({static_cast<int>(scene_.top.halfSpaces.size()), false});
+                scene_.top.halfSpaces.push_back(std::move(hs));
+            }
+            e.bodies.push_back(static_cast<int>(scene_.top.bodies.size()));
+            scene_.top.bodies.push_back(std::move(body));
+        }
+        if (cr.shape.unbounded) {
+            e.box = Box3::Everything();
+        } else {
+            for (const ExtentPiece& piece : cr.shape.extent) e.box.Extend(PieceBox(piece, total));
+        }
+        int idx = AddExpr(std::move(e));
+        leafCache_[key] = idx;
+        return idx;
+    }
+
+    void WarnMissing(const std::string& parent, const std::string& name, const SourceLoc& loc) {
+        if (!warnedMissing_.insert(parent + "\n" + name).second) return;
+        diags_.Warning(loc, fmt::format("'{}' names '{}', which is not defined in this file; it is "
+                                        "treated as empty (as rt does)",
+                                        parent, name));
+    }
+
+    bool Enter(int combIndex, const SourceLoc& loc, int depth) {
+        if (depth > kMaxDepth) {
+            diags_.Error(loc, "combinations nested more than 1000 deep");
+            aborted_ = true;
+            return false;
+        }
+        if (combOnPath_[combIndex]) {
+            const Combination& c = db_.combinations[combIndex];
+            diags_.Error(c.loc, fmt::format("combination '{}' contains itself (a cycle in the "
+                                            "combination tree)",
+                                            c.name),
+                         c.sourceLine);
+            aborted_ = true;
+            return false;
+        }
+        combOnPath_[combIndex] = 1;
+        return true;
+    }
+
+    // The CSG expression of a tree node inside a region (region flags below are ignored).
+    int TreeExpr(const Combination& c, int node, const Mat4& m, int depth) {
+        if (node < 0 || aborted_) return -1;
+        const TreeNode& n = c.nodes[node];
+        if (n.op == TreeNode::Op::kLeaf) return ObjectExpr(c.name, n.name, m * n.matrix, n.loc,
+                                                           depth + 1);
+        int l = TreeExpr(c, n.left, m, depth + 1);
+        int r = TreeExpr(c, n.right, m, depth + 1);
+        return Combine(OpOf(n.op), l, r);
+    }
+
+    static scene::CsgOp OpOf(TreeNode::Op op) {
+        return op == TreeNode::Op::kUnion          ? scene::CsgOp::kUnion
+               : op == TreeNode::Op::kIntersection ? scene::CsgOp::kIntersection
+                                                   : scene::CsgOp::kDifference;
+    }
+
+    int ObjectExpr(const std::string& parent, const std::string& name, const Mat4& m,
+                   const SourceLoc& loc, int depth) {
+        auto it = db_.objects.find(name);
+        if (it == db_.objects.end()) {
+            WarnMissing(parent, name, loc);
+            return -1;
+        }
+        if (!it->second.first) return Leaf(it->second.second, m, loc);
+        int ci = it->second.second;
+        if (!Enter(ci, loc, depth)) return -1;
+        const Combination& c = db_.combinations[ci];
+        int e = TreeExpr(c, c.root, m, depth);
+        combOnPath_[ci] = 0;
+        return e;
+    }
+
+    std::optional<std::array<int, 3>> TableColor(int regionId) const {
+        for (const ColorTableEntry& e : db_.colorTable)
+            if (regionId >= e.low && regionId <= e.high) return e.rgb;
+        return std::nullopt;
+    }
+
+    // Terms of an object above the region level (FORMAT.md §5.1-5.2).
+    std::vector<Term> Terms(const std::string& name, const Mat4& m, ColorCtx ctx, int depth,
+                            const TreeNode* ref) {
+        std::vector<Term> out;
+        if (aborted_) return out;
+        auto it = db_.objects.find(name);
+        SourceLoc loc = ref ? ref->loc : SourceLoc{};
+        if (it == db_.objects.end()) {
+            if (ref) WarnMissing(refParent_, name, loc);
+            return out;
+        }
+        if (!it->second.first) {  // a bare primitive: a region of its own
+            const Primitive& p = db_.primitives[it->second.second];
+            int e = Leaf(it->second.second, m, ref ? loc : p.loc);
+            if (e >= 0) out.push_back({e, p.name, ctx.rgb, p.loc});
+            return out;
+        }
+        int ci = it->second.second;
+        const Combination& c = db_.combinations[ci];
+        if (c.region) {
+            if (c.aircode != 0 || c.shader == "envmap") return out;
+            if (!Enter(ci, ref ? loc : c.loc, depth)) return out;
+            Term t;
+            t.expr = TreeExpr(c, c.root, m, depth);
+            combOnPath_[ci] = 0;
+            t.name = c.name;
+            t.loc = c.loc;
+            if (ctx.locked && ctx.rgb) t.rgb = ctx.rgb;
+            else if (c.rgb) t.rgb = c.rgb;
+            else if (ctx.rgb) t.rgb = ctx.rgb;
+            else t.rgb = TableColor(c.regionId);
+            if (t.expr >= 0) out.push_back(std::move(t));
+            return out;
+        }
+        if (!ctx.locked && c.rgb) {
+            ctx.rgb = c.rgb;
+            ctx.locked = c.inherit;
+        }
+        if (!Enter(ci, ref ? loc : c.loc, depth)) return out;
+        out = TreeTerms(c, c.root, m, ctx, depth + 1);
+        combOnPath_[ci] = 0;
+        return out;
+    }
+
+    std::vector<Term> TreeTerms(const Combination& c, int node, const Mat4& m, const ColorCtx& ctx,
+                                int depth) {
+        std::vector<Term> out;
+        if (node < 0 || aborted_) return out;
+        const TreeNode& n = c.nodes[node];
+        if (n.op == TreeNode::Op::kLeaf) {
+            refParent_ = c.name;
+            return Terms(n.name, m * n.matrix, ctx, depth + 1, &n);
+        }
+        std::vector<Term> l = TreeTerms(c, n.left, m, ctx, depth + 1);
+        std::vector<Term> r = TreeTerms(c, n.right, m, ctx, depth + 1);
+        switch (n.op) {
+            case TreeNode::Op::kUnion:
+                out = std::move(l);
+                for (Term& t : r) out.push_back(std::move(t));
+                break;
+            case TreeNode::Op::kIntersection:  // (A∪B)∩(C∪D) = ∪ A∩C ...
+                for (const Term& a : l)
+                    for (const Term& b : r) {
+                        int e = Combine(scene::CsgOp::kIntersection, a.expr, b.expr);
+                        if (e >= 0) out.push_back({e, a.name, a.rgb, a.loc});
+                    }
+                break;
+            default: {  // (A∪B) − (C∪D) = (A − C − D) ∪ (B − C − D)
+                for (const Term& a : l) {
+                    int e = a.expr;
+                    for (const Term& b : r) e = Combine(scene::CsgOp::kDifference, e, b.expr);
+                    if (e >= 0) out.push_back({e, a.name, a.rgb, a.loc});
+                }
+                break;
+            }
+        }
+        if (out.size() > kMaxTerms) {
+            diags_.Error(n.loc, fmt::format("combination '{}' expands to more than {} rendered "
+                                            "regions",
+                                            c.name, kMaxTerms));
+            aborted_ = true;
+            out.clear();
+        }
+        return out;
+    }
+
+    int EmitNode(scene::Csg& csg, int expr) {
+        const Expr& e = exprs_[expr];
+        auto add = [&](scene::CsgNode n) {
+            csg.nodes.push_back(n);
+            return static_cast<int>(csg.nodes.size()) - 1;
+        };
+        if (e.leaf) {
+            int root = -1;
+            for (int b : e.bodies) {
+                scene::CsgNode leaf;
+                leaf.isLeaf = true;
+                leaf.ref = {scene::SolidRef::Kind::kBody, b};
+                leaf.loc = scene_.top.bodies[b].loc;
+                int li = add(leaf);
+                if (root < 0) {
+                    root = li;
+                } else {
+                    scene::CsgNode u;
+                    u.isLeaf = false;
+                    u.op = scene::CsgOp::kUnion;
+                    u.left = root;
+                    u.right = li;
+                    root = add(u);
+                }
+            }
+            return root;
+        }
+        int l = EmitNode(csg, e.left);
+        int r = EmitNode(csg, e.right);
+        scene::CsgNode n;
+        n.isLeaf = false;
+        n.op = e.op;
+        n.left = l;
+        n.right = r;
+        return add(n);
+    }
+
+    void Emit(const std::vector<Term>& terms) {
+        std::map<std::string, int> used;
+        for (const Term& t : terms) {
+            scene::Csg csg;
+            int k = used[t.name]++;
+            csg.id = k == 0 ? t.name : fmt::format("{}#{}", t.name, k + 1);
+            csg.loc = t.loc;
+            if (t.rgb)
+                csg.color = scene::Color{(*t.rgb)[0] / 255.0, (*t.rgb)[1] / 255.0,
+                                         (*t.rgb)[2] / 255.0};
+            csg.root = EmitNode(csg, t.expr);
+            const Box3& b = exprs_[t.expr].box;
+            if (b.Finite()) report_.bounds.Extend(b);
+            scene_.top.csgs.push_back(std::move(csg));
+            ++report_.solids;
+        }
+    }
+
+    void ReportSkipped() {
+        if (report_.skipped.empty()) return;
+        std::string list;
+        int total = 0;
+        for (const auto& [type, n] : report_.skipped) {
+            list += fmt::format("{}{} ×{}", list.empty() ? "" : ", ", type, n);
+            total += n;
+        }
+        SourceLoc loc;
+        loc.file = file_;
+        if (options_.strict)
+            diags_.Error(loc, fmt::format("{} primitive{} cannot be drawn exactly with quadrics "
+                                          "and planes: {} (--strict)",
+                                          total, total == 1 ? "" : "s", list));
+        else
+            diags_.Warning(loc, fmt::format("{} primitive{} left out (not quadric or planar): "
+                                            "{}; the model is drawn without them (--strict makes "
+                                            "this an error)",
+                                            total, total == 1 ? "" : "s", list));
+    }
+
+  public:
+    std::shared_ptr<const std::string> file_;
+
+  private:
+    const Database& db_;
+    const ImportOptions& options_;
+    scene::Scene& scene_;
+    Diagnostics& diags_;
+    ImportReport& report_;
+    std::vector<Expr> exprs_;
+    std::vector<char> combOnPath_;
+    std::vector<std::optional<ConvertResult>> converted_;
+    std::set<int> reachedSkipped_;
+    std::set<std::string> warnedMissing_;
+    std::map<std::array<double, 17>, int> leafCache_;
+    std::string refParent_;
+    bool aborted_ = false;
+};
+
+}  // namespace
+
+bool ImportBrlcad(std::string_view text, const std::string& file, const ImportOptions& options,
+                  scene::Scene& scene, Diagnostics& diags, ImportReport& report) {
+    Database db;
+    bool ok = false;
+    switch (DetectFormat(text)) {
+        case TextFormat::kV4:
+            ok = ParseV4(text, file, db, diags);
+            report.format = "BRL-CAD v4";
+            break;
+        case TextFormat::kV5:
+            ok = ParseV5(text, file, db, diags);
+            report.format = "BRL-CAD v5";
+            break;
+        case TextFormat::kComgeom:
+            ok = ParseComgeom(text, file, db, diags);
+            report.format = "COMGEOM";
+            break;
+        case TextFormat::kUnknown: {
+            SourceLoc loc;
+            loc.file = std::make_shared<const std::string>(file);
+            loc.line = 1;
+            loc.column = 1;
+            diags.Error(loc, "not a BRL-CAD ASCII database: expected 'I <units> v4' (v4), a "
+                             "title/units/put command (v5) or a COMGEOM deck");
+            return false;
+        }
+    }
+    report.title = db.title;
+    if (!ok) return false;
+    Converter conv(db, options, scene, diags, report);
+    conv.file_ = std::make_shared<const std::string>(file);
+    return conv.Run() && !diags.HasErrors();
+}
+
+}  // namespace quadrix::import

@@ -1,0 +1,83 @@
+// The in-memory form of a BRL-CAD database as the readers leave it, before conversion to a Scene.
+//
+// The readers (v4 records, v5 `put` script, COMGEOM deck) only parse; every geometric decision
+// (which primitives are quadric, how regions and colors are resolved) is made by the converter
+// (brlcad_import.cpp) on this neutral form. Units: millimetres, as in every BRL-CAD file
+// (shared/data/brlcad/FORMAT.md §2.1, §3.1). Coordinates are BRL-CAD's own (right-handed, Z up).
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "quadrix/math/mat4.h"
+#include "quadrix/math/quadric.h"
+#include "quadrix/math/vec.h"
+#include "quadrix/scene/source_loc.h"
+
+namespace quadrix::import::brlcad {
+
+// One primitive with the parameters of FORMAT.md §2.3 / §3.1 (only those its type uses are set).
+struct Primitive {
+    std::string type;  // v5 type name: arb8, arbn, half, ell, tgc, rpc, rhc, epa, ehy, hyp, part,
+                       // or any other name (tor, eto, pipe, dsp, ...), kept for the census
+    std::string name;
+    std::array<Vec3, 8> pts{};  // arb8 vertices 1..8, absolute
+    Vec3 V, H, A, B, C, D, N;
+    double r = 0, r1 = 0, r2 = 0, c = 0, d = 0, b = 0, bnr = 0, rv = 0, rh = 0;
+    std::vector<Plane> planes;  // arbn, already as Quadrix planes (inside <= 0)
+    SourceLoc loc;
+    std::string sourceLine;
+};
+
+// A node of a combination's boolean tree (v5 form; v4 GIFT lists are converted to it).
+struct TreeNode {
+    enum class Op { kLeaf, kUnion, kIntersection, kDifference };
+    Op op = Op::kLeaf;
+    std::string name;   // kLeaf
+    Mat4 matrix = Mat4::Identity();  // kLeaf: row-major, p' = M p, m15 = inverse uniform scale
+    int left = -1, right = -1;       // indices into Combination::nodes
+    SourceLoc loc;
+};
+
+struct Combination {
+    std::string name;
+    bool region = false;
+    int regionId = 0;
+    int aircode = 0;
+    std::optional<std::array<int, 3>> rgb;  // 0..255
+    bool inherit = false;
+    std::string shader;  // first word of the shader, e.g. "plastic", "light", "envmap"
+    std::vector<TreeNode> nodes;
+    int root = -1;  // -1: an empty combination
+    SourceLoc loc;
+    std::string sourceLine;
+};
+
+struct ColorTableEntry {
+    int low = 0, high = 0;
+    std::array<int, 3> rgb{};
+};
+
+struct Database {
+    std::string title;
+    std::string format;  // "v4", "v5" or "comgeom"
+    std::vector<Primitive> primitives;
+    std::vector<Combination> combinations;
+    std::vector<ColorTableEntry> colorTable;
+    // name -> (isCombination, index); later definitions replace earlier ones (as asc2g does).
+    std::map<std::string, std::pair<bool, int>> objects;
+
+    void AddPrimitive(Primitive p) {
+        objects[p.name] = {false, static_cast<int>(primitives.size())};
+        primitives.push_back(std::move(p));
+    }
+    void AddCombination(Combination c) {
+        objects[c.name] = {true, static_cast<int>(combinations.size())};
+        combinations.push_back(std::move(c));
+    }
+};
+
+}  // namespace quadrix::import::brlcad

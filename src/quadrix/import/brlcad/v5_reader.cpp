@@ -1,0 +1,428 @@
+// The v5 ASCII format (FORMAT.md §3): a Tcl script of title/units/attr/color/put commands.
+// A command ends at a newline (or ';') outside braces, so a command may span lines. Words are
+// bare, "quoted" or {braced} (nesting counted, braces kept inside). Vectors are {x y z} lists and
+// combination trees are nested prefix lists ({u L R}, {n L R}, {- L R}, {l name [matrix]}).
+// Every word keeps its offset in the file, so sub-lists (tree nodes, vector components) are
+// reported at their own line and column.
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "quadrix/import/brlcad/readers.h"
+
+namespace quadrix::import::brlcad {
+
+namespace {
+
+struct Word {
+    std::string_view text;  // braces and quotes removed
+    std::size_t offset = 0;  // offset of the word's first character (the brace, if any)
+    bool braced = false;
+};
+
+bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+class V5Reader {
+  public:
+    V5Reader(std::string_view text, const std::string& file, Database& db, Diagnostics& diags)
+        : map_(text, file), db_(db), diags_(diags) {}
+
+    bool Run() {
+        db_.format = "v5";
+        std::string_view t = map_.text();
+        std::size_t i = 0;
+        while (i < t.size() && diags_.ErrorCount() < 50) {
+            std::vector<Word> words;
+            if (!Command(i, words)) break;
+            if (!words.empty()) Dispatch(words);
+        }
+        ApplyAttributes();
+        return !diags_.HasErrors();
+    }
+
+  private:
+    void Error(std::size_t offset, std::string message) {
+        diags_.Error(map_.At(offset), std::move(message), map_.LineText(offset));
+    }
+
+    // Reads one word starting at t[i] (not a space); false after reporting an error.
+    bool ReadWord(std::string_view t, std::size_t base, std::size_t& i, Word& w) {
+        w.offset = base + i;
+        if (t[i] == '{') {
+            int depth = 0;
+            std::size_t s = i;
+            for (; i < t.size(); ++i) {
+                if (t[i] == '\\') {
+                    ++i;
+                    continue;
+                }
+                if (t[i] == '{') ++depth;
+                if (t[i] == '}' && --depth == 0) break;
+            }
+            if (i >= t.size()) {
+                Error(base + s, "unbalanced '{': the brace is never closed");
+                return false;
+            }
+            w.text = t.substr(s + 1, i - s - 1);
+            w.braced = true;
+            ++i;
+            return true;
+        }
+        if (t[i] == '"') {
+            std::size_t s = ++i;
+            while (i < t.size() && t[i] != '"') i += t[i] == '\\' ? 2 : 1;
+            if (i >= t.size()) {
+                Error(base + s - 1, "unterminated '\"'");
+                return false;
+            }
+            w.text = t.substr(s, i - s);
+            ++i;
+            return true;
+        }
+        std::size_t s = i;
+        while (i < t.size() && !IsSpace(t[i]) && t[i] != ';') ++i;
+        w.text = t.substr(s, i - s);
+        return true;
+    }
+
+    bool Command(std::size_t& i, std::vector<Word>& words) {
+        std::string_view t = map_.text();
+        while (i < t.size() && (IsSpace(t[i]) || t[i] == ';')) ++i;
+        if (i < t.size() && t[i] == '#') {
+            while (i < t.size() && t[i] != '\n') ++i;
+            return true;
+        }
+        while (i < t.size()) {
+            while (i < t.size() && (t[i] == ' ' || t[i] == '\t' || t[i] == '\r')) ++i;
+            if (i >= t.size() || t[i] == '\n' || t[i] == ';') break;
+            if (t[i] == '\\' && i + 1 < t.size() && t[i + 1] == '\n') {  // line continuation
+                i += 2;
+                continue;
+            }
+            Word w;
+            if (!ReadWord(t, 0, i, w)) return false;
+            words.push_back(w);
+        }
+        return true;
+    }
+
+    // Splits the content of a braced word into list elements.
+    std::optional<std::vector<Word>> List(const Word& w) {
+        std::vector<Word> out;
+        std::size_t base = w.offset + (w.braced ? 1 : 0);
+        std::string_view t = w.text;
+        std::size_t i = 0;
+        while (true) {
+            while (i < t.size() && IsSpace(t[i])) ++i;
+            if (i >= t.size()) break;
+            Word e;
+            if (!ReadWord(t, base, i, e)) return std::nullopt;
+            out.push_back(e);
+        }
+        return out;
+    }
+
+    bool Number(const Word& w, double& v, const std::string& what) {
+        std::string s(w.text);
+        char* end = nullptr;
+        v = std::strtod(s.c_str(), &end);
+        if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v)) {
+            Error(w.offset, fmt::format("{}: '{}' is not a finite number", what, w.text));
+            return false;
+        }
+        return true;
+    }
+
+    bool Vector(const Word& w, Vec3& v, const std::string& what) {
+        auto l = List(w);
+        if (!l) return false;
+        if (l->size() != 3) {
+            Error(w.offset, fmt::format("{}: expected a vector {{x y z}}, found {} values", what,
+                                        l->size()));
+            return false;
+        }
+        for (int k = 0; k < 3; ++k)
+            if (!Number((*l)[k], v[k], what)) return false;
+        return true;
+    }
+
+    void Dispatch(const std::vector<Word>& w) {
+        std::string_view cmd = w[0].text;
+        if (cmd == "title") {
+            if (w.size() > 1) db_.title = std::string(w[1].text);
+        } else if (cmd == "units") {
+            // Display unit only: lengths in the file are always millimetres (FORMAT.md §3.1).
+        } else if (cmd == "color") {
+            ColorCmd(w);
+        } else if (cmd == "attr") {
+            Attr(w);
+        } else if (cmd == "put") {
+            Put(w);
+        } else {
+            Error(w[0].offset, fmt::format("unknown command '{}' (a v5 ASCII database holds only "
+                                           "title, units, attr, color and put)",
+                                           cmd));
+        }
+    }
+
+    void ColorCmd(const std::vector<Word>& w) {
+        if (w.size() != 6) {
+            Error(w[0].offset, "color: expected 'color low high r g b'");
+            return;
+        }
+        double v[5];
+        for (int k = 0; k < 5; ++k)
+            if (!Number(w[k + 1], v[k], "color")) return;
+        db_.colorTable.push_back({static_cast<int>(v[0]), static_cast<int>(v[1]),
+                                  {static_cast<int>(v[2]), static_cast<int>(v[3]),
+                                   static_cast<int>(v[4])}});
+    }
+
+    void Attr(const std::vector<Word>& w) {
+        if (w.size() < 3 || w[1].text != "set") return;  // attr rm/append/...: no geometry
+        if ((w.size() - 3) % 2 != 0) {
+            Error(w.back().offset, fmt::format("attr set {{{}}}: attribute without a value",
+                                               w[2].text));
+            return;
+        }
+        auto& attrs = attrs_[std::string(w[2].text)];
+        for (std::size_t k = 3; k + 1 < w.size(); k += 2)
+            attrs.push_back({std::string(w[k].text), w[k + 1]});
+    }
+
+    void Put(const std::vector<Word>& w) {
+        if (w.size() < 3) {
+            Error(w[0].offset, "put: expected 'put {name} type key value ...'");
+            return;
+        }
+        std::string name(w[1].text), type(w[2].text);
+        if ((w.size() - 3) % 2 != 0) {
+            Error(w.back().offset, fmt::format("put {{{}}}: key '{}' has no value", name,
+                                               w.back().text));
+            return;
+        }
+        std::map<std::string, Word> kv;
+        for (std::size_t k = 3; k + 1 < w.size(); k += 2) kv[std::string(w[k].text)] = w[k + 1];
+        if (type == "comb") {
+            PutComb(w, name, kv);
+            return;
+        }
+        Primitive p;
+        p.type = type;
+        p.name = name;
+        p.loc = map_.At(w[0].offset);
+        p.sourceLine = map_.LineText(w[0].offset);
+        std::string what = fmt::format("primitive '{}' ({})", name, type);
+        bool ok = true;
+        auto vec = [&](const char* key, Vec3& out) {
+            if (!ok) return;
+            auto it = kv.find(key);
+            if (it == kv.end()) {
+                Error(w[0].offset, fmt::format("{}: missing parameter '{}'", what, key));
+                ok = false;
+                return;
+            }
+            ok = Vector(it->second, out, what + " " + key);
+        };
+        auto num = [&](const char* key, double& out) {
+            if (!ok) return;
+            auto it = kv.find(key);
+            if (it == kv.end()) {
+                Error(w[0].offset, fmt::format("{}: missing parameter '{}'", what, key));
+                ok = false;
+                return;
+            }
+            ok = Number(it->second, out, what + " " + key);
+        };
+        if (type.size() == 4 && type.substr(0, 3) == "arb" && type[3] >= '4' && type[3] <= '8') {
+            p.type = "arb8";
+            for (int k = 0; k < 8; ++k) {
+                std::string key = fmt::format("V{}", k + 1);
+                vec(key.c_str(), p.pts[k]);
+            }
+        } else if (type == "tgc") {
+            vec("V", p.V), vec("H", p.H), vec("A", p.A), vec("B", p.B), vec("C", p.C),
+                vec("D", p.D);
+        } else if (type == "ell") {
+            vec("V", p.V), vec("A", p.A), vec("B", p.B), vec("C", p.C);
+        } else if (type == "half") {
+            vec("N", p.N), num("d", p.d);
+        } else if (type == "rpc" || type == "rhc") {
+            vec("V", p.V), vec("H", p.H), vec("B", p.B), num("r", p.r);
+            if (type == "rhc") num("c", p.c);
+        } else if (type == "epa" || type == "ehy") {
+            vec("V", p.V), vec("H", p.H), vec("A", p.A), num("r_1", p.r1), num("r_2", p.r2);
+            if (type == "ehy") num("c", p.c);
+        } else if (type == "hyp") {
+            vec("V", p.V), vec("H", p.H), vec("A", p.A), num("b", p.b), num("bnr", p.bnr);
+        } else if (type == "part") {
+            vec("V", p.V), vec("H", p.H), num("r_v", p.rv), num("r_h", p.rh);
+        } else if (type == "arbn") {
+            double n = 0;
+            num("N", n);
+            for (int k = 0; ok && k < static_cast<int>(n); ++k) {
+                std::string key = fmt::format("P{}", k);
+                auto it = kv.find(key);
+                if (it == kv.end()) {
+                    Error(w[0].offset, fmt::format("{}: missing plane '{}'", what, key));
+                    ok = false;
+                    break;
+                }
+                auto l = List(it->second);
+                double c[4];
+                if (!l || l->size() != 4) {
+                    Error(it->second.offset, fmt::format("{} {}: expected {{a b c d}}", what, key));
+                    ok = false;
+                    break;
+                }
+                for (int j = 0; ok && j < 4; ++j) ok = Number((*l)[j], c[j], what);
+                if (ok) p.planes.push_back(Plane{c[0], c[1], c[2], -c[3]});
+            }
+        }
+        if (ok) db_.AddPrimitive(std::move(p));
+    }
+
+    // Parses a tree list into comb.nodes; returns the node index or -1 on error.
+    int Tree(const Word& w, Combination& comb, int depth) {
+        if (depth > 2000) {
+            Error(w.offset, "combination tree nested too deeply");
+            return -1;
+        }
+        auto l = List(w);
+        if (!l) return -1;
+        if (l->empty()) {
+            Error(w.offset, fmt::format("combination '{}': empty tree node", comb.name));
+            return -1;
+        }
+        const std::vector<Word>& e = *l;
+        std::string_view op = e[0].text;
+        TreeNode n;
+        n.loc = map_.At(w.offset);
+        if (op == "l") {
+            if (e.size() < 2 || e.size() > 3) {
+                Error(w.offset, fmt::format("combination '{}': a leaf is {{l name [matrix]}}",
+                                            comb.name));
+                return -1;
+            }
+            n.name = std::string(e[1].text);
+            n.loc = map_.At(e[1].offset);
+            if (e.size() == 3 && e[2].text != "I") {
+                auto m = List(e[2]);
+                if (!m) return -1;
+                if (m->size() != 16) {
+                    Error(e[2].offset, fmt::format("combination '{}': member '{}' has a matrix "
+                                                   "of {} numbers (expected 16)",
+                                                   comb.name, n.name, m->size()));
+                    return -1;
+                }
+                for (int k = 0; k < 16; ++k)
+                    if (!Number((*m)[k], n.matrix.m[k / 4][k % 4], "matrix")) return -1;
+            }
+        } else if (op == "u" || op == "n" || op == "+" || op == "-") {
+            if (e.size() != 3) {
+                Error(w.offset, fmt::format("combination '{}': operator '{}' needs two operands, "
+                                            "found {}",
+                                            comb.name, op, e.size() - 1));
+                return -1;
+            }
+            n.op = op == "u"   ? TreeNode::Op::kUnion
+                   : op == "-" ? TreeNode::Op::kDifference
+                               : TreeNode::Op::kIntersection;
+            n.left = Tree(e[1], comb, depth + 1);
+            if (n.left < 0) return -1;
+            n.right = Tree(e[2], comb, depth + 1);
+            if (n.right < 0) return -1;
+        } else {
+            Error(e[0].offset, fmt::format("combination '{}': unsupported tree operator '{}' "
+                                           "(supported: l u n - ; xor and not are not)",
+                                           comb.name, op));
+            return -1;
+        }
+        comb.nodes.push_back(std::move(n));
+        return static_cast<int>(comb.nodes.size()) - 1;
+    }
+
+    static std::optional<std::array<int, 3>> ParseRgb(std::string_view s) {
+        std::string str(s);
+        for (char& c : str)
+            if (c == '/' || c == ',') c = ' ';
+        int r = 0, g = 0, b = 0;
+        char extra = 0;
+        if (std::sscanf(str.c_str(), "%d %d %d %c", &r, &g, &b, &extra) != 3) return std::nullopt;
+        return std::array<int, 3>{r, g, b};
+    }
+
+    void PutComb(const std::vector<Word>& w, const std::string& name,
+                 const std::map<std::string, Word>& kv) {
+        Combination c;
+        c.name = name;
+        c.loc = map_.At(w[0].offset);
+        c.sourceLine = map_.LineText(w[0].offset);
+        if (auto it = kv.find("region"); it != kv.end())
+            c.region = it->second.text == "yes" || it->second.text == "1" ||
+                       it->second.text == "R";
+        auto tree = kv.find("tree");
+        if (tree == kv.end()) {
+            Error(w[0].offset, fmt::format("combination '{}' has no tree", name));
+            return;
+        }
+        auto trimmed = tree->second.text;
+        while (!trimmed.empty() && IsSpace(trimmed.front())) trimmed.remove_prefix(1);
+        if (!trimmed.empty()) {
+            c.root = Tree(tree->second, c, 0);
+            if (c.root < 0) return;
+        }
+        for (const auto& [k, v] : kv) SetCombAttr(c, k, v);
+        db_.AddCombination(std::move(c));
+    }
+
+    void SetCombAttr(Combination& c, const std::string& key, const Word& v) {
+        double num = 0;
+        if (key == "region") {
+            c.region = c.region || v.text == "R" || v.text == "yes" || v.text == "1";
+        } else if (key == "region_id" || key == "id") {
+            if (Number(v, num, fmt::format("combination '{}' {}", c.name, key)))
+                c.regionId = static_cast<int>(num);
+        } else if (key == "aircode" || key == "air") {
+            if (Number(v, num, fmt::format("combination '{}' {}", c.name, key)))
+                c.aircode = static_cast<int>(num);
+        } else if (key == "rgb" || key == "color") {
+            auto rgb = ParseRgb(v.text);
+            if (!rgb) {
+                Error(v.offset, fmt::format("combination '{}': colour '{}' is not r/g/b", c.name,
+                                            v.text));
+                return;
+            }
+            c.rgb = rgb;
+        } else if (key == "inherit") {
+            c.inherit = v.text == "1" || v.text == "yes";
+        } else if (key == "oshader" || key == "shader") {
+            auto l = List(v);
+            if (l && !l->empty()) c.shader = std::string((*l)[0].text);
+        }
+    }
+
+    void ApplyAttributes() {
+        for (const auto& [name, attrs] : attrs_) {
+            auto it = db_.objects.find(name);
+            if (it == db_.objects.end() || !it->second.first) continue;
+            Combination& c = db_.combinations[it->second.second];
+            for (const auto& [k, v] : attrs) SetCombAttr(c, k, v);
+        }
+    }
+
+    TextMap map_;
+    Database& db_;
+    Diagnostics& diags_;
+    std::map<std::string, std::vector<std::pair<std::string, Word>>> attrs_;
+};
+
+}  // namespace
+
+bool ParseV5(std::string_view text, const std::string& file, Database& db, Diagnostics& diags) {
+    return V5Reader(text, file, db, diags).Run();
+}
+
+}  // namespace quadrix::import::brlcad

@@ -1,0 +1,652 @@
+// OpenSCAD CSG subset → Scene; see openscad_import.h.
+//
+// Grammar read (what `openscad -o x.csg` writes, plus the same statements in .scad):
+//   statement := [modifier] name '(' [arg {',' arg}] ')' (';' | statement | '{' {statement} '}')
+//              | '{' {statement} '}' | ';' | '$'name '=' value ';'
+//   arg       := [name '='] value        value := number | true | false | undef | "string"
+//                                                | '[' [value {',' value}] ']'
+// Modifiers: '*' (disabled) and '%' (background) drop the subtree, '#' and '!' are ignored.
+// Geometry (OpenSCAD manual, "Primitive Solids" and "Transformations"):
+//   cube(size = 1 | [x, y, z], center = false), sphere(r = 1 | d), cylinder(h = 1, r = 1 | r1, r2
+//   | d, d1, d2, center = false) with positional (h, r1, r2, center); multmatrix(m) (3 or 4 rows,
+//   applied to column vectors), translate(v), rotate([ax, ay, az]) = Rz·Ry·Rx, rotate(a, v) about
+//   the axis v (right-hand rule), rotate(a) about z, scale(v | s), mirror(n) = I - 2nnᵀ/|n|².
+//   difference: the first child minus the others; intersection: all children; group, union and
+//   render: the union. color(c [, alpha]) colours its subtree; the innermost colour wins.
+#include "quadrix/import/openscad/openscad_import.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "quadrix/import/brlcad/primitives.h"
+#include "quadrix/import/brlcad/readers.h"
+#include "quadrix/import/scene_input.h"
+
+namespace quadrix::import {
+
+namespace {
+
+struct Value {
+    enum class Kind { kUndef, kNumber, kBool, kString, kVector };
+    Kind kind = Kind::kUndef;
+    double number = 0;
+    bool boolean = false;
+    std::string text;
+    std::vector<Value> items;
+};
+
+struct Arg {
+    std::string name;  // empty = positional
+    Value value;
+    std::size_t offset = 0;
+};
+
+struct Node {
+    std::string name;  // "" for an anonymous { } block
+    std::vector<Arg> args;
+    std::vector<Node> children;
+    std::size_t offset = 0;
+    bool dropped = false;  // '*' or '%'
+};
+
+class Parser {
+  public:
+    Parser(const brlcad::TextMap& map, Diagnostics& diags) : map_(map), t_(map.text()),
+                                                             diags_(diags) {}
+
+    bool Run(std::vector<Node>& out) {
+        while (Skip(), i_ < t_.size()) {
+            Node n;
+            if (!Statement(n, 0)) return false;
+            if (!n.name.empty() || !n.children.empty()) out.push_back(std::move(n));
+        }
+        return true;
+    }
+
+  private:
+    bool Fail(std::size_t at, std::string message) {
+        diags_.Error(map_.At(at), std::move(message), map_.LineText(at), "syntax");
+        return false;
+    }
+
+    void Skip() {
+        while (i_ < t_.size()) {
+            if (std::isspace(static_cast<unsigned char>(t_[i_]))) {
+                ++i_;
+            } else if (t_.compare(i_, 2, "//") == 0) {
+                while (i_ < t_.size() && t_[i_] != '\n') ++i_;
+            } else if (t_.compare(i_, 2, "/*") == 0) {
+                std::size_t e = t_.find("*/", i_ + 2);
+                i_ = e == std::string_view::npos ? t_.size() : e + 2;
+            } else {
+                break;
+            }
+        }
+    }
+
+    bool Peek(char c) {
+        Skip();
+        return i_ < t_.size() && t_[i_] == c;
+    }
+
+    bool Expect(char c, const char* context) {
+        if (Peek(c)) {
+            ++i_;
+            return true;
+        }
+        return Fail(i_, i_ >= t_.size()
+                            ? fmt::format("unexpected end of file: expected '{}' {}", c, context)
+                            : fmt::format("expected '{}' {}, found '{}'", c, context, t_[i_]));
+    }
+
+    std::string Ident() {
+        Skip();
+        std::size_t s = i_;
+        while (i_ < t_.size() && (std::isalnum(static_cast<unsigned char>(t_[i_])) ||
+                                  t_[i_] == '_' || t_[i_] == '$'))
+            ++i_;
+        return std::string(t_.substr(s, i_ - s));
+    }
+
+    bool ParseValue(Value& v, int depth) {
+        Skip();
+        if (depth > 64) return Fail(i_, "vector nested too deeply");
+        if (i_ >= t_.size()) return Fail(i_, "unexpected end of file: expected a value");
+        char c = t_[i_];
+        if (c == '[') {
+            ++i_;
+            v.kind = Value::Kind::kVector;
+            if (Peek(']')) {
+                ++i_;
+                return true;
+            }
+            while (true) {
+                Value item;
+                if (!ParseValue(item, depth + 1)) return false;
+                v.items.push_back(std::move(item));
+                if (Peek(',')) {
+                    ++i_;
+                    continue;
+                }
+                return Expect(']', "to close the vector");
+            }
+        }
+        if (c == '"') {
+            std::size_t s = ++i_;
+            while (i_ < t_.size() && t_[i_] != '"') i_ += t_[i_] == '\\' ? 2 : 1;
+            if (i_ >= t_.size()) return Fail(s - 1, "unterminated string");
+            v.kind = Value::Kind::kString;
+            v.text = std::string(t_.substr(s, i_ - s));
+            ++i_;
+            return true;
+        }
+        if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') {
+            std::string s;
+            std::size_t start = i_;
+            while (i_ < t_.size() && (std::isalnum(static_cast<unsigned char>(t_[i_])) ||
+                                      t_[i_] == '.' || t_[i_] == '-' || t_[i_] == '+'))
+                s += t_[i_++];
+            char* end = nullptr;
+            v.number = std::strtod(s.c_str(), &end);
+            if (s.empty() || *end != 0 || !std::isfinite(v.number))
+                return Fail(start, fmt::format("'{}' is not a number (only literal values are "
+                                               "supported, no expressions)",
+                                               s));
+            v.kind = Value::Kind::kNumber;
+            return true;
+        }
+        std::size_t start = i_;
+        std::string word = Ident();
+        if (word == "true" || word == "false") {
+            v.kind = Value::Kind::kBool;
+            v.boolean = word == "true";
+            return true;
+        }
+        if (word == "undef") return true;
+        return Fail(start, word.empty() ? fmt::format("unexpected '{}': expected a value", c)
+                                        : fmt::format("'{}': variables and expressions are not "
+                                                      "supported, only literal values",
+                                                      word));
+    }
+
+    bool Statement(Node& n, int depth) {
+        Skip();
+        if (depth > 500) return Fail(i_, "statements nested too deeply");
+        if (i_ >= t_.size()) return Fail(i_, "unexpected end of file: expected a statement");
+        n.offset = i_;
+        char c = t_[i_];
+        if (c == ';') {
+            ++i_;
+            return true;
+        }
+        if (c == '*' || c == '%' || c == '#' || c == '!') {
+            ++i_;
+            bool ok = Statement(n, depth + 1);
+            if (c == '*' || c == '%') n.dropped = true;
+            return ok;
+        }
+        if (c == '{') {
+            ++i_;
+            return Block(n, depth);
+        }
+        std::string name = Ident();
+        if (name.empty()) return Fail(i_, fmt::format("unexpected '{}': expected a statement", c));
+        if (name == "module" || name == "function" || name == "include" || name == "use" ||
+            name == "for" || name == "if" || name == "let")
+            return Fail(n.offset, fmt::format("'{}' is not supported: this reader takes the CSG "
+                                              "subset written by 'openscad -o model.csg'",
+                                              name));
+        if (Peek('=')) {  // a special-variable assignment such as $fn = 64; (ignored)
+            ++i_;
+            Value v;
+            if (!ParseValue(v, 0)) return false;
+            if (name[0] != '$')
+                return Fail(n.offset, fmt::format("variable '{}': variables are not supported, "
+                                                  "only $fn/$fa/$fs-style settings (ignored)",
+                                                  name));
+            return Expect(';', "after the assignment");
+        }
+        n.name = name;
+        if (!Expect('(', fmt::format("after '{}'", name).c_str())) return false;
+        if (!Peek(')')) {
+            while (true) {
+                Arg a;
+                Skip();
+                a.offset = i_;
+                std::size_t save = i_;
+                std::string id = Ident();
+                if (!id.empty() && Peek('=') && !(t_.compare(i_, 2, "==") == 0)) {
+                    ++i_;
+                    a.name = id;
+                } else {
+                    i_ = save;
+                }
+                if (!ParseValue(a.value, 0)) return false;
+                n.args.push_back(std::move(a));
+                if (Peek(',')) {
+                    ++i_;
+                    continue;
+                }
+                break;
+            }
+        }
+        if (!Expect(')', fmt::format("to close the arguments of '{}'", name).c_str()))
+            return false;
+        Skip();
+        if (Peek(';')) {
+            ++i_;
+            return true;
+        }
+        if (Peek('{')) {
+            Node block;
+            block.offset = i_++;
+            if (!Block(block, depth)) return false;
+            n.children = std::move(block.children);
+            return true;
+        }
+        Node child;
+        if (!Statement(child, depth + 1)) return false;
+        n.children.push_back(std::move(child));
+        return true;
+    }
+
+    bool Block(Node& n, int depth) {
+        while (!Peek('}')) {
+            if (i_ >= t_.size()) return Fail(n.offset, "unbalanced '{': the block is never closed");
+            Node c;
+            if (!Statement(c, depth + 1)) return false;
+            if (!c.name.empty() || !c.children.empty()) n.children.push_back(std::move(c));
+        }
+        ++i_;
+        return true;
+    }
+
+    const brlcad::TextMap& map_;
+    std::string_view t_;
+    Diagnostics& diags_;
+    std::size_t i_ = 0;
+};
+
+Mat4 Translate(const Vec3& v) {
+    Mat4 m = Mat4::Identity();
+    m.m[0][3] = v.x, m.m[1][3] = v.y, m.m[2][3] = v.z;
+    return m;
+}
+
+// Rotation by `deg` about the unit axis a (Rodrigues), exact for multiples of 90°.
+Mat4 AxisRotation(const Vec3& axis, double deg) {
+    Vec3 a = Normalize(axis);
+    double s = 0, c = 1;
+    SinCosDegrees(deg, s, c);
+    double t = 1 - c;
+    Mat4 m = Mat4::Identity();
+    m.m[0][0] = c + a.x * a.x * t;
+    m.m[0][1] = a.x * a.y * t - a.z * s;
+    m.m[0][2] = a.x * a.z * t + a.y * s;
+    m.m[1][0] = a.y * a.x * t + a.z * s;
+    m.m[1][1] = c + a.y * a.y * t;
+    m.m[1][2] = a.y * a.z * t - a.x * s;
+    m.m[2][0] = a.z * a.x * t - a.y * s;
+    m.m[2][1] = a.z * a.y * t + a.x * s;
+    m.m[2][2] = c + a.z * a.z * t;
+    return m;
+}
+
+class Builder {
+  public:
+    Builder(const brlcad::TextMap& map, const ImportOptions& options, scene::Scene& scene,
+            Diagnostics& diags, ImportReport& report)
+        : map_(map), options_(options), scene_(scene), diags_(diags), report_(report) {}
+
+    void Top(const std::vector<Node>& nodes, const Mat4& m, std::optional<scene::Color> color) {
+        for (const Node& n : nodes) {
+            if (n.dropped) continue;
+            // Unions at the top level are split so that each part is its own named solid.
+            if (n.name.empty() || n.name == "group" || n.name == "union") {
+                Top(n.children, m, color);
+                continue;
+            }
+            if (n.name == "color") {
+                auto c = ColorOf(n);
+                Top(n.children, m, c ? c : color);
+                continue;
+            }
+            scene::Csg csg;
+            csg.id = fmt::format("{}@{}", n.name, map_.At(n.offset).line);
+            csg.loc = map_.At(n.offset);
+            Box3 box;
+            csg.root = Emit(csg, n, m, color, box);
+            if (csg.root < 0) continue;
+            if (box.Finite()) report_.bounds.Extend(box);
+            scene_.top.csgs.push_back(std::move(csg));
+            ++report_.solids;
+        }
+    }
+
+    bool failed() const { return failed_; }
+
+  private:
+    void Warn(const Node& n, const std::string& message) {
+        if (options_.strict)
+            diags_.Error(map_.At(n.offset), message + " (--strict)", map_.LineText(n.offset));
+        else
+            diags_.Warning(map_.At(n.offset), message, map_.LineText(n.offset));
+    }
+    void Error(std::size_t at, const std::string& message) {
+        diags_.Error(map_.At(at), message, map_.LineText(at));
+        failed_ = true;
+    }
+
+    const Value* Find(const Node& n, const char* name, int position) const {
+        int pos = 0;
+        for (const Arg& a : n.args) {
+            if (a.name == name) return &a.value;
+            if (a.name.empty() && pos++ == position) return &a.value;
+        }
+        return nullptr;
+    }
+    std::optional<double> Num(const Node& n, const char* name, int position = -1) {
+        const Value* v = Find(n, name, position);
+        if (!v || v->kind == Value::Kind::kUndef) return std::nullopt;
+        if (v->kind != Value::Kind::kNumber) {
+            Error(n.offset, fmt::format("{}: '{}' must be a number", n.name, name));
+            return std::nullopt;
+        }
+        return v->number;
+    }
+    bool Flag(const Node& n, const char* name, int position) {
+        const Value* v = Find(n, name, position);
+        return v && v->kind == Value::Kind::kBool && v->boolean;
+    }
+    std::optional<Vec3> Vec(const Node& n, const char* name, int position, bool allowScalar) {
+        const Value* v = Find(n, name, position);
+        if (!v || v->kind == Value::Kind::kUndef) return std::nullopt;
+        if (allowScalar && v->kind == Value::Kind::kNumber) return Vec3{v->number, v->number,
+                                                                        v->number};
+        Vec3 out;
+        if (v->kind == Value::Kind::kVector && v->items.size() >= 2 && v->items.size() <= 3) {
+            for (std::size_t k = 0; k < v->items.size(); ++k) {
+                if (v->items[k].kind != Value::Kind::kNumber) break;
+                out[k] = v->items[k].number;
+                if (k + 1 == v->items.size()) return out;
+            }
+        }
+        Error(n.offset, fmt::format("{}: '{}' must be a vector of 2 or 3 numbers", n.name, name));
+        return std::nullopt;
+    }
+
+    std::optional<scene::Color> ColorOf(const Node& n) {
+        const Value* v = Find(n, "c", 0);
+        if (!v) return std::nullopt;
+        if (v->kind == Value::Kind::kVector && v->items.size() >= 3) {
+            scene::Color c{v->items[0].number, v->items[1].number, v->items[2].number};
+            auto clamp = [](double x) { return std::fmin(1.0, std::fmax(0.0, x)); };
+            return scene::Color{clamp(c.r), clamp(c.g), clamp(c.b)};
+        }
+        if (v->kind == Value::Kind::kString) {
+            static const std::map<std::string, scene::Color> kNames = {
+                {"red", {1, 0, 0}},        {"green", {0, 0.5, 0}},  {"lime", {0, 1, 0}},
+                {"blue", {0, 0, 1}},       {"white", {1, 1, 1}},    {"black", {0, 0, 0}},
+                {"yellow", {1, 1, 0}},     {"cyan", {0, 1, 1}},     {"magenta", {1, 0, 1}},
+                {"gray", {.5, .5, .5}},    {"grey", {.5, .5, .5}},  {"orange", {1, .647, 0}},
+                {"purple", {.5, 0, .5}},   {"silver", {.75, .75, .75}}};
+            std::string key;
+            for (char ch : v->text) key += static_cast<char>(std::tolower(ch));
+            if (auto it = kNames.find(key); it != kNames.end()) return it->second;
+            Warn(n, fmt::format("colour name '{}' is not known here; the colour is ignored",
+                                v->text));
+        }
+        return std::nullopt;
+    }
+
+    int Add(scene::Csg& csg, scene::CsgNode node) {
+        csg.nodes.push_back(node);
+        return static_cast<int>(csg.nodes.size()) - 1;
+    }
+    int Op(scene::Csg& csg, scene::CsgOp op, int l, int r) {
+        scene::CsgNode n;
+        n.isLeaf = false;
+        n.op = op;
+        n.left = l;
+        n.right = r;
+        return Add(csg, n);
+    }
+
+    std::optional<Mat4> TransformOf(const Node& n) {
+        const std::string& k = n.name;
+        if (k == "translate") {
+            auto v = Vec(n, "v", 0, false);
+            return v ? std::optional<Mat4>(Translate(*v)) : std::nullopt;
+        }
+        if (k == "scale") {
+            auto v = Vec(n, "v", 0, true);
+            if (!v) return std::nullopt;
+            const Value* raw = Find(n, "v", 0);
+            if (raw->kind == Value::Kind::kVector && raw->items.size() == 2) v->z = 1;
+            Mat4 m = Mat4::Identity();
+            m.m[0][0] = v->x, m.m[1][1] = v->y, m.m[2][2] = v->z;
+            return m;
+        }
+        if (k == "rotate") {
+            const Value* a = Find(n, "a", 0);
+            if (a && a->kind == Value::Kind::kVector) {
+                auto v = Vec(n, "a", 0, false);
+                if (!v) return std::nullopt;
+                return AxisRotation({0, 0, 1}, v->z) * AxisRotation({0, 1, 0}, v->y) *
+                       AxisRotation({1, 0, 0}, v->x);
+            }
+            auto deg = Num(n, "a", 0);
+            if (!deg) return Mat4::Identity();
+            auto axis = Vec(n, "v", 1, false);
+            Vec3 ax = axis.value_or(Vec3{0, 0, 1});
+            if (Length(ax) == 0) return Mat4::Identity();
+            return AxisRotation(ax, *deg);
+        }
+        if (k == "mirror") {
+            auto v = Vec(n, "v", 0, false);
+            if (!v) return std::nullopt;
+            double l2 = Dot(*v, *v);
+            Mat4 m = Mat4::Identity();
+            if (l2 == 0) return m;
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) m.m[r][c] -= 2 * (*v)[r] * (*v)[c] / l2;
+            return m;
+        }
+        if (k == "multmatrix") {
+            const Value* v = Find(n, "m", 0);
+            Mat4 m = Mat4::Identity();
+            bool ok = v && v->kind == Value::Kind::kVector && v->items.size() >= 3 &&
+                      v->items.size() <= 4;
+            for (std::size_t r = 0; ok && r < v->items.size(); ++r) {
+                const Value& row = v->items[r];
+                ok = row.kind == Value::Kind::kVector && row.items.size() == 4;
+                for (std::size_t c = 0; ok && c < 4; ++c) {
+                    ok = row.items[c].kind == Value::Kind::kNumber;
+                    if (ok) m.m[r][c] = row.items[c].number;
+                }
+            }
+            if (!ok) {
+                Error(n.offset, "multmatrix: 'm' must be 3 or 4 rows of 4 numbers");
+                return std::nullopt;
+            }
+            return m;
+        }
+        return std::nullopt;
+    }
+
+    int Leaf(scene::Csg& csg, const Node& n, const brlcad::Primitive& p, const Mat4& m,
+             const std::optional<scene::Color>& color, Box3& box) {
+        brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
+        if (cr.status != brlcad::ConvertResult::Status::kOk) return -1;  // zero sizes: nothing
+        Mat4 total = QuadrixFromZUp() * m;
+        auto t = Transform::FromMatrix(total);
+        if (!t) {
+            Error(n.offset, fmt::format("{}: the transformation is singular (a zero scale?)",
+                                        n.name));
+            return -1;
+        }
+        int root = -1;
+        for (const brlcad::ShapeBody& sb : cr.shape.bodies) {
+            scene::Body body;
+            body.id = csg.id;
+            body.loc = map_.At(n.offset);
+            body.usedAsOperand = true;
+            body.color = color;
+            for (const brlcad::ShapeHalfSpace& h : sb) {
+                scene::HalfSpace hs;
+                hs.id = fmt::format("{}.{}", n.name, scene_.top.halfSpaces.size());
+                hs.loc = body.loc;
+                hs.transparent = h.transparent;
+                if (h.isPlane) {
+                    hs.kind = scene::HalfSpace::Kind::kPlane;
+                    hs.plane = h.plane.Transformed(*t);
+                } else {
+                    hs.kind = scene::HalfSpace::Kind::kQuadric;
+                    Quadric q = h.quadric.Transformed(*t);
+                    double s = q.MaxAbs();
+                    if (s > 0)
+                        for (double& k : q.k) k /= s;
+                    hs.quadric = q;
+                }
+                body.literals.push_back({static_cast<int>(scene_.top.halfSpaces.size()), false});
+                scene_.top.halfSpaces.push_back(std::move(hs));
+            }
+            scene::CsgNode leaf;
+            leaf.ref = {scene::SolidRef::Kind::kBody, static_cast<int>(scene_.top.bodies.size())};
+            leaf.loc = body.loc;
+            scene_.top.bodies.push_back(std::move(body));
+            int li = Add(csg, leaf);
+            root = root < 0 ? li : Op(csg, scene::CsgOp::kUnion, root, li);
+        }
+        box = Box3{};
+        for (const brlcad::ExtentPiece& piece : cr.shape.extent)
+            box.Extend(brlcad::PieceBox(piece, total));
+        return root;
+    }
+
+    int Emit(scene::Csg& csg, const Node& n, const Mat4& m, std::optional<scene::Color> color,
+             Box3& box) {
+        box = Box3{};
+        if (n.dropped || failed_) return -1;
+        const std::string& k = n.name;
+        brlcad::Primitive p;
+        p.name = k;
+        if (k == "sphere") {
+            ++report_.census[k];
+            double r = Num(n, "r", 0).value_or(1);
+            if (auto d = Num(n, "d", -1)) r = *d / 2;
+            p.type = "ell";
+            p.A = {r, 0, 0}, p.B = {0, r, 0}, p.C = {0, 0, r};
+            return Leaf(csg, n, p, m, color, box);
+        }
+        if (k == "cube") {
+            ++report_.census[k];
+            Vec3 s = Vec(n, "size", 0, true).value_or(Vec3{1, 1, 1});
+            Vec3 lo = Flag(n, "center", 1) ? s * -0.5 : Vec3{};
+            Vec3 hi = lo + s;
+            p.type = "arb8";
+            p.pts = {Vec3{lo.x, lo.y, lo.z}, Vec3{hi.x, lo.y, lo.z}, Vec3{hi.x, hi.y, lo.z},
+                     Vec3{lo.x, hi.y, lo.z}, Vec3{lo.x, lo.y, hi.z}, Vec3{hi.x, lo.y, hi.z},
+                     Vec3{hi.x, hi.y, hi.z}, Vec3{lo.x, hi.y, hi.z}};
+            return Leaf(csg, n, p, m, color, box);
+        }
+        if (k == "cylinder") {
+            ++report_.census[k];
+            double h = Num(n, "h", 0).value_or(1);
+            double r = Num(n, "r", -1).value_or(1);
+            if (auto d = Num(n, "d", -1)) r = *d / 2;
+            double r1 = Num(n, "r1", 1).value_or(r), r2 = Num(n, "r2", 2).value_or(r);
+            if (auto d = Num(n, "d1", -1)) r1 = *d / 2;
+            if (auto d = Num(n, "d2", -1)) r2 = *d / 2;
+            double z0 = Flag(n, "center", 3) ? -h / 2 : 0;
+            p.type = "tgc";
+            p.V = {0, 0, z0}, p.H = {0, 0, h};
+            p.A = {r1, 0, 0}, p.B = {0, r1, 0}, p.C = {r2, 0, 0}, p.D = {0, r2, 0};
+            return Leaf(csg, n, p, m, color, box);
+        }
+        if (k == "color") {
+            auto c = ColorOf(n);
+            return Children(csg, n, m, c ? c : color, scene::CsgOp::kUnion, box);
+        }
+        if (k.empty() || k == "group" || k == "union" || k == "render" || k == "children")
+            return Children(csg, n, m, color, scene::CsgOp::kUnion, box);
+        if (k == "difference")
+            return Children(csg, n, m, color, scene::CsgOp::kDifference, box);
+        if (k == "intersection")
+            return Children(csg, n, m, color, scene::CsgOp::kIntersection, box);
+        if (auto t = TransformOf(n))
+            return Children(csg, n, m * *t, color, scene::CsgOp::kUnion, box);
+        if (failed_) return -1;
+        ++report_.skipped[k];
+        Warn(n, fmt::format("'{}' cannot be drawn exactly with quadrics and planes; it is left "
+                            "out",
+                            k));
+        return -1;
+    }
+
+    int Children(scene::Csg& csg, const Node& n, const Mat4& m,
+                 const std::optional<scene::Color>& color, scene::CsgOp op, Box3& box) {
+        int acc = -1;
+        bool first = true;
+        for (const Node& c : n.children) {
+            if (c.dropped) continue;
+            Box3 cb;
+            int e = Emit(csg, c, m, color, cb);
+            if (op == scene::CsgOp::kUnion) {
+                if (e >= 0) {
+                    acc = acc < 0 ? e : Op(csg, op, acc, e);
+                    box.Extend(cb);
+                }
+            } else if (op == scene::CsgOp::kDifference) {
+                if (first) {
+                    acc = e;
+                    box = cb;
+                } else if (acc >= 0 && e >= 0) {
+                    acc = Op(csg, op, acc, e);
+                }
+            } else {
+                if (first) {
+                    acc = e;
+                    box = cb;
+                } else if (acc >= 0) {
+                    acc = e < 0 ? -1 : Op(csg, op, acc, e);
+                    box = box.Intersected(cb);
+                }
+            }
+            first = false;
+        }
+        return acc;
+    }
+
+    const brlcad::TextMap& map_;
+    const ImportOptions& options_;
+    scene::Scene& scene_;
+    Diagnostics& diags_;
+    ImportReport& report_;
+    bool failed_ = false;
+};
+
+}  // namespace
+
+bool ImportOpenScad(std::string_view text, const std::string& file, const ImportOptions& options,
+                    scene::Scene& scene, Diagnostics& diags, ImportReport& report) {
+    report.format = "OpenSCAD CSG";
+    brlcad::TextMap map(text, file);
+    std::vector<Node> nodes;
+    int errorsBefore = diags.ErrorCount();
+    if (!Parser(map, diags).Run(nodes)) return false;
+    Builder builder(map, options, scene, diags, report);
+    builder.Top(nodes, Mat4::Identity(), std::nullopt);
+    if (!options.topObjects.empty()) {
+        // OpenSCAD files have no named objects: --top applies to BRL-CAD files only.
+        for (const std::string& t : options.topObjects) report.missingTops.push_back(t);
+    }
+    return diags.ErrorCount() == errorsBefore && !builder.failed();
+}
+
+}  // namespace quadrix::import

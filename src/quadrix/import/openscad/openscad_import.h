@@ -1,0 +1,24 @@
+// OpenSCAD CSG files (`openscad -o model.csg`) and the same subset in .scad → scene::Scene,
+// exactly: sphere, cylinder (cones with r1/r2), cube, multmatrix/translate/rotate/scale/mirror,
+// union/difference/intersection/group and color become quadrics, planes and CSG solids.
+// $fn/$fa/$fs are accepted and ignored (the curves are exact). Anything else (polyhedron,
+// extrusions, hull, minkowski, text, ...) is reported by name and line and left out; with
+// --strict that is an error (docs/import.md).
+//
+// Coordinates: OpenSCAD is right-handed with Z up; the model is mapped into Quadrix space with
+// QuadrixFromZUp, as BRL-CAD models are.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "quadrix/import/brlcad/brlcad_import.h"
+#include "quadrix/scene/diagnostics.h"
+#include "quadrix/scene/scene.h"
+
+namespace quadrix::import {
+
+bool ImportOpenScad(std::string_view text, const std::string& file, const ImportOptions& options,
+                    scene::Scene& scene, Diagnostics& diags, ImportReport& report);
+
+}  // namespace quadrix::import
