@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev                       # GoogleTest
   libedit-dev                        # line editing at the uq> prompt (BSD license)
   povray                             # the independent exact renderer the tests compare against
+  clang libclang-rt-14-dev           # libFuzzer: the reader's fuzz target (tests/fuzz_reader)
 )
 
 missing=()

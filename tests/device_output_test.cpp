@@ -293,6 +293,8 @@ TEST(DeviceOutput, PatternsHoldEachRankOnce) {
 
 TEST(DeviceOutput, TerminalDrawsHalfBlocksWithAnsiColors) {
     TempDir tmp;
+    const char* old = std::getenv("COLORTERM");
+    const std::string saved = old ? old : "";
     setenv("COLORTERM", "truecolor", 1);
     // 2 × 3 picture: rows 0-1 make the first line of cells, row 2 the second (no lower pixel).
     Image img(2, 3, 3);
@@ -323,7 +325,10 @@ TEST(DeviceOutput, TerminalDrawsHalfBlocksWithAnsiColors) {
     ASSERT_EQ(d2->Close(), "");
     std::string text = Slurp(tmp.File("t2.ans"));
     EXPECT_EQ(text.rfind("\x1b[38;5;196m\x1b[48;5;21m\u2580", 0), 0u) << text;
-    unsetenv("COLORTERM");
+    if (old)
+        setenv("COLORTERM", saved.c_str(), 1);
+    else
+        unsetenv("COLORTERM");
 }
 
 TEST(DeviceOutput, NamesSynonymsAndBadSpecs) {

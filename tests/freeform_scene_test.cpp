@@ -172,6 +172,26 @@ TEST(FreeformScene, DefinitionsReplicateFreeformSurfaces) {
 
 // An input with an error: the message expected and where (the column of the first occurrence of
 // `at` in the one-line text; nullptr when the error has no position, e.g. a missing file).
+// Freeform files given on the command line go through the input dispatcher: the tea-set formats
+// are Z-up and get the importers' axis swap, so the teapot's height (model z in [0, 3.15]) is
+// Quadrix y and it stands upright in the default view.
+TEST(FreeformScene, FreeformFilesAreInputsOfRender) {
+    PipelineOptions o;
+    o.scenePaths = {SourcePath("src/quadrix/import/freeform/testdata/bpt/teapot.bpt")};
+    o.width = 160;
+    o.height = 120;
+    PipelineResult r;
+    Diagnostics d;
+    ASSERT_TRUE(RunPipeline(o, r, d));
+    ASSERT_EQ(r.flat.freeforms.size(), 32u);
+    EXPECT_EQ(r.scene.top.freeforms[0].id, "teapot[0]");
+    Box3 box;
+    for (const FlatFreeform& f : r.flat.freeforms) box.Extend(f.surface.Bounds());
+    EXPECT_NEAR(box.lo.y, 0.0, 1e-9);
+    EXPECT_NEAR(box.hi.y, 3.15, 0.01);
+    EXPECT_GT(Covered(r.frame), 160 * 120 / 5);
+}
+
 struct BadFreeform {
     const char* text;
     const char* message;

@@ -90,8 +90,9 @@ TEST(ImportBrlcadPrimitives, TgcFormsMatchDefinition) {
         double a, b, k;  // |A|, |B|, ratio |C|/|A| = |D|/|B|
         double shear;    // H tilted by this much along A (oblique)
     };
-    const Form forms[] = {{"rcc", 2, 2, 1, 0},   {"rec", 3, 1.5, 1, 0}, {"trc", 2, 2, 0.4, 0},
-                          {"tec", 3, 1.5, 0.5, 0}, {"cone", 2, 2, 0, 0}, {"inverted", 1, 1, 2.5, 0},
+    const Form forms[] = {{"rcc", 2, 2, 1, 0},          {"rec", 3, 1.5, 1, 0},
+                          {"trc", 2, 2, 0.4, 0},        {"tec", 3, 1.5, 0.5, 0},
+                          {"cone", 2, 2, 0, 0},         {"inverted", 1, 1, 2.5, 0},
                           {"oblique", 2.5, 1, 0.6, 1.5}};
     for (const Form& f : forms) {
         Vec3 e1, e2, e3;
@@ -142,13 +143,15 @@ TEST(ImportBrlcadPrimitives, Arb8DegeneraciesMatchDefinitionAndVolume) {
     const Vec3 o{0, 0, 0}, x{4, 0, 0}, xy{4, 3, 0}, y{0, 3, 0};
     const Vec3 oz{0, 0, 2}, xz{4, 0, 2}, xyz{4, 3, 2}, yz{0, 3, 2};
     std::vector<ArbCase> cases = {
-        {"box", {o, x, xy, y, oz, xz, xyz, yz},
+        {"box",
+         {o, x, xy, y, oz, xz, xyz, yz},
          [](const Vec3& p) {
              return std::min({p.x, 4 - p.x, p.y, 3 - p.y, p.z, 2 - p.z});
          },
          24},
         // arb6-style wedge: the top edge along y at x = 0 (vertices 5=8 and 6=7 repeated).
-        {"wedge", {o, x, xy, y, oz, oz + Vec3{0, 0, 0}, yz, yz},
+        {"wedge",
+         {o, x, xy, y, oz, oz + Vec3{0, 0, 0}, yz, yz},
          [](const Vec3& p) {
              // 0 <= y <= 3, z >= 0, x >= 0, x/4 + z/2 <= 1
              double slant = (1 - p.x / 4 - p.z / 2) / std::sqrt(1.0 / 16 + 1.0 / 4);
@@ -156,7 +159,8 @@ TEST(ImportBrlcadPrimitives, Arb8DegeneraciesMatchDefinitionAndVolume) {
          },
          12},
         // arb5 pyramid: apex above the centre of the base (vertices 5..8 equal).
-        {"pyramid", {o, x, xy, y, {2, 1.5, 2}, {2, 1.5, 2}, {2, 1.5, 2}, {2, 1.5, 2}},
+        {"pyramid",
+         {o, x, xy, y, {2, 1.5, 2}, {2, 1.5, 2}, {2, 1.5, 2}, {2, 1.5, 2}},
          [](const Vec3& p) {
              // faces through the apex: x >= z, 4 - x >= z, y >= 0.75 z, 3 - y >= 0.75 z
              return std::min({p.z, (p.x - p.z) / std::sqrt(2.0), (4 - p.x - p.z) / std::sqrt(2.0),
@@ -164,10 +168,11 @@ TEST(ImportBrlcadPrimitives, Arb8DegeneraciesMatchDefinitionAndVolume) {
          },
          8},
         // arb4 tetrahedron as arb8: 1 2 3 1 4 4 4 4.
-        {"tetrahedron", {o, x, y, o, oz, oz, oz, oz},
+        {"tetrahedron",
+         {o, x, y, o, oz, oz, oz, oz},
          [](const Vec3& p) {
-             double slant = (1 - p.x / 4 - p.y / 3 - p.z / 2) /
-                            std::sqrt(1.0 / 16 + 1.0 / 9 + 1.0 / 4);
+             double slant =
+                 (1 - p.x / 4 - p.y / 3 - p.z / 2) / std::sqrt(1.0 / 16 + 1.0 / 9 + 1.0 / 4);
              return std::min({p.x, p.y, p.z, slant});
          },
          4},
@@ -185,8 +190,8 @@ TEST(ImportBrlcadPrimitives, Arb8DegeneraciesMatchDefinitionAndVolume) {
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < n; ++j)
                 for (int k = 0; k < n; ++k)
-                    in += ShapeContains(r.shape, {4.0 * (i + 0.5) / n, 3.0 * (j + 0.5) / n,
-                                                  2.0 * (k + 0.5) / n});
+                    in += ShapeContains(
+                        r.shape, {4.0 * (i + 0.5) / n, 3.0 * (j + 0.5) / n, 2.0 * (k + 0.5) / n});
         double volume = 24.0 * in / (n * n * n);
         EXPECT_NEAR(volume, c.volume, 0.03 * c.volume) << c.label;
     }
@@ -202,8 +207,8 @@ TEST(ImportBrlcadPrimitives, HalfRpcRhcEpaEhyHypPart) {
         p.type = "half";
         p.N = e1;
         p.d = 3;
-        Compare({"half", p, [&](const Vec3& x) { return 3 - Dot(e1, x); }, Around(e1 * 3, 4)},
-                2000, rng);
+        Compare({"half", p, [&](const Vec3& x) { return 3 - Dot(e1, x); }, Around(e1 * 3, 4)}, 2000,
+                rng);
     }
     // rpc/rhc: b along B̂ = e1 (|B| = 3), y along Ĥ×B̂ (= e3 × e1 = e2), h along Ĥ = e3 (|H| = 4).
     const double lb = 3, lh = 4, r = 2, c = 1.5;
@@ -308,8 +313,8 @@ TEST(ImportBrlcadPrimitives, HalfRpcRhcEpaEhyHypPart) {
             for (int k = 0; k < 3; ++k) x[k] = box.lo[k] + u(rng) * (box.hi[k] - box.lo[k]);
             double mm = m(x);
             if (std::fabs(mm) < 5e-3) continue;
-            EXPECT_EQ(ShapeContains(cr.shape, x), mm > 0) << "part at " << x.x << " " << x.y
-                                                          << " " << x.z;
+            EXPECT_EQ(ShapeContains(cr.shape, x), mm > 0)
+                << "part at " << x.x << " " << x.y << " " << x.z;
         }
     }
 }
@@ -328,6 +333,33 @@ TEST(ImportBrlcadPrimitives, ExtentIsExactUnderAffineMaps) {
     EXPECT_NEAR(b.lo.x, -2 - 2, 1e-12);
     EXPECT_NEAR(b.hi.y, 1 + 3, 1e-12);
     EXPECT_NEAR(b.hi.z, 3 + 1, 1e-12);
+}
+
+}  // namespace
+}  // namespace quadrix::import::brlcad
+
+namespace quadrix::import::brlcad {
+namespace {
+
+// A twisted arb (top face rotated against the bottom, as arb8_showcase's TwistedCubeNonPlanar):
+// the intersection of its six face planes runs far past the vertices, so it is bounded by the
+// vertices' box; a convex arb gets no extra planes.
+TEST(ImportBrlcadPrimitives, ConcaveArbIsBoundedByItsVertices) {
+    Primitive p;
+    p.type = "arb8";
+    p.pts = {Vec3{0, 0, 0},      Vec3{1, 0, 0},     Vec3{1, 1, 0},     Vec3{0, 1, 0},
+             Vec3{0.5, -0.2, 1}, Vec3{1.2, 0.5, 1}, Vec3{0.5, 1.2, 1}, Vec3{-0.2, 0.5, 1}};
+    ConvertResult r = ConvertPrimitive(p);
+    ASSERT_EQ(r.status, ConvertResult::Status::kOk);
+    ASSERT_EQ(r.shape.bodies.size(), 1u);
+    EXPECT_EQ(r.shape.bodies[0].size(), 12u);  // 6 faces + 6 box planes
+    EXPECT_FALSE(ShapeContains(r.shape, {0.5, 0.5, 1.5}));
+    EXPECT_FALSE(ShapeContains(r.shape, {0.5, 0.5, -0.5}));
+    EXPECT_TRUE(ShapeContains(r.shape, {0.5, 0.5, 0.5}));
+    Primitive box = p;
+    box.pts = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{0, 1, 0},
+               Vec3{0, 0, 1}, Vec3{1, 0, 1}, Vec3{1, 1, 1}, Vec3{0, 1, 1}};
+    EXPECT_EQ(ConvertPrimitive(box).shape.bodies[0].size(), 6u);
 }
 
 }  // namespace

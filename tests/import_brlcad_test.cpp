@@ -1,15 +1,14 @@
 // BRL-CAD databases → Scene: boolean trees (GIFT precedence in v4, explicit trees in v5), member
 // matrices, colours, air regions, error reporting, and the sample databases of
 // shared/data/brlcad (census, skipped primitives, rendering, bounding boxes).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
-#include <random>
 #include <fstream>
+#include <random>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "quadrix/import/brlcad/brlcad_import.h"
 #include "quadrix/import/scene_input.h"
@@ -25,8 +24,8 @@ const char* kSampleDir = "/work/shared/data/brlcad";
 bool BodyContains(const scene::Scope& s, int b, const Vec3& p) {
     for (const scene::Literal& l : s.bodies[b].literals) {
         const scene::HalfSpace& h = s.halfSpaces[l.halfSpace];
-        double v = h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
-                                                            : h.quadric.Evaluate(p);
+        double v =
+            h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p) : h.quadric.Evaluate(p);
         if ((v <= 0) == l.complemented) return false;
     }
     return true;
@@ -37,9 +36,12 @@ bool NodeContains(const scene::Scope& s, const scene::Csg& c, int n, const Vec3&
     if (node.isLeaf) return BodyContains(s, node.ref.index, p);
     bool l = NodeContains(s, c, node.left, p), r = NodeContains(s, c, node.right, p);
     switch (node.op) {
-        case scene::CsgOp::kUnion: return l || r;
-        case scene::CsgOp::kIntersection: return l && r;
-        default: return l && !r;
+        case scene::CsgOp::kUnion:
+            return l || r;
+        case scene::CsgOp::kIntersection:
+            return l && r;
+        default:
+            return l && !r;
     }
 }
 
@@ -69,11 +71,11 @@ std::string Matrix16(const Mat4& m) {
 // An axis-aligned box [lo, hi] as a v4 GENARB8 record (V then 7 relative vectors).
 std::string V4Box(const std::string& name, Vec3 lo, Vec3 hi) {
     const Vec3 d = hi - lo;
-    const Vec3 rel[8] = {{0, 0, 0},       {d.x, 0, 0},   {d.x, d.y, 0},   {0, d.y, 0},
-                         {0, 0, d.z},     {d.x, 0, d.z}, {d.x, d.y, d.z}, {0, d.y, d.z}};
+    const Vec3 rel[8] = {{0, 0, 0},   {d.x, 0, 0},   {d.x, d.y, 0},   {0, d.y, 0},
+                         {0, 0, d.z}, {d.x, 0, d.z}, {d.x, d.y, d.z}, {0, d.y, d.z}};
     std::string s = fmt::format("S 20 {} 0 {:.12e} {:.12e} {:.12e}", name, lo.x, lo.y, lo.z);
-    for (int i = 1; i < 8; ++i) s += fmt::format(" {:.12e} {:.12e} {:.12e}", rel[i].x, rel[i].y,
-                                                 rel[i].z);
+    for (int i = 1; i < 8; ++i)
+        s += fmt::format(" {:.12e} {:.12e} {:.12e}", rel[i].x, rel[i].y, rel[i].z);
     return s + "\n";
 }
 
@@ -221,21 +223,23 @@ TEST(ImportBrlcad, BadInputIsReportedWithPosition) {
     std::string box = V4Box("b", {0, 0, 0}, {1, 1, 1});
     std::string truncated = box.substr(0, box.size() / 2) + "\n";
     const BadCase cases[] = {
-        {"truncated solid", "I 1 v4\nt\n" + truncated,
-         "test.asc:3:" },
+        {"truncated solid", "I 1 v4\nt\n" + truncated, "test.asc:3:"},
         {"truncated solid message", "I 1 v4\nt\n" + truncated, "truncated solid record 'b'"},
-        {"bad number", "I 1 v4\nt\nS 19 e 0 1 2 x" + [] {
-             std::string zeros;
-             for (int i = 0; i < 21; ++i) zeros += " 0";
-             return zeros + "\n";
-         }(),
+        {"bad number",
+         "I 1 v4\nt\nS 19 e 0 1 2 x" +
+             [] {
+                 std::string zeros;
+                 for (int i = 0; i < 21; ++i) zeros += " 0";
+                 return zeros + "\n";
+             }(),
          "'x' is not a finite number"},
         {"unknown record", "I 1 v4\nt\nZ foo\n", "test.asc:3:1: error: unknown or unsupported v4"},
         {"unknown solid type", "I 1 v4\nt\nS 99 q 0\n", "unknown solid type 99"},
         {"member outside comb", "I 1 v4\nt\n" + V4Member('u', "b"), "outside a combination"},
         {"bad operator", "I 1 v4\nt\nC Y r 1\nM x b\n", "unknown boolean operator 'x'"},
-        {"cycle", "I 1 v4\nt\n" + box + "C N a 0\n" + V4Member('u', "b") + V4Member('u', "c") +
-                      "C N c 0\n" + V4Member('u', "a"),
+        {"cycle",
+         "I 1 v4\nt\n" + box + "C N a 0\n" + V4Member('u', "b") + V4Member('u', "c") + "C N c 0\n" +
+             V4Member('u', "a"),
          "contains itself"},
         {"v5 unbalanced", "title {t}\nput {s} ell V {0 0 0 A {1 0 0}\n", "test.asc:2:"},
         {"v5 unknown command", "title {t}\nkill all\n", "test.asc:2:1: error: unknown command"},
@@ -245,8 +249,9 @@ TEST(ImportBrlcad, BadInputIsReportedWithPosition) {
          "expected a vector"},
         {"v5 bad tree", "title {t}\nput {c} comb region no tree {^ {l a} {l b}}\n",
          "unsupported tree operator '^'"},
-        {"v5 cycle", "title {t}\nput {a} comb region no tree {l b}\n"
-                     "put {b} comb region no tree {l a}\n",
+        {"v5 cycle",
+         "title {t}\nput {a} comb region no tree {l b}\n"
+         "put {b} comb region no tree {l a}\n",
          "contains itself"},
         {"not a database", "hello world\nthis is not brl-cad\n", "not a BRL-CAD ASCII database"},
     };
@@ -279,8 +284,8 @@ TEST(ImportBrlcad, NonQuadricPrimitivesWarnOrFailWithStrict) {
     {
         auto im = Import(text);
         ASSERT_TRUE(im->ok) << AllMessages(im->diags);
-        EXPECT_EQ(im->report.skipped, (std::map<std::string, int>{{"tgc (quartic)", 1},
-                                                                  {"tor", 2}}));
+        EXPECT_EQ(im->report.skipped,
+                  (std::map<std::string, int>{{"tgc (quartic)", 1}, {"tor", 2}}));
         EXPECT_NE(AllMessages(im->diags).find("tgc (quartic) ×1, tor ×2"), std::string::npos);
         EXPECT_TRUE(Inside(im->scene, "r", Q(0, 0, 0)));
     }
@@ -375,7 +380,7 @@ TEST(ImportBrlcad, ComgeomCardsAndErrors) {
     EXPECT_TRUE(Inside(im->scene, "r1", Q(1, 1, 5)));
     EXPECT_FALSE(Inside(im->scene, "r1", Q(5, 5, 5)));  // the hole
     EXPECT_TRUE(Inside(im->scene, "r2", Q(25, 5, 5)));
-    EXPECT_TRUE(Inside(im->scene, "r2", Q(5, 5, 5)));   // OR s3
+    EXPECT_TRUE(Inside(im->scene, "r2", Q(5, 5, 5)));  // OR s3
     std::string bad = deck;
     bad.replace(bad.find("RCC"), 3, "XYZ");
     auto b = Import(bad);
@@ -385,26 +390,43 @@ TEST(ImportBrlcad, ComgeomCardsAndErrors) {
         << AllMessages(b->diags);
 }
 
-// Renders each sample from above (rt view: X right, Y up, looking down -Z) with a window 10 %
-// larger than its computed box, and compares the covered pixels' extent with the box projected:
-// the rendered silhouette must lie inside the box (to a pixel) and, for these models whose boxes
-// are reached by some solid on every side, touch each side to within 2 pixels (1 px for pixel
-// quantisation, 1 px for boxes of intersections, which are conservative).
+// Renders every sample (so each renders without error) from above (rt view: X right, Y up,
+// looking down -Z) with a window 10 % larger than its computed box, and compares the covered
+// pixels' extent with the box projected: the rendered silhouette must lie inside the box (to a
+// pixel) and, for these models whose boxes are reached by some solid on every side, touch each side
+// to within 2 pixels (1 px for pixel quantisation, 1 px for boxes of intersections, which are
+// conservative).
 TEST(ImportBrlcadSamples, RenderedBoundsAgreeWithComputedBounds) {
     if (!std::filesystem::exists(kSampleDir)) GTEST_SKIP() << "no " << kSampleDir;
-    const char* files[] = {"ktank.asc", "crod.asc", "wave.asc", "die.asc", "annual_gift_man.asc",
-                           "cornell-kunigami.asc", "operators.asc"};
+    const char* files[] = {"annual_gift_man.asc",
+                           "arb8_showcase.asc",
+                           "axis.asc",
+                           "boolean-ops.asc",
+                           "castle.asc",
+                           "chess/chessboard.asc",
+                           "cornell.asc",
+                           "cornell-kunigami.asc",
+                           "cray.asc",
+                           "crod.asc",
+                           "cube.asc",
+                           "demo.asc",
+                           "die.asc",
+                           "earth.asc",
+                           "galileo.asc",
+                           "ktank.asc",
+                           "operators.asc",
+                           "truck.asc",
+                           "wave.asc",
+                           "xmp.asc",
+                           "comgeom/ADA073408.comgeom"};
     for (const char* f : files) {
         PipelineOptions po;
         po.scenePaths = {std::string(kSampleDir) + "/" + f};
         po.width = po.height = 128;
-        PipelineResult probe;
-        Diagnostics d0;
-        // First read the bounds (any view will do), then frame them exactly.
-        po.azimuth = 35;
-        po.elevation = 25;
-        ASSERT_TRUE(RunPipeline(po, probe, d0)) << f << AllMessages(d0);
-        Box3 qb = probe.inputs.importedBounds;  // Quadrix space: (x, z_model, y_model)
+        // The bounds computed from the file (Quadrix space) by the importer alone.
+        auto im = Import(ReadAll(po.scenePaths[0]));
+        ASSERT_TRUE(im->ok) << f << AllMessages(im->diags);
+        Box3 qb = im->report.bounds;  // Quadrix space: (x, z_model, y_model)
         Box3 mb{{qb.lo.x, qb.lo.z, qb.lo.y}, {qb.hi.x, qb.hi.z, qb.hi.y}};
         RtView rt;
         double vs = 1.1 * std::max(mb.hi.x - mb.lo.x, mb.hi.y - mb.lo.y);
@@ -430,6 +452,16 @@ TEST(ImportBrlcadSamples, RenderedBoundsAgreeWithComputedBounds) {
         double wantC0 = (mb.lo.x - x0) / cell, wantC1 = (mb.hi.x - x0) / cell;
         double wantR1 = fr.height - 1 - (mb.lo.y - y0) / cell;
         double wantR0 = fr.height - 1 - (mb.hi.y - y0) / cell;
+        std::string name = f;
+        if (name == "castle.asc" || name == "cray.asc" || name == "cube.asc") {
+            // These hold a half-space (a ground plane), which is unbounded: it is left out of the
+            // computed box, as rt leaves it out of its model RPP, and covers the whole window.
+            EXPECT_EQ(c0, 0) << f;
+            EXPECT_EQ(c1, fr.width - 1) << f;
+            EXPECT_EQ(r0, 0) << f;
+            EXPECT_EQ(r1, fr.height - 1) << f;
+            continue;
+        }
         EXPECT_NEAR(c0, wantC0, 2) << f;
         EXPECT_NEAR(c1, wantC1, 2) << f;
         EXPECT_NEAR(r0, wantR0, 2) << f;
@@ -448,7 +480,8 @@ namespace {
 TEST(ImportBrlcadSamples, MutatedInputNeverCrashes) {
     if (!std::filesystem::exists(kSampleDir)) GTEST_SKIP() << "no " << kSampleDir;
     std::mt19937 rng(9);
-    const char* files[] = {"boolean-ops.asc", "operators.asc", "die.asc", "comgeom/ADA073408.comgeom"};
+    const char* files[] = {"boolean-ops.asc", "operators.asc", "die.asc",
+                           "comgeom/ADA073408.comgeom"};
     const char noise[] = "{}[]() \n-+u0123456789.eE;lI#\"\\";
     for (const char* f : files) {
         std::string text = ReadAll(std::string(kSampleDir) + "/" + f);
@@ -462,9 +495,60 @@ TEST(ImportBrlcadSamples, MutatedInputNeverCrashes) {
                         noise[std::uniform_int_distribution<int>(0, sizeof noise - 2)(rng)];
             }
             auto im = Import(t);
-            if (!im->ok) EXPECT_TRUE(im->diags.HasErrors()) << f << " trial " << trial;
+            EXPECT_TRUE(im->ok || im->diags.HasErrors()) << f << " trial " << trial;
         }
     }
+}
+
+}  // namespace
+}  // namespace quadrix::import
+
+namespace quadrix::import {
+namespace {
+
+// Every quadric primitive in its v5 `put` form (keys as FORMAT.md §3.1 lists them) and in v4 form.
+TEST(ImportBrlcad, EveryPrimitiveParsesInV5AndV4) {
+    std::string v5 =
+        "title {all}\n"
+        "put {h} half N {0 0 1} d 5\n"
+        "put {n} arbn N 6 P0 {1 0 0 1} P1 {-1 0 0 1} P2 {0 1 0 1} P3 {0 -1 0 1} P4 {0 0 1 1} "
+        "P5 {0 0 -1 1}\n"
+        "put {rpc} rpc V {10 0 0} H {0 0 2} B {0 1 0} r 1\n"
+        "put {rhc} rhc V {20 0 0} H {0 0 2} B {0 1 0} r 1 c 0.5\n"
+        "put {epa} epa V {30 0 0} H {0 0 2} A {1 0 0} r_1 1 r_2 0.5\n"
+        "put {ehy} ehy V {40 0 0} H {0 0 2} A {1 0 0} r_1 1 r_2 0.5 c 0.3\n"
+        "put {hyp} hyp V {50 0 0} H {0 0 2} A {1 0 0} b 0.5 bnr 0.6\n"
+        "put {part} part V {60 0 0} H {0 0 2} r_v 1 r_h 0.5\n"
+        "put {all} comb region no tree {u {u {u {l n} {l rpc}} {u {l rhc} {l epa}}} "
+        "{u {u {l ehy} {l hyp}} {l part}}}\n";
+    auto im = Import(v5, {{"all", "h"}, false});
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    EXPECT_EQ(im->report.census.size(), 8u);
+    EXPECT_EQ(im->report.solids, 8);  // bare primitives are regions of their own
+    EXPECT_TRUE(Inside(im->scene, "n", Q(0.5, 0.5, 0.5)));
+    EXPECT_FALSE(Inside(im->scene, "n", Q(1.5, 0, 0)));
+    EXPECT_TRUE(Inside(im->scene, "rpc", Q(10, 0.5, 1)));
+    EXPECT_TRUE(Inside(im->scene, "rhc", Q(20, 0.5, 1)));
+    EXPECT_TRUE(Inside(im->scene, "epa", Q(30, 0, 1.5)));
+    EXPECT_FALSE(Inside(im->scene, "epa", Q(30, 0, 2.1)));
+    EXPECT_TRUE(Inside(im->scene, "ehy", Q(40, 0, 1.5)));
+    // The neck (z = 1) has semi-axes 0.6 along A (x) and 0.3 along H×A (y).
+    EXPECT_TRUE(Inside(im->scene, "hyp", Q(50.55, 0, 1)));
+    EXPECT_FALSE(Inside(im->scene, "hyp", Q(50.65, 0, 1)));
+    EXPECT_TRUE(Inside(im->scene, "hyp", Q(50, 0.25, 1)));
+    EXPECT_FALSE(Inside(im->scene, "hyp", Q(50, 0.35, 1)));
+    EXPECT_TRUE(Inside(im->scene, "part", Q(60, 0, 2.4)));
+    EXPECT_TRUE(Inside(im->scene, "h", Q(1000, -1000, 4.9)));
+    EXPECT_FALSE(Inside(im->scene, "h", Q(0, 0, 5.1)));
+    // v4: S 26 rpc and S 33 hyp with their 24 numbers.
+    std::string v4 = "I 1 v4\nt\n"
+                     "S 26 r 0 10 0 0  0 0 2  0 1 0  1 0 0  0 0 0  0 0 0  0 0 0  0 0 0\n"
+                     "S 33 y 0 50 0 0  0 0 2  1 0 0  0.5 0.6 0  0 0 0  0 0 0  0 0 0  0 0 0\n";
+    auto im4 = Import(v4);
+    ASSERT_TRUE(im4->ok) << AllMessages(im4->diags);
+    EXPECT_TRUE(Inside(im4->scene, "r", Q(10, 0.5, 1)));
+    EXPECT_TRUE(Inside(im4->scene, "y", Q(50.55, 0, 1)));
+    EXPECT_FALSE(Inside(im4->scene, "y", Q(50.65, 0, 1)));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "quadrix/import/scene_input.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 
@@ -87,11 +88,117 @@ TEST(ImportMixed, RenderCommandFlags) {
     EXPECT_EQ(missing.exitCode, 1);
     EXPECT_NE(missing.err.find("--top nosuch: no object of that name"), std::string::npos)
         << missing.err;
-    auto explicitView =
-        run("--top ball.r --viewsize 40 --eye-pt 0 0 100 --viewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1");
+    auto explicitView = run(
+        "--top ball.r --viewsize 40 --eye-pt 0 0 100 --viewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1");
     EXPECT_EQ(explicitView.exitCode, 0) << explicitView.err;
     auto incomplete = run("--eye-pt 0 0 100");
     EXPECT_EQ(incomplete.exitCode, 2);
+}
+
+}  // namespace
+}  // namespace quadrix
+
+namespace quadrix::import {
+namespace {
+
+TEST(ImportRtView, ScriptCommandsAndErrors) {
+    Diagnostics d;
+    auto rt = ParseRtViewScript(
+        "viewsize 1.572026215e+02;\neye_pt 2.0 3.0 4.0;\n"
+        "viewrot 0 1 0 0  -1 0 0 0  0 0 1 0  0 0 0 1;\nstart 0; clean; end;\n",
+        "v.rt", d);
+    ASSERT_TRUE(rt.has_value());
+    EXPECT_DOUBLE_EQ(rt->viewsize, 157.2026215);
+    EXPECT_EQ(rt->eye, (Vec3{2, 3, 4}));
+    EXPECT_EQ(rt->viewrot.m[1][0], -1);
+    // The view rows in Quadrix space: X = (0 1 0) → (0 0 1), Y = (-1 0 0), Z = (0 0 1) → (0 1 0).
+    scene::View v = MakeRtView(*rt, 512, 512);
+    EXPECT_EQ(*v.vup, (Vec3{-1, 0, 0}));
+    EXPECT_EQ(*v.dop, (Vec3{0, 1, 0}));
+    EXPECT_DOUBLE_EQ(*v.whw, 0.5 * 157.2026215);
+    // The identity quaternion is the identity rotation.
+    auto q = ParseRtViewScript("viewsize 10; eye_pt 0 0 0; orientation 0 0 0 1;", "q.rt", d);
+    ASSERT_TRUE(q.has_value());
+    EXPECT_EQ(q->viewrot, Mat4::Identity());
+    Diagnostics bad;
+    EXPECT_FALSE(ParseRtViewScript("viewsize 10;\neye_pt 0 0 x;", "b.rt", bad).has_value());
+    ASSERT_FALSE(bad.Items().empty());
+    EXPECT_EQ(bad.Items()[0].Format(false), "b.rt:2:12: error: 'x' is not a finite number");
+    Diagnostics missing;
+    EXPECT_FALSE(ParseRtViewScript("viewsize 10;", "m.rt", missing).has_value());
+}
+
+}  // namespace
+}  // namespace quadrix::import
+
+namespace quadrix {
+namespace {
+
+// rt's orientation, not its mirror image: from az 0 el 0 (viewer on +X) model +Y is screen right
+// and +Z screen up; from az 270 el 90 (above) +X is right and +Y up.
+TEST(ImportMixed, AzElIsNotMirrored) {
+    testing::TempDir dir;
+    std::string csg = dir.Write("marks.csg",
+                                "sphere(1);\ntranslate([0, 10, 0]) sphere(2);\n"
+                                "translate([0, 0, 10]) sphere(3);\n"
+                                "translate([10, 0, 0]) sphere(4);\n"
+                                // small counterweights that make the box symmetric about 0
+                                "translate([0, -11.5, 0]) sphere(0.5);\n"
+                                "translate([0, 0, -12.5]) sphere(0.5);\n"
+                                "translate([-13.5, 0, 0]) sphere(0.5);\n");
+    struct Case {
+        double az, el;
+        int rightRadius, upRadius;  // which sphere should lie right of / above the centre
+    };
+    for (const Case& c : {Case{0, 0, 2, 3}, Case{270, 90, 4, 2}}) {
+        PipelineOptions po;
+        po.scenePaths = {csg};
+        po.azimuth = c.az;
+        po.elevation = c.el;
+        po.width = po.height = 101;
+        PipelineResult res;
+        Diagnostics diags;
+        ASSERT_TRUE(RunPipeline(po, res, diags));
+        // Sum of covered columns right of the image centre vs left, rows above vs below.
+        int right = 0, left = 0, up = 0, down = 0;
+        for (int r = 0; r < 101; ++r)
+            for (int col = 0; col < 101; ++col) {
+                if (!res.frame.Covered(col, r)) continue;
+                if (col > 50) ++right;
+                if (col < 50) ++left;
+                if (r < 50) ++up;
+                if (r > 50) ++down;
+            }
+        // The box is centred on the origin, so the image centre is the origin; the spheres on
+        // the +side are much larger than their counterweights.
+        EXPECT_GT(right, left) << c.az << " " << c.el;
+        EXPECT_GT(up, down) << c.az << " " << c.el;
+    }
+}
+
+}  // namespace
+}  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// rt's rays start at the eye: a solid behind the eye plane is not drawn.
+TEST(ImportMixed, RtViewClipsBehindTheEye) {
+    testing::TempDir dir;
+    std::string csg =
+        dir.Write("two.csg", "sphere(5);\ntranslate([0, 0, 50]) sphere(20);\n");  // 2nd above eye
+    PipelineOptions po;
+    po.scenePaths = {csg};
+    po.width = po.height = 64;
+    import::RtView rt;
+    rt.viewsize = 64;
+    rt.eye = {0, 0, 20};  // looking down -z from z = 20: the big sphere (z 30..70) is behind
+    po.rtView = rt;
+    PipelineResult res;
+    Diagnostics diags;
+    ASSERT_TRUE(RunPipeline(po, res, diags));
+    // Only the small sphere: radius 5 mm = 5 px, area ≈ 78.5 px (± its 31 px perimeter).
+    EXPECT_NEAR(static_cast<double>(res.frame.CoveredCount()), M_PI * 25, 31);
 }
 
 }  // namespace

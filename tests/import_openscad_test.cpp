@@ -1,13 +1,13 @@
 // OpenSCAD CSG import: a model of 24 primitives rendered from above with rt's explicit camera, its
 // silhouette compared pixel for pixel with the analytic one (and with what OpenSCAD's faceted
 // preview would cover), transforms checked by point membership, and bad input.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 #include <numbers>
-
-#include <fmt/format.h>
+#include <random>
 
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/import/scene_input.h"
@@ -70,8 +70,9 @@ struct Model {
     // Distance-like margin to the nearest analytic boundary (to skip pixels centred on one).
     double Margin(double x, double y) const {
         double m = 1e9;
-        auto disc = [&](const Disc& d) { m = std::min(m, std::fabs(std::hypot(x - d.x, y - d.y) -
-                                                                   d.r)); };
+        auto disc = [&](const Disc& d) {
+            m = std::min(m, std::fabs(std::hypot(x - d.x, y - d.y) - d.r));
+        };
         auto rect = [&](const Rect& r) {
             m = std::min({m, std::fabs(x - r.x0), std::fabs(x - r.x1), std::fabs(y - r.y0),
                           std::fabs(y - r.y1)});
@@ -89,16 +90,18 @@ Model MakeModel() {
     t = "// written by the test suite\ngroup() {\n";
     for (int i = 0; i < 8; ++i) {  // spheres, r = 3 + 0.5 i, centres along y = 0
         double x = -70 + 18 * i, r = 3 + 0.5 * i;
-        t += fmt::format("  multmatrix([[1, 0, 0, {}], [0, 1, 0, 0], [0, 0, 1, {}], [0, 0, 0, 1]]) "
-                         "{{ sphere($fn = 0, $fa = 12, $fs = 2, r = {}); }}\n",
-                         x, i, r);
+        t += fmt::format(
+            "  multmatrix([[1, 0, 0, {}], [0, 1, 0, 0], [0, 0, 1, {}], [0, 0, 0, 1]]) "
+            "{{ sphere($fn = 0, $fa = 12, $fs = 2, r = {}); }}\n",
+            x, i, r);
         m.discs.push_back({x, 0, r});
     }
     for (int i = 0; i < 8; ++i) {  // cylinders and cones (r1/r2), along y = 25
         double x = -70 + 18 * i, r1 = 2 + i, r2 = i % 2 ? 0 : 6 - 0.5 * i;
-        t += fmt::format("  translate([{}, 25, 0]) color([0.2, 0.6, 1]) cylinder($fn = 30, "
-                         "h = {}, r1 = {}, r2 = {}, center = {});\n",
-                         x, 5 + i, r1, r2, i % 3 == 0 ? "true" : "false");
+        t += fmt::format(
+            "  translate([{}, 25, 0]) color([0.2, 0.6, 1]) cylinder($fn = 30, "
+            "h = {}, r1 = {}, r2 = {}, center = {});\n",
+            x, 5 + i, r1, r2, i % 3 == 0 ? "true" : "false");
         m.discs.push_back({x, 25, std::max(r1, r2)});
     }
     for (int i = 0; i < 4; ++i) {  // cubes along y = -25
@@ -139,8 +142,8 @@ TEST(ImportOpenScad, SilhouetteIsExactWhereFacetsAreNot) {
     ASSERT_TRUE(RunPipeline(po, res, diags)) << diags.Items().size();
     ASSERT_EQ(res.inputs.imports.size(), 1u);
     const ImportReport& rep = res.inputs.imports[0].second;
-    EXPECT_EQ(rep.census, (std::map<std::string, int>{{"cube", 6}, {"cylinder", 10},
-                                                       {"sphere", 9}}));
+    EXPECT_EQ(rep.census,
+              (std::map<std::string, int>{{"cube", 6}, {"cylinder", 10}, {"sphere", 9}}));
     EXPECT_TRUE(rep.skipped.empty());
     const double cell = rt.viewsize / po.width;
     int compared = 0, wrong = 0, facetWrong = 0;
@@ -199,17 +202,19 @@ TEST(ImportOpenScad, TransformsMatchOpenScad) {
     };
     const Case cases[] = {
         {"translate", "translate([10, 0, 0]) sphere(1);", {10.9, 0, 0}, {0, 0, 0}},
-        {"rotate xyz", "rotate([0, 0, 90]) translate([5, 0, 0]) sphere(1);", {0, 5, 0},
-         {5, 0, 0}},
-        {"rotate axis", "rotate(a = 90, v = [1, 0, 0]) translate([0, 5, 0]) sphere(1);",
-         {0, 0, 5}, {0, 5, 0}},
+        {"rotate xyz", "rotate([0, 0, 90]) translate([5, 0, 0]) sphere(1);", {0, 5, 0}, {5, 0, 0}},
+        {"rotate axis",
+         "rotate(a = 90, v = [1, 0, 0]) translate([0, 5, 0]) sphere(1);",
+         {0, 0, 5},
+         {0, 5, 0}},
         {"scale", "scale([3, 1, 1]) sphere(1);", {2.9, 0, 0}, {0, 1.1, 0}},
-        {"mirror", "mirror([1, 0, 0]) translate([5, 0, 0]) cube(1);", {-5.5, 0.5, 0.5},
+        {"mirror",
+         "mirror([1, 0, 0]) translate([5, 0, 0]) cube(1);",
+         {-5.5, 0.5, 0.5},
          {5.5, 0.5, 0.5}},
         {"cone", "cylinder(h = 10, r1 = 4, r2 = 0);", {0, 0, 0.5}, {0, 2.1, 5}},
         {"d", "cylinder(h = 2, d = 4, center = true);", {1.9, 0, -0.9}, {0, 0, 1.1}},
-        {"scad positional", "$fn = 64; cube(2, true); // comment\n", {0.9, 0.9, -0.9},
-         {1.1, 0, 0}},
+        {"scad positional", "$fn = 64; cube(2, true); // comment\n", {0.9, 0.9, -0.9}, {1.1, 0, 0}},
     };
     for (const Case& c : cases) {
         scene::Scene s;
@@ -237,9 +242,10 @@ TEST(ImportOpenScad, UnsupportedAndBadInput) {
         scene::Scene s;
         Diagnostics d;
         ImportReport r;
-        EXPECT_TRUE(ImportOpenScad("sphere(1);\npolyhedron(points = [[0, 0, 0]], faces = []);\n"
-                                   "hull() { cube(1); }\n",
-                                   "t.csg", {}, s, d, r));
+        EXPECT_TRUE(
+            ImportOpenScad("sphere(1);\npolyhedron(points = [[0, 0, 0]], faces = []);\n"
+                           "hull() { cube(1); }\n",
+                           "t.csg", {}, s, d, r));
         EXPECT_EQ(r.skipped, (std::map<std::string, int>{{"hull", 1}, {"polyhedron", 1}}));
         ASSERT_GE(d.Items().size(), 2u);
         EXPECT_EQ(d.Items()[0].Format(false),
@@ -267,6 +273,34 @@ TEST(ImportOpenScad, UnsupportedAndBadInput) {
         std::string all;
         for (const Diagnostic& x : d.Items()) all += x.Format(false) + "\n";
         EXPECT_NE(all.find(expect), std::string::npos) << text << "\n" << all;
+    }
+}
+
+}  // namespace
+}  // namespace quadrix::import
+
+namespace quadrix::import {
+namespace {
+
+// Truncated and mutated copies of the test model: errors or a scene, never a crash or a hang.
+TEST(ImportOpenScad, MutatedInputNeverCrashes) {
+    std::string text = MakeModel().text;
+    std::mt19937 rng(11);
+    const char noise[] = "{}[]();,=*%#!$\"/ \n-+.0123456789eabc";
+    for (int trial = 0; trial < 200; ++trial) {
+        std::string t = text;
+        if (trial % 2 == 0) {
+            t.resize(std::uniform_int_distribution<std::size_t>(0, t.size())(rng));
+        } else {
+            for (int k = 0; k < 6; ++k)
+                t[std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)] =
+                    noise[std::uniform_int_distribution<int>(0, sizeof noise - 2)(rng)];
+        }
+        scene::Scene s;
+        Diagnostics d;
+        ImportReport r;
+        bool ok = ImportOpenScad(t, "m.csg", {}, s, d, r);
+        EXPECT_TRUE(ok || d.HasErrors()) << trial;
     }
 }
 

@@ -27,7 +27,7 @@ struct SceneRun {
 };
 
 SceneRun Render(const std::string& text, const std::string& path, const std::string& engine,
-           std::map<std::string, std::string> engineOptions = {}) {
+                std::map<std::string, std::string> engineOptions = {}) {
     SceneRun run;
     PipelineOptions o;
     if (path.empty()) {
@@ -138,8 +138,8 @@ std::string ReadExample(const std::string& path) {
 // bodies, where the first opaque boundary point is an exit; exit terms are then pared against the
 // solid's other products (the boss overlaps the block).
 TEST(PixelPowersScenes, MachinedPartClippedBySlab) {
-    ExpectExactAgreement(ReadExample("examples/machined_part.uq") + "view slab dop .4 .5 -1 fbp -1 1;",
-                         "");
+    ExpectExactAgreement(
+        ReadExample("examples/machined_part.uq") + "view slab dop .4 .5 -1 fbp -1 1;", "");
 }
 TEST(PixelPowersScenes, PerspectiveWithClipping) {
     ExpectExactAgreement(ReadExample("examples/cylinder_minus_cylinder.uq") +
@@ -167,7 +167,7 @@ view v dop .4 .3 -1;
 TEST(PixelPowersScenes, ApproxModeReportsDepthError) {
     for (double tol : {0.5, 0.05}) {
         SceneRun pp = Render("", "examples/cylinder_minus_cylinder.uq", "pixelpowers",
-                        {{"mode", "approx"}, {"tolerance", std::to_string(tol)}});
+                             {{"mode", "approx"}, {"tolerance", std::to_string(tol)}});
         ASSERT_TRUE(pp.ok);
         double maxErr = -1, same = -1;
         for (const auto& [k, v] : pp.result.stats.counters) {

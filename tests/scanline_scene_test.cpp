@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -85,7 +86,8 @@ Agreement Compare(const Frame& ref, const Frame& got) {
 void ExpectAgree(const Frame& ref, const Frame& got, const std::string& what) {
     Agreement a = Compare(ref, got);
     if (std::getenv("SCANLINE_DUMP"))
-        std::fprintf(stderr, "%s: covered %zu mismatches %zu (interior %zu) depth err %.3g of %.3g\n",
+        std::fprintf(stderr,
+                     "%s: covered %zu mismatches %zu (interior %zu) depth err %.3g of %.3g\n",
                      what.substr(0, what.find('\n')).c_str(), a.covered, a.mismatches,
                      a.interiorMismatches, a.maxDepthError, a.depthRange);
     SCOPED_TRACE(what);
@@ -193,8 +195,8 @@ TEST(ScanlineScene, PlanesEdgeOnAndAHemisphere) {
     int x0 = b.AddPlane(-1, 0, 0, 10), x1 = b.AddPlane(1, 0, 0, -40);
     int y0 = b.AddPlane(0, -1, 0, 10.25), y1 = b.AddPlane(0, 1, 0, -50.5);
     int f = b.AddPlane(0.3, 0.1, -1, 10), bk = b.AddPlane(0, 0, 1, -80);
-    b.AddSolidOfBody(b.AddBody({{x0, false}, {x1, false}, {y0, false}, {y1, false}, {f, false},
-                                {bk, false}}));
+    b.AddSolidOfBody(
+        b.AddBody({{x0, false}, {x1, false}, {y0, false}, {y1, false}, {f, false}, {bk, false}}));
     // A sphere halved by an edge-on plane x <= 65.
     int s = b.AddQuadric(Sphere({65, 35, 50}, 20));
     int cut = b.AddPlane(1, 0, 0, -65);
@@ -249,12 +251,12 @@ TEST(ScanlineScene, HorizontalEdgesAndEqualDepthsAlongAnEdge) {
     int top0 = b.AddPlane(0, -1, 0, 10), mid = b.AddPlane(0, 1, 0, -40);
     int l = b.AddPlane(-1, 0, 0, 10), r = b.AddPlane(1, 0, 0, -70);
     int f1 = b.AddPlane(0, 0.5, -1, 10), bk = b.AddPlane(0, 0, 1, -100);
-    b.AddSolidOfBody(b.AddBody({{top0, false}, {mid, false}, {l, false}, {r, false}, {f1, false},
-                                {bk, false}}));
+    b.AddSolidOfBody(
+        b.AddBody({{top0, false}, {mid, false}, {l, false}, {r, false}, {f1, false}, {bk, false}}));
     int mid2 = b.AddPlane(0, -1, 0, 40), bot = b.AddPlane(0, 1, 0, -70);
     int f2 = b.AddPlane(0, -0.5, -1, 50);  // z = 50 − 0.5 y: equals f1's z = 10 + 0.5 y at y = 40
-    b.AddSolidOfBody(b.AddBody({{mid2, false}, {bot, false}, {l, false}, {r, false}, {f2, false},
-                                {bk, false}}));
+    b.AddSolidOfBody(
+        b.AddBody({{mid2, false}, {bot, false}, {l, false}, {r, false}, {f2, false}, {bk, false}}));
     CheckScene(b.scene(), "horizontal shared edge", 3000);
 }
 
@@ -267,6 +269,43 @@ TEST(ScanlineScene, IntersectingQuadricsInOneBodyFallBackPerPixel) {
     Frame got = RenderWith("scanline", b.scene(), &stats);
     ExpectAgree(RenderWith("raycast", b.scene()), got, "sphere with a bite");
     EXPECT_EQ(Counter(stats, "per_pixel_bodies"), 1);
+}
+
+TEST(ScanlineScene, UnboundedBodiesWithoutShowEdges) {
+    // Bodies whose regions reach the image sides: a half-space, the outside of a sphere, a
+    // paraboloid opening along the view (C = 0: no limb), a two-sheet hyperboloid across the view.
+    struct Case {
+        const char* name;
+        std::function<void(TestSceneBuilder&)> build;
+    };
+    std::vector<Case> cases = {
+        {"half-space",
+         [](TestSceneBuilder& b) {
+             b.AddSolidOfBody(b.AddBody({{b.AddPlane(0.1, 0.2, -1, 20), false}}));
+         }},
+        {"outside of a sphere",
+         [](TestSceneBuilder& b) {
+             b.AddSolidOfBody(b.AddBody({{b.AddQuadric(Sphere({40, 30, 50}, 20)), true}}));
+         }},
+        {"paraboloid along the view",
+         [](TestSceneBuilder& b) {
+             // (x−40)² + (y−30)² − 4 (z − 10) <= 0
+             b.AddSolidOfBody(b.AddBody(
+                 {{b.AddQuadric({1, 1, 0, 0, 0, 0, -40, -30, -2, 1600 + 900 + 40}), false}}));
+         }},
+        {"two-sheet hyperboloid",
+         [](TestSceneBuilder& b) {
+             // (x−40)²/4 − (y−30)² − (z−50)² − 25 >= 0 … i.e. −(…) <= 0: two sheets along x.
+             b.AddSolidOfBody(b.AddBody(
+                 {{b.AddQuadric({-0.25, 1, 1, 0, 0, 0, 10, -30, -50, -400 + 900 + 2500 + 25}),
+                   false}}));
+         }},
+    };
+    for (const Case& c : cases) {
+        TestSceneBuilder b(80, 60);
+        c.build(b);
+        CheckScene(b.scene(), c.name, 500);
+    }
 }
 
 TEST(ScanlineScene, CsgDifferenceIsEvaluatedPerPixel) {
@@ -391,12 +430,24 @@ std::string RandomScene(std::mt19937& rng, bool perspective, bool csg = false) {
         std::array<double, 10> k{};
         const double r = 2 + 2 * (u(rng) + 1);
         switch (kind(rng)) {
-            case 0: k = {1, 1, 1, 0, 0, 0, 0, 0, 0, -r * r}; break;                     // sphere
-            case 1: k = {1 / (r * r), 4 / (r * r), 2 / (r * r), 0, 0, 0, 0, 0, 0, -1}; break;  // ellipsoid
-            case 2: k = {1, 1, 0, 0, 0, 0, 0, 0, 0, -r * r}; break;                     // cylinder
-            case 3: k = {1, 1, -0.3, 0, 0, 0, 0, 0, 0, 0}; break;                       // cone
-            case 4: k = {1, 1, 0, 0, 0, 0, 0, 0, -1.5, 0}; break;                       // paraboloid
-            default: k = {1, 1, -0.5, 0, 0, 0, 0, 0, 0, -r}; break;                     // hyperboloid
+            case 0:
+                k = {1, 1, 1, 0, 0, 0, 0, 0, 0, -r * r};
+                break;  // sphere
+            case 1:
+                k = {1 / (r * r), 4 / (r * r), 2 / (r * r), 0, 0, 0, 0, 0, 0, -1};
+                break;  // ellipsoid
+            case 2:
+                k = {1, 1, 0, 0, 0, 0, 0, 0, 0, -r * r};
+                break;  // cylinder
+            case 3:
+                k = {1, 1, -0.3, 0, 0, 0, 0, 0, 0, 0};
+                break;  // cone
+            case 4:
+                k = {1, 1, 0, 0, 0, 0, 0, 0, -1.5, 0};
+                break;  // paraboloid
+            default:
+                k = {1, 1, -0.5, 0, 0, 0, 0, 0, 0, -r};
+                break;  // hyperboloid
         }
         Transform m = Transform::Translate({spread * u(rng), spread * u(rng), spread * u(rng)}) *
                       Transform::Rotate(0, 180 * u(rng)) * Transform::Rotate(1, 180 * u(rng)) *
@@ -411,8 +462,8 @@ std::string RandomScene(std::mt19937& rng, bool perspective, bool csg = false) {
         text += ">;\n";
         std::string lits = "q" + std::to_string(b);
         const double half = r + 1.5;
-        std::vector<Plane> planes = {{1, 0, 0, -half}, {-1, 0, 0, -half}, {0, 1, 0, -half},
-                                     {0, -1, 0, -half}, {0, 0, 1, -half}, {0, 0, -1, -half}};
+        std::vector<Plane> planes = {{1, 0, 0, -half},  {-1, 0, 0, -half}, {0, 1, 0, -half},
+                                     {0, -1, 0, -half}, {0, 0, 1, -half},  {0, 0, -1, -half}};
         int cuts = 1 + (u(rng) > 0);
         for (int c = 0; c < cuts; ++c) planes.push_back({u(rng), u(rng), u(rng), -0.4 * r});
         for (std::size_t p = 0; p < planes.size(); ++p) {
@@ -428,7 +479,8 @@ std::string RandomScene(std::mt19937& rng, bool perspective, bool csg = false) {
         const char* ops[3] = {" - ", " & ", " | "};
         std::uniform_int_distribution<int> op(0, 2);
         text += "csg s (b0";
-        for (int b = 1; b < bodies; ++b) text += std::string(ops[op(rng)]) + "b" + std::to_string(b);
+        for (int b = 1; b < bodies; ++b)
+            text += std::string(ops[op(rng)]) + "b" + std::to_string(b);
         text += ");\n";
     }
     if (perspective) {
@@ -485,6 +537,29 @@ TEST(ScanlineScene, GeneratedCsgScenesAgreeWithRaycast) {
         drawn += pixels.frame.CoveredCount() > 100;
     }
     EXPECT_GE(drawn, 12);  // most random CSG expressions draw something
+}
+
+}  // namespace
+}  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// Rows are rendered in fixed bands of 32 in parallel: the frame must not depend on the threads.
+TEST(ScanlineScene, FrameDoesNotDependOnThreads) {
+    PipelineOptions o;
+    o.scenePaths = {testing::SourcePath("examples/machined_part.uq")};
+    o.width = 150;
+    o.height = 130;  // not a multiple of the band height
+    o.engine = "scanline";
+    PipelineResult one, many;
+    Diagnostics d1, d2;
+    o.threads = 1;
+    ASSERT_TRUE(RunPipeline(o, one, d1));
+    o.threads = 0;
+    ASSERT_TRUE(RunPipeline(o, many, d2));
+    EXPECT_EQ(testing_util::FrameDifference(one.frame, many.frame), "");
+    EXPECT_EQ(Counter(one.stats, "spans"), Counter(many.stats, "spans"));
 }
 
 }  // namespace

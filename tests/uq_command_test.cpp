@@ -167,6 +167,11 @@ TEST(UqOptions, DeviceFromOptionOrEnvironment) {
     r = RunShell("cd '" + dir.path() + "' && UQDEV=colorsun " + QuadrixBinary() + " uq tube.uq");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("unknown device 'colorsun'"), std::string::npos) << r.err;
+    // With a -d anywhere, $UQDEV is not consulted (§2.2: "If no -d option is given ...").
+    r = RunShell("cd '" + dir.path() + "' && UQDEV=colorsun " + QuadrixBinary() +
+                 " uq tube.uq -dascii:late.out -sx .1 -sy .1");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(FileExists(dir.File("late.out")));
 }
 
 TEST(UqOptions, ErrorsToAFileAndWarningsOnOff) {

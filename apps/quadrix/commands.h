@@ -15,6 +15,7 @@ struct RenderArgs {
     std::string view;
     std::string engine = "raycast";
     bool fast = false;
+    bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
     bool stats = false;
     int threads = 0;
     std::string dumpFrame;

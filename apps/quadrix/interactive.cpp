@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
+#include <utility>
 
 #ifdef QUADRIX_HAVE_LIBEDIT
 #include <editline/readline.h>
@@ -67,10 +70,20 @@ class PlainLineInput : public LineInput {
 };
 
 #ifdef QUADRIX_HAVE_LIBEDIT
-// Line editing and history with libedit's readline interface (BSD license).
+// Line editing and history with libedit's readline interface (BSD license). The history is kept
+// across sessions in ~/.quadrix_history.
 class EditLineInput : public LineInput {
   public:
-    EditLineInput() { using_history(); }
+    EditLineInput() {
+        using_history();
+        if (const char* home = std::getenv("HOME"); home && *home) {
+            historyPath_ = std::string(home) + "/.quadrix_history";
+            read_history(historyPath_.c_str());  // absent on the first session: fine
+        }
+    }
+    ~EditLineInput() override {
+        if (!historyPath_.empty()) write_history(historyPath_.c_str());
+    }
     bool ReadLine(const std::string& prompt, std::string& line) override {
         char* text = readline(prompt.c_str());
         if (!text) {
@@ -82,6 +95,9 @@ class EditLineInput : public LineInput {
         if (line.find_first_not_of(" \t") != std::string::npos) add_history(line.c_str());
         return true;
     }
+
+  private:
+    std::string historyPath_;
 };
 #endif
 
@@ -384,10 +400,56 @@ std::string UqSession::NextKeptPath(const std::string& path) {
     }
 }
 
+std::unique_ptr<device::Device> UqSession::CurrentDevice(std::string& error) {
+    device::DeviceSettings ds;
+    ds.xInches = settings.xInches;
+    ds.yInches = settings.yInches;
+    ds.deltaMax = settings.deltaMax;
+    auto dev = device::MakeDevice(settings.device, ds, error);
+    if (dev && settings.keep && dev->Info().hard)
+        dev =
+            device::MakeDevice(dev->Info().name + ":" + NextKeptPath(dev->Info().path), ds, error);
+    return dev;
+}
+
+std::vector<scene::Light> UqSession::CurrentLights() const {
+    // Every ambient light and the current parallel light (interactive.h), else the default one.
+    std::vector<scene::Light> lights;
+    const scene::Light* parallel = nullptr;
+    for (const scene::Light& l : scene_.lights) {
+        if (l.kind == scene::Light::Kind::kAmbient) lights.push_back(l);
+        if (l.kind == scene::Light::Kind::kParallel &&
+            (currentLight_.empty() || l.id == currentLight_))
+            parallel = &l;
+    }
+    lights.push_back(parallel ? *parallel : scene::DefaultLight());
+    return lights;
+}
+
+std::optional<FlatScene> UqSession::FlattenCurrent(const std::string& view,
+                                                   const device::DeviceInfo& info) {
+    auto t0 = std::chrono::steady_clock::now();
+    FlattenOptions fo;
+    fo.width = info.width;
+    fo.height = info.height;
+    fo.viewName = view;
+    // The Flattener takes the scene's lights; lend it the current ones for this picture.
+    std::vector<scene::Light> saved = std::exchange(scene_.lights, CurrentLights());
+    const int errorsBefore = diags_.ErrorCount();
+    auto flat = Flatten(scene_, fo, diags_);
+    scene_.lights = std::move(saved);
+    if (!flat || diags_.ErrorCount() != errorsBefore) return std::nullopt;
+    Trace(
+        fmt::format("flattener: {} solids, {} bodies, {} half-spaces in device space, {} "
+                    "lights; {:.4f} s",
+                    flat->solids.size(), flat->bodies.size(), flat->halfSpaces.size(),
+                    flat->lights.size(), SecondsSince(t0)));
+    return flat;
+}
+
 bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc) {
     FlushDiagnostics(false);
     SyncCurrent();
-    ++shows_;
     if (interactiveDepth_ == 0 && batchErrors_ > 0) {
         // §2.2: "Any error more severe than a warning noted during input processing aborts
         // rendering."
@@ -397,66 +459,27 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
         return false;
     }
     auto fail = [&](const std::string& message, const char* kind) {
-        diags_.Error(loc, message, {}, kind);
+        if (!message.empty()) diags_.Error(loc, message, {}, kind);
         FlushDiagnostics(false);
         return false;
     };
-
-    device::DeviceSettings ds;
-    ds.xInches = settings.xInches;
-    ds.yInches = settings.yInches;
-    ds.deltaMax = settings.deltaMax;
     std::string error;
-    auto dev = device::MakeDevice(settings.device, ds, error);
+    auto dev = CurrentDevice(error);
     if (!dev) return fail(error, "device");
-    if (settings.keep && dev->Info().hard) {
-        std::string kept = NextKeptPath(dev->Info().path);
-        dev = device::MakeDevice(dev->Info().name + ":" + kept, ds, error);
-        if (!dev) return fail(error, "device");
-    }
     const device::DeviceInfo& info = dev->Info();
-    std::string view = viewId.empty() ? currentView_ : viewId;
+    const std::string view = viewId.empty() ? currentView_ : viewId;
     Trace(
         fmt::format("show: view {}, device {} {}x{} ({} levels, aspect {}, delta max {}), "
                     "{} shading, engine {}",
                     view.empty() ? "(last defined)" : "'" + view + "'", info.name, info.width,
                     info.height, info.levels, info.aspect, info.deltaMax,
                     fast ? "fast constant" : "smooth", settings.engine));
-
-    // The current parallel light and every ambient light (interactive.h).
-    std::vector<scene::Light> saved = scene_.lights;
-    std::vector<scene::Light> lights;
-    const scene::Light* parallel = nullptr;
-    for (const scene::Light& l : saved) {
-        if (l.kind == scene::Light::Kind::kAmbient) lights.push_back(l);
-        if (l.kind == scene::Light::Kind::kParallel &&
-            (currentLight_.empty() || l.id == currentLight_))
-            parallel = &l;
-    }
-    lights.push_back(parallel ? *parallel : scene::DefaultLight());
-
-    auto t0 = std::chrono::steady_clock::now();
-    FlattenOptions fo;
-    fo.width = info.width;
-    fo.height = info.height;
-    fo.viewName = view;
-    scene_.lights = lights;
-    const int errorsBefore = diags_.ErrorCount();
-    auto flat = Flatten(scene_, fo, diags_);
-    scene_.lights = std::move(saved);
-    if (!flat || diags_.ErrorCount() != errorsBefore) {
-        FlushDiagnostics(false);
-        return false;
-    }
-    Trace(
-        fmt::format("flattener: {} solids, {} bodies, {} half-spaces in device space, {} "
-                    "lights; {:.4f} s",
-                    flat->solids.size(), flat->bodies.size(), flat->halfSpaces.size(),
-                    flat->lights.size(), SecondsSince(t0)));
+    auto flat = FlattenCurrent(view, info);
+    if (!flat) return fail({}, "input");  // the Flattener reported why
 
     auto engine = MakeEngine(settings.engine);
     if (!engine) return fail(fmt::format("unknown engine '{}'", settings.engine), "command line");
-    t0 = std::chrono::steady_clock::now();
+    auto t0 = std::chrono::steady_clock::now();
     Frame frame;
     RenderStats stats = engine->Render(*flat, RenderOptions{}, frame);
     if (trace_) {
@@ -476,10 +499,10 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
 
     t0 = std::chrono::steady_clock::now();
     if (auto e = dev->Open(image.channels == 3); !e.empty()) return fail(e, "device");
-    device::DrawStats ds2 = device::DrawImage(*dev, image, &frame, info.deltaMax);
+    device::DrawStats drawn = device::DrawImage(*dev, image, &frame, info.deltaMax);
     if (auto e = dev->Close(); !e.empty()) return fail(e, "device");
     Trace(fmt::format("device {}: {} spans, {} intensity evaluations; {}; {:.4f} s", info.name,
-                      ds2.spans, ds2.evaluations,
+                      drawn.spans, drawn.evaluations,
                       info.hard ? "wrote " + info.path : std::string("drawn on the screen"),
                       SecondsSince(t0)));
     if (settings.keep && info.hard) Message("raster file: " + info.path);

@@ -21,9 +21,12 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "quadrix/device/device.h"
+#include "quadrix/flatten/flat_scene.h"
 #include "quadrix/lang/reader.h"
 #include "quadrix/lang/reader_state.h"
 #include "quadrix/scene/diagnostics.h"
@@ -89,6 +92,12 @@ class UqSession : public lang::CommandHandler {
     void FlushDiagnostics(bool boundary);
     void SyncCurrent();
     bool Show(const std::string& viewId, bool fast, const SourceLoc& loc);
+    // The current device, with a fresh file name when keep is on; nullptr with `error`.
+    std::unique_ptr<device::Device> CurrentDevice(std::string& error);
+    std::vector<scene::Light> CurrentLights() const;
+    // The scene in device space for `view` under the current lights; nullopt after errors.
+    std::optional<FlatScene> FlattenCurrent(const std::string& view,
+                                            const device::DeviceInfo& info);
     std::string NextKeptPath(const std::string& path);
     void Trace(const std::string& line);
     void Message(const std::string& line);
@@ -112,7 +121,6 @@ class UqSession : public lang::CommandHandler {
     bool viewPinned_ = false;
     std::string currentLight_;  // empty = the last parallel light (or default)
     std::size_t knownViews_ = 0, knownLights_ = 0;
-    int shows_ = 0;
 };
 
 }  // namespace quadrix::cli

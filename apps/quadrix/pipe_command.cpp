@@ -182,7 +182,8 @@ int RunPipe(const PipeArgs& args) {
         return 1;
     }
     model::PipeWriteOptions wo;
-    wo.source = std::filesystem::path(args.input).filename().string();
+    wo.source = args.input == "-" ? std::string("standard input")
+                                  : std::filesystem::path(args.input).filename().string();
     wo.definition = args.definition;
     wo.prefix = args.prefix;
     if (std::string e = WriteTextFile(args.output, model::WriteUniQuadrix(pipes, wo)); !e.empty()) {

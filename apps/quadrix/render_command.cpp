@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "quadrix/engines/patch/phong.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/shader.h"
@@ -34,7 +35,12 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->capture_default_str();
     cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
     cmd->add_option("--engine", args.engine, "Rendering engine")->capture_default_str();
-    cmd->add_flag("--fast", args.fast, "Constant (flat) shading per surface, as UniQuadrix -f");
+    auto* fast =
+        cmd->add_flag("--fast", args.fast, "Constant (flat) shading per surface, as UniQuadrix -f");
+    cmd->add_flag("--phong", args.phong,
+                  "Phong shading per pixel (diffuse + specular highlight; seed 000's post-shading "
+                  "unit) instead of Lambert")
+        ->excludes(fast);
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_option("--threads", args.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024));
@@ -151,7 +157,8 @@ int RunRender(const RenderArgs& args) {
     if (format == ImageFormat::kFrameDump) {
         error = WriteFrameDump(args.output, result.frame);
     } else {
-        Image image = Shade(result.frame, result.flat, so);
+        Image image = args.phong ? patch::PhongShade(result.frame, result.flat)
+                                 : Shade(result.frame, result.flat, so);
         error = format == ImageFormat::kPng ? WritePng(args.output, image)
                                             : WritePnm(args.output, image);
     }

@@ -227,14 +227,13 @@ std::string DefaultDevice() {
 
 // Replays the device-changing options left to right, so a bad device, path or size is an error
 // before anything is read or drawn.
-std::string CheckDevices(const Plan& plan, const std::string& initial) {
+std::string CheckDevices(const Plan& plan, const std::string& initial, const char* source) {
     using Kind = Action::Kind;
     std::string spec = initial;
     device::DeviceSettings ds;
     std::string error;
     if (!device::MakeDevice(spec, ds, error))
-        return fmt::format("{} (device from {})", error,
-                           std::getenv("UQDEV") && *std::getenv("UQDEV") ? "$UQDEV" : "default");
+        return fmt::format("{} (device from {})", error, source);
     for (const Action& a : plan.actions) {
         if (a.kind == Kind::kDevice)
             spec = a.text;
@@ -266,8 +265,17 @@ int RunUq(const std::vector<std::string>& args) {
         PrintUsage(stdout);
         return 0;
     }
-    const std::string initialDevice = DefaultDevice();
-    if (auto e = CheckDevices(plan, initialDevice); !e.empty()) return UsageError(e);
+    // "If no -d option is given, UniQuadrix checks for device names in environment variable
+    // UQDEV": with a -d anywhere on the line, its first device is the device from the start.
+    std::string initialDevice;
+    for (const Action& a : plan.actions)
+        if (a.kind == Action::Kind::kDevice && initialDevice.empty()) initialDevice = a.text;
+    const char* deviceSource = "-d";
+    if (initialDevice.empty()) {
+        initialDevice = DefaultDevice();
+        deviceSource = std::getenv("UQDEV") && *std::getenv("UQDEV") ? "$UQDEV" : "the default";
+    }
+    if (auto e = CheckDevices(plan, initialDevice, deviceSource); !e.empty()) return UsageError(e);
 
     UqSession session;
     session.settings.device = initialDevice;

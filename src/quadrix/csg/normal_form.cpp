@@ -87,10 +87,10 @@ class Normalizer {
             return Fail("CSG normal form exceeds " + std::to_string(options_.maxProducts) +
                         " products (the union-of-products form grows exponentially with nested "
                         "differences of unions/intersections); simplify the tree or raise "
-                        "--engine-opt max_products");
+                        "--engine-opt max-products");
         if (++work_ > 64 * (options_.maxProducts + 1))
             return Fail("CSG normalisation gave up after " + std::to_string(work_) +
-                        " rewriting steps; raise --engine-opt max_products");
+                        " rewriting steps; raise --engine-opt max-products");
         return true;
     }
 
@@ -196,7 +196,8 @@ class Normalizer {
         if (node->kind == TreeNode::Kind::kPrimitive) {
             WorkProduct r = p;
             bool unchanged = false;
-            if (AddFactor(r, Factor{node->primitive, false}, unchanged)) out.push_back(std::move(r));
+            if (AddFactor(r, Factor{node->primitive, false}, unchanged))
+                out.push_back(std::move(r));
             return Check(out);
         }
         if (node->children.empty()) return true;
@@ -253,8 +254,7 @@ class Normalizer {
                 Sum next;
                 for (const WorkProduct& q : out) {
                     Sum part;
-                    if (!SubtractOne(q, node->children[i], depth + 1, part) ||
-                        !Append(next, part))
+                    if (!SubtractOne(q, node->children[i], depth + 1, part) || !Append(next, part))
                         return false;
                 }
                 out.swap(next);

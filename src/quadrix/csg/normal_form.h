@@ -1,4 +1,5 @@
-// CSG normal form: any CSG tree rewritten as a union of simple products (seed 003 §1, seed 004 §IV).
+// CSG normal form: any CSG tree rewritten as a union of simple products (seed 003 §1, seed 004
+// §IV).
 //
 // A simple product is  X0 op1 X1 op2 … opk Xk  with op ∈ {∩, −}, associated from the left, every
 // Xi a primitive. With the convention op0 = ∩ a product is the set of points inside every factor
@@ -77,8 +78,8 @@ struct NormalFormStats {
     std::size_t prunedProducts = 0;  // products dropped as empty by their boxes
     std::size_t prunedFactors = 0;   // − factors dropped because their box misses the product
     std::size_t prunedSubtrahends = 0;  // p − q = p by disjoint boxes
-    std::size_t contradictions = 0;  // products dropped holding X with both ∩ and −
-    std::size_t duplicates = 0;      // repeated factors dropped
+    std::size_t contradictions = 0;     // products dropped holding X with both ∩ and −
+    std::size_t duplicates = 0;         // repeated factors dropped
 };
 
 struct NormalForm {
@@ -92,8 +93,7 @@ NormalForm Normalize(const Tree& tree, const NormalizeOptions& options = {});
 
 // Point classification, for tests and checks: `inside(primitive)` says whether the point is in it.
 bool ClassifyTree(const Tree& tree, const std::function<bool(int)>& inside);
-bool ClassifyProducts(const std::vector<Product>& products,
-                      const std::function<bool(int)>& inside);
+bool ClassifyProducts(const std::vector<Product>& products, const std::function<bool(int)>& inside);
 
 // "A - B & C | D" style text of a normal form, primitives named by `name`.
 std::string FormatProducts(const std::vector<Product>& products,

@@ -21,7 +21,8 @@ int RandomNode(Tree& t, std::mt19937& rng, int depth, int maxDepth, int primitiv
     if (depth >= maxDepth || (depth > 0 && u(rng) < 0.3)) return t.AddPrimitive(prim(rng));
     int k = u(rng) < 0.75 ? 2 : 3;
     std::vector<int> children;
-    for (int i = 0; i < k; ++i) children.push_back(RandomNode(t, rng, depth + 1, maxDepth, primitives));
+    for (int i = 0; i < k; ++i)
+        children.push_back(RandomNode(t, rng, depth + 1, maxDepth, primitives));
     static const TreeNode::Kind kinds[] = {TreeNode::Kind::kUnion, TreeNode::Kind::kIntersection,
                                            TreeNode::Kind::kDifference};
     return t.AddOperator(kinds[std::uniform_int_distribution<int>(0, 2)(rng)], std::move(children));
@@ -54,7 +55,8 @@ TEST(CsgNormalForm, RandomTreesClassifyLikeTheOriginal) {
         if (!plain.ok || !pruned.ok) continue;  // the explosion guard fired; tested below
         ++checked;
         prunedSomething += pruned.stats.prunedProducts + pruned.stats.prunedFactors +
-                               pruned.stats.prunedSubtrahends > 0;
+                               pruned.stats.prunedSubtrahends >
+                           0;
         for (const auto& nf : {plain, pruned}) {
             for (const Product& p : nf.products) {
                 ASSERT_FALSE(p.empty());
@@ -108,8 +110,8 @@ TEST(CsgNormalForm, SimplificationsAndPruning) {
     EXPECT_EQ(nf.stats.contradictions, 1u);
 
     Tree d;
-    d.root = d.AddOperator(K::kDifference,
-                           {d.AddPrimitive(0), d.AddPrimitive(1), d.AddPrimitive(2)});
+    d.root =
+        d.AddOperator(K::kDifference, {d.AddPrimitive(0), d.AddPrimitive(1), d.AddPrimitive(2)});
     NormalizeOptions o;
     o.boxes = {{{0, 0, 0}, {1, 1, 1}}, {{2, 2, 2}, {3, 3, 3}}, {{0.5, 0.5, 0.5}, {2, 2, 2}}};
     nf = Normalize(d, o);

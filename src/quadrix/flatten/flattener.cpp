@@ -25,6 +25,9 @@
 // are dropped: they cannot cover a pixel.
 #include "quadrix/flatten/flattener.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -105,8 +108,14 @@ class FlattenerImpl {
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_);
         std::vector<Box3> bodyBoxes(flat.bodies.size());
-        for (std::size_t i = 0; i < flat.bodies.size(); ++i)
-            bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo);
+        // Bodies in parallel: each box depends only on its body (BodyBounds is a pure function),
+        // so the result is the same for any thread count. Mitered pipes and other bodies of
+        // oblique planes cost milliseconds each (branch and bound, bounds.h).
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flat.bodies.size(), 8),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i < r.end(); ++i)
+                                  bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo);
+                          });
         std::vector<Box3> fitBoxes = FitSolidBoxes(bodyBoxes, bo);
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).

@@ -1,17 +1,19 @@
 // The input dispatcher and rt-style views; see scene_input.h.
 #include "quadrix/import/scene_input.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
 
-#include <fmt/format.h>
-
 #include "quadrix/import/brlcad/readers.h"
+#include "quadrix/import/freeform/freeform_reader.h"
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/lang/reader.h"
 
@@ -36,8 +38,8 @@ std::string Lower(std::string s) {
 }
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(),
-                                                  suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 SourceLoc FileLoc(const std::string& path) {
@@ -73,6 +75,14 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
             uqReader().ReadFile(path);
             continue;
         }
+        if (EndsWith(Lower(path), ".g")) {
+            diags.Error(FileLoc(path),
+                        fmt::format("'{}' is a binary BRL-CAD database; convert it to text with "
+                                    "BRL-CAD's g2asc and render the .asc file",
+                                    path),
+                        {}, "input");
+            continue;
+        }
         std::ifstream in(path, std::ios::binary);
         if (!in) {
             diags.Error(FileLoc(path), fmt::format("cannot open '{}'", path), {}, "input");
@@ -99,14 +109,28 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
                 report.imports.emplace_back(path, std::move(r));
                 break;
             }
-            case InputFormat::kFreeform:
-                // HOOK (lead): route freeform models (.obj freeform subset, Bézier patch files)
-                // to src/quadrix/import/freeform here once the Scene carries freeform surfaces.
-                diags.Error(FileLoc(path),
-                            fmt::format("'{}': freeform models are not yet accepted by render",
-                                        path),
-                            {}, "input");
+            case InputFormat::kFreeform: {
+                // Freeform models (docs/isocurve.md): every surface of the file, drawn by
+                // adaptive isocurves. OBJ is Y-up like Quadrix; the tea-set formats (BPT,
+                // Geomview BEZ/BBP, Newell) are Z-up like BRL-CAD and get the same axis swap.
+                auto model = ReadFreeformText(text, path, FreeformFormat::kAuto, diags);
+                if (!model) break;
+                const bool zUp = model->format != FreeformFormat::kObj;
+                const std::string stem = std::filesystem::path(path).stem().string();
+                for (std::size_t k = 0; k < model->surfaces.size(); ++k) {
+                    scene::FreeformSurface f;
+                    f.id = fmt::format("{}[{}]", stem, k);
+                    f.surface = zUp ? model->surfaces[k].Transformed(QuadrixFromZUp())
+                                    : model->surfaces[k];
+                    f.surface.SetName(f.id);
+                    f.loc = FileLoc(path);
+                    scene.top.freeforms.push_back(std::move(f));
+                }
+                if (model->surfaces.empty())
+                    diags.Warning(FileLoc(path),
+                                  fmt::format("'{}' holds no freeform surface", path), {}, "input");
                 break;
+            }
         }
     }
     // A --top name must be defined by at least one imported file.
@@ -122,10 +146,10 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
             return std::find(m.begin(), m.end(), name) == m.end();
         });
         if (!found)
-            diags.Error({}, fmt::format("--top {}: no object of that name in {}", name,
-                                        report.imports.size() == 1
-                                            ? "'" + report.imports[0].first + "'"
-                                            : std::string("the imported files")),
+            diags.Error({},
+                        fmt::format("--top {}: no object of that name in {}", name,
+                                    report.imports.size() == 1 ? "'" + report.imports[0].first + "'"
+                                                               : std::string("the imported files")),
                         {}, "command line");
     }
     return !diags.HasErrors();
@@ -277,8 +301,9 @@ std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string
     }
     if (!ok) return std::nullopt;
     if (!haveSize || !haveEye || !haveRot || !(rt.viewsize > 0)) {
-        diags.Error(map.At(0), "an rt view needs a positive viewsize, an eye_pt and a viewrot (or "
-                               "orientation)");
+        diags.Error(map.At(0),
+                    "an rt view needs a positive viewsize, an eye_pt and a viewrot (or "
+                    "orientation)");
         return std::nullopt;
     }
     return rt;

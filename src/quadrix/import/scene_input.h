@@ -4,7 +4,7 @@
 //   .uq (and anything not recognised)      UniQuadrix language (lang::Reader)
 //   .asc .g-ascii .cg .comgeom             BRL-CAD ASCII v4 / v5 / COMGEOM deck (content decides)
 //   .csg .scad                             OpenSCAD CSG subset
-//   .obj .bpt .bez .bbp .teaset ...        freeform models: the hook reserved for the lead
+//   .obj .bpt .bez .bbp .teaset            freeform models (import/freeform; drawn by isocurves)
 // A file with an unknown extension whose first line looks like a BRL-CAD database is read as one.
 //
 // Imported (Z-up, right-handed) models are mapped into Quadrix space by QuadrixFromZUp:

@@ -50,16 +50,15 @@ struct ParamSpec {
     std::string_view meaning;
 };
 
-constexpr unsigned kOne = 1u << 1, kTwo = 1u << 2, kThree = 1u << 3, kNone = 1u << 0;
+constexpr unsigned kOne = 1u << 1, kTwo = 1u << 2, kThree = 1u << 3;
 
-struct Kind;
 struct SolidContext;
 using BuildFn = std::optional<SolidShape> (*)(SolidContext& ctx);
 
 struct Kind {
     std::string_view name;
     std::vector<ParamSpec> params;
-    bool centred;  // =at moves it last
+    bool centred;  // built about the origin; =at moves it there last
     bool axial;    // has caps (=open applies)
     bool makesBody;
     BuildFn build;
@@ -110,7 +109,12 @@ struct SolidContext {
         }
         auto frame = model::MakeAxisFrame(from->AsVec3(), to->AsVec3(), hint);
         if (!frame) {
-            if (from->AsVec3() == to->AsVec3() || !(Length(to->AsVec3() - from->AsVec3()) > 0))
+            const double length = Length(to->AsVec3() - from->AsVec3());
+            if (!std::isfinite(length))
+                Fail(*to, fmt::format("the distance from =from to =to of the solid {} is too "
+                                      "large to represent",
+                                      kind.name));
+            else if (!(length > 0))
                 Fail(*to, fmt::format("=to is the same point as =from: the solid {} has no axis",
                                       kind.name));
             else
@@ -437,7 +441,8 @@ bool ParseSolid(Parser& p, const Token& keyword) {
     if (p.State().diags.ErrorCount() > errorsBefore) return true;
     std::optional<SolidShape> shape = kind->build(ctx);
     if (!shape) return true;  // reported; the statement itself was well formed
-    if (const Param* at = ctx.Get("at")) placement = Transform::Translate(at->AsVec3()) * placement;
+    if (const Param* at = kind->centred ? ctx.Get("at") : nullptr)
+        placement = Transform::Translate(at->AsVec3()) * placement;
     SolidShape placed = shape->Transformed(placement);
 
     ReaderState& s = p.State();

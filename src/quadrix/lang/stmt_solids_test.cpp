@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <random>
+#include <sstream>
 
 #include "quadrix/lang/test_util.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -337,6 +339,8 @@ TEST(LangSolids, SilhouettesMatchAnalyticAreas) {
         // A unit disc less the segment above y = .5: π − (acos(.5) − .5·sqrt(.75)).
         {"solid sphere s =r 1 =hsb; solid halfspace cut =at 0 .5 0 =n 0 1 0; body cap (s cut);",
          pi - (std::acos(0.5) - 0.5 * std::sqrt(0.75))},
+        // Elliptic cone, half-axis a along u = y: from 1 to .4 across the picture.
+        {"solid cone k =from -1 0 0 =to 1 0 0 =r0 1 .5 =r1 .4 .2 =u 0 1 0;", (2 + 0.8) / 2 * 2},
         // The end view of a cylinder along z is its disc.
         {"solid cylinder c =from 0 0 -1 =to 0 0 1 =r .8;", pi * 0.64},
     };
@@ -461,6 +465,72 @@ TEST(LangSolids, SolidIsReservedButItsKindsAreNot) {
     EXPECT_TRUE(ok.ok) << ok.All();
     Parsed bad = Parse("plane solid <0 1 0 0>;");
     EXPECT_FALSE(bad.ok);
+}
+
+}  // namespace
+}  // namespace quadrix::lang
+
+namespace quadrix::lang {
+namespace {
+
+// Random solid statements with random, often absurd, values (huge, tiny, zero, negative): the
+// reader never crashes, every error has a position, and every half-space it keeps is finite.
+TEST(LangSolids, RandomStatementsNeverCrash) {
+    const char* kinds[] = {"sphere",     "ellipsoid",   "cylinder",     "cone",     "box",
+                           "paraboloid", "hyperboloid", "hyperboloid2", "halfspace"};
+    const char* options[] = {"=at",    "=r",   "=from", "=to", "=r0",   "=r1",  "=size", "=u", "=n",
+                             "=waist", "=gap", "=rz",   "=sa", "=open", "=hsb", "=t",    "=c"};
+    const char* numbers[] = {"0", "1", "-1", ".5", "2", "1e300", "1e-300", "3", "-2.5", "7"};
+    std::mt19937 rng(99);
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::string text = std::string("solid ") + kinds[rng() % 9] + " s";
+        int n = static_cast<int>(rng() % 8);
+        for (int i = 0; i < n; ++i) {
+            text += std::string(" ") + options[rng() % 17];
+            int m = static_cast<int>(rng() % 4);
+            for (int k = 0; k < m; ++k) text += std::string(" ") + numbers[rng() % 10];
+        }
+        text += ";";
+        Parsed r = Parse(text);
+        for (const Diagnostic* e : r.Errors()) EXPECT_GT(e->loc.column, 0) << text;
+        for (const HalfSpace& h : r.scene.top.halfSpaces) {
+            EXPECT_TRUE(h.kind == HalfSpace::Kind::kPlane ? h.plane.AllFinite()
+                                                          : h.quadric.AllFinite())
+                << text;
+        }
+        if (r.ok) {
+            EXPECT_FALSE(r.scene.top.halfSpaces.empty()) << text;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace quadrix::lang
+
+namespace quadrix::lang {
+namespace {
+
+// The examples of docs/language.md §3.13 read without any diagnostic (the page stays true).
+TEST(LangSolids, LanguageDocExamplesRead) {
+    std::ifstream in(std::string(QUADRIX_SOURCE_DIR) + "/docs/language.md");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string doc = ss.str();
+    const auto begin = doc.find("### 3.13 solid");
+    ASSERT_NE(begin, std::string::npos);
+    const auto end = doc.find("\n## 4.", begin);
+    int blocks = 0;
+    for (auto open = doc.find("```\n", begin); open < end; open = doc.find("```\n", open)) {
+        const auto close = doc.find("```", open + 4);
+        const std::string block = doc.substr(open + 4, close - open - 4);
+        open = close + 3;
+        if (block.find("kind [id]") != std::string::npos) continue;  // the grammar
+        Parsed r = Parse(block);
+        EXPECT_TRUE(r.ok) << block << "\n" << r.All();
+        EXPECT_EQ(r.diags.WarningCount(), 0) << r.All();
+        ++blocks;
+    }
+    EXPECT_GE(blocks, 1);
 }
 
 }  // namespace

@@ -48,6 +48,29 @@ double Eval(const Coeffs& q, double x, double y) {
     return q[0] * x * x + q[1] * x * y + q[2] * y * y + q[3] * x + q[4] * y + q[5];
 }
 
+// The maximum of Q(x, y) over the pixel centres' rectangle [x0+½, x1−½] × [y0+½, y1−½] of
+// `rect`: a quadratic attains it at a corner, at the vertex of an edge's parabola, or at the
+// interior stationary point, so the maximum over those candidates is exact (up to rounding).
+double MaxOverRect(const Coeffs& q, const PixelRect& rect) {
+    const double xa = rect.x0 + 0.5, xb = rect.x1 - 0.5, ya = rect.y0 + 0.5, yb = rect.y1 - 0.5;
+    double m = -HUGE_VAL;
+    auto consider = [&](double x, double y) {
+        if (x >= xa && x <= xb && y >= ya && y <= yb) m = std::max(m, Eval(q, x, y));
+    };
+    const double A = q[0], B = q[1], C = q[2], D = q[3], E = q[4];
+    for (double y : {ya, yb}) {
+        consider(xa, y);
+        consider(xb, y);
+        if (A != 0) consider(-(B * y + D) / (2 * A), y);  // vertex of the edge's parabola in x
+    }
+    for (double x : {xa, xb}) {
+        if (C != 0) consider(x, -(B * x + E) / (2 * C));
+    }
+    double det = 4 * A * C - B * B;  // ∇Q = 0: [2A B; B 2C] (x y) = −(D E)
+    if (det != 0) consider((B * E - 2 * C * D) / det, (B * D - 2 * A * E) / det);
+    return m;
+}
+
 // Tangent points u_i of sqrt so that min_i T_i(v²) − v <= e for v in [0, vmax], where
 // T_u(Δ) = u/2 + Δ/(2u) is the tangent of sqrt at Δ = u² (sqrt is concave, so every tangent lies
 // above it and the minimum over tangents is the best: the envelope of seed 004 §III step 2).
@@ -98,7 +121,14 @@ class Compiler {
                 continue;
             }
             products_ = &nf.products;
+            const std::size_t codeMark = program_.code.size(), blockMark = program_.blocks.size(),
+                              patchMark = program_.patches.size();
+            bool tooBig = false;
             for (const csg::Product& p : nf.products) {
+                if (program_.code.size() > options_.maxInstructions) {
+                    tooBig = true;
+                    break;
+                }
                 for (const csg::Factor& f : p) {
                     bodies.insert(f.primitive);
                     if (ValidBody(f.primitive))
@@ -106,6 +136,16 @@ class Compiler {
                             halfSpaces.insert(l.halfSpace);
                 }
                 CompileProduct(p, static_cast<std::int32_t>(s), sb);
+            }
+            if (tooBig || program_.code.size() > options_.maxInstructions) {
+                program_.code.resize(codeMark);
+                program_.blocks.resize(blockMark);
+                program_.patches.resize(patchMark);
+                stats_.errors.push_back(
+                    "solid '" + scene_.solids[s].name + "': its program exceeds " +
+                    std::to_string(options_.maxInstructions) + " instructions (" +
+                    std::to_string(nf.products.size()) +
+                    " products); simplify the tree or raise --engine-opt max-instructions");
             }
         }
         stats_.primitives = bodies.size();
@@ -136,7 +176,8 @@ class Compiler {
         const FlatBody& body = Body(b);
         if (body.literals.empty()) return false;
         for (const FlatLiteral& l : body.literals)
-            if (l.halfSpace < 0 || static_cast<std::size_t>(l.halfSpace) >= scene_.halfSpaces.size())
+            if (l.halfSpace < 0 ||
+                static_cast<std::size_t>(l.halfSpace) >= scene_.halfSpaces.size())
                 return false;
         return true;
     }
@@ -179,6 +220,19 @@ class Compiler {
         return !hs.transparent && !hs.isClip;
     }
 
+    // True when a plane literal holds over the whole box (all eight corners inside), so that it
+    // bounds nothing there: the Flattener's clipping planes behind the eye, far from the solids.
+    bool HoldsOver(const FlatLiteral& l, const Box3& b) const {
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+        if (!hs.isPlane || !b.Finite()) return false;
+        for (int c = 0; c < 8; ++c) {
+            Vec3 p{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
+            double v = hs.plane.Evaluate(p);
+            if (!(l.complemented ? v > 0 : v < 0)) return false;
+        }
+        return true;
+    }
+
     Box3 BoxOf(int body) const { return boxes_[static_cast<std::size_t>(body)]; }
 
     void CompileProduct(const csg::Product& p, std::int32_t solid, const Box3& solidBox) {
@@ -194,7 +248,7 @@ class Compiler {
         for (const csg::Factor& f : p)
             if (ValidBody(f.primitive))
                 for (const FlatLiteral& l : Body(f.primitive).literals)
-                    exits = exits || !Opaque(l);
+                    exits = exits || (!Opaque(l) && !HoldsOver(l, productBox));
         for (std::size_t i = 0; i < p.size(); ++i) {
             const csg::Factor& xi = p[i];
             if (!ValidBody(xi.primitive)) continue;  // an empty − factor draws nothing
@@ -224,9 +278,9 @@ class Compiler {
                 for (std::size_t k = 0; k < body.literals.size(); ++k) {
                     const FlatLiteral& lit = body.literals[k];
                     if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
-                    EmitPatch(xi.primitive, k, exitFace, paring, exits ? Others(p, termBox)
-                                                                       : std::vector<const csg::Product*>{},
-                              rect, solid);
+                    EmitPatch(xi.primitive, k, exitFace, paring,
+                              exits ? Others(p, termBox) : std::vector<const csg::Product*>{}, rect,
+                              solid);
                 }
             }
         }
@@ -374,25 +428,16 @@ class Compiler {
     }
 
     // The parabolic strips z_i = L ∓ T_i(Δ)/|c| of a quadric's near (−) or far (+) sheet over
-    // `rect` (seed 004 §III step 2). Empty when Δ <= 0 over the whole rectangle (sampled).
+    // `rect` (seed 004 §III step 2). Empty when Δ <= 0 over the whole rectangle.
     std::vector<Coeffs> Strips(const RayForm& r, const Coeffs& disc, bool nearSheet,
                                const PixelRect& rect) {
-        // The host bounds max Δ over the rectangle by sampling (17 × 17 and the corners); beyond
-        // the last tangent the envelope still bounds the sheet, only less tightly.
-        double maxDisc = -HUGE_VAL;
-        for (int sy = 0; sy <= 16; ++sy) {
-            for (int sx = 0; sx <= 16; ++sx) {
-                double x = rect.x0 + (rect.x1 - rect.x0) * sx / 16.0;
-                double y = rect.y0 + (rect.y1 - rect.y0) * sy / 16.0;
-                maxDisc = std::max(maxDisc, Eval(disc, x, y));
-            }
-        }
+        double maxDisc = MaxOverRect(disc, rect);
         if (!(maxDisc > 0)) return {};
         double ac = std::fabs(r.c);
         double e = std::max(options_.tolerance, 1e-9) * ac;  // tolerance in sqrt(Δ) units
         bool capped = false;
-        std::vector<double> us = TangentPoints(std::sqrt(maxDisc) * 1.01, e, options_.maxStrips,
-                                               capped);
+        std::vector<double> us =
+            TangentPoints(std::sqrt(maxDisc) * 1.01, e, options_.maxStrips, capped);
         stats_.stripsCapped += capped;
         stats_.strips += us.size();
         double sign = nearSheet ? -1 : 1;
@@ -430,8 +475,8 @@ class Compiler {
                 return;
             }
             if (pl.c == 0) {  // inside iff A x + B y + D <= 0 along the whole ray
-                EmitQ(lit.complemented ? Opcode::kQeeKeepPositive : Opcode::kQeeKeepNonPositive,
-                      f, {0, 0, 0, pl.a, pl.b, pl.d});
+                EmitQ(lit.complemented ? Opcode::kQeeKeepPositive : Opcode::kQeeKeepNonPositive, f,
+                      {0, 0, 0, pl.a, pl.b, pl.d});
                 return;
             }
             Coeffs r{0, 0, 0, -pl.a / pl.c, -pl.b / pl.c, -pl.d / pl.c};

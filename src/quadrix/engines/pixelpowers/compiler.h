@@ -33,14 +33,17 @@ enum class DepthMode {
 
 struct CompileOptions {
     DepthMode mode = DepthMode::kExact;
-    double tolerance = 0.25;  // kApprox: largest depth error of a sheet, device z units
+    double tolerance = 0.25;          // kApprox: largest depth error of a sheet, device z units
     std::size_t maxProducts = 20000;  // normal-form explosion guard, per solid
-    int maxStrips = 64;       // kApprox: parabolic strips per sheet at most
+    int maxStrips = 64;               // kApprox: parabolic strips per sheet at most
+    // Program size guard: a solid whose instructions would pass this total is not drawn (a normal
+    // form below maxProducts can still hold millions of paring tests).
+    std::size_t maxInstructions = 1000000;
 };
 
 struct CompileStats {
-    std::size_t primitives = 0;  // distinct bodies used by the drawn solids
-    std::size_t halfSpaces = 0;  // distinct half-spaces used by them
+    std::size_t primitives = 0;       // distinct bodies used by the drawn solids
+    std::size_t halfSpaces = 0;       // distinct half-spaces used by them
     csg::NormalFormStats normalForm;  // summed over the solids
     std::size_t terms = 0;            // display-theorem terms compiled
     std::size_t prunedTerms = 0;      // dropped: the term's ∩ boxes miss each other or the screen
@@ -49,7 +52,7 @@ struct CompileStats {
     std::size_t strips = 0;           // kApprox: parabolic strips (tangents) broadcast
     std::size_t stripsCapped = 0;     // kApprox: sheets that hit maxStrips
     std::size_t extendedFallbacks = 0;  // kApprox: sheets with C = 0 done by the root unit
-    std::vector<std::string> errors;  // solids not drawn (normal form too large)
+    std::vector<std::string> errors;    // solids not drawn (normal form too large)
 };
 
 void Compile(const FlatScene& scene, const CompileOptions& options, Program& program,

@@ -7,23 +7,40 @@ namespace quadrix::pixelpowers {
 
 const char* OpcodeName(Opcode op) {
     switch (op) {
-        case Opcode::kFlagSet: return "FSET";
-        case Opcode::kFlagClear: return "FCLR";
-        case Opcode::kFlagCopy: return "FCOPY";
-        case Opcode::kFlagAnd: return "FAND";
-        case Opcode::kFlagAndNot: return "FANDN";
-        case Opcode::kFlagOr: return "FOR";
-        case Opcode::kQeeKeepPositive: return "QPOS";
-        case Opcode::kQeeKeepNonPositive: return "QNPOS";
-        case Opcode::kZLoad: return "ZLOAD";
-        case Opcode::kZMax: return "ZMAX";
-        case Opcode::kZMin: return "ZMIN";
-        case Opcode::kZKeepGE: return "ZGE";
-        case Opcode::kZKeepLE: return "ZLE";
-        case Opcode::kRoot: return "ROOT";
-        case Opcode::kInside: return "INSIDE";
-        case Opcode::kZTest: return "ZTEST";
-        case Opcode::kZWrite: return "ZWRITE";
+        case Opcode::kFlagSet:
+            return "FSET";
+        case Opcode::kFlagClear:
+            return "FCLR";
+        case Opcode::kFlagCopy:
+            return "FCOPY";
+        case Opcode::kFlagAnd:
+            return "FAND";
+        case Opcode::kFlagAndNot:
+            return "FANDN";
+        case Opcode::kFlagOr:
+            return "FOR";
+        case Opcode::kQeeKeepPositive:
+            return "QPOS";
+        case Opcode::kQeeKeepNonPositive:
+            return "QNPOS";
+        case Opcode::kZLoad:
+            return "ZLOAD";
+        case Opcode::kZMax:
+            return "ZMAX";
+        case Opcode::kZMin:
+            return "ZMIN";
+        case Opcode::kZKeepGE:
+            return "ZGE";
+        case Opcode::kZKeepLE:
+            return "ZLE";
+        case Opcode::kRoot:
+            return "ROOT";
+        case Opcode::kInside:
+            return "INSIDE";
+        case Opcode::kZTest:
+            return "ZTEST";
+        case Opcode::kZWrite:
+            return "ZWRITE";
     }
     return "?";
 }
@@ -71,8 +88,8 @@ std::string Program::Disassemble(std::size_t maxInstructions) const {
         for (std::int32_t k = b.first; k < b.first + b.count; ++k) {
             if (shown++ >= maxInstructions) return s + "...\n";
             const Instruction& in = code[static_cast<std::size_t>(k)];
-            std::snprintf(line, sizeof line, "  %-6s F%d F%d arg=%d\n", OpcodeName(in.op),
-                          in.a + 1, in.b + 1, in.arg);
+            std::snprintf(line, sizeof line, "  %-6s F%d F%d arg=%d\n", OpcodeName(in.op), in.a + 1,
+                          in.b + 1, in.arg);
             s += line;
         }
     }

@@ -29,25 +29,25 @@
 namespace quadrix::pixelpowers {
 
 enum class Opcode : std::uint8_t {
-    kFlagSet,        // F[a] ← 1
-    kFlagClear,      // F[a] ← 0
-    kFlagCopy,       // F[a] ← F[b]
-    kFlagAnd,        // F[a] ← F[a] ∧ F[b]
-    kFlagAndNot,     // F[a] ← F[a] ∧ ¬F[b]
-    kFlagOr,         // F[a] ← F[a] ∨ F[b]
+    kFlagSet,          // F[a] ← 1
+    kFlagClear,        // F[a] ← 0
+    kFlagCopy,         // F[a] ← F[b]
+    kFlagAnd,          // F[a] ← F[a] ∧ F[b]
+    kFlagAndNot,       // F[a] ← F[a] ∧ ¬F[b]
+    kFlagOr,           // F[a] ← F[a] ∨ F[b]
     kQeeKeepPositive,  // QEE: F[a] ← F[a] ∧ (Q(x,y) > 0)        (seed 003 §3 "scan conversion")
     kQeeKeepNonPositive,  // QEE: F[a] ← F[a] ∧ (Q(x,y) <= 0)
-    kZLoad,          // QEE: where F[a]: ZTEMP ← Q(x,y)           (seed 003 §3 "depth", case 1)
-    kZMax,           // QEE: where F[a]: ZTEMP ← max(ZTEMP, Q)    (envelope of a front sheet)
-    kZMin,           // QEE: where F[a]: ZTEMP ← min(ZTEMP, Q)    (envelope of a back sheet)
-    kZKeepGE,        // QEE: where F[a]: F[a] ← (ZTEMP >= Q)      (seed 004 §III step 3 b)
-    kZKeepLE,        // QEE: where F[a]: F[a] ← (ZTEMP <= Q)
-    kRoot,           // extended, every pixel of the rectangle: ZTEMP ← entry (b = 0) or exit
-                     // (b = 1) point of literal `arg` on the pixel's ray, F[a] ← it exists
-    kInside,         // extended: where F[a]: F[a] ← ZTEMP inside literal `arg` (closed set;
-                     // b = 1: its interior along the ray, endpoints excluded)
-    kZTest,          // where F[a]: F[a] ← (ZTEMP < ZMIN)   (strict: ties keep the earlier patch)
-    kZWrite,         // where F[a]: ZMIN ← ZTEMP, COLOR ← arg (a patch id)
+    kZLoad,    // QEE: where F[a]: ZTEMP ← Q(x,y)           (seed 003 §3 "depth", case 1)
+    kZMax,     // QEE: where F[a]: ZTEMP ← max(ZTEMP, Q)    (envelope of a front sheet)
+    kZMin,     // QEE: where F[a]: ZTEMP ← min(ZTEMP, Q)    (envelope of a back sheet)
+    kZKeepGE,  // QEE: where F[a]: F[a] ← (ZTEMP >= Q)      (seed 004 §III step 3 b)
+    kZKeepLE,  // QEE: where F[a]: F[a] ← (ZTEMP <= Q)
+    kRoot,     // extended, every pixel of the rectangle: ZTEMP ← entry (b = 0) or exit
+               // (b = 1) point of literal `arg` on the pixel's ray, F[a] ← it exists
+    kInside,   // extended: where F[a]: F[a] ← ZTEMP inside literal `arg` (closed set;
+               // b = 1: its interior along the ray, endpoints excluded)
+    kZTest,    // where F[a]: F[a] ← (ZTEMP < ZMIN)   (strict: ties keep the earlier patch)
+    kZWrite,   // where F[a]: ZMIN ← ZTEMP, COLOR ← arg (a patch id)
 };
 
 const char* OpcodeName(Opcode op);
@@ -61,8 +61,8 @@ struct PixelRect {
 
 struct Instruction {
     Opcode op = Opcode::kFlagSet;
-    std::uint8_t a = 0, b = 0;  // flag numbers 0..2 (F1..F3); kRoot: b = 0 entry, 1 exit
-    std::int32_t arg = -1;      // literal (kRoot, kInside) or patch id (kZWrite)
+    std::uint8_t a = 0, b = 0;         // flag numbers 0..2 (F1..F3); kRoot: b = 0 entry, 1 exit
+    std::int32_t arg = -1;             // literal (kRoot, kInside) or patch id (kZWrite)
     double q[6] = {0, 0, 0, 0, 0, 0};  // QEE coefficients A B C D E F
 
     // Quadratic expressions broadcast by this instruction (Table 1 "Equations"): one per QEE

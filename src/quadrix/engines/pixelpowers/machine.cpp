@@ -39,8 +39,8 @@ double Qee(const double* q, double x, double y) {
 // e = A x + B y + D, r = −e/C, the set (−∞, r] for C > 0, [r, ∞) for C < 0, all or nothing for
 // C = 0, empty both ways for non-finite values, closure of the complement when complemented), so
 // results stay bit-identical to the oracle; this only skips the call and the interval bookkeeping.
-bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y,
-                 double z, bool open) {
+bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y, double z,
+                 bool open) {
     double e = h.px * x + h.py * y + h.pd;
     if (!std::isfinite(e) || !std::isfinite(h.c)) return false;
     if (h.c == 0) return (e <= 0) != complemented;
@@ -123,7 +123,8 @@ class TileRunner {
     bool AnyF1(const PixelRect& rect) {
         for (int j = rect.y0; j < rect.y1; ++j) {
             std::size_t row = static_cast<std::size_t>(j - ty0_) * kTile;
-            const std::uint8_t* f = r_.flag[0].data() + row + static_cast<std::size_t>(rect.x0 - tx0_);
+            const std::uint8_t* f =
+                r_.flag[0].data() + row + static_cast<std::size_t>(rect.x0 - tx0_);
             for (int i = 0; i < rect.x1 - rect.x0; ++i)
                 if (f[i]) return true;
         }
@@ -282,8 +283,7 @@ struct Worker {
 
 }  // namespace
 
-MachineCounters Execute(const Program& program, const FlatScene& scene, int threads,
-                        Frame& frame) {
+MachineCounters Execute(const Program& program, const FlatScene& scene, int threads, Frame& frame) {
     int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
     frame.Reset(width, height);
     int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
@@ -298,8 +298,8 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, int thre
         // Scan-out: COLOR names the patch; normals are computed at ZMIN (deferred shading).
         for (int j = y0; j < y1; ++j) {
             for (int i = x0; i < x1; ++i) {
-                std::size_t k = static_cast<std::size_t>(j - y0) * kTile +
-                                static_cast<std::size_t>(i - x0);
+                std::size_t k =
+                    static_cast<std::size_t>(j - y0) * kTile + static_cast<std::size_t>(i - x0);
                 std::int32_t c = w.regs.color[k];
                 if (c < 0) continue;
                 const PatchInfo& p = program.patches[static_cast<std::size_t>(c)];

@@ -20,12 +20,12 @@ namespace quadrix::pixelpowers {
 
 struct MachineCounters {
     std::uint64_t tiles = 0;
-    std::uint64_t blockRuns = 0;      // (block, tile) pairs executed
+    std::uint64_t blockRuns = 0;  // (block, tile) pairs executed
     std::uint64_t blocksAbandoned = 0;
-    std::uint64_t instructions = 0;   // instructions issued to tiles
-    std::uint64_t pixelOps = 0;       // instruction × enabled-pixel evaluations
-    std::uint64_t rootSolves = 0;     // per-pixel square roots of the extended machine
-    std::uint64_t writes = 0;         // ZWRITE pixel updates
+    std::uint64_t instructions = 0;  // instructions issued to tiles
+    std::uint64_t pixelOps = 0;      // instruction × enabled-pixel evaluations
+    std::uint64_t rootSolves = 0;    // per-pixel square roots of the extended machine
+    std::uint64_t writes = 0;        // ZWRITE pixel updates
 
     void Add(const MachineCounters& o) {
         tiles += o.tiles;
@@ -41,7 +41,6 @@ struct MachineCounters {
 // Runs `program` and scans out into `frame` (resized to the scene's size): depth = ZMIN, and the
 // patch in COLOR gives surface, body, solid and the normal (FlatScene::WorldNormal at ZMIN).
 // threads > 0 limits the worker threads.
-MachineCounters Execute(const Program& program, const FlatScene& scene, int threads,
-                        Frame& frame);
+MachineCounters Execute(const Program& program, const FlatScene& scene, int threads, Frame& frame);
 
 }  // namespace quadrix::pixelpowers

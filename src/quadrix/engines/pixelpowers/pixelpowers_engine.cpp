@@ -1,10 +1,12 @@
 #include "quadrix/engines/pixelpowers/pixelpowers_engine.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "quadrix/engines/pixelpowers/compiler.h"
 #include "quadrix/engines/pixelpowers/machine.h"
@@ -59,6 +61,12 @@ std::string ParseSettings(const RenderOptions& options, Settings& st) {
                 return "engine 'pixelpowers': max-products must be 1..10000000, not '" + value +
                        "'";
             st.compile.maxProducts = static_cast<std::size_t>(n);
+        } else if (key == "max-instructions") {
+            long n = std::strtol(value.c_str(), &end, 10);
+            if (value.empty() || *end || n < 1 || n > 100000000)
+                return "engine 'pixelpowers': max-instructions must be 1..100000000, not '" +
+                       value + "'";
+            st.compile.maxInstructions = static_cast<std::size_t>(n);
         } else if (key == "max-strips") {
             long n = std::strtol(value.c_str(), &end, 10);
             if (value.empty() || *end || n < 1 || n > 4096)
@@ -70,7 +78,7 @@ std::string ParseSettings(const RenderOptions& options, Settings& st) {
             compareSet = true;
         } else {
             return "engine 'pixelpowers' has no option '" + key +
-                   "' (mode, tolerance, max-products, max-strips, compare)";
+                   "' (mode, tolerance, max-products, max-instructions, max-strips, compare)";
         }
     }
     if (!compareSet) st.compare = st.compile.mode == DepthMode::kApprox;
@@ -81,10 +89,15 @@ struct Agreement {
     std::uint64_t coveredBoth = 0, coveredOnlyHere = 0, coveredOnlyReference = 0;
     std::uint64_t sameSolid = 0, sameSurface = 0;
     double maxDepthError = 0, sumDepthError = 0;  // over pixels with the same surface
+    // Pixels with the same surface but an error above the tolerance: next to an intersection curve
+    // the approximate depth may move a pixel onto the other sheet of the same quadric.
+    std::uint64_t overTolerance = 0;
+    double p999 = 0;  // 99.9th percentile of the same-surface error
 };
 
-Agreement CompareFrames(const Frame& here, const Frame& ref) {
+Agreement CompareFrames(const Frame& here, const Frame& ref, double tolerance) {
     Agreement a;
+    std::vector<double> errors;
     for (std::size_t i = 0; i < here.depth.size(); ++i) {
         bool h = here.surface[i] != Frame::kNone, r = ref.surface[i] != Frame::kNone;
         if (h && r) {
@@ -95,6 +108,8 @@ Agreement CompareFrames(const Frame& here, const Frame& ref) {
                 double e = std::fabs(here.depth[i] - ref.depth[i]);
                 a.maxDepthError = std::fmax(a.maxDepthError, e);
                 a.sumDepthError += e;
+                a.overTolerance += e > tolerance * (1 + 1e-9);
+                errors.push_back(e);
             }
         } else if (h) {
             ++a.coveredOnlyHere;
@@ -102,17 +117,23 @@ Agreement CompareFrames(const Frame& here, const Frame& ref) {
             ++a.coveredOnlyReference;
         }
     }
+    if (!errors.empty()) {
+        auto k = static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(errors.size() - 1));
+        std::nth_element(errors.begin(), errors.begin() + k, errors.end());
+        a.p999 = errors[static_cast<std::size_t>(k)];
+    }
     return a;
 }
 
-std::string Table1(const CompileStats& cs, const Program& program, const std::string& view) {
+std::string Table1(const CompileStats& cs, const Program& program, const std::string& name) {
     std::string s;
     char line[256];
     s += "Pixel-Powers estimate (layout of seed 004 Table 1; 10 MHz, ~4.05 us per equation)\n";
-    s += "Part Name          Source        Primitives  Opcodes  Equations     Time\n";
+    s += "Part Name          Source        Primitives  Opcodes  Equations     Time"
+         "   (our primitives: bodies)\n";
     double ms = static_cast<double>(program.Equations()) * kMicrosecondsPerEquation / 1000.0;
     std::snprintf(line, sizeof line, "%-18s %-13s %10zu %8llu %10llu %7.2f msec\n",
-                  (view.empty() ? std::string("this scene") : view).substr(0, 18).c_str(),
+                  (name.empty() ? std::string("this scene") : name).substr(0, 18).c_str(),
                   "quadrix", cs.primitives, static_cast<unsigned long long>(program.Opcodes()),
                   static_cast<unsigned long long>(program.Equations()), ms);
     s += line;
@@ -167,9 +188,7 @@ class PixelPowersEngine final : public Engine {
         stats.seconds = std::chrono::duration<double>(t2 - start).count();
 
         auto add = [&](const char* name, double v) { stats.counters.emplace_back(name, v); };
-        auto count = [&](const char* name, std::uint64_t v) {
-            add(name, static_cast<double>(v));
-        };
+        auto count = [&](const char* name, std::uint64_t v) { add(name, static_cast<double>(v)); };
         const csg::NormalFormStats& nf = cs.normalForm;
         add("exact_mode", st.compile.mode == DepthMode::kExact ? 1 : 0);
         count("primitives", cs.primitives);
@@ -205,9 +224,13 @@ class PixelPowersEngine final : public Engine {
         count("bits_per_pixel_simulated", kSimulatedBits);
         add("compile_seconds", std::chrono::duration<double>(t1 - t0).count());
         add("machine_seconds", std::chrono::duration<double>(t2 - t1).count());
-        count("normalisation_failures", cs.errors.size());
+        count("solids_not_drawn", cs.errors.size());
 
-        std::string report = Table1(cs, program, scene.viewName);
+        // Table 1 names a part; ours is the solid's name, or the number of solids.
+        std::string part = scene.solids.size() == 1
+                               ? scene.solids[0].name
+                               : std::to_string(scene.solids.size()) + " solids";
+        std::string report = Table1(cs, program, part);
         char line[256];
         std::snprintf(line, sizeof line,
                       "normal form: %zu products, %zu factors (tree: %zu primitives, %zu "
@@ -228,7 +251,7 @@ class PixelPowersEngine final : public Engine {
             RenderOptions ro;
             ro.threads = options.threads;
             reference->Render(scene, ro, ref);
-            Agreement a = CompareFrames(frame, ref);
+            Agreement a = CompareFrames(frame, ref, st.compile.tolerance);
             std::uint64_t union_ = a.coveredBoth + a.coveredOnlyHere + a.coveredOnlyReference;
             double same = a.coveredBoth ? static_cast<double>(a.sameSolid) / a.coveredBoth : 1.0;
             double mean = a.sameSurface ? a.sumDepthError / static_cast<double>(a.sameSurface) : 0;
@@ -238,14 +261,17 @@ class PixelPowersEngine final : public Engine {
             add("cmp_same_solid_share", same);
             add("cmp_depth_error_max", a.maxDepthError);
             add("cmp_depth_error_mean", mean);
-            std::snprintf(line, sizeof line,
-                          "vs raycast: %llu covered pixels, %.4f%% same solid, coverage differs on "
-                          "%llu; depth error (same surface) max %.4g mean %.4g device z "
-                          "(tolerance %.4g)\n",
-                          static_cast<unsigned long long>(union_), 100.0 * same,
-                          static_cast<unsigned long long>(a.coveredOnlyHere +
-                                                          a.coveredOnlyReference),
-                          a.maxDepthError, mean, st.compile.tolerance);
+            add("cmp_depth_error_p999", a.p999);
+            count("cmp_depth_error_over_tolerance", a.overTolerance);
+            std::snprintf(
+                line, sizeof line,
+                "vs raycast: %llu covered pixels, %.4f%% same solid, coverage differs on "
+                "%llu; depth error (same surface) max %.4g p99.9 %.4g mean %.4g device z, "
+                "%llu pixels over the tolerance %.4g\n",
+                static_cast<unsigned long long>(union_), 100.0 * same,
+                static_cast<unsigned long long>(a.coveredOnlyHere + a.coveredOnlyReference),
+                a.maxDepthError, a.p999, mean, static_cast<unsigned long long>(a.overTolerance),
+                st.compile.tolerance);
             report += line;
         }
         stats.report = report;

@@ -9,6 +9,8 @@
 //                       approx: the paper's machine, depths from parabolic-strip envelopes
 //   tolerance=X         approx: depth tolerance of a strip envelope, device z units (default 0.25)
 //   max-products=N      normal-form explosion guard per solid (default 20000)
+//   max-instructions=N  program size guard per scene (default 1000000); a solid past it is
+//                       not drawn and the report says so
 //   max-strips=N        approx: strips per sheet at most (default 64)
 //   compare=on|off      also render with raycast and report coverage/solid agreement and the depth
 //                       error (default: on in approx mode, off in exact mode)

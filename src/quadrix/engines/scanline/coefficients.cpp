@@ -44,8 +44,8 @@ Conic2 LimbConic(const Quadric& q) {
 bool LimbExists(const Quadric& q) { return q.C() > 0; }
 
 std::optional<Vec3> IntersectThreePlanes(const Plane& p1, const Plane& p2, const Plane& p3) {
-    double m[3][4] = {{p1.a, p1.b, p1.c, -p1.d}, {p2.a, p2.b, p2.c, -p2.d},
-                      {p3.a, p3.b, p3.c, -p3.d}};
+    double m[3][4] = {
+        {p1.a, p1.b, p1.c, -p1.d}, {p2.a, p2.b, p2.c, -p2.d}, {p3.a, p3.b, p3.c, -p3.d}};
     double scale = 0;
     for (auto& row : m)
         for (int k = 0; k < 3; ++k) scale = std::max(scale, std::fabs(row[k]));
@@ -88,8 +88,12 @@ Quadratic1 LineConicInY(const Line2& l, const Conic2& c) {
             al * (al * c.f - cl * c.d) + cl * cl * c.a};
 }
 
-Quadratic1 ConicAtY(const Conic2& c, double y) { return {c.a, c.c * y + c.d, (c.b * y + c.e) * y + c.f}; }
-Quadratic1 ConicAtX(const Conic2& c, double x) { return {c.b, c.c * x + c.e, (c.a * x + c.d) * x + c.f}; }
+Quadratic1 ConicAtY(const Conic2& c, double y) {
+    return {c.a, c.c * y + c.d, (c.b * y + c.e) * y + c.f};
+}
+Quadratic1 ConicAtX(const Conic2& c, double x) {
+    return {c.b, c.c * x + c.e, (c.a * x + c.d) * x + c.f};
+}
 
 Quadratic1 VextrmQuadratic(const Conic2& c) {
     return {c.c * c.c - 4 * c.a * c.b, 2 * c.c * c.d - 4 * c.a * c.e, c.d * c.d - 4 * c.a * c.f};
@@ -144,8 +148,8 @@ Roots1 SolveQuadratic1(const Quadratic1& q, double relError) {
 }
 
 double PlaneErrorEstimate(const Plane& p, const Vec3& x, double pointError) {
-    double terms = std::fabs(p.a * x.x) + std::fabs(p.b * x.y) + std::fabs(p.c * x.z) +
-                   std::fabs(p.d);
+    double terms =
+        std::fabs(p.a * x.x) + std::fabs(p.b * x.y) + std::fabs(p.c * x.z) + std::fabs(p.d);
     double grad = std::fabs(p.a) + std::fabs(p.b) + std::fabs(p.c);
     return 8 * kUnit * terms + grad * pointError;
 }
@@ -171,7 +175,8 @@ bool SatisfiesQuadric(const Quadric& q, const Vec3& x, double pointError) {
 }
 
 bool VerticesCoincide(double x1, double y1, double x2, double y2) {
-    double tol = 1e-9 * (1 + std::max({std::fabs(x1), std::fabs(y1), std::fabs(x2), std::fabs(y2)}));
+    double tol =
+        1e-9 * (1 + std::max({std::fabs(x1), std::fabs(y1), std::fabs(x2), std::fabs(y2)}));
     return std::fabs(x1 - x2) <= tol && std::fabs(y1 - y2) <= tol;
 }
 

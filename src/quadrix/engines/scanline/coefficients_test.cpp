@@ -72,7 +72,8 @@ TEST(ScanlineCoefficients, ConicOfPlaneQuadricIsHalfCp2TimesQOnThePlane) {  // (
         // Equals C_p²/2 · Q(x, y, z_plane(x, y)) anywhere.
         double x = u(rng), y = u(rng), z = -(pl.a * x + pl.b * y + pl.d) / pl.c;
         double expect = 0.5 * pl.c * pl.c * q.Evaluate({x, y, z});
-        EXPECT_NEAR(c.Evaluate(x, y), expect, kRel * 1e3 * (1 + std::fabs(expect)) * Scale(q, {x, y, z}));
+        EXPECT_NEAR(c.Evaluate(x, y), expect,
+                    kRel * 1e3 * (1 + std::fabs(expect)) * Scale(q, {x, y, z}));
     }
 }
 
@@ -120,8 +121,8 @@ TEST(ScanlineCoefficients, ThreePlanesMeetAtTheirCommonPoint) {  // §4.5.8
     std::uniform_real_distribution<double> u(-100, 100);
     for (int n = 0; n < 100; ++n) {
         Vec3 p{u(rng), u(rng), u(rng)};
-        auto v = IntersectThreePlanes(PlaneThrough(rng, p), PlaneThrough(rng, p),
-                                      PlaneThrough(rng, p));
+        auto v =
+            IntersectThreePlanes(PlaneThrough(rng, p), PlaneThrough(rng, p), PlaneThrough(rng, p));
         ASSERT_TRUE(v.has_value());
         EXPECT_LT(Length(*v - p), 1e-6 * (1 + Length(p)));
     }
@@ -140,10 +141,12 @@ TEST(ScanlineCoefficients, LineConicQuadraticsFindTheCommonPoints) {  // (4.15),
         l.c = -(l.a * p.x + l.b * p.y);
         // Both eliminations are zero at p's free coordinate.
         if (l.b != 0) {
-            EXPECT_NEAR(LineConicInX(l, c).Evaluate(p.x), 0, 1e-9 * (1 + std::fabs(l.b * l.b)) * 1e2);
+            EXPECT_NEAR(LineConicInX(l, c).Evaluate(p.x), 0,
+                        1e-9 * (1 + std::fabs(l.b * l.b)) * 1e2);
         }
         if (l.a != 0) {
-            EXPECT_NEAR(LineConicInY(l, c).Evaluate(p.y), 0, 1e-9 * (1 + std::fabs(l.a * l.a)) * 1e2);
+            EXPECT_NEAR(LineConicInY(l, c).Evaluate(p.y), 0,
+                        1e-9 * (1 + std::fabs(l.a * l.a)) * 1e2);
         }
         auto pts = LineConicIntersections(l, c);
         if (pts.empty()) continue;  // tangent within the zero test (rare with random data)
@@ -172,7 +175,11 @@ TEST(ScanlineCoefficients, ExtremaOfARotatedEllipseMatchSampling) {  // (4.20)�
     // x'²/49 + y'²/9 = 1 with x' = cs(x−cx) + sn(y−cy), y' = −sn(x−cx) + cs(y−cy).
     const double p = cs * cs / 49 + sn * sn / 9, q = sn * sn / 49 + cs * cs / 9,
                  r = 2 * cs * sn * (1.0 / 49 - 1.0 / 9);
-    Conic2 c{p, q, r, -2 * p * cx - r * cy, -2 * q * cy - r * cx,
+    Conic2 c{p,
+             q,
+             r,
+             -2 * p * cx - r * cy,
+             -2 * q * cy - r * cx,
              p * cx * cx + q * cy * cy + r * cx * cy - 1};
     double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
     for (int i = 0; i < 200000; ++i) {

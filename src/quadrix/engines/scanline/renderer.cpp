@@ -1,8 +1,15 @@
 #include "quadrix/engines/scanline/renderer.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <utility>
 
 #include "quadrix/math/interval_list.h"
@@ -44,8 +51,9 @@ void RayEvaluator::BodySet(int body, double x, double y, IntervalList& out) {
     IntervalList lit, tmp;
     for (int t = first; t < last; ++t) {
         const Tag& tag = tags_[static_cast<std::size_t>(t)];
-        raycast::RaySet s = raycast::LiteralOnRay(halfSpaces_[static_cast<std::size_t>(tag.halfSpace)],
-                                                  tag.complemented, x, y, t, literalCounters_);
+        raycast::RaySet s =
+            raycast::LiteralOnRay(halfSpaces_[static_cast<std::size_t>(tag.halfSpace)],
+                                  tag.complemented, x, y, t, literalCounters_);
         if (s.count == 0) {
             out.clear();
             return;
@@ -88,7 +96,8 @@ bool RayEvaluator::Body(int body, double x, double y, Hit& hit) {
 
 bool RayEvaluator::Node(int node, double x, double y, Hit& hit) {
     IntervalList l;
-    TreeSet(node, [&](int body, IntervalList& out) { BodySet(body, x, y, out); }, l);
+    TreeSet(
+        node, [&](int body, IntervalList& out) { BodySet(body, x, y, out); }, l);
     return First(l, hit);
 }
 
@@ -106,9 +115,9 @@ bool FaceDerivatives(const FlatScene& scene, const FaceRef& f, double x, double 
         return true;
     }
     const Quadric& q = hs.quadric;
-    QuadraticRoots r = SolveQuadratic(q.C(), q.F() * x + q.E() * y + q.J(),
-                                      q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y +
-                                          2 * q.G() * x + 2 * q.H() * y + q.K());
+    QuadraticRoots r = SolveQuadratic(
+        q.C(), q.F() * x + q.E() * y + q.J(),
+        q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y + 2 * q.G() * x + 2 * q.H() * y + q.K());
     if (r.kind == RootKind::kNone || r.kind == RootKind::kAll) return false;
     z = (f.sheet == 1 && r.kind == RootKind::kTwo) ? r.t1 : r.t0;
     // F = Q(x, y, z): F_x = 2(A x + D y + F z + G), F_z = 2(F x + E y + C z + J),
@@ -159,6 +168,14 @@ struct ActiveEdge {
 
 double SortKey(double x) { return std::isnan(x) ? HUGE_VAL : x; }
 
+// An edge end within 1e-9 (relative) of a row centre j + ½ is put exactly on it: the vertex
+// shared by two edges is computed separately for each (different i-lines, different rounding),
+// and the half-open toggle rule of the face stacks needs both ends on the same side of the CSL.
+double SnapToRow(double y) {
+    const double r = std::round(y - 0.5) + 0.5;
+    return std::fabs(y - r) <= 1e-9 * (1 + std::fabs(y)) ? r : y;
+}
+
 // One show-face on a span's stack, with its incremental state along the span.
 struct StackFace {
     int unit = -1;
@@ -187,41 +204,91 @@ struct CsgSpanUnit {
     std::size_t firstTemplate = 0, templateCount = 0;
 };
 
+// The Edge Start List: per row, the edges (index, last row) that start there.
+std::vector<std::vector<std::pair<int, int>>> BuildEsl(const std::vector<ShowEdge>& edges, int h) {
+    std::vector<std::vector<std::pair<int, int>>> esl(static_cast<std::size_t>(std::max(h, 0)));
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        const ShowEdge& s = edges[e];
+        // Rows whose centre j + ½ lies in the CLOSED range [yBottom, yTop]: a row exactly on a
+        // horizontal boundary keeps the edges that end there, so the bodies they bound stay
+        // candidates on that row (raycast's closed half-spaces decide it at the sample pixel).
+        // Crossings are breakpoints, not parity toggles, so the duplicate crossing at a vertex
+        // shared by two edges is harmless.
+        double first = std::ceil(SnapToRow(s.yBottom) - 0.5);
+        double last = std::floor(SnapToRow(s.yTop) - 0.5);
+        first = std::max(first, 0.0);
+        last = std::min(last, static_cast<double>(h - 1));
+        if (!(first <= last)) continue;
+        esl[static_cast<std::size_t>(first)].push_back(
+            {static_cast<int>(e), static_cast<int>(last)});
+    }
+    return esl;
+}
+
 class ScanRenderer {
   public:
     ScanRenderer(const FlatScene& scene, std::vector<ShowEdge>& edges,
-                 const std::vector<Unit>& units, const std::vector<bool>& pixelBody,
+                 const std::vector<ShowFace>& faces, const std::vector<Unit>& units,
+                 const std::vector<bool>& pixelBody, const std::vector<bool>& stackBody,
                  const RenderSettings& settings, Frame& frame, RendererCounters& c)
-        : scene_(scene), edges_(edges), units_(units), pixelBody_(pixelBody), settings_(settings),
-          frame_(frame), c_(c), eval_(scene) {}
+        : scene_(scene),
+          edges_(edges),
+          faces_(faces),
+          units_(units),
+          pixelBody_(pixelBody),
+          stackBody_(stackBody),
+          settings_(settings),
+          frame_(frame),
+          c_(c),
+          eval_(scene) {
+        const std::size_t nb = scene.bodies.size();
+        bodyUnit_.assign(nb, -1);
+        bodyFaces_.assign(nb, {});
+        useStack_.assign(nb, 0);
+        for (std::size_t u = 0; u < units.size(); ++u) {
+            const Unit& unit = units[u];
+            if (unit.kind != Unit::Kind::kBody) continue;
+            auto b = static_cast<std::size_t>(unit.body);
+            bodyUnit_[b] = static_cast<int>(u);
+            useStack_[b] = settings.faceStacks && b < stackBody.size() && stackBody[b] &&
+                           !pixelBody[b];
+        }
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            auto b = static_cast<std::size_t>(faces[f].body);
+            if (b < nb) bodyFaces_[b].push_back(static_cast<int>(f));
+        }
+        inStack_.assign(faces.size(), 0);
+        bodyLiterals_.resize(nb);
+        for (std::size_t b = 0; b < nb; ++b) {
+            if (!useStack_[b]) continue;
+            for (const FlatLiteral& lit : scene.bodies[b].literals) {
+                const FlatHalfSpace& hs = scene.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
+                OrientedLiteral o;
+                o.halfSpace = lit.halfSpace;
+                o.isPlane = hs.isPlane;
+                o.plane = hs.plane;
+                o.quadric = hs.quadric;
+                if (lit.complemented) {  // !h: −h <= 0
+                    o.plane = {-hs.plane.a, -hs.plane.b, -hs.plane.c, -hs.plane.d};
+                    for (double& v : o.quadric.k) v = -v;
+                }
+                bodyLiterals_[b].push_back(o);
+            }
+        }
+        bodyTaken_.assign(nb, 0);
+    }
 
-    void Run() {
+    // Rows [j0, j1): a band. Bands are independent (each starts its AEL from the ESL), so they
+    // run in parallel; results do not depend on the thread count, only on the fixed band size.
+    void Run(const std::vector<std::vector<std::pair<int, int>>>& esl, int j0, int j1) {
         const int w = frame_.width, h = frame_.height;
         if (w <= 0 || h <= 0) return;
-        BuildEsl(h);
+        esl_ = &esl;
         const std::size_t nb = scene_.bodies.size();
         lo_.assign(nb, HUGE_VAL);
         hi_.assign(nb, -HUGE_VAL);
         rangeRow_.assign(nb, -1);
-        for (int j = 0; j < h; ++j) Row(j);
-    }
-
-    void BuildEsl(int h) {
-        esl_.assign(static_cast<std::size_t>(h), {});
-        for (std::size_t e = 0; e < edges_.size(); ++e) {
-            const ShowEdge& s = edges_[e];
-            // Rows whose centre j + ½ lies in the CLOSED range [yBottom, yTop]: a row exactly on a
-            // horizontal boundary keeps the edges that end there, so the bodies they bound stay
-            // candidates on that row (raycast's closed half-spaces decide it at the sample pixel).
-            // Crossings are breakpoints, not parity toggles, so the duplicate crossing at a vertex
-            // shared by two edges is harmless.
-            double first = std::ceil(s.yBottom - 0.5), last = std::floor(s.yTop - 0.5);
-            first = std::max(first, 0.0);
-            last = std::min(last, static_cast<double>(h - 1));
-            if (!(first <= last)) continue;
-            esl_[static_cast<std::size_t>(first)].push_back({static_cast<int>(e),
-                                                             static_cast<int>(last)});
-        }
+        for (int j = j0; j < j1; ++j) Row(j, j == j0);
     }
 
     void Start(ActiveEdge& a, double y) {
@@ -264,20 +331,24 @@ class ScanRenderer {
         a.x = s.leg < 0 ? minus : plus;
     }
 
-    void Row(int j) {
+    void Row(int j, bool bandStart) {
         const double yc = j + 0.5;
-        // Pass one: finishing edges leave, starting edges enter.
+        // Pass one: finishing edges leave, starting edges enter (at a band's first row, every
+        // edge that started on an earlier row and is still active).
         std::size_t keep = 0;
         for (ActiveEdge& a : ael_)
             if (a.lastRow >= j) ael_[keep++] = a;
         ael_.resize(keep);
-        for (auto [e, last] : esl_[static_cast<std::size_t>(j)]) {
-            ActiveEdge a;
-            a.edge = e;
-            a.lastRow = last;
-            Start(a, yc);
-            Trace(a, true);
-            ael_.push_back(a);
+        for (int r = bandStart ? 0 : j; r <= j; ++r) {
+            for (auto [e, last] : (*esl_)[static_cast<std::size_t>(r)]) {
+                if (last < j) continue;
+                ActiveEdge a;
+                a.edge = e;
+                a.lastRow = last;
+                Start(a, yc);
+                Trace(a, true);
+                ael_.push_back(a);
+            }
         }
         // Pass two: advance the others and keep x order (insertion sort, swaps counted).
         for (std::size_t i = 0; i < keep; ++i) Trace(ael_[i], false);
@@ -319,8 +390,7 @@ class ScanRenderer {
             const Unit& unit = units_[static_cast<std::size_t>(u)];
             ForBodies(unit, [&](int b) {
                 auto k = static_cast<std::size_t>(b);
-                if (pixelBody_[k]) return;
-                RayEvaluator::Hit hit;
+                if (pixelBody_[k] || useStack_[k]) return;  // stack bodies: SeedStack
                 if (unit.x0 == 0 && lo_[k] > -HUGE_VAL) {
                     ++c_.sideEvaluations;
                     if (SideCovered(b, 0.5, yc)) lo_[k] = -HUGE_VAL;
@@ -331,20 +401,26 @@ class ScanRenderer {
                 }
             });
         }
+        if (settings_.faceStacks) SeedStack(yc);
         // Pass three: spans between crossings.
         std::size_t k = 0;
         int i = 0;
         while (i < w) {
             const double xc = i + 0.5;
+            const bool straddle = settings_.faceStacks && ApplyEdgesBefore(xc, yc);
             while (k < breaks_.size() && breaks_[k] < xc - kOnEdge) ++k;
-            if (k < breaks_.size() && breaks_[k] <= xc + kOnEdge) {
+            if (straddle || (k < breaks_.size() && breaks_[k] <= xc + kOnEdge)) {
                 ExactPixel(i, j);
                 ++i;
                 continue;
             }
             int end = w - 1;
-            if (k < breaks_.size())
-                end = std::min(w - 1, static_cast<int>(std::ceil(breaks_[k] - kOnEdge - 0.5)) - 1);
+            if (k < breaks_.size()) {
+                // Clamped before the cast: a crossing may lie far outside the image.
+                end =
+                    static_cast<int>(std::ceil(std::min(breaks_[k], w + 1.0) - kOnEdge - 0.5)) - 1;
+                end = std::min(w - 1, end);
+            }
             end = std::max(end, i);
             Span(i, end, j);
             i = end + 1;
@@ -487,12 +563,15 @@ class ScanRenderer {
 
     // A show-face from an interval endpoint (tag, t) found at pixel `sample` of row y.
     StackFace MakeFace(int halfSpace, double t, int sample, double y) {
+        return MakeFaceAt(halfSpace, t, sample + 0.5, y);
+    }
+    StackFace MakeFaceAt(int halfSpace, double t, double x, double y) {
         StackFace f;
         f.halfSpace = halfSpace;
         f.ray = &eval_.Ray(halfSpace);
         if (!f.ray->isPlane) {  // which sheet: the root nearer to the endpoint
             const raycast::RayHalfSpace& r = *f.ray;
-            const double dx = sample + 0.5 - r.x0, dy = y - r.y0;
+            const double dx = x - r.x0, dy = y - r.y0;
             QuadraticRoots roots = SolveQuadratic(
                 r.c, r.hx * dx + r.hy * dy + r.h0,
                 dx * (r.axx * dx + r.axy * dy + r.ax) + dy * (r.byy * dy + r.by) + r.k0);
@@ -601,6 +680,7 @@ class ScanRenderer {
                 perPixel_.push_back(u);
                 continue;
             }
+            if (useStack_[static_cast<std::size_t>(unit.body)]) continue;  // below
             RayEvaluator::Hit hit;
             ++c_.sampleEvaluations;
             if (!eval_.Body(unit.body, sample + 0.5, y, hit)) continue;
@@ -611,6 +691,7 @@ class ScanRenderer {
             if (settings_.fastShading) f.fastNormal = Normal(f.halfSpace, sample + 0.5, y, hit.t);
             InsertFace(f, sample + 0.5, y);
         }
+        if (settings_.faceStacks) TakeStackFaces(sample, y);
         if (stack_.empty() && perPixel_.empty() && csgUnits_.empty()) {
             ++c_.emptySpans;
             return;
@@ -629,13 +710,13 @@ class ScanRenderer {
                     continue;
                 }
                 // Strictly nearer wins; exact ties go to the lower solid, then stack order.
-                if (f.depth < bestT ||
-                    (f.depth == bestT && best >= 0 &&
-                     f.solid < stack_[static_cast<std::size_t>(best)].solid)) {
+                if (f.depth < bestT || (f.depth == bestT && best >= 0 &&
+                                        f.solid < stack_[static_cast<std::size_t>(best)].solid)) {
                     best = static_cast<int>(s);
                     bestT = f.depth;
                 }
             }
+            if (settings_.faceStacks && stackHead_ == 0 && best > 0) ++c_.interpenetrationPixels;
             if (fallback) {
                 ++c_.rootFallbackPixels;
                 ExactPixel(i, j);
@@ -678,6 +759,285 @@ class ScanRenderer {
         }
     }
 
+    // ------------------------------------------------------------ face stacks (§5.2–5.5)
+
+    int SheetOf(int face) const {
+        return faces_[static_cast<std::size_t>(face)].sheet == Sheet::kBack ? 1 : 0;
+    }
+    FaceRef RefOf(int face) const {
+        return {faces_[static_cast<std::size_t>(face)].halfSpace, SheetOf(face)};
+    }
+
+    // Is show-face f in front of g at the crossing P = (xe, y)? (§5.5.1.) The lesser depth at P
+    // decides; equal within the scene's depth tolerance (or a face without a point at P, e.g. a
+    // limb crossing rounded just outside the sheet), case (a): depth at Q, the point half-way to
+    // the next crossing (at most ½ pixel on — the scan-line analogue of "where E meets the next
+    // scan line", since our stacks are swept along the CSL); equal again, case (b): the lesser
+    // slope dz/dx at Q; then case (c): the lesser rate d²z/dx² at Q. −1: f in front, +1: g in
+    // front, 0: coincident (order unimportant, f goes below).
+    int CompareAt(int f, int g, double xe, double xq, double y) {
+        const FaceRef fr = RefOf(f), gr = RefOf(g);
+        double zf, sf, cf, zg, sg, cg;
+        auto tol = [&](double a, double b) {
+            return scene_.depthTolerance * (1 + std::max(std::fabs(a), std::fabs(b)));
+        };
+        ++c_.depthCalcs;
+        if (FaceDerivatives(scene_, fr, xe, y, zf, sf, cf) &&
+            FaceDerivatives(scene_, gr, xe, y, zg, sg, cg) && std::fabs(zf - zg) > tol(zf, zg))
+            return zf < zg ? -1 : 1;
+        ++c_.stackTieBreaks;
+        const bool hf = FaceDerivatives(scene_, fr, xq, y, zf, sf, cf);
+        const bool hg = FaceDerivatives(scene_, gr, xq, y, zg, sg, cg);
+        if (!hf || !hg) return hf ? -1 : (hg ? 1 : 0);  // a face without a point at Q is behind
+        if (std::fabs(zf - zg) > tol(zf, zg)) return zf < zg ? -1 : 1;  // (a)
+        if (std::fabs(sf - sg) > tol(sf, sg)) return sf < sg ? -1 : 1;  // (b)
+        if (std::fabs(cf - cg) > tol(cf, cg)) return cf < cg ? -1 : 1;  // (c)
+        return 0;
+    }
+
+    // Insertion in depth order: below every face it is not in front of, scanning from the head.
+    // Bodies of different solids may interpenetrate without a show-edge (the paper's scenes had
+    // none), so the order between faces of DIFFERENT bodies can go stale along the CSL; the
+    // order among one body's faces cannot (their crossings are i-lines, hence show-edges). So
+    // the face is also kept below every face of its own body that is in front of it: each
+    // body's first face on the stack is then that body's visible face whatever the others do.
+    void InsertStackFace(int f, double xe, double xq, double y) {
+        ++c_.stackInserts;
+        std::size_t pos = fstack_.size();
+        for (std::size_t s = 0; s < fstack_.size(); ++s) {
+            if (CompareAt(f, fstack_[s], xe, xq, y) < 0) {
+                pos = s;
+                break;
+            }
+        }
+        const int body = faces_[static_cast<std::size_t>(f)].body;
+        for (std::size_t s = pos + 1; s < fstack_.size(); ++s) {
+            const int g = fstack_[s];
+            if (faces_[static_cast<std::size_t>(g)].body == body && CompareAt(f, g, xe, xq, y) > 0)
+                pos = s + 1;
+        }
+        fstack_.insert(fstack_.begin() + static_cast<std::ptrdiff_t>(pos), f);
+        inStack_[static_cast<std::size_t>(f)] = 1;
+        c_.stackMaxDepth = std::max<std::uint64_t>(c_.stackMaxDepth, fstack_.size());
+    }
+
+    // The stack left of every crossing of the row: empty except for faces of bodies that reach
+    // the image's left side, which may be unbounded to the left (a half-space, a paraboloid);
+    // their faces there are the finite opaque endpoints of the body on the ray at xs, found by
+    // one exact evaluation per such body and row.
+    void SeedStack(double y) {
+        for (int f : fstack_) inStack_[static_cast<std::size_t>(f)] = 0;
+        fstack_.clear();
+        aelPos_ = 0;
+        double first = HUGE_VAL;
+        for (const ActiveEdge& a : ael_)
+            if (std::isfinite(a.x)) {
+                first = a.x;
+                break;
+            }
+        const double xs = std::min(first, 0.5) - 1;
+        IntervalList l;
+        for (int u : activeUnits_) {
+            const Unit& unit = units_[static_cast<std::size_t>(u)];
+            if (unit.kind != Unit::Kind::kBody || unit.x0 != 0) continue;
+            const auto b = static_cast<std::size_t>(unit.body);
+            if (!useStack_[b]) continue;
+            ++c_.stackSeedEvaluations;
+            eval_.BodySet(unit.body, xs, y, l);
+            for (const Interval& v : l) {
+                for (auto [t, id] : {std::pair{v.lo, v.loId}, std::pair{v.hi, v.hiId}}) {
+                    if (id < 0 || !std::isfinite(t)) continue;
+                    const int hs = eval_.TagHalfSpace(id);
+                    const int sheet = MakeFaceAt(hs, t, xs, y).sheet;
+                    for (int f : bodyFaces_[b]) {
+                        if (faces_[static_cast<std::size_t>(f)].halfSpace != hs ||
+                            SheetOf(f) != sheet || inStack_[static_cast<std::size_t>(f)])
+                            continue;
+                        InsertStackFace(f, xs, xs + 0.5, y);
+                    }
+                }
+            }
+        }
+    }
+
+    // Pass three up to x: every AEL edge with a crossing left of x updates the stack. Crossings
+    // closer than kCluster to their neighbour form one event (a vertex on the CSL, or edges
+    // meeting just off it): their faces are decided together at Q, half-way from the event's
+    // last crossing to the next one (at most ½ px on), so that the face test at Q is never made
+    // in a sliver narrower than its own error estimate. True when an event straddles x (the
+    // pixel is then evaluated exactly: it lies within kCluster of a crossing).
+    bool ApplyEdgesBefore(double x, double y) {
+        constexpr double kCluster = 1e-4;  // pixels
+        bool straddle = false;
+        const std::size_t n = ael_.size();
+        while (aelPos_ < n && std::isfinite(ael_[aelPos_].x) && ael_[aelPos_].x < x) {
+            std::size_t end = aelPos_ + 1;
+            while (end < n && std::isfinite(ael_[end].x) &&
+                   ael_[end].x - ael_[end - 1].x < kCluster)
+                ++end;
+            const double last = ael_[end - 1].x;
+            straddle = straddle || last >= x;
+            double next = last + 1;
+            if (end < n && std::isfinite(ael_[end].x)) next = std::min(next, ael_[end].x);
+            const double xq = 0.5 * (last + next);
+            for (std::size_t k = aelPos_; k < end; ++k) ApplyEdge(k, xq, y);
+            aelPos_ = end;
+        }
+        return straddle;
+    }
+
+    // An edge's show-faces change sides at its crossing: each one on the stack leaves it, each
+    // one off it is inserted in depth order. Half-open rows (renderer.h): an edge toggles on the
+    // rows whose centre lies in [yBottom, yTop).
+    void ApplyEdge(std::size_t idx, double xq, double y) {
+        const ActiveEdge& a = ael_[idx];
+        const ShowEdge& e = edges_[static_cast<std::size_t>(a.edge)];
+        if (!useStack_[static_cast<std::size_t>(e.body)]) return;
+        const bool toggles = SnapToRow(e.yBottom) <= y && y < SnapToRow(e.yTop);
+        if (debugRow_ == static_cast<int>(y)) {
+            std::fprintf(stderr, "row %d edge %d x %.9g y[%.9g,%.9g] conic %d leg %d faces %d %d:",
+                         debugRow_, a.edge, a.x, e.yBottom, e.yTop, e.conic, e.leg, e.faces[0],
+                         e.faces[1]);
+        }
+        for (int f : e.faces) {
+            if (f < 0) continue;
+            const bool on = inStack_[static_cast<std::size_t>(f)] != 0;
+            const bool present = PresentAt(f, xq, y);
+            if ((present != on) != toggles) ++c_.stackCorrections;
+            if (on && !present) {
+                ++c_.stackDeletes;
+                fstack_.erase(std::find(fstack_.begin(), fstack_.end(), f));
+                inStack_[static_cast<std::size_t>(f)] = 0;
+            } else if (!on && present) {
+                InsertStackFace(f, a.x, xq, y);
+            }
+        }
+        if (debugRow_ == static_cast<int>(y)) {
+            for (int f : fstack_) std::fprintf(stderr, " %d", f);
+            std::fprintf(stderr, "\n");
+        }
+    }
+    int debugRow_ = std::getenv("SCANLINE_DEBUG_ROW") ? std::atoi(std::getenv("SCANLINE_DEBUG_ROW"))
+                                                      : -1;
+
+    // Is show-face f on its body's boundary at (x, y): does its sheet have a point there that
+    // satisfies every other HSI of the body (zero test (4))?
+    bool PresentAt(int f, double x, double y) const {
+        const ShowFace& sf = faces_[static_cast<std::size_t>(f)];
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(sf.halfSpace)];
+        double z;
+        if (hs.isPlane) {
+            if (hs.plane.c == 0) return false;
+            z = -(hs.plane.a * x + hs.plane.b * y + hs.plane.d) / hs.plane.c;
+        } else {
+            const Quadric& q = hs.quadric;
+            QuadraticRoots r =
+                SolveQuadratic(q.C(), q.F() * x + q.E() * y + q.J(),
+                               q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y +
+                                   2 * q.G() * x + 2 * q.H() * y + q.K());
+            const bool back = sf.sheet == Sheet::kBack;
+            switch (r.kind) {
+                case RootKind::kTwo:
+                    z = back ? r.t1 : r.t0;
+                    break;
+                case RootKind::kDouble:
+                    z = r.t0;
+                    break;
+                case RootKind::kSingle:  // C = 0: one root, the front face's (as FaceDepth)
+                    if (back) return false;
+                    z = r.t0;
+                    break;
+                default:
+                    return false;
+            }
+        }
+        if (!std::isfinite(z)) return false;
+        const Vec3 p{x, y, z};
+        // The face point comes from one plane or quadratic solve (relative error ~1e-15 away
+        // from a double root); 1e-9 (1 + |z|) px leaves a wide margin and still resolves Q,
+        // which lies at least kCluster / 2 from every crossing.
+        const double pointError = 1e-9 * (1 + std::fabs(z));
+        for (const OrientedLiteral& l : bodyLiterals_[static_cast<std::size_t>(sf.body)]) {
+            if (l.halfSpace == sf.halfSpace) continue;
+            if (!(l.isPlane ? SatisfiesPlane(l.plane, p, pointError)
+                            : SatisfiesQuadric(l.quadric, p, pointError)))
+                return false;
+        }
+        return true;
+    }
+
+    // The span's faces from the stack: per stack body its first (nearest) face, in stack order,
+    // so stack_[0] is the head when no exactly evaluated unit shares the span.
+    void TakeStackFaces(int sample, double y) {
+        stackHead_ = stack_.empty() ? 0 : -1;
+        ++c_.stackSpans;
+        c_.stackDepthSum += fstack_.size();
+        taken_.clear();
+        for (int f : fstack_) {
+            const ShowFace& sf = faces_[static_cast<std::size_t>(f)];
+            const auto b = static_cast<std::size_t>(sf.body);
+            if (bodyTaken_[b]) continue;
+            bodyTaken_[b] = 1;
+            taken_.push_back(sf.body);
+            const int u = bodyUnit_[b];
+            StackFace face;
+            face.halfSpace = sf.halfSpace;
+            face.sheet = SheetOf(f);
+            face.ray = &eval_.Ray(sf.halfSpace);
+            face.unit = u;
+            face.body = sf.body;
+            face.solid = units_[static_cast<std::size_t>(u)].solid;
+            if (settings_.fastShading) {
+                const double t = FaceDepthAt(face, sample, y);
+                face.fastNormal = std::isfinite(t) ? Normal(face.halfSpace, sample + 0.5, y, t)
+                                                   : Vec3{0, 0, -1};
+            }
+            stack_.push_back(face);
+        }
+        for (int b : taken_) bodyTaken_[static_cast<std::size_t>(b)] = 0;
+        if (settings_.verify) Verify(sample, y);
+    }
+
+    // verify=on: the stack head against the nearest exact hit of the stack bodies at the sample.
+    void Verify(int sample, double y) {
+        RayEvaluator::Hit best;
+        for (int u : activeUnits_) {
+            const Unit& unit = units_[static_cast<std::size_t>(u)];
+            if (unit.kind != Unit::Kind::kBody || !useStack_[static_cast<std::size_t>(unit.body)])
+                continue;
+            if (sample < unit.x0 || sample > unit.x1) continue;
+            RayEvaluator::Hit hit;
+            if (eval_.Body(unit.body, sample + 0.5, y, hit) && hit.t < best.t) best = hit;
+        }
+        const bool head = !fstack_.empty();
+        if (!head && best.halfSpace < 0) return;
+        ++c_.verifySpans;
+        bool same = head && best.halfSpace >= 0;
+        if (same) {
+            const FaceRef h = RefOf(fstack_.front());
+            same = h.halfSpace == best.halfSpace &&
+                   h.sheet == MakeFace(best.halfSpace, best.t, sample, y).sheet;
+        }
+        if (!same) ++c_.verifyMismatchSpans;
+        // Per body: its first face on the stack against its exact visible face.
+        for (int u : activeUnits_) {
+            const Unit& unit = units_[static_cast<std::size_t>(u)];
+            if (unit.kind != Unit::Kind::kBody || !useStack_[static_cast<std::size_t>(unit.body)])
+                continue;
+            if (sample < unit.x0 || sample > unit.x1) continue;
+            RayEvaluator::Hit hit;
+            const bool exact = eval_.Body(unit.body, sample + 0.5, y, hit);
+            const StackFace* mine = nullptr;
+            for (const StackFace& sf : stack_)
+                if (sf.body == unit.body) mine = &sf;
+            if (!exact && !mine) continue;
+            ++c_.verifyBodies;
+            if (!exact || !mine || mine->halfSpace != hit.halfSpace ||
+                mine->sheet != MakeFace(hit.halfSpace, hit.t, sample, y).sheet)
+                ++c_.verifyBodyMismatches;
+        }
+    }
+
     // Face stack insertion in depth order with the §5.5.1 tie-breaks.
     void InsertFace(const StackFace& f, double x, double y) {
         ++c_.faceInserts;
@@ -705,17 +1065,19 @@ class ScanRenderer {
 
     const FlatScene& scene_;
     std::vector<ShowEdge>& edges_;
+    const std::vector<ShowFace>& faces_;
     const std::vector<Unit>& units_;
     const std::vector<bool>& pixelBody_;
+    const std::vector<bool>& stackBody_;
     const RenderSettings& settings_;
     Frame& frame_;
     RendererCounters& c_;
     RayEvaluator eval_;
 
-    std::vector<std::vector<std::pair<int, int>>> esl_;  // (edge, last row) per first row
+    const std::vector<std::vector<std::pair<int, int>>>* esl_ = nullptr;
     std::vector<ActiveEdge> ael_;
     std::vector<double> lo_, hi_;  // per body: x range on the current row
-    std::vector<int> rangeRow_;     // the row lo_/hi_ were reset for
+    std::vector<int> rangeRow_;    // the row lo_/hi_ were reset for
     std::vector<int> activeUnits_;
     std::vector<double> breaks_;
     std::vector<StackFace> stack_;
@@ -724,14 +1086,90 @@ class ScanRenderer {
     std::vector<BodyTemplate> templates_;
     std::vector<TemplateInterval> tIntervals_;
     std::vector<StackFace> tFaces_;
+
+    // Face stacks.
+    struct OrientedLiteral {
+        int halfSpace = -1;
+        bool isPlane = true;
+        Plane plane;
+        Quadric quadric;
+    };
+    std::vector<std::vector<OrientedLiteral>> bodyLiterals_;  // stack bodies: "<= 0 inside"
+    std::vector<int> bodyUnit_;               // body → its kBody unit
+    std::vector<std::vector<int>> bodyFaces_; // body → its show-faces
+    std::vector<char> useStack_;              // body drawn from the face stacks
+    std::vector<int> fstack_;                 // the current edge's face stack, nearest first
+    std::vector<char> inStack_;               // per show-face
+    std::vector<char> bodyTaken_;
+    std::vector<int> taken_;
+    std::size_t aelPos_ = 0;  // pass three: the next AEL edge to apply
+    int stackHead_ = -1;      // index of the stack head in stack_ (−1: mixed with exact units)
 };
 
 }  // namespace
 
+void RendererCounters::Add(const RendererCounters& o) {
+    edgesStarted += o.edgesStarted;
+    edgeSwaps += o.edgeSwaps;
+    spans += o.spans;
+    emptySpans += o.emptySpans;
+    faceInserts += o.faceInserts;
+    depthCalcs += o.depthCalcs;
+    sampleEvaluations += o.sampleEvaluations;
+    sideEvaluations += o.sideEvaluations;
+    exactPixels += o.exactPixels;
+    perPixelUnitPixels += o.perPixelUnitPixels;
+    normals += o.normals;
+    covered += o.covered;
+    tieBreaks += o.tieBreaks;
+    csgPixels += o.csgPixels;
+    csgTemplateBodies += o.csgTemplateBodies;
+    csgFallbackPixels += o.csgFallbackPixels;
+    rootFallbackPixels += o.rootFallbackPixels;
+    stackInserts += o.stackInserts;
+    stackDeletes += o.stackDeletes;
+    stackMaxDepth = std::max(stackMaxDepth, o.stackMaxDepth);
+    stackDepthSum += o.stackDepthSum;
+    stackSpans += o.stackSpans;
+    stackSeedEvaluations += o.stackSeedEvaluations;
+    stackTieBreaks += o.stackTieBreaks;
+    stackCorrections += o.stackCorrections;
+    interpenetrationPixels += o.interpenetrationPixels;
+    verifySpans += o.verifySpans;
+    verifyMismatchSpans += o.verifyMismatchSpans;
+    verifyBodies += o.verifyBodies;
+    verifyBodyMismatches += o.verifyBodyMismatches;
+}
+
 void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
-                     const std::vector<Unit>& units, const std::vector<bool>& pixelBody,
+                     const std::vector<ShowFace>& faces, const std::vector<Unit>& units,
+                     const std::vector<bool>& pixelBody, const std::vector<bool>& stackBody,
                      const RenderSettings& settings, Frame& frame, RendererCounters& counters) {
-    ScanRenderer(scene, edges, units, pixelBody, settings, frame, counters).Run();
+    const int h = frame.height;
+    if (frame.width <= 0 || h <= 0) return;
+    const auto esl = BuildEsl(edges, h);
+    constexpr int kBand = 32;  // rows per task; fixed, so results never depend on threads
+    const int bands = (h + kBand - 1) / kBand;
+    std::mutex mutex;
+    auto run = [&] {
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
+                for (int b = r.begin(); b < r.end(); ++b) {
+                    RendererCounters local;
+                    ScanRenderer(scene, edges, faces, units, pixelBody, stackBody, settings,
+                                 frame, local)
+                        .Run(esl, b * kBand, std::min(h, (b + 1) * kBand));
+                    std::lock_guard<std::mutex> lock(mutex);
+                    counters.Add(local);
+                }
+            });
+    };
+    if (settings.threads > 0) {
+        tbb::task_arena arena(settings.threads);
+        arena.execute(run);
+    } else {
+        run();
+    }
 }
 
 }  // namespace quadrix::scanline

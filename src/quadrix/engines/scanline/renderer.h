@@ -58,9 +58,9 @@ namespace quadrix::scanline {
 struct Unit {
     enum class Kind : std::uint8_t { kBody, kCsg } kind = Kind::kBody;
     int solid = -1;
-    int body = -1;            // kBody
-    int node = -1;            // kCsg: the root of the solid's tree
-    std::vector<int> bodies;  // kCsg: every body (leaf) of the tree
+    int body = -1;                         // kBody
+    int node = -1;                         // kCsg: the root of the solid's tree
+    std::vector<int> bodies;               // kCsg: every body (leaf) of the tree
     int x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive pixel ranges from the Flattener's bounds
 };
 
@@ -70,6 +70,13 @@ struct RenderSettings {
     // CSG solids: true = per-span body templates combined by interval CSG per pixel; false =
     // exact evaluation of the whole tree at every pixel (for comparison).
     bool csgTemplates = true;
+    int threads = 0;  // 0 = all hardware threads; rows are cut in bands of 32 run in parallel
+    // Bodies marked in `stackBody` (RenderScanlines) get their visible face from the FACE STACK
+    // of §5.2–5.4 (default); false = every body evaluated exactly once per span (render=exact).
+    bool faceStacks = true;
+    // Also evaluate the stack bodies exactly at every span's sample pixel and count the spans
+    // whose stack head differs (verifyMismatchSpans). Costs one exact evaluation per body/span.
+    bool verify = false;
 };
 
 struct RendererCounters {
@@ -79,6 +86,21 @@ struct RendererCounters {
     std::uint64_t tieBreaks = 0;
     std::uint64_t csgPixels = 0, csgTemplateBodies = 0, csgFallbackPixels = 0;
     std::uint64_t rootFallbackPixels = 0;  // a stack face had no root: pixel evaluated exactly
+    // Face stacks (§5.2–5.4): faces inserted into / deleted from the stack at edge crossings,
+    // the deepest stack, the sum of stack depths over stack spans (mean = sum / stackSpans),
+    // exact evaluations that seed a row's stack left of every crossing, the pixels where a face
+    // of another body below the head was nearer (interpenetrating bodies have no show-edge),
+    // and the verification (verify=on): spans checked, spans whose stack head differs.
+    std::uint64_t stackInserts = 0, stackDeletes = 0, stackMaxDepth = 0, stackDepthSum = 0;
+    std::uint64_t stackSpans = 0, stackSeedEvaluations = 0, stackTieBreaks = 0;
+    std::uint64_t interpenetrationPixels = 0, verifySpans = 0, verifyMismatchSpans = 0;
+    // Crossings where the face test at Q overrode plain parity toggling (spurious or
+    // degenerate show-edges, vertices on the CSL): see ApplyEdge in renderer.cpp.
+    std::uint64_t stackCorrections = 0;
+    // verify=on, per span and stack body present there: the body's first face on the stack
+    // against its exact visible face (the stack machinery proper, free of interpenetration).
+    std::uint64_t verifyBodies = 0, verifyBodyMismatches = 0;
+    void Add(const RendererCounters& o);
 };
 
 // Exact per-ray evaluation of bodies and CSG trees (the same interval semantics as `raycast`).
@@ -140,7 +162,8 @@ void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
     const FlatCsgNode& n = scene_.nodes[static_cast<std::size_t>(node)];
     if (n.isLeaf) {
         out.clear();
-        if (n.body >= 0 && static_cast<std::size_t>(n.body) < scene_.bodies.size()) leaf(n.body, out);
+        if (n.body >= 0 && static_cast<std::size_t>(n.body) < scene_.bodies.size())
+            leaf(n.body, out);
         return;
     }
     out.clear();
@@ -172,11 +195,26 @@ void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
     }
 }
 
-// Draws everything: ESL/AEL over the rows, spans, face stacks and the span shader.
+// Draws everything: ESL/AEL over the rows, spans, face stacks and the span shader. The rows are
+// cut into fixed bands of 32 run in parallel (oneTBB); each band starts its AEL from the ESL at
+// its first row, so the image does not depend on the number of threads.
 // `pixelBody[b]` marks bodies the Resolver refused (no show-edges): evaluated exactly per pixel
-// over their unit's bounds.
+// over their unit's bounds. `stackBody[b]` marks bodies drawn from face stacks (bodies of kBody
+// units that were not refused); the others (CSG operands, refused bodies) use the exact
+// per-span evaluation. `faces` are the Resolver's show-faces the edges point at.
+//
+// Face stacks (settings.faceStacks): per scan line, pass three walks the AEL from the left; at
+// each crossing of a show-edge of a stack body, each of the edge's two show-faces is deleted
+// from the stack when on it, else inserted in depth order (comparisons of §5.5.1 at the
+// crossing; ties: depth one step into the span, then slope dz/dx, then rate d²z/dx²). The stack
+// after an edge is that edge's face stack; its head is the face visible to the edge's right.
+// An edge toggles on rows whose centre lies in the HALF-OPEN range [yBottom, yTop) (endpoints
+// snapped to a row centre within 1e-9): a vertex on the CSL where a boundary passes through
+// toggles once, one where it turns (V or Λ) twice or never, and edges lying within one scan
+// line toggle never — the effect of the recursive vertex processing of §5.4 (see renderer.cpp).
 void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
-                     const std::vector<Unit>& units, const std::vector<bool>& pixelBody,
+                     const std::vector<ShowFace>& faces, const std::vector<Unit>& units,
+                     const std::vector<bool>& pixelBody, const std::vector<bool>& stackBody,
                      const RenderSettings& settings, Frame& frame, RendererCounters& counters);
 
 }  // namespace quadrix::scanline

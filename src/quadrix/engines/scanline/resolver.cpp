@@ -9,22 +9,32 @@ namespace quadrix::scanline {
 
 const char* ToString(ILineType t) {
     switch (t) {
-        case ILineType::kNoExist: return "NOEXIST";
-        case ILineType::kPoint: return "POINT";
-        case ILineType::kLinear: return "LINEAR";
-        case ILineType::kConic: return "CONIC";
-        case ILineType::kEdge: return "EDGE";
-        case ILineType::kQuartic: return "QUARTIC";
+        case ILineType::kNoExist:
+            return "NOEXIST";
+        case ILineType::kPoint:
+            return "POINT";
+        case ILineType::kLinear:
+            return "LINEAR";
+        case ILineType::kConic:
+            return "CONIC";
+        case ILineType::kEdge:
+            return "EDGE";
+        case ILineType::kQuartic:
+            return "QUARTIC";
     }
     return "?";
 }
 
 const char* ToString(IVertexType t) {
     switch (t) {
-        case IVertexType::kHextrm: return "HEXTRM";
-        case IVertexType::kVextrm: return "VEXTRM";
-        case IVertexType::kLimb: return "LIMB";
-        case IVertexType::kIsect: return "ISECT";
+        case IVertexType::kHextrm:
+            return "HEXTRM";
+        case IVertexType::kVextrm:
+            return "VEXTRM";
+        case IVertexType::kLimb:
+            return "LIMB";
+        case IVertexType::kIsect:
+            return "ISECT";
     }
     return "?";
 }
@@ -64,8 +74,8 @@ double PlaneZ(const Plane& p, double x, double y) { return -(p.a * x + p.b * y +
 // The sheets' z of a quadric at (x, y): count 0, 1 (C = 0) or 2 (front < back).
 int QuadricZ(const Quadric& q, double x, double y, double z[2]) {
     const double c = q.C(), h = q.F() * x + q.E() * y + q.J();
-    const double a = q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y + 2 * q.G() * x +
-                     2 * q.H() * y + q.K();
+    const double a =
+        q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y + 2 * q.G() * x + 2 * q.H() * y + q.K();
     if (c == 0) {
         if (h == 0) return 0;
         z[0] = -a / (2 * h);
@@ -91,12 +101,14 @@ void SymmetricEigen3(double a[3][3], double e[3], double v[3][3]) {
         for (int j = 0; j < 3; ++j) v[i][j] = i == j;
     for (int sweep = 0; sweep < 50; ++sweep) {
         double off = std::fabs(a[0][1]) + std::fabs(a[0][2]) + std::fabs(a[1][2]);
-        if (off == 0) break;
+        double diag = std::fabs(a[0][0]) + std::fabs(a[1][1]) + std::fabs(a[2][2]);
+        if (off <= 1e-18 * diag || off == 0) break;  // converged (quadratic convergence)
         for (int p = 0; p < 2; ++p) {
             for (int q = p + 1; q < 3; ++q) {
                 if (a[p][q] == 0) continue;
                 double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-                double t = (theta >= 0 ? 1 : -1) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
+                double t =
+                    (theta >= 0 ? 1 : -1) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
                 double c = 1 / std::sqrt(t * t + 1), s = t * c;
                 for (int k = 0; k < 3; ++k) {  // A ← Jᵀ A J
                     double akp = a[k][p], akq = a[k][q];
@@ -151,7 +163,18 @@ bool AffineDefinite(const std::array<double, 10>& m) {
 }  // namespace
 
 bool QuadricSurfacesDisjoint(const Quadric& q1, const Quadric& q2) {
-    double s1 = q1.MaxAbs(), s2 = q2.MaxAbs();
+    // The natural λ is the ratio of the quadratic parts (equal for coaxial cylinders and
+    // concentric spheres: then q2 − λ q1 is a constant).
+    auto quadScale = [](const Quadric& q) {
+        double m = 0;
+        for (std::size_t i = 0; i < 6; ++i) m = std::max(m, std::fabs(q.k[i]));
+        return m;
+    };
+    double s1 = quadScale(q1), s2 = quadScale(q2);
+    if (!(s1 > 0) || !(s2 > 0)) {
+        s1 = q1.MaxAbs();
+        s2 = q2.MaxAbs();
+    }
     if (!(s1 > 0) || !(s2 > 0)) return false;
     const double s = s2 / s1;
     std::array<double, 10> m{};
@@ -159,12 +182,14 @@ bool QuadricSurfacesDisjoint(const Quadric& q1, const Quadric& q2) {
         for (std::size_t i = 0; i < 10; ++i) m[i] = q2.k[i] - lambda * q1.k[i];
         return AffineDefinite(m);
     };
-    if (tryLambda(0)) return true;
-    for (int i = -64; i <= 64; ++i) {
-        double l = s * std::exp(i / 8.0);
-        if (tryLambda(l) || tryLambda(-l)) return true;
+    // λ on a logarithmic grid around the ratio of the scales, nearest first (coaxial or
+    // concentric surfaces succeed at the first try).
+    if (tryLambda(s) || tryLambda(0)) return true;
+    for (int i = 1; i <= 64; ++i) {
+        for (double l : {s * std::exp(i / 8.0), s * std::exp(-i / 8.0)})
+            if (tryLambda(l) || tryLambda(-l)) return true;
     }
-    return false;
+    return tryLambda(-s);
 }
 
 namespace {
@@ -174,8 +199,15 @@ class BodyResolver {
     BodyResolver(const FlatScene& scene, int body, double yLo, double yHi, bool allBoundaries,
                  ResolvedBody& out, std::vector<ShowFace>& faces, std::vector<ShowEdge>& edges,
                  ResolverCounters& c)
-        : scene_(scene), body_(body), yLo_(yLo), yHi_(yHi), all_(allBoundaries), out_(out),
-          faces_(faces), edges_(edges), c_(c) {}
+        : scene_(scene),
+          body_(body),
+          yLo_(yLo),
+          yHi_(yHi),
+          all_(allBoundaries),
+          out_(out),
+          faces_(faces),
+          edges_(edges),
+          c_(c) {}
 
     void Run() {
         out_.body = body_;
@@ -197,8 +229,8 @@ class BodyResolver {
   private:
     int N() const { return static_cast<int>(out_.hsbs.size()); }
     ILine& At(int i, int j) {
-        return out_.table[static_cast<std::size_t>(i) * out_.hsbs.size() +
-                          static_cast<std::size_t>(j)];
+        return out_
+            .table[static_cast<std::size_t>(i) * out_.hsbs.size() + static_cast<std::size_t>(j)];
     }
     const Hsb& H(int i) const { return out_.hsbs[static_cast<std::size_t>(i)]; }
     bool HasFaces(int i) const { return H(i).face[0] >= 0 || H(i).face[1] >= 0; }
@@ -288,9 +320,7 @@ class BodyResolver {
     // A surface containing the view direction (edge-on plane, view cylinder) projects to a curve,
     // its OUTLINE, where an operand's ray set switches between everything and nothing. Only CSG
     // operands need it (elsewhere such a surface matters only where it cuts a face: its i-lines).
-    bool Outline(int i) const {
-        return all_ && (H(i).isPlane ? H(i).edgeOn : H(i).viewCylinder);
-    }
+    bool Outline(int i) const { return all_ && (H(i).isPlane ? H(i).edgeOn : H(i).viewCylinder); }
 
     void BuildLimb(ILine& l) {
         const Hsb& h = H(l.i);
@@ -426,15 +456,15 @@ class BodyResolver {
         if (l.limb && Outline(l.i)) return true;  // outlines are kept whole (no filtering)
         if (!l.conicShape) {
             if (hk.isPlane) {
-                if (l.limb) {  // C = 0 limb line ∩ plane trace
+                if (l.limb) {     // C = 0 limb line ∩ plane trace
                     return true;  // no useful z; the line is kept whole
                 }
                 if (l.type == ILineType::kEdge) {
                     if (hk.edgeOn) {  // two traces: a point
                         Line2 t{hk.plane.a, hk.plane.b, hk.plane.d};
                         double det = l.line.a * t.b - l.line.b * t.a;
-                        if (std::fabs(det) <= 64 * kUnit * (std::fabs(l.line.a * t.b) +
-                                                            std::fabs(l.line.b * t.a)))
+                        if (std::fabs(det) <=
+                            64 * kUnit * (std::fabs(l.line.a * t.b) + std::fabs(l.line.b * t.a)))
                             return true;
                         pts.push_back({(l.line.b * t.c - l.line.c * t.b) / det,
                                        (l.line.c * t.a - l.line.a * t.c) / det, 0});
@@ -553,8 +583,8 @@ class BodyResolver {
                     // Zero test (5): coincident i-vertices merge; the older keeps its type.
                     std::vector<IVertex> merged;
                     for (const IVertex& v : list)
-                        if (merged.empty() || !VerticesCoincide(merged.back().x, merged.back().y,
-                                                                v.x, v.y))
+                        if (merged.empty() ||
+                            !VerticesCoincide(merged.back().x, merged.back().y, v.x, v.y))
                             merged.push_back(v);
                     list.swap(merged);
                 }

@@ -23,10 +23,10 @@
 //    the renderer's breakpoints are a superset of the true face boundaries. Face pointers follow
 //    the table of §4.4 (normal z of the quadric at the midpoint, existence of the limb).
 //  - Two quadrics in one body: when the pencil test below proves their surfaces disjoint (the
-//    tube: coaxial cylinders), the i-line is NOEXIST; otherwise it is QUARTIC and the body is marked
-//    perPixel: the renderer evaluates it exactly at every pixel of its spans (documented refusal,
-//    issue 3 item 4). Crossings of conic i-lines with a *second* quadric are not computed (quartic);
-//    such pieces are kept unfiltered against that quadric (still a superset).
+//    tube: coaxial cylinders), the i-line is NOEXIST; otherwise it is QUARTIC and the body is
+//    marked perPixel: the renderer evaluates it exactly at every pixel of its spans (documented
+//    refusal, issue 3 item 4). Crossings of conic i-lines with a *second* quadric are not computed
+//    (quartic); such pieces are kept unfiltered against that quadric (still a superset).
 #pragma once
 
 #include <cstdint>
@@ -48,8 +48,8 @@ const char* ToString(IVertexType t);
 struct Hsb {
     int halfSpace = -1;
     bool isPlane = true;
-    Plane plane;        // oriented (complement applied), when isPlane
-    Quadric quadric;    // oriented, when !isPlane
+    Plane plane;      // oriented (complement applied), when isPlane
+    Quadric quadric;  // oriented, when !isPlane
     bool opaque = true;
     bool edgeOn = false;        // plane perpendicular to the view plane (zero test (1))
     bool viewCylinder = false;  // quadric independent of z (zero test (2))
@@ -78,12 +78,13 @@ struct IVertex {
 
 struct ILine {
     ILineType type = ILineType::kNoExist;
-    int i = -1, j = -1;   // HSB indices; i == j for a limb
+    int i = -1, j = -1;  // HSB indices; i == j for a limb
     bool limb = false;
-    bool conicShape = false;  // shape is `conic` (CONIC); otherwise `line` (LINEAR, EDGE, limb line)
+    bool conicShape =
+        false;  // shape is `conic` (CONIC); otherwise `line` (LINEAR, EDGE, limb line)
     Line2 line;
     Conic2 conic;
-    Line2 insert;                // (4.22) for CONIC
+    Line2 insert;                   // (4.22) for CONIC
     std::vector<IVertex> lists[2];  // CONIC: left (insert < 0), right; LINEAR/EDGE: lists[0]
     bool filteredByAllHsbs = true;  // false when crossings with some quadric were not computed
 };
@@ -91,11 +92,11 @@ struct ILine {
 // A show-edge: a piece of one leg of an i-line, single-valued in x and y, y in [yBottom, yTop].
 struct ShowEdge {
     int body = -1;
-    int iline = -1;   // index in the body's table
+    int iline = -1;  // index in the body's table
     bool conic = false;
-    Line2 line;       // linear: x = −(b y + c)/a
-    Conic2 shape;     // conic: root of (4.17) on the side `leg` of the insert line
-    int leg = -1;     // −1: 2 a x + c y + d <= 0 (left when a > 0), +1 the other side
+    Line2 line;    // linear: x = −(b y + c)/a
+    Conic2 shape;  // conic: root of (4.17) on the side `leg` of the insert line
+    int leg = -1;  // −1: 2 a x + c y + d <= 0 (left when a > 0), +1 the other side
     double yBottom = 0, yTop = 0;
     int faces[2] = {-1, -1};  // global show-face indices (−1 = none)
 

@@ -52,17 +52,28 @@ class ScanlineEngine final : public Engine {
             if (key == "sd") {
                 int v;
                 if (!ParseInt(value, v) || v < 1)
-                    return "engine 'scanline': option sd needs an integer >= 1, got '" + value + "'";
+                    return "engine 'scanline': option sd needs an integer >= 1, got '" + value +
+                           "'";
             } else if (key == "csg") {
                 if (value != "spans" && value != "pixels")
                     return "engine 'scanline': option csg is 'spans' or 'pixels', got '" + value +
+                           "'";
+            } else if (key == "render") {
+                if (value != "stacks" && value != "exact")
+                    return "engine 'scanline': option render is 'stacks' or 'exact', got '" +
+                           value + "'";
+            } else if (key == "verify") {
+                if (value != "on" && value != "off")
+                    return "engine 'scanline': option verify is 'on' or 'off', got '" + value +
                            "'";
             } else if (key == "shade") {
                 if (value != "exact" && value != "fast")
                     return "engine 'scanline': option shade is 'exact' or 'fast', got '" + value +
                            "'";
             } else {
-                return "engine 'scanline' has no option '" + key + "' (options: sd=N, shade=exact|fast, csg=spans|pixels)";
+                return "engine 'scanline' has no option '" + key +
+                       "' (options: sd=N, shade=exact|fast, csg=spans|pixels, "
+                       "render=stacks|exact, verify=on|off)";
             }
         }
         return {};
@@ -72,11 +83,14 @@ class ScanlineEngine final : public Engine {
                        Frame& frame) override {
         const auto t0 = Clock::now();
         RenderSettings settings;
+        settings.threads = options.threads;
         for (const auto& [key, value] : options.engineOptions) {
             int v;
             if (key == "sd" && ParseInt(value, v) && v >= 1) settings.shadeInterval = v;
             if (key == "shade") settings.fastShading = value == "fast";
             if (key == "csg") settings.csgTemplates = value == "spans";
+            if (key == "render") settings.faceStacks = value == "stacks";
+            if (key == "verify") settings.verify = value == "on";
         }
         const int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
         frame.Reset(width, height);
@@ -109,9 +123,9 @@ class ScanlineEngine final : public Engine {
             if (bodiesOnly) {
                 for (int b : leaves) {
                     if (!validBody(b)) continue;
-                    Unit u = MakeUnit(scene, static_cast<int>(s),
-                                      scene.bodies[static_cast<std::size_t>(b)].bounds.Intersected(
-                                          solid.bounds));
+                    Unit u = MakeUnit(
+                        scene, static_cast<int>(s),
+                        scene.bodies[static_cast<std::size_t>(b)].bounds.Intersected(solid.bounds));
                     u.body = b;
                     units.push_back(u);
                     bodiesToResolve.push_back(b);
@@ -155,8 +169,18 @@ class ScanlineEngine final : public Engine {
         }
         const auto t1 = Clock::now();
 
+        // Face-stack bodies: those drawn on their own (not CSG operands) and not refused.
+        std::vector<bool> stackBody(scene.bodies.size(), false);
+        std::uint64_t stackBodies = 0;
+        for (const Unit& u : units) {
+            if (u.kind != Unit::Kind::kBody) continue;
+            auto k = static_cast<std::size_t>(u.body);
+            if (pixelBody[k] || inCsg[k] || stackBody[k]) continue;
+            stackBody[k] = true;
+            ++stackBodies;
+        }
         RendererCounters c;
-        RenderScanlines(scene, edges, units, pixelBody, settings, frame, c);
+        RenderScanlines(scene, edges, faces, units, pixelBody, stackBody, settings, frame, c);
         const auto t2 = Clock::now();
 
         RenderStats stats;
@@ -169,8 +193,9 @@ class ScanlineEngine final : public Engine {
         add("hsbs_quadric", static_cast<double>(rc.quadricHsbs));
         add("show_faces", static_cast<double>(rc.faces));
         for (int t = 0; t < 6; ++t)
-            stats.counters.emplace_back(std::string("ilines_") + ToString(static_cast<ILineType>(t)),
-                                        static_cast<double>(rc.ilines[t]));
+            stats.counters.emplace_back(
+                std::string("ilines_") + ToString(static_cast<ILineType>(t)),
+                static_cast<double>(rc.ilines[t]));
         add("ivertices_calculated", static_cast<double>(rc.verticesCalculated));
         add("ivertices_kept", static_cast<double>(rc.verticesKept));
         for (int t = 0; t < 4; ++t)
@@ -199,6 +224,23 @@ class ScanlineEngine final : public Engine {
         add("intensity_calculations", static_cast<double>(c.normals));
         add("pixels", static_cast<double>(width) * height);
         add("covered_pixels", static_cast<double>(c.covered));
+        add("face_stack_bodies", static_cast<double>(settings.faceStacks ? stackBodies : 0));
+        add("face_stack_inserts", static_cast<double>(c.stackInserts));
+        add("face_stack_deletes", static_cast<double>(c.stackDeletes));
+        add("face_stack_max_depth", static_cast<double>(c.stackMaxDepth));
+        add("face_stack_mean_depth",
+            c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0);
+        add("face_stack_spans", static_cast<double>(c.stackSpans));
+        add("face_stack_seed_evaluations", static_cast<double>(c.stackSeedEvaluations));
+        add("face_stack_tie_breaks", static_cast<double>(c.stackTieBreaks));
+        add("face_stack_corrections", static_cast<double>(c.stackCorrections));
+        add("interpenetration_pixels", static_cast<double>(c.interpenetrationPixels));
+        if (settings.verify) {
+            add("verify_spans", static_cast<double>(c.verifySpans));
+            add("verify_mismatch_spans", static_cast<double>(c.verifyMismatchSpans));
+            add("verify_body_faces", static_cast<double>(c.verifyBodies));
+            add("verify_body_face_mismatches", static_cast<double>(c.verifyBodyMismatches));
+        }
         add("resolver_seconds", Seconds(t0, t1));
         add("renderer_shader_seconds", Seconds(t1, t2));
 
@@ -207,25 +249,32 @@ class ScanlineEngine final : public Engine {
         std::snprintf(
             buf, sizeof buf,
             "Table 7.1 - Resolver statistics\n"
-            "  %-8s %-8s %-8s %-12s %-8s %-8s %-8s\n"
-            "  %-8zu %-8llu %-8llu %-12llu %-8llu %-8llu %-8llu\n"
+            "  %8s %8s %8s %10s %10s %10s %10s\n"
+            "  %8s %8s %8s %10s %10s %10s %10s\n"
+            "  %8zu %8llu %8llu %10llu %10llu %10llu %10llu\n"
             "Table 7.2 - Renderer statistics\n"
-            "  %-12s %-12s %-10s %-10s %-12s %-10s\n"
-            "  %-12llu %-12llu %-10llu %-10llu %-12llu %-10.1f\n"
+            "  %10s %10s %10s %10s %10s %9s %9s %12s %10s\n"
+            "  %10llu %10llu %10llu %10llu %10llu %9llu %9.2f %12llu %10.1f\n"
             "Table 7.3 - Run times (seconds)\n"
-            "  %-10s %-18s %-10s\n"
-            "  %-10.4f %-18.4f %-10.4f\n",
-            "Bodies", "planar", "quadric", "Iv calc/kept", "", "linear", "conic",
-            bodiesToResolve.size(), static_cast<unsigned long long>(rc.planarHsbs),
+            "  %10s %16s %10s\n"
+            "  %10.4f %16.4f %10.4f\n",
+            "Bodies", "HSBs", "HSBs", "Ivertices", "Ivertices", "ShowEdges", "ShowEdges", "",
+            "planar", "quadric", "calc", "kept", "linear", "conic", bodiesToResolve.size(),
+            static_cast<unsigned long long>(rc.planarHsbs),
             static_cast<unsigned long long>(rc.quadricHsbs),
             static_cast<unsigned long long>(rc.verticesCalculated),
             static_cast<unsigned long long>(rc.verticesKept),
             static_cast<unsigned long long>(rc.edgesLinear),
-            static_cast<unsigned long long>(rc.edgesConic), "DepthCalcs", "FaceInserts",
-            "EdgeSwaps", "Spans", "Intensities", "Pixels(k)",
+            static_cast<unsigned long long>(rc.edgesConic), "DepthCalc", "FaceInsert", "FaceDelete",
+            "EdgeSwaps", "Spans", "MaxStack", "MeanStack", "Intensities", "Pixels(k)",
             static_cast<unsigned long long>(c.depthCalcs),
-            static_cast<unsigned long long>(c.faceInserts),
+            // Face inserts: into the face stacks (§5.4) plus the per-span inserts of bodies
+            // evaluated exactly (render=exact, CSG operands, refused bodies).
+            static_cast<unsigned long long>(c.stackInserts + c.faceInserts),
+            static_cast<unsigned long long>(c.stackDeletes),
             static_cast<unsigned long long>(c.edgeSwaps), static_cast<unsigned long long>(c.spans),
+            static_cast<unsigned long long>(c.stackMaxDepth),
+            c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0,
             static_cast<unsigned long long>(c.normals), width * static_cast<double>(height) / 1000,
             "Resolver", "Renderer+Shader", "Total", Seconds(t0, t1), Seconds(t1, t2),
             Seconds(t0, t2));

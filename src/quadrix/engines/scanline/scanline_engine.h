@@ -1,6 +1,8 @@
 // Engine `scanline`: the UniQuadrix Resolver, Renderer and Shader (seed 001 chapters 4–6; see
 // resolver.h and renderer.h for the design and docs/scanline.md for the user's view).
 //
+// RenderOptions::threads: rows are rendered in fixed bands of 32 in parallel (renderer.h).
+//
 // Options (--engine-opt key=value):
 //   sd=N        shading interval Δmax of (6.9), N >= 1; 1 (default) computes every normal exactly
 //   shade=fast  constant shading: one normal per face and span ("exact" is the default)

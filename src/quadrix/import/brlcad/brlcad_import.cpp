@@ -1,12 +1,12 @@
 // Database → Scene conversion; the rules are summarised in brlcad_import.h.
 #include "quadrix/import/brlcad/brlcad_import.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <set>
-
-#include <fmt/format.h>
 
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
@@ -18,7 +18,8 @@ using namespace brlcad;
 
 std::string ImportReport::CensusText() const {
     std::string s;
-    for (const auto& [type, n] : census) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", type, n);
+    for (const auto& [type, n] : census)
+        s += fmt::format("{}{} {}", s.empty() ? "" : ", ", type, n);
     return s.empty() ? "no primitives" : s;
 }
 
@@ -27,7 +28,13 @@ namespace {
 // Limits that keep a hostile or exploding file from exhausting memory.
 constexpr std::size_t kMaxBodies = 2'000'000;
 constexpr std::size_t kMaxTerms = 200'000;
+// Boolean nodes of the expanded trees (a DAG of combinations that reuse each other expands
+// exponentially when walked path by path, as rt walks it).
+constexpr std::size_t kMaxExprs = 2'000'000;
 constexpr int kMaxDepth = 1000;
+// Depth of a boolean tree walked recursively (a 10,000-member v4 list is a chain that deep).
+constexpr int kMaxTreeDepth = 10'000;
+constexpr std::size_t kMaxCsgNodes = 8'000'000;
 
 // Types that are not solids at all: ignored silently (FORMAT.md §6.2 last row).
 bool IsNotASolid(const std::string& type) {
@@ -75,6 +82,7 @@ class Converter {
             if (aborted_) return false;
         }
         report_.topObjects = tops;
+        if (aborted_) return false;
         Emit(terms);
         ReportSkipped();
         return !aborted_;
@@ -117,9 +125,10 @@ class Converter {
                         on = on || k == child;
                         if (on) path += db_.combinations[k].name + " → ";
                     }
-                    diags_.Error(n.loc, fmt::format("combination '{}' contains itself: {}{}",
-                                                    n.name, path, n.name),
-                                 c.sourceLine);
+                    diags_.Error(
+                        n.loc,
+                        fmt::format("combination '{}' contains itself: {}{}", n.name, path, n.name),
+                        c.sourceLine);
                     return false;
                 }
                 if (state[child] == 0) {
@@ -141,8 +150,8 @@ class Converter {
             std::vector<std::string> tops;
             // File order: combinations first (the usual top objects), then bare primitives.
             for (const Combination& c : db_.combinations)
-                if (!referenced.count(c.name) && db_.objects.at(c.name).second ==
-                                                     &c - db_.combinations.data())
+                if (!referenced.count(c.name) &&
+                    db_.objects.at(c.name).second == &c - db_.combinations.data())
                     tops.push_back(c.name);
             for (const Primitive& p : db_.primitives)
                 if (!referenced.count(p.name) && !db_.objects.at(p.name).first &&
@@ -166,6 +175,15 @@ class Converter {
     }
 
     int AddExpr(Expr e) {
+        if (exprs_.size() >= kMaxExprs) {
+            if (!aborted_)
+                diags_.Error(file_ ? SourceLoc{file_, 0, 0} : SourceLoc{},
+                             fmt::format("the combination trees expand to more than {} boolean "
+                                         "nodes; refusing to go on",
+                                         kMaxExprs));
+            aborted_ = true;
+            return -1;
+        }
         exprs_.push_back(std::move(e));
         return static_cast<int>(exprs_.size()) - 1;
     }
@@ -194,8 +212,10 @@ class Converter {
         const Box3 &a = exprs_[l].box, &b = exprs_[r].box;
         if (op == scene::CsgOp::kUnion) {
             e.box = a;
-            if (IsEverything(b) || IsEverything(a)) e.box = Box3::Everything();
-            else e.box.Extend(b);
+            if (IsEverything(b) || IsEverything(a))
+                e.box = Box3::Everything();
+            else
+                e.box.Extend(b);
         } else if (op == scene::CsgOp::kIntersection) {
             e.box = a.Intersected(b);
         } else {
@@ -210,8 +230,8 @@ class Converter {
     std::optional<Mat4> Normalised(const Mat4& m, const SourceLoc& loc, const std::string& who) {
         double w = m.m[3][3];
         if (!(std::fabs(w) > 1e-300) || !m.AllFinite()) {
-            diags_.Error(loc, fmt::format("the matrix of '{}' has m15 = {} (must be non-zero)",
-                                          who, w));
+            diags_.Error(loc,
+                         fmt::format("the matrix of '{}' has m15 = {} (must be non-zero)", who, w));
             return std::nullopt;
         }
         Mat4 out = m;
@@ -232,9 +252,10 @@ class Converter {
                                         : cr.censusName;
                 ++report_.skipped[label];
                 if (cr.status == ConvertResult::Status::kInvalid)
-                    diags_.Warning(p.loc, fmt::format("primitive '{}' ({}) is degenerate: {}; "
-                                                      "it is left out",
-                                                      p.name, p.type, cr.problem),
+                    diags_.Warning(p.loc,
+                                   fmt::format("primitive '{}' ({}) is degenerate: {}; "
+                                               "it is left out",
+                                               p.name, p.type, cr.problem),
                                    p.sourceLine);
             }
             return -1;
@@ -251,8 +272,8 @@ class Converter {
         if (auto it = leafCache_.find(key); it != leafCache_.end()) return it->second;
         auto t = Transform::FromMatrix(total);
         if (!t) {
-            diags_.Error(refLoc, fmt::format("the matrices on the path to '{}' are singular",
-                                             p.name));
+            diags_.Error(refLoc,
+                         fmt::format("the matrices on the path to '{}' are singular", p.name));
             aborted_ = true;
             return -1;
         }
@@ -319,9 +340,10 @@ class Converter {
         }
         if (combOnPath_[combIndex]) {
             const Combination& c = db_.combinations[combIndex];
-            diags_.Error(c.loc, fmt::format("combination '{}' contains itself (a cycle in the "
-                                            "combination tree)",
-                                            c.name),
+            diags_.Error(c.loc,
+                         fmt::format("combination '{}' contains itself (a cycle in the "
+                                     "combination tree)",
+                                     c.name),
                          c.sourceLine);
             aborted_ = true;
             return false;
@@ -331,12 +353,20 @@ class Converter {
     }
 
     // The CSG expression of a tree node inside a region (region flags below are ignored).
+    bool TooDeep(int depth, const SourceLoc& loc) {
+        if (depth <= kMaxTreeDepth) return false;
+        if (!aborted_) diags_.Error(loc, fmt::format("boolean tree deeper than {}", kMaxTreeDepth));
+        aborted_ = true;
+        return true;
+    }
+
     int TreeExpr(const Combination& c, int node, const Mat4& m, int depth) {
-        if (node < 0 || aborted_) return -1;
+        if (node < 0 || aborted_ || TooDeep(depth, c.loc)) return -1;
         const TreeNode& n = c.nodes[node];
-        if (n.op == TreeNode::Op::kLeaf) return ObjectExpr(c.name, n.name, m * n.matrix, n.loc,
-                                                           depth + 1);
+        if (n.op == TreeNode::Op::kLeaf)
+            return ObjectExpr(c.name, n.name, m * n.matrix, n.loc, depth + 1);
         int l = TreeExpr(c, n.left, m, depth + 1);
+        if (aborted_) return -1;
         int r = TreeExpr(c, n.right, m, depth + 1);
         return Combine(OpOf(n.op), l, r);
     }
@@ -396,10 +426,14 @@ class Converter {
             combOnPath_[ci] = 0;
             t.name = c.name;
             t.loc = c.loc;
-            if (ctx.locked && ctx.rgb) t.rgb = ctx.rgb;
-            else if (c.rgb) t.rgb = c.rgb;
-            else if (ctx.rgb) t.rgb = ctx.rgb;
-            else t.rgb = TableColor(c.regionId);
+            if (ctx.locked && ctx.rgb)
+                t.rgb = ctx.rgb;
+            else if (c.rgb)
+                t.rgb = c.rgb;
+            else if (ctx.rgb)
+                t.rgb = ctx.rgb;
+            else
+                t.rgb = TableColor(c.regionId);
             if (t.expr >= 0) out.push_back(std::move(t));
             return out;
         }
@@ -416,20 +450,29 @@ class Converter {
     std::vector<Term> TreeTerms(const Combination& c, int node, const Mat4& m, const ColorCtx& ctx,
                                 int depth) {
         std::vector<Term> out;
-        if (node < 0 || aborted_) return out;
+        if (node < 0 || aborted_ || TooDeep(depth, c.loc)) return out;
         const TreeNode& n = c.nodes[node];
         if (n.op == TreeNode::Op::kLeaf) {
             refParent_ = c.name;
             return Terms(n.name, m * n.matrix, ctx, depth + 1, &n);
         }
         std::vector<Term> l = TreeTerms(c, n.left, m, ctx, depth + 1);
+        if (aborted_) return {};
         std::vector<Term> r = TreeTerms(c, n.right, m, ctx, depth + 1);
+        if (aborted_) return {};
         switch (n.op) {
             case TreeNode::Op::kUnion:
                 out = std::move(l);
                 for (Term& t : r) out.push_back(std::move(t));
                 break;
             case TreeNode::Op::kIntersection:  // (A∪B)∩(C∪D) = ∪ A∩C ...
+                if (l.size() * r.size() > kMaxTerms) {
+                    diags_.Error(n.loc, fmt::format("combination '{}' expands to more than {} "
+                                                    "rendered regions",
+                                                    c.name, kMaxTerms));
+                    aborted_ = true;
+                    return {};
+                }
                 for (const Term& a : l)
                     for (const Term& b : r) {
                         int e = Combine(scene::CsgOp::kIntersection, a.expr, b.expr);
@@ -456,6 +499,14 @@ class Converter {
     }
 
     int EmitNode(scene::Csg& csg, int expr) {
+        if (++emitted_ > kMaxCsgNodes) {
+            if (emitted_ == kMaxCsgNodes + 1)
+                diags_.Error(csg.loc, fmt::format("the model expands to more than {} CSG nodes; "
+                                                  "refusing to go on",
+                                                  kMaxCsgNodes));
+            aborted_ = true;
+            return -1;
+        }
         const Expr& e = exprs_[expr];
         auto add = [&](scene::CsgNode n) {
             csg.nodes.push_back(n);
@@ -484,6 +535,7 @@ class Converter {
         }
         int l = EmitNode(csg, e.left);
         int r = EmitNode(csg, e.right);
+        if (l < 0 || r < 0) return -1;
         scene::CsgNode n;
         n.isLeaf = false;
         n.op = e.op;
@@ -500,9 +552,10 @@ class Converter {
             csg.id = k == 0 ? t.name : fmt::format("{}#{}", t.name, k + 1);
             csg.loc = t.loc;
             if (t.rgb)
-                csg.color = scene::Color{(*t.rgb)[0] / 255.0, (*t.rgb)[1] / 255.0,
-                                         (*t.rgb)[2] / 255.0};
+                csg.color =
+                    scene::Color{(*t.rgb)[0] / 255.0, (*t.rgb)[1] / 255.0, (*t.rgb)[2] / 255.0};
             csg.root = EmitNode(csg, t.expr);
+            if (aborted_) return;
             const Box3& b = exprs_[t.expr].box;
             if (b.Finite()) report_.bounds.Extend(b);
             scene_.top.csgs.push_back(std::move(csg));
@@ -547,6 +600,7 @@ class Converter {
     std::set<std::string> warnedMissing_;
     std::map<std::array<double, 17>, int> leafCache_;
     std::string refParent_;
+    std::size_t emitted_ = 0;
     bool aborted_ = false;
 };
 
@@ -574,8 +628,9 @@ bool ImportBrlcad(std::string_view text, const std::string& file, const ImportOp
             loc.file = std::make_shared<const std::string>(file);
             loc.line = 1;
             loc.column = 1;
-            diags.Error(loc, "not a BRL-CAD ASCII database: expected 'I <units> v4' (v4), a "
-                             "title/units/put command (v5) or a COMGEOM deck");
+            diags.Error(loc,
+                        "not a BRL-CAD ASCII database: expected 'I <units> v4' (v4), a "
+                        "title/units/put command (v5) or a COMGEOM deck");
             return false;
         }
     }

@@ -35,11 +35,11 @@ struct ImportOptions {
 struct ImportReport {
     std::string format;  // "BRL-CAD v4", "BRL-CAD v5", "COMGEOM", "OpenSCAD CSG"
     std::string title;
-    std::map<std::string, int> census;   // every primitive in the file, by type
-    std::map<std::string, int> skipped;  // non-quadric primitives reached from the top objects
-    int solids = 0;                      // CSG solids added to the scene (rendered regions)
-    Box3 bounds;                         // Quadrix coordinates, bounded solids only
-    std::vector<std::string> topObjects;  // the objects actually drawn
+    std::map<std::string, int> census;     // every primitive in the file, by type
+    std::map<std::string, int> skipped;    // non-quadric primitives reached from the top objects
+    int solids = 0;                        // CSG solids added to the scene (rendered regions)
+    Box3 bounds;                           // Quadrix coordinates, bounded solids only
+    std::vector<std::string> topObjects;   // the objects actually drawn
     std::vector<std::string> missingTops;  // requested names absent from this file
 
     // "census: arb8 12, ell 3, tgc 4" (sorted by type name).

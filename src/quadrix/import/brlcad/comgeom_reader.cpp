@@ -11,13 +11,13 @@
 //   idents       region number, region id, air code, material, los, name
 // Regions become combinations "r<N>" (air codes from the ident table); every region is also a
 // member of the group "all", the default top object.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "quadrix/import/brlcad/readers.h"
 
@@ -111,18 +111,30 @@ class ComgeomReader {
         if (num.empty() || type.empty())
             return Fail(c.offset, "expected a solid card (number in columns 1-5, type in 6-10)");
         int nParams = 0;
-        if (type == "RPP" || type == "HAF") nParams = type == "RPP" ? 6 : 4;
-        else if (type == "RCC" || type == "SPH") nParams = type == "RCC" ? 7 : 4;
-        else if (type == "TRC") nParams = 8;
-        else if (type == "BOX" || type == "RAW" || type == "REC") nParams = 12;
-        else if (type == "TEC") nParams = 13;
-        else if (type == "ARB8") nParams = 24;
-        else if (type == "ARB7") nParams = 21;
-        else if (type == "ARB6") nParams = 18;
-        else if (type == "ARB5") nParams = 15;
-        else if (type == "ARB4") nParams = 12;
-        else if (type == "ELL" || type == "ELL1" || type == "TOR") nParams = type == "TOR" ? 8 : 7;
-        else return Fail(c.offset + 5, fmt::format("unknown COMGEOM solid type '{}'", type));
+        if (type == "RPP" || type == "HAF")
+            nParams = type == "RPP" ? 6 : 4;
+        else if (type == "RCC" || type == "SPH")
+            nParams = type == "RCC" ? 7 : 4;
+        else if (type == "TRC")
+            nParams = 8;
+        else if (type == "BOX" || type == "RAW" || type == "REC")
+            nParams = 12;
+        else if (type == "TEC")
+            nParams = 13;
+        else if (type == "ARB8")
+            nParams = 24;
+        else if (type == "ARB7")
+            nParams = 21;
+        else if (type == "ARB6")
+            nParams = 18;
+        else if (type == "ARB5")
+            nParams = 15;
+        else if (type == "ARB4")
+            nParams = 12;
+        else if (type == "ELL" || type == "ELL1" || type == "TOR")
+            nParams = type == "TOR" ? 8 : 7;
+        else
+            return Fail(c.offset + 5, fmt::format("unknown COMGEOM solid type '{}'", type));
         int nCards = (nParams + 5) / 6;
         std::vector<double> v;
         for (int k = 0; k < nCards; ++k) {
@@ -249,8 +261,8 @@ class ComgeomReader {
                 char* end = nullptr;
                 long solid = std::strtol(tok.c_str(), &end, 10);
                 if (*end != 0)
-                    return Fail(c.offset + at, fmt::format("'{}' is not a solid number or OR",
-                                                           tok));
+                    return Fail(c.offset + at,
+                                fmt::format("'{}' is not a solid number or OR", tok));
                 if (solid == 0) continue;
                 GiftMember m;
                 m.op = newTerm ? 'u' : (solid > 0 ? '+' : '-');

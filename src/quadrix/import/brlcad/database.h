@@ -36,7 +36,7 @@ struct Primitive {
 struct TreeNode {
     enum class Op { kLeaf, kUnion, kIntersection, kDifference };
     Op op = Op::kLeaf;
-    std::string name;   // kLeaf
+    std::string name;                // kLeaf
     Mat4 matrix = Mat4::Identity();  // kLeaf: row-major, p' = M p, m15 = inverse uniform scale
     int left = -1, right = -1;       // indices into Combination::nodes
     SourceLoc loc;

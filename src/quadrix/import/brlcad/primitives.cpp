@@ -2,9 +2,9 @@
 // written out per primitive below with the local frame each uses.
 #include "quadrix/import/brlcad/primitives.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace quadrix::import::brlcad {
 
@@ -97,8 +97,7 @@ ConvertResult Arb8(const Primitive& p) {
             if (dup) continue;
             if (pts.size() == 2) {
                 Vec3 n = Cross(pts[1] - pts[0], v - pts[0]);
-                if (Length(n) < kDistTol * (Length(pts[1] - pts[0]) + Length(v - pts[0])))
-                    continue;
+                if (Length(n) < kDistTol * (Length(pts[1] - pts[0]) + Length(v - pts[0]))) continue;
             }
             pts.push_back(v);
             if (pts.size() == 3) break;
@@ -117,6 +116,26 @@ ConvertResult Arb8(const Primitive& p) {
         body.push_back(h);
     }
     if (body.size() < 4) return Invalid(p, "its vertices do not span a solid");
+    // A concave or twisted arb (arb8_showcase has several) is, as in librt, the intersection of
+    // its face planes, which can reach far beyond its vertices. rt only finds it along rays that
+    // cross the solid's bounding box; we bound it by that box (the box of its vertices) with 6
+    // more planes, which leave every convex arb untouched.
+    bool convex = true;
+    for (const Vec3& v : p.pts)
+        for (const ShapeHalfSpace& h : body) convex = convex && h.plane.Evaluate(v) <= kDistTol;
+    if (!convex) {
+        Box3 box;
+        for (const Vec3& v : p.pts) box.Extend(v);
+        for (int axis = 0; axis < 3; ++axis) {
+            ShapeHalfSpace lo, hi;
+            Vec3 n;
+            n[axis] = 1;
+            hi.plane = Plane{n.x, n.y, n.z, -box.hi[axis]};
+            lo.plane = Plane{-n.x, -n.y, -n.z, box.lo[axis]};
+            body.push_back(hi);
+            body.push_back(lo);
+        }
+    }
     r.shape.bodies.push_back(std::move(body));
     for (const Vec3& v : p.pts) r.shape.extent.push_back({v, {}, {}, {}});
     return r;
@@ -327,8 +346,10 @@ ConvertResult Part(const Primitive& p) {
     sphere(p.V, p.rv);
     double sinPhi = (p.rv - p.rh) / l;
     if (std::fabs(sinPhi) >= 1) {  // one sphere contains the other
-        if (p.rh > p.rv) r.shape.bodies.erase(r.shape.bodies.begin() + 1);
-        else if (p.rh > 0) r.shape.bodies.erase(r.shape.bodies.begin());
+        if (p.rh > p.rv)
+            r.shape.bodies.erase(r.shape.bodies.begin() + 1);
+        else if (p.rh > 0)
+            r.shape.bodies.erase(r.shape.bodies.begin());
         return r;
     }
     double cosPhi = std::sqrt(1 - sinPhi * sinPhi);
@@ -351,18 +372,30 @@ ConvertResult Part(const Primitive& p) {
 ConvertResult ConvertPrimitive(const Primitive& p) {
     ConvertResult r;
     const std::string& t = p.type;
-    if (t == "arb8") r = Arb8(p);
-    else if (t == "arbn") r = Arbn(p);
-    else if (t == "half") r = Half(p);
-    else if (t == "ell") r = Ell(p);
-    else if (t == "tgc") r = Tgc(p);
-    else if (t == "rpc") r = Rpc(p);
-    else if (t == "rhc") r = Rhc(p);
-    else if (t == "epa") r = Epa(p);
-    else if (t == "ehy") r = Ehy(p);
-    else if (t == "hyp") r = Hyp(p);
-    else if (t == "part") r = Part(p);
-    else r.status = ConvertResult::Status::kNonQuadric;
+    if (t == "arb8")
+        r = Arb8(p);
+    else if (t == "arbn")
+        r = Arbn(p);
+    else if (t == "half")
+        r = Half(p);
+    else if (t == "ell")
+        r = Ell(p);
+    else if (t == "tgc")
+        r = Tgc(p);
+    else if (t == "rpc")
+        r = Rpc(p);
+    else if (t == "rhc")
+        r = Rhc(p);
+    else if (t == "epa")
+        r = Epa(p);
+    else if (t == "ehy")
+        r = Ehy(p);
+    else if (t == "hyp")
+        r = Hyp(p);
+    else if (t == "part")
+        r = Part(p);
+    else
+        r.status = ConvertResult::Status::kNonQuadric;
     if (r.censusName.empty()) r.censusName = t;
     return r;
 }

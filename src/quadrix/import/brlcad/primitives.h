@@ -37,7 +37,7 @@ struct ExtentPiece {
 struct Shape {
     std::vector<ShapeBody> bodies;  // union
     std::vector<ExtentPiece> extent;
-    bool unbounded = false;         // half-spaces
+    bool unbounded = false;  // half-spaces
 };
 
 struct ConvertResult {

@@ -20,8 +20,7 @@ TextFormat DetectFormat(std::string_view text);
 
 bool ParseV4(std::string_view text, const std::string& file, Database& db, Diagnostics& diags);
 bool ParseV5(std::string_view text, const std::string& file, Database& db, Diagnostics& diags);
-bool ParseComgeom(std::string_view text, const std::string& file, Database& db,
-                  Diagnostics& diags);
+bool ParseComgeom(std::string_view text, const std::string& file, Database& db, Diagnostics& diags);
 
 // One member of a GIFT-precedence list (v4 'M' records, COMGEOM region cards).
 struct GiftMember {

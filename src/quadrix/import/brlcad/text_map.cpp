@@ -49,8 +49,8 @@ TextFormat DetectFormat(std::string_view text) {
     }
     auto startsWith = [](std::string_view s, std::string_view p) {
         s.remove_prefix(std::min(s.find_first_not_of(" \t"), s.size()));
-        return s.substr(0, p.size()) == p && (s.size() == p.size() || std::isspace(
-                                                  static_cast<unsigned char>(s[p.size()])));
+        return s.substr(0, p.size()) == p &&
+               (s.size() == p.size() || std::isspace(static_cast<unsigned char>(s[p.size()])));
     };
     if (first.size() > 2 && first[0] == 'I' && first[1] == ' ' &&
         first.find("v4") != std::string_view::npos)

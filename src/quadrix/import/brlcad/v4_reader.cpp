@@ -1,13 +1,13 @@
 // The v4 ASCII record format (FORMAT.md §2): one record per line, the first character the record
 // type. S solids carry 24 floats; C combinations are followed by their M member lines, which form
 // a flat list with GIFT precedence (+ and - bind tighter than u; the first operator is a union).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
-#include <iterator>
 #include <cmath>
 #include <cstdlib>
-
-#include <fmt/format.h>
+#include <iterator>
 
 #include "quadrix/import/brlcad/readers.h"
 
@@ -68,14 +68,22 @@ class V4Reader {
             auto toks = Split(lines_[li_].text, lines_[li_].offset);
             if (toks.empty()) continue;
             std::string_view id = toks[0].text;
-            if (id == "I") Ident(toks);
-            else if (id == "S") Solid(toks);
-            else if (id == "C") Comb(toks);
-            else if (id == "M") Member4(toks);
-            else if (id == "m") ColorEntry(toks);
-            else if (id == "s") StringSolid(toks);
-            else if (id == "A") Ars(toks);
-            else if (id == "B" && inArs_) continue;
+            if (id == "I")
+                Ident(toks);
+            else if (id == "S")
+                Solid(toks);
+            else if (id == "C")
+                Comb(toks);
+            else if (id == "M")
+                Member4(toks);
+            else if (id == "m")
+                ColorEntry(toks);
+            else if (id == "s")
+                StringSolid(toks);
+            else if (id == "A")
+                Ars(toks);
+            else if (id == "B" && inArs_)
+                continue;
             else
                 Error(toks[0], fmt::format("unknown or unsupported v4 record type '{}' (this "
                                            "reader knows I S C M m s A/B)",
@@ -97,8 +105,8 @@ class V4Reader {
         diags_.Error(map_.At(t.offset), std::move(message), map_.LineText(t.offset));
     }
 
-    bool Numbers(const std::vector<Token>& toks, std::size_t first, std::size_t count,
-                 double* out, const std::string& what) {
+    bool Numbers(const std::vector<Token>& toks, std::size_t first, std::size_t count, double* out,
+                 const std::string& what) {
         if (toks.size() < first + count) {
             const Token& last = toks.back();
             Token at{last.text, last.offset + last.text.size()};
@@ -108,8 +116,8 @@ class V4Reader {
         }
         for (std::size_t i = 0; i < count; ++i) {
             if (!ToDouble(toks[first + i].text, out[i])) {
-                Error(toks[first + i], fmt::format("{}: '{}' is not a finite number", what,
-                                                   toks[first + i].text));
+                Error(toks[first + i],
+                      fmt::format("{}: '{}' is not a finite number", what, toks[first + i].text));
                 return false;
             }
         }
@@ -125,8 +133,9 @@ class V4Reader {
 
     void Solid(const std::vector<Token>& toks) {
         if (toks.size() < 4) {
-            Error(toks.back(), "truncated solid record: expected 'S type name cgtype' and 24 "
-                               "numbers");
+            Error(toks.back(),
+                  "truncated solid record: expected 'S type name cgtype' and 24 "
+                  "numbers");
             return;
         }
         int stype = 0;
@@ -178,13 +187,20 @@ class V4Reader {
                 p.type = "hyp";
                 p.V = vec(0), p.H = vec(1), p.A = vec(2), p.b = v[9], p.bnr = v[10];
                 break;
-            case 16: p.type = "tor"; break;
-            case 30: p.type = "eto"; break;
-            case 31: p.type = "grip"; break;
-            case 32: p.type = "superell"; break;
+            case 16:
+                p.type = "tor";
+                break;
+            case 30:
+                p.type = "eto";
+                break;
+            case 31:
+                p.type = "grip";
+                break;
+            case 32:
+                p.type = "superell";
+                break;
             default:
-                Error(toks[1], fmt::format("unknown solid type {} in record '{}'", stype,
-                                           p.name));
+                Error(toks[1], fmt::format("unknown solid type {} in record '{}'", stype, p.name));
                 return;
         }
         db_.AddPrimitive(std::move(p));
@@ -242,8 +258,8 @@ class V4Reader {
             return;
         }
         if (toks.size() < 3) {
-            Error(toks.back(), fmt::format("truncated member record in combination '{}'",
-                                           comb_.name));
+            Error(toks.back(),
+                  fmt::format("truncated member record in combination '{}'", comb_.name));
             return;
         }
         Member m;
@@ -258,8 +274,8 @@ class V4Reader {
         m.name = std::string(toks[2].text);
         m.loc = map_.At(toks[2].offset);
         double v[16];
-        if (!Numbers(toks, 3, 16, v, fmt::format("member '{}' of combination '{}'", m.name,
-                                                   comb_.name)))
+        if (!Numbers(toks, 3, 16, v,
+                     fmt::format("member '{}' of combination '{}'", m.name, comb_.name)))
             return;
         for (int r = 0; r < 4; ++r)
             for (int c = 0; c < 4; ++c) m.matrix.m[r][c] = v[4 * r + c];

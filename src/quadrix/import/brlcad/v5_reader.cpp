@@ -4,11 +4,11 @@
 // combination trees are nested prefix lists ({u L R}, {n L R}, {- L R}, {l name [matrix]}).
 // Every word keeps its offset in the file, so sub-lists (tree nodes, vector components) are
 // reported at their own line and column.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "quadrix/import/brlcad/readers.h"
 
@@ -17,7 +17,7 @@ namespace quadrix::import::brlcad {
 namespace {
 
 struct Word {
-    std::string_view text;  // braces and quotes removed
+    std::string_view text;   // braces and quotes removed
     std::size_t offset = 0;  // offset of the word's first character (the brace, if any)
     bool braced = false;
 };
@@ -48,7 +48,10 @@ class V5Reader {
     }
 
     // Reads one word starting at t[i] (not a space); false after reporting an error.
-    bool ReadWord(std::string_view t, std::size_t base, std::size_t& i, Word& w) {
+    // `inList`: inside a braced list ';' is an ordinary character (at command level it ends the
+    // command).
+    bool ReadWord(std::string_view t, std::size_t base, std::size_t& i, Word& w,
+                  bool inList = false) {
         w.offset = base + i;
         if (t[i] == '{') {
             int depth = 0;
@@ -82,7 +85,8 @@ class V5Reader {
             return true;
         }
         std::size_t s = i;
-        while (i < t.size() && !IsSpace(t[i]) && t[i] != ';') ++i;
+        while (i < t.size() && !IsSpace(t[i]) && (inList || t[i] != ';')) ++i;
+        if (i == s) ++i;  // never stall on a character that cannot start a word
         w.text = t.substr(s, i - s);
         return true;
     }
@@ -118,7 +122,7 @@ class V5Reader {
             while (i < t.size() && IsSpace(t[i])) ++i;
             if (i >= t.size()) break;
             Word e;
-            if (!ReadWord(t, base, i, e)) return std::nullopt;
+            if (!ReadWord(t, base, i, e, true)) return std::nullopt;
             out.push_back(e);
         }
         return out;
@@ -139,8 +143,8 @@ class V5Reader {
         auto l = List(w);
         if (!l) return false;
         if (l->size() != 3) {
-            Error(w.offset, fmt::format("{}: expected a vector {{x y z}}, found {} values", what,
-                                        l->size()));
+            Error(w.offset,
+                  fmt::format("{}: expected a vector {{x y z}}, found {} values", what, l->size()));
             return false;
         }
         for (int k = 0; k < 3; ++k)
@@ -175,16 +179,17 @@ class V5Reader {
         double v[5];
         for (int k = 0; k < 5; ++k)
             if (!Number(w[k + 1], v[k], "color")) return;
-        db_.colorTable.push_back({static_cast<int>(v[0]), static_cast<int>(v[1]),
-                                  {static_cast<int>(v[2]), static_cast<int>(v[3]),
-                                   static_cast<int>(v[4])}});
+        db_.colorTable.push_back(
+            {static_cast<int>(v[0]),
+             static_cast<int>(v[1]),
+             {static_cast<int>(v[2]), static_cast<int>(v[3]), static_cast<int>(v[4])}});
     }
 
     void Attr(const std::vector<Word>& w) {
         if (w.size() < 3 || w[1].text != "set") return;  // attr rm/append/...: no geometry
         if ((w.size() - 3) % 2 != 0) {
-            Error(w.back().offset, fmt::format("attr set {{{}}}: attribute without a value",
-                                               w[2].text));
+            Error(w.back().offset,
+                  fmt::format("attr set {{{}}}: attribute without a value", w[2].text));
             return;
         }
         auto& attrs = attrs_[std::string(w[2].text)];
@@ -199,8 +204,8 @@ class V5Reader {
         }
         std::string name(w[1].text), type(w[2].text);
         if ((w.size() - 3) % 2 != 0) {
-            Error(w.back().offset, fmt::format("put {{{}}}: key '{}' has no value", name,
-                                               w.back().text));
+            Error(w.back().offset,
+                  fmt::format("put {{{}}}: key '{}' has no value", name, w.back().text));
             return;
         }
         std::map<std::string, Word> kv;
@@ -302,8 +307,8 @@ class V5Reader {
         n.loc = map_.At(w.offset);
         if (op == "l") {
             if (e.size() < 2 || e.size() > 3) {
-                Error(w.offset, fmt::format("combination '{}': a leaf is {{l name [matrix]}}",
-                                            comb.name));
+                Error(w.offset,
+                      fmt::format("combination '{}': a leaf is {{l name [matrix]}}", comb.name));
                 return -1;
             }
             n.name = std::string(e[1].text);
@@ -361,8 +366,7 @@ class V5Reader {
         c.loc = map_.At(w[0].offset);
         c.sourceLine = map_.LineText(w[0].offset);
         if (auto it = kv.find("region"); it != kv.end())
-            c.region = it->second.text == "yes" || it->second.text == "1" ||
-                       it->second.text == "R";
+            c.region = it->second.text == "yes" || it->second.text == "1" || it->second.text == "R";
         auto tree = kv.find("tree");
         if (tree == kv.end()) {
             Error(w[0].offset, fmt::format("combination '{}' has no tree", name));
@@ -391,8 +395,8 @@ class V5Reader {
         } else if (key == "rgb" || key == "color") {
             auto rgb = ParseRgb(v.text);
             if (!rgb) {
-                Error(v.offset, fmt::format("combination '{}': colour '{}' is not r/g/b", c.name,
-                                            v.text));
+                Error(v.offset,
+                      fmt::format("combination '{}': colour '{}' is not r/g/b", c.name, v.text));
                 return;
             }
             c.rgb = rgb;

@@ -15,13 +15,13 @@
 //   render: the union. color(c [, alpha]) colours its subtree; the innermost colour wins.
 #include "quadrix/import/openscad/openscad_import.h"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <map>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
@@ -56,8 +56,8 @@ struct Node {
 
 class Parser {
   public:
-    Parser(const brlcad::TextMap& map, Diagnostics& diags) : map_(map), t_(map.text()),
-                                                             diags_(diags) {}
+    Parser(const brlcad::TextMap& map, Diagnostics& diags)
+        : map_(map), t_(map.text()), diags_(diags) {}
 
     bool Run(std::vector<Node>& out) {
         while (Skip(), i_ < t_.size()) {
@@ -107,8 +107,8 @@ class Parser {
     std::string Ident() {
         Skip();
         std::size_t s = i_;
-        while (i_ < t_.size() && (std::isalnum(static_cast<unsigned char>(t_[i_])) ||
-                                  t_[i_] == '_' || t_[i_] == '$'))
+        while (i_ < t_.size() &&
+               (std::isalnum(static_cast<unsigned char>(t_[i_])) || t_[i_] == '_' || t_[i_] == '$'))
             ++i_;
         return std::string(t_.substr(s, i_ - s));
     }
@@ -235,8 +235,7 @@ class Parser {
                 break;
             }
         }
-        if (!Expect(')', fmt::format("to close the arguments of '{}'", name).c_str()))
-            return false;
+        if (!Expect(')', fmt::format("to close the arguments of '{}'", name).c_str())) return false;
         Skip();
         if (Peek(';')) {
             ++i_;
@@ -366,8 +365,8 @@ class Builder {
     std::optional<Vec3> Vec(const Node& n, const char* name, int position, bool allowScalar) {
         const Value* v = Find(n, name, position);
         if (!v || v->kind == Value::Kind::kUndef) return std::nullopt;
-        if (allowScalar && v->kind == Value::Kind::kNumber) return Vec3{v->number, v->number,
-                                                                        v->number};
+        if (allowScalar && v->kind == Value::Kind::kNumber)
+            return Vec3{v->number, v->number, v->number};
         Vec3 out;
         if (v->kind == Value::Kind::kVector && v->items.size() >= 2 && v->items.size() <= 3) {
             for (std::size_t k = 0; k < v->items.size(); ++k) {
@@ -390,16 +389,16 @@ class Builder {
         }
         if (v->kind == Value::Kind::kString) {
             static const std::map<std::string, scene::Color> kNames = {
-                {"red", {1, 0, 0}},        {"green", {0, 0.5, 0}},  {"lime", {0, 1, 0}},
-                {"blue", {0, 0, 1}},       {"white", {1, 1, 1}},    {"black", {0, 0, 0}},
-                {"yellow", {1, 1, 0}},     {"cyan", {0, 1, 1}},     {"magenta", {1, 0, 1}},
-                {"gray", {.5, .5, .5}},    {"grey", {.5, .5, .5}},  {"orange", {1, .647, 0}},
-                {"purple", {.5, 0, .5}},   {"silver", {.75, .75, .75}}};
+                {"red", {1, 0, 0}},      {"green", {0, 0.5, 0}},     {"lime", {0, 1, 0}},
+                {"blue", {0, 0, 1}},     {"white", {1, 1, 1}},       {"black", {0, 0, 0}},
+                {"yellow", {1, 1, 0}},   {"cyan", {0, 1, 1}},        {"magenta", {1, 0, 1}},
+                {"gray", {.5, .5, .5}},  {"grey", {.5, .5, .5}},     {"orange", {1, .647, 0}},
+                {"purple", {.5, 0, .5}}, {"silver", {.75, .75, .75}}};
             std::string key;
             for (char ch : v->text) key += static_cast<char>(std::tolower(ch));
             if (auto it = kNames.find(key); it != kNames.end()) return it->second;
-            Warn(n, fmt::format("colour name '{}' is not known here; the colour is ignored",
-                                v->text));
+            Warn(n,
+                 fmt::format("colour name '{}' is not known here; the colour is ignored", v->text));
         }
         return std::nullopt;
     }
@@ -486,8 +485,8 @@ class Builder {
         Mat4 total = QuadrixFromZUp() * m;
         auto t = Transform::FromMatrix(total);
         if (!t) {
-            Error(n.offset, fmt::format("{}: the transformation is singular (a zero scale?)",
-                                        n.name));
+            Error(n.offset,
+                  fmt::format("{}: the transformation is singular (a zero scale?)", n.name));
             return -1;
         }
         int root = -1;
@@ -575,8 +574,7 @@ class Builder {
         }
         if (k.empty() || k == "group" || k == "union" || k == "render" || k == "children")
             return Children(csg, n, m, color, scene::CsgOp::kUnion, box);
-        if (k == "difference")
-            return Children(csg, n, m, color, scene::CsgOp::kDifference, box);
+        if (k == "difference") return Children(csg, n, m, color, scene::CsgOp::kDifference, box);
         if (k == "intersection")
             return Children(csg, n, m, color, scene::CsgOp::kIntersection, box);
         if (auto t = TransformOf(n))

@@ -1,0 +1,151 @@
+// The simulated frame buffer on hand-assembled programs: the semantics of each opcode of isa.h,
+// independent of the compiler.
+#include "quadrix/engines/pixelpowers/machine.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace quadrix::pixelpowers {
+namespace {
+
+constexpr std::uint8_t kF1 = 0, kF2 = 1, kF3 = 2;
+
+struct Assembler {
+    Program program;
+    Block block;
+
+    void Begin(PixelRect r) {
+        block = {};
+        block.rect = r;
+        block.first = static_cast<std::int32_t>(program.code.size());
+    }
+    void End() {
+        block.count = static_cast<std::int32_t>(program.code.size()) - block.first;
+        program.blocks.push_back(block);
+    }
+    void Op(Opcode op, std::uint8_t a, std::uint8_t b = 0, std::int32_t arg = -1,
+            std::array<double, 6> q = {}) {
+        Instruction in;
+        in.op = op;
+        in.a = a;
+        in.b = b;
+        in.arg = arg;
+        for (int i = 0; i < 6; ++i) in.q[i] = q[static_cast<std::size_t>(i)];
+        program.code.push_back(in);
+    }
+    std::int32_t Patch(int halfSpace) {
+        program.patches.push_back({halfSpace, 0, 0});
+        return static_cast<std::int32_t>(program.patches.size() - 1);
+    }
+};
+
+FlatScene PlaneScene(int w, int h) {
+    // One plane so that scan-out can compute normals for patch 0 (z = 0 plane, normal −z).
+    FlatScene s;
+    s.width = w;
+    s.height = h;
+    FlatHalfSpace p;
+    p.isPlane = true;
+    p.plane = {0, 0, -1, 0};
+    s.halfSpaces.push_back(p);
+    return s;
+}
+
+// Seed 003 §3 scan conversion and the z-buffer: a disk of radius 5 (QNPOS on its circle) at depth
+// z = x, then the same disk at depth 20 − x; ZMIN keeps min(x, 20 − x), COLOR names the winner.
+TEST(PixelPowersMachine, ScanConversionAndZBuffer) {
+    Assembler as;
+    std::int32_t p0 = as.Patch(0), p1 = as.Patch(0);
+    // (x − 10)² + (y − 8)² − 25 <= 0  →  A=1 C=1 D=−20 E=−16 F=100+64−25
+    std::array<double, 6> disk{1, 0, 1, -20, -16, 139};
+    for (int k = 0; k < 2; ++k) {
+        as.Begin({0, 0, 20, 16});
+        as.Op(Opcode::kFlagSet, kF1);
+        as.Op(Opcode::kQeeKeepNonPositive, kF1, 0, -1, disk);
+        as.Op(Opcode::kZLoad, kF1, 0, -1,
+              k == 0 ? std::array<double, 6>{0, 0, 0, 1, 0, 0}
+                     : std::array<double, 6>{0, 0, 0, -1, 0, 20});
+        as.Op(Opcode::kZTest, kF1);
+        as.Op(Opcode::kZWrite, kF1, 0, k == 0 ? p0 : p1);
+        as.End();
+    }
+    FlatScene scene = PlaneScene(20, 16);
+    Frame f;
+    MachineCounters c = Execute(as.program, scene, 1, f);
+    int covered = 0;
+    for (int j = 0; j < 16; ++j) {
+        for (int i = 0; i < 20; ++i) {
+            double x = i + 0.5, y = j + 0.5;
+            bool in = (x - 10) * (x - 10) + (y - 8) * (y - 8) <= 25;
+            std::size_t k = f.Index(i, j);
+            ASSERT_EQ(f.surface[k] != Frame::kNone, in) << i << "," << j;
+            if (!in) continue;
+            ++covered;
+            EXPECT_EQ(f.depth[k], std::min(x, 20 - x));
+        }
+    }
+    EXPECT_EQ(static_cast<std::uint64_t>(covered), f.CoveredCount());
+    EXPECT_GT(c.writes, static_cast<std::uint64_t>(covered));  // the second disk overwrote half
+}
+
+// Envelopes and flag logic: ZMAX over two lines gives |x − 10| + 5 style roofs; ZGE/ZLE pare
+// against a third line; FCOPY/FANDN combine as in seed 004 §II.b step 3.
+TEST(PixelPowersMachine, EnvelopesAndFlagLogic) {
+    Assembler as;
+    std::int32_t p = as.Patch(0);
+    as.Begin({0, 0, 20, 1});
+    as.Op(Opcode::kFlagSet, kF1);
+    as.Op(Opcode::kZLoad, kF1, 0, -1, {0, 0, 0, 1, 0, -10});  // z = x − 10
+    as.Op(Opcode::kZMax, kF1, 0, -1, {0, 0, 0, -1, 0, 10});   // z = max(x − 10, 10 − x)
+    as.Op(Opcode::kFlagCopy, kF2, kF1);
+    as.Op(Opcode::kZKeepLE, kF2, 0, -1, {0, 0, 0, 0, 0, 3});  // F2: |x − 10| <= 3
+    as.Op(Opcode::kFlagCopy, kF3, kF1);
+    as.Op(Opcode::kZKeepGE, kF3, 0, -1, {0, 0, 0, 0, 0, 8});  // F3: |x − 10| >= 8
+    as.Op(Opcode::kFlagOr, kF2, kF3);                         // F2: near the centre or the ends
+    as.Op(Opcode::kFlagAndNot, kF1, kF2);                     // F1: the rest
+    as.Op(Opcode::kZTest, kF1);
+    as.Op(Opcode::kZWrite, kF1, 0, p);
+    as.End();
+    FlatScene scene = PlaneScene(20, 1);
+    Frame f;
+    Execute(as.program, scene, 0, f);
+    for (int i = 0; i < 20; ++i) {
+        double d = std::fabs(i + 0.5 - 10);
+        bool drawn = !(d <= 3 || d >= 8);
+        EXPECT_EQ(f.surface[static_cast<std::size_t>(i)] != Frame::kNone, drawn) << i;
+        if (drawn) {
+            EXPECT_EQ(f.depth[static_cast<std::size_t>(i)], d);
+        }
+    }
+}
+
+// Instructions act only inside their block's rectangle, and tiles (64 × 64) do not change the
+// result: a 150 × 70 disk program split across six tiles covers exactly the disk's pixels.
+TEST(PixelPowersMachine, RectanglesAndTiles) {
+    Assembler as;
+    std::int32_t p = as.Patch(0);
+    as.Begin({10, 5, 140, 66});
+    as.Op(Opcode::kFlagSet, kF1);
+    as.Op(Opcode::kQeeKeepNonPositive, kF1, 0, -1,
+          {1, 0, 4, -150, -280, 75 * 75 + 4 * 35 * 35 - 3600});
+    as.Op(Opcode::kZLoad, kF1, 0, -1, {0, 0, 0, 0, 0, 1});
+    as.Op(Opcode::kZWrite, kF1, 0, p);
+    as.End();
+    FlatScene scene = PlaneScene(150, 70);
+    Frame f;
+    MachineCounters c = Execute(as.program, scene, 0, f);
+    EXPECT_EQ(c.tiles, 6u);
+    for (int j = 0; j < 70; ++j) {
+        for (int i = 0; i < 150; ++i) {
+            double x = i + 0.5, y = j + 0.5;
+            // (x − 75)² + 4 (y − 35)² <= 3600, clipped to the block rectangle.
+            bool in = (x - 75) * (x - 75) + 4 * (y - 35) * (y - 35) <= 3600 && i >= 10 && i < 140 &&
+                      j >= 5 && j < 66;
+            ASSERT_EQ(f.surface[f.Index(i, j)] != Frame::kNone, in) << i << "," << j;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace quadrix::pixelpowers
