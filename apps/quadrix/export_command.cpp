@@ -3,10 +3,8 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "quadrix/flatten/flattener.h"
 #include "quadrix/io/pov_export.h"
 #include "quadrix/io/writers.h"
-#include "quadrix/lang/reader.h"
 #include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::cli {
@@ -31,22 +29,27 @@ int RunExport(const ExportArgs& args) {
         return 2;
     }
     Diagnostics diags;
-    scene::Scene scene;
-    lang::ReadSceneFiles(args.scenes, scene, diags);
-    std::optional<FlatScene> flat;
-    if (!diags.HasErrors()) {
-        FlattenOptions fo;
-        fo.width = width;
-        fo.height = height;
-        fo.viewName = args.view;
-        flat = Flatten(scene, fo, diags);
-    }
+    PipelineOptions options;
+    options.scenePaths = args.scenes;
+    options.width = width;
+    options.height = height;
+    options.viewName = args.view;
+    PipelineResult result;
+    const bool ok = ReadAndFlatten(options, result, diags);
+    if (ok && !result.flat.freeforms.empty())
+        diags.Warning({},
+                      fmt::format("{} freeform surface{} not exported (POV-Ray has no exact "
+                                  "NURBS primitive)",
+                                  result.flat.freeforms.size(),
+                                  result.flat.freeforms.size() == 1 ? " is" : "s are"),
+                      {}, "export");
     diags.Print(stderr);
-    if (!flat || diags.HasErrors()) {
+    if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; nothing written\n", diags.ErrorCount(),
                      diags.ErrorCount() == 1 ? "" : "s");
         return 1;
     }
+    const FlatScene* flat = &result.flat;
     PovExportOptions po;
     po.mask = args.mask;
     if (auto e = WriteFileAtomically(args.output, ExportPov(*flat, po)); !e.empty()) {

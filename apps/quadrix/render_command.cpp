@@ -150,6 +150,9 @@ int RunRender(const RenderArgs& args) {
         return 1;
     }
 
+    for (const std::string& w : result.stats.warnings)
+        std::fprintf(stderr, "quadrix: warning: engine %s: %s\n", args.engine.c_str(), w.c_str());
+
     auto t0 = std::chrono::steady_clock::now();
     ShadeOptions so;
     so.fast = args.fast;

@@ -24,6 +24,9 @@ struct RenderStats {
     double seconds = 0;
     std::vector<std::pair<std::string, double>> counters;
     std::string report;  // free-form multi-line text (tables of a paper's layout, histograms)
+    // What the user must hear even without --stats (a solid the engine could not draw, a guard
+    // that stopped it): printed by the CLI as "warning: ..." lines after every render.
+    std::vector<std::string> warnings;
 };
 
 class Engine {

@@ -25,28 +25,11 @@ std::string CheckImageSize(long long width, long long height) {
     return {};
 }
 
-bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
+bool ReadAndFlatten(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
     if (auto e = CheckImageSize(options.width, options.height); !e.empty()) {
         diags.Error({}, e, {}, "command line");
         return false;
     }
-    auto engine = MakeEngine(options.engine);
-    if (!engine) {
-        std::string names;
-        for (const auto& n : EngineNames()) names += (names.empty() ? "" : ", ") + n;
-        diags.Error({}, fmt::format("unknown engine '{}' (known: {})", options.engine, names), {},
-                    "command line");
-        return false;
-    }
-
-    RenderOptions ro;
-    ro.threads = options.threads;
-    ro.engineOptions = options.engineOptions;
-    if (auto e = engine->ValidateOptions(ro); !e.empty()) {
-        diags.Error({}, e, {}, "command line");
-        return false;
-    }
-
     auto t0 = std::chrono::steady_clock::now();
     std::string viewName = options.viewName;
     if (options.scenePaths.empty()) {
@@ -83,8 +66,34 @@ bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnos
     result.flattenSeconds = SecondsSince(t0);
     if (!flat || diags.HasErrors()) return false;
     result.flat = std::move(*flat);
+    return true;
+}
 
-    t0 = std::chrono::steady_clock::now();
+bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
+    if (auto e = CheckImageSize(options.width, options.height); !e.empty()) {
+        diags.Error({}, e, {}, "command line");
+        return false;
+    }
+    auto engine = MakeEngine(options.engine);
+    if (!engine) {
+        std::string names;
+        for (const auto& n : EngineNames()) names += (names.empty() ? "" : ", ") + n;
+        diags.Error({}, fmt::format("unknown engine '{}' (known: {})", options.engine, names), {},
+                    "command line");
+        return false;
+    }
+
+    RenderOptions ro;
+    ro.threads = options.threads;
+    ro.engineOptions = options.engineOptions;
+    if (auto e = engine->ValidateOptions(ro); !e.empty()) {
+        diags.Error({}, e, {}, "command line");
+        return false;
+    }
+
+    if (!ReadAndFlatten(options, result, diags)) return false;
+
+    auto t0 = std::chrono::steady_clock::now();
     result.stats = engine->Render(result.flat, ro, result.frame);
     if (engine->Name() != "isocurve" && !result.flat.freeforms.empty()) {
         // Freeform surfaces are drawn by adaptive isocurves (seed 002) over any engine's solids,

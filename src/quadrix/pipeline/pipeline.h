@@ -51,6 +51,11 @@ inline constexpr int kMaxSide = 16384;
 // Checks a requested image size; returns an error message or empty.
 std::string CheckImageSize(long long width, long long height);
 
+// Reads (every input format, docs/import.md), applies rt-style views and flattens: fills
+// result.scene, result.flat, result.inputs and the read/flatten times. The engine is not involved
+// (quadrix export uses this). Returns false with errors in diags.
+bool ReadAndFlatten(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags);
+
 // Reads, flattens and renders. Returns false with errors in diags.
 bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags);
 

@@ -26,8 +26,11 @@ double LambertIntensity(const FlatScene& scene, const Vec3& n) {
 namespace {
 
 std::uint8_t ToByte(double v) {
-    v = std::clamp(v, 0.0, 1.0);
-    return static_cast<std::uint8_t>(std::lround(v * 255.0));
+    // Round to nearest (halves up) without a libm call: v·255 + ½ is in (0.5, 255.5) here and
+    // the conversion truncates. NaN fails the first test and gives 0.
+    if (!(v > 0)) return 0;
+    if (v >= 1) return 255;
+    return static_cast<std::uint8_t>(v * 255.0 + 0.5);
 }
 
 bool AnyColor(const FlatScene& scene, const ShadeOptions& options) {

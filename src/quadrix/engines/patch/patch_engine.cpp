@@ -368,6 +368,16 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
             {"bodies skipped: " + std::string(RejectionName(why)), static_cast<double>(count)});
         if (why != Rejection::kEmpty && why != Rejection::kInvisible) notDrawable += count;
     }
+    if (csgSkipped > 0)
+        stats.warnings.push_back(fmt::format(
+            "{} CSG solid{} of several bodies not drawn (the patch processor draws one quadric "
+            "and up to four planes at a time; use --engine raycast)",
+            csgSkipped, csgSkipped == 1 ? "" : "s"));
+    if (notDrawable > 0)
+        stats.warnings.push_back(fmt::format(
+            "{} bod{} not drawn (not one quadric within four planes, or cut by opaque planes: "
+            "--stats lists the reasons; --engine-opt caps=open draws cut bodies open)",
+            notDrawable, notDrawable == 1 ? "y" : "ies"));
     c.push_back({"window pixels", static_cast<double>(bs.flt.windowPixels)});
     c.push_back({"surface pixels",
                  static_cast<double>(st.fixed ? bs.fixedSurfacePixels : bs.flt.surfacePixels)});

@@ -278,9 +278,14 @@ class Compiler {
                 for (std::size_t k = 0; k < body.literals.size(); ++k) {
                     const FlatLiteral& lit = body.literals[k];
                     if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
+                    PixelRect patchRect = PlaneFaceRect(body, k, termBox, rect);
+                    if (patchRect.Empty()) {
+                        ++stats_.prunedPatches;
+                        continue;
+                    }
                     EmitPatch(xi.primitive, k, exitFace, paring,
-                              exits ? Others(p, termBox) : std::vector<const csg::Product*>{}, rect,
-                              solid);
+                              exits ? Others(p, termBox) : std::vector<const csg::Product*>{},
+                              patchRect, solid);
                 }
             }
         }
@@ -316,6 +321,65 @@ class Compiler {
             if (valid && !b.Empty()) out.push_back(&q);
         }
         return out;
+    }
+
+    // The screen rectangle of a plane patch: the polygon cut from the plane by the term box and
+    // the body's other plane literals (quadric literals only shrink the face, so ignoring them is
+    // conservative), widened by a rounding margin. Quadric patches keep `rect`.
+    PixelRect PlaneFaceRect(const FlatBody& body, std::size_t k, const Box3& box,
+                            const PixelRect& rect) const {
+        const FlatHalfSpace& hs =
+            scene_.halfSpaces[static_cast<std::size_t>(body.literals[k].halfSpace)];
+        if (!hs.isPlane || !box.Finite() || !hs.plane.AllFinite()) return rect;
+        Vec3 n = hs.plane.Normal();
+        double nn = Dot(n, n);
+        if (!(nn > 0)) return rect;
+        // A square on the plane around the box centre's projection, larger than the box.
+        Vec3 centre = box.Center();
+        Vec3 p0 = centre - n * (hs.plane.Evaluate(centre) / nn);
+        Vec3 u =
+            Normalize(Cross(n, std::fabs(n.x) < std::fabs(n.y) ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+        Vec3 v = Normalize(Cross(n, u));
+        double half = Length(box.Size()) + Length(p0 - centre) + 1;
+        std::vector<Vec3> poly = {p0 + (u + v) * half, p0 + (v - u) * half, p0 - (u + v) * half,
+                                  p0 + (u - v) * half};
+        // Clip by a half-space  g·x + e <= 0  (Sutherland–Hodgman).
+        auto clip = [&](const Vec3& g, double e) {
+            std::vector<Vec3> out;
+            for (std::size_t i = 0; i < poly.size(); ++i) {
+                const Vec3& a = poly[i];
+                const Vec3& b = poly[(i + 1) % poly.size()];
+                double fa = Dot(g, a) + e, fb = Dot(g, b) + e;
+                if (fa <= 0) out.push_back(a);
+                if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
+                    double t = fa / (fa - fb);
+                    out.push_back(a + (b - a) * t);
+                }
+            }
+            poly.swap(out);
+        };
+        for (std::size_t axis = 0; axis < 3 && !poly.empty(); ++axis) {
+            Vec3 g{0, 0, 0};
+            g[axis] = 1;
+            clip(g, -box.hi[axis]);
+            if (!poly.empty()) clip(g * -1.0, box.lo[axis]);
+        }
+        for (std::size_t m = 0; m < body.literals.size() && !poly.empty(); ++m) {
+            if (m == k) continue;
+            const FlatLiteral& l = body.literals[m];
+            const FlatHalfSpace& o = scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+            if (!o.isPlane || !o.plane.AllFinite()) continue;
+            double sgn = l.complemented ? -1.0 : 1.0;
+            clip(o.plane.Normal() * sgn, o.plane.d * sgn);
+        }
+        if (poly.empty()) return {};
+        Box3 b;
+        for (const Vec3& p : poly) b.Extend(p);
+        // Rounding of the clipped vertices is far below this margin (coordinates ~ image size).
+        double margin = 1e-6 * (1 + Length(b.Size()) + Length(b.Center()));
+        b.lo = b.lo - Vec3{margin, margin, margin};
+        b.hi = b.hi + Vec3{margin, margin, margin};
+        return RectOf(b).Intersected(rect);
     }
 
     void EmitPatch(int bodyIndex, std::size_t k, bool exitFace,

@@ -49,6 +49,7 @@ struct CompileStats {
     std::size_t prunedTerms = 0;      // dropped: the term's ∩ boxes miss each other or the screen
     std::size_t prunedParings = 0;    // − factors not sent for a term (disjoint boxes)
     std::size_t patches = 0;          // blocks
+    std::size_t prunedPatches = 0;    // plane patches whose face polygon is empty
     std::size_t strips = 0;           // kApprox: parabolic strips (tangents) broadcast
     std::size_t stripsCapped = 0;     // kApprox: sheets that hit maxStrips
     std::size_t extendedFallbacks = 0;  // kApprox: sheets with C = 0 done by the root unit

@@ -41,6 +41,8 @@ const char* OpcodeName(Opcode op) {
             return "ZTEST";
         case Opcode::kZWrite:
             return "ZWRITE";
+        case Opcode::kNLoad:
+            return "NLOAD";
     }
     return "?";
 }
@@ -58,6 +60,7 @@ int Instruction::Equations(bool literalIsPlane) const {
         case Opcode::kZMin:
         case Opcode::kZKeepGE:
         case Opcode::kZKeepLE:
+        case Opcode::kNLoad:
             return 1;
         case Opcode::kRoot:
         case Opcode::kInside:

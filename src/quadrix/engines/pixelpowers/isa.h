@@ -5,7 +5,9 @@
 //   ZTEMP, ZMIN  depth registers (device z, smaller = nearer; ZMIN starts at +inf),
 //   F1, F2, F3   one-bit flags,
 //   COLOR        the id of the patch last written (the host's patch table turns it into surface,
-//                body, solid, and the normal at ZMIN at scan-out: deferred shading).
+//                body, solid, and the normal at ZMIN at scan-out: deferred shading),
+//   N0 N1 N2     with paper shading (kNLoad): the world-space approximate normal vector of the
+//                patch last written, evaluated by the QEE (docs/pixelpowers.md "Shading").
 // The host broadcasts instructions; a quadratic-expression evaluator (QEE) gives every pixel
 //   Q(x, y) = A x² + B xy + C y² + D x + E y + F
 // from the six broadcast coefficients (seed 004 §I). Instructions act only on the pixels of their
@@ -48,6 +50,10 @@ enum class Opcode : std::uint8_t {
                // b = 1: its interior along the ray, endpoints excluded)
     kZTest,    // where F[a]: F[a] ← (ZTEMP < ZMIN)   (strict: ties keep the earlier patch)
     kZWrite,   // where F[a]: ZMIN ← ZTEMP, COLOR ← arg (a patch id)
+    kNLoad,    // QEE: where F[a]: N[b] ← Q(x,y), b = world axis 0..2 — the paper's approximate
+               // shading (seed 004 §III step 4): the numerator "L + sqrt Q" of the diffuse shade
+               // with sqrt Q → s + tQ (one parabolic cylinder) over a constant denominator, kept
+               // per world axis so that n·l is the paper's shade for every parallel light l
 };
 
 const char* OpcodeName(Opcode op);
@@ -88,6 +94,9 @@ struct MachineLiteral {
 // What a patch id written to COLOR means.
 struct PatchInfo {
     std::int32_t halfSpace = -1, body = -1, solid = -1;
+    // True when the block loaded N0–N2 (paper shading): scan-out takes the normal from them
+    // instead of computing the exact one at ZMIN.
+    bool machineNormal = false;
 };
 
 struct Program {
@@ -95,6 +104,12 @@ struct Program {
     std::vector<Block> blocks;
     std::vector<MachineLiteral> literals;
     std::vector<PatchInfo> patches;
+    // Fixed-point depth words (option depth-bits): when depthStep > 0 every value the machine
+    // stores in ZTEMP (and every QEE value compared with it) is rounded to depthOrigin + k·step,
+    // k in [0, 2^bits − 1], as a register of `bits` bits would hold it (seed 004 §III: 20–30 bit
+    // ZTEMP/ZMIN words).
+    double depthOrigin = 0, depthStep = 0;
+    int depthBits = 0;
 
     // Static counts (Table 1).
     std::uint64_t Opcodes() const { return code.size(); }

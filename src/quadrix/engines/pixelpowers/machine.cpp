@@ -22,12 +22,14 @@ struct TileRegisters {
     std::array<double, kTilePixels> zmin;
     std::array<std::int32_t, kTilePixels> color;
     std::array<std::array<std::uint8_t, kTilePixels>, 3> flag;
+    std::array<std::array<double, kTilePixels>, 3> normal;  // N0–N2 (kNLoad)
 
     void Reset() {
         zmin.fill(HUGE_VAL);
         color.fill(-1);
         ztemp.fill(HUGE_VAL);
         for (auto& f : flag) f.fill(0);
+        for (auto& n : normal) n.fill(0);
     }
 };
 
@@ -87,7 +89,13 @@ bool ClearsF1(const Instruction& in) {
 class TileRunner {
   public:
     TileRunner(const Program& program, TileRegisters& regs, MachineCounters& counters)
-        : program_(program), r_(regs), counters_(counters) {}
+        : program_(program), r_(regs), counters_(counters) {
+        if (program.depthStep > 0 && program.depthBits > 0) {
+            step_ = program.depthStep;
+            origin_ = program.depthOrigin;
+            maxWord_ = std::ldexp(1.0, program.depthBits) - 1;
+        }
+    }
 
     void Run(int tx0, int ty0, int tx1, int ty1) {
         tx0_ = tx0;
@@ -110,6 +118,13 @@ class TileRunner {
     }
 
   private:
+    // A depth as a fixed-point register word holds it (Program::depthStep; identity when off).
+    double Word(double z) const {
+        if (step_ == 0) return z;
+        double k = std::nearbyint((z - origin_) / step_);
+        return origin_ + step_ * std::clamp(k, 0.0, maxWord_);
+    }
+
     template <class Fn>
     void ForEach(const PixelRect& rect, Fn&& fn) {
         for (int j = rect.y0; j < rect.y1; ++j) {
@@ -170,29 +185,36 @@ class TileRunner {
                 break;
             case Opcode::kZLoad:
                 ForEach(rect, [&](std::size_t k, double x, double y) {
-                    if (fa[k]) r_.ztemp[k] = Qee(in.q, x, y), ++ops;
+                    if (fa[k]) r_.ztemp[k] = Word(Qee(in.q, x, y)), ++ops;
                 });
                 break;
             case Opcode::kZMax:
                 ForEach(rect, [&](std::size_t k, double x, double y) {
-                    if (fa[k]) r_.ztemp[k] = std::max(r_.ztemp[k], Qee(in.q, x, y)), ++ops;
+                    if (fa[k]) r_.ztemp[k] = std::max(r_.ztemp[k], Word(Qee(in.q, x, y))), ++ops;
                 });
                 break;
             case Opcode::kZMin:
                 ForEach(rect, [&](std::size_t k, double x, double y) {
-                    if (fa[k]) r_.ztemp[k] = std::min(r_.ztemp[k], Qee(in.q, x, y)), ++ops;
+                    if (fa[k]) r_.ztemp[k] = std::min(r_.ztemp[k], Word(Qee(in.q, x, y))), ++ops;
                 });
                 break;
             case Opcode::kZKeepGE:
                 ForEach(rect, [&](std::size_t k, double x, double y) {
-                    if (fa[k]) fa[k] = r_.ztemp[k] >= Qee(in.q, x, y), ++ops;
+                    if (fa[k]) fa[k] = r_.ztemp[k] >= Word(Qee(in.q, x, y)), ++ops;
                 });
                 break;
             case Opcode::kZKeepLE:
                 ForEach(rect, [&](std::size_t k, double x, double y) {
-                    if (fa[k]) fa[k] = r_.ztemp[k] <= Qee(in.q, x, y), ++ops;
+                    if (fa[k]) fa[k] = r_.ztemp[k] <= Word(Qee(in.q, x, y)), ++ops;
                 });
                 break;
+            case Opcode::kNLoad: {
+                auto& n = r_.normal[in.b < 3 ? in.b : 0];
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) n[k] = Qee(in.q, x, y), ++ops;
+                });
+                break;
+            }
             case Opcode::kRoot: {
                 const MachineLiteral& lit = Literal(in.arg);
                 bool exit = in.b != 0;
@@ -200,7 +222,7 @@ class TileRunner {
                     ForEach(rect, [&](std::size_t k, double x, double y) {
                         double t = 0;
                         fa[k] = PlaneRoot(lit.ray, lit.complemented, exit, x, y, t);
-                        if (fa[k]) r_.ztemp[k] = t;
+                        if (fa[k]) r_.ztemp[k] = Word(t);
                         ++ops;
                     });
                     break;
@@ -215,7 +237,7 @@ class TileRunner {
                     for (int p = 0; p < s.count && !found; ++p) {
                         double t = exit ? s.piece[p].hi : s.piece[p].lo;
                         if (std::isfinite(t)) {
-                            r_.ztemp[k] = t;
+                            r_.ztemp[k] = Word(t);
                             found = true;
                         }
                     }
@@ -274,6 +296,7 @@ class TileRunner {
     MachineCounters& counters_;
     raycast::LiteralCounters literalCounters_;
     int tx0_ = 0, ty0_ = 0;
+    double step_ = 0, origin_ = 0, maxWord_ = 0;
 };
 
 struct Worker {
@@ -283,11 +306,45 @@ struct Worker {
 
 }  // namespace
 
+Vec3 KeyLight(const FlatScene& scene) {
+    Vec3 key{};
+    double best = 0;
+    for (const scene::Light& l : scene.lights) {
+        if (l.kind == scene::Light::Kind::kAmbient) continue;
+        Vec3 d = Normalize(l.direction);
+        if (l.intensity > best && std::isfinite(Dot(d, d))) {
+            best = l.intensity;
+            key = d;
+        }
+    }
+    return key;
+}
+
+Vec3 ShadingUnitNormal(const Vec3& approx, const Vec3& key) {
+    const double kk = Dot(key, key);
+    if (!(kk > 0)) {
+        double len = Length(approx);
+        return len > 0 && std::isfinite(len) ? approx / len : Vec3{0, 0, 1};
+    }
+    if (!std::isfinite(Dot(approx, approx))) return key;
+    double along = Dot(approx, key);
+    double c = std::clamp(along, -1.0, 1.0);
+    Vec3 perp = approx - key * along;
+    double pl = Length(perp);
+    if (!(pl > 1e-12 * (std::fabs(along) + 1e-300))) {
+        // Parallel to the light: any perpendicular direction gives the same n·l.
+        perp = Cross(key, std::fabs(key.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+        pl = Length(perp);
+    }
+    return key * c + perp * (std::sqrt(std::max(0.0, 1 - c * c)) / pl);
+}
+
 MachineCounters Execute(const Program& program, const FlatScene& scene, int threads, Frame& frame) {
     int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
     frame.Reset(width, height);
     int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
     tbb::enumerable_thread_specific<Worker> workers;
+    const Vec3 key = KeyLight(scene);
     auto runTile = [&](int t) {
         Worker& w = workers.local();
         int x0 = (t % tilesX) * kTile, y0 = (t / tilesX) * kTile;
@@ -306,7 +363,12 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, int thre
                 std::size_t f = frame.Index(i, j);
                 double z = w.regs.zmin[k];
                 frame.depth[f] = z;
-                frame.normal[f] = scene.WorldNormal(p.halfSpace, {i + 0.5, j + 0.5, z});
+                frame.normal[f] =
+                    p.machineNormal
+                        ? ShadingUnitNormal({w.regs.normal[0][k], w.regs.normal[1][k],
+                                             w.regs.normal[2][k]},
+                                            key)
+                        : scene.WorldNormal(p.halfSpace, {i + 0.5, j + 0.5, z});
                 frame.surface[f] = p.halfSpace;
                 frame.body[f] = p.body;
                 frame.solid[f] = p.solid;

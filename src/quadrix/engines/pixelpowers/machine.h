@@ -38,8 +38,22 @@ struct MachineCounters {
     }
 };
 
+// The parallel light the paper's one-light shading model stands for: the brightest non-ambient
+// light of the scene (first on ties), unit; zero when there is none.
+Vec3 KeyLight(const FlatScene& scene);
+
+// Scan-out of the paper's shading (seed 004 §III step 4) into the Frame's unit normal. The QEE
+// gives the approximate normal VECTOR a (numerator approximated, constant denominator), whose
+// a·l is the paper's shade for any parallel light l, but |a| ≠ 1. The Frame contract asks for a
+// unit normal, so this returns the unit vector n in the plane of a and the key light k with
+// n·k = clamp(a·k, −1, 1): the shader's Lambert term for k is then exactly the paper's shade
+// (saturated at 1), and the remaining direction of a is kept for the other lights. Without a key
+// light it returns a / |a|.
+Vec3 ShadingUnitNormal(const Vec3& approx, const Vec3& key);
+
 // Runs `program` and scans out into `frame` (resized to the scene's size): depth = ZMIN, and the
-// patch in COLOR gives surface, body, solid and the normal (FlatScene::WorldNormal at ZMIN).
+// patch in COLOR gives surface, body, solid and the normal (FlatScene::WorldNormal at ZMIN, or
+// ShadingUnitNormal of N0–N2 for patches with PatchInfo::machineNormal).
 // threads > 0 limits the worker threads.
 MachineCounters Execute(const Program& program, const FlatScene& scene, int threads, Frame& frame);
 

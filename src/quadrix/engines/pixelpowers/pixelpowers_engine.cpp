@@ -203,6 +203,7 @@ class PixelPowersEngine final : public Engine {
         count("pruned_terms", cs.prunedTerms);
         count("pruned_parings", cs.prunedParings);
         count("patches", cs.patches);
+        count("pruned_patches", cs.prunedPatches);
         count("opcodes", program.Opcodes());
         count("equations", program.Equations());
         add("estimated_ms_10mhz",

@@ -5,8 +5,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -894,11 +892,6 @@ class ScanRenderer {
         const ShowEdge& e = edges_[static_cast<std::size_t>(a.edge)];
         if (!useStack_[static_cast<std::size_t>(e.body)]) return;
         const bool toggles = SnapToRow(e.yBottom) <= y && y < SnapToRow(e.yTop);
-        if (debugRow_ == static_cast<int>(y)) {
-            std::fprintf(stderr, "row %d edge %d x %.9g y[%.9g,%.9g] conic %d leg %d faces %d %d:",
-                         debugRow_, a.edge, a.x, e.yBottom, e.yTop, e.conic, e.leg, e.faces[0],
-                         e.faces[1]);
-        }
         for (int f : e.faces) {
             if (f < 0) continue;
             const bool on = inStack_[static_cast<std::size_t>(f)] != 0;
@@ -912,16 +905,14 @@ class ScanRenderer {
                 InsertStackFace(f, a.x, xq, y);
             }
         }
-        if (debugRow_ == static_cast<int>(y)) {
-            for (int f : fstack_) std::fprintf(stderr, " %d", f);
-            std::fprintf(stderr, "\n");
-        }
     }
-    int debugRow_ = std::getenv("SCANLINE_DEBUG_ROW") ? std::atoi(std::getenv("SCANLINE_DEBUG_ROW"))
-                                                      : -1;
 
     // Is show-face f on its body's boundary at (x, y): does its sheet have a point there that
-    // satisfies every other HSI of the body (zero test (4))?
+    // lies DEFINITELY inside every other HSI of the body (value < −E of zero test (4))? Q is at
+    // least kCluster / 2 from every crossing, so a face that is there has a margin far above E;
+    // a face that only touches the body (a row exactly on a horizontal edge where the body has
+    // zero thickness, e.g. the base edge of a pyramid) is not there, as in raycast, whose
+    // interval [t, t] of zero length draws nothing.
     bool PresentAt(int f, double x, double y) const {
         const ShowFace& sf = faces_[static_cast<std::size_t>(f)];
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(sf.halfSpace)];
@@ -959,9 +950,10 @@ class ScanRenderer {
         const double pointError = 1e-9 * (1 + std::fabs(z));
         for (const OrientedLiteral& l : bodyLiterals_[static_cast<std::size_t>(sf.body)]) {
             if (l.halfSpace == sf.halfSpace) continue;
-            if (!(l.isPlane ? SatisfiesPlane(l.plane, p, pointError)
-                            : SatisfiesQuadric(l.quadric, p, pointError)))
-                return false;
+            const double v = l.isPlane ? l.plane.Evaluate(p) : l.quadric.Evaluate(p);
+            const double e = l.isPlane ? PlaneErrorEstimate(l.plane, p, pointError)
+                                       : QuadricErrorEstimate(l.quadric, p, pointError);
+            if (!(v < -e)) return false;
         }
         return true;
     }
