@@ -190,5 +190,55 @@ TEST(PixelPowersScenes, StatsTableAndBadOption) {
     EXPECT_FALSE(bad.ok);
 }
 
+double Counter(const RenderStats& st, const std::string& name) {
+    for (const auto& [k, v] : st.counters)
+        if (k == name) return v;
+    return -1;
+}
+
+// The paper's shading (seed 004 §III step 4, default in approx mode) on the example scenes: the
+// Lambert intensity error against raycast's exact normals stays within the host's bound
+// (Σ parallel-light intensities × (sqrt bound + denominator spread); clamp and max(0,·) in the
+// shader are 1-Lipschitz), is reported by --stats, and shading=exact removes it.
+TEST(PixelPowersScenes, PaperShadingErrorWithinHostBound) {
+    for (const char* path :
+         {"examples/cylinder_minus_cylinder.uq", "examples/tube.uq", "examples/machined_part.uq"}) {
+        SceneRun pp = Render("", path, "pixelpowers", {{"mode", "approx"}});
+        ASSERT_TRUE(pp.ok) << pp.errors;
+        const RenderStats& st = pp.result.stats;
+        double lights = 0;
+        for (const scene::Light& l : pp.result.flat.lights)
+            if (l.kind != scene::Light::Kind::kAmbient) lights += l.intensity;
+        double bound = Counter(st, "shading_sqrt_bound"),
+               spread = Counter(st, "shading_denominator_spread"),
+               err = Counter(st, "cmp_intensity_error_max");
+        ASSERT_GE(bound, 0) << path;
+        ASSERT_GE(err, 0) << path;
+        EXPECT_LE(err, lights * (bound + spread) + 1e-9) << path;
+        EXPECT_GT(err, 0.005) << path << ": the approximation is in use";
+        EXPECT_LT(Counter(st, "cmp_intensity_error_mean"), 0.05) << path;
+        EXPECT_NE(st.report.find("vs raycast shading (paper)"), std::string::npos);
+        EXPECT_TRUE(st.warnings.empty()) << st.warnings.front();
+
+        SceneRun ex = Render("", path, "pixelpowers", {{"mode", "approx"}, {"shading", "exact"}});
+        ASSERT_TRUE(ex.ok);
+        // Exact normals at approximate depths (within 0.25 device z): a small error only.
+        EXPECT_LT(Counter(ex.result.stats, "cmp_intensity_error_max"), 0.3 * err) << path;
+    }
+}
+
+// A solid the engine cannot draw reaches RenderStats::warnings through the pipeline (the CLI
+// prints them after every render), naming the solid and the option to raise.
+TEST(PixelPowersScenes, UndrawnSolidIsAWarning) {
+    SceneRun pp =
+        Render("", "examples/machined_part.uq", "pixelpowers", {{"max-instructions", "100"}});
+    ASSERT_TRUE(pp.ok) << pp.errors;
+    ASSERT_EQ(pp.result.stats.warnings.size(), 1u);
+    EXPECT_NE(pp.result.stats.warnings[0].find("solid 'part' not drawn"), std::string::npos)
+        << pp.result.stats.warnings[0];
+    EXPECT_NE(pp.result.stats.warnings[0].find("max-instructions"), std::string::npos);
+    EXPECT_EQ(pp.result.frame.CoveredCount(), 0u);
+}
+
 }  // namespace
 }  // namespace quadrix

@@ -106,6 +106,7 @@ class Compiler {
         program_ = Program{};
         stats_ = CompileStats{};
         boxes_ = csg::BodyBoxes(scene_);
+        SetDepthWords();
         std::set<int> bodies, halfSpaces;
         for (std::size_t s = 0; s < scene_.solids.size(); ++s) {
             csg::Tree tree = csg::TreeOfSolid(scene_, static_cast<int>(s));
@@ -116,10 +117,12 @@ class Compiler {
             const Box3& sb = scene_.solids[s].bounds;
             csg::NormalForm nf = csg::Normalize(tree, no);
             Accumulate(nf.stats);
+            const std::string who = SolidName(s);
             if (!nf.ok) {
-                stats_.errors.push_back("solid '" + scene_.solids[s].name + "': " + nf.error);
+                stats_.errors.push_back(who + " not drawn: " + nf.error);
                 continue;
             }
+            const std::size_t cappedMark = stats_.stripsCapped;
             products_ = &nf.products;
             const std::size_t codeMark = program_.code.size(), blockMark = program_.blocks.size(),
                               patchMark = program_.patches.size();
@@ -142,10 +145,17 @@ class Compiler {
                 program_.blocks.resize(blockMark);
                 program_.patches.resize(patchMark);
                 stats_.errors.push_back(
-                    "solid '" + scene_.solids[s].name + "': its program exceeds " +
-                    std::to_string(options_.maxInstructions) + " instructions (" +
+                    who + " not drawn: the program would pass max-instructions = " +
+                    std::to_string(options_.maxInstructions) + " with it (" +
+                    std::to_string(codeMark) + " instructions before it, " +
                     std::to_string(nf.products.size()) +
                     " products); simplify the tree or raise --engine-opt max-instructions");
+            } else if (stats_.stripsCapped > cappedMark) {
+                stats_.warnings.push_back(
+                    who + ": " + std::to_string(stats_.stripsCapped - cappedMark) +
+                    " sheet(s) needed more than max-strips = " +
+                    std::to_string(options_.maxStrips) +
+                    " parabolic strips; its depth error may exceed the tolerance");
             }
         }
         stats_.primitives = bodies.size();
@@ -154,6 +164,44 @@ class Compiler {
     }
 
   private:
+    std::string SolidName(std::size_t s) const {
+        const std::string& n = scene_.solids[s].name;
+        return n.empty() ? "solid #" + std::to_string(s) : "solid '" + n + "'";
+    }
+
+    // Fixed-point depth words over the z range of the solids' bounds (seed 004 §III: ZTEMP and
+    // ZMIN are 20–30 bit registers). The range must be finite to place the words.
+    void SetDepthWords() {
+        if (options_.depthBits <= 0) return;
+        // The hull of the solids' bounds, tightened by the hull of the bodies' boxes (either may
+        // be the unbounded default; every drawn depth lies in both).
+        double lo = HUGE_VAL, hi = -HUGE_VAL, bodyLo = HUGE_VAL, bodyHi = -HUGE_VAL;
+        for (const FlatSolid& solid : scene_.solids) {
+            if (solid.bounds.Empty()) continue;
+            lo = std::min(lo, solid.bounds.lo.z);
+            hi = std::max(hi, solid.bounds.hi.z);
+        }
+        for (const Box3& box : boxes_) {
+            if (box.Empty()) continue;
+            bodyLo = std::min(bodyLo, box.lo.z);
+            bodyHi = std::max(bodyHi, box.hi.z);
+        }
+        lo = std::max(lo, bodyLo);
+        hi = std::min(hi, bodyHi);
+        if (!(std::isfinite(lo) && std::isfinite(hi))) {
+            if (lo <= hi)
+                stats_.warnings.push_back(
+                    "depth-bits ignored: the solids' depth range is unbounded, so fixed-point "
+                    "depth words cannot be placed (depths stay doubles)");
+            return;
+        }
+        // A small margin so that depths on the bounds themselves do not clamp.
+        double span = hi - lo, margin = 1e-3 * (span + 1);
+        program_.depthOrigin = lo - margin;
+        program_.depthStep = (span + 2 * margin) / (std::ldexp(1.0, options_.depthBits) - 1);
+        program_.depthBits = options_.depthBits;
+    }
+
     void Accumulate(const csg::NormalFormStats& s) {
         csg::NormalFormStats& t = stats_.normalForm;
         t.treePrimitives += s.treePrimitives;
@@ -436,7 +484,10 @@ class Compiler {
         }
         // Z-buffer merge (the union of terms, seed 004 §II.a) and COLOR.
         Emit(Opcode::kZTest, kF1);
-        program_.patches.push_back({lit.halfSpace, bodyIndex, solid});
+        // Shading (seed 004 §III step 4) on the pixels about to be written.
+        bool machineNormal = options_.paperShading && EmitShading(lit, exitFace, rect);
+        stats_.shadedPatches += machineNormal;
+        program_.patches.push_back({lit.halfSpace, bodyIndex, solid, machineNormal});
         Emit(Opcode::kZWrite, kF1, 0, static_cast<std::int32_t>(program_.patches.size() - 1));
         block.count = static_cast<std::int32_t>(program_.code.size()) - block.first;
         program_.blocks.push_back(block);
@@ -517,6 +568,123 @@ class Compiler {
             out.push_back(z);
         }
         return out;
+    }
+
+    // The paper's shading of a patch (seed 004 §III step 4), as three kNLoad broadcasts: the
+    // components of the world-space approximate normal a(x, y). Returns false (exact normal at
+    // scan-out) when the approximation does not apply.
+    //
+    // Derivation (re-derived; the OCR'd text reads "shade = (L + sqrt Q)/sqrt W"). The world
+    // normal is the pull-back n = (Mᵀ g)_xyz of the device gradient g = Q p, p = (x, y, z, 1), M =
+    // deviceFromWorld (FlatScene::WorldNormal), so each component is linear in (x, y, z):
+    // n_j = K_j0 x + K_j1 y + K_j2 z + K_j3. On a sheet z = L ± sqrt(Δ)/|c| this is
+    // "linear + k·sqrt(Δ)", and n·l / |n| is the paper's (L + sqrt Q)/sqrt W with W = |n|². The
+    // paper replaces sqrt(Δ) by ONE parabolic cylinder s + tΔ over the patch and sqrt W by a
+    // constant w0. Because n_j is linear in z, that is n_j evaluated at z_s = L ± (s + tΔ)/|c|, a
+    // quadratic in (x, y) per component: a = φ n(x, y, z_s)/w0, φ = ±1 turning it to the viewer.
+    //   s, t: the minimax line of sqrt over [Δlo, Δhi] (Δ's range over the rectangle, clamped at
+    //   0): with α = sqrt Δlo, β = sqrt Δhi, t = 1/(α+β) (the secant slope) and s raised by half
+    //   the secant's largest gap, s = αβ/(α+β) + (β−α)²/(8(α+β)); error ±(β−α)²/(8(α+β)), half
+    //   that of the best single tangent (the z-buffer step's strips must be tangents to form an
+    //   envelope; a lone shading cylinder need not be).
+    //   w0: the midrange of |n| sampled on the exact sheet over the rectangle (minimises the
+    //   largest relative error of a constant; exact for spheres and circular cylinders under a
+    //   parallel view, whose world gradient has constant length on the surface).
+    bool EmitShading(const FlatLiteral& lit, bool exitFace, const PixelRect& rect) {
+        const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
+        const Mat4& m = scene_.projection.deviceFromWorld.Matrix();
+        auto pull = [&](const double g[4], std::size_t j) {
+            return m.m[0][j] * g[0] + m.m[1][j] * g[1] + m.m[2][j] * g[2] + m.m[3][j] * g[3];
+        };
+        if (hs.isPlane) {
+            const Plane& pl = hs.plane;
+            if (!pl.AllFinite()) return false;
+            double sgn = pl.c > 0 ? -1.0 : 1.0;  // facing the viewer: g.z <= 0
+            double g[4] = {sgn * pl.a, sgn * pl.b, sgn * pl.c, sgn * pl.d};
+            Vec3 n{pull(g, 0), pull(g, 1), pull(g, 2)};
+            double w = Length(n);
+            if (!(w > 0) || !std::isfinite(w)) return false;
+            for (std::size_t j = 0; j < 3; ++j)
+                EmitNLoad(static_cast<std::uint8_t>(j), {0, 0, 0, 0, 0, n[j] / w});
+            return true;
+        }
+        RayForm r = RayFormOf(hs.quadric);
+        if (r.c == 0 || !hs.quadric.AllFinite()) {
+            ++stats_.shadingFallbacks;
+            return false;
+        }
+        const bool nearSheet = (!exitFace) == ((r.c > 0) != lit.complemented);
+        const double sigma = nearSheet ? -1 : 1, ac = std::fabs(r.c);
+        // g.z = c z + b = sigma·sign(c)·sqrt(Δ) on the sheet; WorldNormal flips g when g.z > 0.
+        const double phi = sigma * r.c > 0 ? -1 : 1;
+        Coeffs disc = Discriminant(r);
+        double dHi = MaxOverRect(disc, rect);
+        if (!(dHi > 0) || !std::isfinite(dHi)) return false;
+        Coeffs neg;
+        for (std::size_t i = 0; i < 6; ++i) neg[i] = -disc[i];
+        double dLo = std::max(0.0, -MaxOverRect(neg, rect));
+        const double alpha = std::sqrt(dLo), beta = std::sqrt(dHi);
+        const double t = 1 / (alpha + beta);
+        const double s = alpha * beta * t + (beta - alpha) * (beta - alpha) * t / 8;
+        // K_j: n_j = Σ_i M_ij (Q p)_i.
+        const Mat4 q = hs.quadric.Matrix();
+        double k[3][4];
+        for (std::size_t j = 0; j < 3; ++j)
+            for (std::size_t col = 0; col < 4; ++col) {
+                double g[4] = {q.m[0][col], q.m[1][col], q.m[2][col], q.m[3][col]};
+                k[j][col] = pull(g, j);
+            }
+        // Denominator: midrange of |n| on the exact sheet, sampled on a grid over the rectangle.
+        double wMin = HUGE_VAL, wMax = 0;
+        for (int pass = 0; pass < 2 && !(wMax > 0); ++pass) {
+            const int nx = std::min(9, rect.x1 - rect.x0), ny = std::min(9, rect.y1 - rect.y0);
+            for (int iy = 0; iy < ny; ++iy)
+                for (int ix = 0; ix < nx; ++ix) {
+                    double x = rect.x0 + 0.5 +
+                               (nx > 1 ? (rect.x1 - rect.x0 - 1) * double(ix) / (nx - 1) : 0);
+                    double y = rect.y0 + 0.5 +
+                               (ny > 1 ? (rect.y1 - rect.y0 - 1) * double(iy) / (ny - 1) : 0);
+                    double d = Eval(disc, x, y);
+                    if (d < 0 && pass == 0) continue;  // second pass: the silhouette's z
+                    double z = -r.b[3] / r.c * x - r.b[4] / r.c * y - r.b[5] / r.c +
+                               sigma * std::sqrt(std::max(d, 0.0)) / ac;
+                    Vec3 n{k[0][0] * x + k[0][1] * y + k[0][2] * z + k[0][3],
+                           k[1][0] * x + k[1][1] * y + k[1][2] * z + k[1][3],
+                           k[2][0] * x + k[2][1] * y + k[2][2] * z + k[2][3]};
+                    double w = Length(n);
+                    if (!std::isfinite(w)) continue;
+                    wMin = std::min(wMin, w);
+                    wMax = std::max(wMax, w);
+                }
+        }
+        const double w0 = 0.5 * (wMin + wMax);
+        if (!(w0 > 0) || !std::isfinite(w0)) return false;
+        // z_s = L + sigma (s + tΔ)/|c|.
+        Coeffs zs;
+        for (std::size_t i = 0; i < 6; ++i) zs[i] = -r.b[i] / r.c + sigma * t * disc[i] / ac;
+        zs[5] += sigma * s / ac;
+        const double sqrtErr = (beta - alpha) * (beta - alpha) * t / 8;
+        double kz = 0;
+        for (std::size_t j = 0; j < 3; ++j) {
+            Coeffs a;
+            for (std::size_t i = 0; i < 6; ++i) a[i] = k[j][2] * zs[i];
+            a[3] += k[j][0];
+            a[4] += k[j][1];
+            a[5] += k[j][3];
+            for (double& v : a) v *= phi / w0;
+            EmitNLoad(static_cast<std::uint8_t>(j), a);
+            kz += k[j][2] * k[j][2];
+        }
+        stats_.shadingDenominatorSpread =
+            std::max(stats_.shadingDenominatorSpread, (wMax - wMin) / (wMax + wMin));
+        stats_.shadingSqrtBound =
+            std::max(stats_.shadingSqrtBound, std::sqrt(kz) * sqrtErr / (ac * w0));
+        return true;
+    }
+
+    void EmitNLoad(std::uint8_t axis, const Coeffs& q) {
+        Instruction& in = Emit(Opcode::kNLoad, kF1, axis);
+        for (int i = 0; i < 6; ++i) in.q[i] = q[static_cast<std::size_t>(i)];
     }
 
     void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, bool open) {

@@ -39,6 +39,11 @@ struct CompileOptions {
     // Program size guard: a solid whose instructions would pass this total is not drawn (a normal
     // form below maxProducts can still hold millions of paring tests).
     std::size_t maxInstructions = 1000000;
+    // The paper's shading (seed 004 §III step 4): each patch broadcasts its approximate normal
+    // (kNLoad ×3) instead of leaving the exact normal to scan-out. Docs: "Shading".
+    bool paperShading = false;
+    // Fixed-point depth words of this many bits (0 = doubles): Program::depthStep.
+    int depthBits = 0;
 };
 
 struct CompileStats {
@@ -53,7 +58,17 @@ struct CompileStats {
     std::size_t strips = 0;           // kApprox: parabolic strips (tangents) broadcast
     std::size_t stripsCapped = 0;     // kApprox: sheets that hit maxStrips
     std::size_t extendedFallbacks = 0;  // kApprox: sheets with C = 0 done by the root unit
-    std::vector<std::string> errors;    // solids not drawn (normal form too large)
+    std::size_t shadedPatches = 0;      // paperShading: blocks with kNLoad
+    std::size_t shadingFallbacks = 0;   // paperShading: quadric patches with C = 0 (exact normal)
+    // paperShading: the host's own bound on |a·l − n·l| from the sqrt approximation alone
+    // (max over patches of |numerator error| / denominator, for a unit l along the worst axis).
+    double shadingSqrtBound = 0;
+    // paperShading: max over patches of (wMax − wMin)/(wMax + wMin) for the sampled |n|, the
+    // largest relative error of the constant denominator w0 (0 for spheres and circular
+    // cylinders under a parallel view). |paper − exact| ≤ sqrt bound + this, per unit light.
+    double shadingDenominatorSpread = 0;
+    std::vector<std::string> errors;    // solids not drawn (normal form too large, program size)
+    std::vector<std::string> warnings;  // drawn, but less accurately than asked
 };
 
 void Compile(const FlatScene& scene, const CompileOptions& options, Program& program,

@@ -91,8 +91,13 @@ std::string Program::Disassemble(std::size_t maxInstructions) const {
         for (std::int32_t k = b.first; k < b.first + b.count; ++k) {
             if (shown++ >= maxInstructions) return s + "...\n";
             const Instruction& in = code[static_cast<std::size_t>(k)];
-            std::snprintf(line, sizeof line, "  %-6s F%d F%d arg=%d\n", OpcodeName(in.op), in.a + 1,
-                          in.b + 1, in.arg);
+            if (in.op == Opcode::kNLoad) {
+                std::snprintf(line, sizeof line, "  %-6s F%d N%d\n", OpcodeName(in.op), in.a + 1,
+                              in.b);
+            } else {
+                std::snprintf(line, sizeof line, "  %-6s F%d F%d arg=%d\n", OpcodeName(in.op),
+                              in.a + 1, in.b + 1, in.arg);
+            }
             s += line;
         }
     }

@@ -365,9 +365,8 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, int thre
                 frame.depth[f] = z;
                 frame.normal[f] =
                     p.machineNormal
-                        ? ShadingUnitNormal({w.regs.normal[0][k], w.regs.normal[1][k],
-                                             w.regs.normal[2][k]},
-                                            key)
+                        ? ShadingUnitNormal(
+                              {w.regs.normal[0][k], w.regs.normal[1][k], w.regs.normal[2][k]}, key)
                         : scene.WorldNormal(p.halfSpace, {i + 0.5, j + 0.5, z});
                 frame.surface[f] = p.halfSpace;
                 frame.body[f] = p.body;

@@ -147,5 +147,45 @@ TEST(PixelPowersMachine, RectanglesAndTiles) {
     }
 }
 
+// Paper shading registers: NLOAD puts Q(x, y) into N0–N2 on enabled pixels only, and scan-out of
+// a patch marked machineNormal turns them into a unit normal with the key light's term kept
+// (ShadingUnitNormal). Key light k = (0, 0, −1): n·k = a·k, so n_z = a_z.
+TEST(PixelPowersMachine, NormalRegistersAndScanOut) {
+    Assembler as;
+    as.program.patches.push_back({0, 0, 0, true});
+    as.Begin({0, 0, 10, 1});
+    as.Op(Opcode::kFlagSet, kF1);
+    as.Op(Opcode::kQeeKeepNonPositive, kF1, 0, -1, {0, 0, 0, 1, 0, -5});  // x <= 5
+    as.Op(Opcode::kZLoad, kF1, 0, -1, {0, 0, 0, 0, 0, 3});
+    as.Op(Opcode::kNLoad, kF1, 0, -1, {0, 0, 0, 0.1, 0, 0});  // a_x = 0.1 x
+    as.Op(Opcode::kNLoad, kF1, 1, -1, {0, 0, 0, 0, 0, 0});
+    as.Op(Opcode::kNLoad, kF1, 2, -1, {0, 0, 0, 0.05, 0, -0.9});  // a_z = 0.05 x − 0.9
+    as.Op(Opcode::kZTest, kF1);
+    as.Op(Opcode::kZWrite, kF1, 0, 0);
+    as.End();
+    FlatScene scene = PlaneScene(10, 1);
+    scene::Light l;
+    l.kind = scene::Light::Kind::kParallel;
+    l.intensity = 1;
+    l.direction = {0, 0, -2};
+    scene.lights = {l};
+    Frame f;
+    MachineCounters c = Execute(as.program, scene, 1, f);
+    EXPECT_EQ(as.program.Equations(), 5u);  // QNPOS, ZLOAD and three NLOADs
+    for (int i = 0; i < 10; ++i) {
+        double x = i + 0.5;
+        const Vec3& n = f.normal[static_cast<std::size_t>(i)];
+        if (x > 5) {
+            EXPECT_EQ(f.surface[static_cast<std::size_t>(i)], Frame::kNone);
+            continue;
+        }
+        EXPECT_NEAR(Length(n), 1, 1e-12);
+        EXPECT_NEAR(n.z, 0.05 * x - 0.9, 1e-12) << i;  // the key light's term, as computed
+        EXPECT_NEAR(n.y, 0, 1e-12);
+        EXPECT_GT(n.x, 0);  // the rest of a's direction
+    }
+    EXPECT_GT(c.pixelOps, 0u);
+}
+
 }  // namespace
 }  // namespace quadrix::pixelpowers

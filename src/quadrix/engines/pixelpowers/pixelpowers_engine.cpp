@@ -11,6 +11,7 @@
 #include "quadrix/engines/pixelpowers/compiler.h"
 #include "quadrix/engines/pixelpowers/machine.h"
 #include "quadrix/engines/raycast/raycast.h"
+#include "quadrix/shade/shader.h"
 
 namespace quadrix {
 namespace pixelpowers {
@@ -31,6 +32,9 @@ struct Settings {
     bool compare = false;
 };
 
+// Bits of the N0–N2 registers of paper shading in this simulation (three doubles).
+constexpr int kNormalBits = 3 * 64;
+
 bool ParseOnOff(const std::string& v, bool& out) {
     if (v == "on" || v == "1" || v == "true") return out = true, true;
     if (v == "off" || v == "0" || v == "false") return out = false, true;
@@ -38,7 +42,7 @@ bool ParseOnOff(const std::string& v, bool& out) {
 }
 
 std::string ParseSettings(const RenderOptions& options, Settings& st) {
-    bool compareSet = false;
+    bool compareSet = false, shadingSet = false;
     for (const auto& [key, value] : options.engineOptions) {
         char* end = nullptr;
         if (key == "mode") {
@@ -72,16 +76,32 @@ std::string ParseSettings(const RenderOptions& options, Settings& st) {
             if (value.empty() || *end || n < 1 || n > 4096)
                 return "engine 'pixelpowers': max-strips must be 1..4096, not '" + value + "'";
             st.compile.maxStrips = static_cast<int>(n);
+        } else if (key == "shading") {
+            if (value == "exact") {
+                st.compile.paperShading = false;
+            } else if (value == "paper") {
+                st.compile.paperShading = true;
+            } else {
+                return "engine 'pixelpowers': shading must be exact or paper, not '" + value + "'";
+            }
+            shadingSet = true;
+        } else if (key == "depth-bits") {
+            long n = std::strtol(value.c_str(), &end, 10);
+            if (value.empty() || *end || n < 8 || n > 52)
+                return "engine 'pixelpowers': depth-bits must be 8..52, not '" + value + "'";
+            st.compile.depthBits = static_cast<int>(n);
         } else if (key == "compare") {
             if (!ParseOnOff(value, st.compare))
                 return "engine 'pixelpowers': compare must be on or off, not '" + value + "'";
             compareSet = true;
         } else {
             return "engine 'pixelpowers' has no option '" + key +
-                   "' (mode, tolerance, max-products, max-instructions, max-strips, compare)";
+                   "' (mode, tolerance, shading, depth-bits, max-products, max-instructions, "
+                   "max-strips, compare)";
         }
     }
     if (!compareSet) st.compare = st.compile.mode == DepthMode::kApprox;
+    if (!shadingSet) st.compile.paperShading = st.compile.mode == DepthMode::kApprox;
     return {};
 }
 
@@ -93,11 +113,15 @@ struct Agreement {
     // the approximate depth may move a pixel onto the other sheet of the same quadric.
     std::uint64_t overTolerance = 0;
     double p999 = 0;  // 99.9th percentile of the same-surface error
+    // Shading: |LambertIntensity(here) − LambertIntensity(raycast)| on same-surface pixels (the
+    // shader's intensity before color, in [0, 1]; ×255 for 8-bit gray levels).
+    double maxIntensityError = 0, sumIntensityError = 0, p99Intensity = 0;
 };
 
-Agreement CompareFrames(const Frame& here, const Frame& ref, double tolerance) {
+Agreement CompareFrames(const Frame& here, const Frame& ref, const FlatScene& scene,
+                        double tolerance) {
     Agreement a;
-    std::vector<double> errors;
+    std::vector<double> errors, intensityErrors;
     for (std::size_t i = 0; i < here.depth.size(); ++i) {
         bool h = here.surface[i] != Frame::kNone, r = ref.surface[i] != Frame::kNone;
         if (h && r) {
@@ -110,6 +134,11 @@ Agreement CompareFrames(const Frame& here, const Frame& ref, double tolerance) {
                 a.sumDepthError += e;
                 a.overTolerance += e > tolerance * (1 + 1e-9);
                 errors.push_back(e);
+                double di = std::fabs(LambertIntensity(scene, here.normal[i]) -
+                                      LambertIntensity(scene, ref.normal[i]));
+                a.maxIntensityError = std::fmax(a.maxIntensityError, di);
+                a.sumIntensityError += di;
+                intensityErrors.push_back(di);
             }
         } else if (h) {
             ++a.coveredOnlyHere;
@@ -121,6 +150,10 @@ Agreement CompareFrames(const Frame& here, const Frame& ref, double tolerance) {
         auto k = static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(errors.size() - 1));
         std::nth_element(errors.begin(), errors.begin() + k, errors.end());
         a.p999 = errors[static_cast<std::size_t>(k)];
+        auto k99 = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(errors.size() - 1));
+        std::nth_element(intensityErrors.begin(), intensityErrors.begin() + k99,
+                         intensityErrors.end());
+        a.p99Intensity = intensityErrors[static_cast<std::size_t>(k99)];
     }
     return a;
 }
@@ -176,6 +209,7 @@ class PixelPowersEngine final : public Engine {
         if (std::string err = ParseSettings(options, st); !err.empty()) {
             frame.Reset(std::max(scene.width, 0), std::max(scene.height, 0));
             stats.report = err + "\n";
+            stats.warnings.push_back(err + "; nothing drawn");
             return stats;
         }
         Program program;
@@ -191,6 +225,7 @@ class PixelPowersEngine final : public Engine {
         auto count = [&](const char* name, std::uint64_t v) { add(name, static_cast<double>(v)); };
         const csg::NormalFormStats& nf = cs.normalForm;
         add("exact_mode", st.compile.mode == DepthMode::kExact ? 1 : 0);
+        add("paper_shading", st.compile.paperShading ? 1 : 0);
         count("primitives", cs.primitives);
         count("half_spaces", cs.halfSpaces);
         count("tree_primitives", nf.treePrimitives);
@@ -213,6 +248,17 @@ class PixelPowersEngine final : public Engine {
             count("strip_sheets_capped", cs.stripsCapped);
             count("extended_fallbacks", cs.extendedFallbacks);
         }
+        if (st.compile.paperShading) {
+            count("shaded_patches", cs.shadedPatches);
+            count("shading_fallbacks", cs.shadingFallbacks);
+            add("shading_sqrt_bound", cs.shadingSqrtBound);
+            add("shading_denominator_spread", cs.shadingDenominatorSpread);
+        }
+        if (program.depthStep > 0) {
+            count("depth_bits", static_cast<std::uint64_t>(program.depthBits));
+            add("depth_step", program.depthStep);
+            add("depth_origin", program.depthOrigin);
+        }
         count("tiles", mc.tiles);
         count("block_runs", mc.blockRuns);
         count("blocks_abandoned", mc.blocksAbandoned);
@@ -222,7 +268,9 @@ class PixelPowersEngine final : public Engine {
         count("z_writes", mc.writes);
         count("covered_pixels", frame.CoveredCount());
         count("bits_per_pixel_paper", kPaperBits);
-        count("bits_per_pixel_simulated", kSimulatedBits);
+        count("bits_per_pixel_simulated",
+              static_cast<std::uint64_t>(kSimulatedBits +
+                                         (st.compile.paperShading ? kNormalBits : 0)));
         add("compile_seconds", std::chrono::duration<double>(t1 - t0).count());
         add("machine_seconds", std::chrono::duration<double>(t2 - t1).count());
         count("solids_not_drawn", cs.errors.size());
@@ -244,7 +292,31 @@ class PixelPowersEngine final : public Engine {
                       " simulated %d bits (F1-F3, ZTEMP 64, ZMIN 64, patch id 32)\n",
                       kPaperBits, kSimulatedBits);
         report += line;
-        for (const std::string& e : cs.errors) report += "error: " + e + "\n";
+        if (st.compile.paperShading) {
+            std::snprintf(line, sizeof line,
+                          "shading: the paper's (seed 004 III step 4): %zu patches broadcast their "
+                          "approximate normal (3 equations each), %zu exact fallbacks; host "
+                          "bounds in n.l: sqrt approximation %.4g, constant denominator %.4g\n",
+                          cs.shadedPatches, cs.shadingFallbacks, cs.shadingSqrtBound,
+                          cs.shadingDenominatorSpread);
+            report += line;
+        }
+        if (program.depthStep > 0) {
+            std::snprintf(line, sizeof line,
+                          "depth words: %d-bit fixed point, step %.4g device z from %.6g\n",
+                          program.depthBits, program.depthStep, program.depthOrigin);
+            report += line;
+        }
+        // Every solid not drawn, and every accuracy guard that fired, also as a warning the CLI
+        // prints without --stats.
+        for (const std::string& e : cs.errors) {
+            report += "error: " + e + "\n";
+            stats.warnings.push_back(e);
+        }
+        for (const std::string& w : cs.warnings) {
+            report += "warning: " + w + "\n";
+            stats.warnings.push_back(w);
+        }
 
         if (st.compare) {
             Frame ref;
@@ -252,7 +324,11 @@ class PixelPowersEngine final : public Engine {
             RenderOptions ro;
             ro.threads = options.threads;
             reference->Render(scene, ro, ref);
-            Agreement a = CompareFrames(frame, ref, st.compile.tolerance);
+            // Fixed-point words add up to half a step to every depth (rounding is monotone).
+            const double tolerance = st.compile.mode == DepthMode::kApprox
+                                         ? st.compile.tolerance + 0.5 * program.depthStep
+                                         : 0.5 * program.depthStep;
+            Agreement a = CompareFrames(frame, ref, scene, tolerance);
             std::uint64_t union_ = a.coveredBoth + a.coveredOnlyHere + a.coveredOnlyReference;
             double same = a.coveredBoth ? static_cast<double>(a.sameSolid) / a.coveredBoth : 1.0;
             double mean = a.sameSurface ? a.sumDepthError / static_cast<double>(a.sameSurface) : 0;
@@ -264,6 +340,11 @@ class PixelPowersEngine final : public Engine {
             add("cmp_depth_error_mean", mean);
             add("cmp_depth_error_p999", a.p999);
             count("cmp_depth_error_over_tolerance", a.overTolerance);
+            double meanI =
+                a.sameSurface ? a.sumIntensityError / static_cast<double>(a.sameSurface) : 0;
+            add("cmp_intensity_error_max", a.maxIntensityError);
+            add("cmp_intensity_error_mean", meanI);
+            add("cmp_intensity_error_p99", a.p99Intensity);
             std::snprintf(
                 line, sizeof line,
                 "vs raycast: %llu covered pixels, %.4f%% same solid, coverage differs on "
@@ -272,7 +353,14 @@ class PixelPowersEngine final : public Engine {
                 static_cast<unsigned long long>(union_), 100.0 * same,
                 static_cast<unsigned long long>(a.coveredOnlyHere + a.coveredOnlyReference),
                 a.maxDepthError, a.p999, mean, static_cast<unsigned long long>(a.overTolerance),
-                st.compile.tolerance);
+                tolerance);
+            report += line;
+            std::snprintf(line, sizeof line,
+                          "vs raycast shading (%s): Lambert intensity error (same surface) max "
+                          "%.4f p99 %.4f mean %.4f (x255: %.1f / %.1f / %.2f gray levels)\n",
+                          st.compile.paperShading ? "paper" : "exact normals", a.maxIntensityError,
+                          a.p99Intensity, meanI, 255 * a.maxIntensityError, 255 * a.p99Intensity,
+                          255 * meanI);
             report += line;
         }
         stats.report = report;

@@ -8,8 +8,10 @@
 #include <random>
 
 #include "quadrix/engines/pixelpowers/compiler.h"
+#include "quadrix/engines/pixelpowers/machine.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/shade/shader.h"
 
 namespace quadrix::pixelpowers {
 namespace {
@@ -276,6 +278,227 @@ TEST(PixelPowersEngine, StatisticsAndExplosionGuard) {
     EXPECT_FALSE(pp->ValidateOptions(o).size());
     o.engineOptions = {{"max-product", "100"}};
     EXPECT_NE(pp->ValidateOptions(o).find("no option"), std::string::npos);
+}
+
+double Counter(const RenderStats& st, const std::string& name) {
+    for (const auto& [k, v] : st.counters)
+        if (k == name) return v;
+    return -1;
+}
+
+bool AnyWarningWith(const RenderStats& st, const std::string& text) {
+    for (const std::string& w : st.warnings)
+        if (w.find(text) != std::string::npos) return true;
+    return false;
+}
+
+// Spheres and circular cylinders (capped by planes) at random, under the builder's parallel view
+// (deviceFromWorld = identity): their world gradient has a constant length on the surface, so the
+// paper's constant denominator is exact and only the one-cylinder sqrt approximation errs.
+FlatScene ShadingScene(std::mt19937& rng, const Vec3& light) {
+    std::uniform_real_distribution<double> u(0, 1);
+    TestSceneBuilder b(72, 72);
+    std::vector<int> leaves;
+    for (int i = 0; i < 4; ++i) {
+        Vec3 c{14 + 44 * u(rng), 14 + 44 * u(rng), 40 + 20 * u(rng)};
+        if (i % 2 == 0) {
+            double r = 8 + 10 * u(rng);
+            leaves.push_back(b.AddLeaf(b.AddBody({{b.AddSphere(c, r), false}}, Around(c, r))));
+            continue;
+        }
+        Vec3 d = Normalize(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
+        double h = 8 + 8 * u(rng), r = 4 + 6 * u(rng), m[9];
+        for (std::size_t i2 = 0; i2 < 3; ++i2)
+            for (std::size_t j = 0; j < 3; ++j)
+                m[3 * i2 + j] = (i2 == j ? 1.0 : 0.0) - d[i2] * d[j];
+        int q = b.AddQuadric(Centred(m, c, -r * r));
+        int top = b.AddPlane(d.x, d.y, d.z, -Dot(d, c) - h);
+        int bot = b.AddPlane(-d.x, -d.y, -d.z, Dot(d, c) - h);
+        leaves.push_back(
+            b.AddLeaf(b.AddBody({{q, false}, {top, false}, {bot, false}}, Around(c, h + r))));
+    }
+    b.AddSolid(b.AddNode(scene::CsgOp::kDifference,
+                         {b.AddNode(scene::CsgOp::kUnion, {leaves[0], leaves[1]}), leaves[2]}));
+    b.AddSolid(leaves[3]);
+    FlatScene scene = b.scene();
+    scene::Light l;
+    l.kind = scene::Light::Kind::kParallel;
+    l.intensity = 0.8;
+    l.direction = light;
+    scene::Light ambient;
+    ambient.intensity = 0.1;
+    scene.lights = {ambient, l};
+    return scene;
+}
+
+// Seed 004 §III step 4 against exact Lambert shading of raycast's frame. Exact depths (mode=exact)
+// so that the same pixels show the same surface and only the shading differs. Bound: the shader's
+// intensity is 0.1 + 0.8·max(0, n·l) with n·l = clamp(a·l) (ShadingUnitNormal), and clamp and
+// max(0,·) are 1-Lipschitz, so |Δ intensity| ≤ 0.8·|a·l − n_exact·l| ≤ 0.8·(sqrt bound reported by
+// the host), the denominator being exact here (shading_denominator_spread ≈ 0, checked).
+TEST(PixelPowersEngine, PaperShadingBoundedAgainstExactLambert) {
+    std::mt19937 rng(2026);
+    double worst = 0;
+    for (int trial = 0; trial < 8; ++trial) {
+        Vec3 light = Normalize(Vec3{0.6 * (rng() % 3) - 0.6, 0.3, -1});
+        FlatScene scene = ShadingScene(rng, light);
+        auto pp = MakePixelPowersEngine();
+        auto rc = MakeRaycastEngine();
+        RenderOptions o;
+        o.engineOptions = {{"shading", "paper"}, {"compare", "on"}};
+        Frame a, r;
+        RenderStats st = pp->Render(scene, o, a);
+        rc->Render(scene, RenderOptions{}, r);
+        const double bound = Counter(st, "shading_sqrt_bound");
+        ASSERT_GE(bound, 0) << "paper shading must report its host bound";
+        // (β−α)²/(8(α+β)) ≤ β/8 and |K_z|·β/|c| ≤ w on a sphere or circular cylinder.
+        EXPECT_LE(bound, 0.125 + 1e-9);
+        EXPECT_LE(Counter(st, "shading_denominator_spread"), 1e-9);
+        EXPECT_GT(Counter(st, "shaded_patches"), 0);
+        double maxErr = 0, sumErr = 0;
+        std::size_t same = 0;
+        for (std::size_t i = 0; i < r.depth.size(); ++i) {
+            if (a.surface[i] == Frame::kNone || a.surface[i] != r.surface[i]) continue;
+            ++same;
+            EXPECT_NEAR(Length(a.normal[i]), 1.0, 1e-9) << "the Frame keeps unit normals";
+            double e = std::fabs(LambertIntensity(scene, a.normal[i]) -
+                                 LambertIntensity(scene, r.normal[i]));
+            maxErr = std::max(maxErr, e);
+            sumErr += e;
+        }
+        ASSERT_GT(same, 500u);
+        EXPECT_LE(maxErr, 0.8 * bound + 1e-9) << "trial " << trial;
+        // The engine's own statistic is the same measurement.
+        EXPECT_NEAR(Counter(st, "cmp_intensity_error_max"), maxErr, 1e-12);
+        EXPECT_LT(sumErr / static_cast<double>(same), 0.05) << "smooth, close on average";
+        worst = std::max(worst, maxErr);
+
+        // shading=exact: the normal at ZMIN, the very computation raycast makes.
+        o.engineOptions = {{"shading", "exact"}};
+        Frame e;
+        pp->Render(scene, o, e);
+        for (std::size_t i = 0; i < r.depth.size(); ++i)
+            if (e.surface[i] != Frame::kNone && e.surface[i] == r.surface[i]) {
+                ASSERT_EQ(LambertIntensity(scene, e.normal[i]),
+                          LambertIntensity(scene, r.normal[i]));
+            }
+    }
+    // The approximation is really in use (a coarse one: the paper's single cylinder).
+    EXPECT_GT(worst, 0.01);
+}
+
+// ShadingUnitNormal keeps the paper's n·k for the key light with a unit vector.
+TEST(PixelPowersEngine, ShadingUnitNormalKeepsTheKeyLightTerm) {
+    const Vec3 k = Normalize(Vec3{0.2, -0.3, -1});
+    for (Vec3 a : {Vec3{0.1, 0.2, -0.9}, Vec3{0.5, -0.7, 0.4}, Vec3{0, 0, -1.3}, k * 0.7, k * 1.2,
+                   Vec3{0, 0, 0}}) {
+        Vec3 n = ShadingUnitNormal(a, k);
+        EXPECT_NEAR(Length(n), 1.0, 1e-12);
+        EXPECT_NEAR(Dot(n, k), std::clamp(Dot(a, k), -1.0, 1.0), 1e-12);
+        // In the plane of a and k (when a is not along k).
+        Vec3 perp = Cross(a, k);
+        if (Length(perp) > 1e-9) {
+            EXPECT_NEAR(Dot(n, perp), 0.0, 1e-12);
+        }
+    }
+    EXPECT_NEAR(Dot(ShadingUnitNormal({0, 3, 4}, {}), Vec3{0, 0.6, 0.8}), 1.0, 1e-12);
+}
+
+// Every solid the engine cannot draw, and every accuracy guard that fires, is a warning.
+TEST(PixelPowersEngine, WarningsNameSolidsNotDrawn) {
+    TestSceneBuilder b(40, 40);
+    // Spheres with boxes, as the Flattener gives them (unbounded bodies would need exit terms).
+    auto sphere = [&](const Vec3& c, double r) {
+        return b.AddLeaf(b.AddBody({{b.AddSphere(c, r), false}}, Around(c, r)));
+    };
+    int acc = sphere({20, 20, 30}, 14);
+    for (int level = 0; level < 6; ++level) {
+        int x = sphere({18.0 + level % 3, 20, 30}, 4);
+        int y = sphere({20, 18.0 + level % 4, 30}, 4);
+        acc = b.AddNode(scene::CsgOp::kDifference,
+                        {acc, b.AddNode(scene::CsgOp::kIntersection, {x, y})});
+    }
+    b.AddSolid(acc);                    // solid #0: 2^6 products
+    b.AddSolid(sphere({8, 8, 20}, 5));  // solid #1: simple
+    FlatScene scene = b.scene();
+    scene.solids[0].name = "maze";
+    auto pp = MakePixelPowersEngine();
+    RenderOptions o;
+    Frame f;
+
+    RenderStats plain = pp->Render(scene, o, f);
+    EXPECT_TRUE(plain.warnings.empty()) << plain.warnings.front();
+
+    o.engineOptions = {{"max-products", "50"}};
+    RenderStats st = pp->Render(scene, o, f);
+    ASSERT_EQ(st.warnings.size(), 1u);
+    EXPECT_TRUE(AnyWarningWith(st, "solid 'maze' not drawn"));
+    EXPECT_TRUE(AnyWarningWith(st, "max-products"));
+    EXPECT_GT(f.CoveredCount(), 0u) << "the other solid is still drawn";
+
+    o.engineOptions = {{"max-instructions", "40"}};
+    st = pp->Render(scene, o, f);
+    EXPECT_TRUE(AnyWarningWith(st, "solid 'maze' not drawn"));
+    EXPECT_TRUE(AnyWarningWith(st, "max-instructions"));
+
+    o.engineOptions = {{"mode", "approx"}, {"max-strips", "1"}, {"tolerance", "0.01"}};
+    st = pp->Render(scene, o, f);
+    EXPECT_TRUE(AnyWarningWith(st, "max-strips = 1")) << st.report;
+    EXPECT_TRUE(AnyWarningWith(st, "solid #1")) << "unnamed solids are numbered";
+
+    o.engineOptions = {{"mode", "sideways"}};
+    st = pp->Render(scene, o, f);
+    EXPECT_TRUE(AnyWarningWith(st, "nothing drawn"));
+
+    // depth-bits needs a finite depth range: a half-space solid has none.
+    TestSceneBuilder h(16, 16);
+    h.AddSolid(h.AddLeaf(h.AddBody({{h.AddPlane(0.1, 0, -1, 20), false}})));
+    o.engineOptions = {{"mode", "approx"}, {"depth-bits", "16"}};
+    st = pp->Render(h.scene(), o, f);
+    EXPECT_TRUE(AnyWarningWith(st, "depth-bits ignored"));
+}
+
+// Fixed-point depth words: every stored depth is a multiple of the step from the origin, and the
+// error against raycast grows by at most half a step (rounding is monotone, so the envelope of
+// rounded strips is the rounded envelope).
+TEST(PixelPowersEngine, DepthBitsQuantiseTheDepthWords) {
+    std::mt19937 rng(5);
+    TestSceneBuilder b(64, 64);
+    std::vector<int> bodies;
+    for (int i = 0; i < 4; ++i) bodies.push_back(RandomBody(b, rng));
+    b.AddSolid(
+        b.AddNode(scene::CsgOp::kDifference,
+                  {b.AddNode(scene::CsgOp::kUnion, {b.AddLeaf(bodies[0]), b.AddLeaf(bodies[1])}),
+                   b.AddLeaf(bodies[2])}));
+    b.AddSolid(b.AddLeaf(bodies[3]));
+    auto pp = MakePixelPowersEngine();
+    auto rc = MakeRaycastEngine();
+    Frame r;
+    rc->Render(b.scene(), RenderOptions{}, r);
+    for (int bits : {10, 24}) {
+        RenderOptions o;
+        o.engineOptions = {
+            {"mode", "approx"}, {"tolerance", "0.25"}, {"depth-bits", std::to_string(bits)}};
+        Frame a;
+        RenderStats st = pp->Render(b.scene(), o, a);
+        double step = Counter(st, "depth_step");
+        ASSERT_GT(step, 0);
+        const double origin = Counter(st, "depth_origin");
+        double maxErr = 0, offGrid = 0;
+        for (std::size_t i = 0; i < r.depth.size(); ++i) {
+            if (a.surface[i] == Frame::kNone) continue;
+            double k = (a.depth[i] - origin) / step;
+            offGrid = std::max(offGrid, std::fabs(k - std::nearbyint(k)));
+            if (a.surface[i] != r.surface[i]) continue;
+            maxErr = std::max(maxErr, std::fabs(a.depth[i] - r.depth[i]));
+        }
+        // k ≤ 2^24: origin + k·step rounds at ~1e-16 relative, far below 1e-6 of a step.
+        EXPECT_LT(offGrid, 1e-6) << bits << " bits";
+        EXPECT_LE(maxErr, 0.25 + 0.5 * step + 1e-9) << bits << " bits";
+        if (bits == 10) {
+            EXPECT_GT(maxErr, 0.25 + 0.1 * step) << "10-bit words are coarse";
+        }
+    }
 }
 
 }  // namespace

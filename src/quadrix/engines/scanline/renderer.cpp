@@ -234,7 +234,6 @@ class ScanRenderer {
           faces_(faces),
           units_(units),
           pixelBody_(pixelBody),
-          stackBody_(stackBody),
           settings_(settings),
           frame_(frame),
           c_(c),
@@ -248,8 +247,8 @@ class ScanRenderer {
             if (unit.kind != Unit::Kind::kBody) continue;
             auto b = static_cast<std::size_t>(unit.body);
             bodyUnit_[b] = static_cast<int>(u);
-            useStack_[b] = settings.faceStacks && b < stackBody.size() && stackBody[b] &&
-                           !pixelBody[b];
+            useStack_[b] =
+                settings.faceStacks && b < stackBody.size() && stackBody[b] && !pixelBody[b];
         }
         for (std::size_t f = 0; f < faces.size(); ++f) {
             auto b = static_cast<std::size_t>(faces[f].body);
@@ -266,6 +265,9 @@ class ScanRenderer {
                 o.isPlane = hs.isPlane;
                 o.plane = hs.plane;
                 o.quadric = hs.quadric;
+                o.zFree = hs.isPlane ? PlaneIsEdgeOn(hs.plane)
+                                     : QuadricIsViewCylinder(hs.quadric,
+                                                             std::max(scene.width, scene.height));
                 if (lit.complemented) {  // !h: −h <= 0
                     o.plane = {-hs.plane.a, -hs.plane.b, -hs.plane.c, -hs.plane.d};
                     for (double& v : o.quadric.k) v = -v;
@@ -912,7 +914,9 @@ class ScanRenderer {
     // least kCluster / 2 from every crossing, so a face that is there has a margin far above E;
     // a face that only touches the body (a row exactly on a horizontal edge where the body has
     // zero thickness, e.g. the base edge of a pyramid) is not there, as in raycast, whose
-    // interval [t, t] of zero length draws nothing.
+    // interval [t, t] of zero length draws nothing. HSBs that contain the view direction
+    // (edge-on planes, view-axis cylinders) are tested closed instead (value <= E): a row on
+    // such a boundary is inside the body along the whole ray, as in raycast.
     bool PresentAt(int f, double x, double y) const {
         const ShowFace& sf = faces_[static_cast<std::size_t>(f)];
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(sf.halfSpace)];
@@ -922,10 +926,9 @@ class ScanRenderer {
             z = -(hs.plane.a * x + hs.plane.b * y + hs.plane.d) / hs.plane.c;
         } else {
             const Quadric& q = hs.quadric;
-            QuadraticRoots r =
-                SolveQuadratic(q.C(), q.F() * x + q.E() * y + q.J(),
-                               q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y +
-                                   2 * q.G() * x + 2 * q.H() * y + q.K());
+            QuadraticRoots r = SolveQuadratic(q.C(), q.F() * x + q.E() * y + q.J(),
+                                              q.A() * x * x + q.B() * y * y + 2 * q.D() * x * y +
+                                                  2 * q.G() * x + 2 * q.H() * y + q.K());
             const bool back = sf.sheet == Sheet::kBack;
             switch (r.kind) {
                 case RootKind::kTwo:
@@ -953,7 +956,7 @@ class ScanRenderer {
             const double v = l.isPlane ? l.plane.Evaluate(p) : l.quadric.Evaluate(p);
             const double e = l.isPlane ? PlaneErrorEstimate(l.plane, p, pointError)
                                        : QuadricErrorEstimate(l.quadric, p, pointError);
-            if (!(v < -e)) return false;
+            if (l.zFree ? !(v <= e) : !(v < -e)) return false;
         }
         return true;
     }
@@ -981,8 +984,8 @@ class ScanRenderer {
             face.solid = units_[static_cast<std::size_t>(u)].solid;
             if (settings_.fastShading) {
                 const double t = FaceDepthAt(face, sample, y);
-                face.fastNormal = std::isfinite(t) ? Normal(face.halfSpace, sample + 0.5, y, t)
-                                                   : Vec3{0, 0, -1};
+                face.fastNormal =
+                    std::isfinite(t) ? Normal(face.halfSpace, sample + 0.5, y, t) : Vec3{0, 0, -1};
             }
             stack_.push_back(face);
         }
@@ -1060,7 +1063,6 @@ class ScanRenderer {
     const std::vector<ShowFace>& faces_;
     const std::vector<Unit>& units_;
     const std::vector<bool>& pixelBody_;
-    const std::vector<bool>& stackBody_;
     const RenderSettings& settings_;
     Frame& frame_;
     RendererCounters& c_;
@@ -1083,15 +1085,16 @@ class ScanRenderer {
     struct OrientedLiteral {
         int halfSpace = -1;
         bool isPlane = true;
+        bool zFree = false;  // contains the view direction (zero tests (1), (2))
         Plane plane;
         Quadric quadric;
     };
     std::vector<std::vector<OrientedLiteral>> bodyLiterals_;  // stack bodies: "<= 0 inside"
-    std::vector<int> bodyUnit_;               // body → its kBody unit
-    std::vector<std::vector<int>> bodyFaces_; // body → its show-faces
-    std::vector<char> useStack_;              // body drawn from the face stacks
-    std::vector<int> fstack_;                 // the current edge's face stack, nearest first
-    std::vector<char> inStack_;               // per show-face
+    std::vector<int> bodyUnit_;                               // body → its kBody unit
+    std::vector<std::vector<int>> bodyFaces_;                 // body → its show-faces
+    std::vector<char> useStack_;                              // body drawn from the face stacks
+    std::vector<int> fstack_;    // the current edge's face stack, nearest first
+    std::vector<char> inStack_;  // per show-face
     std::vector<char> bodyTaken_;
     std::vector<int> taken_;
     std::size_t aelPos_ = 0;  // pass three: the next AEL edge to apply
@@ -1144,17 +1147,17 @@ void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
     const int bands = (h + kBand - 1) / kBand;
     std::mutex mutex;
     auto run = [&] {
-        tbb::parallel_for(
-            tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
-                for (int b = r.begin(); b < r.end(); ++b) {
-                    RendererCounters local;
-                    ScanRenderer(scene, edges, faces, units, pixelBody, stackBody, settings,
-                                 frame, local)
-                        .Run(esl, b * kBand, std::min(h, (b + 1) * kBand));
-                    std::lock_guard<std::mutex> lock(mutex);
-                    counters.Add(local);
-                }
-            });
+        tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1),
+                          [&](const tbb::blocked_range<int>& r) {
+                              for (int b = r.begin(); b < r.end(); ++b) {
+                                  RendererCounters local;
+                                  ScanRenderer(scene, edges, faces, units, pixelBody, stackBody,
+                                               settings, frame, local)
+                                      .Run(esl, b * kBand, std::min(h, (b + 1) * kBand));
+                                  std::lock_guard<std::mutex> lock(mutex);
+                                  counters.Add(local);
+                              }
+                          });
     };
     if (settings.threads > 0) {
         tbb::task_arena arena(settings.threads);

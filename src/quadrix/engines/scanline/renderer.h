@@ -10,14 +10,31 @@
 //    is what the recursive vertex processing of §5.4 achieves for edges within one scan line).
 //  - Conic edges are traced with first and second differences (§5.5.2): the quadratic (5.3) of
 //    the CSL, B_r += C_c, C_r += ΔC, ΔC += 2 B_c per row, then the root on the edge's leg.
-//  - Pass three cuts the CSL at the x of every active edge. Between two consecutive crossings the
-//    set of faces of every body is constant (the crossings of a body's show-edges are a superset of
-//    its face boundaries), so each span's FACE STACK is built once: every body whose x range on
-//    this row meets the span is evaluated exactly at ONE pixel of the span (the ray/half-space
-//    intervals of the body), which names its visible show-face (surface and sheet); faces are
-//    inserted in depth order with the tie-breaks of §5.5.1 (depth at the next pixel, slope dz/dx,
-//    rate d²z/dx²). This replaces ugshow's incremental face-stack maintenance at edge crossings
-//    (deliberately: an error stays inside one span instead of running along the scan line).
+//  - Pass three cuts the CSL at the x of every active edge. FACE STACKS (default, bodies drawn on
+//    their own): the stack is swept along the CSL from the left (seeded, for bodies reaching the
+//    image's left side, by one exact evaluation left of every crossing); at each crossing of a
+//    show-edge its two show-faces change sides — a face on the stack is deleted, a face off it is
+//    inserted in depth order by the §5.5.1 comparisons (depth at the crossing P; equal: depth at
+//    Q half-way into the next span; equal: slope dz/dx; equal: rate d²z/dx²). The stack after
+//    an edge is that edge's face stack, its head the face visible to the edge's right (§5.2).
+//    Whether a face enters or leaves is not taken from parity alone but from a face test at Q
+//    (the face's point lies definitely inside its body's other HSIs): the Resolver's show-edges
+//    are a superset of the true boundaries, and crossings closer than 1e-4 px form one event
+//    (vertices where several edges meet on or near the CSL); the test makes both harmless and
+//    counts where it overrode parity (stackCorrections). The span's faces are each body's first
+//    face on the stack; when several bodies share a span the nearest of them is taken per pixel,
+//    since bodies of different solids may interpenetrate without a show-edge (the paper's
+//    scenes had none; interpenetrationPixels counts where the head was not the nearest).
+//    Deviation from ugshow: stacks are rebuilt per scan line by this sweep rather than carried
+//    from row to row through the pass-two swaps; so the recursive vertex processing of §5.4 is
+//    replaced by the half-open row rule for toggling (renderer.cpp ApplyEdge) plus the face
+//    test, and horizontal edges need no special case.
+//    EXACT path (render=exact; always for CSG operands and refused bodies): between two
+//    crossings the set of faces of every body is constant (the crossings of a body's show-edges
+//    are a superset of its face boundaries), so each span's stack is built once: every body
+//    whose x range on this row meets the span is evaluated exactly at ONE pixel of the span (the
+//    ray/half-space intervals of the body), which names its visible show-face (surface and
+//    sheet); faces are inserted in depth order with the same tie-breaks.
 //    Faces of different bodies may interpenetrate without a show-edge (the paper's input had
 //    none), so inside a span with several faces the nearest is chosen per pixel.
 //  - A pixel whose centre lies within kOnEdge of a crossing is evaluated exactly on its own.

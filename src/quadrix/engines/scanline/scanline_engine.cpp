@@ -64,8 +64,7 @@ class ScanlineEngine final : public Engine {
                            value + "'";
             } else if (key == "verify") {
                 if (value != "on" && value != "off")
-                    return "engine 'scanline': option verify is 'on' or 'off', got '" + value +
-                           "'";
+                    return "engine 'scanline': option verify is 'on' or 'off', got '" + value + "'";
             } else if (key == "shade") {
                 if (value != "exact" && value != "fast")
                     return "engine 'scanline': option shade is 'exact' or 'fast', got '" + value +
@@ -246,38 +245,38 @@ class ScanlineEngine final : public Engine {
 
         // The paper's table layout (Tables 7.1–7.3), one row for this image.
         char buf[2048];
-        std::snprintf(
-            buf, sizeof buf,
-            "Table 7.1 - Resolver statistics\n"
-            "  %8s %8s %8s %10s %10s %10s %10s\n"
-            "  %8s %8s %8s %10s %10s %10s %10s\n"
-            "  %8zu %8llu %8llu %10llu %10llu %10llu %10llu\n"
-            "Table 7.2 - Renderer statistics\n"
-            "  %10s %10s %10s %10s %10s %9s %9s %12s %10s\n"
-            "  %10llu %10llu %10llu %10llu %10llu %9llu %9.2f %12llu %10.1f\n"
-            "Table 7.3 - Run times (seconds)\n"
-            "  %10s %16s %10s\n"
-            "  %10.4f %16.4f %10.4f\n",
-            "Bodies", "HSBs", "HSBs", "Ivertices", "Ivertices", "ShowEdges", "ShowEdges", "",
-            "planar", "quadric", "calc", "kept", "linear", "conic", bodiesToResolve.size(),
-            static_cast<unsigned long long>(rc.planarHsbs),
-            static_cast<unsigned long long>(rc.quadricHsbs),
-            static_cast<unsigned long long>(rc.verticesCalculated),
-            static_cast<unsigned long long>(rc.verticesKept),
-            static_cast<unsigned long long>(rc.edgesLinear),
-            static_cast<unsigned long long>(rc.edgesConic), "DepthCalc", "FaceInsert", "FaceDelete",
-            "EdgeSwaps", "Spans", "MaxStack", "MeanStack", "Intensities", "Pixels(k)",
-            static_cast<unsigned long long>(c.depthCalcs),
-            // Face inserts: into the face stacks (§5.4) plus the per-span inserts of bodies
-            // evaluated exactly (render=exact, CSG operands, refused bodies).
-            static_cast<unsigned long long>(c.stackInserts + c.faceInserts),
-            static_cast<unsigned long long>(c.stackDeletes),
-            static_cast<unsigned long long>(c.edgeSwaps), static_cast<unsigned long long>(c.spans),
-            static_cast<unsigned long long>(c.stackMaxDepth),
-            c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0,
-            static_cast<unsigned long long>(c.normals), width * static_cast<double>(height) / 1000,
-            "Resolver", "Renderer+Shader", "Total", Seconds(t0, t1), Seconds(t1, t2),
-            Seconds(t0, t2));
+        std::snprintf(buf, sizeof buf,
+                      "Table 7.1 - Resolver statistics\n"
+                      "  %8s %8s %8s %10s %10s %10s %10s\n"
+                      "  %8s %8s %8s %10s %10s %10s %10s\n"
+                      "  %8zu %8llu %8llu %10llu %10llu %10llu %10llu\n"
+                      "Table 7.2 - Renderer statistics\n"
+                      "  %10s %10s %10s %10s %10s %9s %9s %12s %10s\n"
+                      "  %10llu %10llu %10llu %10llu %10llu %9llu %9.2f %12llu %10.1f\n"
+                      "Table 7.3 - Run times (seconds)\n"
+                      "  %10s %16s %10s\n"
+                      "  %10.4f %16.4f %10.4f\n",
+                      "Bodies", "HSBs", "HSBs", "Ivertices", "Ivertices", "ShowEdges", "ShowEdges",
+                      "", "planar", "quadric", "calc", "kept", "linear", "conic",
+                      bodiesToResolve.size(), static_cast<unsigned long long>(rc.planarHsbs),
+                      static_cast<unsigned long long>(rc.quadricHsbs),
+                      static_cast<unsigned long long>(rc.verticesCalculated),
+                      static_cast<unsigned long long>(rc.verticesKept),
+                      static_cast<unsigned long long>(rc.edgesLinear),
+                      static_cast<unsigned long long>(rc.edgesConic), "DepthCalc", "FaceInsert",
+                      "FaceDelete", "EdgeSwaps", "Spans", "MaxStack", "MeanStack", "Intensities",
+                      "Pixels(k)", static_cast<unsigned long long>(c.depthCalcs),
+                      // Face inserts: into the face stacks (§5.4) plus the per-span inserts of
+                      // bodies evaluated exactly (render=exact, CSG operands, refused bodies).
+                      static_cast<unsigned long long>(c.stackInserts + c.faceInserts),
+                      static_cast<unsigned long long>(c.stackDeletes),
+                      static_cast<unsigned long long>(c.edgeSwaps),
+                      static_cast<unsigned long long>(c.spans),
+                      static_cast<unsigned long long>(c.stackMaxDepth),
+                      c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0,
+                      static_cast<unsigned long long>(c.normals),
+                      width * static_cast<double>(height) / 1000, "Resolver", "Renderer+Shader",
+                      "Total", Seconds(t0, t1), Seconds(t1, t2), Seconds(t0, t2));
         stats.report = buf;
         std::string json = "{\"engine\":\"scanline\"";
         for (const auto& [name, v] : stats.counters) {
