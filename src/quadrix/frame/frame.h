@@ -33,6 +33,22 @@ struct Frame {
         body.assign(n, kNone);
         solid.assign(n, kNone);
     }
+    // For engines that write every pixel: keeps the buffers (and their contents) when the size
+    // is unchanged, so a warm frame is not cleared twice; otherwise Reset.
+    void ResizeForOverwrite(int w, int h) {
+        const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+        if (w == width && h == height && depth.size() == n && normal.size() == n &&
+            surface.size() == n && body.size() == n && solid.size() == n)
+            return;
+        Reset(w, h);
+    }
+    void SetBackground(std::size_t i) {
+        depth[i] = HUGE_VAL;
+        normal[i] = Vec3{};
+        surface[i] = kNone;
+        body[i] = kNone;
+        solid[i] = kNone;
+    }
     std::size_t Index(int x, int y) const {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                static_cast<std::size_t>(x);

@@ -472,6 +472,13 @@ class Worker {
 // The pixel centres of the pixel rectangle [x0, x1) × [y0, y1).
 Rect Centres(int x0, int y0, int x1, int y1) { return {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5}; }
 
+// The frame is sized without clearing (Frame::ResizeForOverwrite): every pixel is written, by
+// the tile that owns it, as a hit or as background.
+void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
+    for (int j = y0; j < y1; ++j)
+        for (int i = x0; i < x1; ++i) frame.SetBackground(frame.Index(i, j));
+}
+
 // Renders one 64×64 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
 void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0, int x1, int y1,
                 Worker& w, Frame& frame) {
@@ -479,7 +486,8 @@ void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0,
     PruneProgram(block, Centres(x0, y0, x1, y1), w.tileProgram, w.stack);
     if (w.tileProgram.solids.empty()) {
         w.counters.pixels += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
-        return;  // the frame is already background
+        FillBackground(frame, x0, y0, x1, y1);
+        return;
     }
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
@@ -488,14 +496,20 @@ void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0,
             PruneProgram(w.tileProgram, Centres(sx, sy, ex, ey), w.subTileProgram, w.stack);
             w.counters.tileSolids += w.subTileProgram.solids.size();
             w.counters.pixels += static_cast<std::uint64_t>((ex - sx) * (ey - sy));
-            if (w.subTileProgram.solids.empty()) continue;
+            if (w.subTileProgram.solids.empty()) {
+                FillBackground(frame, sx, sy, ex, ey);
+                continue;
+            }
             w.SetCuts(w.subTileProgram);
             w.PrepareTile(w.subTileProgram, Centres(sx, sy, ex, ey));
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
                     Hit hit = w.Trace(w.subTileProgram, x, y);
-                    if (hit.tag < 0) continue;
+                    if (hit.tag < 0) {
+                        frame.SetBackground(frame.Index(i, j));
+                        continue;
+                    }
                     ++w.counters.covered;
                     const Tag& tag = w.TagOf(hit.tag);
                     std::size_t k = frame.Index(i, j);
@@ -518,7 +532,7 @@ class RaycastEngine final : public Engine {
                        Frame& frame) override {
         auto start = std::chrono::steady_clock::now();
         int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
-        frame.Reset(width, height);
+        frame.ResizeForOverwrite(width, height);
         SceneTables tables(scene);
         CsgProgram full;
         BuildProgram(scene, full);
@@ -538,6 +552,7 @@ class RaycastEngine final : public Engine {
             if (block.solids.empty()) {
                 workers.local().counters.pixels +=
                     static_cast<std::uint64_t>((bx1 - bx0) * (by1 - by0));
+                FillBackground(frame, bx0, by0, bx1, by1);
                 return;
             }
             tbb::parallel_for(tbb::blocked_range<int>(0, kTilesPerBlock * kTilesPerBlock, 1),
