@@ -390,6 +390,42 @@ TEST(ImportBrlcad, ComgeomCardsAndErrors) {
         << AllMessages(b->diags);
 }
 
+// COMGEOM ellipsoids of revolution: ELL by its foci (0,0,0), (8,0,0) and major axis 10 (centre
+// (4,0,0), semi-axes 5, 3, 3), ELL1 by centre (20,0,0), semi-major axis (0,0,4) and radius 2.
+TEST(ImportBrlcad, ComgeomEllipsoidsOfRevolution) {
+    std::string deck =
+        "ell deck\n"
+        "2    2\n"
+        "1    ELL  0.0       0.0       0.0       8.0       0.0       0.0       E1\n"
+        "          10.0      0.0       0.0       0.0       0.0       0.0       E1\n"
+        "2    ELL1 20.0      0.0       0.0       0.0       0.0       4.0       E2\n"
+        "          2.0       0.0       0.0       0.0       0.0       0.0       E2\n"
+        "  1      1      0      0      0      0      0      0      0      0      R1\n"
+        "  2      2      0      0      0      0      0      0      0      0      R2\n"
+        "-1\n"
+        "1    1    0    1    100  R1\n"
+        "2    2    0    1    100  R2\n";
+    auto im = Import(deck);
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    EXPECT_EQ(im->report.solids, 2);
+    EXPECT_TRUE(Inside(im->scene, "r1", Q(8.9, 0, 0)));
+    EXPECT_FALSE(Inside(im->scene, "r1", Q(9.1, 0, 0)));
+    EXPECT_TRUE(Inside(im->scene, "r1", Q(4, 2.9, 0)));
+    EXPECT_FALSE(Inside(im->scene, "r1", Q(4, 3.1, 0)));
+    EXPECT_TRUE(Inside(im->scene, "r1", Q(4, 0, -2.9)));
+    EXPECT_FALSE(Inside(im->scene, "r1", Q(4, 0, -3.1)));
+    EXPECT_TRUE(Inside(im->scene, "r2", Q(20, 0, 3.9)));
+    EXPECT_FALSE(Inside(im->scene, "r2", Q(20, 0, 4.1)));
+    EXPECT_TRUE(Inside(im->scene, "r2", Q(21.9, 0, 0)));
+    EXPECT_FALSE(Inside(im->scene, "r2", Q(20, 2.1, 0)));
+    std::string bad = deck;
+    bad.replace(bad.find("10.0      0.0"), 4, "7.0 ");
+    auto b = Import(bad);
+    EXPECT_FALSE(b->ok);
+    EXPECT_NE(AllMessages(b->diags).find("must exceed the foci's distance 8"), std::string::npos)
+        << AllMessages(b->diags);
+}
+
 // Renders every sample (so each renders without error) from above (rt view: X right, Y up,
 // looking down -Z) with a window 10 % larger than its computed box, and compares the covered
 // pixels' extent with the box projected: the rendered silhouette must lie inside the box (to a

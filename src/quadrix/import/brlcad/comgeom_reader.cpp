@@ -183,6 +183,38 @@ class ComgeomReader {
         } else if (type == "SPH") {
             p.type = "ell";
             p.V = vec(0), p.A = {v[3], 0, 0}, p.B = {0, v[3], 0}, p.C = {0, 0, v[3]};
+        } else if (type == "ELL" || type == "ELL1") {
+            // Ellipsoids of revolution (comgeom-g's GIFT forms): ELL gives the two foci F1, F2
+            // and the length L of the major axis; ELL1 the centre V, the semi-major axis vector A
+            // and the radius r of the circle of revolution. For ELL the centre is the foci's
+            // midpoint, the semi-major axis L/2 along F2 − F1, and the minor radius
+            // √((L/2)² − c²) with c half the foci's distance.
+            Vec3 centre, axis;
+            double minor = 0;
+            if (type == "ELL") {
+                const Vec3 f1 = vec(0), f2 = vec(3);
+                const double half = 0.5 * v[6], focal = 0.5 * Length(f2 - f1);
+                if (!(half > focal) || !(half > 0))
+                    return Fail(c.offset, fmt::format("solid {} (ELL): the major axis length {} "
+                                                      "must exceed the foci's distance {}",
+                                                      num, v[6], 2 * focal));
+                centre = (f1 + f2) * 0.5;
+                axis = focal > 0 ? Normalize(f2 - f1) * half : Vec3{half, 0, 0};
+                minor = std::sqrt(half * half - focal * focal);
+            } else {
+                centre = vec(0);
+                axis = vec(3);
+                minor = v[6];
+                if (!(Length(axis) > 0) || !(minor > 0))
+                    return Fail(c.offset, fmt::format("solid {} (ELL1): the axis vector and the "
+                                                      "radius must be non-zero",
+                                                      num));
+            }
+            const Vec3 u = Normalize(axis);
+            const Vec3 t = std::fabs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+            const Vec3 b = Normalize(Cross(u, t)), cc = Cross(u, b);
+            p.type = "ell";
+            p.V = centre, p.A = axis, p.B = b * minor, p.C = cc * minor;
         } else if (type == "HAF") {
             p.type = "half";
             p.N = vec(0), p.d = v[3];
@@ -199,7 +231,7 @@ class ComgeomReader {
             p.type = "arb8";
             for (int k = 0; k < 8; ++k) p.pts[k] = q[kExpand[n - 4][k]];
         } else {
-            p.type = Trim(type);  // ELL, TOR: reported, not drawn
+            p.type = Trim(type);  // TOR: reported, not drawn
             for (char& ch : p.type) ch = static_cast<char>(std::tolower(ch));
         }
         db_.AddPrimitive(std::move(p));
