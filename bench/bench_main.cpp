@@ -21,6 +21,7 @@
 #include <ctime>
 #include <filesystem>
 #include <set>
+#include <sstream>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -193,9 +194,10 @@ int main(int argc, char** argv) {
     using namespace quadrix::bench;
     CLI::App app{"Quadrix benchmark suite (issue 8): engines vs each other and vs POV-Ray"};
     std::string outDir = "bench/results", quadrixBin = "build/quadrix", sourceDir = ".";
-    bool quick = false, noPov = false;
-    int reps = 5, povReps = 3;
-    std::string only;
+    bool quick = false, noPov = false, noProcess = false;
+    int reps = 5, povReps = 3, threads = 0;
+    std::string sizeList;
+    std::string only, engineList;
     app.add_option("--out", outDir, "Directory for results and generated scenes");
     app.add_option("--quadrix", quadrixBin, "The quadrix binary to time as a whole process");
     app.add_option("--source", sourceDir, "Source tree (for examples/)");
@@ -204,6 +206,12 @@ int main(int argc, char** argv) {
     app.add_option("--reps", reps, "Repetitions of Quadrix measurements (median)");
     app.add_option("--pov-reps", povReps, "Repetitions of POV-Ray runs (median; 1 for slow scenes)");
     app.add_option("--only", only, "Run only scenes whose name contains this text");
+    app.add_option("--sizes", sizeList, "Comma-separated image sizes WxH (default: the suite's three)");
+    app.add_option("--threads", threads, "Worker threads for in-process frames (0 = all cores)");
+    app.add_flag("--no-process", noProcess, "Time in-process frames only (no whole processes, no POV-Ray)");
+    app.add_option("--engines", engineList,
+                   "Comma-separated engines to time in process (default: all; raycast is always "
+                   "run as the coverage reference)");
     CLI11_PARSE(app, argc, argv);
 
     std::filesystem::create_directories(outDir + "/scenes");
@@ -226,6 +234,21 @@ int main(int argc, char** argv) {
         reps = std::min(reps, 3);
         povReps = 1;
     }
+    if (!sizeList.empty()) {
+        sizes.clear();
+        std::stringstream ss(sizeList);
+        std::string item;
+        while (std::getline(ss, item, ',')) {
+            Size sz{};
+            if (std::sscanf(item.c_str(), "%dx%d", &sz.w, &sz.h) != 2 || sz.w <= 0 || sz.h <= 0 ||
+                sz.w > 16384 || sz.h > 16384) {
+                std::fprintf(stderr, "error: --sizes: '%s' is not WIDTHxHEIGHT\n", item.c_str());
+                return 2;
+            }
+            sizes.push_back(sz);
+        }
+    }
+    if (noProcess) noPov = true;
     bool havePov = !noPov && std::system("command -v povray >/dev/null 2>&1") == 0;
 
     std::vector<Row> rows;
@@ -257,13 +280,17 @@ int main(int argc, char** argv) {
             for (const std::string& name : EngineNames()) {
                 // An engine that took over 10 s for a frame of this scene at a smaller size is
                 // not run at the larger ones (reported as skipped), so the suite ends.
-                if (name != "raycast" && tooSlow.count(scene.name + "/" + name)) {
-                    row.engineMs.emplace_back(name, -1.0);
+                const bool unselected =
+                    !engineList.empty() &&
+                    ("," + engineList + ",").find("," + name + ",") == std::string::npos;
+                if (name != "raycast" && (unselected || tooSlow.count(scene.name + "/" + name))) {
+                    row.engineMs.emplace_back(name, unselected ? -2.0 : -1.0);
                     row.engineDiffPct.push_back(0.0);
                     continue;
                 }
                 auto engine = MakeEngine(name);
                 RenderOptions ro;
+                ro.threads = threads;
                 Frame frame;
                 const auto tw = std::chrono::steady_clock::now();
                 engine->Render(pr.flat, ro, frame);  // warm-up
@@ -306,7 +333,7 @@ int main(int argc, char** argv) {
                 row.povOk = ex.exitCode == 0;
             }
             std::vector<double> qMs, pMs;
-            int rounds = std::max(reps, havePov ? povReps : 0);
+            int rounds = noProcess ? 0 : std::max(reps, havePov ? povReps : 0);
             for (int i = 0; i < rounds; ++i) {
                 if (i < reps) {
                     ProcessRun q = Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png});
@@ -362,7 +389,8 @@ int main(int argc, char** argv) {
             const double ms = r.engineMs[e].second, diff = r.engineDiffPct[e];
             // Coverage differing on more than 0.5 % of the pixels (more than silhouette
             // rounding): the engine did not draw the whole scene, so its time is not comparable.
-            md += ms < 0      ? std::string(" skipped (> 10 s) |")
+            md += ms == -2.0  ? std::string(" – |")
+                  : ms < 0    ? std::string(" skipped (> 10 s) |")
                   : diff > 0.5 ? fmt::format(" {:.1f} (≠{:.0f} %) |", ms, diff)
                                : fmt::format(" {:.1f} |", ms);
             csv += fmt::format(",{:.3f}", ms);

@@ -39,13 +39,21 @@ QuadraticRoots SolveQuadratic(double a, double h, double c) {
         r.kind = RootKind::kAll;
         return r;
     }
-    if (m < 0x1p-1000) {  // tiny or subnormal: bring into the normal range first (exact)
+    // The scaling only guards against overflow and underflow. With m in [2^-200, 2^200] the
+    // products h², a·c (≤ 2^401) cannot overflow, every test below compares quantities scaled by
+    // the same power of two, √ of the power-of-four factor of the discriminant is exact and the
+    // roots are ratios in which the factor cancels; so skipping it changes no bit unless a
+    // coefficient is so far below m (< 2^-400 or so) that its products are subnormal — and then
+    // they are below the rounding of the others either way. The common case skips it.
+    if (m >= 0x1p-200 && m <= 0x1p200) {
+        // (no scaling)
+    } else if (m < 0x1p-1000) {  // tiny or subnormal: bring into the normal range first (exact)
         a *= 0x1p600;
         h *= 0x1p600;
         c *= 0x1p600;
         m *= 0x1p600;
     }
-    int e = Exponent(m);
+    int e = m >= 0x1p-200 && m <= 0x1p200 ? 0 : Exponent(m);
     if (e != 0) {
         // Two steps keep each factor a normal double for any e in [-1022, 1023].
         double f1 = Pow2(-e / 2), f2 = Pow2(-e - (-e / 2));

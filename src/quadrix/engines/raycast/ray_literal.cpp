@@ -123,19 +123,24 @@ void QuadraticSet(double a, double h, double k, double z0, std::int32_t id, RayS
     }
 }
 
-// The closure of the complement of a canonical set of at most two pieces (again at most two).
-RaySet Complemented(const RaySet& in) {
-    RaySet out;
-    double lo = -kInf;
-    std::int32_t loId = kNoId;
-    for (int i = 0; i < in.count; ++i) {
-        const Interval& v = in.piece[i];
-        if (lo < v.lo) out.piece[out.count++] = {lo, v.lo, loId, v.loId};
-        lo = v.hi;
-        loId = v.hiId;
+// In place: the closure of the complement of a canonical set of at most two pieces (again at
+// most two). The pieces are read field by field into scalars before any is written (a whole-struct
+// copy of freshly stored pieces would stall on store-to-load forwarding, the hottest spot of a
+// render before this was written so).
+void Complement(RaySet& s) {
+    const int n = s.count;
+    const double lo0 = s.piece[0].lo, hi0 = s.piece[0].hi, lo1 = s.piece[1].lo;
+    const std::int32_t loId0 = s.piece[0].loId, hiId0 = s.piece[0].hiId, loId1 = s.piece[1].loId;
+    const double lastHi = n == 0 ? -kInf : s.piece[n - 1].hi;
+    const std::int32_t lastHiId = n == 0 ? kNoId : s.piece[n - 1].hiId;
+    s.count = 0;
+    if (n == 0) {
+        s.piece[s.count++] = {-kInf, kInf, kNoId, kNoId};
+        return;
     }
-    if (lo < kInf) out.piece[out.count++] = {lo, kInf, loId, kNoId};
-    return out;
+    if (-kInf < lo0) s.piece[s.count++] = {-kInf, lo0, kNoId, loId0};
+    if (n == 2 && hi0 < lo1) s.piece[s.count++] = {hi0, lo1, hiId0, loId1};
+    if (lastHi < kInf) s.piece[s.count++] = {lastHi, kInf, lastHiId, kNoId};
 }
 
 }  // namespace
@@ -156,7 +161,8 @@ RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double 
         if (!std::isfinite(h) || !std::isfinite(k) || !std::isfinite(hs.c)) return inside;
         QuadraticSet(hs.c, h, k, hs.z0, id, inside);
     }
-    return complemented ? Complemented(inside) : inside;
+    if (complemented) Complement(inside);
+    return inside;  // named return value: constructed in the caller's slot, not copied
 }
 
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,

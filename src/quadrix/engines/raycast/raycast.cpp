@@ -60,12 +60,23 @@ struct SceneTables {
     std::vector<Tag> tags;
     std::vector<std::int32_t> bodyFirstTag;  // body b's literals are tags [first[b], first[b+1])
     std::vector<bool> bodyValid;             // false when a literal names a missing half-space
+    // Per half-space: true for a plane, whose world normal (FlatScene::WorldNormal) is the same
+    // at every point and is computed once here, in `planeNormal`.
+    std::vector<bool> constantNormal;
+    std::vector<Vec3> planeNormal;
 
     explicit SceneTables(const FlatScene& scene) {
         std::vector<Vec3> reference = ReferencePoints(scene);
         halfSpaces.reserve(scene.halfSpaces.size());
-        for (std::size_t h = 0; h < scene.halfSpaces.size(); ++h)
+        constantNormal.assign(scene.halfSpaces.size(), false);
+        planeNormal.assign(scene.halfSpaces.size(), Vec3{});
+        for (std::size_t h = 0; h < scene.halfSpaces.size(); ++h) {
             halfSpaces.push_back(RayHalfSpace::From(scene.halfSpaces[h], reference[h]));
+            if (scene.halfSpaces[h].isPlane) {
+                constantNormal[h] = true;
+                planeNormal[h] = scene.WorldNormal(static_cast<int>(h), Vec3{});
+            }
+        }
         bodyFirstTag.reserve(scene.bodies.size() + 1);
         bodyValid.assign(scene.bodies.size(), true);
         for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -480,8 +491,8 @@ void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
 }
 
 // Renders one 64×64 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
-void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0, int x1, int y1,
-                Worker& w, Frame& frame) {
+void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block, int x0,
+                int y0, int x1, int y1, Worker& w, Frame& frame) {
     ++w.counters.coarseTiles;
     PruneProgram(block, Centres(x0, y0, x1, y1), w.tileProgram, w.stack);
     if (w.tileProgram.solids.empty()) {
@@ -514,7 +525,10 @@ void RenderTile(const FlatScene& scene, const CsgProgram& block, int x0, int y0,
                     const Tag& tag = w.TagOf(hit.tag);
                     std::size_t k = frame.Index(i, j);
                     frame.depth[k] = hit.t;
-                    frame.normal[k] = scene.WorldNormal(tag.halfSpace, {x, y, hit.t});
+                    const auto hsIndex = static_cast<std::size_t>(tag.halfSpace);
+                    frame.normal[k] = tables.constantNormal[hsIndex]
+                                          ? tables.planeNormal[hsIndex]
+                                          : scene.WorldNormal(tag.halfSpace, {x, y, hit.t});
                     frame.surface[k] = tag.halfSpace;
                     frame.body[k] = tag.body;
                     frame.solid[k] = hit.solid;
@@ -562,7 +576,7 @@ class RaycastEngine final : public Engine {
                                       int x0 = bx0 + (k % kTilesPerBlock) * kTile;
                                       int y0 = by0 + (k / kTilesPerBlock) * kTile;
                                       if (x0 >= bx1 || y0 >= by1) continue;
-                                      RenderTile(scene, block, x0, y0, std::min(x0 + kTile, bx1),
+                                      RenderTile(scene, tables, block, x0, y0, std::min(x0 + kTile, bx1),
                                                  std::min(y0 + kTile, by1), w, frame);
                                   }
                               });
