@@ -99,16 +99,39 @@ bool IntervalList::operator==(const IntervalList& o) const {
 
 namespace {
 
-// One endpoint event of a canonical list: endpoint k of the list is interval k/2's lo (a start)
-// when k is even and its hi (an end) when k is odd.
+// The endpoints of a canonical list as a stream of events: endpoint k is interval k/2's lo (a
+// start) when k is even and its hi (an end) when k is odd. The current event's t, id and kind
+// are kept in members, updated once per step (the sweep compares them at every step).
 struct Cursor {
-    const IntervalList& list;
-    std::size_t k = 0;
+    const Interval* it;
+    const Interval* end;
+    double t = 0;
+    std::int32_t id = Interval::kNoId;
+    bool start = true;  // the current event is it->lo (else it->hi)
+    bool done = false;
 
-    bool Done() const { return k == 2 * list.size(); }
-    bool IsStart() const { return (k & 1) == 0; }
-    double T() const { return IsStart() ? list[k / 2].lo : list[k / 2].hi; }
-    std::int32_t Id() const { return IsStart() ? list[k / 2].loId : list[k / 2].hiId; }
+    explicit Cursor(const IntervalList& l) : it(l.begin()), end(l.end()) {
+        done = it == end;
+        if (!done) {
+            t = it->lo;
+            id = it->loId;
+        }
+    }
+    void Next() {
+        if (start) {
+            start = false;
+            t = it->hi;
+            id = it->hiId;
+            return;
+        }
+        start = true;
+        if (++it == end) {
+            done = true;
+            return;
+        }
+        t = it->lo;
+        id = it->loId;
+    }
 };
 
 // The boolean sweep ("weave"): walks the endpoints of both lists in increasing t and emits the
@@ -118,26 +141,25 @@ struct Cursor {
 template <class Op>
 void Sweep(const IntervalList& a, const IntervalList& b, IntervalList& out, Op op) {
     out.clear();
-    Cursor ca{a}, cb{b};
+    Cursor ca(a), cb(b);
     bool inA = false, inB = false, inOut = false;
     double startT = 0;
     std::int32_t startId = Interval::kNoId;
-    while (!ca.Done() || !cb.Done()) {
+    while (!ca.done || !cb.done) {
         bool takeA;
-        if (cb.Done()) {
+        if (cb.done) {
             takeA = true;
-        } else if (ca.Done()) {
+        } else if (ca.done) {
             takeA = false;
         } else {
-            double ta = ca.T(), tb = cb.T();
-            takeA = ta != tb ? ta < tb : (ca.IsStart() || !cb.IsStart());
+            takeA = ca.t != cb.t ? ca.t < cb.t : (ca.start || !cb.start);
         }
         Cursor& c = takeA ? ca : cb;
-        double t = c.T();
-        std::int32_t id = c.Id();
-        (takeA ? inA : inB) = c.IsStart();
-        ++c.k;
-        bool now = op(inA, inB);
+        const double t = c.t;
+        const std::int32_t id = c.id;
+        (takeA ? inA : inB) = c.start;
+        c.Next();
+        const bool now = op(inA, inB);
         if (now == inOut) continue;
         inOut = now;
         if (now) {

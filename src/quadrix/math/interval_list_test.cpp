@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -247,6 +248,71 @@ TEST(MathIntervalList, UnionAndIntersectionFoldsAreAssociativeIdsIncluded) {
             EXPECT_EQ(left[i].lo, right[i].lo);
             EXPECT_EQ(left[i].hi, right[i].hi);
         }
+    }
+}
+
+
+// The tie rules of the file comment as an independent oracle: every endpoint of both operands
+// becomes an event, the events are sorted by (t, starts before ends, a before b, list order), and
+// one pass emits the pieces where op holds, naming each end by the event that opened or closed
+// it. The library's sweep must give the same lists, ids included, on random lists full of ties.
+namespace {
+struct Event {
+    double t;
+    bool start;
+    int operand;  // 0 = a, 1 = b
+    std::size_t order;
+    std::int32_t id;
+};
+IntervalList OracleSweep(const IntervalList& a, const IntervalList& b,
+                         const std::function<bool(bool, bool)>& op) {
+    std::vector<Event> ev;
+    for (int o = 0; o < 2; ++o) {
+        const IntervalList& l = o == 0 ? a : b;
+        for (std::size_t i = 0; i < l.size(); ++i) {
+            ev.push_back({l[i].lo, true, o, 2 * i, l[i].loId});
+            ev.push_back({l[i].hi, false, o, 2 * i + 1, l[i].hiId});
+        }
+    }
+    std::sort(ev.begin(), ev.end(), [](const Event& p, const Event& q) {
+        if (p.t != q.t) return p.t < q.t;
+        if (p.start != q.start) return p.start;
+        if (p.operand != q.operand) return p.operand < q.operand;
+        return p.order < q.order;
+    });
+    IntervalList out;
+    bool in[2] = {false, false}, inOut = false;
+    double startT = 0;
+    std::int32_t startId = kNo;
+    for (const Event& e : ev) {
+        in[e.operand] = e.start;
+        const bool now = op(in[0], in[1]);
+        if (now == inOut) continue;
+        inOut = now;
+        if (now) {
+            startT = e.t;
+            startId = e.id;
+        } else {
+            out.Append(startT, startId, e.t, e.id);
+        }
+    }
+    return out;
+}
+}  // namespace
+
+TEST(MathIntervalList, SweepMatchesTheTieRuleOracleIdsIncluded) {
+    std::mt19937 rng(11);
+    for (int n = 0; n < 5000; ++n) {
+        std::int32_t nextId = 0;
+        std::map<std::int32_t, double> idT;
+        IntervalList a = RandomList(rng, nextId, idT), b = RandomList(rng, nextId, idT);
+        IntervalList u, i, d;
+        Union(a, b, u);
+        Intersection(a, b, i);
+        Difference(a, b, d);
+        ASSERT_EQ(u, OracleSweep(a, b, [](bool x, bool y) { return x || y; }));
+        ASSERT_EQ(i, OracleSweep(a, b, [](bool x, bool y) { return x && y; }));
+        ASSERT_EQ(d, OracleSweep(a, b, [](bool x, bool y) { return x && !y; }));
     }
 }
 

@@ -111,7 +111,7 @@ struct SceneTables {
 struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
-                  cutRetries = 0, prunedLiterals = 0;
+                  cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -127,6 +127,8 @@ struct Counters {
         covered += o.covered;
         cutRetries += o.cutRetries;
         prunedLiterals += o.prunedLiterals;
+        flatTiles += o.flatTiles;
+        flatPixels += o.flatPixels;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -221,6 +223,82 @@ class Worker {
             counters.prunedLiterals +=
                 static_cast<std::uint64_t>((last - first) - (nodeTags_[n].second - begin));
         }
+    }
+
+    // Flat sub-tiles. When the sub-tile program is one solid whose tree is one body, PrepareTile
+    // has kept only planes, every pixel centre of `r` lies inside the node's and the solid's
+    // bounds, and exactly one kept plane bounds the body from the near side, that plane is the
+    // body's near end at every pixel (PrepareTile dropped the others because it dominates them
+    // everywhere in the rectangle). If moreover every kept far-side plane lies beyond it by a
+    // margin at the four corner centres, the difference of the two depths is linear in (x, y)
+    // and stays positive on the whole rectangle, so the set on every ray is the one interval
+    // [r_near, r_far] and the visible point is r_near. The pixel's result is then written
+    // directly, with the very expression EvaluateBody uses for r (the same bits), the plane's
+    // constant normal and ids. Returns false (nothing written) when any condition fails.
+    bool TryFlatFill(const CsgProgram& program, const Rect& r, int x0, int y0, int x1, int y1,
+                     Frame& frame) {
+        if (program.solids.size() != 1) return false;
+        const ProgSolid& solid = program.solids[0];
+        const ProgNode& node = program.nodes[static_cast<std::size_t>(solid.root)];
+        if (node.kind != NodeKind::kBody) return false;
+        auto contains = [&](const Rect& b) {
+            return b.x0 <= r.x0 && b.x1 >= r.x1 && b.y0 <= r.y0 && b.y1 >= r.y1;
+        };
+        if (!contains(node.xy) || !contains(solid.xy)) return false;
+        const auto body = static_cast<std::size_t>(node.first);
+        if (!tables_.bodyValid[body] || tables_.bodyFirstTag[body] == tables_.bodyFirstTag[body + 1])
+            return false;
+        const auto [begin, end] = nodeTags_[static_cast<std::size_t>(solid.root)];
+        const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
+        std::int32_t nearTag = -1;
+        double nearR[4] = {0, 0, 0, 0};
+        for (std::int32_t i = begin; i < end; ++i) {
+            const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
+            const Tag& t = TagOf(tag);
+            const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+            if (!hs.isPlane || !std::isfinite(hs.c) || hs.c == 0) return false;
+            if ((hs.c > 0) != t.complemented) continue;  // a far bound: checked below
+            if (nearTag >= 0 || !t.opaque) return false;
+            nearTag = tag;
+            for (int k = 0; k < 4; ++k) {
+                nearR[k] = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
+                if (!(std::fabs(nearR[k]) < 1e300)) return false;
+            }
+        }
+        if (nearTag < 0) return false;
+        for (std::int32_t i = begin; i < end; ++i) {
+            const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
+            const Tag& t = TagOf(tag);
+            const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+            if ((hs.c > 0) == t.complemented) continue;  // the near bound
+            for (int k = 0; k < 4; ++k) {
+                const double far = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
+                const double m = 1e-9 * (std::fabs(far) + std::fabs(nearR[k])) + 1e-300;
+                if (!(far - nearR[k] > m)) return false;
+            }
+        }
+        const Tag& near = TagOf(nearTag);
+        const auto hsIndex = static_cast<std::size_t>(near.halfSpace);
+        const RayHalfSpace& hs = tables_.halfSpaces[hsIndex];
+        const Vec3 normal = tables_.planeNormal[hsIndex];
+        for (int j = y0; j < y1; ++j) {
+            const double y = j + 0.5;
+            std::size_t k = frame.Index(x0, j);
+            for (int i = x0; i < x1; ++i, ++k) {
+                const double x = i + 0.5;
+                const double e = hs.px * x + hs.py * y + hs.pd;  // as EvaluateBody
+                frame.depth[k] = -e / hs.c;
+                frame.normal[k] = normal;
+                frame.surface[k] = near.halfSpace;
+                frame.body[k] = near.body;
+                frame.solid[k] = solid.solid;
+            }
+        }
+        const auto n = static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
+        counters.covered += n;
+        counters.flatPixels += n;
+        ++counters.flatTiles;
+        return true;
     }
 
     // Depth cuts of the current sub-tile (see SetCuts), ascending, the last one +inf.
@@ -513,6 +591,8 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             }
             w.SetCuts(w.subTileProgram);
             w.PrepareTile(w.subTileProgram, Centres(sx, sy, ex, ey));
+            if (w.TryFlatFill(w.subTileProgram, Centres(sx, sy, ex, ey), sx, sy, ex, ey, frame))
+                continue;
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
@@ -619,6 +699,8 @@ class RaycastEngine final : public Engine {
         add("csg_operations", total.csgOps);
         add("depth_cut_retries", total.cutRetries);
         add("tile_literals_pruned", total.prunedLiterals);
+        add("flat_tiles_16", total.flatTiles);
+        add("flat_pixels", total.flatPixels);
         return stats;
     }
 };

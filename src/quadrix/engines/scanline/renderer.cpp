@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include "quadrix/math/interval_list.h"
@@ -898,7 +900,13 @@ class ScanRenderer {
             if (f < 0) continue;
             const bool on = inStack_[static_cast<std::size_t>(f)] != 0;
             const bool present = PresentAt(f, xq, y);
-            if ((present != on) != toggles) ++c_.stackCorrections;
+            if ((present != on) != toggles) {
+                ++c_.stackCorrections;
+                if (std::getenv("SCAN_DEBUG"))
+                    std::fprintf(stderr, "corr body %d iline %d (%d,%d) y %.3f x %.4f yb %.6f yt %.6f face %d hs %d on %d present %d toggles %d\n",
+                                 e.body, e.iline, 0, 0, y, a.x, e.yBottom, e.yTop, f,
+                                 faces_[static_cast<std::size_t>(f)].halfSpace, on, present, toggles);
+            }
             if (on && !present) {
                 ++c_.stackDeletes;
                 fstack_.erase(std::find(fstack_.begin(), fstack_.end(), f));

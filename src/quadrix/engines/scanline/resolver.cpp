@@ -436,12 +436,67 @@ class BodyResolver {
         return true;
     }
 
-    bool AnyInsideOthers(const ILine& l, double x, double y, bool quadricsChecked) const {
+    // With `piece` (a candidate show-edge, tested at its midpoint) a point must also pass the
+    // wedge test below; i-vertices are kept on the zero test alone (extra vertices only cut
+    // edges into more pieces).
+    bool AnyInsideOthers(const ILine& l, double x, double y, bool quadricsChecked,
+                         bool piece = false) const {
         Vec3 pts[2];
         int n = CurvePoints(l, x, y, pts);
         if (n == 0) return true;  // unknown z (limb line at infinity): keep, conservatively
         for (int k = 0; k < n; ++k)
-            if (InsideOthers(l, pts[k], quadricsChecked)) return true;
+            if (InsideOthers(l, pts[k], quadricsChecked) &&
+                (!piece || !WedgeCutByOther(l, pts[k], quadricsChecked)))
+                return true;
+        return false;
+    }
+
+    // Outward normal (gradient) of HSB k at p: HSBs are "value <= 0 inside".
+    Vec3 OutwardNormal(int k, const Vec3& p) const {
+        const Hsb& h = H(k);
+        if (h.isPlane) return h.plane.Normal();
+        const Quadric& q = h.quadric;
+        return {q.A() * p.x + q.D() * p.y + q.F() * p.z + q.G(),
+                q.D() * p.x + q.B() * p.y + q.E() * p.z + q.H(),
+                q.F() * p.x + q.E() * p.y + q.C() * p.z + q.J()};
+    }
+
+    // The wedge test for a candidate show-edge on i-line (i, j) at its point p. The zero test (4)
+    // accepts p when it lies ON the surface of a third HSB k (|value| <= E), which happens along
+    // whole pieces when three or more HSBs share a line: at a mitred joint of several tubes every
+    // bisecting plane of a tube contains the joint's normal line. Near such a line the body is
+    // the intersection of the half-spaces through it, a wedge bounded by only TWO of them; the
+    // pair (i, j) bounds the body there only if it is that pair. In the plane normal to the
+    // i-line at p the wedge of (i, j) is the cone of the rays r_i (in surface i, inside j) and
+    // r_j (in surface j, inside i); it is the body's wedge iff every HSB k through p keeps both
+    // rays inside (n_k · r <= 0, linearised at p). True when some k cuts the wedge: the piece is
+    // then not a boundary between faces i and j (one of them is not on the body's surface
+    // there, or the body has no interior), and making it a show-edge would toggle faces that do
+    // not change sides — the spurious edges that forced face-test corrections in the renderer.
+    bool WedgeCutByOther(const ILine& l, const Vec3& p, bool quadricsChecked) const {
+        if (l.limb || l.i == l.j) return false;  // one surface: no wedge
+        const Vec3 ni = Normalize(OutwardNormal(l.i, p)), nj = Normalize(OutwardNormal(l.j, p));
+        const Vec3 u = Cross(ni, nj);
+        // Tangent surfaces (a plane touching a quadric): no wedge to test; keep the piece.
+        if (!(Length(u) > 1e-6)) return false;
+        Vec3 ri = Normalize(Cross(u, ni)), rj = Normalize(Cross(u, nj));
+        if (Dot(nj, ri) > 0) ri = ri * -1.0;
+        if (Dot(ni, rj) > 0) rj = rj * -1.0;
+        constexpr double kCos = 1e-7;  // |cos| of the angle between a ray and a surface
+        const double pointError = kPointError * (1 + std::fabs(p.z));
+        for (int k = 0; k < N(); ++k) {
+            if (k == l.i || k == l.j) continue;
+            const Hsb& hk = H(k);
+            if (!hk.isPlane && !quadricsChecked) continue;
+            const double v = hk.Evaluate(p);
+            const double e = hk.isPlane ? PlaneErrorEstimate(hk.plane, p, pointError)
+                                        : QuadricErrorEstimate(hk.quadric, p, pointError);
+            if (std::fabs(v) > e) continue;  // strictly inside (outside was rejected before)
+            const Vec3 nk = OutwardNormal(k, p);
+            const double len = Length(nk);
+            if (!(len > 0)) continue;
+            if (Dot(nk, ri) > kCos * len || Dot(nk, rj) > kCos * len) return true;
+        }
         return false;
     }
 
@@ -650,7 +705,7 @@ class BodyResolver {
             ShowEdge e = proto;
             double xm = e.XAt(ym);
             if (!std::isfinite(xm)) continue;
-            if (!AnyInsideOthers(l, xm, ym, l.filteredByAllHsbs)) continue;
+            if (!AnyInsideOthers(l, xm, ym, l.filteredByAllHsbs, true)) continue;
             e.yBottom = y0;
             e.yTop = y1;
             AssignFaces(l, e, xm, ym);
