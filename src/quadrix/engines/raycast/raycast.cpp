@@ -111,7 +111,8 @@ struct SceneTables {
 struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
-                  cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0;
+                  cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0,
+                  emptyBodies = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -129,6 +130,7 @@ struct Counters {
         prunedLiterals += o.prunedLiterals;
         flatTiles += o.flatTiles;
         flatPixels += o.flatPixels;
+        emptyBodies += o.emptyBodies;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -139,6 +141,49 @@ struct Hit {
     std::int32_t tag = -1;
     std::int32_t solid = -1;
 };
+
+// What a quadric literal does on every ray of a rectangle of pixel centres, when that can be
+// proved: along the ray, Q(t) = c t² + 2 h t + k (ray_literal.h) with h linear and k quadratic in
+// the pixel position, so its discriminant D = h² − c k is a quadratic polynomial in (x, y).
+// Expanded about the rectangle's centre, D = d0 + bu u + bv v + auu u² + auv u v + avv v² for
+// |u| <= hu, |v| <= hv, and d0 + |bu| hu + |bv| hv + max(auu, 0) hu² + |auv| hu hv +
+// max(avv, 0) hv² bounds it from above. Below −1e-8 times the sum of the magnitudes of the
+// terms (rounding of this bound and of the per-pixel h, k and D is some 1e-15 of that), no ray
+// meets the surface and Q keeps the sign of c on all of it: SolveQuadratic finds no root at
+// any pixel, so the set is everything (c < 0) or nothing (c > 0). Only for c ≠ 0.
+enum class QuadricOnRect { kUnknown, kInsideEverywhere, kOutsideEverywhere };
+
+QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, const Rect& r) {
+    const double c = hs.c;
+    if (!std::isfinite(c) || c == 0) return QuadricOnRect::kUnknown;
+    const double hu = 0.5 * (r.x1 - r.x0), hv = 0.5 * (r.y1 - r.y0);
+    const double X0 = 0.5 * (r.x0 + r.x1) - hs.x0, Y0 = 0.5 * (r.y0 + r.y1) - hs.y0;
+    const double H0 = hs.hx * X0 + hs.hy * Y0 + hs.h0;
+    const double K0 = X0 * (hs.axx * X0 + hs.axy * Y0 + hs.ax) + Y0 * (hs.byy * Y0 + hs.by) + hs.k0;
+    const double Ku = 2 * hs.axx * X0 + hs.axy * Y0 + hs.ax;
+    const double Kv = hs.axy * X0 + 2 * hs.byy * Y0 + hs.by;
+    const double d0 = H0 * H0 - c * K0;
+    const double bu = 2 * H0 * hs.hx - c * Ku, bv = 2 * H0 * hs.hy - c * Kv;
+    const double auu = hs.hx * hs.hx - c * hs.axx, auv = 2 * hs.hx * hs.hy - c * hs.axy;
+    const double avv = hs.hy * hs.hy - c * hs.byy;
+    const double bound = d0 + std::fabs(bu) * hu + std::fabs(bv) * hv +
+                         std::fmax(auu, 0.0) * hu * hu + std::fabs(auv) * hu * hv +
+                         std::fmax(avv, 0.0) * hv * hv;
+    const double ac = std::fabs(c);
+    const double scale =
+        H0 * H0 + ac * std::fabs(K0) +
+        (2 * std::fabs(H0 * hs.hx) + ac * std::fabs(Ku)) * hu +
+        (2 * std::fabs(H0 * hs.hy) + ac * std::fabs(Kv)) * hv +
+        (hs.hx * hs.hx + ac * std::fabs(hs.axx)) * hu * hu +
+        (2 * std::fabs(hs.hx * hs.hy) + ac * std::fabs(hs.axy)) * hu * hv +
+        (hs.hy * hs.hy + ac * std::fabs(hs.byy)) * hv * hv +
+        ac * (std::fabs(X0 * hs.ax) + std::fabs(Y0 * hs.by) + std::fabs(hs.k0) +
+              std::fabs(hs.axx) * X0 * X0 + std::fabs(hs.axy * X0 * Y0) +
+              std::fabs(hs.byy) * Y0 * Y0);
+    if (!std::isfinite(bound) || !std::isfinite(scale)) return QuadricOnRect::kUnknown;
+    if (!(bound < -1e-8 * scale)) return QuadricOnRect::kUnknown;
+    return c < 0 ? QuadricOnRect::kInsideEverywhere : QuadricOnRect::kOutsideEverywhere;
+}
 
 // Everything one thread needs; reused across tiles and pixels.
 class Worker {
@@ -167,6 +212,7 @@ class Worker {
     void PrepareTile(const CsgProgram& program, const Rect& r) {
         tileTags_.clear();
         nodeTags_.assign(program.nodes.size(), {0, 0});
+        nodeEmpty_.assign(program.nodes.size(), false);
         const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
         for (std::size_t n = 0; n < program.nodes.size(); ++n) {
             const ProgNode& node = program.nodes[n];
@@ -176,6 +222,7 @@ class Worker {
             const std::int32_t last = tables_.bodyFirstTag[body + 1];
             const auto begin = static_cast<std::int32_t>(tileTags_.size());
             bounds_.clear();
+            bool bodyEmptyByQuadric = false;
             for (std::int32_t tag = first; tag < last; ++tag) {
                 const Tag& t = TagOf(tag);
                 const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
@@ -200,8 +247,41 @@ class Worker {
                     } else if (finite) {
                         b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
                     }
+                } else if (!hs.isPlane) {
+                    const QuadricOnRect q = ClassifyQuadric(hs, r);
+                    if (q != QuadricOnRect::kUnknown) {
+                        // No ray of the rectangle meets the surface: the literal holds on all
+                        // of every ray (dropped) or on none (the body is empty).
+                        const bool holds = (q == QuadricOnRect::kInsideEverywhere) != t.complemented;
+                        if (holds) continue;
+                        bodyEmptyByQuadric = true;
+                    }
                 }
                 bounds_.push_back(b);
+            }
+            // Empty everywhere: a near bound beyond a far bound at the four corners (margin as
+            // below) stays beyond it on the whole rectangle, so no ray of the sub-tile meets the
+            // body, and Evaluate takes it as ∅ without evaluating it (exactly what the body's
+            // literals would give: an empty set, and ∅ is an exact identity of every operator).
+            bool empty = bodyEmptyByQuadric;
+            for (std::size_t i = 0; i < bounds_.size() && !empty; ++i) {
+                if (bounds_[i].side >= 0) continue;
+                for (std::size_t j = 0; j < bounds_.size() && !empty; ++j) {
+                    if (bounds_[j].side <= 0) continue;
+                    bool all = true;
+                    for (int k = 0; k < 4 && all; ++k) {
+                        const double m =
+                            1e-9 * (std::fabs(bounds_[i].r[k]) + std::fabs(bounds_[j].r[k])) + 1e-300;
+                        all = bounds_[i].r[k] - bounds_[j].r[k] > m;
+                    }
+                    empty = all;
+                }
+            }
+            if (empty) {
+                nodeEmpty_[n] = true;
+                ++counters.emptyBodies;
+                nodeTags_[n] = {begin, begin};
+                continue;
             }
             for (std::size_t i = 0; i < bounds_.size(); ++i) {
                 const PlaneBound& b = bounds_[i];
@@ -239,16 +319,17 @@ class Worker {
                      Frame& frame) {
         if (program.solids.size() != 1) return false;
         const ProgSolid& solid = program.solids[0];
-        const ProgNode& node = program.nodes[static_cast<std::size_t>(solid.root)];
-        if (node.kind != NodeKind::kBody) return false;
         auto contains = [&](const Rect& b) {
             return b.x0 <= r.x0 && b.x1 >= r.x1 && b.y0 <= r.y0 && b.y1 >= r.y1;
         };
-        if (!contains(node.xy) || !contains(solid.xy)) return false;
+        if (!contains(solid.xy)) return false;
+        const std::int32_t bodyNode = SingleBody(program, solid.root, r);
+        if (bodyNode < 0) return false;
+        const ProgNode& node = program.nodes[static_cast<std::size_t>(bodyNode)];
         const auto body = static_cast<std::size_t>(node.first);
         if (!tables_.bodyValid[body] || tables_.bodyFirstTag[body] == tables_.bodyFirstTag[body + 1])
             return false;
-        const auto [begin, end] = nodeTags_[static_cast<std::size_t>(solid.root)];
+        const auto [begin, end] = nodeTags_[static_cast<std::size_t>(bodyNode)];
         const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
         std::int32_t nearTag = -1;
         double nearR[4] = {0, 0, 0, 0};
@@ -299,6 +380,37 @@ class Worker {
         counters.flatPixels += n;
         ++counters.flatTiles;
         return true;
+    }
+
+    // The body node that the subtree of node n is equal to on every ray of the sub-tile `r`
+    // (ids included), given the bodies PrepareTile found empty there: the identities
+    // A ∪ ∅ = A, A − ∅ = A, op(A) = A (math/interval_list.h) leave one body when all its
+    // siblings are empty. kEmptyNode when the subtree is empty; -1 when it is not one body or a
+    // node on the way does not contain the whole rectangle (MissesPoint could then cut pixels).
+    static constexpr std::int32_t kEmptyNode = -2;
+    std::int32_t SingleBody(const CsgProgram& p, std::int32_t n, const Rect& r) const {
+        const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
+        if (nodeEmpty_[static_cast<std::size_t>(n)]) return kEmptyNode;
+        if (!(node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 &&
+              node.xy.y1 >= r.y1))
+            return -1;
+        if (node.kind == NodeKind::kBody) return n;
+        const std::int32_t* child = p.children.data() + node.first;
+        std::int32_t found = kEmptyNode;
+        for (std::int32_t i = 0; i < node.count; ++i) {
+            const std::int32_t c = SingleBody(p, child[i], r);
+            if (c == -1) return -1;
+            if (c == kEmptyNode) {
+                // ∅ ∩ B = ∅, ∅ − B = ∅; a union or a later subtrahend just drops it.
+                if (node.kind == NodeKind::kIntersection) return kEmptyNode;
+                if (node.kind == NodeKind::kDifference && i == 0) return kEmptyNode;
+                continue;
+            }
+            if (found != kEmptyNode) return -1;  // two non-empty operands
+            if (node.kind == NodeKind::kDifference && i > 0) return -1;  // a real subtrahend
+            found = c;
+        }
+        return found;  // (an intersection gets here only with one operand: ∅ returned above)
     }
 
     // Depth cuts of the current sub-tile (see SetCuts), ascending, the last one +inf.
@@ -383,7 +495,7 @@ class Worker {
     void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
                   double cut) {
         const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
-        if (node.MissesPoint(x, y) || node.zlo >= cut) {
+        if (node.MissesPoint(x, y) || node.zlo >= cut || nodeEmpty_[static_cast<std::size_t>(n)]) {
             slots_[slot]->clear();
             return;
         }
@@ -399,7 +511,8 @@ class Worker {
             // The operand's bounds are tested here as well as in the call, to skip the call for
             // the many operands of a big union that miss this pixel.
             const ProgNode& c = p.nodes[static_cast<std::size_t>(child[i])];
-            if (c.MissesPoint(x, y) || c.zlo >= cut) {
+            if (c.MissesPoint(x, y) || c.zlo >= cut ||
+                nodeEmpty_[static_cast<std::size_t>(child[i])]) {
                 slots_[slot + 1]->clear();
             } else {
                 Evaluate(p, child[i], x, y, slot + 1, cut);
@@ -554,6 +667,7 @@ class Worker {
     std::vector<PlaneBound> bounds_;  // PrepareTile scratch
     std::vector<std::int32_t> tileTags_;
     std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
+    std::vector<bool> nodeEmpty_;  // per program node: a body empty on every ray of the sub-tile
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
 };
@@ -701,6 +815,7 @@ class RaycastEngine final : public Engine {
         add("tile_literals_pruned", total.prunedLiterals);
         add("flat_tiles_16", total.flatTiles);
         add("flat_pixels", total.flatPixels);
+        add("tile_bodies_empty", total.emptyBodies);
         return stats;
     }
 };
