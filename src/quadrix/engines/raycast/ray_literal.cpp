@@ -165,6 +165,38 @@ RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double 
     return inside;  // named return value: constructed in the caller's slot, not copied
 }
 
+QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, double x0, double x1, double y0, double y1) {
+    const double c = hs.c;
+    if (!std::isfinite(c) || c == 0) return QuadricOnRect::kUnknown;
+    const double hu = 0.5 * (x1 - x0), hv = 0.5 * (y1 - y0);
+    const double X0 = 0.5 * (x0 + x1) - hs.x0, Y0 = 0.5 * (y0 + y1) - hs.y0;
+    const double H0 = hs.hx * X0 + hs.hy * Y0 + hs.h0;
+    const double K0 = X0 * (hs.axx * X0 + hs.axy * Y0 + hs.ax) + Y0 * (hs.byy * Y0 + hs.by) + hs.k0;
+    const double Ku = 2 * hs.axx * X0 + hs.axy * Y0 + hs.ax;
+    const double Kv = hs.axy * X0 + 2 * hs.byy * Y0 + hs.by;
+    const double d0 = H0 * H0 - c * K0;
+    const double bu = 2 * H0 * hs.hx - c * Ku, bv = 2 * H0 * hs.hy - c * Kv;
+    const double auu = hs.hx * hs.hx - c * hs.axx, auv = 2 * hs.hx * hs.hy - c * hs.axy;
+    const double avv = hs.hy * hs.hy - c * hs.byy;
+    const double bound = d0 + std::fabs(bu) * hu + std::fabs(bv) * hv +
+                         std::fmax(auu, 0.0) * hu * hu + std::fabs(auv) * hu * hv +
+                         std::fmax(avv, 0.0) * hv * hv;
+    const double ac = std::fabs(c);
+    const double scale =
+        H0 * H0 + ac * std::fabs(K0) +
+        (2 * std::fabs(H0 * hs.hx) + ac * std::fabs(Ku)) * hu +
+        (2 * std::fabs(H0 * hs.hy) + ac * std::fabs(Kv)) * hv +
+        (hs.hx * hs.hx + ac * std::fabs(hs.axx)) * hu * hu +
+        (2 * std::fabs(hs.hx * hs.hy) + ac * std::fabs(hs.axy)) * hu * hv +
+        (hs.hy * hs.hy + ac * std::fabs(hs.byy)) * hv * hv +
+        ac * (std::fabs(X0 * hs.ax) + std::fabs(Y0 * hs.by) + std::fabs(hs.k0) +
+              std::fabs(hs.axx) * X0 * X0 + std::fabs(hs.axy * X0 * Y0) +
+              std::fabs(hs.byy) * Y0 * Y0);
+    if (!std::isfinite(bound) || !std::isfinite(scale)) return QuadricOnRect::kUnknown;
+    if (!(bound < -1e-8 * scale)) return QuadricOnRect::kUnknown;
+    return c < 0 ? QuadricOnRect::kInsideEverywhere : QuadricOnRect::kOutsideEverywhere;
+}
+
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
                      IntervalList& out, LiteralCounters& counters) {
     RaySet s = LiteralOnRay(hs, complemented, x, y, id, counters);

@@ -74,6 +74,19 @@ struct RaySet {
 RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
                     LiteralCounters& counters);
 
+// What a quadric literal does on every ray of a rectangle of pixel centres, when that can be
+// proved: along the ray, Q(t) = c t² + 2 h t + k (ray_literal.h) with h linear and k quadratic in
+// the pixel position, so its discriminant D = h² − c k is a quadratic polynomial in (x, y).
+// Expanded about the rectangle's centre, D = d0 + bu u + bv v + auu u² + auv u v + avv v² for
+// |u| <= hu, |v| <= hv, and d0 + |bu| hu + |bv| hv + max(auu, 0) hu² + |auv| hu hv +
+// max(avv, 0) hv² bounds it from above. Below −1e-8 times the sum of the magnitudes of the
+// terms (rounding of this bound and of the per-pixel h, k and D is some 1e-15 of that), no ray
+// meets the surface and Q keeps the sign of c on all of it: SolveQuadratic finds no root at
+// any pixel, so the set is everything (c < 0) or nothing (c > 0). Only for c ≠ 0.
+enum class QuadricOnRect { kUnknown, kInsideEverywhere, kOutsideEverywhere };
+// `x0..x1 × y0..y1` is the rectangle of pixel centres.
+QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, double x0, double x1, double y0, double y1);
+
 // The same as an IntervalList (for tests and callers that want a list).
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
                      IntervalList& out, LiteralCounters& counters);

@@ -152,5 +152,57 @@ TEST(RaycastLiteral, RecentringKeepsTheRoots) {
     EXPECT_GT(compared, 500);
 }
 
+// ClassifyQuadric's claim, tested where it matters: whenever it says no ray of a rectangle meets
+// the quadric, the literal's set at every pixel centre of the rectangle is all of the ray
+// (kInsideEverywhere) or nothing (kOutsideEverywhere), with and without complement; and it does
+// decide most rectangles far from a quadric's silhouette (else culling would be useless).
+TEST(RaycastLiteral, ClassifyQuadricOnRectanglesIsNeverWrong) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int decided = 0, farFromSilhouette = 0, rects = 0;
+    for (int n = 0; n < 400; ++n) {
+        // A random quadric (of any type) placed near the image region, re-centred like the engine.
+        std::array<double, 10> k{};
+        for (double& v : k) v = u(rng);
+        k[9] = 40 * u(rng);
+        const Vec3 shift{30 * u(rng), 30 * u(rng), 50 + 20 * u(rng)};
+        Quadric q = Quadric::FromCoefficients(k).Transformed(Transform::Translate(shift));
+        FlatHalfSpace hs;
+        hs.isPlane = false;
+        hs.quadric = q;
+        const RayHalfSpace r = RayHalfSpace::From(hs, RayHalfSpace::Centre(q).value_or(Vec3{}));
+        for (int t = 0; t < 20; ++t) {
+            const double x0 = std::floor(60 * u(rng)) + 0.5, y0 = std::floor(60 * u(rng)) + 0.5;
+            const int w = 1 + static_cast<int>(16 * (u(rng) + 1) / 2), h = w;
+            const QuadricOnRect c = ClassifyQuadric(r, x0, x0 + w - 1, y0, y0 + h - 1);
+            ++rects;
+            bool anyRoot = false;
+            for (int j = 0; j < h; ++j) {
+                for (int i = 0; i < w; ++i) {
+                    const double x = x0 + i, y = y0 + j;
+                    for (bool comp : {false, true}) {
+                        LiteralCounters counters;
+                        const RaySet set = LiteralOnRay(r, comp, x, y, 3, counters);
+                        const bool all = set.count == 1 && std::isinf(set.piece[0].lo) &&
+                                         std::isinf(set.piece[0].hi);
+                        const bool none = set.count == 0;
+                        anyRoot |= !all && !none;
+                        if (c == QuadricOnRect::kUnknown) continue;
+                        const bool inside = (c == QuadricOnRect::kInsideEverywhere) != comp;
+                        ASSERT_TRUE(inside ? all : none)
+                            << "quadric " << n << " rect " << t << " pixel " << x << "," << y;
+                    }
+                }
+            }
+            decided += c != QuadricOnRect::kUnknown;
+            farFromSilhouette += !anyRoot;
+        }
+    }
+    // Rectangles with no root at any pixel: most of them are decided.
+    EXPECT_GT(farFromSilhouette, 1000);
+    EXPECT_GT(decided, farFromSilhouette / 2) << decided << " of " << farFromSilhouette;
+    EXPECT_LT(decided, rects);
+}
+
 }  // namespace
 }  // namespace quadrix::raycast

@@ -142,49 +142,6 @@ struct Hit {
     std::int32_t solid = -1;
 };
 
-// What a quadric literal does on every ray of a rectangle of pixel centres, when that can be
-// proved: along the ray, Q(t) = c t² + 2 h t + k (ray_literal.h) with h linear and k quadratic in
-// the pixel position, so its discriminant D = h² − c k is a quadratic polynomial in (x, y).
-// Expanded about the rectangle's centre, D = d0 + bu u + bv v + auu u² + auv u v + avv v² for
-// |u| <= hu, |v| <= hv, and d0 + |bu| hu + |bv| hv + max(auu, 0) hu² + |auv| hu hv +
-// max(avv, 0) hv² bounds it from above. Below −1e-8 times the sum of the magnitudes of the
-// terms (rounding of this bound and of the per-pixel h, k and D is some 1e-15 of that), no ray
-// meets the surface and Q keeps the sign of c on all of it: SolveQuadratic finds no root at
-// any pixel, so the set is everything (c < 0) or nothing (c > 0). Only for c ≠ 0.
-enum class QuadricOnRect { kUnknown, kInsideEverywhere, kOutsideEverywhere };
-
-QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, const Rect& r) {
-    const double c = hs.c;
-    if (!std::isfinite(c) || c == 0) return QuadricOnRect::kUnknown;
-    const double hu = 0.5 * (r.x1 - r.x0), hv = 0.5 * (r.y1 - r.y0);
-    const double X0 = 0.5 * (r.x0 + r.x1) - hs.x0, Y0 = 0.5 * (r.y0 + r.y1) - hs.y0;
-    const double H0 = hs.hx * X0 + hs.hy * Y0 + hs.h0;
-    const double K0 = X0 * (hs.axx * X0 + hs.axy * Y0 + hs.ax) + Y0 * (hs.byy * Y0 + hs.by) + hs.k0;
-    const double Ku = 2 * hs.axx * X0 + hs.axy * Y0 + hs.ax;
-    const double Kv = hs.axy * X0 + 2 * hs.byy * Y0 + hs.by;
-    const double d0 = H0 * H0 - c * K0;
-    const double bu = 2 * H0 * hs.hx - c * Ku, bv = 2 * H0 * hs.hy - c * Kv;
-    const double auu = hs.hx * hs.hx - c * hs.axx, auv = 2 * hs.hx * hs.hy - c * hs.axy;
-    const double avv = hs.hy * hs.hy - c * hs.byy;
-    const double bound = d0 + std::fabs(bu) * hu + std::fabs(bv) * hv +
-                         std::fmax(auu, 0.0) * hu * hu + std::fabs(auv) * hu * hv +
-                         std::fmax(avv, 0.0) * hv * hv;
-    const double ac = std::fabs(c);
-    const double scale =
-        H0 * H0 + ac * std::fabs(K0) +
-        (2 * std::fabs(H0 * hs.hx) + ac * std::fabs(Ku)) * hu +
-        (2 * std::fabs(H0 * hs.hy) + ac * std::fabs(Kv)) * hv +
-        (hs.hx * hs.hx + ac * std::fabs(hs.axx)) * hu * hu +
-        (2 * std::fabs(hs.hx * hs.hy) + ac * std::fabs(hs.axy)) * hu * hv +
-        (hs.hy * hs.hy + ac * std::fabs(hs.byy)) * hv * hv +
-        ac * (std::fabs(X0 * hs.ax) + std::fabs(Y0 * hs.by) + std::fabs(hs.k0) +
-              std::fabs(hs.axx) * X0 * X0 + std::fabs(hs.axy * X0 * Y0) +
-              std::fabs(hs.byy) * Y0 * Y0);
-    if (!std::isfinite(bound) || !std::isfinite(scale)) return QuadricOnRect::kUnknown;
-    if (!(bound < -1e-8 * scale)) return QuadricOnRect::kUnknown;
-    return c < 0 ? QuadricOnRect::kInsideEverywhere : QuadricOnRect::kOutsideEverywhere;
-}
-
 // Everything one thread needs; reused across tiles and pixels.
 class Worker {
   public:
@@ -248,7 +205,7 @@ class Worker {
                         b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
                     }
                 } else if (!hs.isPlane) {
-                    const QuadricOnRect q = ClassifyQuadric(hs, r);
+                    const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
                     if (q != QuadricOnRect::kUnknown) {
                         // No ray of the rectangle meets the surface: the literal holds on all
                         // of every ray (dropped) or on none (the body is empty).
