@@ -14,12 +14,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 #include <fstream>
@@ -143,45 +145,79 @@ std::string IsocurveTable(const std::string& sourceDir, int reps) {
     return out;
 }
 
-// Growth of the default engine's frame time: with pixels (each scene, smallest to largest size)
-// and with primitives (the sphere series at each size), as exponents of power laws: time ∝ n^e.
-// e ≈ 1 for pixels and e < 1 for primitives mean cost ∝ pixels + covered area, not their product.
+// Growth of every engine's frame time: with pixels (each scene, smallest to largest size) and
+// with primitives (each family of scenes, e.g. spheres100 → spheres10000, at each size), as
+// exponents of power laws, time ∝ n^e, and as the factor per doubling, 2^e. e ≈ 1 for pixels and
+// e < 1 for primitives mean cost ∝ pixels + covered area, not their product. Frames of an engine
+// that did not draw the whole scene (coverage ≠ raycast's on > 0.5 % of pixels) or was skipped
+// are left out.
 std::string Scaling(const std::vector<Row>& rows) {
-    auto frameMs = [](const Row& r) { return r.engineMs.empty() ? 0.0 : r.engineMs[0].second; };
-    std::string out = "\n## Scaling of the default engine's frame time\n\n";
-    out += "| scene | from | to | pixels × | time × | exponent |\n|---|---|---|---|---|---|\n";
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Row* lo = &rows[i];
-        const Row* hi = nullptr;
-        if (i > 0 && rows[i - 1].scene == lo->scene) continue;  // first row of each scene
-        for (std::size_t j = i; j < rows.size() && rows[j].scene == lo->scene; ++j) hi = &rows[j];
-        if (!hi || hi == lo || frameMs(*lo) <= 0 || frameMs(*hi) <= 0) continue;
-        const double px = double(hi->size.w) * hi->size.h / (double(lo->size.w) * lo->size.h);
-        const double t = frameMs(*hi) / frameMs(*lo);
-        out += fmt::format("| {} | {}×{} | {}×{} | {:.1f} | {:.2f} | {:.2f} |\n", lo->scene,
-                           lo->size.w, lo->size.h, hi->size.w, hi->size.h, px, t,
-                           std::log(t) / std::log(px));
+    auto frameMs = [](const Row& r, std::size_t e) {
+        if (e >= r.engineMs.size() || r.engineDiffPct[e] > 0.5) return -1.0;
+        return r.engineMs[e].second;
+    };
+    auto familyOf = [](const std::string& name) {
+        std::size_t e = name.size();
+        while (e > 0 && std::isdigit(static_cast<unsigned char>(name[e - 1]))) --e;
+        return name.substr(0, e);
+    };
+    const std::size_t engines = rows.empty() ? 0 : rows[0].engineMs.size();
+    std::string out = "\n## Scaling with pixels\n\n";
+    out += "| engine | scene | from | to | pixels × | time × | exponent | × per doubling |\n"
+           "|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t e = 0; e < engines; ++e) {
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const Row* lo = &rows[i];
+            if (i > 0 && rows[i - 1].scene == lo->scene) continue;  // first row of each scene
+            const Row* hi = nullptr;
+            for (std::size_t j = i; j < rows.size() && rows[j].scene == lo->scene; ++j)
+                if (frameMs(rows[j], e) > 0) hi = &rows[j];
+            if (!hi || hi == lo || frameMs(*lo, e) <= 0) continue;
+            const double px = double(hi->size.w) * hi->size.h / (double(lo->size.w) * lo->size.h);
+            const double t = frameMs(*hi, e) / frameMs(*lo, e);
+            const double ex = std::log(t) / std::log(px);
+            out += fmt::format("| {} | {} | {}×{} | {}×{} | {:.1f} | {:.2f} | {:.2f} | {:.2f} |\n",
+                               lo->engineMs[e].first, lo->scene, lo->size.w, lo->size.h,
+                               hi->size.w, hi->size.h, px, t, ex, std::pow(2.0, ex));
+        }
     }
-    out += "\n| size | spheres from | to | primitives × | time × | exponent |\n"
+    out += "\n## Scaling with primitives\n\n"
+           "| engine | size | from | to | primitives × | time × | exponent | × per doubling |\n"
+           "|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t e = 0; e < engines; ++e) {
+        for (const Row& a : rows) {
+            const std::string fam = familyOf(a.scene);
+            if (fam == a.scene || frameMs(a, e) <= 0) continue;
+            bool smallest = true;
+            const Row* best = nullptr;
+            for (const Row& b : rows) {
+                if (familyOf(b.scene) != fam || b.size.w != a.size.w || b.size.h != a.size.h)
+                    continue;
+                if (b.primitives < a.primitives && frameMs(b, e) > 0) smallest = false;
+                if (b.primitives > a.primitives && frameMs(b, e) > 0 &&
+                    (!best || b.primitives > best->primitives))
+                    best = &b;
+            }
+            if (!best || !smallest) continue;
+            const double n = double(best->primitives) / a.primitives;
+            const double t = frameMs(*best, e) / frameMs(a, e);
+            const double ex = std::log(t) / std::log(n);
+            out += fmt::format("| {} | {}×{} | {} | {} | {:.0f} | {:.2f} | {:.2f} | {:.2f} |\n",
+                               a.engineMs[e].first, a.size.w, a.size.h, a.scene, best->scene, n,
+                               t, ex, std::pow(2.0, ex));
+        }
+    }
+    // The sum-of-products explosion: A − B1∩C1 − … − Bk∩Ck has 2^k products in sum-of-products
+    // form; the default engine evaluates the tree as it is, so its time per frame should grow
+    // linearly (or less) with k.
+    out += "\n## Sum-of-products explosion (A − B1∩C1 − … − Bk∩Ck), default engine\n\n"
+           "| size | k | primitives | products in SOP form | frame ms | ms per primitive |\n"
            "|---|---|---|---|---|---|\n";
-    for (const Row& a : rows) {
-        if (a.scene.rfind("spheres", 0) != 0) continue;
-        const Row* best = nullptr;
-        for (const Row& b : rows)
-            if (b.scene.rfind("spheres", 0) == 0 && b.size.w == a.size.w &&
-                b.size.h == a.size.h && b.primitives > a.primitives &&
-                (!best || b.primitives > best->primitives))
-                best = &b;
-        bool smallest = true;
-        for (const Row& b : rows)
-            if (b.scene.rfind("spheres", 0) == 0 && b.size.w == a.size.w &&
-                b.size.h == a.size.h && b.primitives < a.primitives)
-                smallest = false;
-        if (!best || !smallest || frameMs(a) <= 0 || frameMs(*best) <= 0) continue;
-        const double n = double(best->primitives) / a.primitives;
-        const double t = frameMs(*best) / frameMs(a);
-        out += fmt::format("| {}×{} | {} | {} | {:.0f} | {:.2f} | {:.2f} |\n", a.size.w, a.size.h,
-                           a.scene, best->scene, n, t, std::log(t) / std::log(n));
+    for (const Row& r : rows) {
+        if (familyOf(r.scene) != "sop" || frameMs(r, 0) <= 0) continue;
+        const int k = (r.primitives - 1) / 2;
+        out += fmt::format("| {}×{} | {} | {} | 2^{} | {:.1f} | {:.3f} |\n", r.size.w, r.size.h,
+                           k, r.primitives, k, frameMs(r, 0), frameMs(r, 0) / r.primitives);
     }
     return out;
 }
@@ -227,6 +263,8 @@ int main(int argc, char** argv) {
         SpheresMinusCylinder(10000),
         SumOfProductsExplosion(8),
         SumOfProductsExplosion(16),
+        SumOfProductsExplosion(32),
+        SumOfProductsExplosion(64),
     };
     std::vector<Size> sizes = {{512, 512}, {1280, 720}, {1920, 1080}};
     if (quick) {
@@ -253,6 +291,14 @@ int main(int argc, char** argv) {
 
     std::vector<Row> rows;
     std::set<std::string> tooSlow;  // "scene/engine" pairs over 10 s a frame
+    // Per "family/engine/size" (family = scene name without its trailing count, e.g. spheres):
+    // the primitives and frame time of the last member measured, to predict the next one.
+    std::map<std::string, std::pair<int, double>> lastOfFamily;
+    auto familyOf = [](const std::string& name) {
+        std::size_t e = name.size();
+        while (e > 0 && std::isdigit(static_cast<unsigned char>(name[e - 1]))) --e;
+        return name.substr(0, e);
+    };
     for (const BenchScene& scene : scenes) {
         if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
         std::string scenePath = outDir + "/scenes/" + scene.name + ".uq";
@@ -283,7 +329,19 @@ int main(int argc, char** argv) {
                 const bool unselected =
                     !engineList.empty() &&
                     ("," + engineList + ",").find("," + name + ",") == std::string::npos;
+                // An engine whose frame on the family's previous, smaller member at this size,
+                // scaled linearly by the primitive count, would exceed 10 s is not started: a
+                // frame cannot be interrupted, and scanline or pixelpowers on 10,000 spheres
+                // would hold the suite for many minutes.
+                const std::string famKey =
+                    familyOf(scene.name) + "/" + name + fmt::format("/{}x{}", size.w, size.h);
+                if (auto it = lastOfFamily.find(famKey);
+                    it != lastOfFamily.end() && name != "raycast" &&
+                    (it->second.second < 0 ||
+                     it->second.second * scene.primitives / std::max(it->second.first, 1) > 10000))
+                    tooSlow.insert(scene.name + "/" + name);
                 if (name != "raycast" && (unselected || tooSlow.count(scene.name + "/" + name))) {
+                    if (!unselected) lastOfFamily[famKey] = {scene.primitives, -1.0};
                     row.engineMs.emplace_back(name, unselected ? -2.0 : -1.0);
                     row.engineDiffPct.push_back(0.0);
                     continue;
@@ -321,6 +379,7 @@ int main(int argc, char** argv) {
                                      .count());
                 }
                 row.engineMs.emplace_back(name, Median(ms));
+                lastOfFamily[famKey] = {scene.primitives, Median(ms)};
             }
 
             // Whole processes, Quadrix and POV-Ray alternating.
@@ -390,7 +449,7 @@ int main(int argc, char** argv) {
             // Coverage differing on more than 0.5 % of the pixels (more than silhouette
             // rounding): the engine did not draw the whole scene, so its time is not comparable.
             md += ms == -2.0  ? std::string(" – |")
-                  : ms < 0    ? std::string(" skipped (> 10 s) |")
+                  : ms < 0    ? std::string(" skipped (> 10 s, measured or predicted) |")
                   : diff > 0.5 ? fmt::format(" {:.1f} (≠{:.0f} %) |", ms, diff)
                                : fmt::format(" {:.1f} |", ms);
             csv += fmt::format(",{:.3f}", ms);

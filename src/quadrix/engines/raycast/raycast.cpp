@@ -112,7 +112,7 @@ struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
                   cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0,
-                  emptyBodies = 0;
+                  emptyBodies = 0, batchBodies = 0, batchPixels = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -131,6 +131,8 @@ struct Counters {
         flatTiles += o.flatTiles;
         flatPixels += o.flatPixels;
         emptyBodies += o.emptyBodies;
+        batchBodies += o.batchBodies;
+        batchPixels += o.batchPixels;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -520,6 +522,20 @@ class Worker {
         if (tables_.bodyFirstTag[static_cast<std::size_t>(body)] ==
             tables_.bodyFirstTag[static_cast<std::size_t>(body) + 1])
             return;
+        if (batchOn_) {
+            std::int32_t b = nodeBatch_[static_cast<std::size_t>(node)];
+            if (b == kNoBatch) b = ComputeBatch(node);
+            if (b >= 0) {
+                const BodyBatch& batch = batches_[static_cast<std::size_t>(b)];
+                const std::size_t p = pixel_;
+                if (batch.state[p] == BodyBatch::kEmpty) return;
+                if (batch.state[p] == BodyBatch::kOne) {
+                    result.Append(batch.lo[p], batch.loId[p], batch.hi[p], batch.hiId[p]);
+                    return;
+                }
+                // kScalar: evaluated below, literal by literal, exactly as without batches.
+            }
+        }
         const auto [begin, end] = nodeTags_[static_cast<std::size_t>(node)];
         const std::int32_t* const tagsEnd = tileTags_.data() + end;
         Interval run{-HUGE_VAL, HUGE_VAL, Interval::kNoId, Interval::kNoId};
@@ -568,6 +584,137 @@ class Worker {
         AppendPiece(result, run);
     }
 
+  public:
+    // Body batches ("SIMD over pixels"). The first time a body is needed in a sub-tile, its set
+    // is computed for every pixel of the sub-tile at once, literal by literal over arrays of
+    // pixels (the plane loop has no branches and is vectorised by the compiler), with
+    // EvaluateBody's exact arithmetic and tie rules: r = -(px x + py y + pd)/c, a near bound
+    // replaces lo unless lo > r, a far bound replaces hi unless hi <= r, in the body's literal
+    // order. lo only grows and hi only shrinks, so "empty once lo >= hi" needs no early exit.
+    // A pixel where anything is out of the ordinary — a non-finite bound, a plane parallel to
+    // the rays that does not simply hold, a quadric set of two pieces — is marked kScalar and
+    // evaluated by EvaluateBody's scalar loop when asked; every other pixel gets the very
+    // interval, ids included, that loop would give.
+    struct BodyBatch {
+        static constexpr std::uint8_t kEmpty = 0, kOne = 1, kScalar = 2;
+        double lo[kSubTile * kSubTile], hi[kSubTile * kSubTile];
+        std::int32_t loId[kSubTile * kSubTile], hiId[kSubTile * kSubTile];
+        std::uint8_t state[kSubTile * kSubTile];
+    };
+    static constexpr std::int32_t kNoBatch = -1, kNoBatchWanted = -2;
+
+    // Called by RenderTile before the pixels of a sub-tile [x0, x1) × [y0, y1).
+    void StartBatches(const CsgProgram& program, int x0, int y0, int x1, int y1) {
+        tileX0_ = x0;
+        tileY0_ = y0;
+        tileW_ = x1 - x0;
+        tileH_ = y1 - y0;
+        batchesUsed_ = 0;
+        nodeBatch_.assign(program.nodes.size(), kNoBatchWanted);
+        // Only bodies whose bounds cover the whole sub-tile are batched: they are likely wanted
+        // at most of its pixels (a small body in a big union — spheres — is evaluated where
+        // needed only).
+        const Rect r = {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5};
+        std::size_t wanted = 0;
+        for (std::size_t n = 0; n < program.nodes.size(); ++n) {
+            const ProgNode& node = program.nodes[n];
+            if (node.kind != NodeKind::kBody || nodeEmpty_[n]) continue;
+            if (node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 &&
+                node.xy.y1 >= r.y1) {
+                nodeBatch_[n] = kNoBatch;
+                ++wanted;
+            }
+        }
+        batchOn_ = wanted > 0;
+        if (batches_.size() < wanted) batches_.resize(wanted);
+        for (int j = 0; j < tileH_; ++j)
+            for (int i = 0; i < tileW_; ++i) {
+                xs_[j * tileW_ + i] = x0 + i + 0.5;
+                ys_[j * tileW_ + i] = y0 + j + 0.5;
+            }
+    }
+    void SetPixel(int i, int j) {
+        pixel_ = static_cast<std::size_t>((j - tileY0_) * tileW_ + (i - tileX0_));
+    }
+
+  private:
+    std::int32_t ComputeBatch(std::int32_t node) {
+        const auto b = static_cast<std::int32_t>(batchesUsed_++);
+        nodeBatch_[static_cast<std::size_t>(node)] = b;
+        BodyBatch& out = batches_[static_cast<std::size_t>(b)];
+        const int n = tileW_ * tileH_;
+        ++counters.batchBodies;
+        counters.batchPixels += static_cast<std::uint64_t>(n);
+        double* const lo = out.lo;
+        double* const hi = out.hi;
+        std::int32_t* const loId = out.loId;
+        std::int32_t* const hiId = out.hiId;
+        bool dead[kSubTile * kSubTile], scalar[kSubTile * kSubTile];
+        for (int p = 0; p < n; ++p) {
+            lo[p] = -HUGE_VAL;
+            hi[p] = HUGE_VAL;
+            loId[p] = hiId[p] = Interval::kNoId;
+            dead[p] = scalar[p] = false;
+        }
+        const auto [begin, end] = nodeTags_[static_cast<std::size_t>(node)];
+        for (std::int32_t k = begin; k < end; ++k) {
+            const std::int32_t tag = tileTags_[static_cast<std::size_t>(k)];
+            const Tag& t = TagOf(tag);
+            const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+            if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
+                counters.literals.planes += static_cast<std::uint64_t>(n);
+                const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
+                if ((c > 0) != t.complemented) {  // t <= r: a far bound
+                    for (int p = 0; p < n; ++p) {
+                        const double r = -(px * xs_[p] + py * ys_[p] + pd) / c;
+                        scalar[p] |= !(std::fabs(r) < HUGE_VAL);
+                        const bool take = !(hi[p] <= r);
+                        hi[p] = take ? r : hi[p];
+                        hiId[p] = take ? tag : hiId[p];
+                    }
+                } else {  // t >= r: a near bound
+                    for (int p = 0; p < n; ++p) {
+                        const double r = -(px * xs_[p] + py * ys_[p] + pd) / c;
+                        scalar[p] |= !(std::fabs(r) < HUGE_VAL);
+                        const bool take = !(lo[p] > r);
+                        lo[p] = take ? r : lo[p];
+                        loId[p] = take ? tag : loId[p];
+                    }
+                }
+            } else {
+                for (int p = 0; p < n; ++p) {
+                    if (dead[p] || scalar[p]) continue;
+                    if (hs.isPlane) {  // parallel to the rays, or non-finite: rare
+                        scalar[p] = true;
+                        continue;
+                    }
+                    const RaySet set =
+                        LiteralOnRay(hs, t.complemented, xs_[p], ys_[p], tag, counters.literals);
+                    if (set.count == 0) {
+                        dead[p] = true;
+                    } else if (set.count == 2) {
+                        scalar[p] = true;
+                    } else {
+                        if (!(lo[p] > set.piece[0].lo)) {
+                            lo[p] = set.piece[0].lo;
+                            loId[p] = set.piece[0].loId;
+                        }
+                        if (!(hi[p] <= set.piece[0].hi)) {
+                            hi[p] = set.piece[0].hi;
+                            hiId[p] = set.piece[0].hiId;
+                        }
+                    }
+                }
+            }
+        }
+        for (int p = 0; p < n; ++p)
+            out.state[p] = scalar[p]                  ? BodyBatch::kScalar
+                           : dead[p] || !(lo[p] < hi[p]) ? BodyBatch::kEmpty
+                                                         : BodyBatch::kOne;
+        return b;
+    }
+
+  private:
     // The rest of a body from the first literal with a two-piece set: the running interval `run`
     // intersected with `set`, then literals [next, last) as interval lists.
     void EvaluateBodyLists(const Interval& run, const RaySet& set, const std::int32_t* next,
@@ -625,6 +772,14 @@ class Worker {
     std::vector<std::int32_t> tileTags_;
     std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
     std::vector<bool> nodeEmpty_;  // per program node: a body empty on every ray of the sub-tile
+    // Body batches of the current sub-tile (see BodyBatch).
+    std::vector<BodyBatch> batches_;
+    std::vector<std::int32_t> nodeBatch_;  // per node: batch index, kNoBatch(Wanted)
+    std::size_t batchesUsed_ = 0;
+    bool batchOn_ = false;
+    int tileX0_ = 0, tileY0_ = 0, tileW_ = 0, tileH_ = 0;
+    std::size_t pixel_ = 0;  // the current pixel, row-major in the sub-tile
+    double xs_[kSubTile * kSubTile] = {}, ys_[kSubTile * kSubTile] = {};
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
 };
@@ -664,9 +819,11 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             w.PrepareTile(w.subTileProgram, Centres(sx, sy, ex, ey));
             if (w.TryFlatFill(w.subTileProgram, Centres(sx, sy, ex, ey), sx, sy, ex, ey, frame))
                 continue;
+            w.StartBatches(w.subTileProgram, sx, sy, ex, ey);
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
+                    w.SetPixel(i, j);
                     Hit hit = w.Trace(w.subTileProgram, x, y);
                     if (hit.tag < 0) {
                         frame.SetBackground(frame.Index(i, j));
@@ -773,6 +930,8 @@ class RaycastEngine final : public Engine {
         add("flat_tiles_16", total.flatTiles);
         add("flat_pixels", total.flatPixels);
         add("tile_bodies_empty", total.emptyBodies);
+        add("batched_bodies", total.batchBodies);
+        add("batched_body_pixels", total.batchPixels);
         return stats;
     }
 };
