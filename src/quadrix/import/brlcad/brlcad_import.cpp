@@ -295,20 +295,11 @@ class Converter {
                 hs.id = fmt::format("{}.{}", p.name, scene_.top.halfSpaces.size());
                 hs.loc = p.loc;
                 hs.transparent = h.transparent;
-                if (h.isPlane) {
-                    hs.kind = scene::HalfSpace::Kind::kPlane;
-                    Plane pl = h.plane.Transformed(*t);
-                    double n = Length(pl.Normal());
-                    if (n > 0) pl = Plane{pl.a / n, pl.b / n, pl.c / n, pl.d / n};
-                    hs.plane = pl;
-                } else {
-                    hs.kind = scene::HalfSpace::Kind::kQuadric;
-                    Quadric q = h.quadric.Transformed(*t);
-                    double s = q.MaxAbs();
-                    if (s > 0)
-                        for (double& k : q.k) k /= s;
-                    hs.quadric = q;
-                }
+                const ShapeHalfSpace placed = Placed(h, *t);
+                hs.kind = placed.isPlane ? scene::HalfSpace::Kind::kPlane
+                                         : scene::HalfSpace::Kind::kQuadric;
+                hs.plane = placed.plane;
+                hs.quadric = placed.quadric;
                 body.literals.push_back({static_cast<int>(scene_.top.halfSpaces.size()), false});
                 scene_.top.halfSpaces.push_back(std::move(hs));
             }

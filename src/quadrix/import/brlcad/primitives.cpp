@@ -222,6 +222,16 @@ ConvertResult Tgc(const Primitive& p) {
     return r;
 }
 
+// The extent of rpc and rhc: their section (between V ± r R̂ and the vertex V + B) at both ends.
+void AddCylinderSectionExtent(const Primitive& p, const Vec3& rhat, Shape& shape) {
+    for (double sh : {0.0, 1.0}) {
+        const Vec3 o = p.V + p.H * sh;
+        shape.extent.push_back({o + rhat * p.r, {}, {}, {}});
+        shape.extent.push_back({o - rhat * p.r, {}, {}, {}});
+        shape.extent.push_back({o + p.B, {}, {}, {}});
+    }
+}
+
 // Right parabolic cylinder: frame (B, r·R̂, H), R̂ = unit(H × B); u2² + u1 - 1 <= 0, u1 >= 0,
 // 0 <= u3 <= 1. The parabola's vertex is V + B.
 ConvertResult Rpc(const Primitive& p) {
@@ -234,12 +244,7 @@ ConvertResult Rpc(const Primitive& p) {
     ConvertResult r;
     r.shape.bodies.push_back(
         {f.Quad(q), f.Plane4(-1, 0, 0, 0), f.Plane4(0, 0, -1, 0), f.Plane4(0, 0, 1, -1)});
-    for (double sh : {0.0, 1.0}) {
-        Vec3 o = p.V + p.H * sh;
-        r.shape.extent.push_back({o + rhat * p.r, {}, {}, {}});
-        r.shape.extent.push_back({o - rhat * p.r, {}, {}, {}});
-        r.shape.extent.push_back({o + p.B, {}, {}, {}});
-    }
+    AddCylinderSectionExtent(p, rhat, r.shape);
     return r;
 }
 
@@ -262,12 +267,7 @@ ConvertResult Rhc(const Primitive& p) {
     ConvertResult r;
     r.shape.bodies.push_back({f.Quad(q), f.Plane4(-1, 0, 0, 0), f.Plane4(0, 0, -1, 0),
                               f.Plane4(0, 0, 1, -1), f.Plane4(1, 0, 0, -(1 + 1 / g), true)});
-    for (double sh : {0.0, 1.0}) {
-        Vec3 o = p.V + p.H * sh;
-        r.shape.extent.push_back({o + rhat * p.r, {}, {}, {}});
-        r.shape.extent.push_back({o - rhat * p.r, {}, {}, {}});
-        r.shape.extent.push_back({o + p.B, {}, {}, {}});
-    }
+    AddCylinderSectionExtent(p, rhat, r.shape);
     return r;
 }
 
@@ -425,6 +425,23 @@ Box3 PieceBox(const ExtentPiece& piece, const Mat4& m) {
         box.hi[i] = c[i] + e;
     }
     return box;
+}
+
+ShapeHalfSpace Placed(const ShapeHalfSpace& h, const Transform& t) {
+    ShapeHalfSpace out = h;
+    if (h.isPlane) {
+        Plane pl = h.plane.Transformed(t);
+        const double n = Length(pl.Normal());
+        if (n > 0) pl = Plane{pl.a / n, pl.b / n, pl.c / n, pl.d / n};
+        out.plane = pl;
+    } else {
+        Quadric q = h.quadric.Transformed(t);
+        const double s = q.MaxAbs();
+        if (s > 0)
+            for (double& k : q.k) k /= s;
+        out.quadric = q;
+    }
+    return out;
 }
 
 }  // namespace quadrix::import::brlcad

@@ -50,6 +50,11 @@ struct ConvertResult {
 
 ConvertResult ConvertPrimitive(const Primitive& prim);
 
+// The half-space moved by the placement `t` into the scene, as the scene model keeps imported
+// half-spaces: a plane with a unit normal, a quadric scaled so that its largest coefficient is ±1
+// (both without changing the set). Shared by the BRL-CAD and OpenSCAD importers.
+ShapeHalfSpace Placed(const ShapeHalfSpace& h, const Transform& t);
+
 // True when p is inside the shape (some body has every half-space <= tol).
 bool ShapeContains(const Shape& shape, const Vec3& p, double tol = 0);
 

@@ -501,17 +501,11 @@ class Builder {
                 hs.id = fmt::format("{}.{}", n.name, scene_.top.halfSpaces.size());
                 hs.loc = body.loc;
                 hs.transparent = h.transparent;
-                if (h.isPlane) {
-                    hs.kind = scene::HalfSpace::Kind::kPlane;
-                    hs.plane = h.plane.Transformed(*t);
-                } else {
-                    hs.kind = scene::HalfSpace::Kind::kQuadric;
-                    Quadric q = h.quadric.Transformed(*t);
-                    double s = q.MaxAbs();
-                    if (s > 0)
-                        for (double& k : q.k) k /= s;
-                    hs.quadric = q;
-                }
+                const brlcad::ShapeHalfSpace placed = brlcad::Placed(h, *t);
+                hs.kind = placed.isPlane ? scene::HalfSpace::Kind::kPlane
+                                         : scene::HalfSpace::Kind::kQuadric;
+                hs.plane = placed.plane;
+                hs.quadric = placed.quadric;
                 body.literals.push_back({static_cast<int>(scene_.top.halfSpaces.size()), false});
                 scene_.top.halfSpaces.push_back(std::move(hs));
             }
