@@ -245,6 +245,10 @@ int main(int argc, char** argv) {
     app.add_option("--sizes", sizeList, "Comma-separated image sizes WxH (default: the suite's three)");
     app.add_option("--threads", threads, "Worker threads for in-process frames (0 = all cores)");
     app.add_flag("--no-process", noProcess, "Time in-process frames only (no whole processes, no POV-Ray)");
+    std::vector<std::string> engineOpts;
+    app.add_option("--engine-opt", engineOpts,
+                   "ENGINE:KEY=VALUE, an engine option for the in-process frames (repeatable), "
+                   "e.g. raycast:batch=off");
     app.add_option("--engines", engineList,
                    "Comma-separated engines to time in process (default: all; raycast is always "
                    "run as the coverage reference)");
@@ -349,6 +353,20 @@ int main(int argc, char** argv) {
                 auto engine = MakeEngine(name);
                 RenderOptions ro;
                 ro.threads = threads;
+                for (const std::string& opt : engineOpts) {
+                    const auto colon = opt.find(':'), eq = opt.find('=');
+                    if (colon == std::string::npos || eq == std::string::npos || eq < colon) {
+                        std::fprintf(stderr, "error: --engine-opt '%s' is not ENGINE:KEY=VALUE\n",
+                                     opt.c_str());
+                        return 2;
+                    }
+                    if (opt.substr(0, colon) == name)
+                        ro.engineOptions[opt.substr(colon + 1, eq - colon - 1)] = opt.substr(eq + 1);
+                }
+                if (std::string err = MakeEngine(name)->ValidateOptions(ro); !err.empty()) {
+                    std::fprintf(stderr, "error: %s\n", err.c_str());
+                    return 2;
+                }
                 Frame frame;
                 const auto tw = std::chrono::steady_clock::now();
                 engine->Render(pr.flat, ro, frame);  // warm-up

@@ -32,6 +32,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -108,6 +109,29 @@ struct SceneTables {
     }
 };
 
+// Engine options (--engine-opt KEY=VALUE), both "on" by default; switching them off changes
+// speed only, never a bit of the frame (RaycastOptions.* tests), which is how their effect is
+// measured:
+//   batch=on|off      body batches over the pixels of a sub-tile (Worker::BodyBatch);
+//   tile-cull=on|off  per-sub-tile proofs: bodies empty there (crossing plane bounds, quadrics no
+//                     ray meets), quadric literals that hold on every ray, and flat sub-tiles
+//                     filled directly (Worker::TryFlatFill).
+struct Settings {
+    bool batch = true;
+    bool tileCull = true;
+};
+
+std::string ParseSettings(const RenderOptions& options, Settings& st) {
+    for (const auto& [key, value] : options.engineOptions) {
+        bool* flag = key == "batch" ? &st.batch : key == "tile-cull" ? &st.tileCull : nullptr;
+        if (!flag) return "engine 'raycast' has no option '" + key + "' (options: batch, tile-cull)";
+        if (value != "on" && value != "off")
+            return "engine 'raycast': option '" + key + "' must be on or off, not '" + value + "'";
+        *flag = value == "on";
+    }
+    return "";
+}
+
 struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
@@ -144,10 +168,41 @@ struct Hit {
     std::int32_t solid = -1;
 };
 
+// One plane literal over the n pixels of a body batch (Worker::BodyBatch): r = -(px x + py y +
+// pd)/c as EvaluateBody computes it, a near bound replacing lo unless lo > r, a far bound
+// replacing hi unless hi <= r; `bad` becomes non-zero where r is not finite. Branch-free, so the
+// compiler vectorises it; built for AVX2 and for the baseline, chosen at load time (the results
+// are the same bits: IEEE division and comparisons, no FMA contraction).
+__attribute__((target_clones("avx2", "default"))) void NearPlaneBatch(
+    int n, const double* xs, const double* ys, double px, double py, double pd, double c,
+    std::int64_t tag, double* __restrict lo, std::int64_t* __restrict loId,
+    double* __restrict bad) {
+    for (int p = 0; p < n; ++p) {
+        const double r = -(px * xs[p] + py * ys[p] + pd) / c;
+        bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;
+        const bool take = !(lo[p] > r);
+        lo[p] = take ? r : lo[p];
+        loId[p] = take ? tag : loId[p];
+    }
+}
+__attribute__((target_clones("avx2", "default"))) void FarPlaneBatch(
+    int n, const double* xs, const double* ys, double px, double py, double pd, double c,
+    std::int64_t tag, double* __restrict hi, std::int64_t* __restrict hiId,
+    double* __restrict bad) {
+    for (int p = 0; p < n; ++p) {
+        const double r = -(px * xs[p] + py * ys[p] + pd) / c;
+        bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;
+        const bool take = !(hi[p] <= r);
+        hi[p] = take ? r : hi[p];
+        hiId[p] = take ? tag : hiId[p];
+    }
+}
+
 // Everything one thread needs; reused across tiles and pixels.
 class Worker {
   public:
-    Worker(const SceneTables* tables, int maxDepth) : tables_(*tables) {
+    Worker(const SceneTables* tables, int maxDepth, Settings settings)
+        : tables_(*tables), settings_(settings) {
         // Slot d holds the result of a node at depth d; a node at depth d also uses d+1 and d+2
         // (operand and scratch). Results move between slots by swapping pointers.
         lists_.resize(static_cast<std::size_t>(maxDepth) + 3);
@@ -206,7 +261,7 @@ class Worker {
                     } else if (finite) {
                         b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
                     }
-                } else if (!hs.isPlane) {
+                } else if (!hs.isPlane && settings_.tileCull) {
                     const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
                     if (q != QuadricOnRect::kUnknown) {
                         // No ray of the rectangle meets the surface: the literal holds on all
@@ -223,7 +278,7 @@ class Worker {
             // body, and Evaluate takes it as ∅ without evaluating it (exactly what the body's
             // literals would give: an empty set, and ∅ is an exact identity of every operator).
             bool empty = bodyEmptyByQuadric;
-            for (std::size_t i = 0; i < bounds_.size() && !empty; ++i) {
+            for (std::size_t i = 0; i < bounds_.size() && !empty && settings_.tileCull; ++i) {
                 if (bounds_[i].side >= 0) continue;
                 for (std::size_t j = 0; j < bounds_.size() && !empty; ++j) {
                     if (bounds_[j].side <= 0) continue;
@@ -276,7 +331,7 @@ class Worker {
     // constant normal and ids. Returns false (nothing written) when any condition fails.
     bool TryFlatFill(const CsgProgram& program, const Rect& r, int x0, int y0, int x1, int y1,
                      Frame& frame) {
-        if (program.solids.size() != 1) return false;
+        if (!settings_.tileCull || program.solids.size() != 1) return false;
         const ProgSolid& solid = program.solids[0];
         auto contains = [&](const Rect& b) {
             return b.x0 <= r.x0 && b.x1 >= r.x1 && b.y0 <= r.y0 && b.y1 >= r.y1;
@@ -530,7 +585,8 @@ class Worker {
                 const std::size_t p = pixel_;
                 if (batch.state[p] == BodyBatch::kEmpty) return;
                 if (batch.state[p] == BodyBatch::kOne) {
-                    result.Append(batch.lo[p], batch.loId[p], batch.hi[p], batch.hiId[p]);
+                    result.Append(batch.lo[p], static_cast<std::int32_t>(batch.loId[p]),
+                                  batch.hi[p], static_cast<std::int32_t>(batch.hiId[p]));
                     return;
                 }
                 // kScalar: evaluated below, literal by literal, exactly as without batches.
@@ -598,7 +654,8 @@ class Worker {
     struct BodyBatch {
         static constexpr std::uint8_t kEmpty = 0, kOne = 1, kScalar = 2;
         double lo[kSubTile * kSubTile], hi[kSubTile * kSubTile];
-        std::int32_t loId[kSubTile * kSubTile], hiId[kSubTile * kSubTile];
+        std::int64_t loId[kSubTile * kSubTile], hiId[kSubTile * kSubTile];  // 64-bit: vectorises
+                                                                             // with the doubles
         std::uint8_t state[kSubTile * kSubTile];
     };
     static constexpr std::int32_t kNoBatch = -1, kNoBatchWanted = -2;
@@ -625,7 +682,7 @@ class Worker {
                 ++wanted;
             }
         }
-        batchOn_ = wanted > 0;
+        batchOn_ = wanted > 0 && settings_.batch;
         if (batches_.size() < wanted) batches_.resize(wanted);
         for (int j = 0; j < tileH_; ++j)
             for (int i = 0; i < tileW_; ++i) {
@@ -647,14 +704,16 @@ class Worker {
         counters.batchPixels += static_cast<std::uint64_t>(n);
         double* const lo = out.lo;
         double* const hi = out.hi;
-        std::int32_t* const loId = out.loId;
-        std::int32_t* const hiId = out.hiId;
+        std::int64_t* const loId = out.loId;
+        std::int64_t* const hiId = out.hiId;
         bool dead[kSubTile * kSubTile], scalar[kSubTile * kSubTile];
+        double bad[kSubTile * kSubTile];  // non-zero: a plane bound was not finite
         for (int p = 0; p < n; ++p) {
             lo[p] = -HUGE_VAL;
             hi[p] = HUGE_VAL;
             loId[p] = hiId[p] = Interval::kNoId;
             dead[p] = scalar[p] = false;
+            bad[p] = 0;
         }
         const auto [begin, end] = nodeTags_[static_cast<std::size_t>(node)];
         for (std::int32_t k = begin; k < end; ++k) {
@@ -664,26 +723,13 @@ class Worker {
             if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
                 counters.literals.planes += static_cast<std::uint64_t>(n);
                 const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
-                if ((c > 0) != t.complemented) {  // t <= r: a far bound
-                    for (int p = 0; p < n; ++p) {
-                        const double r = -(px * xs_[p] + py * ys_[p] + pd) / c;
-                        scalar[p] |= !(std::fabs(r) < HUGE_VAL);
-                        const bool take = !(hi[p] <= r);
-                        hi[p] = take ? r : hi[p];
-                        hiId[p] = take ? tag : hiId[p];
-                    }
-                } else {  // t >= r: a near bound
-                    for (int p = 0; p < n; ++p) {
-                        const double r = -(px * xs_[p] + py * ys_[p] + pd) / c;
-                        scalar[p] |= !(std::fabs(r) < HUGE_VAL);
-                        const bool take = !(lo[p] > r);
-                        lo[p] = take ? r : lo[p];
-                        loId[p] = take ? tag : loId[p];
-                    }
-                }
+                if ((c > 0) != t.complemented)  // t <= r: a far bound
+                    FarPlaneBatch(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
+                else  // t >= r: a near bound
+                    NearPlaneBatch(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
             } else {
                 for (int p = 0; p < n; ++p) {
-                    if (dead[p] || scalar[p]) continue;
+                    if (dead[p] || scalar[p] || bad[p] != 0) continue;
                     if (hs.isPlane) {  // parallel to the rays, or non-finite: rare
                         scalar[p] = true;
                         continue;
@@ -708,7 +754,7 @@ class Worker {
             }
         }
         for (int p = 0; p < n; ++p)
-            out.state[p] = scalar[p]                  ? BodyBatch::kScalar
+            out.state[p] = scalar[p] || bad[p] != 0   ? BodyBatch::kScalar
                            : dead[p] || !(lo[p] < hi[p]) ? BodyBatch::kEmpty
                                                          : BodyBatch::kOne;
         return b;
@@ -767,6 +813,7 @@ class Worker {
     };
 
     const SceneTables& tables_;
+    const Settings settings_;
     std::vector<double> zlos_;  // SetCuts scratch
     std::vector<PlaneBound> bounds_;  // PrepareTile scratch
     std::vector<std::int32_t> tileTags_;
@@ -849,6 +896,10 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
 class RaycastEngine final : public Engine {
   public:
     std::string_view Name() const override { return "raycast"; }
+    std::string ValidateOptions(const RenderOptions& options) const override {
+        Settings st;
+        return ParseSettings(options, st);
+    }
 
     RenderStats Render(const FlatScene& scene, const RenderOptions& options,
                        Frame& frame) override {
@@ -861,7 +912,15 @@ class RaycastEngine final : public Engine {
 
         int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
         constexpr int kTilesPerBlock = kBlock / kTile;
-        tbb::enumerable_thread_specific<Worker> workers(&tables, full.maxDepth);
+        Settings settings;
+        if (std::string err = ParseSettings(options, settings); !err.empty()) {
+            // ValidateOptions reports this before any work; draw nothing rather than guess.
+            RenderStats stats;
+            stats.warnings.push_back(err);
+            for (std::size_t i = 0; i < frame.depth.size(); ++i) frame.SetBackground(i);
+            return stats;
+        }
+        tbb::enumerable_thread_specific<Worker> workers(&tables, full.maxDepth, settings);
         // Blocks own their pruned program (not the thread: a thread waiting in the nested loop may
         // run another block); tiles use per-thread scratch, held by no task across a wait.
         auto renderBlock = [&](int b) {
