@@ -316,5 +316,32 @@ TEST(MathIntervalList, SweepMatchesTheTieRuleOracleIdsIncluded) {
     }
 }
 
+// Every pair of single intervals with ends on a small grid (ties of every kind, unbounded ends):
+// the one-interval fast paths give the oracle's lists, ids included.
+TEST(MathIntervalList, OneAgainstOneMatchesTheOracleExhaustively) {
+    const double grid[] = {-kInf, 0, 1, 2, 3, kInf};
+    std::vector<IntervalList> singles;
+    std::int32_t id = 0;
+    for (double lo : grid)
+        for (double hi : grid)
+            if (lo < hi && !(std::isinf(lo) && lo > 0) && !(std::isinf(hi) && hi < 0)) {
+                const std::int32_t loId = std::isinf(lo) ? kNo : id++;
+                const std::int32_t hiId = std::isinf(hi) ? kNo : id++;
+                singles.push_back(IntervalList::Single(lo, loId, hi, hiId));
+            }
+    ASSERT_GT(singles.size(), 12u);
+    for (const IntervalList& a : singles) {
+        for (const IntervalList& b : singles) {
+            IntervalList u, i, d;
+            Union(a, b, u);
+            Intersection(a, b, i);
+            Difference(a, b, d);
+            ASSERT_EQ(u, OracleSweep(a, b, [](bool x, bool y) { return x || y; }));
+            ASSERT_EQ(i, OracleSweep(a, b, [](bool x, bool y) { return x && y; }));
+            ASSERT_EQ(d, OracleSweep(a, b, [](bool x, bool y) { return x && !y; }));
+        }
+    }
+}
+
 }  // namespace
 }  // namespace quadrix
