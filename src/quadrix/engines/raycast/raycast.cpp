@@ -136,7 +136,7 @@ struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
                   cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0,
-                  emptyBodies = 0, batchBodies = 0, batchPixels = 0;
+                  emptyBodies = 0, batchBodies = 0, batchPixels = 0, bodyFillTiles = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -157,6 +157,7 @@ struct Counters {
         emptyBodies += o.emptyBodies;
         batchBodies += o.batchBodies;
         batchPixels += o.batchPixels;
+        bodyFillTiles += o.bodyFillTiles;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -690,6 +691,42 @@ class Worker {
                 ys_[j * tileW_ + i] = y0 + j + 0.5;
             }
     }
+    std::size_t Pixel() const { return pixel_; }
+
+    // The batch of the body the sub-tile program reduces to (SingleBody) when there is one and
+    // batches are on; every pixel of the sub-tile then sees exactly that body's set, so its
+    // visible point is FirstVisibleOfOne of the batch (or, at kScalar pixels, Trace's).
+    const BodyBatch* SingleBodyBatch(const CsgProgram& program, const Rect& r) {
+        if (!settings_.tileCull || !batchOn_ || program.solids.size() != 1) return nullptr;
+        const ProgSolid& solid = program.solids[0];
+        if (!(solid.xy.x0 <= r.x0 && solid.xy.x1 >= r.x1 && solid.xy.y0 <= r.y0 &&
+              solid.xy.y1 >= r.y1))
+            return nullptr;
+        const std::int32_t node = SingleBody(program, solid.root, r);
+        if (node < 0 || nodeBatch_[static_cast<std::size_t>(node)] == kNoBatchWanted) return nullptr;
+        const auto body = static_cast<std::size_t>(program.nodes[static_cast<std::size_t>(node)].first);
+        if (!tables_.bodyValid[body] || tables_.bodyFirstTag[body] == tables_.bodyFirstTag[body + 1])
+            return nullptr;
+        std::int32_t b = nodeBatch_[static_cast<std::size_t>(node)];
+        if (b == kNoBatch) b = ComputeBatch(node);
+        singleSolid_ = solid.solid;
+        return &batches_[static_cast<std::size_t>(b)];
+    }
+
+    // FirstVisible of the one-interval set of pixel p of a batch: its near end when it is finite
+    // and on an opaque surface, else its far end on the same terms, else nothing.
+    Hit FirstVisibleOfOne(const BodyBatch& batch, std::size_t p, const CsgProgram&) const {
+        Hit h;
+        const auto loId = static_cast<std::int32_t>(batch.loId[p]);
+        const auto hiId = static_cast<std::int32_t>(batch.hiId[p]);
+        if (loId >= 0 && std::isfinite(batch.lo[p]) && TagOf(loId).opaque) {
+            h = {batch.lo[p], loId, singleSolid_};
+        } else if (hiId >= 0 && std::isfinite(batch.hi[p]) && TagOf(hiId).opaque) {
+            h = {batch.hi[p], hiId, singleSolid_};
+        }
+        return h;
+    }
+
     void SetPixel(int i, int j) {
         pixel_ = static_cast<std::size_t>((j - tileY0_) * tileW_ + (i - tileX0_));
     }
@@ -826,6 +863,7 @@ class Worker {
     bool batchOn_ = false;
     int tileX0_ = 0, tileY0_ = 0, tileW_ = 0, tileH_ = 0;
     std::size_t pixel_ = 0;  // the current pixel, row-major in the sub-tile
+    std::int32_t singleSolid_ = -1;  // the solid of SingleBodyBatch's body
     double xs_[kSubTile * kSubTile] = {}, ys_[kSubTile * kSubTile] = {};
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
@@ -837,8 +875,17 @@ Rect Centres(int x0, int y0, int x1, int y1) { return {x0 + 0.5, x1 - 0.5, y0 + 
 // The frame is sized without clearing (Frame::ResizeForOverwrite): every pixel is written, by
 // the tile that owns it, as a hit or as background.
 void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
-    for (int j = y0; j < y1; ++j)
-        for (int i = x0; i < x1; ++i) frame.SetBackground(frame.Index(i, j));
+    // Array by array along each row (contiguous stores the compiler turns into wide ones), not
+    // pixel by pixel across the five arrays.
+    const auto n = static_cast<std::size_t>(x1 - x0);
+    for (int j = y0; j < y1; ++j) {
+        const std::size_t k = frame.Index(x0, j);
+        std::fill_n(frame.depth.begin() + static_cast<std::ptrdiff_t>(k), n, HUGE_VAL);
+        std::fill_n(frame.normal.begin() + static_cast<std::ptrdiff_t>(k), n, Vec3{});
+        std::fill_n(frame.surface.begin() + static_cast<std::ptrdiff_t>(k), n, Frame::kNone);
+        std::fill_n(frame.body.begin() + static_cast<std::ptrdiff_t>(k), n, Frame::kNone);
+        std::fill_n(frame.solid.begin() + static_cast<std::ptrdiff_t>(k), n, Frame::kNone);
+    }
 }
 
 // Renders one 64×64 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
@@ -867,11 +914,21 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             if (w.TryFlatFill(w.subTileProgram, Centres(sx, sy, ex, ey), sx, sy, ex, ey, frame))
                 continue;
             w.StartBatches(w.subTileProgram, sx, sy, ex, ey);
+            // A sub-tile that is one body (SingleBody) is read straight from the body's batch;
+            // only its kScalar pixels are traced.
+            const Worker::BodyBatch* single = w.SingleBodyBatch(w.subTileProgram, Centres(sx, sy, ex, ey));
+            if (single) ++w.counters.bodyFillTiles;
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
                     w.SetPixel(i, j);
-                    Hit hit = w.Trace(w.subTileProgram, x, y);
+                    Hit hit;
+                    if (single && single->state[w.Pixel()] != Worker::BodyBatch::kScalar) {
+                        if (single->state[w.Pixel()] == Worker::BodyBatch::kOne)
+                            hit = w.FirstVisibleOfOne(*single, w.Pixel(), w.subTileProgram);
+                    } else {
+                        hit = w.Trace(w.subTileProgram, x, y);
+                    }
                     if (hit.tag < 0) {
                         frame.SetBackground(frame.Index(i, j));
                         continue;
@@ -991,6 +1048,7 @@ class RaycastEngine final : public Engine {
         add("tile_bodies_empty", total.emptyBodies);
         add("batched_bodies", total.batchBodies);
         add("batched_body_pixels", total.batchPixels);
+        add("single_body_tiles_16", total.bodyFillTiles);
         return stats;
     }
 };
