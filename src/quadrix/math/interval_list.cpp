@@ -199,9 +199,10 @@ void IntersectionOfOne(const Interval& a, const Interval& b, IntervalList& out) 
                closeA ? a.hiId : b.hiId);
 }
 
-// a − b.
-void DifferenceOfOne(const Interval& a, const Interval& b, IntervalList& out) {
-    out.clear();
+// a − b, appended to `out`. Also the piece of a list minus one interval that comes from one of
+// the list's intervals: while the sweep is outside a, b's events emit nothing, so each interval
+// of a canonical list can be taken on its own (their results are separated as they are).
+void AppendDifferenceOfOne(const Interval& a, const Interval& b, IntervalList& out) {
     if (b.lo < a.lo && b.hi >= a.lo) {  // inside b when a starts: a reappears where b ends
         if (b.hi < a.hi) out.Append(b.hi, b.hiId, a.hi, a.hiId);
         return;
@@ -233,6 +234,9 @@ void Intersection(const IntervalList& a, const IntervalList& b, IntervalList& ou
         out.clear();
     } else if (a.size() == 1 && b.size() == 1) {
         IntersectionOfOne(a[0], b[0], out);
+    } else if (b.size() == 1) {  // ClipTo is this intersection, ids included (tested)
+        out = a;
+        ClipTo(out, b[0]);
     } else {
         Sweep(a, b, out, [](bool x, bool y) { return x && y; });
     }
@@ -241,8 +245,9 @@ void Intersection(const IntervalList& a, const IntervalList& b, IntervalList& ou
 void Difference(const IntervalList& a, const IntervalList& b, IntervalList& out) {
     if (a.empty() || b.empty()) {
         out = a;
-    } else if (a.size() == 1 && b.size() == 1) {
-        DifferenceOfOne(a[0], b[0], out);
+    } else if (b.size() == 1) {
+        out.clear();
+        for (const Interval& v : a) AppendDifferenceOfOne(v, b[0], out);
     } else {
         Sweep(a, b, out, [](bool x, bool y) { return x && !y; });
     }

@@ -316,6 +316,26 @@ TEST(MathIntervalList, SweepMatchesTheTieRuleOracleIdsIncluded) {
     }
 }
 
+// Lists against one interval (the engine's commonest multi-piece case: a body with holes minus
+// the next hole), on random lists full of ties.
+TEST(MathIntervalList, ListAgainstOneMatchesTheOracle) {
+    std::mt19937 rng(17);
+    int checked = 0;
+    for (int n = 0; n < 20000; ++n) {
+        std::int32_t nextId = 0;
+        std::map<std::int32_t, double> idT;
+        IntervalList a = RandomList(rng, nextId, idT), b = RandomList(rng, nextId, idT);
+        if (b.size() != 1 || a.size() < 2) continue;
+        ++checked;
+        IntervalList i, d;
+        Intersection(a, b, i);
+        Difference(a, b, d);
+        ASSERT_EQ(i, OracleSweep(a, b, [](bool x, bool y) { return x && y; }));
+        ASSERT_EQ(d, OracleSweep(a, b, [](bool x, bool y) { return x && !y; }));
+    }
+    EXPECT_GT(checked, 1000);
+}
+
 // Every pair of single intervals with ends on a small grid (ties of every kind, unbounded ends):
 // the one-interval fast paths give the oracle's lists, ids included.
 TEST(MathIntervalList, OneAgainstOneMatchesTheOracleExhaustively) {
