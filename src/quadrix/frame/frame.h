@@ -4,21 +4,53 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "quadrix/math/vec.h"
 
 namespace quadrix {
 
+// The allocator of the Frame's arrays: like std::allocator, except that an element constructed
+// without arguments (vector::resize) is left as the memory holds it. The elements (double,
+// int32, Vec3) are implicit-lifetime types, so this is well defined, and it lets an engine that
+// writes every pixel (Frame::ResizeForOverwrite) size a fresh Frame without first writing 40 MB
+// from one thread: the pages are first touched by the engine's own parallel writes.
+template <class T>
+struct FrameAllocator : std::allocator<T> {
+    using value_type = T;
+    template <class U>
+    struct rebind {
+        using other = FrameAllocator<U>;
+    };
+    FrameAllocator() = default;
+    template <class U>
+    FrameAllocator(const FrameAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U*) noexcept {}
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+template <class T, class U>
+bool operator==(const FrameAllocator<T>&, const FrameAllocator<U>&) noexcept {
+    return true;
+}
+
+template <class T>
+using FrameArray = std::vector<T, FrameAllocator<T>>;
+
 struct Frame {
     static constexpr std::int32_t kNone = -1;
 
     int width = 0, height = 0;
-    std::vector<double> depth;        // device z; +inf = background
-    std::vector<Vec3> normal;         // world-space unit normal facing the viewer; 0 = background
-    std::vector<std::int32_t> surface;  // FlatScene half-space index, kNone = background
-    std::vector<std::int32_t> body;     // FlatScene body index, kNone = background
-    std::vector<std::int32_t> solid;    // FlatScene solid index, kNone = background
+    FrameArray<double> depth;          // device z; +inf = background
+    FrameArray<Vec3> normal;           // world-space unit normal facing the viewer; 0 = background
+    FrameArray<std::int32_t> surface;  // FlatScene half-space index, kNone = background
+    FrameArray<std::int32_t> body;     // FlatScene body index, kNone = background
+    FrameArray<std::int32_t> solid;    // FlatScene solid index, kNone = background
 
     Frame() = default;
     Frame(int w, int h) { Reset(w, h); }
@@ -34,13 +66,25 @@ struct Frame {
         solid.assign(n, kNone);
     }
     // For engines that write every pixel: keeps the buffers (and their contents) when the size
-    // is unchanged, so a warm frame is not cleared twice; otherwise Reset.
+    // is unchanged, so a warm frame is not cleared twice; otherwise new buffers whose contents
+    // are unspecified until the engine writes them (no clearing pass, see FrameAllocator).
     void ResizeForOverwrite(int w, int h) {
         const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
         if (w == width && h == height && depth.size() == n && normal.size() == n &&
             surface.size() == n && body.size() == n && solid.size() == n)
             return;
-        Reset(w, h);
+        width = w;
+        height = h;
+        depth = {};
+        normal = {};
+        surface = {};
+        body = {};
+        solid = {};
+        depth.resize(n);
+        normal.resize(n);
+        surface.resize(n);
+        body.resize(n);
+        solid.resize(n);
     }
     void SetBackground(std::size_t i) {
         depth[i] = HUGE_VAL;
