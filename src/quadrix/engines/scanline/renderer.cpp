@@ -5,11 +5,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <cstdio>
-#include <cstdlib>
 #include <utility>
 
 #include "quadrix/math/interval_list.h"
@@ -164,9 +163,33 @@ struct ActiveEdge {
     double x = 0;
     double br = 0, cr = 0, dcr = 0;  // conic: (5.3) at the current row and ΔC_r
     double dx = 0;                   // linear: dx/dy
+    // The edge's FACE STACK (§5.2), carried from row to row: the show-faces immediately to the
+    // right of the edge on the CSL, nearest first. Only edges of face-stack bodies take part
+    // (`stackEdge`); the others are mere breakpoints ("transparent" for the stacks).
+    std::vector<int> stack;
+    bool stackEdge = false;
+    // x is not finite on this row (a conic leg traced just past its end): the edge takes no
+    // part in the stacks until it is found again, when its stack is derived afresh.
+    bool lost = false;
+    // Pass three must derive `stack` again from the left neighbour's stack (⊕ this edge's
+    // faces): the edge moved left in pass two, started on this row, or a neighbour changed.
+    bool derive = false;
+    // `stack` still holds a set that was right for this edge (so that the derived set can be
+    // compared with it); false when it was given away in a swap or never set.
+    bool carriedValid = true;
+    // After deriving, mark the next stack edge for derivation too: always when !carriedValid,
+    // else when the derived set differs from the carried one (the change runs on to the right
+    // until a derived stack equals the carried one).
+    bool propagate = false;
+    bool found = false;  // pass two only: x finite again after being lost
+    // On its last row, when that row's centre is the edge's top end (snapped, SnapToRow): the
+    // edge stays a breakpoint (BuildEsl's closed range) but no longer toggles faces — the
+    // half-open rule [yBottom, yTop) that makes a vertex exactly on a row centre toggle its
+    // faces once, through the edges that leave it downwards.
+    bool ending = false;
 };
 
-double SortKey(double x) { return std::isnan(x) ? HUGE_VAL : x; }
+double SortKey(double x) { return std::isfinite(x) ? x : HUGE_VAL; }
 
 // An edge end within 1e-9 (relative) of a row centre j + ½ is put exactly on it: the vertex
 // shared by two edges is computed separately for each (different i-lines, different rounding),
@@ -201,8 +224,44 @@ struct BodyTemplate {
 };
 struct CsgSpanUnit {
     int unit = -1;
-    std::size_t firstTemplate = 0, templateCount = 0;
+    int root = -1;  // its tree pruned to the operands present in the span (ScanRenderer::PNode)
 };
+// A node of a pruned CSG tree: a leaf (body, template index or −1 = exact) or an operation on
+// pKids_[first, first + count).
+struct PNode {
+    bool leaf = false;
+    int body = -1, tmpl = -1;
+    scene::CsgOp op = scene::CsgOp::kUnion;
+    std::size_t first = 0, count = 0;
+};
+// A CSG operand's template kept across spans: per interval its two ends (the evaluator's tag,
+// −1 for an infinite end, and the sheet), valid on row `row` while `passed` own crossings lie left.
+struct CachedEnd {
+    int tag = -1, sheet = 0;
+};
+struct CachedTemplate {
+    int row = -1, passed = -1;
+    std::vector<std::array<CachedEnd, 2>> ends;
+};
+struct SpanLeaf {
+    int unit = -1, leaf = -1, tmpl = -1;
+};
+// A body whose bounds reach an image side: its coverage of that side's pixel is evaluated per
+// row (it may have no crossing on the row and still cover it).
+struct SideBody {
+    int body = -1;
+    bool left = false, right = false;
+    int y0 = 0, y1 = -1;
+};
+constexpr double kRangeMargin = 1e-3;  // px: exact pixels take operands this near their range
+
+// Inclusive pixel range of the centres i + ½ inside [lo, hi], clipped to [0, n) (as the
+// engine's units are made).
+void PixelRange(double lo, double hi, int n, int& a, int& b) {
+    double fa = std::ceil(lo - 0.5), fb = std::floor(hi - 0.5);
+    a = static_cast<int>(std::clamp(std::isnan(fa) ? 0.0 : fa, 0.0, static_cast<double>(n)));
+    b = static_cast<int>(std::clamp(std::isnan(fb) ? n - 1.0 : fb, -1.0, n - 1.0));
+}
 
 // The Edge Start List: per row, the edges (index, last row) that start there.
 std::vector<std::vector<std::pair<int, int>>> BuildEsl(const std::vector<ShowEdge>& edges, int h) {
@@ -256,7 +315,9 @@ class ScanRenderer {
             auto b = static_cast<std::size_t>(faces[f].body);
             if (b < nb) bodyFaces_[b].push_back(static_cast<int>(f));
         }
-        inStack_.assign(faces.size(), 0);
+        markP_.assign(faces.size(), 0);
+        markT_.assign(faces.size(), 0);
+        for (char u : useStack_) stackOn_ = stackOn_ || u;
         bodyLiterals_.resize(nb);
         for (std::size_t b = 0; b < nb; ++b) {
             if (!useStack_[b]) continue;
@@ -278,6 +339,83 @@ class ScanRenderer {
             }
         }
         bodyTaken_.assign(nb, 0);
+        PrepareCsg(scene, units, pixelBody);
+    }
+
+    // Tables for the row and span work (UpdateActiveUnits, the per-row body ranges, pruned
+    // CSG trees): parents and child positions of tree nodes, each body's leaves, the bodies
+    // per unit that are refused or may cover an image side, the units sorted on y0.
+    void PrepareCsg(const FlatScene& scene, const std::vector<Unit>& units,
+                    const std::vector<bool>& pixelBody) {
+        const std::size_t nn = scene.nodes.size(), nb = scene.bodies.size();
+        parent_.assign(nn, -1);
+        childPos_.assign(nn, 0);
+        for (std::size_t n = 0; n < nn; ++n) {
+            const FlatCsgNode& node = scene.nodes[n];
+            if (node.isLeaf) continue;
+            for (std::size_t c = 0; c < node.children.size(); ++c) {
+                const int ch = node.children[c];
+                if (ch < 0 || static_cast<std::size_t>(ch) >= nn) continue;
+                parent_[static_cast<std::size_t>(ch)] = static_cast<int>(n);
+                childPos_[static_cast<std::size_t>(ch)] = static_cast<int>(c);
+            }
+        }
+        touchGen_.assign(nn, 0);
+        leafPNode_.assign(nn, -1);
+        touchedKids_.assign(nn, {});
+        bodyLeaves_.assign(nb, {});
+        unitPixelBodies_.assign(units.size(), {});
+        unitSideBodies_.assign(units.size(), {});
+        unitStamp_.assign(units.size(), 0);
+        const int w = frame_.width;
+        std::size_t depth = 1;
+        for (std::size_t u = 0; u < units.size(); ++u) {
+            const Unit& unit = units[u];
+            if (unit.kind == Unit::Kind::kBody) {
+                const auto b = static_cast<std::size_t>(unit.body);
+                if (pixelBody[b]) {
+                    unitPixelBodies_[u].push_back(unit.body);
+                } else if (!useStack_[b] && (unit.x0 == 0 || unit.x1 == w - 1)) {
+                    unitSideBodies_[u].push_back(
+                        {unit.body, unit.x0 == 0, unit.x1 == w - 1, unit.y0, unit.y1});
+                }
+                continue;
+            }
+            // The tree's leaves (depth-first), each body's bounds for the side checks.
+            std::vector<std::pair<int, std::size_t>> todo{{unit.node, 1}};
+            while (!todo.empty()) {
+                auto [n, d] = todo.back();
+                todo.pop_back();
+                if (n < 0 || static_cast<std::size_t>(n) >= nn) continue;
+                depth = std::max(depth, d);
+                const FlatCsgNode& node = scene.nodes[static_cast<std::size_t>(n)];
+                if (!node.isLeaf) {
+                    for (int c : node.children) todo.push_back({c, d + 1});
+                    continue;
+                }
+                if (node.body < 0 || static_cast<std::size_t>(node.body) >= nb) continue;
+                const auto b = static_cast<std::size_t>(node.body);
+                bodyLeaves_[b].push_back({static_cast<int>(u), n});
+                if (pixelBody[b]) {
+                    unitPixelBodies_[u].push_back(node.body);
+                    continue;
+                }
+                const Box3& box = scene.bodies[b].bounds;
+                if (box.Empty()) continue;
+                int x0, x1, y0, y1;
+                PixelRange(box.lo.x, box.hi.x, w, x0, x1);
+                PixelRange(box.lo.y, box.hi.y, frame_.height, y0, y1);
+                if (x1 < x0 || y1 < y0) continue;
+                if (x0 == 0 || x1 == w - 1)
+                    unitSideBodies_[u].push_back({node.body, x0 == 0, x1 == w - 1, y0, y1});
+            }
+        }
+        pool_.resize(2 * depth + 4);
+        unitsByY_.resize(units.size());
+        for (std::size_t u = 0; u < units.size(); ++u) unitsByY_[u] = static_cast<int>(u);
+        std::stable_sort(unitsByY_.begin(), unitsByY_.end(), [&](int p, int q) {
+            return units[static_cast<std::size_t>(p)].y0 < units[static_cast<std::size_t>(q)].y0;
+        });
     }
 
     // Rows [j0, j1): a band. Bands are independent (each starts its AEL from the ESL), so they
@@ -290,11 +428,16 @@ class ScanRenderer {
         lo_.assign(nb, HUGE_VAL);
         hi_.assign(nb, -HUGE_VAL);
         rangeRow_.assign(nb, -1);
+        ownPassed_.assign(nb, 0);
+        tmplCache_.assign(nb, {});
+        activeUnits_.clear();
+        unitPos_ = 0;
         for (int j = j0; j < j1; ++j) Row(j, j == j0);
     }
 
     void Start(ActiveEdge& a, double y) {
         const ShowEdge& s = edges_[static_cast<std::size_t>(a.edge)];
+        a.stackEdge = stackOn_ && useStack_[static_cast<std::size_t>(s.body)];
         if (s.conic) {
             const Conic2& k = s.shape;
             a.br = k.c * y + k.d;
@@ -335,12 +478,15 @@ class ScanRenderer {
 
     void Row(int j, bool bandStart) {
         const double yc = j + 0.5;
-        // Pass one: finishing edges leave, starting edges enter (at a band's first row, every
-        // edge that started on an earlier row and is still active).
-        std::size_t keep = 0;
-        for (ActiveEdge& a : ael_)
-            if (a.lastRow >= j) ael_[keep++] = a;
-        ael_.resize(keep);
+        // Pass one (finishing edges) and pass two (x on the CSL, x order by adjacent swaps),
+        // with the face stacks carried through both; starting edges enter after the sort.
+        RemoveFinishingEdges(j);
+        TraceAndSort();
+        // Starting edges (at a band's first row, every edge that started on an earlier row and
+        // is still active): merged into x order WITHOUT stack updates — they did not cross the
+        // edges they come between, they appear there. Their stacks are derived in pass three
+        // from the left neighbour's (the recursive vertex processing of §5.4, see DeriveEdge).
+        starting_.clear();
         for (int r = bandStart ? 0 : j; r <= j; ++r) {
             for (auto [e, last] : (*esl_)[static_cast<std::size_t>(r)]) {
                 if (last < j) continue;
@@ -349,68 +495,91 @@ class ScanRenderer {
                 a.lastRow = last;
                 Start(a, yc);
                 Trace(a, true);
-                ael_.push_back(a);
+                a.lost = !std::isfinite(a.x);
+                a.ending = EndsOnRow(a, j);
+                MarkFresh(a);
+                starting_.push_back(std::move(a));
             }
         }
-        // Pass two: advance the others and keep x order (insertion sort, swaps counted).
-        for (std::size_t i = 0; i < keep; ++i) Trace(ael_[i], false);
-        for (std::size_t i = 1; i < ael_.size(); ++i) {
-            ActiveEdge a = ael_[i];
-            std::size_t k = i;
-            while (k > 0 && SortKey(ael_[k - 1].x) > SortKey(a.x)) {
-                ael_[k] = ael_[k - 1];
-                --k;
-                ++c_.edgeSwaps;
+        if (!starting_.empty()) {  // merged in: O(AEL + starting), not a swap per edge passed
+            std::stable_sort(starting_.begin(), starting_.end(),
+                             [](const ActiveEdge& p, const ActiveEdge& q) {
+                                 return SortKey(p.x) < SortKey(q.x);
+                             });
+            merged_.clear();
+            merged_.reserve(ael_.size() + starting_.size());
+            std::size_t p = 0, q = 0;
+            while (p < ael_.size() || q < starting_.size()) {
+                const bool takeOld =
+                    q == starting_.size() ||
+                    (p < ael_.size() && SortKey(ael_[p].x) <= SortKey(starting_[q].x));
+                merged_.push_back(std::move(takeOld ? ael_[p++] : starting_[q++]));
             }
-            ael_[k] = a;
+            ael_.swap(merged_);
         }
         // Per-body x ranges on this row: the crossings of the body's show-edges, opened toward
-        // an image side when the body covers that side's pixel; refused bodies: their bounds.
+        // an image side when the body covers that side's pixel; refused bodies: their unit's
+        // bounds. Only bodies met on this row are touched (rowBodies_): the work per row grows
+        // with the active edges, not with the bodies of the scene or the operands of a tree.
         const int w = frame_.width;
-        activeUnits_.clear();
-        for (std::size_t u = 0; u < units_.size(); ++u) {
-            const Unit& unit = units_[u];
-            if (j < unit.y0 || j > unit.y1 || unit.x1 < unit.x0) continue;
-            activeUnits_.push_back(static_cast<int>(u));
-            ForBodies(unit, [&](int b) {
-                auto k = static_cast<std::size_t>(b);
-                rangeRow_[k] = j;
-                lo_[k] = pixelBody_[k] ? unit.x0 : HUGE_VAL;
-                hi_[k] = pixelBody_[k] ? unit.x1 + 1.0 : -HUGE_VAL;
-            });
-        }
+        UpdateActiveUnits(j);
+        rowBodies_.clear();
         breaks_.clear();
+        breakBody_.clear();
         for (const ActiveEdge& a : ael_) {
             if (!std::isfinite(a.x)) continue;
             breaks_.push_back(a.x);
-            auto b = static_cast<std::size_t>(edges_[static_cast<std::size_t>(a.edge)].body);
-            if (rangeRow_[b] != j) continue;
-            lo_[b] = std::min(lo_[b], a.x);
-            hi_[b] = std::max(hi_[b], a.x);
+            const int b = edges_[static_cast<std::size_t>(a.edge)].body;
+            breakBody_.push_back(b);
+            TouchBody(b, j);
+            lo_[static_cast<std::size_t>(b)] = std::min(lo_[static_cast<std::size_t>(b)], a.x);
+            hi_[static_cast<std::size_t>(b)] = std::max(hi_[static_cast<std::size_t>(b)], a.x);
         }
         for (int u : activeUnits_) {
             const Unit& unit = units_[static_cast<std::size_t>(u)];
-            ForBodies(unit, [&](int b) {
+            for (int b : unitPixelBodies_[static_cast<std::size_t>(u)]) {
+                TouchBody(b, j);
                 auto k = static_cast<std::size_t>(b);
-                if (pixelBody_[k] || useStack_[k]) return;  // stack bodies: SeedStack
-                if (unit.x0 == 0 && lo_[k] > -HUGE_VAL) {
+                lo_[k] = std::min(lo_[k], static_cast<double>(unit.x0));
+                hi_[k] = std::max(hi_[k], unit.x1 + 1.0);
+            }
+            for (const SideBody& sb : unitSideBodies_[static_cast<std::size_t>(u)]) {
+                if (j < sb.y0 || j > sb.y1) continue;
+                const auto k = static_cast<std::size_t>(sb.body);
+                const bool touched = rangeRow_[k] == j;
+                if (sb.left && (!touched || lo_[k] > -HUGE_VAL)) {
                     ++c_.sideEvaluations;
-                    if (SideCovered(b, 0.5, yc)) lo_[k] = -HUGE_VAL;
+                    if (SideCovered(sb.body, 0.5, yc)) {
+                        TouchBody(sb.body, j);
+                        lo_[k] = -HUGE_VAL;
+                        hi_[k] = std::max(hi_[k], 0.5);
+                    }
                 }
-                if (unit.x1 == w - 1 && hi_[k] < HUGE_VAL) {
+                if (sb.right && (rangeRow_[k] != j || hi_[k] < HUGE_VAL)) {
                     ++c_.sideEvaluations;
-                    if (SideCovered(b, w - 0.5, yc)) hi_[k] = HUGE_VAL;
+                    if (SideCovered(sb.body, w - 0.5, yc)) {
+                        TouchBody(sb.body, j);
+                        hi_[k] = HUGE_VAL;
+                        lo_[k] = std::min(lo_[k], w - 0.5);
+                    }
                 }
-            });
+            }
         }
-        if (settings_.faceStacks) SeedStack(yc);
+        std::sort(rowBodies_.begin(), rowBodies_.end(), [&](int p, int q) {
+            return lo_[static_cast<std::size_t>(p)] < lo_[static_cast<std::size_t>(q)] ||
+                   (lo_[static_cast<std::size_t>(p)] == lo_[static_cast<std::size_t>(q)] && p < q);
+        });
+        sweepPos_ = 0;
+        spanBodies_.clear();
+        if (stackOn_) SeedStack(yc);
         // Pass three: spans between crossings.
         std::size_t k = 0;
         int i = 0;
         while (i < w) {
             const double xc = i + 0.5;
-            const bool straddle = settings_.faceStacks && ApplyEdgesBefore(xc, yc);
-            while (k < breaks_.size() && breaks_[k] < xc - kOnEdge) ++k;
+            const bool straddle = stackOn_ && ApplyEdgesBefore(xc, yc);
+            while (k < breaks_.size() && breaks_[k] < xc - kOnEdge)
+                ++ownPassed_[static_cast<std::size_t>(breakBody_[k++])];
             if (straddle || (k < breaks_.size() && breaks_[k] <= xc + kOnEdge)) {
                 ExactPixel(i, j);
                 ++i;
@@ -427,15 +596,35 @@ class ScanRenderer {
             Span(i, end, j);
             i = end + 1;
         }
+        // The walk goes on past the image's right side: every stack must be consistent (and
+        // verified) before it is carried to the next row.
+        if (stackOn_) ApplyEdgesBefore(HUGE_VAL, yc);
     }
 
-    template <class Fn>
-    static void ForBodies(const Unit& unit, Fn&& fn) {
-        if (unit.kind == Unit::Kind::kBody) {
-            fn(unit.body);
-        } else {
-            for (int b : unit.bodies) fn(b);
+    // First touch of body b on row j: its x range starts empty and it joins rowBodies_.
+    void TouchBody(int b, int j) {
+        const auto k = static_cast<std::size_t>(b);
+        if (rangeRow_[k] == j) return;
+        rangeRow_[k] = j;
+        lo_[k] = HUGE_VAL;
+        hi_[k] = -HUGE_VAL;
+        ownPassed_[k] = 0;
+        rowBodies_.push_back(b);
+    }
+
+    // The units whose bounds hold row j, kept by a sweep over the units sorted on y0 (a band
+    // starts it at its first row), so that a row costs the units active there, not all units.
+    void UpdateActiveUnits(int j) {
+        while (unitPos_ < unitsByY_.size() &&
+               units_[static_cast<std::size_t>(unitsByY_[unitPos_])].y0 <= j) {
+            const int u = unitsByY_[unitPos_++];
+            const Unit& unit = units_[static_cast<std::size_t>(u)];
+            if (unit.y1 >= j && unit.x1 >= unit.x0) activeUnits_.push_back(u);
         }
+        std::size_t keep = 0;
+        for (int u : activeUnits_)
+            if (units_[static_cast<std::size_t>(u)].y1 >= j) activeUnits_[keep++] = u;
+        activeUnits_.resize(keep);
     }
 
     // Whether the body's set on the ray has any finite endpoint or covers it (for the x range we
@@ -446,18 +635,51 @@ class ScanRenderer {
         return !l.empty();
     }
 
-    bool Overlaps(const Unit& unit, int i0, int i1) const {
-        bool any = false;
-        ForBodies(unit, [&](int b) {
-            auto k = static_cast<std::size_t>(b);
-            any = any || (lo_[k] <= i1 + 0.5 && hi_[k] >= i0 + 0.5);
-        });
-        return any;
+    // The sweep of pass three over rowBodies_ (sorted on lo): spanBodies_ holds the bodies whose
+    // x range meets the pixel centres i0 + ½ … i1 + ½. Spans come left to right, so each body
+    // enters once and leaves once per row.
+    void SweepTo(int i0, int i1) {
+        while (sweepPos_ < rowBodies_.size() &&
+               lo_[static_cast<std::size_t>(rowBodies_[sweepPos_])] <= i1 + 0.5)
+            spanBodies_.push_back(rowBodies_[sweepPos_++]);
+        std::size_t keep = 0;
+        for (int b : spanBodies_)
+            if (hi_[static_cast<std::size_t>(b)] >= i0 + 0.5) spanBodies_[keep++] = b;
+        spanBodies_.resize(keep);
     }
 
-    bool EvaluateUnit(const Unit& unit, double x, double y, RayEvaluator::Hit& hit) {
-        return unit.kind == Unit::Kind::kCsg ? eval_.Node(unit.node, x, y, hit)
-                                             : eval_.Body(unit.body, x, y, hit);
+    bool EvaluateUnit(int u, double x, double y, RayEvaluator::Hit& hit) {
+        const Unit& unit = units_[static_cast<std::size_t>(u)];
+        if (unit.kind != Unit::Kind::kCsg) return eval_.Body(unit.body, x, y, hit);
+        if (!settings_.csgTemplates) return eval_.Node(unit.node, x, y, hit);  // csg=pixels
+        // The tree pruned to the operands whose x range on this row holds x (the others are
+        // empty on this ray), each evaluated exactly.
+        pruneLeaves_.clear();
+        for (int b : rowBodies_) {
+            const auto k = static_cast<std::size_t>(b);
+            if (lo_[k] > x + kRangeMargin) break;  // sorted on lo
+            if (hi_[k] < x - kRangeMargin) continue;
+            for (auto [lu, leaf] : bodyLeaves_[k])
+                if (lu == u) pruneLeaves_.push_back({leaf, -1});
+        }
+        // Appended after the span's pruned trees (an exact pixel inside a span), then dropped.
+        const std::size_t nodes = pNodes_.size(), kids = pKids_.size();
+        const int root = BuildPruned(unit.node, pruneLeaves_);
+        bool found = false;
+        if (root >= 0) {
+            IntervalList& l = Pool(0);
+            bool broken = false;
+            EvalPruned(root, 1, x, y, l, broken, true);
+            found = eval_.First(l, hit);
+        }
+        pNodes_.resize(nodes);
+        pKids_.resize(kids);
+        return found;
+    }
+
+    bool RowActive(int u, int j) const {
+        const Unit& unit = units_[static_cast<std::size_t>(u)];
+        return j >= unit.y0 && j <= unit.y1 && unit.x1 >= unit.x0;
     }
 
     void ExactPixel(int i, int j) {
@@ -469,7 +691,7 @@ class ScanRenderer {
             const Unit& unit = units_[static_cast<std::size_t>(u)];
             if (i < unit.x0 || i > unit.x1) continue;
             RayEvaluator::Hit hit;
-            if (EvaluateUnit(unit, x, y, hit) &&
+            if (EvaluateUnit(u, x, y, hit) &&
                 (hit.t < best.t || (hit.t == best.t && unit.solid < bestSolid))) {
                 best = hit;
                 bestSolid = unit.solid;
@@ -518,7 +740,11 @@ class ScanRenderer {
         ++c_.depthCalcs;
         const raycast::RayHalfSpace& r = *f.ray;
         if (r.isPlane) return r.c != 0 ? -f.planeE / r.c : std::numeric_limits<double>::quiet_NaN();
-        QuadraticRoots roots = SolveQuadratic(r.c, f.h, f.k);
+        return SheetDepth(f, SolveQuadratic(r.c, f.h, f.k));
+    }
+    // The depth of f's sheet from the roots of its quadric on the current ray.
+    static double SheetDepth(const StackFace& f, const QuadraticRoots& roots) {
+        const raycast::RayHalfSpace& r = *f.ray;
         switch (roots.kind) {
             case RootKind::kTwo:
                 return r.z0 + (f.sheet == 1 ? roots.t1 : roots.t0);
@@ -584,29 +810,56 @@ class ScanRenderer {
         return f;
     }
 
-    // The template of one CSG operand body in this span (see renderer.h).
-    void BuildTemplate(const Unit& unit, int body, int i0, int i1, int sample, double y) {
+    // The template of one CSG operand body in this span (see renderer.h); its index. A body's
+    // interval structure holds from one of its own crossings to the next (every boundary of
+    // its faces is one of its show-edges), not only within one span: spans are also cut by the
+    // crossings of other bodies. So the structure read at one span's sample (which faces bound
+    // which intervals) is kept per body and reused, with the faces re-seeked to the span's
+    // first pixel, until the row passes another crossing of the body (ownPassed_).
+    int BuildTemplate(int body, int i0, int sample, double y) {
+        const auto k = static_cast<std::size_t>(body);
         BodyTemplate t;
         t.body = body;
         t.first = tIntervals_.size();
-        auto k = static_cast<std::size_t>(body);
         if (pixelBody_[k]) {
             t.exact = true;
-        } else if (lo_[k] <= i1 + 0.5 && hi_[k] >= i0 + 0.5) {
-            ++c_.csgTemplateBodies;
-            IntervalList l;
-            eval_.BodySet(body, sample + 0.5, y, l);
-            for (const Interval& v : l) {
+        } else {
+            const int row = static_cast<int>(std::floor(y));
+            CachedTemplate& cache = tmplCache_[k];
+            if (cache.row != row || cache.passed != ownPassed_[k]) {
+                ++c_.csgTemplateBodies;
+                cache.row = row;
+                cache.passed = ownPassed_[k];
+                cache.ends.clear();
+                IntervalList l;
+                eval_.BodySet(body, sample + 0.5, y, l);
+                for (const Interval& v : l) {
+                    std::array<CachedEnd, 2> ends;
+                    for (int end = 0; end < 2; ++end) {
+                        const double tv = end == 0 ? v.lo : v.hi;
+                        const int id = end == 0 ? v.loId : v.hiId;
+                        if (id < 0 || !std::isfinite(tv)) continue;  // an infinite end
+                        const int hs = eval_.TagHalfSpace(id);
+                        ends[static_cast<std::size_t>(end)] = {id,
+                                                               MakeFace(hs, tv, sample, y).sheet};
+                    }
+                    cache.ends.push_back(ends);
+                }
+            } else {
+                ++c_.csgTemplateReuses;
+            }
+            for (const std::array<CachedEnd, 2>& ends : cache.ends) {
                 TemplateInterval ti;
                 for (int end = 0; end < 2; ++end) {
-                    double tv = end == 0 ? v.lo : v.hi;
-                    int id = end == 0 ? v.loId : v.hiId;
-                    if (id < 0 || !std::isfinite(tv)) continue;
-                    StackFace f = MakeFace(eval_.TagHalfSpace(id), tv, sample, y);
-                    f.solid = unit.solid;
+                    const CachedEnd& ce = ends[static_cast<std::size_t>(end)];
+                    if (ce.tag < 0) continue;
+                    StackFace f;
+                    f.halfSpace = eval_.TagHalfSpace(ce.tag);
+                    f.ray = &eval_.Ray(f.halfSpace);
+                    f.sheet = ce.sheet;
                     SeekFace(f, i0, y);
                     (end == 0 ? ti.lo : ti.hi) = static_cast<int>(tFaces_.size());
-                    (end == 0 ? ti.loTag : ti.hiTag) = id;
+                    (end == 0 ? ti.loTag : ti.hiTag) = ce.tag;
                     tFaces_.push_back(f);
                 }
                 tIntervals_.push_back(ti);
@@ -614,42 +867,170 @@ class ScanRenderer {
         }
         t.count = tIntervals_.size() - t.first;
         templates_.push_back(t);
+        return static_cast<int>(templates_.size()) - 1;
     }
 
-    // The CSG unit's visible point at pixel i from its templates; false when nothing is visible.
-    // `exact` is set when a template could not be used here (then the tree was evaluated exactly).
-    bool CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit) {
-        const Unit& unit = units_[static_cast<std::size_t>(cu.unit)];
-        ++c_.csgPixels;
-        bool broken = false;
-        auto leaf = [&](int body, IntervalList& out) {
-            out.clear();
-            const BodyTemplate* t = nullptr;
-            for (std::size_t k = cu.firstTemplate; k < cu.firstTemplate + cu.templateCount; ++k)
-                if (templates_[k].body == body) t = &templates_[k];
-            if (!t || t->exact) {
-                eval_.BodySet(body, i + 0.5, y, out);
+    // The set of template t at the current pixel (depths from the span shader's conics).
+    // `broken` when the template does not hold here (a root vanished, the order changed).
+    void TemplateSet(int tmpl, IntervalList& out, bool& broken) {
+        out.clear();
+        const BodyTemplate& t = templates_[static_cast<std::size_t>(tmpl)];
+        double prevLo = -HUGE_VAL;
+        for (std::size_t k = t.first; k < t.first + t.count; ++k) {
+            const TemplateInterval& ti = tIntervals_[k];
+            double lo = ti.lo < 0 ? -HUGE_VAL : tFaces_[static_cast<std::size_t>(ti.lo)].depth;
+            double hi = ti.hi < 0 ? HUGE_VAL : tFaces_[static_cast<std::size_t>(ti.hi)].depth;
+            if (std::isnan(lo) || std::isnan(hi) || lo < prevLo) {
+                broken = true;
                 return;
             }
-            double prevLo = -HUGE_VAL;
-            for (std::size_t k = t->first; k < t->first + t->count; ++k) {
-                const TemplateInterval& ti = tIntervals_[k];
-                double lo = ti.lo < 0 ? -HUGE_VAL : tFaces_[static_cast<std::size_t>(ti.lo)].depth;
-                double hi = ti.hi < 0 ? HUGE_VAL : tFaces_[static_cast<std::size_t>(ti.hi)].depth;
-                if (std::isnan(lo) || std::isnan(hi) || lo < prevLo) {
-                    broken = true;  // order changed or a root vanished: the template does not hold
-                    return;
+            prevLo = lo;
+            out.Append(lo, ti.lo < 0 ? Interval::kNoId : ti.loTag, hi,
+                       ti.hi < 0 ? Interval::kNoId : ti.hiTag);
+        }
+    }
+
+    // ---- CSG trees pruned to the operands present (per span, or per exact pixel) ----
+    //
+    // A leaf whose body's x range on the row misses the span (or the pixel) has an empty set
+    // there, and ∅ is the identity of union and of the subtrahends of a difference and absorbs
+    // intersections and minuends. So the tree is rebuilt over the leaves present only: each
+    // present leaf marks its ancestors (stopping at one already marked), and the marked nodes
+    // are assembled bottom-up with their present children in the original order (the interval
+    // operations then run on the same operands in the same order as the full tree's: the same
+    // result, bit for bit). The cost is the present leaves × the tree depth, not the tree size:
+    // a union of 10,000 spheres costs per span the few spheres the span meets.
+    int BuildPruned(int root, const std::vector<std::pair<int, int>>& leaves) {
+        if (++pruneGen_ == 0) {
+            std::fill(touchGen_.begin(), touchGen_.end(), 0);
+            pruneGen_ = 1;
+        }
+        for (auto [leaf, tmpl] : leaves) {
+            const auto l = static_cast<std::size_t>(leaf);
+            if (touchGen_[l] == pruneGen_) continue;  // a leaf listed twice
+            touchGen_[l] = pruneGen_;
+            leafPNode_[l] = static_cast<int>(pNodes_.size());
+            PNode pn;
+            pn.leaf = true;
+            pn.body = scene_.nodes[l].body;
+            pn.tmpl = tmpl;
+            pNodes_.push_back(pn);
+            int c = leaf;
+            for (int p = parent_[l]; p >= 0; c = p, p = parent_[static_cast<std::size_t>(p)]) {
+                const auto pk = static_cast<std::size_t>(p);
+                if (touchGen_[pk] == pruneGen_) {
+                    touchedKids_[pk].push_back(c);
+                    break;
                 }
-                prevLo = lo;
-                out.Append(lo, ti.lo < 0 ? Interval::kNoId : ti.loTag, hi,
-                           ti.hi < 0 ? Interval::kNoId : ti.hiTag);
+                touchGen_[pk] = pruneGen_;
+                touchedKids_[pk].assign(1, c);
             }
-        };
-        IntervalList l;
-        eval_.TreeSet(unit.node, leaf, l);
+        }
+        if (touchGen_[static_cast<std::size_t>(root)] != pruneGen_) return -1;
+        return Assemble(root);
+    }
+
+    int Assemble(int node) {
+        const auto nk = static_cast<std::size_t>(node);
+        const FlatCsgNode& n = scene_.nodes[nk];
+        if (n.isLeaf) return leafPNode_[nk];
+        std::vector<int>& kids = touchedKids_[nk];
+        std::sort(kids.begin(), kids.end(), [&](int p, int q) {
+            return childPos_[static_cast<std::size_t>(p)] < childPos_[static_cast<std::size_t>(q)];
+        });
+        std::vector<int> built;
+        built.reserve(kids.size());
+        if (n.op == scene::CsgOp::kIntersection) {
+            if (kids.size() != n.children.size()) return -1;  // an operand is empty: ∅
+            for (int k : kids) {
+                const int r = Assemble(k);
+                if (r < 0) return -1;
+                built.push_back(r);
+            }
+        } else if (n.op == scene::CsgOp::kUnion) {
+            for (int k : kids)
+                if (const int r = Assemble(k); r >= 0) built.push_back(r);
+            if (built.empty()) return -1;
+        } else {  // difference: the minuend must be present; absent subtrahends drop out
+            if (kids.empty() || kids.front() != n.children.front()) return -1;
+            for (std::size_t i = 0; i < kids.size(); ++i) {
+                const int r = Assemble(kids[i]);
+                if (i == 0 && r < 0) return -1;
+                if (r >= 0) built.push_back(r);
+            }
+        }
+        if (built.size() == 1) return built.front();
+        PNode pn;
+        pn.op = n.op;
+        pn.first = pKids_.size();
+        pn.count = built.size();
+        pKids_.insert(pKids_.end(), built.begin(), built.end());
+        pNodes_.push_back(pn);
+        return static_cast<int>(pNodes_.size()) - 1;
+    }
+
+    IntervalList& Pool(std::size_t i) { return pool_[i]; }
+
+    // The set of pruned node pn on the ray through (x, y): template leaves from the span's
+    // templates (exact leaves, or all leaves with `exact`, by the interval code of raycast),
+    // combined as RayEvaluator::TreeSet does. Scratch lists come from pool_ by depth.
+    void EvalPruned(int pn, std::size_t depth, double x, double y, IntervalList& out, bool& broken,
+                    bool exact) {
+        const PNode& p = pNodes_[static_cast<std::size_t>(pn)];
+        if (p.leaf) {
+            if (exact || p.tmpl < 0)
+                eval_.BodySet(p.body, x, y, out);
+            else
+                TemplateSet(p.tmpl, out, broken);
+            return;
+        }
+        out.clear();
+        IntervalList& operand = Pool(2 * depth);
+        IntervalList& tmp = Pool(2 * depth + 1);
+        for (std::size_t i = 0; i < p.count; ++i) {
+            if (i > 0 && out.empty() && p.op != scene::CsgOp::kUnion) return;
+            const int kid = pKids_[p.first + i];
+            if (i == 0) {
+                EvalPruned(kid, depth + 1, x, y, out, broken, exact);
+                if (broken) return;
+                continue;
+            }
+            EvalPruned(kid, depth + 1, x, y, operand, broken, exact);
+            if (broken) return;
+            if (operand.empty()) {
+                if (p.op == scene::CsgOp::kIntersection) out.clear();
+                continue;
+            }
+            if (out.empty()) {
+                std::swap(out, operand);
+                continue;
+            }
+            switch (p.op) {
+                case scene::CsgOp::kUnion:
+                    Union(out, operand, tmp);
+                    break;
+                case scene::CsgOp::kIntersection:
+                    Intersection(out, operand, tmp);
+                    break;
+                default:
+                    Difference(out, operand, tmp);
+                    break;
+            }
+            std::swap(out, tmp);
+        }
+    }
+
+    // The CSG unit's visible point at pixel i from its pruned tree and templates; false when
+    // nothing is visible. Where a template does not hold, the pruned tree is evaluated exactly.
+    bool CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit) {
+        ++c_.csgPixels;
+        bool broken = false;
+        IntervalList& l = Pool(0);
+        EvalPruned(cu.root, 1, i + 0.5, y, l, broken, false);
         if (broken) {
             ++c_.csgFallbackPixels;
-            return eval_.Node(unit.node, i + 0.5, y, hit);
+            broken = false;
+            EvalPruned(cu.root, 1, i + 0.5, y, l, broken, true);
         }
         return eval_.First(l, hit);
     }
@@ -664,36 +1045,64 @@ class ScanRenderer {
         tIntervals_.clear();
         tFaces_.clear();
         const int sample = (i0 + i1) / 2;
-        for (int u : activeUnits_) {
-            const Unit& unit = units_[static_cast<std::size_t>(u)];
-            if (!Overlaps(unit, i0, i1)) continue;
-            if (unit.kind == Unit::Kind::kCsg) {
-                if (!settings_.csgTemplates) {
+        // The bodies whose x range meets the span, from the row's sweep (not all bodies).
+        SweepTo(i0, i1);
+        if (++spanGen_ == 0) {
+            std::fill(unitStamp_.begin(), unitStamp_.end(), 0);
+            spanGen_ = 1;
+        }
+        pNodes_.clear();
+        pKids_.clear();
+        spanLeaves_.clear();
+        for (int b : spanBodies_) {
+            const auto k = static_cast<std::size_t>(b);
+            const int u = bodyUnit_[k];
+            if (u >= 0 && RowActive(u, j)) {  // a body drawn on its own
+                const Unit& unit = units_[static_cast<std::size_t>(u)];
+                if (pixelBody_[k]) {
                     perPixel_.push_back(u);
+                } else if (!useStack_[k]) {  // stack bodies: TakeStackFaces below
+                    RayEvaluator::Hit hit;
+                    ++c_.sampleEvaluations;
+                    if (eval_.Body(b, sample + 0.5, y, hit)) {
+                        StackFace f = MakeFace(hit.halfSpace, hit.t, sample, y);
+                        f.unit = u;
+                        f.body = hit.body;
+                        f.solid = unit.solid;
+                        if (settings_.fastShading)
+                            f.fastNormal = Normal(f.halfSpace, sample + 0.5, y, hit.t);
+                        InsertFace(f, sample + 0.5, y);
+                    }
+                }
+            }
+            int tmpl = -2;  // one template per body and span, built when a CSG leaf needs it
+            for (auto [lu, leaf] : bodyLeaves_[k]) {
+                if (!RowActive(lu, j)) continue;
+                if (!settings_.csgTemplates) {  // csg=pixels: the whole tree per pixel
+                    if (unitStamp_[static_cast<std::size_t>(lu)] != spanGen_) {
+                        unitStamp_[static_cast<std::size_t>(lu)] = spanGen_;
+                        perPixel_.push_back(lu);
+                    }
                     continue;
                 }
-                CsgSpanUnit cu{u, templates_.size(), 0};
-                for (int b : unit.bodies) BuildTemplate(unit, b, i0, i1, sample, y);
-                cu.templateCount = templates_.size() - cu.firstTemplate;
-                csgUnits_.push_back(cu);
-                continue;
+                if (tmpl == -2) tmpl = BuildTemplate(b, i0, sample, y);
+                spanLeaves_.push_back({lu, leaf, tmpl});
             }
-            if (pixelBody_[static_cast<std::size_t>(unit.body)]) {
-                perPixel_.push_back(u);
-                continue;
-            }
-            if (useStack_[static_cast<std::size_t>(unit.body)]) continue;  // below
-            RayEvaluator::Hit hit;
-            ++c_.sampleEvaluations;
-            if (!eval_.Body(unit.body, sample + 0.5, y, hit)) continue;
-            StackFace f = MakeFace(hit.halfSpace, hit.t, sample, y);
-            f.unit = u;
-            f.body = hit.body;
-            f.solid = unit.solid;
-            if (settings_.fastShading) f.fastNormal = Normal(f.halfSpace, sample + 0.5, y, hit.t);
-            InsertFace(f, sample + 0.5, y);
         }
-        if (settings_.faceStacks) TakeStackFaces(sample, y);
+        // Per CSG unit present: its tree pruned to the leaves present.
+        std::sort(spanLeaves_.begin(), spanLeaves_.end(),
+                  [](const SpanLeaf& p, const SpanLeaf& q) { return p.unit < q.unit; });
+        for (std::size_t a = 0; a < spanLeaves_.size();) {
+            std::size_t e = a;
+            pruneLeaves_.clear();
+            for (; e < spanLeaves_.size() && spanLeaves_[e].unit == spanLeaves_[a].unit; ++e)
+                pruneLeaves_.push_back({spanLeaves_[e].leaf, spanLeaves_[e].tmpl});
+            const int u = spanLeaves_[a].unit;
+            const int root = BuildPruned(units_[static_cast<std::size_t>(u)].node, pruneLeaves_);
+            if (root >= 0) csgUnits_.push_back({u, root});
+            a = e;
+        }
+        if (stackOn_) TakeStackFaces(sample, y);
         if (stack_.empty() && perPixel_.empty() && csgUnits_.empty()) {
             ++c_.emptySpans;
             return;
@@ -718,7 +1127,7 @@ class ScanRenderer {
                     bestT = f.depth;
                 }
             }
-            if (settings_.faceStacks && stackHead_ == 0 && best > 0) ++c_.interpenetrationPixels;
+            if (stackOn_ && stackHead_ == 0 && best > 0) ++c_.interpenetrationPixels;
             if (fallback) {
                 ++c_.rootFallbackPixels;
                 ExactPixel(i, j);
@@ -726,7 +1135,20 @@ class ScanRenderer {
                 // Units evaluated per pixel (refused bodies, CSG solids) compete with the stack.
                 RayEvaluator::Hit ph;
                 int phSolid = -1;
-                for (StackFace& f : tFaces_) f.depth = FaceDepth(f);
+                // Template faces: the two ends of an operand's interval are often the two
+                // sheets of one quadric, with the same incremental state: one solve for both.
+                for (std::size_t k = 0; k < tFaces_.size(); ++k) {
+                    StackFace& f = tFaces_[k];
+                    if (f.ray->isPlane) {
+                        f.depth = FaceDepth(f);
+                        continue;
+                    }
+                    const StackFace* g = k > 0 ? &tFaces_[k - 1] : nullptr;
+                    if (!(g && g->ray == f.ray && g->h == f.h && g->k == f.k))
+                        lastRoots_ = SolveQuadratic(f.ray->c, f.h, f.k);
+                    ++c_.depthCalcs;
+                    f.depth = SheetDepth(f, lastRoots_);
+                }
                 auto offer = [&](const RayEvaluator::Hit& hit, int solid) {
                     if (hit.t < ph.t || (hit.t == ph.t && solid < phSolid)) {
                         ph = hit;
@@ -738,7 +1160,7 @@ class ScanRenderer {
                     if (i < unit.x0 || i > unit.x1) continue;
                     ++c_.perPixelUnitPixels;
                     RayEvaluator::Hit hit;
-                    if (EvaluateUnit(unit, i + 0.5, y, hit)) offer(hit, unit.solid);
+                    if (EvaluateUnit(u, i + 0.5, y, hit)) offer(hit, unit.solid);
                 }
                 for (const CsgSpanUnit& cu : csgUnits_) {
                     RayEvaluator::Hit hit;
@@ -797,40 +1219,164 @@ class ScanRenderer {
         return 0;
     }
 
-    // Insertion in depth order: below every face it is not in front of, scanning from the head.
-    // Bodies of different solids may interpenetrate without a show-edge (the paper's scenes had
-    // none), so the order between faces of DIFFERENT bodies can go stale along the CSL; the
-    // order among one body's faces cannot (their crossings are i-lines, hence show-edges). So
-    // the face is also kept below every face of its own body that is in front of it: each
-    // body's first face on the stack is then that body's visible face whatever the others do.
-    void InsertStackFace(int f, double xe, double xq, double y) {
-        ++c_.stackInserts;
-        std::size_t pos = fstack_.size();
-        for (std::size_t s = 0; s < fstack_.size(); ++s) {
-            if (CompareAt(f, fstack_[s], xe, xq, y) < 0) {
+    // Insertion into stack `st` in depth order: below every face it is not in front of,
+    // scanning from the head. Bodies of different solids may interpenetrate without a show-edge
+    // (the paper's scenes had none), so the order between faces of DIFFERENT bodies can go stale;
+    // the order among one body's faces cannot (their crossings are i-lines, hence show-edges).
+    // So the face is also kept below every face of its own body that is in front of it: each
+    // body's first face on a stack is then that body's visible face whatever the others do.
+    void InsertInto(std::vector<int>& st, int f, double xe, double xq, double y) {
+        std::size_t pos = st.size();
+        for (std::size_t s = 0; s < st.size(); ++s) {
+            if (CompareAt(f, st[s], xe, xq, y) < 0) {
                 pos = s;
                 break;
             }
         }
         const int body = faces_[static_cast<std::size_t>(f)].body;
-        for (std::size_t s = pos + 1; s < fstack_.size(); ++s) {
-            const int g = fstack_[s];
+        for (std::size_t s = pos + 1; s < st.size(); ++s) {
+            const int g = st[s];
             if (faces_[static_cast<std::size_t>(g)].body == body && CompareAt(f, g, xe, xq, y) > 0)
                 pos = s + 1;
         }
-        fstack_.insert(fstack_.begin() + static_cast<std::ptrdiff_t>(pos), f);
-        inStack_[static_cast<std::size_t>(f)] = 1;
-        c_.stackMaxDepth = std::max<std::uint64_t>(c_.stackMaxDepth, fstack_.size());
+        st.insert(st.begin() + static_cast<std::ptrdiff_t>(pos), f);
+        c_.stackMaxDepth = std::max<std::uint64_t>(c_.stackMaxDepth, st.size());
     }
 
-    // The stack left of every crossing of the row: empty except for faces of bodies that reach
-    // the image's left side, which may be unbounded to the left (a half-space, a paraboloid);
-    // their faces there are the finite opaque endpoints of the body on the ray at xs, found by
-    // one exact evaluation per such body and row.
+    static bool Contains(const std::vector<int>& st, int f) {
+        return std::find(st.begin(), st.end(), f) != st.end();
+    }
+    static bool SameSet(const std::vector<int>& a, const std::vector<int>& b) {
+        if (a.size() != b.size()) return false;
+        for (int f : a)
+            if (!Contains(b, f)) return false;
+        return true;
+    }
+
+    // ---- carrying the stacks from row to row (pass one, pass two) ----
+
+    void MarkFresh(ActiveEdge& a) {
+        a.derive = true;
+        a.carriedValid = false;
+        a.propagate = true;
+    }
+    void MarkCheck(ActiveEdge& a) {
+        a.derive = true;
+        a.propagate = true;
+    }
+    bool Participates(const ActiveEdge& a) const { return a.stackEdge && !a.lost && !a.ending; }
+    // The edge's top end lies on the centre of its last row j (see ActiveEdge::ending).
+    bool EndsOnRow(const ActiveEdge& a, int j) const {
+        return a.lastRow == j &&
+               SnapToRow(edges_[static_cast<std::size_t>(a.edge)].yTop) <= j + 0.5;
+    }
+
+    // Pass one: finishing edges (lastRow < j) leave the AEL. The region right of a finishing
+    // edge merges with the one left of it, so the next stack edge is marked for derivation from
+    // its new left neighbour. When the edge closes a vertex with a partner (a V or Λ), the
+    // faces the two toggle cancel and the derived stack equals the carried one: the marking
+    // stops there. This is the effect of §5.4's "move the finishing edge next to CE by swaps,
+    // then delete it", without needing the two edges to share a computed vertex.
+    void RemoveFinishingEdges(int j) {
+        std::size_t keep = 0;
+        bool pending = false;
+        for (std::size_t i = 0; i < ael_.size(); ++i) {
+            ActiveEdge& a = ael_[i];
+            if (a.lastRow < j) {
+                pending = pending || Participates(a);
+                continue;
+            }
+            if (Participates(a) && EndsOnRow(a, j)) {  // stops toggling: like a finishing edge
+                a.ending = true;
+                pending = true;
+            }
+            if (pending && Participates(a)) {
+                MarkCheck(a);
+                pending = false;
+            }
+            if (keep != i) ael_[keep] = std::move(a);
+            ++keep;
+        }
+        ael_.resize(keep);
+    }
+
+    // Pass two: x on the new CSL (conic edges by differences), then x order by adjacent swaps
+    // (insertion sort). A swap moves edge E left past edge X: the region right of X is now the
+    // region that was right of E, so X takes E's stack as it is (depth order included); E's new
+    // stack is its new left neighbour's ⊕ E's faces, derived in pass three where the point Q of
+    // the tie-breaks is known (and, if E passes several stack edges, those beyond the first
+    // are derived there too: each gains or loses E's faces). Edges whose x stops being finite
+    // ("lost") leave the structure like finishing edges; "found" ones re-enter like new ones.
+    void TraceAndSort() {
+        bool pending = false;
+        for (ActiveEdge& a : ael_) {
+            const bool wasLost = a.lost;
+            Trace(a, false);
+            const bool lost = !std::isfinite(a.x);
+            if (!a.stackEdge) {
+                a.lost = lost;
+                continue;
+            }
+            if (lost && !wasLost) {
+                a.lost = true;
+                pending = true;
+            } else if (!lost && wasLost) {
+                a.found = true;  // stays transparent during the sort; fresh after it
+            } else if (!lost && pending) {
+                MarkCheck(a);
+                pending = false;
+            }
+        }
+        for (std::size_t i = 1; i < ael_.size(); ++i) {
+            std::size_t k = i;
+            while (k > 0 && SortKey(ael_[k - 1].x) > SortKey(ael_[k].x)) {
+                PassLeft(ael_[k], ael_[k - 1]);
+                std::swap(ael_[k - 1], ael_[k]);
+                --k;
+                ++c_.edgeSwaps;
+            }
+            if (k != i && Participates(ael_[k])) {  // E moved left: derive its stack afresh
+                ael_[k].derive = true;
+                ael_[k].carriedValid = false;
+            }
+        }
+        for (ActiveEdge& a : ael_) {
+            if (!a.found) continue;
+            a.found = false;
+            a.lost = false;
+            MarkFresh(a);
+        }
+    }
+
+    // Edge e moves left past edge x (both participating): x takes e's stack when e's is valid.
+    void PassLeft(ActiveEdge& e, ActiveEdge& x) {
+        if (!Participates(e) || !Participates(x) || e.found || x.found) return;
+        if (!e.derive) {
+            std::swap(x.stack, e.stack);
+            x.carriedValid = true;  // x keeps any derive mark it had (checked, not lost)
+            ++c_.stackSwapUpdates;
+        } else {
+            x.derive = true;
+            x.carriedValid = false;
+            x.propagate = x.propagate || e.propagate;
+        }
+        e.derive = true;
+        e.carriedValid = false;
+    }
+
+    // ---- pass three: walking the AEL with the carried stacks ----
+
+    // The stack left of every crossing of the row (S0): empty except for faces of bodies that
+    // reach the image's left side, which may be unbounded to the left (a half-space, a
+    // paraboloid); their faces there are the finite opaque endpoints of the body on the ray at
+    // xs, found by one exact evaluation per such body and row. A body can leave or enter S0
+    // without any show-edge (a horizontal boundary far left), so S0 is evaluated on every row;
+    // when it changed, the first stack edge is derived again.
     void SeedStack(double y) {
-        for (int f : fstack_) inStack_[static_cast<std::size_t>(f)] = 0;
-        fstack_.clear();
+        seedPrev_.swap(seed_);
+        seed_.clear();
         aelPos_ = 0;
+        cur_ = &seed_;
         double first = HUGE_VAL;
         for (const ActiveEdge& a : ael_)
             if (std::isfinite(a.x)) {
@@ -853,21 +1399,25 @@ class ScanRenderer {
                     const int sheet = MakeFaceAt(hs, t, xs, y).sheet;
                     for (int f : bodyFaces_[b]) {
                         if (faces_[static_cast<std::size_t>(f)].halfSpace != hs ||
-                            SheetOf(f) != sheet || inStack_[static_cast<std::size_t>(f)])
+                            SheetOf(f) != sheet || Contains(seed_, f))
                             continue;
-                        InsertStackFace(f, xs, xs + 0.5, y);
+                        InsertInto(seed_, f, xs, xs + 0.5, y);
                     }
                 }
             }
         }
+        markNext_ = !SameSet(seed_, seedPrev_);
+        closedAdd_.clear();
+        closedDrop_.clear();
+        shown_ = cur_;
     }
 
-    // Pass three up to x: every AEL edge with a crossing left of x updates the stack. Crossings
-    // closer than kCluster to their neighbour form one event (a vertex on the CSL, or edges
-    // meeting just off it): their faces are decided together at Q, half-way from the event's
-    // last crossing to the next one (at most ½ px on), so that the face test at Q is never made
-    // in a sliver narrower than its own error estimate. True when an event straddles x (the
-    // pixel is then evaluated exactly: it lies within kCluster of a crossing).
+    // Pass three up to x: every AEL edge with a crossing left of x is walked. Crossings closer
+    // than kCluster to their neighbour form one event (a vertex on the CSL, or edges meeting
+    // just off it): the event's faces are checked together at Q, half-way from its last
+    // crossing to the next one (at most ½ px on), so that the face test at Q is never made in a
+    // sliver narrower than its own error estimate. True when an event straddles x (the pixel
+    // is then evaluated exactly: it lies within kCluster of a crossing).
     bool ApplyEdgesBefore(double x, double y) {
         constexpr double kCluster = 1e-4;  // pixels
         bool straddle = false;
@@ -882,38 +1432,206 @@ class ScanRenderer {
             double next = last + 1;
             if (end < n && std::isfinite(ael_[end].x)) next = std::min(next, ael_[end].x);
             const double xq = 0.5 * (last + next);
-            for (std::size_t k = aelPos_; k < end; ++k) ApplyEdge(k, xq, y);
+            ApplyEvent(aelPos_, end, xq, y);
             aelPos_ = end;
         }
         return straddle;
     }
 
-    // An edge's show-faces change sides at its crossing: each one on the stack leaves it, each
-    // one off it is inserted in depth order. Half-open rows (renderer.h): an edge toggles on the
-    // rows whose centre lies in [yBottom, yTop).
-    void ApplyEdge(std::size_t idx, double xq, double y) {
-        const ActiveEdge& a = ael_[idx];
+    // One event (crossings [b, e) of the AEL): derive the stacks marked in pass one/two from
+    // the left neighbour's, then verify the event's resulting stack.
+    void ApplyEvent(std::size_t b, std::size_t e, double xq, double y) {
+        const std::vector<int>* before = cur_;
+        std::size_t last = e;
+        bool ending = false;
+        for (std::size_t k = b; k < e; ++k) {
+            ActiveEdge& a = ael_[k];
+            ending = ending || (a.stackEdge && !a.lost && a.ending);
+            if (!Participates(a)) continue;
+            if (markNext_) {
+                MarkCheck(a);
+                markNext_ = false;
+            }
+            // Q of an edge inside the event lies in its own (narrow) region, up to the next
+            // crossing: its stack is carried to rows where that region is wide.
+            if (a.derive) DeriveEdge(a, *cur_, k + 1 < e ? 0.5 * (a.x + ael_[k + 1].x) : xq, y);
+            cur_ = &a.stack;
+            last = k;
+        }
+        if (last != e) {
+            if (settings_.checkStacks) VerifyEvent(*before, b, e, last, xq, y);
+            cur_ = &ael_[last].stack;
+        }
+        if (ending && settings_.checkStacks) UpdateClosedRowFaces(b, e, xq, y);
+        if (last != e || ending) ShowStack(ael_[e - 1].x, xq, y);
+    }
+
+    // Edges whose top end lies exactly on this row's centre no longer toggle (half-open rule,
+    // ActiveEdge::ending), which is right for the carried stacks: below the row the boundary
+    // has ended. But raycast's half-spaces are closed, so on the row itself a face bounded there
+    // may still be on its body's boundary: a box whose bottom side y = j + ½ is an edge-on plane
+    // covers row j. The face test at Q decides these faces for this row only: they are shown in
+    // the span stacks (`shown_`) without entering the carried ones (closedRowFaces counts them).
+    void UpdateClosedRowFaces(std::size_t b, std::size_t e, double xq, double y) {
+        for (std::size_t k = b; k < e; ++k) {
+            const ActiveEdge& a = ael_[k];
+            if (!(a.stackEdge && !a.lost && a.ending)) continue;
+            for (int f : edges_[static_cast<std::size_t>(a.edge)].faces) {
+                if (f < 0) continue;
+                const bool present = PresentAt(f, xq, y);
+                const bool carried = Contains(*cur_, f);
+                auto add = std::find(closedAdd_.begin(), closedAdd_.end(), f);
+                auto drop = std::find(closedDrop_.begin(), closedDrop_.end(), f);
+                if (add != closedAdd_.end()) closedAdd_.erase(add);
+                if (drop != closedDrop_.end()) closedDrop_.erase(drop);
+                if (present == carried) continue;
+                ++c_.closedRowFaces;
+                (present ? closedAdd_ : closedDrop_).push_back(f);
+            }
+        }
+    }
+
+    // The stack the spans after this event are drawn from: the carried one, adjusted by the
+    // closed-row faces when there are any on this row.
+    void ShowStack(double xe, double xq, double y) {
+        if (closedAdd_.empty() && closedDrop_.empty()) {
+            shown_ = cur_;
+            return;
+        }
+        showBuf_.clear();
+        for (int f : *cur_)
+            if (!Contains(closedDrop_, f)) showBuf_.push_back(f);
+        for (int f : closedAdd_)
+            if (!Contains(showBuf_, f)) InsertInto(showBuf_, f, xe, xq, y);
+        shown_ = &showBuf_;
+    }
+
+    // The stack of edge a from its left neighbour's stack `prev`: the faces of a that are on
+    // prev leave, the others enter in depth order (comparisons of §5.5.1 at the crossing and
+    // at Q). This is pure parity — a show-edge's two faces change sides at it. At a vertex the
+    // starting edges are derived left to right from the (already consistent) stacks left of
+    // them and the change is carried on to the right until a derived stack equals the carried
+    // one: what §5.4's recursive vertex processing achieves, without the horizontal and
+    // within-one-scan-line edges it recursed through (the Resolver makes no horizontal edges
+    // and BuildEsl drops edges that hold no row centre; their two vertices act as one).
+    void DeriveEdge(ActiveEdge& a, const std::vector<int>& prev, double xq, double y) {
+        ++c_.stackDerivations;
+        derived_.assign(prev.begin(), prev.end());
         const ShowEdge& e = edges_[static_cast<std::size_t>(a.edge)];
-        if (!useStack_[static_cast<std::size_t>(e.body)]) return;
-        const bool toggles = SnapToRow(e.yBottom) <= y && y < SnapToRow(e.yTop);
         for (int f : e.faces) {
             if (f < 0) continue;
-            const bool on = inStack_[static_cast<std::size_t>(f)] != 0;
-            const bool present = PresentAt(f, xq, y);
-            if ((present != on) != toggles) {
+            auto it = std::find(derived_.begin(), derived_.end(), f);
+            if (it != derived_.end()) {
+                derived_.erase(it);
+                ++c_.stackDeriveDeletes;
+            } else {
+                InsertInto(derived_, f, a.x, xq, y);
+                ++c_.stackDeriveInserts;
+            }
+        }
+        const bool changed = !a.carriedValid || !SameSet(derived_, a.stack);
+        if (a.propagate && changed) markNext_ = true;
+        if (changed) ++c_.stackDerivationsChanged;
+        a.stack.swap(derived_);
+        a.derive = false;
+        a.carriedValid = true;
+        a.propagate = false;
+    }
+
+    // The verifier. After an event whose stack edges are [b, e) (the last one `last`), the stack
+    // must be the stack before the event with the event's faces toggled (structure), and each
+    // toggled face must be on it exactly when the face test at Q finds the face on its body's
+    // boundary there (geometry). A structural mismatch (a vertex whose change was not carried
+    // on) is counted in stackRepairs, a face the test overrules in stackCorrections; both are
+    // corrected: the stack is rebuilt from `before` with the faces the test finds, and the next
+    // stack edge is derived again. Then the faces that entered are checked against the
+    // nearest faces of their own body on the stack (order, §5.5.1; stackOrderCorrections).
+    // The faces entering/leaving at the event are counted as face_stack_inserts/deletes.
+    void VerifyEvent(const std::vector<int>& before, std::size_t b, std::size_t e, std::size_t last,
+                     double xq, double y) {
+        std::vector<int>& t = ael_[last].stack;
+        const double xe = ael_[last].x;
+        if (++gen_ == 0) {  // stamp overflow: clear the marks
+            std::fill(markP_.begin(), markP_.end(), 0);
+            std::fill(markT_.begin(), markT_.end(), 0);
+            gen_ = 1;
+        }
+        for (int f : before) markP_[static_cast<std::size_t>(f)] = gen_;
+        for (int f : t) markT_[static_cast<std::size_t>(f)] = gen_;
+        auto inP = [&](int f) { return markP_[static_cast<std::size_t>(f)] == gen_; };
+        auto inT = [&](int f) { return markT_[static_cast<std::size_t>(f)] == gen_; };
+        toggles_.clear();
+        for (std::size_t k = b; k < e; ++k) {
+            if (!Participates(ael_[k])) continue;
+            for (int f : edges_[static_cast<std::size_t>(ael_[k].edge)].faces) {
+                if (f < 0) continue;
+                auto it = std::find_if(toggles_.begin(), toggles_.end(),
+                                       [&](const std::pair<int, bool>& p) { return p.first == f; });
+                if (it == toggles_.end())
+                    toggles_.push_back({f, true});
+                else
+                    it->second = !it->second;
+            }
+        }
+        auto toggled = [&](int f) {
+            return std::any_of(toggles_.begin(), toggles_.end(),
+                               [&](const std::pair<int, bool>& p) { return p.first == f; });
+        };
+        bool structural = true;
+        for (int f : t) structural = structural && (toggled(f) || inP(f));
+        for (int f : before) structural = structural && (toggled(f) || inT(f));
+        for (auto [f, odd] : toggles_) structural = structural && (inT(f) == (inP(f) != odd));
+        bool geometric = true;
+        present_.clear();
+        for (auto [f, odd] : toggles_) {
+            const bool p = PresentAt(f, xq, y);
+            present_.push_back(p);
+            if (p != inT(f)) {
+                geometric = false;
                 ++c_.stackCorrections;
-                if (std::getenv("SCAN_DEBUG"))
-                    std::fprintf(stderr, "corr body %d iline %d (%d,%d) y %.3f x %.4f yb %.6f yt %.6f face %d hs %d on %d present %d toggles %d\n",
-                                 e.body, e.iline, 0, 0, y, a.x, e.yBottom, e.yTop, f,
-                                 faces_[static_cast<std::size_t>(f)].halfSpace, on, present, toggles);
             }
-            if (on && !present) {
-                ++c_.stackDeletes;
-                fstack_.erase(std::find(fstack_.begin(), fstack_.end(), f));
-                inStack_[static_cast<std::size_t>(f)] = 0;
-            } else if (!on && present) {
-                InsertStackFace(f, a.x, xq, y);
+        }
+        if (!structural) ++c_.stackRepairs;
+        if (!structural || !geometric) {
+            // Rebuild from the stack before the event: it was verified at its own event.
+            derived_.assign(before.begin(), before.end());
+            for (std::size_t k = 0; k < toggles_.size(); ++k) {
+                const int f = toggles_[k].first;
+                auto it = std::find(derived_.begin(), derived_.end(), f);
+                if (it != derived_.end() && !present_[k]) derived_.erase(it);
+                if (it == derived_.end() && present_[k]) InsertInto(derived_, f, xe, xq, y);
             }
+            t.swap(derived_);
+            markNext_ = true;
+        }
+        for (int f : t)
+            if (!inP(f)) ++c_.stackInserts;
+        for (int f : before)
+            if (!Contains(t, f)) ++c_.stackDeletes;
+        // Order: each entering face against the nearest faces of its own body above and below.
+        // A misplaced face is inserted again (InsertInto leaves it in order with its own body's
+        // faces) and the scan restarts, a bounded number of times.
+        int retries = static_cast<int>(t.size());
+        for (std::size_t s = 0; s < t.size(); ++s) {
+            const int f = t[s];
+            if (inP(f)) continue;
+            const int body = faces_[static_cast<std::size_t>(f)].body;
+            bool ok = true;
+            for (std::size_t r = s; r-- > 0;) {
+                if (faces_[static_cast<std::size_t>(t[r])].body != body) continue;
+                ok = CompareAt(t[r], f, xe, xq, y) <= 0;
+                break;
+            }
+            for (std::size_t r = s + 1; ok && r < t.size(); ++r) {
+                if (faces_[static_cast<std::size_t>(t[r])].body != body) continue;
+                ok = CompareAt(f, t[r], xe, xq, y) <= 0;
+                break;
+            }
+            if (ok || retries-- <= 0) continue;
+            ++c_.stackOrderCorrections;
+            t.erase(t.begin() + static_cast<std::ptrdiff_t>(s));
+            InsertInto(t, f, xe, xq, y);
+            s = static_cast<std::size_t>(-1);  // rescan from the head
         }
     }
 
@@ -974,9 +1692,9 @@ class ScanRenderer {
     void TakeStackFaces(int sample, double y) {
         stackHead_ = stack_.empty() ? 0 : -1;
         ++c_.stackSpans;
-        c_.stackDepthSum += fstack_.size();
+        c_.stackDepthSum += shown_->size();
         taken_.clear();
-        for (int f : fstack_) {
+        for (int f : *shown_) {
             const ShowFace& sf = faces_[static_cast<std::size_t>(f)];
             const auto b = static_cast<std::size_t>(sf.body);
             if (bodyTaken_[b]) continue;
@@ -1012,12 +1730,12 @@ class ScanRenderer {
             RayEvaluator::Hit hit;
             if (eval_.Body(unit.body, sample + 0.5, y, hit) && hit.t < best.t) best = hit;
         }
-        const bool head = !fstack_.empty();
+        const bool head = !shown_->empty();
         if (!head && best.halfSpace < 0) return;
         ++c_.verifySpans;
         bool same = head && best.halfSpace >= 0;
         if (same) {
-            const FaceRef h = RefOf(fstack_.front());
+            const FaceRef h = RefOf(shown_->front());
             same = h.halfSpace == best.halfSpace &&
                    h.sheet == MakeFace(best.halfSpace, best.t, sample, y).sheet;
         }
@@ -1078,9 +1796,34 @@ class ScanRenderer {
 
     const std::vector<std::vector<std::pair<int, int>>>* esl_ = nullptr;
     std::vector<ActiveEdge> ael_;
-    std::vector<double> lo_, hi_;  // per body: x range on the current row
-    std::vector<int> rangeRow_;    // the row lo_/hi_ were reset for
+    std::vector<ActiveEdge> starting_, merged_;  // starting edges of a row, merge scratch
+    QuadraticRoots lastRoots_;                   // Span: roots shared by consecutive faces
+    std::vector<double> lo_, hi_;                // per body: x range on the current row
+    std::vector<int> breakBody_;                 // per crossing in breaks_: its body
+    std::vector<int> ownPassed_;             // per body: its crossings left of the current pixel
+    std::vector<CachedTemplate> tmplCache_;  // per CSG operand body (BuildTemplate)
+    std::vector<int> rangeRow_;              // the row lo_/hi_ were reset for
     std::vector<int> activeUnits_;
+    std::vector<int> unitsByY_;  // units sorted on y0 (UpdateActiveUnits)
+    std::size_t unitPos_ = 0;
+    std::vector<int> rowBodies_;   // bodies met on this row, sorted on lo_ (per-row ranges)
+    std::size_t sweepPos_ = 0;     // SweepTo: next of rowBodies_ to enter
+    std::vector<int> spanBodies_;  // SweepTo: bodies whose range meets the current span
+    // CSG: tree parents and child positions, per body its leaves (unit, node), per unit its
+    // refused bodies and side bodies; pruned trees (BuildPruned) and their scratch.
+    std::vector<int> parent_, childPos_;
+    std::vector<std::vector<std::pair<int, int>>> bodyLeaves_;
+    std::vector<std::vector<int>> unitPixelBodies_;
+    std::vector<std::vector<SideBody>> unitSideBodies_;
+    std::vector<std::uint32_t> touchGen_, unitStamp_;
+    std::uint32_t pruneGen_ = 0, spanGen_ = 0;
+    std::vector<int> leafPNode_;
+    std::vector<std::vector<int>> touchedKids_;
+    std::vector<PNode> pNodes_;
+    std::vector<int> pKids_;
+    std::vector<SpanLeaf> spanLeaves_;
+    std::vector<std::pair<int, int>> pruneLeaves_;  // (leaf node, template index or −1)
+    std::vector<IntervalList> pool_;
     std::vector<double> breaks_;
     std::vector<StackFace> stack_;
     std::vector<int> perPixel_;
@@ -1101,8 +1844,20 @@ class ScanRenderer {
     std::vector<int> bodyUnit_;                               // body → its kBody unit
     std::vector<std::vector<int>> bodyFaces_;                 // body → its show-faces
     std::vector<char> useStack_;                              // body drawn from the face stacks
-    std::vector<int> fstack_;    // the current edge's face stack, nearest first
-    std::vector<char> inStack_;  // per show-face
+    bool stackOn_ = false;                                    // some body is drawn from face stacks
+    // Pass three: the stack right of the last walked stack edge (or seed_), nearest first.
+    const std::vector<int>* cur_ = &seed_;
+    // The stack the spans are drawn from: *cur_, or showBuf_ = *cur_ adjusted by the faces of
+    // edges ending on this row's centre that the face test keeps (closedAdd_) or drops.
+    const std::vector<int>* shown_ = &seed_;
+    std::vector<int> showBuf_, closedAdd_, closedDrop_;
+    std::vector<int> seed_, seedPrev_;           // S0 on this row and on the previous one
+    bool markNext_ = false;                      // derive the next stack edge walked
+    std::vector<int> derived_;                   // scratch stack
+    std::vector<std::pair<int, bool>> toggles_;  // an event's faces, odd number of crossings
+    std::vector<char> present_;                  // the face test at Q for toggles_
+    std::vector<std::uint32_t> markP_, markT_;   // per show-face: on the stack before / after
+    std::uint32_t gen_ = 0;                      // stamp of markP_ / markT_
     std::vector<char> bodyTaken_;
     std::vector<int> taken_;
     std::size_t aelPos_ = 0;  // pass three: the next AEL edge to apply
@@ -1128,6 +1883,7 @@ void RendererCounters::Add(const RendererCounters& o) {
     csgPixels += o.csgPixels;
     csgTemplateBodies += o.csgTemplateBodies;
     csgFallbackPixels += o.csgFallbackPixels;
+    csgTemplateReuses += o.csgTemplateReuses;
     rootFallbackPixels += o.rootFallbackPixels;
     stackInserts += o.stackInserts;
     stackDeletes += o.stackDeletes;
@@ -1137,6 +1893,14 @@ void RendererCounters::Add(const RendererCounters& o) {
     stackSeedEvaluations += o.stackSeedEvaluations;
     stackTieBreaks += o.stackTieBreaks;
     stackCorrections += o.stackCorrections;
+    stackRepairs += o.stackRepairs;
+    closedRowFaces += o.closedRowFaces;
+    stackOrderCorrections += o.stackOrderCorrections;
+    stackSwapUpdates += o.stackSwapUpdates;
+    stackDerivations += o.stackDerivations;
+    stackDerivationsChanged += o.stackDerivationsChanged;
+    stackDeriveInserts += o.stackDeriveInserts;
+    stackDeriveDeletes += o.stackDeriveDeletes;
     interpenetrationPixels += o.interpenetrationPixels;
     verifySpans += o.verifySpans;
     verifyMismatchSpans += o.verifyMismatchSpans;

@@ -10,33 +10,53 @@
 //    is what the recursive vertex processing of §5.4 achieves for edges within one scan line).
 //  - Conic edges are traced with first and second differences (§5.5.2): the quadratic (5.3) of
 //    the CSL, B_r += C_c, C_r += ΔC, ΔC += 2 B_c per row, then the root on the edge's leg.
-//  - Pass three cuts the CSL at the x of every active edge. FACE STACKS (default, bodies drawn on
-//    their own): the stack is swept along the CSL from the left (seeded, for bodies reaching the
-//    image's left side, by one exact evaluation left of every crossing); at each crossing of a
-//    show-edge its two show-faces change sides — a face on the stack is deleted, a face off it is
-//    inserted in depth order by the §5.5.1 comparisons (depth at the crossing P; equal: depth at
-//    Q half-way into the next span; equal: slope dz/dx; equal: rate d²z/dx²). The stack after
-//    an edge is that edge's face stack, its head the face visible to the edge's right (§5.2).
-//    Whether a face enters or leaves is not taken from parity alone but from a face test at Q
-//    (the face's point lies definitely inside its body's other HSIs): the Resolver's show-edges
-//    are a superset of the true boundaries, and crossings closer than 1e-4 px form one event
-//    (vertices where several edges meet on or near the CSL); the test makes both harmless and
-//    counts where it overrode parity (stackCorrections). The span's faces are each body's first
-//    face on the stack; when several bodies share a span the nearest of them is taken per pixel,
-//    since bodies of different solids may interpenetrate without a show-edge (the paper's
-//    scenes had none; interpenetrationPixels counts where the head was not the nearest).
-//    Deviation from ugshow: stacks are rebuilt per scan line by this sweep rather than carried
-//    from row to row through the pass-two swaps; so the recursive vertex processing of §5.4 is
-//    replaced by the half-open row rule for toggling (renderer.cpp ApplyEdge) plus the face
-//    test, and horizontal edges need no special case.
+//  - FACE STACKS (default for bodies drawn on their own; §5.2–5.4). Every active edge of such a
+//    body carries its face stack from row to row: the show-faces immediately to its right on
+//    the CSL, nearest first. Each show-edge bounds two faces that change sides at it, so an
+//    edge's stack is its left neighbour's with the edge's faces toggled (a face on it leaves,
+//    one off it is inserted in depth order by the §5.5.1 comparisons: depth at the crossing P;
+//    equal: depth at Q, half-way into the edge's region; equal: slope dz/dx; equal: rate
+//    d²z/dx²). The stacks change only where the AEL changes:
+//      pass one  — a finishing edge leaves; the next stack edge is marked for derivation;
+//      pass two  — when edge E moves left past edge X in the insertion sort, X takes E's stack
+//                  as it is (the region right of X is the one that was right of E) and E is
+//                  marked: its new stack is its new left neighbour's ⊕ its faces;
+//      start     — starting edges enter between the others without swaps and are marked;
+//      pass three walks the AEL left to right: a marked edge's stack is derived from its left
+//                  neighbour's, and when the derived set differs from the carried one the next
+//                  stack edge is derived too, until one agrees (the change at a vertex is
+//                  carried to the right as far as it reaches) — what §5.4's recursive vertex
+//                  processing achieves; horizontal and within-one-row edges need no recursion
+//                  since the Resolver makes none that reach the renderer (BuildEsl).
+//    An edge toggles on the rows whose centre lies in the HALF-OPEN [yBottom, yTop) (ends
+//    snapped to a row centre within 1e-9): on its last row, when that row's centre is its top,
+//    it is a breakpoint only ("ending"). Raycast's closed half-spaces may still draw such a
+//    face on that row (a box whose side y = j + ½ is an edge-on plane): the face test at Q
+//    decides it for that row only, outside the carried stacks (closedRowFaces).
+//    Crossings closer than 1e-4 px form one event. The VERIFIER checks every event: the stack
+//    after it must be the stack before it ⊕ the event's faces (else stackRepairs), and every
+//    toggled face must be on it exactly when the face test at Q finds the face's point inside
+//    its body's other HSIs (else stackCorrections); both are corrected, so the frame stays
+//    exact. Faces entering at the event are checked against the nearest faces of their own
+//    body above and below (stackOrderCorrections). All three are 0 on every example and
+//    gallery scene since the Resolver's wedge test removed the spurious show-edges at mitred
+//    joints (resolver.h). The span's faces are each body's first face on the stack; when
+//    several bodies share a span the nearest of them is taken per pixel, since bodies of
+//    different solids may interpenetrate without a show-edge (the paper's scenes had none;
+//    interpenetrationPixels counts where the head was not the nearest). The left of every
+//    crossing (S0) holds faces of bodies reaching the image's left side, found per row by one
+//    exact evaluation (stackSeedEvaluations). Bands of 32 rows run in parallel; each band
+//    derives every stack at its first row.
 //    EXACT path (render=exact; always for CSG operands and refused bodies): between two
 //    crossings the set of faces of every body is constant (the crossings of a body's show-edges
 //    are a superset of its face boundaries), so each span's stack is built once: every body
 //    whose x range on this row meets the span is evaluated exactly at ONE pixel of the span (the
 //    ray/half-space intervals of the body), which names its visible show-face (surface and
 //    sheet); faces are inserted in depth order with the same tie-breaks.
-//    Faces of different bodies may interpenetrate without a show-edge (the paper's input had
-//    none), so inside a span with several faces the nearest is chosen per pixel.
+//  - Per-row and per-span work follows the AEL: each row's bodies (rowBodies_) are those with a
+//    crossing on it (plus the few whose bounds reach an image side, tested there, and refused
+//    bodies), sorted on their x range; spans take the bodies whose range meets them from a
+//    sweep over that list. Nothing per row or span loops over all bodies or all operands.
 //  - A pixel whose centre lies within kOnEdge of a crossing is evaluated exactly on its own.
 //  - Bodies the Resolver refused (QUARTIC i-lines) are evaluated exactly at every pixel of their
 //    unit's screen bounds (documented refusal).
@@ -49,6 +69,11 @@
 //    DIFFERENT bodies may cross inside a span (their intersection curves are quartic in general and
 //    are not show-edges), which is exactly why the CSG combination is redone per pixel. A template
 //    endpoint without a root at some pixel falls back to exact evaluation of the tree there.
+//    The tree is PRUNED per span to the operands whose x range meets the span (an absent operand
+//    is ∅: dropped from unions and subtrahends, emptying intersections and differences whose
+//    minuend it is), so a union of 10,000 spheres costs per span the few spheres there. An
+//    operand's template holds between two of its own crossings, so it is read once there and
+//    reused (re-seeked) by the spans in between, which other bodies' crossings cut.
 //    CSG bodies get i-lines and limbs for transparent HSBs too (their endpoints matter for CSG).
 //
 // Shader (chapter 6), writing the Frame (depth, normal, surface, body, solid):
@@ -94,6 +119,10 @@ struct RenderSettings {
     // Also evaluate the stack bodies exactly at every span's sample pixel and count the spans
     // whose stack head differs (verifyMismatchSpans). Costs one exact evaluation per body/span.
     bool verify = false;
+    // The carried stacks' verifier (pass three, every crossing: structure, the face test at Q,
+    // order of entering faces; corrections keep the frame exact). false = trust the carried
+    // stacks as they are (check=off: to measure them alone; degenerate rows may then differ).
+    bool checkStacks = true;
 };
 
 struct RendererCounters {
@@ -102,6 +131,7 @@ struct RendererCounters {
     std::uint64_t exactPixels = 0, perPixelUnitPixels = 0, normals = 0, covered = 0;
     std::uint64_t tieBreaks = 0;
     std::uint64_t csgPixels = 0, csgTemplateBodies = 0, csgFallbackPixels = 0;
+    std::uint64_t csgTemplateReuses = 0;   // templates kept from an earlier span of the row
     std::uint64_t rootFallbackPixels = 0;  // a stack face had no root: pixel evaluated exactly
     // Face stacks (§5.2–5.4): faces inserted into / deleted from the stack at edge crossings,
     // the deepest stack, the sum of stack depths over stack spans (mean = sum / stackSpans),
@@ -111,9 +141,19 @@ struct RendererCounters {
     std::uint64_t stackInserts = 0, stackDeletes = 0, stackMaxDepth = 0, stackDepthSum = 0;
     std::uint64_t stackSpans = 0, stackSeedEvaluations = 0, stackTieBreaks = 0;
     std::uint64_t interpenetrationPixels = 0, verifySpans = 0, verifyMismatchSpans = 0;
-    // Crossings where the face test at Q overrode plain parity toggling (spurious or
-    // degenerate show-edges, vertices on the CSL): see ApplyEdge in renderer.cpp.
-    std::uint64_t stackCorrections = 0;
+    // The verifier (pass three, every event): toggled faces whose face test at Q overruled the
+    // carried stack (spurious or degenerate show-edges), events whose carried stack was not its
+    // left neighbour's ⊕ the event's faces (a change at a vertex not carried on), and entering
+    // faces found out of depth order with their own body's faces. All are corrected.
+    std::uint64_t stackCorrections = 0, stackRepairs = 0, stackOrderCorrections = 0;
+    // Faces of edges ending exactly on a row centre that the face test keeps (or drops) on that
+    // row only, as raycast's closed half-spaces do (ApplyEvent in renderer.cpp).
+    std::uint64_t closedRowFaces = 0;
+    // Carrying the stacks (§5.3, §5.4): pass-two swaps that handed a stack to the edge passed,
+    // stacks derived from the left neighbour's (moved, started, found and marked edges), those
+    // whose set changed, and the faces inserted into / deleted from stacks while deriving.
+    std::uint64_t stackSwapUpdates = 0, stackDerivations = 0, stackDerivationsChanged = 0;
+    std::uint64_t stackDeriveInserts = 0, stackDeriveDeletes = 0;
     // verify=on, per span and stack body present there: the body's first face on the stack
     // against its exact visible face (the stack machinery proper, free of interpenetration).
     std::uint64_t verifyBodies = 0, verifyBodyMismatches = 0;
@@ -220,15 +260,11 @@ void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
 // units that were not refused); the others (CSG operands, refused bodies) use the exact
 // per-span evaluation. `faces` are the Resolver's show-faces the edges point at.
 //
-// Face stacks (settings.faceStacks): per scan line, pass three walks the AEL from the left; at
-// each crossing of a show-edge of a stack body, each of the edge's two show-faces is deleted
-// from the stack when on it, else inserted in depth order (comparisons of §5.5.1 at the
-// crossing; ties: depth one step into the span, then slope dz/dx, then rate d²z/dx²). The stack
-// after an edge is that edge's face stack; its head is the face visible to the edge's right.
-// An edge toggles on rows whose centre lies in the HALF-OPEN range [yBottom, yTop) (endpoints
-// snapped to a row centre within 1e-9): a vertex on the CSL where a boundary passes through
-// toggles once, one where it turns (V or Λ) twice or never, and edges lying within one scan
-// line toggle never — the effect of the recursive vertex processing of §5.4 (see renderer.cpp).
+// Face stacks (settings.faceStacks): each active edge of a stack body carries its face stack
+// (the faces right of it, nearest first) from row to row through pass one (finishing edges),
+// pass two (swaps: the edge passed takes the mover's stack) and starting edges; pass three
+// derives the stacks marked there from their left neighbours' and verifies every crossing with
+// the face test at Q (see the header comment and renderer.cpp).
 void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
                      const std::vector<ShowFace>& faces, const std::vector<Unit>& units,
                      const std::vector<bool>& pixelBody, const std::vector<bool>& stackBody,

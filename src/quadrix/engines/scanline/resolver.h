@@ -20,8 +20,15 @@
 //    its midpoint satisfies every HSI whose crossings with the i-line were computed in closed form
 //    (zero test (4), conservative). This replaces the paper's bottom/top walking rule, which relies
 //    on exact ISECT/LIMB typing; testing the midpoint keeps every piece that can bound a face, so
-//    the renderer's breakpoints are a superset of the true face boundaries. Face pointers follow
-//    the table of §4.4 (normal z of the quadric at the midpoint, existence of the limb).
+//    the renderer's breakpoints are a superset of the true face boundaries. The zero test accepts
+//    a midpoint lying ON a third HSB's surface, which happens along whole pieces where three or
+//    more HSBs share a line (every bisecting plane of a tube at a mitred joint of several tubes
+//    contains the joint's normal line); there a WEDGE TEST keeps the piece only when its two
+//    surfaces bound the body's local wedge (no third surface through the point cuts the cone of
+//    their two boundary rays, linearised at the midpoint). Without it such pieces toggled faces
+//    that do not change sides (4388 face-test corrections on the gallery's triangles at 512²).
+//    Face pointers follow the table of §4.4 (normal z of the quadric at the midpoint, existence
+//    of the limb).
 //  - Two quadrics in one body: when the pencil test below proves their surfaces disjoint (the
 //    tube: coaxial cylinders), the i-line is NOEXIST; otherwise it is QUARTIC and the body is
 //    marked perPixel: the renderer evaluates it exactly at every pixel of its spans (documented

@@ -62,6 +62,9 @@ class ScanlineEngine final : public Engine {
                 if (value != "stacks" && value != "exact")
                     return "engine 'scanline': option render is 'stacks' or 'exact', got '" +
                            value + "'";
+            } else if (key == "check") {
+                if (value != "on" && value != "off")
+                    return "engine 'scanline': option check is 'on' or 'off', got '" + value + "'";
             } else if (key == "verify") {
                 if (value != "on" && value != "off")
                     return "engine 'scanline': option verify is 'on' or 'off', got '" + value + "'";
@@ -72,7 +75,7 @@ class ScanlineEngine final : public Engine {
             } else {
                 return "engine 'scanline' has no option '" + key +
                        "' (options: sd=N, shade=exact|fast, csg=spans|pixels, "
-                       "render=stacks|exact, verify=on|off)";
+                       "render=stacks|exact, check=on|off, verify=on|off)";
             }
         }
         return {};
@@ -90,6 +93,7 @@ class ScanlineEngine final : public Engine {
             if (key == "csg") settings.csgTemplates = value == "spans";
             if (key == "render") settings.faceStacks = value == "stacks";
             if (key == "verify") settings.verify = value == "on";
+            if (key == "check") settings.checkStacks = value == "on";
         }
         const int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
         frame.Reset(width, height);
@@ -207,6 +211,7 @@ class ScanlineEngine final : public Engine {
         add("csg_solids", static_cast<double>(csgUnits));
         add("csg_pixels", static_cast<double>(c.csgPixels));
         add("csg_template_bodies", static_cast<double>(c.csgTemplateBodies));
+        add("csg_template_reuses", static_cast<double>(c.csgTemplateReuses));
         add("csg_exact_fallback_pixels", static_cast<double>(c.csgFallbackPixels));
         add("edges_started", static_cast<double>(c.edgesStarted));
         add("edge_swaps", static_cast<double>(c.edgeSwaps));
@@ -233,6 +238,14 @@ class ScanlineEngine final : public Engine {
         add("face_stack_seed_evaluations", static_cast<double>(c.stackSeedEvaluations));
         add("face_stack_tie_breaks", static_cast<double>(c.stackTieBreaks));
         add("face_stack_corrections", static_cast<double>(c.stackCorrections));
+        add("face_stack_repairs", static_cast<double>(c.stackRepairs));
+        add("face_stack_closed_row_faces", static_cast<double>(c.closedRowFaces));
+        add("face_stack_order_corrections", static_cast<double>(c.stackOrderCorrections));
+        add("face_stack_swap_updates", static_cast<double>(c.stackSwapUpdates));
+        add("face_stack_derivations", static_cast<double>(c.stackDerivations));
+        add("face_stack_derivations_changed", static_cast<double>(c.stackDerivationsChanged));
+        add("face_stack_derive_inserts", static_cast<double>(c.stackDeriveInserts));
+        add("face_stack_derive_deletes", static_cast<double>(c.stackDeriveDeletes));
         add("interpenetration_pixels", static_cast<double>(c.interpenetrationPixels));
         if (settings.verify) {
             add("verify_spans", static_cast<double>(c.verifySpans));
@@ -266,10 +279,12 @@ class ScanlineEngine final : public Engine {
                       static_cast<unsigned long long>(rc.edgesConic), "DepthCalc", "FaceInsert",
                       "FaceDelete", "EdgeSwaps", "Spans", "MaxStack", "MeanStack", "Intensities",
                       "Pixels(k)", static_cast<unsigned long long>(c.depthCalcs),
-                      // Face inserts: into the face stacks (§5.4) plus the per-span inserts of
-                      // bodies evaluated exactly (render=exact, CSG operands, refused bodies).
-                      static_cast<unsigned long long>(c.stackInserts + c.faceInserts),
-                      static_cast<unsigned long long>(c.stackDeletes),
+                      // Face inserts: into the edges' carried face stacks (§5.3, §5.4: at
+                      // vertices, after swaps, and the verifier's corrections) plus the per-span
+                      // inserts of bodies evaluated exactly (render=exact, CSG operands, refused
+                      // bodies); deletes from the carried stacks.
+                      static_cast<unsigned long long>(c.stackDeriveInserts + c.faceInserts),
+                      static_cast<unsigned long long>(c.stackDeriveDeletes),
                       static_cast<unsigned long long>(c.edgeSwaps),
                       static_cast<unsigned long long>(c.spans),
                       static_cast<unsigned long long>(c.stackMaxDepth),
