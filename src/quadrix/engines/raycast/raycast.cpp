@@ -136,7 +136,8 @@ struct Counters {
     std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
                   cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0,
-                  emptyBodies = 0, batchBodies = 0, batchPixels = 0, bodyFillTiles = 0;
+                  emptyBodies = 0, batchBodies = 0, batchPixels = 0, bodyFillTiles = 0,
+                  emptyTiles = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -158,6 +159,7 @@ struct Counters {
         batchBodies += o.batchBodies;
         batchPixels += o.batchPixels;
         bodyFillTiles += o.bodyFillTiles;
+        emptyTiles += o.emptyTiles;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -394,6 +396,16 @@ class Worker {
         counters.covered += n;
         counters.flatPixels += n;
         ++counters.flatTiles;
+        return true;
+    }
+
+    // True when every solid of the sub-tile program is ∅ on every ray of the rectangle (the
+    // bodies PrepareTile proved empty leave nothing, by the identities of SingleBody): the
+    // sub-tile is background.
+    bool AllEmpty(const CsgProgram& program, const Rect& r) const {
+        if (!settings_.tileCull) return false;
+        for (const ProgSolid& s : program.solids)
+            if (SingleBody(program, s.root, r) != kEmptyNode) return false;
         return true;
     }
 
@@ -911,6 +923,11 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             }
             w.SetCuts(w.subTileProgram);
             w.PrepareTile(w.subTileProgram, Centres(sx, sy, ex, ey));
+            if (w.AllEmpty(w.subTileProgram, Centres(sx, sy, ex, ey))) {
+                ++w.counters.emptyTiles;
+                FillBackground(frame, sx, sy, ex, ey);
+                continue;
+            }
             if (w.TryFlatFill(w.subTileProgram, Centres(sx, sy, ex, ey), sx, sy, ex, ey, frame))
                 continue;
             w.StartBatches(w.subTileProgram, sx, sy, ex, ey);
@@ -1049,6 +1066,7 @@ class RaycastEngine final : public Engine {
         add("batched_bodies", total.batchBodies);
         add("batched_body_pixels", total.batchPixels);
         add("single_body_tiles_16", total.bodyFillTiles);
+        add("empty_tiles_16", total.emptyTiles);
         return stats;
     }
 };
