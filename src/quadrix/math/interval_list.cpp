@@ -60,19 +60,6 @@ void IntervalList::Grow(std::size_t minCapacity) {
     capacity_ = cap;
 }
 
-void IntervalList::Append(double lo, std::int32_t loId, double hi, std::int32_t hiId) {
-    if (!(lo < hi)) return;  // a point, an inverted interval or a NaN: not part of a regular set
-    if (size_ > 0 && lo <= data_[size_ - 1].hi) {
-        Interval& last = data_[size_ - 1];
-        if (hi > last.hi) {
-            last.hi = hi;
-            last.hiId = hiId;
-        }
-        return;
-    }
-    if (size_ == capacity_) Grow(size_ + 1);
-    data_[size_++] = Interval{lo, hi, loId, hiId};
-}
 
 bool IntervalList::Contains(double t) const {
     // Lists are short; a linear scan beats a binary search in practice.

@@ -75,7 +75,19 @@ class IntervalList {
     // Appends [lo, hi] after the current last interval, keeping the canonical form: an interval
     // with lo >= hi (a point or a NaN) is dropped, and one that touches or overlaps the last
     // interval (lo <= back().hi) is merged into it. Precondition: lo >= back().lo.
-    void Append(double lo, std::int32_t loId, double hi, std::int32_t hiId);
+    void Append(double lo, std::int32_t loId, double hi, std::int32_t hiId) {  // inline: hot
+        if (!(lo < hi)) return;  // a point, an inverted interval or a NaN: not part of a regular set
+        if (size_ > 0 && lo <= data_[size_ - 1].hi) {
+            Interval& last = data_[size_ - 1];
+            if (hi > last.hi) {
+                last.hi = hi;
+                last.hiId = hiId;
+            }
+            return;
+        }
+        if (size_ == capacity_) Grow(size_ + 1);
+        data_[size_++] = Interval{lo, hi, loId, hiId};
+    }
 
     // Closed membership: t lies in some [lo, hi].
     bool Contains(double t) const;
