@@ -8,6 +8,7 @@
 // and writes a Markdown table with ratios and a CSV to the output directory. Nothing is asserted:
 // benchmarks report, they do not fail on time.
 #include <fcntl.h>
+#include <malloc.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -74,6 +75,28 @@ ProcessRun Spawn(const std::vector<std::string>& argv) {
     return r;
 }
 
+// A spawned child's peak resident set (wait4's ru_maxrss) starts from the high-water mark of the
+// memory of the process that spawned it (posix_spawn shares the parent's memory until exec, and
+// Linux records that memory's peak at exec). So before spawning, the suite returns freed memory
+// to the system and resets its own high-water mark (/proc/self/clear_refs, "5"); a child's peak
+// is then max(its own, the suite's resident set at that moment), which is returned (MiB) and
+// reported as the floor under which a peak means nothing.
+double ResetPeakRss() {
+    malloc_trim(0);
+    if (FILE* f = std::fopen("/proc/self/clear_refs", "w")) {
+        std::fputs("5", f);
+        std::fclose(f);
+    }
+    double rssMiB = 0;
+    if (FILE* f = std::fopen("/proc/self/status", "r")) {
+        char line[256];
+        while (std::fgets(line, sizeof line, f))
+            if (std::strncmp(line, "VmRSS:", 6) == 0) rssMiB = std::atof(line + 6) / 1024.0;
+        std::fclose(f);
+    }
+    return rssMiB;
+}
+
 double Median(std::vector<double> v) {
     if (v.empty()) return 0;
     std::sort(v.begin(), v.end());
@@ -95,6 +118,7 @@ struct Row {
     double flattenMs = 0;
     double quadrixProcessMs = 0, quadrixPeakMiB = 0;
     double povProcessMs = 0, povPeakMiB = 0;
+    double benchFloorMiB = 0;  // the suite's own resident set when the processes ran
     bool povOk = false;
 };
 
@@ -314,7 +338,9 @@ int main(int argc, char** argv) {
             row.size = size;
             std::fprintf(stderr, "%-22s %4dx%-4d ", scene.name.c_str(), size.w, size.h);
 
-            // In process: read + flatten once, then each engine warm.
+            // In process: read + flatten once, then each engine warm. (A block: its frames and
+            // scene are freed before the processes are spawned; see ResetPeakRss.)
+            {
             PipelineOptions po;
             po.scenePaths = {scenePath};
             po.width = size.w;
@@ -399,6 +425,8 @@ int main(int argc, char** argv) {
                 row.engineMs.emplace_back(name, Median(ms));
                 lastOfFamily[famKey] = {scene.primitives, Median(ms)};
             }
+            }
+            row.benchFloorMiB = ResetPeakRss();
 
             // Whole processes, Quadrix and POV-Ray alternating.
             std::string sizeArg = fmt::format("{}x{}", size.w, size.h);
@@ -447,14 +475,16 @@ int main(int argc, char** argv) {
     std::string md = fmt::format("# Quadrix benchmark results {}\n\n", stamp);
     md += "Frame = in-process render of a flattened scene (warm, median); process = whole "
           "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "
-          "process. Peak = maximum resident set of the process. An engine time marked (≠ p %) "
+          "process. Peak = maximum resident set of the process; a peak at the suite's own resident set "
+          "(floor) only says the process stayed below it (see ResetPeakRss). An engine time "
+          "marked (≠ p %) "
           "comes from a frame whose coverage differs from raycast's on p % of the pixels: that "
           "engine does not draw the whole scene (e.g. `patch` skips CSG solids).\n\n";
     md += "| scene | prims | size | flatten ms |";
     for (const auto& e : EngineNames()) md += fmt::format(" {} frame ms |", e);
-    md += " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB |\n|---|---|---|---|";
+    md += " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB | floor MiB |\n|---|---|---|---|";
     for (std::size_t i = 0; i < EngineNames().size(); ++i) md += "---|";
-    md += "---|---|---|---|---|\n";
+    md += "---|---|---|---|---|---|\n";
     std::string csv = "scene,primitives,width,height,flatten_ms";
     for (const auto& e : EngineNames()) csv += "," + e + "_frame_ms";
     csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib\n";
@@ -472,10 +502,11 @@ int main(int argc, char** argv) {
                                : fmt::format(" {:.1f} |", ms);
             csv += fmt::format(",{:.3f}", ms);
         }
-        md += fmt::format(" {:.1f} | {} | {} | {:.0f} | {} |\n", r.quadrixProcessMs,
+        md += fmt::format(" {:.1f} | {} | {} | {:.0f} | {} | {:.0f} |\n", r.quadrixProcessMs,
                           r.povProcessMs > 0 ? fmt::format("{:.1f}", r.povProcessMs) : "–",
                           Ratio(r.povProcessMs, r.quadrixProcessMs), r.quadrixPeakMiB,
-                          r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–");
+                          r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–",
+                          r.benchFloorMiB);
         csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f}\n", r.quadrixProcessMs, r.povProcessMs,
                            r.quadrixPeakMiB, r.povPeakMiB);
     }

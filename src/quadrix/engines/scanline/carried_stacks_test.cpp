@@ -97,7 +97,8 @@ PipelineResult RunScene(const std::string& path, int w, int h, const char* engin
 // show-edges along the joint lines of four mitred tubes), and a row-by-row sweep rebuilt every
 // stack on every row.
 TEST(ScanlineCarriedStacks, ExamplesAndGalleryNeedNoCorrections) {
-    double swaps = 0, derivations = 0, inserts = 0;
+    double swaps = 0, derivations = 0, inserts = 0, deriveInserts = 0;
+    double vertices = 0, recursions = 0, deletionSwaps = 0;
     for (const char* name :
          {"examples/tube.uq", "examples/bundle_of_tubes.uq", "examples/stack_of_bundles.uq",
           "examples/teapot_on_table.uq", "examples/gallery/clover_knot.uq",
@@ -115,21 +116,34 @@ TEST(ScanlineCarriedStacks, ExamplesAndGalleryNeedNoCorrections) {
             EXPECT_EQ(Counter(s, "face_stack_order_corrections"), 0) << what;
             EXPECT_EQ(Counter(s, "verify_body_face_mismatches"), 0) << what;
             EXPECT_GT(Counter(s, "face_stack_derivations"), 0) << what;
+            // Pass one's vertex processing (§5.4) closed every vertex: no fallback derivation.
+            EXPECT_EQ(Counter(s, "face_stack_vertex_fallbacks"), 0) << what;
+            EXPECT_EQ(Counter(s, "face_stack_rebuilds"), 0) << what;
             // The carried stacks alone (no verifier) draw the same frame.
             PipelineResult unchecked = RunScene(name, w, h, "scanline", {{"check", "off"}});
             EXPECT_EQ(FrameDifference(unchecked.frame, got.frame), "") << what;
-            EXPECT_LE(Counter(s, "face_stack_derive_inserts"), Counter(s, "face_stack_inserts"))
-                << what;
             swaps += Counter(s, "face_stack_swap_updates");
+            deriveInserts += Counter(s, "face_stack_derive_inserts");
+            vertices += Counter(s, "face_stack_vertices");
+            recursions += Counter(s, "face_stack_vertex_recursions");
+            deletionSwaps += Counter(s, "face_stack_deletion_swaps");
             derivations += Counter(s, "face_stack_derivations");
             inserts += Counter(s, "face_stack_inserts");
         }
     }
     EXPECT_GT(swaps, 0);  // pass two handed stacks over somewhere
-    // Carried, not rebuilt: stacks are derived (from a left neighbour) at vertices and swaps
-    // only, far less often than faces cross the scan lines (a row-by-row rebuild derives one
-    // stack per crossing: more derivations than face inserts).
+    // Pass one processed vertices, moved finishing edges next to CE past other edges, and
+    // recursed through edges lying within one scan line (the gallery's tubes have many short
+    // pieces between nearly coincident vertices).
+    EXPECT_GT(vertices, 1000);
+    EXPECT_GT(deletionSwaps, 100);
+    EXPECT_GT(recursions, 100);
+    // Carried, not rebuilt: stacks are derived (from a left neighbour) for starting edges and
+    // at the end of a swap only, far less often than faces cross the scan lines (a row-by-row
+    // rebuild derives one stack per crossing: more derivations than face inserts), and the
+    // faces put in depth order while carrying are fewer than the faces crossing.
     EXPECT_LT(derivations, 0.4 * inserts);
+    EXPECT_LT(deriveInserts, 0.5 * inserts);
 }
 
 TEST(ScanlineCarriedStacks, CheckOptionIsValidated) {
@@ -244,6 +258,8 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
         EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
         EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0) << what;
         EXPECT_EQ(Counter(stats, "verify_body_face_mismatches"), 0) << what;
+        EXPECT_EQ(Counter(stats, "face_stack_vertex_fallbacks"), 0) << what;
+        EXPECT_EQ(Counter(stats, "face_stack_rebuilds"), 0) << what;
         EXPECT_EQ(Counter(stats, "face_stack_inserts"), Counter(stats, "face_stack_deletes"))
             << what;
         EXPECT_EQ(FrameDifference(Render("scanline", b.scene(), nullptr, {{"check", "off"}}), got),
@@ -276,6 +292,149 @@ TEST(ScanlineCarriedStacks, EdgesEndingOnARowCentreKeepTheirFacesForThatRow) {
     ExpectRaycastFrame(Render("raycast", b.scene()), got, 0, "shared edge on a row centre");
     EXPECT_GT(Counter(stats, "face_stack_closed_row_faces"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0);
+}
+
+// Boxes whose top and bottom edges are horizontal (lines along a row: no row centre crosses
+// them, so they never enter the AEL) behind and in front of spheres and turned ellipsoids.
+// Without the horizontal show-edges, a box's two top corners are separate vertices whose
+// toggles do not cancel; pass one links them by recursion through the horizontal edge (§5.4:
+// "each incident starting edge that lies completely within the scan line ... its opposite
+// vertex is processed recursively"), and a sphere outline passing between the corners makes
+// the second corner's finishing edge move next to CE by swaps. `box` is (x0, x1, yTop, yBottom,
+// zFront, zBack, slant): the top and bottom faces are slanted toward the viewer so that they
+// are seen, and meet the front face on the rows yTop and yBottom.
+struct SlantedBox {
+    double x0, x1, yTop, yBottom, zFront, zBack, slant;
+};
+void AddSlantedBox(TestSceneBuilder& b, const SlantedBox& x) {
+    const int l = b.AddPlane(-1, 0, 0, x.x0), r = b.AddPlane(1, 0, 0, -x.x1);
+    const int front = b.AddPlane(0, 0, -1, x.zFront), back = b.AddPlane(0, 0, 1, -x.zBack);
+    // y >= yTop − slant (z − zFront) and y <= yBottom + slant (z − zFront).
+    const int top = b.AddPlane(0, -1, -x.slant, x.yTop + x.slant * x.zFront);
+    const int bottom = b.AddPlane(0, 1, -x.slant, -x.yBottom + x.slant * x.zFront);
+    b.AddSolidOfBody(b.AddBody(
+        {{l, false}, {r, false}, {front, false}, {back, false}, {top, false}, {bottom, false}}));
+}
+
+// The carried stacks of one scene: raycast's frame with and without the verifier, nothing for
+// the verifier to do, no fallback at any vertex. Returns the stats.
+RenderStats ExpectVerticesClosed(const FlatScene& scene, std::size_t allowed,
+                                 const std::string& what) {
+    RenderStats stats;
+    Frame got = Render("scanline", scene, &stats, {{"verify", "on"}});
+    const Frame ref = Render("raycast", scene);
+    ExpectRaycastFrame(ref, got, allowed, what);
+    // The carried stacks alone: the same frame (a vertex processed wrongly would leave wrong
+    // stacks to the right of it, which only the verifier corrects).
+    const Frame unchecked = Render("scanline", scene, nullptr, {{"check", "off"}});
+    EXPECT_EQ(FrameDifference(unchecked, got), "") << what;
+    EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
+    EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0) << what;
+    EXPECT_EQ(Counter(stats, "face_stack_order_corrections"), 0) << what;
+    EXPECT_EQ(Counter(stats, "verify_body_face_mismatches"), 0) << what;
+    EXPECT_EQ(Counter(stats, "face_stack_vertex_fallbacks"), 0) << what;
+    EXPECT_EQ(Counter(stats, "face_stack_rebuilds"), 0) << what;
+    return stats;
+}
+
+TEST(ScanlineVertexProcessing, HorizontalEdgesLinkTheirVerticesByRecursion) {
+    TestSceneBuilder b(120, 96);
+    AddSlantedBox(b, {20, 100, 20.3, 70.6, 50, 80, 0.5});
+    // A sphere in front whose outline passes between the top corners (and the bottom ones).
+    b.AddSolidOfBody(b.AddBody({{b.AddSphere({58, 20, 30}, 12.2), false}}));
+    b.AddSolidOfBody(b.AddBody({{b.AddSphere({45, 72, 40}, 9.7), false}}));
+    const RenderStats stats = ExpectVerticesClosed(b.scene(), 0, "box and spheres");
+    EXPECT_GE(Counter(stats, "show_edges_horizontal"), 4);
+    EXPECT_GT(Counter(stats, "face_stack_vertex_recursions"), 0);
+    EXPECT_GT(Counter(stats, "face_stack_deletion_swaps"), 0);
+    EXPECT_GT(Counter(stats, "face_stack_vertices"), 0);
+}
+
+// The same box with its horizontal edges exactly on row centres (20.5 and 70.5). The rows on
+// the edges are ties: the front face and the top (bottom) face have the same depth along the
+// whole row, and raycast's closed half-spaces pick the slanted face where the stacks keep the
+// front one. The verifier's face test must not take the front face away there (it lies on the
+// slanted plane, but the box goes on behind it along the ray): the frame with and without the
+// verifier is the same, and raycast's depth everywhere.
+TEST(ScanlineVertexProcessing, RowsExactlyOnHorizontalEdges) {
+    TestSceneBuilder b(120, 96);
+    AddSlantedBox(b, {20, 100, 20.5, 70.5, 50, 81, 0.5});  // back edges at y 5 and 86
+    b.AddSolidOfBody(b.AddBody({{b.AddSphere({58, 20, 30}, 12.2), false}}));
+    RenderStats stats;
+    const Frame got = Render("scanline", b.scene(), &stats);
+    const Frame unchecked = Render("scanline", b.scene(), nullptr, {{"check", "off"}});
+    EXPECT_EQ(FrameDifference(unchecked, got), "");
+    EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0);
+    EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0);
+    EXPECT_EQ(Counter(stats, "face_stack_vertex_fallbacks"), 0);
+    EXPECT_GT(Counter(stats, "face_stack_vertex_recursions"), 0);
+    const Frame ref = Render("raycast", b.scene());
+    std::size_t covered = 0, tieRows = 0;
+    for (int y = 0; y < ref.height; ++y) {
+        for (int x = 0; x < ref.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * ref.width + x;
+            ASSERT_EQ(ref.surface[i] == Frame::kNone, got.surface[i] == Frame::kNone)
+                << x << " " << y;
+            if (ref.surface[i] == Frame::kNone) continue;
+            ++covered;
+            EXPECT_NEAR(got.depth[i], ref.depth[i], 1e-9) << x << " " << y;
+            if (ref.surface[i] != got.surface[i]) {
+                EXPECT_TRUE(y == 20 || y == 70) << x << " " << y;
+                ++tieRows;
+            }
+        }
+    }
+    EXPECT_GT(covered, 1000u);
+    EXPECT_LE(tieRows, 2u * 80u);
+}
+
+// Random slanted boxes, spheres and turned ellipsoids (some cut by a plane), at two sizes: every
+// vertex closes, the carried stacks alone give raycast's frame, and pass one's recursion and
+// deletion swaps are exercised.
+TEST(ScanlineVertexProcessing, RandomBoxesAndEllipsoidsCloseEveryVertex) {
+    std::mt19937 rng(5405);
+    std::uniform_real_distribution<double> u(0, 1);
+    double recursions = 0, deletionSwaps = 0, vertices = 0;
+    for (int scene = 0; scene < 16; ++scene) {
+        const int w = scene % 2 ? 131 : 96, h = scene % 2 ? 101 : 80;
+        TestSceneBuilder b(w, h);
+        const int boxes = 1 + scene % 3;
+        for (int k = 0; k < boxes; ++k) {
+            const double x0 = w * (0.05 + 0.5 * u(rng)), y0 = h * (0.05 + 0.4 * u(rng));
+            AddSlantedBox(b, {x0, x0 + w * (0.2 + 0.3 * u(rng)), y0, y0 + h * (0.2 + 0.3 * u(rng)),
+                              30 + 30 * u(rng), 95, 0.2 + 0.6 * u(rng)});
+        }
+        const int n = 2 + scene % 3;
+        for (int k = 0; k < n; ++k) {
+            const Vec3 c{w * (0.1 + 0.8 * u(rng)), h * (0.1 + 0.8 * u(rng)), 20 + 50 * u(rng)};
+            const double rx = 5 + 12 * u(rng), ry = 5 + 12 * u(rng), rz = 5 + 12 * u(rng);
+            const double t = 3.14159 * u(rng), ct = std::cos(t), st = std::sin(t);
+            const double a = ct * ct / (rx * rx) + st * st / (ry * ry);
+            const double bb = st * st / (rx * rx) + ct * ct / (ry * ry);
+            const double d = ct * st * (1 / (rx * rx) - 1 / (ry * ry));
+            const double cc = 1 / (rz * rz);
+            std::array<double, 10> q{a, bb, cc, d, 0, 0, 0, 0, 0, 0};
+            q[6] = -(a * c.x + d * c.y);
+            q[7] = -(d * c.x + bb * c.y);
+            q[8] = -cc * c.z;
+            q[9] = a * c.x * c.x + bb * c.y * c.y + 2 * d * c.x * c.y + cc * c.z * c.z - 1;
+            std::vector<std::pair<int, bool>> lits{{b.AddQuadric(q), false}};
+            if (k % 2 == 1) {
+                const double px = u(rng) - 0.5, py = u(rng) - 0.5, pz = -0.6 - u(rng);
+                lits.push_back(
+                    {b.AddPlane(px, py, pz, -(px * c.x + py * c.y + pz * c.z) - 2), false});
+            }
+            b.AddSolidOfBody(b.AddBody(lits));
+        }
+        const RenderStats stats =
+            ExpectVerticesClosed(b.scene(), 3, "random scene " + std::to_string(scene));
+        recursions += Counter(stats, "face_stack_vertex_recursions");
+        deletionSwaps += Counter(stats, "face_stack_deletion_swaps");
+        vertices += Counter(stats, "face_stack_vertices");
+    }
+    EXPECT_GT(vertices, 100);
+    EXPECT_GT(recursions, 16);
+    EXPECT_GT(deletionSwaps, 10);
 }
 
 // Many operands in one CSG tree: n spheres unioned, intersected with a box, minus a cylinder and

@@ -172,7 +172,8 @@ struct ActiveEdge {
     // part in the stacks until it is found again, when its stack is derived afresh.
     bool lost = false;
     // Pass three must derive `stack` again from the left neighbour's stack (⊕ this edge's
-    // faces): the edge moved left in pass two, started on this row, or a neighbour changed.
+    // faces): the band's first row, or where passes one and two could not carry the stack (a
+    // vertex fallback, a change of S0, a lost conic leg found again) — DeriveEdge.
     bool derive = false;
     // `stack` still holds a set that was right for this edge (so that the derived set can be
     // compared with it); false when it was given away in a swap or never set.
@@ -182,6 +183,15 @@ struct ActiveEdge {
     // until a derived stack equals the carried one).
     bool propagate = false;
     bool found = false;  // pass two only: x finite again after being lost
+    // The swap rule's state (SwapLeft): the edge moved left past another in pass one or two and
+    // handed its stack over; its own stack is its left neighbour's ⊕ its faces, derived when its
+    // move ends (pass two) or never (pass one: it is deleted next to CE).
+    bool pending = false;
+    int startRow = -1;  // the row it entered the AEL (its x is already on that row)
+    // Faces still to be toggled in `stack` (pass one and pass two keep the stacks as sets; the
+    // faces that enter are put in depth order in pass three, where the crossing's P and Q on
+    // the CSL are known: ResolveToggles).
+    std::vector<int> toggles;
     // On its last row, when that row's centre is the edge's top end (snapped, SnapToRow): the
     // edge stays a breakpoint (BuildEsl's closed range) but no longer toggles faces — the
     // half-open rule [yBottom, yTop) that makes a vertex exactly on a row centre toggle its
@@ -268,6 +278,7 @@ std::vector<std::vector<std::pair<int, int>>> BuildEsl(const std::vector<ShowEdg
     std::vector<std::vector<std::pair<int, int>>> esl(static_cast<std::size_t>(std::max(h, 0)));
     for (std::size_t e = 0; e < edges.size(); ++e) {
         const ShowEdge& s = edges[e];
+        if (s.horizontal) continue;  // never active: it only links its vertices (§5.4)
         // Rows whose centre j + ½ lies in the CLOSED range [yBottom, yTop]: a row exactly on a
         // horizontal boundary keeps the edges that end there, so the bodies they bound stay
         // candidates on that row (raycast's closed half-spaces decide it at the sample pixel).
@@ -284,13 +295,117 @@ std::vector<std::vector<std::pair<int, int>>> BuildEsl(const std::vector<ShowEdg
     return esl;
 }
 
+// §5.4's vertices. A stack edge toggles its faces on the rows whose centre lies in the half-open
+// [yBottom, yTop) (ActiveEdge::ending); the scan line of row j takes the vertices with
+// y in (j − ½, j + ½] (VertexBand): there the edges toggling up to row j − 1 finish and those
+// toggling from row j start. An edge whose two ends lie in one band toggles on no row: it "lies
+// completely within the scan line" and only links its two vertices (pass one recurses through
+// it). Ends of different edges are one vertex when they lie in one band within kVertexTol in x
+// and y (a vertex shared by two i-lines is computed on each; merging two distinct vertices is
+// harmless, since the toggles of each cancel around it, so do those of the two together).
+struct RVertex {
+    double x = 0, y = 0;
+    int band = 0;
+    std::vector<int> finishing;  // toggling edges whose top end is here
+    std::vector<int> starting;   // toggling edges whose bottom end is here
+    std::vector<int> inBand;     // edges with both ends in this band
+};
+struct VertexTable {
+    std::vector<RVertex> vertices;
+    std::vector<int> bottom, top;            // per edge: the vertex of each end (−1: none)
+    std::vector<char> toggling;              // per edge: a stack edge whose ends are in two bands
+    std::vector<std::vector<int>> startsAt;  // per row: vertices with starting edges, x order
+};
+constexpr double kVertexTol = 1e-3;  // px
+
+int VertexBand(double y) { return static_cast<int>(std::ceil(SnapToRow(y) - 0.5)); }
+
+// x of an edge's end; a conic leg at its VEXTRM may round to no root: the insert line's x.
+double EndX(const ShowEdge& s, double y, bool top) {
+    if (s.horizontal) return top ? s.xTop : s.xBottom;
+    double x = s.XAt(y);
+    if (!std::isfinite(x) && s.conic && s.shape.a != 0)
+        x = -(s.shape.c * y + s.shape.d) / (2 * s.shape.a);
+    return std::isfinite(x) ? x : HUGE_VAL;
+}
+
+// The vertex table of the stack bodies' show-edges (`stack[b]`: drawn from face stacks).
+VertexTable BuildVertices(const std::vector<ShowEdge>& edges, const std::vector<char>& stack,
+                          int h) {
+    VertexTable vt;
+    const std::size_t n = edges.size();
+    vt.bottom.assign(n, -1);
+    vt.top.assign(n, -1);
+    vt.toggling.assign(n, 0);
+    vt.startsAt.resize(static_cast<std::size_t>(std::max(h, 0)));
+    struct End {
+        int band;
+        double x, y;
+        int edge;
+        bool isTop;
+    };
+    std::vector<End> ends;
+    for (std::size_t e = 0; e < n; ++e) {
+        const ShowEdge& s = edges[e];
+        if (s.body < 0 || static_cast<std::size_t>(s.body) >= stack.size() ||
+            !stack[static_cast<std::size_t>(s.body)])
+            continue;
+        const double yb = SnapToRow(s.yBottom), yt = SnapToRow(s.yTop);
+        if (!(yb <= yt)) continue;
+        const int bb = VertexBand(yb), bt = VertexBand(yt);
+        if (s.horizontal && bb != bt) continue;  // (its y rounds across a band: links nothing)
+        vt.toggling[e] = bb < bt;
+        if (bb >= 0 && bb < h)
+            ends.push_back({bb, EndX(s, s.yBottom, false), yb, static_cast<int>(e), false});
+        if (bt >= 0 && bt < h)
+            ends.push_back({bt, EndX(s, s.yTop, true), yt, static_cast<int>(e), true});
+    }
+    std::sort(ends.begin(), ends.end(), [](const End& p, const End& q) {
+        return p.band < q.band || (p.band == q.band && p.x < q.x);
+    });
+    std::size_t bandFirst = 0;  // first vertex of the current band
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+        const End& p = ends[i];
+        if (i == 0 || p.band != ends[i - 1].band) bandFirst = vt.vertices.size();
+        int v = -1;
+        for (std::size_t k = vt.vertices.size(); k-- > bandFirst;) {  // recent ones, x order
+            const RVertex& c = vt.vertices[k];
+            if (p.x - c.x > kVertexTol) break;
+            if (std::fabs(p.y - c.y) <= kVertexTol) {
+                v = static_cast<int>(k);
+                break;
+            }
+        }
+        if (v < 0) {
+            v = static_cast<int>(vt.vertices.size());
+            vt.vertices.push_back({p.x, p.y, p.band, {}, {}, {}});
+        }
+        RVertex& vx = vt.vertices[static_cast<std::size_t>(v)];
+        const auto e = static_cast<std::size_t>(p.edge);
+        (p.isTop ? vt.top : vt.bottom)[e] = v;
+        if (!vt.toggling[e]) {
+            if (vx.inBand.empty() || vx.inBand.back() != p.edge) vx.inBand.push_back(p.edge);
+        } else {
+            (p.isTop ? vx.finishing : vx.starting).push_back(p.edge);
+        }
+    }
+    // Vertices were made in x order within each band.
+    for (std::size_t v = 0; v < vt.vertices.size(); ++v)
+        if (!vt.vertices[v].starting.empty())
+            vt.startsAt[static_cast<std::size_t>(vt.vertices[v].band)].push_back(
+                static_cast<int>(v));
+    return vt;
+}
+
 class ScanRenderer {
   public:
     ScanRenderer(const FlatScene& scene, std::vector<ShowEdge>& edges,
                  const std::vector<ShowFace>& faces, const std::vector<Unit>& units,
                  const std::vector<bool>& pixelBody, const std::vector<bool>& stackBody,
-                 const RenderSettings& settings, Frame& frame, RendererCounters& c)
+                 const VertexTable& vt, const RenderSettings& settings, Frame& frame,
+                 RendererCounters& c)
         : scene_(scene),
+          vt_(vt),
           edges_(edges),
           faces_(faces),
           units_(units),
@@ -339,6 +454,8 @@ class ScanRenderer {
             }
         }
         bodyTaken_.assign(nb, 0);
+        vertexRow_.assign(vt.vertices.size(), -1);
+        inBandRow_.assign(edges.size(), -1);
         PrepareCsg(scene, units, pixelBody);
     }
 
@@ -478,20 +595,28 @@ class ScanRenderer {
 
     void Row(int j, bool bandStart) {
         const double yc = j + 0.5;
-        // Pass one (finishing edges) and pass two (x on the CSL, x order by adjacent swaps),
-        // with the face stacks carried through both; starting edges enter after the sort.
-        RemoveFinishingEdges(j);
-        TraceAndSort();
-        // Starting edges (at a band's first row, every edge that started on an earlier row and
-        // is still active): merged into x order WITHOUT stack updates — they did not cross the
-        // edges they come between, they appear there. Their stacks are derived in pass three
-        // from the left neighbour's (the recursive vertex processing of §5.4, see DeriveEdge).
+        bandStartRow_ = bandStart;
+        // Pass one (the vertices of the CSL, §5.4: finishing edges leave, starting stack edges
+        // enter with their stacks) and pass two (x on the CSL, x order by adjacent swaps), with
+        // the face stacks carried through both.
+        if (stackOn_ && !bandStart)
+            PassOne(j);
+        else
+            DropFinishingEdges(j);
+        TraceAndSort(j);
+        // The other starting edges (of CSG operands and refused bodies, and stack edges that
+        // toggle on no row; at a band's first row every edge that started on an earlier row and
+        // is still active): merged into x order without swaps. At a band's first row every
+        // stack is derived in pass three from the left neighbour's (MarkFresh).
         starting_.clear();
         for (int r = bandStart ? 0 : j; r <= j; ++r) {
             for (auto [e, last] : (*esl_)[static_cast<std::size_t>(r)]) {
                 if (last < j) continue;
+                if (stackOn_ && !bandStart && vt_.toggling[static_cast<std::size_t>(e)])
+                    continue;  // entered in pass one
                 ActiveEdge a;
                 a.edge = e;
+                a.startRow = j;
                 a.lastRow = last;
                 Start(a, yc);
                 Trace(a, true);
@@ -1271,45 +1396,290 @@ class ScanRenderer {
                SnapToRow(edges_[static_cast<std::size_t>(a.edge)].yTop) <= j + 0.5;
     }
 
-    // Pass one: finishing edges (lastRow < j) leave the AEL. The region right of a finishing
-    // edge merges with the one left of it, so the next stack edge is marked for derivation from
-    // its new left neighbour. When the edge closes a vertex with a partner (a V or Λ), the
-    // faces the two toggle cancel and the derived stack equals the carried one: the marking
-    // stops there. This is the effect of §5.4's "move the finishing edge next to CE by swaps,
-    // then delete it", without needing the two edges to share a computed vertex.
-    void RemoveFinishingEdges(int j) {
-        std::size_t keep = 0;
-        bool pending = false;
-        for (std::size_t i = 0; i < ael_.size(); ++i) {
-            ActiveEdge& a = ael_[i];
-            if (a.lastRow < j) {
-                pending = pending || Participates(a);
+    // ---- pass one: the vertices of the CSL (§5.4) ----
+    //
+    // The AEL comes from pass two of row j − 1: sorted on x at that row, every stack its left
+    // neighbour's ⊕ its faces. Pass one walks it with the current-edge pointer CE (ce_), copying
+    // the edges it passes to the new AEL, and processes the vertices of scan line j (VertexBand):
+    // the top vertex of CE when CE finishes, and before that every vertex with starting edges
+    // (vt_.startsAt[j], x order) that lies left of CE. A vertex is processed in three steps
+    // (ProcessVertex): (1) its finishing edges leave the AEL — one that is not CE is first moved
+    // next to CE by successive swaps, each applying the swap rule of pass two to the edge passed
+    // (SwapLeft; counted in stackDeletionSwaps), then deleted; (2) its edges lying within the
+    // scan line are taken and their other vertices processed recursively; (3) its remaining
+    // starting edges are inserted at CE, each stack derived from its left neighbour's and the
+    // edge's two faces. Around a vertex (or a group of vertices linked by edges within the scan
+    // line) the finishing edges and the starting ones toggle the same faces, so the stack right
+    // of the inserted edges is the one right of the deleted edges: nothing further right changes.
+    // When they do not (parity_ not empty: an end missing from the vertex table, a conic leg
+    // lost to rounding), the next stack edge is derived again in pass three and the change is
+    // carried on from there (the fallback, stackVertexFallbacks).
+    void PassOne(int j) {
+        old_.swap(ael_);
+        ael_.clear();
+        gone_.assign(old_.size(), 0);
+        lastPart_ = -1;
+        markOut_ = false;
+        ce_ = 0;
+        const std::vector<int>& sv = vt_.startsAt[static_cast<std::size_t>(j)];
+        std::size_t q = 0;
+        for (;;) {
+            while (ce_ < old_.size() && gone_[ce_]) ++ce_;
+            while (q < sv.size() && vertexRow_[static_cast<std::size_t>(sv[q])] == j) ++q;
+            const bool haveCe = ce_ < old_.size();
+            if (q < sv.size() && (!haveCe || vt_.vertices[static_cast<std::size_t>(sv[q])].x <
+                                                 CeX(old_[ce_], sv[q], j))) {
+                ProcessComponent(sv[q], j);
                 continue;
             }
-            if (Participates(a) && EndsOnRow(a, j)) {  // stops toggling: like a finishing edge
+            if (!haveCe) break;
+            const int v = FinishingVertex(old_[ce_], j);
+            if (v >= 0 && vertexRow_[static_cast<std::size_t>(v)] != j) {
+                ProcessComponent(v, j);
+                continue;
+            }
+            ActiveEdge& a = old_[ce_++];
+            if (v >= 0) {  // its vertex was processed without it (not expected): fallback
+                if (Participates(a)) {
+                    ++c_.stackVertexFallbacks;
+                    markOut_ = true;
+                }
                 a.ending = true;
-                pending = true;
             }
-            if (pending && Participates(a)) {
-                MarkCheck(a);
-                pending = false;
+            if (a.lastRow < j) continue;  // finishing edges of other bodies and lost ones leave
+            Emit(std::move(a));
+        }
+        old_.clear();
+    }
+
+    // Where CE is at the height of vertex v (the next one with starting edges): its own top
+    // vertex's x if it finishes on this scan line, else x on its show-edge at v's y (the AEL's
+    // x are on row j − 1, up to a row below v).
+    double CeX(const ActiveEdge& a, int v, int j) const {
+        const int top = FinishingVertex(a, j);
+        if (top >= 0) return vt_.vertices[static_cast<std::size_t>(top)].x;
+        const double yv = vt_.vertices[static_cast<std::size_t>(v)].y;
+        const ShowEdge& s = edges_[static_cast<std::size_t>(a.edge)];
+        if (!(yv >= s.yBottom && yv <= s.yTop)) return SortKey(a.x);
+        const double x = s.XAt(yv);
+        return std::isfinite(x) ? x : SortKey(a.x);
+    }
+
+    // The vertex v of scan line j where a toggling stack edge finishes, or −1.
+    int FinishingVertex(const ActiveEdge& a, int j) const {
+        if (!a.stackEdge) return -1;
+        const auto e = static_cast<std::size_t>(a.edge);
+        if (!vt_.toggling[e]) return -1;
+        const int v = vt_.top[e];
+        return v >= 0 && vt_.vertices[static_cast<std::size_t>(v)].band == j ? v : -1;
+    }
+
+    // Appends an edge to the new AEL (pass one); the first stack edge after a fallback is
+    // marked for derivation.
+    void Emit(ActiveEdge&& a) {
+        ael_.push_back(std::move(a));
+        ActiveEdge& b = ael_.back();
+        if (!Participates(b)) return;
+        if (markOut_) {
+            MarkCheck(b);
+            markOut_ = false;
+        }
+        lastPart_ = static_cast<std::ptrdiff_t>(ael_.size()) - 1;
+    }
+
+    // A vertex and, recursively, those linked to it by edges within the scan line; then step
+    // (3) for all of them: their starting edges enter at CE in x order on row j.
+    void ProcessComponent(int v, int j) {
+        const double y = j + 0.5;
+        parity_.clear();
+        starts_.clear();
+        ProcessVertex(v, j, 0);
+        newEdges_.clear();
+        for (int e : starts_) {
+            ActiveEdge a;
+            a.edge = e;
+            const double last =
+                std::floor(SnapToRow(edges_[static_cast<std::size_t>(e)].yTop) - 0.5);
+            a.lastRow = static_cast<int>(std::min(last, frame_.height - 1.0));
+            a.startRow = j;
+            Start(a, y);
+            Trace(a, true);
+            a.lost = !std::isfinite(a.x);
+            a.ending = EndsOnRow(a, j);
+            newEdges_.push_back(std::move(a));
+        }
+        std::stable_sort(
+            newEdges_.begin(), newEdges_.end(),
+            [](const ActiveEdge& p, const ActiveEdge& q) { return SortKey(p.x) < SortKey(q.x); });
+        for (std::size_t k = 0; k < newEdges_.size(); ++k) {
+            ActiveEdge& a = newEdges_[k];
+            if (Participates(a)) {
+                ToggleParity(a);
+                const ActiveEdge* left =
+                    lastPart_ >= 0 ? &ael_[static_cast<std::size_t>(lastPart_)] : nullptr;
+                if (left && left->derive) {
+                    MarkFresh(a);  // its left neighbour is re-derived in pass three
+                } else {
+                    DeriveFrom(a, left);
+                }
+            } else {
+                MarkFresh(a);  // lost: derived afresh when found
             }
-            if (keep != i) ael_[keep] = std::move(a);
+            Emit(std::move(a));
+        }
+        if (!parity_.empty()) {
+            ++c_.stackVertexFallbacks;
+            markOut_ = true;
+        }
+    }
+
+    // Steps (1) and (2) of §5.4 for vertex v; step (3) is collected in starts_.
+    void ProcessVertex(int v, int j, int depth) {
+        vertexRow_[static_cast<std::size_t>(v)] = j;
+        ++c_.stackVertices;
+        if (depth > 0) ++c_.stackVertexRecursions;
+        const RVertex& vx = vt_.vertices[static_cast<std::size_t>(v)];
+        // The finishing edges' places in the AEL, left to right (CE first when it is one).
+        found_.clear();
+        for (int e : vx.finishing) {
+            std::size_t i = ce_;
+            while (i < old_.size() && (gone_[i] || old_[i].edge != e)) ++i;
+            if (i < old_.size()) found_.push_back(i);  // else: not in the AEL (lost, dropped)
+        }
+        std::sort(found_.begin(), found_.end());
+        for (std::size_t i : found_) {
+            // (1) Moved left next to CE by successive swaps: each edge X passed takes the
+            // finishing edge's stack, or toggles its faces (the swap rule of pass two).
+            for (std::size_t k = i; k-- > ce_;)
+                if (!gone_[k] && SwapLeft(old_[i], old_[k])) ++c_.stackDeletionSwaps;
+            // ... and deleted. An edge whose top is this row's centre stays a breakpoint for
+            // this row (ActiveEdge::ending) but no longer takes part in the stacks.
+            ActiveEdge& r = old_[i];
+            if (Participates(r)) ToggleParity(r);
+            gone_[i] = 1;
+            r.pending = false;
+            if (r.lastRow >= j) {
+                r.ending = true;
+                Emit(std::move(r));
+            }
+        }
+        // (2) Edges lying within the scan line: their other vertex, recursively.
+        for (int h : vx.inBand) {
+            const auto he = static_cast<std::size_t>(h);
+            if (inBandRow_[he] == j) continue;
+            inBandRow_[he] = j;
+            const int o = vt_.bottom[he] == v ? vt_.top[he] : vt_.bottom[he];
+            if (o >= 0 && vertexRow_[static_cast<std::size_t>(o)] != j)
+                ProcessVertex(o, j, depth + 1);
+        }
+        // (3) The starting edges (inserted by ProcessComponent).
+        for (int e : vx.starting) starts_.push_back(e);
+    }
+
+    // The faces a vertex component toggles: finishing edges' and starting edges' (they cancel
+    // when the component is complete).
+    void ToggleParity(const ActiveEdge& a) {
+        for (int f : edges_[static_cast<std::size_t>(a.edge)].faces) {
+            if (f < 0) continue;
+            auto it = std::find(parity_.begin(), parity_.end(), f);
+            if (it != parity_.end())
+                parity_.erase(it);
+            else
+                parity_.push_back(f);
+        }
+    }
+
+    // a's stack from its left neighbour's (S0 when `left` is null) ⊕ a's faces, as a set: the
+    // faces to toggle wait in a.toggles for pass three (ResolveToggles).
+    void DeriveFrom(ActiveEdge& a, const ActiveEdge* left) {
+        ++c_.stackDerivations;
+        if (left) {
+            a.stack.assign(left->stack.begin(), left->stack.end());
+            a.toggles.assign(left->toggles.begin(), left->toggles.end());
+        } else {
+            a.stack.assign(seed_.begin(), seed_.end());
+            a.toggles.clear();
+        }
+        AddToggles(a.toggles, a);
+        a.carriedValid = true;
+        a.pending = false;
+    }
+
+    // Adds edge a's faces to a list of faces to toggle (two toggles of one face cancel).
+    void AddToggles(std::vector<int>& t, const ActiveEdge& a) const {
+        for (int f : edges_[static_cast<std::size_t>(a.edge)].faces) {
+            if (f < 0) continue;
+            auto it = std::find(t.begin(), t.end(), f);
+            if (it != t.end())
+                t.erase(it);
+            else
+                t.push_back(f);
+        }
+    }
+
+    // Pass three, at a's crossing: the faces waiting in a.toggles leave a's stack or enter it in
+    // depth order (§5.5.1 at the crossing and at Q).
+    void ResolveToggles(ActiveEdge& a, double xq, double y) {
+        for (int f : a.toggles) {
+            auto it = std::find(a.stack.begin(), a.stack.end(), f);
+            if (it != a.stack.end()) {
+                a.stack.erase(it);
+                ++c_.stackDeriveDeletes;
+            } else {
+                InsertInto(a.stack, f, a.x, xq, y);
+                ++c_.stackDeriveInserts;
+            }
+        }
+        a.toggles.clear();
+    }
+
+    // The swap rule (§5.3), for pass two's sort and pass one's deletion swaps: edge e moves left
+    // past its neighbour x. The region right of x is now the one that was right of e: x takes
+    // e's stack as it is (depth order included). e's own stack is then its new left
+    // neighbour's ⊕ its faces (`pending`); if e moves on past another edge, that edge takes this
+    // stack, which is its own ⊕ e's faces: they are toggled in its stack in place. True when a
+    // stack changed (both edges take part in the stacks).
+    bool SwapLeft(ActiveEdge& e, ActiveEdge& x) {
+        if (!Participates(e) || !Participates(x)) return false;
+        if (e.derive) {  // e's stack is not valid (a fallback): x is derived again too
+            x.derive = true;
+            x.carriedValid = false;
+            x.propagate = x.propagate || e.propagate;
+            e.pending = false;
+            return true;
+        }
+        if (!e.pending) {
+            std::swap(x.stack, e.stack);
+            std::swap(x.toggles, e.toggles);
+            x.carriedValid = true;  // x keeps any derive mark it had
+            e.pending = true;
+        } else {
+            AddToggles(x.toggles, e);
+        }
+        return true;
+    }
+
+    // Without face stacks: finishing edges leave the AEL.
+    void DropFinishingEdges(int j) {
+        std::size_t keep = 0;
+        for (std::size_t i = 0; i < ael_.size(); ++i) {
+            if (ael_[i].lastRow < j) continue;
+            if (keep != i) ael_[keep] = std::move(ael_[i]);
             ++keep;
         }
         ael_.resize(keep);
     }
 
-    // Pass two: x on the new CSL (conic edges by differences), then x order by adjacent swaps
-    // (insertion sort). A swap moves edge E left past edge X: the region right of X is now the
-    // region that was right of E, so X takes E's stack as it is (depth order included); E's new
-    // stack is its new left neighbour's ⊕ E's faces, derived in pass three where the point Q of
-    // the tie-breaks is known (and, if E passes several stack edges, those beyond the first
-    // are derived there too: each gains or loses E's faces). Edges whose x stops being finite
-    // ("lost") leave the structure like finishing edges; "found" ones re-enter like new ones.
-    void TraceAndSort() {
+    // Pass two: x on the new CSL (conic edges by differences; edges that entered in pass one are
+    // there already), then x order by adjacent swaps (insertion sort) with the swap rule: the
+    // mover's own stack is derived from its new left neighbour's when its move ends. Edges whose
+    // x stops being finite ("lost") leave the structure like finishing edges and "found" ones
+    // re-enter like new ones, both by derivation in pass three (a fallback: a leg traced past
+    // its VEXTRM by rounding).
+    void TraceAndSort(int j) {
         bool pending = false;
         for (ActiveEdge& a : ael_) {
+            if (a.startRow == j) continue;
             const bool wasLost = a.lost;
             Trace(a, false);
             const bool lost = !std::isfinite(a.x);
@@ -1327,18 +1697,16 @@ class ScanRenderer {
                 pending = false;
             }
         }
-        for (std::size_t i = 1; i < ael_.size(); ++i) {
+        const std::size_t n = ael_.size();
+        for (std::size_t i = 1; i < n; ++i) {
             std::size_t k = i;
             while (k > 0 && SortKey(ael_[k - 1].x) > SortKey(ael_[k].x)) {
-                PassLeft(ael_[k], ael_[k - 1]);
-                std::swap(ael_[k - 1], ael_[k]);
+                std::swap(ael_[k - 1], ael_[k]);  // the mover is now at k − 1, the edge passed at k
+                if (SwapLeft(ael_[k - 1], ael_[k])) ++c_.stackSwapUpdates;
                 --k;
                 ++c_.edgeSwaps;
             }
-            if (k != i && Participates(ael_[k])) {  // E moved left: derive its stack afresh
-                ael_[k].derive = true;
-                ael_[k].carriedValid = false;
-            }
+            if (ael_[k].pending) ResolvePending(k);
         }
         for (ActiveEdge& a : ael_) {
             if (!a.found) continue;
@@ -1348,20 +1716,22 @@ class ScanRenderer {
         }
     }
 
-    // Edge e moves left past edge x (both participating): x takes e's stack when e's is valid.
-    void PassLeft(ActiveEdge& e, ActiveEdge& x) {
-        if (!Participates(e) || !Participates(x) || e.found || x.found) return;
-        if (!e.derive) {
-            std::swap(x.stack, e.stack);
-            x.carriedValid = true;  // x keeps any derive mark it had (checked, not lost)
-            ++c_.stackSwapUpdates;
-        } else {
-            x.derive = true;
-            x.carriedValid = false;
-            x.propagate = x.propagate || e.propagate;
+    // The mover's stack at the end of its move: its left neighbour's ⊕ its faces.
+    void ResolvePending(std::size_t k) {
+        ActiveEdge& a = ael_[k];
+        a.pending = false;
+        if (a.derive) return;  // derived in pass three
+        const ActiveEdge* left = nullptr;
+        for (std::size_t p = k; p-- > 0;)
+            if (Participates(ael_[p])) {
+                left = &ael_[p];
+                break;
+            }
+        if (left && left->derive) {
+            MarkFresh(a);
+            return;
         }
-        e.derive = true;
-        e.carriedValid = false;
+        DeriveFrom(a, left);
     }
 
     // ---- pass three: walking the AEL with the carried stacks ----
@@ -1454,7 +1824,9 @@ class ScanRenderer {
             }
             // Q of an edge inside the event lies in its own (narrow) region, up to the next
             // crossing: its stack is carried to rows where that region is wide.
-            if (a.derive) DeriveEdge(a, *cur_, k + 1 < e ? 0.5 * (a.x + ael_[k + 1].x) : xq, y);
+            const double q = k + 1 < e ? 0.5 * (a.x + ael_[k + 1].x) : xq;
+            if (!a.toggles.empty()) ResolveToggles(a, q, y);
+            if (a.derive) DeriveEdge(a, *cur_, q, y);
             cur_ = &a.stack;
             last = k;
         }
@@ -1506,16 +1878,18 @@ class ScanRenderer {
         shown_ = &showBuf_;
     }
 
-    // The stack of edge a from its left neighbour's stack `prev`: the faces of a that are on
-    // prev leave, the others enter in depth order (comparisons of §5.5.1 at the crossing and
-    // at Q). This is pure parity — a show-edge's two faces change sides at it. At a vertex the
-    // starting edges are derived left to right from the (already consistent) stacks left of
-    // them and the change is carried on to the right until a derived stack equals the carried
-    // one: what §5.4's recursive vertex processing achieves, without the horizontal and
-    // within-one-scan-line edges it recursed through (the Resolver makes no horizontal edges
-    // and BuildEsl drops edges that hold no row centre; their two vertices act as one).
+    // Pass three's derivation (the REBUILD, used where pass one and two cannot carry the
+    // stacks): the stack of edge a from its left neighbour's stack `prev` — the faces of a that
+    // are on prev leave, the others enter in depth order (§5.5.1 at the crossing and at Q); a
+    // show-edge's two faces change sides at it. Used for every stack at a band's first row, and
+    // afterwards only for marked edges: after a vertex fallback (PassOne), when S0 changed
+    // (SeedStack), and for conic legs lost to rounding and found again (TraceAndSort). With
+    // `propagate`, a derived set that differs from the carried one marks the next stack edge,
+    // so the change is carried right until a derived stack equals the carried one.
     void DeriveEdge(ActiveEdge& a, const std::vector<int>& prev, double xq, double y) {
         ++c_.stackDerivations;
+        if (!bandStartRow_) ++c_.stackRebuilds;
+        a.toggles.clear();
         derived_.assign(prev.begin(), prev.end());
         const ShowEdge& e = edges_[static_cast<std::size_t>(a.edge)];
         for (int f : e.faces) {
@@ -1629,6 +2003,7 @@ class ScanRenderer {
             }
             if (ok || retries-- <= 0) continue;
             ++c_.stackOrderCorrections;
+
             t.erase(t.begin() + static_cast<std::ptrdiff_t>(s));
             InsertInto(t, f, xe, xq, y);
             s = static_cast<std::size_t>(-1);  // rescan from the head
@@ -1677,12 +2052,37 @@ class ScanRenderer {
         // from a double root); 1e-9 (1 + |z|) px leaves a wide margin and still resolves Q,
         // which lies at least kCluster / 2 from every crossing.
         const double pointError = 1e-9 * (1 + std::fabs(z));
-        for (const OrientedLiteral& l : bodyLiterals_[static_cast<std::size_t>(sf.body)]) {
+        const std::vector<OrientedLiteral>& lits = bodyLiterals_[static_cast<std::size_t>(sf.body)];
+        // ∂/∂z of the face's own HSI: the body lies along the ray on the side where it is < 0.
+        double gz = 0;
+        for (const OrientedLiteral& l : lits) {
+            if (l.halfSpace != sf.halfSpace) continue;
+            const Quadric& q = l.quadric;
+            gz = l.isPlane ? l.plane.c : q.F() * x + q.E() * y + q.C() * z + q.J();
+            break;
+        }
+        for (const OrientedLiteral& l : lits) {
             if (l.halfSpace == sf.halfSpace) continue;
             const double v = l.isPlane ? l.plane.Evaluate(p) : l.quadric.Evaluate(p);
             const double e = l.isPlane ? PlaneErrorEstimate(l.plane, p, pointError)
                                        : QuadricErrorEstimate(l.quadric, p, pointError);
-            if (l.zFree ? !(v <= e) : !(v < -e)) return false;
+            if (l.zFree) {
+                if (!(v <= e)) return false;
+                continue;
+            }
+            if (v < -e) continue;
+            if (v > e || gz == 0) return false;
+            // The point lies ON this HSI's surface: Q is on an edge of the face that runs along
+            // the CSL (a row exactly on a horizontal edge). The face is there when the body goes
+            // on along the ray from it (raycast's interval has a length: the front face at a
+            // box's slanted top edge), not when the body only touches the ray there (zero
+            // thickness: the base edge of a pyramid).
+            const double step = (gz > 0 ? -1e-6 : 1e-6) * (1 + std::fabs(z));
+            const Vec3 p2{x, y, z + step};
+            const double v2 = l.isPlane ? l.plane.Evaluate(p2) : l.quadric.Evaluate(p2);
+            const double e2 = l.isPlane ? PlaneErrorEstimate(l.plane, p2, pointError)
+                                        : QuadricErrorEstimate(l.quadric, p2, pointError);
+            if (!(v2 < -e2)) return false;
         }
         return true;
     }
@@ -1785,6 +2185,7 @@ class ScanRenderer {
     }
 
     const FlatScene& scene_;
+    const VertexTable& vt_;
     std::vector<ShowEdge>& edges_;
     const std::vector<ShowFace>& faces_;
     const std::vector<Unit>& units_;
@@ -1797,9 +2198,21 @@ class ScanRenderer {
     const std::vector<std::vector<std::pair<int, int>>>* esl_ = nullptr;
     std::vector<ActiveEdge> ael_;
     std::vector<ActiveEdge> starting_, merged_;  // starting edges of a row, merge scratch
-    QuadraticRoots lastRoots_;                   // Span: roots shared by consecutive faces
-    std::vector<double> lo_, hi_;                // per body: x range on the current row
-    std::vector<int> breakBody_;                 // per crossing in breaks_: its body
+    // Pass one (§5.4): the AEL of row j − 1 being walked (old_, CE = ce_, gone_: deleted), the
+    // new AEL's last stack edge, a fallback mark for the next stack edge emitted, per vertex and
+    // per within-the-line edge the row it was processed on, a component's starting edges and the
+    // faces its finishing and starting edges toggle.
+    std::vector<ActiveEdge> old_, newEdges_;
+    std::vector<char> gone_;
+    std::size_t ce_ = 0;
+    std::ptrdiff_t lastPart_ = -1;
+    bool markOut_ = false;
+    bool bandStartRow_ = false;  // the row is a band's first: every stack is derived
+    std::vector<int> vertexRow_, inBandRow_, starts_, parity_;
+    std::vector<std::size_t> found_;         // ProcessVertex: places of the finishing edges in old_
+    QuadraticRoots lastRoots_;               // Span: roots shared by consecutive faces
+    std::vector<double> lo_, hi_;            // per body: x range on the current row
+    std::vector<int> breakBody_;             // per crossing in breaks_: its body
     std::vector<int> ownPassed_;             // per body: its crossings left of the current pixel
     std::vector<CachedTemplate> tmplCache_;  // per CSG operand body (BuildTemplate)
     std::vector<int> rangeRow_;              // the row lo_/hi_ were reset for
@@ -1901,6 +2314,11 @@ void RendererCounters::Add(const RendererCounters& o) {
     stackDerivationsChanged += o.stackDerivationsChanged;
     stackDeriveInserts += o.stackDeriveInserts;
     stackDeriveDeletes += o.stackDeriveDeletes;
+    stackVertices += o.stackVertices;
+    stackVertexRecursions += o.stackVertexRecursions;
+    stackDeletionSwaps += o.stackDeletionSwaps;
+    stackVertexFallbacks += o.stackVertexFallbacks;
+    stackRebuilds += o.stackRebuilds;
     interpenetrationPixels += o.interpenetrationPixels;
     verifySpans += o.verifySpans;
     verifyMismatchSpans += o.verifyMismatchSpans;
@@ -1915,6 +2333,15 @@ void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
     const int h = frame.height;
     if (frame.width <= 0 || h <= 0) return;
     const auto esl = BuildEsl(edges, h);
+    // Bodies drawn from face stacks (as ScanRenderer's useStack_): their edges make §5.4's
+    // vertices.
+    std::vector<char> stack(scene.bodies.size(), 0);
+    for (const Unit& unit : units) {
+        if (unit.kind != Unit::Kind::kBody || unit.body < 0) continue;
+        const auto b = static_cast<std::size_t>(unit.body);
+        stack[b] = settings.faceStacks && b < stackBody.size() && stackBody[b] && !pixelBody[b];
+    }
+    const VertexTable vt = BuildVertices(edges, stack, h);
     constexpr int kBand = 32;  // rows per task; fixed, so results never depend on threads
     const int bands = (h + kBand - 1) / kBand;
     std::mutex mutex;
@@ -1923,7 +2350,7 @@ void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
                           [&](const tbb::blocked_range<int>& r) {
                               for (int b = r.begin(); b < r.end(); ++b) {
                                   RendererCounters local;
-                                  ScanRenderer(scene, edges, faces, units, pixelBody, stackBody,
+                                  ScanRenderer(scene, edges, faces, units, pixelBody, stackBody, vt,
                                                settings, frame, local)
                                       .Run(esl, b * kBand, std::min(h, (b + 1) * kBand));
                                   std::lock_guard<std::mutex> lock(mutex);

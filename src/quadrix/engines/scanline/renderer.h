@@ -5,9 +5,9 @@
 //    row whose centre y = j + ½ lies in [yBottom, yTop] (closed, see renderer.cpp BuildEsl).
 //  - Active Edge List (AEL): edges crossing the current scan line (CSL), kept in ascending x by
 //    pass two's bubble (insertion) sort; swaps are counted as in Table 7.2. Pass one removes
-//    finishing edges and inserts starting ones (horizontal show-edges never start: the Resolver
-//    does not make them, and an edge whose [yBottom, yTop] holds no row centre is dropped, which
-//    is what the recursive vertex processing of §5.4 achieves for edges within one scan line).
+//    finishing edges and inserts starting ones (§5.4, below). Horizontal show-edges and edges
+//    whose [yBottom, yTop] holds no row centre never enter the AEL: they lie within one scan
+//    line, and pass one recurses through them from vertex to vertex.
 //  - Conic edges are traced with first and second differences (§5.5.2): the quadratic (5.3) of
 //    the CSL, B_r += C_c, C_r += ΔC, ΔC += 2 B_c per row, then the root on the edge's leg.
 //  - FACE STACKS (default for bodies drawn on their own; §5.2–5.4). Every active edge of such a
@@ -16,18 +16,30 @@
 //    edge's stack is its left neighbour's with the edge's faces toggled (a face on it leaves,
 //    one off it is inserted in depth order by the §5.5.1 comparisons: depth at the crossing P;
 //    equal: depth at Q, half-way into the edge's region; equal: slope dz/dx; equal: rate
-//    d²z/dx²). The stacks change only where the AEL changes:
-//      pass one  — a finishing edge leaves; the next stack edge is marked for derivation;
-//      pass two  — when edge E moves left past edge X in the insertion sort, X takes E's stack
-//                  as it is (the region right of X is the one that was right of E) and E is
-//                  marked: its new stack is its new left neighbour's ⊕ its faces;
-//      start     — starting edges enter between the others without swaps and are marked;
-//      pass three walks the AEL left to right: a marked edge's stack is derived from its left
-//                  neighbour's, and when the derived set differs from the carried one the next
-//                  stack edge is derived too, until one agrees (the change at a vertex is
-//                  carried to the right as far as it reaches) — what §5.4's recursive vertex
-//                  processing achieves; horizontal and within-one-row edges need no recursion
-//                  since the Resolver makes none that reach the renderer (BuildEsl).
+//    d²z/dx²). Passes one and two keep "stack = left neighbour's ⊕ own faces" for every stack
+//    edge, so the stacks change only where the AEL changes:
+//      pass one  — §5.4 literally: a walk over the AEL with the current-edge pointer CE that
+//                  processes the vertices of the CSL (edge ends with y in (j − ½, j + ½], from
+//                  a vertex table built once per frame): (1) each incident finishing edge is
+//                  moved next to CE by successive swaps (the swap rule below, applied to every
+//                  edge passed) and deleted; (2) the opposite vertex of each incident edge
+//                  lying within the scan line (horizontal, or holding no row centre) is
+//                  processed recursively; (3) the starting edges are inserted at CE with their
+//                  stacks from the left neighbour's ⊕ their faces. The toggles of a vertex
+//                  group's finishing and starting edges cancel, so nothing right of it changes;
+//                  where they do not (an end missing from the table), the next stack edge is
+//                  rebuilt in pass three (vertex fallback);
+//      pass two  — the swap rule: when edge E moves left past edge X in the insertion sort, X
+//                  takes E's stack as it is (the region right of X is the one that was right of
+//                  E); if E moves on past X', X' takes E's new stack, its own ⊕ E's faces; when
+//                  E's move ends, its stack is its new left neighbour's ⊕ its faces;
+//      pass three walks the AEL left to right and puts the faces that passes one and two
+//                  toggled into depth order at each crossing (they keep the stacks as sets).
+//                  It derives a stack from its left neighbour's only at a band's first row and
+//                  where the above cannot carry it (REBUILD: after a vertex fallback, a change
+//                  of S0, a conic leg lost to rounding and found again); a rebuilt set that
+//                  differs from the carried one rebuilds the next stack edge too. Rebuilds and
+//                  fallbacks are 0 on every example and gallery scene.
 //    An edge toggles on the rows whose centre lies in the HALF-OPEN [yBottom, yTop) (ends
 //    snapped to a row centre within 1e-9): on its last row, when that row's centre is its top,
 //    it is a breakpoint only ("ending"). Raycast's closed half-spaces may still draw such a
@@ -149,11 +161,22 @@ struct RendererCounters {
     // Faces of edges ending exactly on a row centre that the face test keeps (or drops) on that
     // row only, as raycast's closed half-spaces do (ApplyEvent in renderer.cpp).
     std::uint64_t closedRowFaces = 0;
-    // Carrying the stacks (§5.3, §5.4): pass-two swaps that handed a stack to the edge passed,
-    // stacks derived from the left neighbour's (moved, started, found and marked edges), those
-    // whose set changed, and the faces inserted into / deleted from stacks while deriving.
+    // Carrying the stacks (§5.3, §5.4): pass-two swaps that updated a stack (the swap rule),
+    // stacks made from the left neighbour's (starting edges, ends of moves, rebuilds), rebuilds
+    // whose set changed, and the faces inserted into / deleted from stacks while carrying.
     std::uint64_t stackSwapUpdates = 0, stackDerivations = 0, stackDerivationsChanged = 0;
     std::uint64_t stackDeriveInserts = 0, stackDeriveDeletes = 0;
+    // Pass one's vertex processing (§5.4): vertices processed, those reached recursively through
+    // an edge lying within the scan line, swaps that moved a finishing edge next to CE (each
+    // updates the intervening edge's stack), and vertex components whose finishing and starting
+    // edges did not toggle the same faces (an end not in the vertex table, a lost conic leg):
+    // there the next stack edge is derived again in pass three (the fallback).
+    std::uint64_t stackVertices = 0, stackVertexRecursions = 0, stackDeletionSwaps = 0;
+    std::uint64_t stackVertexFallbacks = 0;
+    // Pass three's derivations from the left neighbour on rows other than a band's first (the
+    // rebuild: after vertex fallbacks, S0 changes and lost conic legs; 0 when every change was
+    // carried by pass one and pass two).
+    std::uint64_t stackRebuilds = 0;
     // verify=on, per span and stack body present there: the body's first face on the stack
     // against its exact visible face (the stack machinery proper, free of interpenetration).
     std::uint64_t verifyBodies = 0, verifyBodyMismatches = 0;
@@ -261,10 +284,11 @@ void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
 // per-span evaluation. `faces` are the Resolver's show-faces the edges point at.
 //
 // Face stacks (settings.faceStacks): each active edge of a stack body carries its face stack
-// (the faces right of it, nearest first) from row to row through pass one (finishing edges),
-// pass two (swaps: the edge passed takes the mover's stack) and starting edges; pass three
-// derives the stacks marked there from their left neighbours' and verifies every crossing with
-// the face test at Q (see the header comment and renderer.cpp).
+// (the faces right of it, nearest first) from row to row through pass one (§5.4's vertex
+// processing: deletion after swaps next to CE, recursion through edges within the scan line,
+// insertion with stacks from the neighbour) and pass two (the swap rule); pass three orders the
+// toggled faces, rebuilds only where those cannot carry a stack, and verifies every crossing
+// with the face test at Q (see the header comment and renderer.cpp).
 void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
                      const std::vector<ShowFace>& faces, const std::vector<Unit>& units,
                      const std::vector<bool>& pixelBody, const std::vector<bool>& stackBody,

@@ -685,8 +685,12 @@ class BodyResolver {
         } else {
             proto.line = l.line;
             // A horizontal line is crossed by no row centre (except exactly: then its neighbours
-            // bound the same pixels), and x = −(b y + c)/a is undefined: no show-edge.
-            if (std::fabs(l.line.a) <= 64 * kUnit * std::fabs(l.line.b)) return;
+            // bound the same pixels), and x = −(b y + c)/a is undefined: its pieces are
+            // horizontal show-edges, which only link their end vertices for the renderer.
+            if (std::fabs(l.line.a) <= 64 * kUnit * std::fabs(l.line.b)) {
+                BuildHorizontalEdges(l, proto);
+                return;
+            }
         }
         std::vector<double> ys{yLo_, yHi_};
         for (const IVertex& v : l.lists[list])
@@ -710,6 +714,36 @@ class BodyResolver {
             e.yTop = y1;
             AssignFaces(l, e, xm, ym);
             (e.conic ? c_.edgesConic : c_.edgesLinear) += 1;
+            edges_.push_back(e);
+        }
+    }
+
+    // The pieces of a horizontal LINEAR i-line between consecutive i-vertices (in x) whose
+    // midpoint passes the same tests as any other piece. Unbounded pieces (no vertex at one end)
+    // link nothing and are not made.
+    void BuildHorizontalEdges(const ILine& l, const ShowEdge& proto) {
+        if (l.line.b == 0) return;
+        std::vector<IVertex> vs = l.lists[0];
+        std::sort(vs.begin(), vs.end(),
+                  [](const IVertex& p, const IVertex& q) { return p.x < q.x; });
+        for (std::size_t k = 0; k + 1 < vs.size(); ++k) {
+            const IVertex &v0 = vs[k], &v1 = vs[k + 1];
+            if (!(v1.x > v0.x) || v0.y < yLo_ || v0.y > yHi_) continue;
+            ++c_.piecesTested;
+            const double xm = 0.5 * (v0.x + v1.x);
+            const double ym = -(l.line.a * xm + l.line.c) / l.line.b;
+            if (!AnyInsideOthers(l, xm, ym, l.filteredByAllHsbs, true)) continue;
+            ShowEdge e = proto;
+            e.horizontal = true;
+            const bool firstLow = v0.y <= v1.y;
+            const IVertex& lo = firstLow ? v0 : v1;
+            const IVertex& hi = firstLow ? v1 : v0;
+            e.yBottom = lo.y;
+            e.xBottom = lo.x;
+            e.yTop = hi.y;
+            e.xTop = hi.x;
+            AssignFaces(l, e, xm, ym);
+            ++c_.edgesHorizontal;
             edges_.push_back(e);
         }
     }

@@ -106,6 +106,11 @@ struct ShowEdge {
     int leg = -1;  // −1: 2 a x + c y + d <= 0 (left when a > 0), +1 the other side
     double yBottom = 0, yTop = 0;
     int faces[2] = {-1, -1};  // global show-face indices (−1 = none)
+    // A HORIZONTAL edge (a LINEAR i-line along a row: x = −(b y + c)/a is undefined): it is
+    // crossed by no row centre, so it never enters the AEL; it only links its two end vertices
+    // for pass one's recursion (§5.4). Its ends are (xBottom, yBottom) and (xTop, yTop).
+    bool horizontal = false;
+    double xBottom = 0, xTop = 0;
 
     // x of the edge at row y (NaN when the leg does not exist there).
     double XAt(double y) const;
@@ -118,6 +123,7 @@ struct ResolverCounters {
     std::uint64_t verticesByType[4] = {0, 0, 0, 0};  // kept, by IVertexType
     std::uint64_t piecesTested = 0;
     std::uint64_t edgesLinear = 0, edgesConic = 0;
+    std::uint64_t edgesHorizontal = 0;  // ShowEdge::horizontal (not in edgesLinear)
     std::uint64_t faces = 0;
     std::uint64_t perPixelBodies = 0;
 };

@@ -113,9 +113,16 @@ TEST(ScanlineResolver, PyramidApexIsMergedIntoOneIVertexPerLine) {  // Figure 4.
         EXPECT_GE(e.faces[0], 0);
         EXPECT_GE(e.faces[1], 0);
     }
-    // 4 lateral edges + the 2 base edges that are not horizontal (a horizontal line is crossed by
-    // no row centre and makes no show-edge).
+    // 4 lateral edges + the 2 base edges that are not horizontal; the 2 horizontal base edges (a
+    // horizontal line is crossed by no row centre) are horizontal show-edges, which only link
+    // their vertices for the renderer's pass one (§5.4).
     EXPECT_EQ(r.counters.edgesLinear, 6u);
+    EXPECT_EQ(r.counters.edgesHorizontal, 2u);
+    for (const ShowEdge& e : r.edges) {
+        if (!e.horizontal) continue;
+        EXPECT_NEAR(e.yBottom, e.yTop, 1e-9);
+        EXPECT_GT(std::fabs(e.xTop - e.xBottom), 1);
+    }
 }
 
 TEST(ScanlineResolver, TangentPlaneCreatesNoIVertex) {  // Figure 4.4b: tangency → none

@@ -206,6 +206,7 @@ class ScanlineEngine final : public Engine {
                 std::string("ivertices_") + ToString(static_cast<IVertexType>(t)),
                 static_cast<double>(rc.verticesByType[t]));
         add("show_edges_linear", static_cast<double>(rc.edgesLinear));
+        add("show_edges_horizontal", static_cast<double>(rc.edgesHorizontal));
         add("show_edges_conic", static_cast<double>(rc.edgesConic));
         add("per_pixel_bodies", static_cast<double>(perPixelBodies));
         add("csg_solids", static_cast<double>(csgUnits));
@@ -246,6 +247,11 @@ class ScanlineEngine final : public Engine {
         add("face_stack_derivations_changed", static_cast<double>(c.stackDerivationsChanged));
         add("face_stack_derive_inserts", static_cast<double>(c.stackDeriveInserts));
         add("face_stack_derive_deletes", static_cast<double>(c.stackDeriveDeletes));
+        add("face_stack_vertices", static_cast<double>(c.stackVertices));
+        add("face_stack_vertex_recursions", static_cast<double>(c.stackVertexRecursions));
+        add("face_stack_deletion_swaps", static_cast<double>(c.stackDeletionSwaps));
+        add("face_stack_vertex_fallbacks", static_cast<double>(c.stackVertexFallbacks));
+        add("face_stack_rebuilds", static_cast<double>(c.stackRebuilds));
         add("interpenetration_pixels", static_cast<double>(c.interpenetrationPixels));
         if (settings.verify) {
             add("verify_spans", static_cast<double>(c.verifySpans));
