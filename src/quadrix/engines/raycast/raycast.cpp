@@ -5,7 +5,7 @@
 //     are the ids carried by interval endpoints, so the visible endpoint names its surface and
 //     body.
 //  2. The scene's solids become one CsgProgram (csg_program.h), sorted by nearest depth.
-//  3. The image is cut into 256×256 blocks, 64×64 tiles and 16×16 sub-tiles, run in parallel
+//  3. The image is cut into 256×256 blocks, 64×64 tiles and 8×8 sub-tiles, run in parallel
 //     (oneTBB, nested parallel_for; RenderOptions::threads > 0 runs them in a task_arena of that
 //     many threads). Each level prunes its parent's program against its pixel centres, so a
 //     sub-tile sees only the solids and leaves whose bounds reach it, and pruning a 10,000-leaf
@@ -46,7 +46,7 @@ namespace {
 
 constexpr int kBlock = 256;   // first pruning level (pixels per side)
 constexpr int kTile = 64;     // second level
-constexpr int kSubTile = 16;  // last level: the pixels of a sub-tile share one program
+constexpr int kSubTile = 8;  // last level: the pixels of a sub-tile share one program
 
 // Per-literal facts looked up from an endpoint's tag.
 struct Tag {
@@ -1047,7 +1047,7 @@ class RaycastEngine final : public Engine {
         add("program_nodes", full.nodes.size());
         add("blocks_256", total.blocks);
         add("tiles_64", total.coarseTiles);
-        add("tiles_16", total.tiles);
+        add("sub_tiles", total.tiles);
         add("pixels", total.pixels);
         add("covered_pixels", total.covered);
         add("tile_solids", total.tileSolids);
@@ -1060,13 +1060,13 @@ class RaycastEngine final : public Engine {
         add("csg_operations", total.csgOps);
         add("depth_cut_retries", total.cutRetries);
         add("tile_literals_pruned", total.prunedLiterals);
-        add("flat_tiles_16", total.flatTiles);
+        add("flat_sub_tiles", total.flatTiles);
         add("flat_pixels", total.flatPixels);
         add("tile_bodies_empty", total.emptyBodies);
         add("batched_bodies", total.batchBodies);
         add("batched_body_pixels", total.batchPixels);
-        add("single_body_tiles_16", total.bodyFillTiles);
-        add("empty_tiles_16", total.emptyTiles);
+        add("single_body_sub_tiles", total.bodyFillTiles);
+        add("empty_sub_tiles", total.emptyTiles);
         return stats;
     }
 };
