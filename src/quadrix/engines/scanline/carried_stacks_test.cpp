@@ -24,6 +24,22 @@ namespace {
 using testing_util::FrameDifference;
 using testing_util::TestSceneBuilder;
 
+// The quadric of an ellipsoid centred at c with radii (rx, ry, rz), turned by t about z:
+// ((x', y') rotated) / radii, expanded into UniQuadrix coefficients.
+std::array<double, 10> TurnedEllipsoid(const Vec3& c, double rx, double ry, double rz, double t) {
+    const double ct = std::cos(t), st = std::sin(t);
+    const double a = ct * ct / (rx * rx) + st * st / (ry * ry);
+    const double bb = st * st / (rx * rx) + ct * ct / (ry * ry);
+    const double d = ct * st * (1 / (rx * rx) - 1 / (ry * ry));
+    const double cc = 1 / (rz * rz);
+    std::array<double, 10> q{a, bb, cc, d, 0, 0, 0, 0, 0, 0};
+    q[6] = -(a * c.x + d * c.y);
+    q[7] = -(d * c.x + bb * c.y);
+    q[8] = -cc * c.z;
+    q[9] = a * c.x * c.x + bb * c.y * c.y + 2 * d * c.x * c.y + cc * c.z * c.z - 1;
+    return q;
+}
+
 double Counter(const RenderStats& s, const std::string& name) {
     for (const auto& [k, v] : s.counters)
         if (k == name) return v;
@@ -229,17 +245,7 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
         for (int k = 0; k < n; ++k) {
             const Vec3 c{15 + 90 * u(rng), 12 + 66 * u(rng), 40 + 40 * u(rng)};
             const double rx = 6 + 14 * u(rng), ry = 6 + 14 * u(rng), rz = 6 + 14 * u(rng);
-            const double t = 3.14159 * u(rng), ct = std::cos(t), st = std::sin(t);
-            // An ellipsoid turned about z: ((x', y') rotated) / radii.
-            const double a = ct * ct / (rx * rx) + st * st / (ry * ry);
-            const double bb = st * st / (rx * rx) + ct * ct / (ry * ry);
-            const double d = ct * st * (1 / (rx * rx) - 1 / (ry * ry));
-            const double cc = 1 / (rz * rz);
-            std::array<double, 10> q{a, bb, cc, d, 0, 0, 0, 0, 0, 0};
-            q[6] = -(a * c.x + d * c.y);
-            q[7] = -(d * c.x + bb * c.y);
-            q[8] = -cc * c.z;
-            q[9] = a * c.x * c.x + bb * c.y * c.y + 2 * d * c.x * c.y + cc * c.z * c.z - 1;
+            const std::array<double, 10> q = TurnedEllipsoid(c, rx, ry, rz, 3.14159 * u(rng));
             std::vector<std::pair<int, bool>> lits{{b.AddQuadric(q), false}};
             if (k % 2 == 1) {  // cut by a slanted plane through the centre
                 const double px = u(rng) - 0.5, py = u(rng) - 0.5, pz = -0.6 - u(rng);
@@ -408,16 +414,7 @@ TEST(ScanlineVertexProcessing, RandomBoxesAndEllipsoidsCloseEveryVertex) {
         for (int k = 0; k < n; ++k) {
             const Vec3 c{w * (0.1 + 0.8 * u(rng)), h * (0.1 + 0.8 * u(rng)), 20 + 50 * u(rng)};
             const double rx = 5 + 12 * u(rng), ry = 5 + 12 * u(rng), rz = 5 + 12 * u(rng);
-            const double t = 3.14159 * u(rng), ct = std::cos(t), st = std::sin(t);
-            const double a = ct * ct / (rx * rx) + st * st / (ry * ry);
-            const double bb = st * st / (rx * rx) + ct * ct / (ry * ry);
-            const double d = ct * st * (1 / (rx * rx) - 1 / (ry * ry));
-            const double cc = 1 / (rz * rz);
-            std::array<double, 10> q{a, bb, cc, d, 0, 0, 0, 0, 0, 0};
-            q[6] = -(a * c.x + d * c.y);
-            q[7] = -(d * c.x + bb * c.y);
-            q[8] = -cc * c.z;
-            q[9] = a * c.x * c.x + bb * c.y * c.y + 2 * d * c.x * c.y + cc * c.z * c.z - 1;
+            const std::array<double, 10> q = TurnedEllipsoid(c, rx, ry, rz, 3.14159 * u(rng));
             std::vector<std::pair<int, bool>> lits{{b.AddQuadric(q), false}};
             if (k % 2 == 1) {
                 const double px = u(rng) - 0.5, py = u(rng) - 0.5, pz = -0.6 - u(rng);

@@ -1122,26 +1122,7 @@ class ScanRenderer {
             }
             EvalPruned(kid, depth + 1, x, y, operand, broken, exact);
             if (broken) return;
-            if (operand.empty()) {
-                if (p.op == scene::CsgOp::kIntersection) out.clear();
-                continue;
-            }
-            if (out.empty()) {
-                std::swap(out, operand);
-                continue;
-            }
-            switch (p.op) {
-                case scene::CsgOp::kUnion:
-                    Union(out, operand, tmp);
-                    break;
-                case scene::CsgOp::kIntersection:
-                    Intersection(out, operand, tmp);
-                    break;
-                default:
-                    Difference(out, operand, tmp);
-                    break;
-            }
-            std::swap(out, tmp);
+            CombineOperand(p.op, out, operand, tmp);
         }
     }
 

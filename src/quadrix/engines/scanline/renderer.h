@@ -237,6 +237,32 @@ int CompareFaces(const FlatScene& scene, const FaceRef& f, const FaceRef& g, dou
 bool FaceDerivatives(const FlatScene& scene, const FaceRef& f, double x, double y, double& z,
                      double& dz, double& d2z);
 
+// One step of a left-to-right CSG fold: out = out op operand (tmp is scratch), with the empty
+// operand identities (A ∪ ∅ = A − ∅ = A, A ∩ ∅ = ∅, ∅ ∪ B = B) taken without a sweep.
+inline void CombineOperand(scene::CsgOp op, IntervalList& out, IntervalList& operand,
+                           IntervalList& tmp) {
+    if (operand.empty()) {
+        if (op == scene::CsgOp::kIntersection) out.clear();
+        return;
+    }
+    if (out.empty()) {  // (the caller stops an intersection or difference at an empty out)
+        std::swap(out, operand);
+        return;
+    }
+    switch (op) {
+        case scene::CsgOp::kUnion:
+            Union(out, operand, tmp);
+            break;
+        case scene::CsgOp::kIntersection:
+            Intersection(out, operand, tmp);
+            break;
+        default:
+            Difference(out, operand, tmp);
+            break;
+    }
+    std::swap(out, tmp);
+}
+
 template <class LeafFn>
 void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
     const FlatCsgNode& n = scene_.nodes[static_cast<std::size_t>(node)];
@@ -252,26 +278,7 @@ void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
         if (i > 0 && out.empty() && n.op != scene::CsgOp::kUnion) return;  // ∅ ∩ B = ∅ − B = ∅
         TreeSet(n.children[i], leaf, i == 0 ? out : operand);
         if (i == 0) continue;
-        if (operand.empty()) {
-            if (n.op == scene::CsgOp::kIntersection) out.clear();
-            continue;  // A ∪ ∅ = A − ∅ = A
-        }
-        if (out.empty()) {  // union: ∅ ∪ B = B
-            std::swap(out, operand);
-            continue;
-        }
-        switch (n.op) {
-            case scene::CsgOp::kUnion:
-                Union(out, operand, tmp);
-                break;
-            case scene::CsgOp::kIntersection:
-                Intersection(out, operand, tmp);
-                break;
-            default:
-                Difference(out, operand, tmp);
-                break;
-        }
-        std::swap(out, tmp);
+        CombineOperand(n.op, out, operand, tmp);
     }
 }
 
