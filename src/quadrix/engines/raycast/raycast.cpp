@@ -176,28 +176,18 @@ struct Hit {
 // replacing hi unless hi <= r; `bad` becomes non-zero where r is not finite. Branch-free, so the
 // compiler vectorises it; built for AVX2 and for the baseline, chosen at load time (the results
 // are the same bits: IEEE division and comparisons, no FMA contraction).
-__attribute__((target_clones("avx2", "default"))) void NearPlaneBatch(
+// kNear: a near bound (t >= r) into lo/loId; else a far bound (t <= r) into hi/hiId.
+template <bool kNear>
+__attribute__((target_clones("avx2", "default"))) void PlaneBatch(
     int n, const double* xs, const double* ys, double px, double py, double pd, double c,
-    std::int64_t tag, double* __restrict lo, std::int64_t* __restrict loId,
+    std::int64_t tag, double* __restrict bound, std::int64_t* __restrict boundId,
     double* __restrict bad) {
     for (int p = 0; p < n; ++p) {
         const double r = -(px * xs[p] + py * ys[p] + pd) / c;
         bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;
-        const bool take = !(lo[p] > r);
-        lo[p] = take ? r : lo[p];
-        loId[p] = take ? tag : loId[p];
-    }
-}
-__attribute__((target_clones("avx2", "default"))) void FarPlaneBatch(
-    int n, const double* xs, const double* ys, double px, double py, double pd, double c,
-    std::int64_t tag, double* __restrict hi, std::int64_t* __restrict hiId,
-    double* __restrict bad) {
-    for (int p = 0; p < n; ++p) {
-        const double r = -(px * xs[p] + py * ys[p] + pd) / c;
-        bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;
-        const bool take = !(hi[p] <= r);
-        hi[p] = take ? r : hi[p];
-        hiId[p] = take ? tag : hiId[p];
+        const bool take = kNear ? !(bound[p] > r) : !(bound[p] <= r);
+        bound[p] = take ? r : bound[p];
+        boundId[p] = take ? tag : boundId[p];
     }
 }
 
@@ -773,9 +763,9 @@ class Worker {
                 counters.literals.planes += static_cast<std::uint64_t>(n);
                 const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
                 if ((c > 0) != t.complemented)  // t <= r: a far bound
-                    FarPlaneBatch(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
+                    PlaneBatch<false>(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
                 else  // t >= r: a near bound
-                    NearPlaneBatch(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
+                    PlaneBatch<true>(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
             } else {
                 for (int p = 0; p < n; ++p) {
                     if (dead[p] || scalar[p] || bad[p] != 0) continue;

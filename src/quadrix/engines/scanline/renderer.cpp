@@ -1559,16 +1559,7 @@ class ScanRenderer {
 
     // The faces a vertex component toggles: finishing edges' and starting edges' (they cancel
     // when the component is complete).
-    void ToggleParity(const ActiveEdge& a) {
-        for (int f : edges_[static_cast<std::size_t>(a.edge)].faces) {
-            if (f < 0) continue;
-            auto it = std::find(parity_.begin(), parity_.end(), f);
-            if (it != parity_.end())
-                parity_.erase(it);
-            else
-                parity_.push_back(f);
-        }
-    }
+    void ToggleParity(const ActiveEdge& a) { AddToggles(parity_, a); }
 
     // a's stack from its left neighbour's (S0 when `left` is null) ⊕ a's faces, as a set: the
     // faces to toggle wait in a.toggles for pass three (ResolveToggles).
