@@ -5,7 +5,7 @@
 //     are the ids carried by interval endpoints, so the visible endpoint names its surface and
 //     body.
 //  2. The scene's solids become one CsgProgram (csg_program.h), sorted by nearest depth.
-//  3. The image is cut into 256×256 blocks, 64×64 tiles and 8×8 sub-tiles, run in parallel
+//  3. The image is cut into 256×256 blocks, 256×8 tiles and 8×8 sub-tiles, run in parallel
 //     (oneTBB, nested parallel_for; RenderOptions::threads > 0 runs them in a task_arena of that
 //     many threads). Each level prunes its parent's program against its pixel centres, so a
 //     sub-tile sees only the solids and leaves whose bounds reach it, and pruning a 10,000-leaf
@@ -45,7 +45,11 @@ namespace raycast {
 namespace {
 
 constexpr int kBlock = 256;   // first pruning level (pixels per side)
-constexpr int kTile = 64;     // second level
+// Second level: strips, not squares. A tile's sub-tiles then write eight rows of the frame's
+// five arrays, one after the other along each row; a 64×64 tile writes 64 rows at once, whose
+// pages and streams thrash the TLB and the prefetchers (the machined part at 1280×720: 21 → 17
+// ms a frame, docs/performance.md).
+constexpr int kTileW = 256, kTileH = 8;
 constexpr int kSubTile = 8;  // last level: the pixels of a sub-tile share one program
 
 // Per-literal facts looked up from an endpoint's tag.
@@ -890,7 +894,7 @@ void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
     }
 }
 
-// Renders one 64×64 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
+// Renders one 256×8 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
 void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block, int x0,
                 int y0, int x1, int y1, Worker& w, Frame& frame) {
     ++w.counters.coarseTiles;
@@ -975,7 +979,7 @@ class RaycastEngine final : public Engine {
         BuildProgram(scene, full);
 
         int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
-        constexpr int kTilesPerBlock = kBlock / kTile;
+        constexpr int kTilesX = kBlock / kTileW, kTilesY = kBlock / kTileH;
         Settings settings;
         if (std::string err = ParseSettings(options, settings); !err.empty()) {
             // ValidateOptions reports this before any work; draw nothing rather than guess.
@@ -1000,15 +1004,15 @@ class RaycastEngine final : public Engine {
                 FillBackground(frame, bx0, by0, bx1, by1);
                 return;
             }
-            tbb::parallel_for(tbb::blocked_range<int>(0, kTilesPerBlock * kTilesPerBlock, 1),
+            tbb::parallel_for(tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
                               [&](const tbb::blocked_range<int>& range) {
                                   Worker& w = workers.local();
                                   for (int k = range.begin(); k < range.end(); ++k) {
-                                      int x0 = bx0 + (k % kTilesPerBlock) * kTile;
-                                      int y0 = by0 + (k / kTilesPerBlock) * kTile;
+                                      int x0 = bx0 + (k % kTilesX) * kTileW;
+                                      int y0 = by0 + (k / kTilesX) * kTileH;
                                       if (x0 >= bx1 || y0 >= by1) continue;
-                                      RenderTile(scene, tables, block, x0, y0, std::min(x0 + kTile, bx1),
-                                                 std::min(y0 + kTile, by1), w, frame);
+                                      RenderTile(scene, tables, block, x0, y0, std::min(x0 + kTileW, bx1),
+                                                 std::min(y0 + kTileH, by1), w, frame);
                                   }
                               });
         };
@@ -1036,7 +1040,7 @@ class RaycastEngine final : public Engine {
         add("solids", full.solids.size());
         add("program_nodes", full.nodes.size());
         add("blocks_256", total.blocks);
-        add("tiles_64", total.coarseTiles);
+        add("tiles_256x8", total.coarseTiles);
         add("sub_tiles", total.tiles);
         add("pixels", total.pixels);
         add("covered_pixels", total.covered);
