@@ -119,16 +119,24 @@ struct SceneTables {
 //   batch=on|off      body batches over the pixels of a sub-tile (Worker::BodyBatch);
 //   tile-cull=on|off  per-sub-tile proofs: bodies empty there (crossing plane bounds, quadrics no
 //                     ray meets), quadric literals that hold on every ray, and flat sub-tiles
-//                     filled directly (Worker::TryFlatFill).
+//                     filled directly (Worker::TryFlatFill);
+//   kernel=on|off     small sub-tile programs compiled to postfix code over body batches and run
+//                     per pixel without Evaluate's recursion (Worker::CompileKernel; needs batch).
 struct Settings {
     bool batch = true;
     bool tileCull = true;
+    bool kernel = true;
 };
 
 std::string ParseSettings(const RenderOptions& options, Settings& st) {
     for (const auto& [key, value] : options.engineOptions) {
-        bool* flag = key == "batch" ? &st.batch : key == "tile-cull" ? &st.tileCull : nullptr;
-        if (!flag) return "engine 'raycast' has no option '" + key + "' (options: batch, tile-cull)";
+        bool* flag = key == "batch"       ? &st.batch
+                     : key == "tile-cull" ? &st.tileCull
+                     : key == "kernel"    ? &st.kernel
+                                          : nullptr;
+        if (!flag)
+            return "engine 'raycast' has no option '" + key +
+                   "' (options: batch, tile-cull, kernel)";
         if (value != "on" && value != "off")
             return "engine 'raycast': option '" + key + "' must be on or off, not '" + value + "'";
         *flag = value == "on";
@@ -141,7 +149,7 @@ struct Counters {
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
                   cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0,
                   emptyBodies = 0, batchBodies = 0, batchPixels = 0, bodyFillTiles = 0,
-                  emptyTiles = 0;
+                  emptyTiles = 0, kernelTiles = 0, kernelPixels = 0, kernelScalarBodies = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -164,6 +172,9 @@ struct Counters {
         batchPixels += o.batchPixels;
         bodyFillTiles += o.bodyFillTiles;
         emptyTiles += o.emptyTiles;
+        kernelTiles += o.kernelTiles;
+        kernelPixels += o.kernelPixels;
+        kernelScalarBodies += o.kernelScalarBodies;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -173,6 +184,50 @@ struct Hit {
     double t = HUGE_VAL;
     std::int32_t tag = -1;
     std::int32_t solid = -1;
+};
+
+// Where pixels are written: the Frame's five arrays, or a tile's staging copy of them (Worker's
+// tile buffer), addressed by pixel (x, y) relative to the origin (x0, y0) with `stride` pixels
+// a row. A tile writes its sub-tiles into the staging copy, which RenderTile then copies into
+// the Frame row by row: eight 256-pixel runs per array, where writing each 8×8 sub-tile into the
+// Frame directly touched its rows eight pixels at a time (write misses the prefetchers cannot
+// follow: about 20 cycles a pixel, against 6 for the runs).
+struct PixelRows {
+    double* depth;
+    Vec3* normal;
+    std::int32_t* surface;
+    std::int32_t* body;
+    std::int32_t* solid;
+    std::size_t stride;
+    int x0, y0;
+
+    static PixelRows Of(Frame& f) {
+        return {f.depth.data(), f.normal.data(), f.surface.data(), f.body.data(), f.solid.data(),
+                static_cast<std::size_t>(f.width), 0, 0};
+    }
+    std::size_t Index(int x, int y) const {
+        return static_cast<std::size_t>(y - y0) * stride + static_cast<std::size_t>(x - x0);
+    }
+    void SetBackground(std::size_t k) const {
+        depth[k] = HUGE_VAL;
+        normal[k] = Vec3{};
+        surface[k] = Frame::kNone;
+        body[k] = Frame::kNone;
+        solid[k] = Frame::kNone;
+    }
+    // Background on the pixel rectangle [x0, x1) × [y0, y1): array by array along each row
+    // (contiguous stores the compiler turns into wide ones), not pixel by pixel.
+    void FillBackground(int xa, int ya, int xb, int yb) const {
+        const auto n = static_cast<std::size_t>(xb - xa);
+        for (int j = ya; j < yb; ++j) {
+            const std::size_t k = Index(xa, j);
+            std::fill_n(depth + k, n, HUGE_VAL);
+            std::fill_n(normal + k, n, Vec3{});
+            std::fill_n(surface + k, n, Frame::kNone);
+            std::fill_n(body + k, n, Frame::kNone);
+            std::fill_n(solid + k, n, Frame::kNone);
+        }
+    }
 };
 
 // One plane literal over the n pixels of a body batch (Worker::BodyBatch): r = -(px x + py y +
@@ -209,6 +264,24 @@ class Worker {
     CsgProgram tileProgram, subTileProgram;
     std::vector<std::int32_t> stack;
     Counters counters;
+
+    // The staging copy of the current tile's pixels (PixelRows), and its copy into the Frame.
+    PixelRows TileRows(int x0, int y0) {
+        return {tileDepth_.data(), tileNormal_.data(), tileSurface_.data(), tileBody_.data(),
+                tileSolid_.data(),  kTileW,            x0,                  y0};
+    }
+    void CopyTile(int x0, int y0, int x1, int y1, Frame& frame) const {
+        const auto n = static_cast<std::ptrdiff_t>(x1 - x0);
+        for (int j = y0; j < y1; ++j) {
+            const auto from = static_cast<std::ptrdiff_t>(j - y0) * kTileW;
+            const auto to = static_cast<std::ptrdiff_t>(frame.Index(x0, j));
+            std::copy_n(tileDepth_.begin() + from, n, frame.depth.begin() + to);
+            std::copy_n(tileNormal_.begin() + from, n, frame.normal.begin() + to);
+            std::copy_n(tileSurface_.begin() + from, n, frame.surface.begin() + to);
+            std::copy_n(tileBody_.begin() + from, n, frame.body.begin() + to);
+            std::copy_n(tileSolid_.begin() + from, n, frame.solid.begin() + to);
+        }
+    }
 
     // The literals each body of a sub-tile program evaluates (EvaluateBody): all of the body's, in
     // its order, except planes that provably never bound it anywhere in the sub-tile `r`:
@@ -327,7 +400,7 @@ class Worker {
     // directly, with the very expression EvaluateBody uses for r (the same bits), the plane's
     // constant normal and ids. Returns false (nothing written) when any condition fails.
     bool TryFlatFill(const CsgProgram& program, const Rect& r, int x0, int y0, int x1, int y1,
-                     Frame& frame) {
+                     const PixelRows& out) {
         if (!settings_.tileCull || program.solids.size() != 1) return false;
         const ProgSolid& solid = program.solids[0];
         auto contains = [&](const Rect& b) {
@@ -375,15 +448,15 @@ class Worker {
         const Vec3 normal = tables_.planeNormal[hsIndex];
         for (int j = y0; j < y1; ++j) {
             const double y = j + 0.5;
-            std::size_t k = frame.Index(x0, j);
+            std::size_t k = out.Index(x0, j);
             for (int i = x0; i < x1; ++i, ++k) {
                 const double x = i + 0.5;
                 const double e = hs.px * x + hs.py * y + hs.pd;  // as EvaluateBody
-                frame.depth[k] = -e / hs.c;
-                frame.normal[k] = normal;
-                frame.surface[k] = near.halfSpace;
-                frame.body[k] = near.body;
-                frame.solid[k] = solid.solid;
+                out.depth[k] = -e / hs.c;
+                out.normal[k] = normal;
+                out.surface[k] = near.halfSpace;
+                out.body[k] = near.body;
+                out.solid[k] = solid.solid;
             }
         }
         const auto n = static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
@@ -737,7 +810,178 @@ class Worker {
         pixel_ = static_cast<std::size_t>((j - tileY0_) * tileW_ + (i - tileX0_));
     }
 
+    // Sub-tile kernels. Most pixels that are not background, flat or one body lie in sub-tiles
+    // whose program is a small tree of bodies — the machined part's "block ∪ bosses minus the
+    // holes that reach here" — and Trace spends most of its time there on the machinery around
+    // the set operations: the depth-cut loop, Evaluate's recursion with its bounds tests and list
+    // slots, EvaluateBody's look-ups. CompileKernel turns such a program, once per sub-tile, into
+    // postfix code, already simplified by the identities of SingleBody for the bodies PrepareTile
+    // proved empty; RunKernel evaluates it per pixel on a small stack of lists with the same set
+    // operations (the one-interval ones inline), reading each body's set from its batch where it
+    // has one and the pixel is ordinary there, else from EvaluateBody.
+    //
+    // Exactness. Without depth cuts (at most 8 leaves: SetCuts leaves only +inf) Trace evaluates
+    // each solid's whole tree; the identities ∅ ∪ B = B, A ∪ ∅ = A, A − ∅ = A, ∅ − B = ∅,
+    // A ∩ ∅ = ∅ hold for the lists ids included (math/interval_list.h), so dropping empty
+    // operands at compile time (proved empty on the sub-tile) or at run time (a body whose
+    // bounds miss the pixel, or empty there) gives Evaluate's list bit for bit; the solids are
+    // combined by Trace's rule (nearest, ties to the lower solid index).
+    bool CompileKernel(const CsgProgram& program, const Rect& r) {
+        if (!settings_.kernel || cuts.size() != 1) return false;
+        program_ = &program;
+        kernelCode_.clear();
+        kernelSolids_.clear();
+        int bodies = 0;
+        for (const ProgSolid& s : program.solids) {
+            const auto begin = static_cast<std::int32_t>(kernelCode_.size());
+            const int e = EmitKernel(program, s.root, r, bodies);
+            if (e < 0 || bodies > kKernelMaxBodies) return false;
+            if (e == 0) continue;  // ∅ on the whole sub-tile
+            kernelSolids_.push_back(
+                {begin, static_cast<std::int32_t>(kernelCode_.size()), s.solid, s.xy, s.zlo});
+        }
+        const std::size_t depth = static_cast<std::size_t>(bodies) + 2;
+        if (kernelLists_.size() < depth) kernelLists_.resize(depth);
+        kernelStack_.clear();
+        for (IntervalList& l : kernelLists_) kernelStack_.push_back(&l);
+        ++counters.kernelTiles;
+        return true;
+    }
+
+    // The kernel's visible point of the current pixel (SetPixel) at (x, y).
+    Hit RunKernel(double x, double y) {
+        Hit best;
+        for (const KernelSolid& s : kernelSolids_) {
+            if (best.t < s.zlo) break;  // as Trace: no later solid can be nearer
+            if (x < s.xy.x0 || x > s.xy.x1 || y < s.xy.y0 || y > s.xy.y1) continue;
+            IntervalList** stack = kernelStack_.data();
+            std::size_t sp = 0;
+            for (std::int32_t k = s.begin; k < s.end; ++k) {
+                const KernelOp& op = kernelCode_[static_cast<std::size_t>(k)];
+                if (op.kind == NodeKind::kBody) {
+                    IntervalList* const l = stack[sp++];
+                    l->clear();
+                    if (x < op.xy.x0 || x > op.xy.x1 || y < op.xy.y0 || y > op.xy.y1) continue;
+                    // The body's batch when it has one (StartBatches batches the bodies that
+                    // cover the sub-tile) and the pixel is ordinary there; else EvaluateBody.
+                    const std::int32_t b = nodeBatch_[static_cast<std::size_t>(op.node)];
+                    if (batchOn_ && b != kNoBatchWanted) {
+                        const BodyBatch& batch =
+                            batches_[static_cast<std::size_t>(b >= 0 ? b : ComputeBatch(op.node))];
+                        const std::uint8_t state = batch.state[pixel_];
+                        if (state == BodyBatch::kEmpty) continue;
+                        if (state == BodyBatch::kOne) {
+                            l->Append(batch.lo[pixel_], static_cast<std::int32_t>(batch.loId[pixel_]),
+                                      batch.hi[pixel_], static_cast<std::int32_t>(batch.hiId[pixel_]));
+                            continue;
+                        }
+                    }
+                    ++counters.kernelScalarBodies;
+                    EvaluateBody(program_->nodes[static_cast<std::size_t>(op.node)].first, op.node,
+                                 x, y, 0);
+                    *l = *slots_[0];
+                    continue;
+                }
+                IntervalList& b = *stack[--sp];
+                IntervalList& a = *stack[sp - 1];
+                IntervalList& out = *stack[sp + 1];  // free: above the operand
+                if (op.kind == NodeKind::kUnion) {
+                    if (b.empty()) continue;                                 // A ∪ ∅ = A
+                    if (a.empty()) {                                         // ∅ ∪ B = B
+                        std::swap(stack[sp - 1], stack[sp]);
+                        continue;
+                    }
+                    if (a.size() == 1 && b.size() == 1)
+                        UnionOfOne(a[0], b[0], out);
+                    else
+                        Union(a, b, out);
+                } else if (op.kind == NodeKind::kIntersection) {
+                    if (a.empty()) continue;  // ∅ ∩ B = ∅
+                    if (b.empty()) {
+                        a.clear();
+                        continue;
+                    }
+                    if (a.size() == 1 && b.size() == 1)
+                        IntersectionOfOne(a[0], b[0], out);
+                    else
+                        Intersection(a, b, out);
+                } else {
+                    if (a.empty() || b.empty()) continue;  // ∅ − B = ∅, A − ∅ = A
+                    if (b.size() == 1) {
+                        out.clear();
+                        for (const Interval& v : a) AppendDifferenceOfOne(v, b[0], out);
+                    } else {
+                        Difference(a, b, out);
+                    }
+                }
+                ++counters.csgOps;
+                std::swap(stack[sp - 1], stack[sp + 1]);
+            }
+            double t;
+            std::int32_t tag;
+            if (FirstVisible(*stack[0], t, tag) && (t < best.t || (t == best.t && s.solid < best.solid)))
+                best = {t, tag, s.solid};
+        }
+        ++counters.kernelPixels;
+        return best;
+    }
+
   private:
+    // Kernel code (CompileKernel): bodies push their set at the pixel (∅ outside their bounds),
+    // operators combine the two sets on top of the stack.
+    struct KernelOp {
+        NodeKind kind;
+        std::int32_t node;  // kBody: the body's program node
+        Rect xy;            // kBody: the node's bounds
+    };
+    struct KernelSolid {
+        std::int32_t begin, end;  // its code
+        std::int32_t solid;
+        Rect xy;
+        double zlo;
+    };
+    static constexpr int kKernelMaxBodies = 8;  // bodies a kernel may hold
+
+    // Appends the code of node n: 1 when code was emitted, 0 when the node is ∅ on every pixel
+    // of r (nothing emitted), -1 when the node cannot be compiled (an operator whose bounds do
+    // not contain r: MissesPoint could then empty it at some pixels).
+    int EmitKernel(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies) {
+        const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
+        if (nodeEmpty_[static_cast<std::size_t>(n)]) return 0;
+        if (node.kind == NodeKind::kBody) {
+            const auto body = static_cast<std::size_t>(node.first);
+            // EvaluateBody gives ∅ for these at every pixel.
+            if (!tables_.bodyValid[body] ||
+                tables_.bodyFirstTag[body] == tables_.bodyFirstTag[body + 1])
+                return 0;
+            kernelCode_.push_back({NodeKind::kBody, n, node.xy});
+            ++bodies;
+            return 1;
+        }
+        if (!(node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 &&
+              node.xy.y1 >= r.y1))
+            return -1;
+        const std::size_t mark = kernelCode_.size();
+        const std::int32_t* child = p.children.data() + node.first;
+        bool have = false;  // an accumulated operand is on the stack
+        for (std::int32_t i = 0; i < node.count; ++i) {
+            const int e = EmitKernel(p, child[i], r, bodies);
+            if (e < 0) return -1;
+            if (e == 0) {
+                // ∅ ∩ B = A ∩ ∅ = ∅ and ∅ − B = ∅; a union or a subtrahend just drops it.
+                if (node.kind == NodeKind::kIntersection ||
+                    (node.kind == NodeKind::kDifference && i == 0)) {
+                    kernelCode_.resize(mark);
+                    return 0;
+                }
+                continue;
+            }
+            if (have) kernelCode_.push_back({node.kind, -1, {}});
+            have = true;
+        }
+        return have ? 1 : 0;
+    }
+
     std::int32_t ComputeBatch(std::int32_t node) {
         const auto b = static_cast<std::int32_t>(batchesUsed_++);
         nodeBatch_[static_cast<std::size_t>(node)] = b;
@@ -873,6 +1117,17 @@ class Worker {
     double xs_[kSubTile * kSubTile] = {}, ys_[kSubTile * kSubTile] = {};
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
+    static constexpr std::size_t kTilePixels = static_cast<std::size_t>(kTileW) * kTileH;
+    std::vector<double> tileDepth_ = std::vector<double>(kTilePixels);
+    std::vector<Vec3> tileNormal_ = std::vector<Vec3>(kTilePixels);
+    std::vector<std::int32_t> tileSurface_ = std::vector<std::int32_t>(kTilePixels);
+    std::vector<std::int32_t> tileBody_ = std::vector<std::int32_t>(kTilePixels);
+    std::vector<std::int32_t> tileSolid_ = std::vector<std::int32_t>(kTilePixels);
+    const CsgProgram* program_ = nullptr;  // the sub-tile program of the kernel
+    std::vector<KernelOp> kernelCode_;
+    std::vector<KernelSolid> kernelSolids_;
+    std::vector<IntervalList> kernelLists_;
+    std::vector<IntervalList*> kernelStack_;
 };
 
 // The pixel centres of the pixel rectangle [x0, x1) × [y0, y1).
@@ -881,17 +1136,7 @@ Rect Centres(int x0, int y0, int x1, int y1) { return {x0 + 0.5, x1 - 0.5, y0 + 
 // The frame is sized without clearing (Frame::ResizeForOverwrite): every pixel is written, by
 // the tile that owns it, as a hit or as background.
 void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
-    // Array by array along each row (contiguous stores the compiler turns into wide ones), not
-    // pixel by pixel across the five arrays.
-    const auto n = static_cast<std::size_t>(x1 - x0);
-    for (int j = y0; j < y1; ++j) {
-        const std::size_t k = frame.Index(x0, j);
-        std::fill_n(frame.depth.begin() + static_cast<std::ptrdiff_t>(k), n, HUGE_VAL);
-        std::fill_n(frame.normal.begin() + static_cast<std::ptrdiff_t>(k), n, Vec3{});
-        std::fill_n(frame.surface.begin() + static_cast<std::ptrdiff_t>(k), n, Frame::kNone);
-        std::fill_n(frame.body.begin() + static_cast<std::ptrdiff_t>(k), n, Frame::kNone);
-        std::fill_n(frame.solid.begin() + static_cast<std::ptrdiff_t>(k), n, Frame::kNone);
-    }
+    PixelRows::Of(frame).FillBackground(x0, y0, x1, y1);
 }
 
 // Renders one 256×8 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
@@ -904,6 +1149,7 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
         FillBackground(frame, x0, y0, x1, y1);
         return;
     }
+    const PixelRows out = w.TileRows(x0, y0);
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
             int ex = std::min(sx + kSubTile, x1), ey = std::min(sy + kSubTile, y1);
@@ -912,23 +1158,25 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             w.counters.tileSolids += w.subTileProgram.solids.size();
             w.counters.pixels += static_cast<std::uint64_t>((ex - sx) * (ey - sy));
             if (w.subTileProgram.solids.empty()) {
-                FillBackground(frame, sx, sy, ex, ey);
+                out.FillBackground(sx, sy, ex, ey);
                 continue;
             }
             w.SetCuts(w.subTileProgram);
             w.PrepareTile(w.subTileProgram, Centres(sx, sy, ex, ey));
             if (w.AllEmpty(w.subTileProgram, Centres(sx, sy, ex, ey))) {
                 ++w.counters.emptyTiles;
-                FillBackground(frame, sx, sy, ex, ey);
+                out.FillBackground(sx, sy, ex, ey);
                 continue;
             }
-            if (w.TryFlatFill(w.subTileProgram, Centres(sx, sy, ex, ey), sx, sy, ex, ey, frame))
+            if (w.TryFlatFill(w.subTileProgram, Centres(sx, sy, ex, ey), sx, sy, ex, ey, out))
                 continue;
             w.StartBatches(w.subTileProgram, sx, sy, ex, ey);
             // A sub-tile that is one body (SingleBody) is read straight from the body's batch;
             // only its kScalar pixels are traced.
             const Worker::BodyBatch* single = w.SingleBodyBatch(w.subTileProgram, Centres(sx, sy, ex, ey));
             if (single) ++w.counters.bodyFillTiles;
+            const bool kernel =
+                !single && w.CompileKernel(w.subTileProgram, Centres(sx, sy, ex, ey));
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
@@ -937,28 +1185,31 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
                     if (single && single->state[w.Pixel()] != Worker::BodyBatch::kScalar) {
                         if (single->state[w.Pixel()] == Worker::BodyBatch::kOne)
                             hit = w.FirstVisibleOfOne(*single, w.Pixel(), w.subTileProgram);
+                    } else if (kernel) {
+                        hit = w.RunKernel(x, y);
                     } else {
                         hit = w.Trace(w.subTileProgram, x, y);
                     }
+                    const std::size_t k = out.Index(i, j);
                     if (hit.tag < 0) {
-                        frame.SetBackground(frame.Index(i, j));
+                        out.SetBackground(k);
                         continue;
                     }
                     ++w.counters.covered;
                     const Tag& tag = w.TagOf(hit.tag);
-                    std::size_t k = frame.Index(i, j);
-                    frame.depth[k] = hit.t;
+                    out.depth[k] = hit.t;
                     const auto hsIndex = static_cast<std::size_t>(tag.halfSpace);
-                    frame.normal[k] = tables.constantNormal[hsIndex]
-                                          ? tables.planeNormal[hsIndex]
-                                          : scene.WorldNormal(tag.halfSpace, {x, y, hit.t});
-                    frame.surface[k] = tag.halfSpace;
-                    frame.body[k] = tag.body;
-                    frame.solid[k] = hit.solid;
+                    out.normal[k] = tables.constantNormal[hsIndex]
+                                        ? tables.planeNormal[hsIndex]
+                                        : scene.WorldNormal(tag.halfSpace, {x, y, hit.t});
+                    out.surface[k] = tag.halfSpace;
+                    out.body[k] = tag.body;
+                    out.solid[k] = hit.solid;
                 }
             }
         }
     }
+    w.CopyTile(x0, y0, x1, y1, frame);
 }
 
 class RaycastEngine final : public Engine {
@@ -1061,6 +1312,9 @@ class RaycastEngine final : public Engine {
         add("batched_body_pixels", total.batchPixels);
         add("single_body_sub_tiles", total.bodyFillTiles);
         add("empty_sub_tiles", total.emptyTiles);
+        add("kernel_sub_tiles", total.kernelTiles);
+        add("kernel_pixels", total.kernelPixels);
+        add("kernel_scalar_bodies", total.kernelScalarBodies);
         return stats;
     }
 };

@@ -1,4 +1,4 @@
-// The raycast engine's speed-only options (batch, tile-cull): every combination gives the same
+// The raycast engine's speed-only options (batch, tile-cull, kernel): every combination gives the same
 // frame, bit for bit, on the example and gallery scenes in parallel and perspective views, and
 // bad option values are refused.
 #include <gtest/gtest.h>
@@ -32,9 +32,9 @@ std::string Include(const std::string& example) {
 }
 
 Frame Render(const FlatScene& scene, const std::string& batch, const std::string& cull,
-             RenderStats* stats = nullptr) {
+             RenderStats* stats = nullptr, const std::string& kernel = "on") {
     RenderOptions options;
-    options.engineOptions = {{"batch", batch}, {"tile-cull", cull}};
+    options.engineOptions = {{"batch", batch}, {"tile-cull", cull}, {"kernel", kernel}};
     auto engine = MakeRaycastEngine();
     EXPECT_EQ(engine->ValidateOptions(options), "");
     Frame f;
@@ -59,7 +59,7 @@ TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
         // The machined part in perspective, close enough for strong foreshortening.
         Include("machined_part.uq") + "view close vrp 0 10 0 cop 40 70 -90 =r whh 40 fbp -200 200;\n",
     };
-    double flat = 0, empty = 0, batched = 0;
+    double flat = 0, empty = 0, batched = 0, kernel = 0;
     for (const std::string& text : scenes) {
         const FlatScene scene = Load(text, 301, 217);  // not a multiple of the tile sizes
         RenderStats on;
@@ -68,15 +68,20 @@ TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
         flat += Counter(on, "flat_pixels");
         empty += Counter(on, "tile_bodies_empty");
         batched += Counter(on, "batched_body_pixels");
+        kernel += Counter(on, "kernel_pixels");
         for (const char* batch : {"on", "off"})
             for (const char* cull : {"on", "off"})
-                EXPECT_EQ(FrameDifference(Render(scene, batch, cull), reference), "")
-                    << text << " batch=" << batch << " tile-cull=" << cull;
+                for (const char* kern : {"on", "off"})
+                    EXPECT_EQ(FrameDifference(Render(scene, batch, cull, nullptr, kern), reference),
+                              "")
+                        << text << " batch=" << batch << " tile-cull=" << cull
+                        << " kernel=" << kern;
     }
     // The fast paths were taken (else this test would compare a path with itself).
     EXPECT_GT(flat, 3000);
     EXPECT_GT(empty, 100);
     EXPECT_GT(batched, 10000);
+    EXPECT_GT(kernel, 10000);
 }
 
 TEST(RaycastOptions, BadOptionsAreRefused) {
