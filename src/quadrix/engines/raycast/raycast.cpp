@@ -293,100 +293,149 @@ class Worker {
     // r = -(A x + B y + D)/C) keeps ties out. A dropped plane is then never the maximum (minimum)
     // bound and never empties the set alone, and ClipTo with it changes no endpoint, so the
     // result is bit-for-bit that of all the literals.
+    //
+    // Two levels. PrepareStrip runs the same reduction (ReduceBody) once per tile (a 256×8 strip)
+    // for the bodies of the tile program; PrepareTile then starts each body from the literals the
+    // strip kept, or takes it as empty when the strip proved it so. Every proof on the strip's
+    // rectangle holds on each sub-tile's rectangle inside it, and a dropped plane's dominator is
+    // kept or dropped for a plane that dominates both (dominance with margins is transitive), so
+    // the sub-tile's literals are again the body's minus droppable ones, in the body's order.
+    void PrepareStrip(const CsgProgram& program, const Rect& r) {
+        ++stripStamp_;
+        if (stripBody_.size() < tables_.bodyValid.size()) stripBody_.resize(tables_.bodyValid.size());
+        stripTags_.clear();
+        for (const ProgNode& node : program.nodes) {
+            if (node.kind != NodeKind::kBody) continue;
+            const auto body = static_cast<std::size_t>(node.first);
+            StripBody& sb = stripBody_[body];
+            if (sb.stamp == stripStamp_) continue;  // (a body is one node; cheap guard anyway)
+            const auto begin = static_cast<std::int32_t>(stripTags_.size());
+            scratchTags_.clear();
+            for (std::int32_t tag = tables_.bodyFirstTag[body]; tag < tables_.bodyFirstTag[body + 1];
+                 ++tag)
+                scratchTags_.push_back(tag);
+            const bool empty = ReduceBody(scratchTags_.data(), scratchTags_.size(), r, stripTags_);
+            sb = {begin, static_cast<std::int32_t>(stripTags_.size()), empty, stripStamp_};
+        }
+    }
     void PrepareTile(const CsgProgram& program, const Rect& r) {
         tileTags_.clear();
         nodeTags_.assign(program.nodes.size(), {0, 0});
         nodeEmpty_.assign(program.nodes.size(), false);
-        const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
         for (std::size_t n = 0; n < program.nodes.size(); ++n) {
             const ProgNode& node = program.nodes[n];
             if (node.kind != NodeKind::kBody) continue;
             const auto body = static_cast<std::size_t>(node.first);
-            const std::int32_t first = tables_.bodyFirstTag[body];
-            const std::int32_t last = tables_.bodyFirstTag[body + 1];
             const auto begin = static_cast<std::int32_t>(tileTags_.size());
-            bounds_.clear();
-            bool bodyEmptyByQuadric = false;
-            for (std::int32_t tag = first; tag < last; ++tag) {
-                const Tag& t = TagOf(tag);
-                const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-                PlaneBound b{tag, 0, {}};
-                if (hs.isPlane && std::isfinite(hs.c)) {
-                    bool finite = true;
-                    for (int k = 0; k < 4; ++k) {
-                        const double e = hs.px * cx[k] + hs.py * cy[k] + hs.pd;
-                        finite &= std::isfinite(e);
-                        b.r[k] = hs.c == 0 ? e : -e / hs.c;
-                        finite &= std::isfinite(b.r[k]);
-                    }
-                    if (finite && hs.c == 0) {
-                        bool holds = true;  // strictly, everywhere in the rectangle
-                        for (int k = 0; k < 4; ++k) {
-                            const double m = 1e-9 * (std::fabs(hs.px * cx[k]) +
-                                                     std::fabs(hs.py * cy[k]) + std::fabs(hs.pd)) +
-                                             1e-300;
-                            holds &= t.complemented ? b.r[k] > m : b.r[k] < -m;
-                        }
-                        if (holds) continue;  // the literal holds on every ray: drop it
-                    } else if (finite) {
-                        b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
-                    }
-                } else if (!hs.isPlane && settings_.tileCull) {
-                    const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
-                    if (q != QuadricOnRect::kUnknown) {
-                        // No ray of the rectangle meets the surface: the literal holds on all
-                        // of every ray (dropped) or on none (the body is empty).
-                        const bool holds = (q == QuadricOnRect::kInsideEverywhere) != t.complemented;
-                        if (holds) continue;
-                        bodyEmptyByQuadric = true;
-                    }
-                }
-                bounds_.push_back(b);
-            }
-            // Empty everywhere: a near bound beyond a far bound at the four corners (margin as
-            // below) stays beyond it on the whole rectangle, so no ray of the sub-tile meets the
-            // body, and Evaluate takes it as ∅ without evaluating it (exactly what the body's
-            // literals would give: an empty set, and ∅ is an exact identity of every operator).
-            bool empty = bodyEmptyByQuadric;
-            for (std::size_t i = 0; i < bounds_.size() && !empty && settings_.tileCull; ++i) {
-                if (bounds_[i].side >= 0) continue;
-                for (std::size_t j = 0; j < bounds_.size() && !empty; ++j) {
-                    if (bounds_[j].side <= 0) continue;
-                    bool all = true;
-                    for (int k = 0; k < 4 && all; ++k) {
-                        const double m =
-                            1e-9 * (std::fabs(bounds_[i].r[k]) + std::fabs(bounds_[j].r[k])) + 1e-300;
-                        all = bounds_[i].r[k] - bounds_[j].r[k] > m;
-                    }
-                    empty = all;
-                }
+            const std::int32_t all = tables_.bodyFirstTag[body + 1] - tables_.bodyFirstTag[body];
+            bool empty;
+            if (body < stripBody_.size() && stripBody_[body].stamp == stripStamp_) {
+                const StripBody& sb = stripBody_[body];
+                empty = sb.empty ||
+                        ReduceBody(stripTags_.data() + sb.begin,
+                                   static_cast<std::size_t>(sb.end - sb.begin), r, tileTags_);
+            } else {
+                scratchTags_.clear();
+                for (std::int32_t tag = tables_.bodyFirstTag[body];
+                     tag < tables_.bodyFirstTag[body + 1]; ++tag)
+                    scratchTags_.push_back(tag);
+                empty = ReduceBody(scratchTags_.data(), scratchTags_.size(), r, tileTags_);
             }
             if (empty) {
+                tileTags_.resize(static_cast<std::size_t>(begin));
                 nodeEmpty_[n] = true;
                 ++counters.emptyBodies;
                 nodeTags_[n] = {begin, begin};
                 continue;
             }
-            for (std::size_t i = 0; i < bounds_.size(); ++i) {
-                const PlaneBound& b = bounds_[i];
-                bool dominated = false;
-                for (std::size_t j = 0; j < bounds_.size() && !dominated && b.side != 0; ++j) {
-                    const PlaneBound& a = bounds_[j];
-                    if (j == i || a.side != b.side) continue;
-                    bool all = true;
-                    for (int k = 0; k < 4 && all; ++k) {
-                        const double m = 1e-9 * (std::fabs(a.r[k]) + std::fabs(b.r[k])) + 1e-300;
-                        // Near bounds: a is tighter where r_a > r_b; far bounds where r_a < r_b.
-                        all = b.side < 0 ? a.r[k] - b.r[k] > m : b.r[k] - a.r[k] > m;
-                    }
-                    dominated = all;
-                }
-                if (!dominated) tileTags_.push_back(b.tag);
-            }
             nodeTags_[n] = {begin, static_cast<std::int32_t>(tileTags_.size())};
             counters.prunedLiterals +=
-                static_cast<std::uint64_t>((last - first) - (nodeTags_[n].second - begin));
+                static_cast<std::uint64_t>(all - (nodeTags_[n].second - begin));
         }
+    }
+
+    // The reduction of PrepareTile for one body on the rectangle r: appends to `out` the literals
+    // of tags[0, n) (a body's literals in its order, or a subsequence of them already reduced on a
+    // rectangle containing r) that may bound the body somewhere in r, and returns true (with
+    // nothing appended) when the body is provably empty on every ray of r.
+    bool ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
+                    std::vector<std::int32_t>& out) {
+        const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
+        bounds_.clear();
+        bool bodyEmptyByQuadric = false;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::int32_t tag = tags[i];
+            const Tag& t = TagOf(tag);
+            const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+            PlaneBound b{tag, 0, {}};
+            if (hs.isPlane && std::isfinite(hs.c)) {
+                bool finite = true;
+                for (int k = 0; k < 4; ++k) {
+                    const double e = hs.px * cx[k] + hs.py * cy[k] + hs.pd;
+                    finite &= std::isfinite(e);
+                    b.r[k] = hs.c == 0 ? e : -e / hs.c;
+                    finite &= std::isfinite(b.r[k]);
+                }
+                if (finite && hs.c == 0) {
+                    bool holds = true;  // strictly, everywhere in the rectangle
+                    for (int k = 0; k < 4; ++k) {
+                        const double m = 1e-9 * (std::fabs(hs.px * cx[k]) +
+                                                 std::fabs(hs.py * cy[k]) + std::fabs(hs.pd)) +
+                                         1e-300;
+                        holds &= t.complemented ? b.r[k] > m : b.r[k] < -m;
+                    }
+                    if (holds) continue;  // the literal holds on every ray: drop it
+                } else if (finite) {
+                    b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
+                }
+            } else if (!hs.isPlane && settings_.tileCull) {
+                const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
+                if (q != QuadricOnRect::kUnknown) {
+                    // No ray of the rectangle meets the surface: the literal holds on all
+                    // of every ray (dropped) or on none (the body is empty).
+                    const bool holds = (q == QuadricOnRect::kInsideEverywhere) != t.complemented;
+                    if (holds) continue;
+                    bodyEmptyByQuadric = true;
+                }
+            }
+            bounds_.push_back(b);
+        }
+        // Empty everywhere: a near bound beyond a far bound at the four corners (margin as
+        // below) stays beyond it on the whole rectangle, so no ray of the sub-tile meets the
+        // body, and Evaluate takes it as ∅ without evaluating it (exactly what the body's
+        // literals would give: an empty set, and ∅ is an exact identity of every operator).
+        bool empty = bodyEmptyByQuadric;
+        for (std::size_t i = 0; i < bounds_.size() && !empty && settings_.tileCull; ++i) {
+            if (bounds_[i].side >= 0) continue;
+            for (std::size_t j = 0; j < bounds_.size() && !empty; ++j) {
+                if (bounds_[j].side <= 0) continue;
+                bool all = true;
+                for (int k = 0; k < 4 && all; ++k) {
+                    const double m =
+                        1e-9 * (std::fabs(bounds_[i].r[k]) + std::fabs(bounds_[j].r[k])) + 1e-300;
+                    all = bounds_[i].r[k] - bounds_[j].r[k] > m;
+                }
+                empty = all;
+            }
+        }
+        if (empty) return true;
+        for (std::size_t i = 0; i < bounds_.size(); ++i) {
+            const PlaneBound& b = bounds_[i];
+            bool dominated = false;
+            for (std::size_t j = 0; j < bounds_.size() && !dominated && b.side != 0; ++j) {
+                const PlaneBound& a = bounds_[j];
+                if (j == i || a.side != b.side) continue;
+                bool all = true;
+                for (int k = 0; k < 4 && all; ++k) {
+                    const double m = 1e-9 * (std::fabs(a.r[k]) + std::fabs(b.r[k])) + 1e-300;
+                    // Near bounds: a is tighter where r_a > r_b; far bounds where r_a < r_b.
+                    all = b.side < 0 ? a.r[k] - b.r[k] > m : b.r[k] - a.r[k] > m;
+                }
+                dominated = all;
+            }
+            if (!dominated) out.push_back(b.tag);
+        }
+        return false;
     }
 
     // Flat sub-tiles. When the sub-tile program is one solid whose tree is one body, PrepareTile
@@ -1102,7 +1151,17 @@ class Worker {
     const SceneTables& tables_;
     const Settings settings_;
     std::vector<double> zlos_;  // SetCuts scratch
-    std::vector<PlaneBound> bounds_;  // PrepareTile scratch
+    std::vector<PlaneBound> bounds_;  // ReduceBody scratch
+    std::vector<std::int32_t> scratchTags_;
+    // PrepareStrip's result per FlatScene body, valid when its stamp is stripStamp_.
+    struct StripBody {
+        std::int32_t begin = 0, end = 0;  // its literals: stripTags_[begin, end)
+        bool empty = false;
+        std::uint32_t stamp = 0;
+    };
+    std::vector<StripBody> stripBody_;
+    std::vector<std::int32_t> stripTags_;
+    std::uint32_t stripStamp_ = 0;
     std::vector<std::int32_t> tileTags_;
     std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
     std::vector<bool> nodeEmpty_;  // per program node: a body empty on every ray of the sub-tile
@@ -1149,6 +1208,7 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
         FillBackground(frame, x0, y0, x1, y1);
         return;
     }
+    w.PrepareStrip(w.tileProgram, Centres(x0, y0, x1, y1));
     const PixelRows out = w.TileRows(x0, y0);
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
