@@ -89,6 +89,13 @@ class IntervalList {
         data_[size_++] = Interval{lo, hi, loId, hiId};
     }
 
+    // Replaces the contents by the one interval [lo, hi]; precondition lo < hi (a canonical
+    // one-interval set, such as a body batch's kOne pixel).
+    void AssignOne(double lo, std::int32_t loId, double hi, std::int32_t hiId) {
+        data_[0] = Interval{lo, hi, loId, hiId};  // capacity >= kInlineCapacity >= 1
+        size_ = 1;
+    }
+
     // Closed membership: t lies in some [lo, hi].
     bool Contains(double t) const;
     // True when the list is in canonical form (see the file comment); for tests and DCHECKs.
@@ -116,8 +123,9 @@ void Complement(const IntervalList& a, IntervalList& out);
 void ClipTo(IntervalList& list, const Interval& window);
 
 // One interval against one interval, the commonest case in the engines' CSG: the sweep's
-// result written directly (inline: the raycast engine's per-pixel kernel calls them too), from the same tie rules (events at equal t: starts before ends, a
-// before b); checked against the sweep oracle, ids included, in interval_list_test.cpp.
+// result written directly, from the same tie rules (events at equal t: starts before ends, a
+// before b); checked against the sweep oracle, ids included, in interval_list_test.cpp. Inline:
+// the raycast engine's per-pixel kernel calls them too.
 
 // a ∪ b: opened by the first start (a's on a tie); one piece when the other starts no later than
 // the first ends (a start before an end), closed by the last end (b's on a tie).

@@ -1,6 +1,9 @@
 #include "quadrix/engines/raycast/ray_literal.h"
 
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "quadrix/math/quadratic.h"
 
@@ -195,6 +198,179 @@ QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, double x0, double x1, doub
     if (!std::isfinite(bound) || !std::isfinite(scale)) return QuadricOnRect::kUnknown;
     if (!(bound < -1e-8 * scale)) return QuadricOnRect::kUnknown;
     return c < 0 ? QuadricOnRect::kInsideEverywhere : QuadricOnRect::kOutsideEverywhere;
+}
+
+namespace {
+
+constexpr int kBatchMax = 64;
+
+// One pixel of QuadricBatch the reference way.
+void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int p,
+                       const double* xs, const double* ys, double* lo, std::int64_t* loId,
+                       double* hi, std::int64_t* hiId, std::uint8_t* flag,
+                       LiteralCounters& counters) {
+    const RaySet s = LiteralOnRay(hs, complemented, xs[p], ys[p], tag, counters);
+    if (s.count == 0) {
+        flag[p] = kBatchDead;
+    } else if (s.count == 2) {
+        flag[p] = kBatchScalar;
+    } else {
+        const Interval& v = s.piece[0];
+        if (!(lo[p] > v.lo)) {
+            lo[p] = v.lo;
+            loId[p] = v.loId;
+        }
+        if (!(hi[p] <= v.hi)) {
+            hi[p] = v.hi;
+            hiId[p] = v.hiId;
+        }
+    }
+}
+
+// The vectorised pass of QuadricBatch over n <= kBatchMax pixels: the live pixels whose literal
+// set the common case decides get their result; the other live ones get need[p] = 1 (else 0).
+// Returns the number of live pixels.
+//
+// The common case, followed step by step through LiteralOnRay, SolveQuadratic and QuadraticSet:
+// h, k and c finite, max(|c|, |h|, |k|) in [2^-200, 2^200] (SolveQuadratic does not rescale),
+// c ≠ 0 (not linear) and disc ≠ 0 (no double root); the discriminant is the plain one or the
+// compensated one exactly as SolveQuadratic chooses (both are computed: the compensated one is
+// what every pixel of a surface far from the re-centring point needs, e.g. a cylinder lying
+// across the view, which has no centre and is re-centred on the image centre at depth 0).
+// Then with the shifted roots a = z0 + t0, b = z0 + t1 (sorted roots of kTwo when disc > 0) let
+// J = [a, b] when disc > 0 and a < b, else J = ∅. For c > 0 QuadraticSet's set is J (disc < 0
+// forces k > 0: nothing); for c < 0 it is the closure of J's complement (two half-lines, or
+// everything when the roots round together or disc < 0, which forces k < 0), i.e. Complement(J)
+// piece for piece, ids included. Complementing twice gives J back, so the literal's set is J
+// when (c > 0) != complemented and Complement(J) otherwise (kFlip):
+//   !kFlip: J = [a, b] -> that piece (kNoId on an infinite end); J = ∅ -> dead;
+//    kFlip: J = ∅ -> (−∞, ∞); J = [a, b] finite -> two pieces (scalar); an infinite end -> need.
+// Every operation is the scalar one in the same order (IEEE +, −, ×, /, √, no contraction: the
+// project builds with -ffp-contract=off and no fast-math), so the bits are the same; the √ is a
+// separate pass with SSE2 intrinsics because std::sqrt's errno handling stops the vectoriser.
+template <bool kFlip>
+__attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
+    const RayHalfSpace& hs, std::int64_t tag, int n, const double* __restrict xs,
+    const double* __restrict ys, double* __restrict lo, std::int64_t* __restrict loId,
+    double* __restrict hi, std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,
+    std::uint8_t* __restrict need) {
+    const double c = hs.c, x0 = hs.x0, y0 = hs.y0, z0 = hs.z0, hx = hs.hx, hy = hs.hy, h0 = hs.h0,
+                 axx = hs.axx, axy = hs.axy, ax = hs.ax, byy = hs.byy, by = hs.by, k0 = hs.k0;
+    constexpr double kBig = 0x1p200, kSmall = 0x1p-200;
+    // c's part of the common-case test (c finite and non-zero, |c| <= 2^200), and whether |c|
+    // alone already reaches 2^-200.
+    const bool cOk = std::fabs(c) <= kBig && c != 0;
+    const bool cLarge = std::fabs(c) >= kSmall;
+    double hv[kBatchMax], kv[kBatchMax], pv[kBatchMax], cv[kBatchMax], dv[kBatchMax], sv[kBatchMax];
+    std::int64_t usePlain[kBatchMax], fast[kBatchMax];
+
+    // 1. h, k and both discriminants; which pixels are in the common case (but for disc ≠ 0).
+    // Both discriminants are stored and chosen in the next loop: a choice here would let the
+    // compiler compute the compensated one conditionally, which -ftrapping-math forbids it to
+    // if-convert, and the loop would not be vectorised.
+    for (int p = 0; p < n; ++p) {
+        const double dx = xs[p] - x0, dy = ys[p] - y0;
+        const double h = hx * dx + hy * dy + h0;
+        const double k = dx * (axx * dx + axy * dy + ax) + dy * (byy * dy + by) + k0;
+        const double ah = std::fabs(h), ak = std::fabs(k);
+        const double p1 = h * h, p2 = c * k;
+        const double plain = p1 - p2;
+        // DifferenceOfProducts(h, h, c, k), inline (same operands in the same order).
+        const TwoProductResult e1 = TwoProduct(h, h), e2 = TwoProduct(c, k);
+        hv[p] = h;
+        kv[p] = k;
+        pv[p] = plain;
+        cv[p] = (e1.p - e2.p) + (e1.e - e2.e);
+        usePlain[p] = p1 + std::fabs(p2) <= 2.0 * std::fabs(plain);
+        fast[p] = cOk & (ah <= kBig) & (ak <= kBig) & (cLarge | (ah >= kSmall) | (ak >= kSmall));
+    }
+
+    // 2. The discriminant SolveQuadratic uses, and its square root (NaN where disc < 0, which
+    // step 3 does not use).
+    for (int p = 0; p < n; ++p) dv[p] = usePlain[p] ? pv[p] : cv[p];
+    int i = 0;
+#if defined(__SSE2__)
+    for (; i + 2 <= n; i += 2) _mm_storeu_pd(sv + i, _mm_sqrt_pd(_mm_loadu_pd(dv + i)));
+#endif
+    for (; i < n; ++i) sv[i] = std::sqrt(dv[i]);
+
+    // 3. Roots, the literal's set, and the merge into the batch.
+    int live = 0;
+    for (int p = 0; p < n; ++p) {
+        const double h = hv[p], k = kv[p], s = sv[p];
+        const double q = -(h + std::copysign(s, h));
+        const double t0 = q / c, t1 = k / q;
+        // Sorted, then shifted (QuadraticSet): the same as shifting both and then choosing,
+        // which keeps every addition unconditional (a conditional one blocks if-conversion
+        // under -ftrapping-math).
+        const bool swap = t1 < t0;
+        const double e0 = z0 + t0, e1 = z0 + t1;
+        const double a = swap ? e1 : e0, b = swap ? e0 : e1;
+        const bool j = (dv[p] > 0) & (a < b);
+        const bool isLive = flag[p] == kBatchLive;
+        const bool ok = isLive & (fast[p] != 0) & (dv[p] != 0);
+        const bool aInf = std::fabs(a) == kInf, bInf = std::fabs(b) == kInf;
+        bool piece, dead, scalar;
+        double vlo, vhi;
+        std::int64_t vloId, vhiId;
+        if (kFlip) {
+            piece = ok & !j;
+            dead = false;
+            scalar = ok & j & !aInf & !bInf;
+            vlo = -kInf;
+            vhi = kInf;
+            vloId = vhiId = kNoId;
+        } else {
+            piece = ok & j;
+            dead = ok & !j;
+            scalar = false;
+            vlo = a;
+            vhi = b;
+            vloId = aInf ? std::int64_t{kNoId} : tag;
+            vhiId = bInf ? std::int64_t{kNoId} : tag;
+        }
+        const bool takeLo = piece & !(lo[p] > vlo), takeHi = piece & !(hi[p] <= vhi);
+        lo[p] = takeLo ? vlo : lo[p];
+        loId[p] = takeLo ? vloId : loId[p];
+        hi[p] = takeHi ? vhi : hi[p];
+        hiId[p] = takeHi ? vhiId : hiId[p];
+        flag[p] = dead ? std::uint8_t{kBatchDead} : scalar ? std::uint8_t{kBatchScalar} : flag[p];
+        need[p] = isLive & !(piece | dead | scalar);
+        live += isLive;
+    }
+    return live;
+}
+
+}  // namespace
+
+void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int n,
+                  const double* xs, const double* ys, double* lo, std::int64_t* loId, double* hi,
+                  std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters) {
+    // A plane (not what this is for), or a c that leaves no pixel to the vectorised pass (c = 0:
+    // a cylinder or paraboloid along the rays; non-finite; beyond 2^200): the plain loop.
+    if (hs.isPlane || !(std::fabs(hs.c) <= 0x1p200 && hs.c != 0)) {
+        for (int p = 0; p < n; ++p)
+            if (flag[p] == kBatchLive)
+                QuadricBatchPixel(hs, complemented, tag, p, xs, ys, lo, loId, hi, hiId, flag,
+                                  counters);
+        return;
+    }
+    const bool flip = (hs.c > 0) == complemented;
+    for (int base = 0; base < n; base += kBatchMax) {
+        const int m = n - base < kBatchMax ? n - base : kBatchMax;
+        std::uint8_t need[kBatchMax];
+        const int live =
+            flip ? QuadricBatchFast<true>(hs, tag, m, xs + base, ys + base, lo + base, loId + base,
+                                          hi + base, hiId + base, flag + base, need)
+                 : QuadricBatchFast<false>(hs, tag, m, xs + base, ys + base, lo + base, loId + base,
+                                           hi + base, hiId + base, flag + base, need);
+        counters.quadrics += static_cast<std::uint64_t>(live);
+        LiteralCounters unused;  // already counted
+        for (int p = 0; p < m; ++p)
+            if (need[p])
+                QuadricBatchPixel(hs, complemented, tag, base + p, xs, ys, lo, loId, hi, hiId, flag,
+                                  unused);
+    }
 }
 
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,

@@ -87,6 +87,27 @@ enum class QuadricOnRect { kUnknown, kInsideEverywhere, kOutsideEverywhere };
 // `x0..x1 × y0..y1` is the rectangle of pixel centres.
 QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, double x0, double x1, double y0, double y1);
 
+// Per-pixel states of a body batch.
+enum : std::uint8_t { kBatchLive = 0, kBatchDead = 1, kBatchScalar = 2 };
+// For each pixel p < n with flag[p] == kBatchLive:
+//    S = LiteralOnRay(hs, complemented, xs[p], ys[p], tag, ...)
+//  - S.count == 0 -> flag[p] = kBatchDead;
+//  - S.count == 2 -> flag[p] = kBatchScalar;
+//  - S.count == 1 -> clip by its piece v with exactly these rules:
+//        if (!(lo[p] > v.lo)) { lo[p] = v.lo; loId[p] = v.loId; }
+//        if (!(hi[p] <= v.hi)) { hi[p] = v.hi; hiId[p] = v.hiId; }
+// Pixels whose flag is not kBatchLive are left untouched (all arrays).
+// counters.quadrics += number of live pixels.
+//
+// Bit-identical to that loop for every input: a vectorised pass does the common case (c ≠ 0, no
+// rescaling in SolveQuadratic, discriminant ≠ 0) with the same operations in the same order, and
+// the pixels it leaves (c = 0, tangent rays, non-finite or extreme coefficients, …) go through
+// LiteralOnRay itself. The output arrays must not overlap each other or xs, ys. Meant for
+// quadrics (for a plane it is just the loop above).
+void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int n,
+                  const double* xs, const double* ys, double* lo, std::int64_t* loId, double* hi,
+                  std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters);
+
 // The same as an IntervalList (for tests and callers that want a list).
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
                      IntervalList& out, LiteralCounters& counters);

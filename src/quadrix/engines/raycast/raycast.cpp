@@ -920,8 +920,10 @@ class Worker {
                         const std::uint8_t state = batch.state[pixel_];
                         if (state == BodyBatch::kEmpty) continue;
                         if (state == BodyBatch::kOne) {
-                            l->Append(batch.lo[pixel_], static_cast<std::int32_t>(batch.loId[pixel_]),
-                                      batch.hi[pixel_], static_cast<std::int32_t>(batch.hiId[pixel_]));
+                            l->AssignOne(batch.lo[pixel_],
+                                         static_cast<std::int32_t>(batch.loId[pixel_]),
+                                         batch.hi[pixel_],
+                                         static_cast<std::int32_t>(batch.hiId[pixel_]));
                             continue;
                         }
                     }
@@ -1042,13 +1044,13 @@ class Worker {
         double* const hi = out.hi;
         std::int64_t* const loId = out.loId;
         std::int64_t* const hiId = out.hiId;
-        bool dead[kSubTile * kSubTile], scalar[kSubTile * kSubTile];
+        std::uint8_t flag[kSubTile * kSubTile];  // kBatchLive, kBatchDead or kBatchScalar
         double bad[kSubTile * kSubTile];  // non-zero: a plane bound was not finite
         for (int p = 0; p < n; ++p) {
             lo[p] = -HUGE_VAL;
             hi[p] = HUGE_VAL;
             loId[p] = hiId[p] = Interval::kNoId;
-            dead[p] = scalar[p] = false;
+            flag[p] = kBatchLive;
             bad[p] = 0;
         }
         const auto [begin, end] = nodeTags_[static_cast<std::size_t>(node)];
@@ -1063,36 +1065,25 @@ class Worker {
                     PlaneBatch<false>(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
                 else  // t >= r: a near bound
                     PlaneBatch<true>(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
-            } else {
-                for (int p = 0; p < n; ++p) {
-                    if (dead[p] || scalar[p] || bad[p] != 0) continue;
-                    if (hs.isPlane) {  // parallel to the rays, or non-finite: rare
-                        scalar[p] = true;
-                        continue;
-                    }
-                    const RaySet set =
-                        LiteralOnRay(hs, t.complemented, xs_[p], ys_[p], tag, counters.literals);
-                    if (set.count == 0) {
-                        dead[p] = true;
-                    } else if (set.count == 2) {
-                        scalar[p] = true;
-                    } else {
-                        if (!(lo[p] > set.piece[0].lo)) {
-                            lo[p] = set.piece[0].lo;
-                            loId[p] = set.piece[0].loId;
-                        }
-                        if (!(hi[p] <= set.piece[0].hi)) {
-                            hi[p] = set.piece[0].hi;
-                            hiId[p] = set.piece[0].hiId;
-                        }
-                    }
-                }
+                continue;
             }
+            // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
+            for (int p = 0; p < n; ++p)
+                if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
+            if (hs.isPlane) {  // parallel to the rays, or non-finite: rare
+                for (int p = 0; p < n; ++p)
+                    if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
+                continue;
+            }
+            // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
+            // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
+            QuadricBatch(hs, t.complemented, tag, n, xs_, ys_, lo, loId, hi, hiId, flag,
+                         counters.literals);
         }
         for (int p = 0; p < n; ++p)
-            out.state[p] = scalar[p] || bad[p] != 0   ? BodyBatch::kScalar
-                           : dead[p] || !(lo[p] < hi[p]) ? BodyBatch::kEmpty
-                                                         : BodyBatch::kOne;
+            out.state[p] = flag[p] == kBatchScalar || bad[p] != 0 ? BodyBatch::kScalar
+                           : flag[p] == kBatchDead || !(lo[p] < hi[p]) ? BodyBatch::kEmpty
+                                                                        : BodyBatch::kOne;
         return b;
     }
 
