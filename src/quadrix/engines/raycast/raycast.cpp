@@ -149,7 +149,8 @@ struct Counters {
                   pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0,
                   cutRetries = 0, prunedLiterals = 0, flatTiles = 0, flatPixels = 0,
                   emptyBodies = 0, batchBodies = 0, batchPixels = 0, bodyFillTiles = 0,
-                  emptyTiles = 0, kernelTiles = 0, kernelPixels = 0, kernelScalarBodies = 0;
+                  emptyTiles = 0, kernelTiles = 0, kernelPixels = 0, kernelScalarBodies = 0,
+                  kernelScalarPixels = 0;
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -175,6 +176,7 @@ struct Counters {
         kernelTiles += o.kernelTiles;
         kernelPixels += o.kernelPixels;
         kernelScalarBodies += o.kernelScalarBodies;
+        kernelScalarPixels += o.kernelScalarPixels;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
     }
@@ -247,6 +249,115 @@ __attribute__((target_clones("avx2", "default"))) void PlaneBatch(
         const bool take = kNear ? !(bound[p] > r) : !(bound[p] <= r);
         bound[p] = take ? r : bound[p];
         boundId[p] = take ? tag : boundId[p];
+    }
+}
+
+// Lanes: the kernel's sets (Worker::RunKernelTile) over the pixels of a sub-tile, one array per
+// field. Per pixel a lane holds ∅ or one interval (n = 0 or 1) and a cut T: the lane equals the
+// kernel's exact set on t < T, ids included (T = +inf: exactly). Where an operation would give a
+// second interval, the lane keeps the first and sets T to the second one's start; everything
+// below T is then as in the full list (set operations are pointwise in t, and a sweep emits the
+// same endpoints below T from the same events below T: the argument of Trace's depth cuts). The
+// first visible endpoint of a solid is therefore exact when it lies below T; a pixel where it
+// does not, or where a body's set is not in its batch, is marked in `over` and evaluated by
+// RunKernel. The operations are the one-interval cases of math/interval_list.h written as
+// selects, with the same comparisons and tie rules (checked bit for bit against RunKernel and
+// Trace by RaycastOptions.SpeedOptionsChangeNoBit): no arithmetic, so nothing to round.
+constexpr int kLanePixels = kSubTile * kSubTile;
+struct Lane {
+    double lo[kLanePixels], hi[kLanePixels], cut[kLanePixels];
+    std::int64_t loId[kLanePixels], hiId[kLanePixels], n[kLanePixels];
+};
+
+// A body's set from its batch: ∅ where the pixel centre is outside the body's bounds `r` or the
+// batch is kEmpty, its interval where kOne, `over` where kScalar.
+__attribute__((target_clones("avx2", "default"))) void LanePush(
+    int np, const double* xs, const double* ys, const Rect& r, const std::uint8_t* state,
+    const double* lo, const double* hi, const std::int64_t* loId, const std::int64_t* hiId,
+    Lane& out, std::int64_t* __restrict over) {
+    for (int p = 0; p < np; ++p) {
+        const bool in = !(xs[p] < r.x0 || xs[p] > r.x1 || ys[p] < r.y0 || ys[p] > r.y1);
+        out.lo[p] = lo[p];
+        out.hi[p] = hi[p];
+        out.loId[p] = loId[p];
+        out.hiId[p] = hiId[p];
+        out.cut[p] = HUGE_VAL;
+        out.n[p] = in & (state[p] == 1);  // BodyBatch::kOne
+        over[p] |= in & (state[p] == 2);  // BodyBatch::kScalar
+    }
+}
+
+// a = a ∪ b (UnionOfOne; ∅ ∪ B = B, A ∪ ∅ = A); two disjoint pieces keep the first.
+__attribute__((target_clones("avx2", "default"))) void LaneUnion(int np, Lane& a, const Lane& b) {
+    for (int p = 0; p < np; ++p) {
+        const bool na = a.n[p] != 0, nb = b.n[p] != 0;
+        const bool aFirst = a.lo[p] <= b.lo[p];
+        const double flo = aFirst ? a.lo[p] : b.lo[p], fhi = aFirst ? a.hi[p] : b.hi[p];
+        const std::int64_t floId = aFirst ? a.loId[p] : b.loId[p];
+        const std::int64_t fhiId = aFirst ? a.hiId[p] : b.hiId[p];
+        const double glo = aFirst ? b.lo[p] : a.lo[p];
+        const bool joined = glo <= fhi;
+        const bool bLast = b.hi[p] >= a.hi[p];
+        const double uhi = joined ? (bLast ? b.hi[p] : a.hi[p]) : fhi;
+        const std::int64_t uhiId = joined ? (bLast ? b.hiId[p] : a.hiId[p]) : fhiId;
+        const bool both = na & nb, onlyB = !na & nb;
+        double cut = a.cut[p] < b.cut[p] ? a.cut[p] : b.cut[p];
+        cut = both & !joined & (glo < cut) ? glo : cut;
+        // Both: the joined (or first) piece; only b: b; else a as it is.
+        a.lo[p] = both ? flo : onlyB ? b.lo[p] : a.lo[p];
+        a.loId[p] = both ? floId : onlyB ? b.loId[p] : a.loId[p];
+        a.hi[p] = both ? uhi : onlyB ? b.hi[p] : a.hi[p];
+        a.hiId[p] = both ? uhiId : onlyB ? b.hiId[p] : a.hiId[p];
+        a.n[p] = na | nb;
+        a.cut[p] = cut;
+    }
+}
+
+// a = a ∩ b (IntersectionOfOne; ∅ when either is ∅ or they meet in a point or not at all).
+__attribute__((target_clones("avx2", "default"))) void LaneIntersection(int np, Lane& a,
+                                                                        const Lane& b) {
+    for (int p = 0; p < np; ++p) {
+        const bool openB = b.lo[p] >= a.lo[p], closeA = a.hi[p] <= b.hi[p];
+        const double lo = openB ? b.lo[p] : a.lo[p], hi = closeA ? a.hi[p] : b.hi[p];
+        const std::int64_t loId = openB ? b.loId[p] : a.loId[p];
+        const std::int64_t hiId = closeA ? a.hiId[p] : b.hiId[p];
+        const bool keep = (a.n[p] != 0) & (b.n[p] != 0) & (lo < hi);
+        a.lo[p] = lo;
+        a.hi[p] = hi;
+        a.loId[p] = loId;
+        a.hiId[p] = hiId;
+        a.n[p] = keep;
+        a.cut[p] = a.cut[p] < b.cut[p] ? a.cut[p] : b.cut[p];
+    }
+}
+
+// a = a − b (AppendDifferenceOfOne; ∅ − B = ∅, A − ∅ = A): b covering a's start leaves
+// [b.hi, a.hi] when b ends first; b before or after a leaves a; b starting inside a leaves
+// [a.lo, b.lo] and [b.hi, a.hi], each when not a point (both: the first, cut at b.hi).
+__attribute__((target_clones("avx2", "default"))) void LaneDifference(int np, Lane& a,
+                                                                      const Lane& b) {
+    for (int p = 0; p < np; ++p) {
+        const bool na = a.n[p] != 0, nb = b.n[p] != 0;
+        const double alo = a.lo[p], ahi = a.hi[p], blo = b.lo[p], bhi = b.hi[p];
+        const bool covers = blo < alo && bhi >= alo;
+        const bool apart = bhi < alo || blo > ahi;
+        const bool tail = bhi < ahi;  // [b.hi, a.hi] is a piece
+        const bool head = alo < blo;  // [a.lo, b.lo] is a piece (when b starts inside a)
+        const bool inside = !covers & !apart;
+        // The result when both are non-empty: covers → tail or ∅; apart → a; inside → head
+        // (cut at the tail when there is one), or else tail, or else ∅.
+        const bool useTail = covers | (inside & !head);
+        const bool useHead = inside & head;
+        const bool nonEmpty = apart | (useTail & tail) | useHead;
+        const bool change = na & nb;
+        double cut = a.cut[p] < b.cut[p] ? a.cut[p] : b.cut[p];
+        cut = change & useHead & tail & (bhi < cut) ? bhi : cut;
+        a.lo[p] = change & useTail ? bhi : alo;
+        a.loId[p] = change & useTail ? b.hiId[p] : a.loId[p];
+        a.hi[p] = change & useHead ? blo : ahi;
+        a.hiId[p] = change & useHead ? b.loId[p] : a.hiId[p];
+        a.n[p] = na & (!nb | nonEmpty);
+        a.cut[p] = cut;
     }
 }
 
@@ -973,8 +1084,78 @@ class Worker {
             if (FirstVisible(*stack[0], t, tag) && (t < best.t || (t == best.t && s.solid < best.solid)))
                 best = {t, tag, s.solid};
         }
-        ++counters.kernelPixels;
         return best;
+    }
+
+    // The kernel's visible points of all the pixels of the sub-tile, row-major, into `hits`:
+    // the kernel's code run over lanes of pixels (Lane), then RunKernel for the pixels marked
+    // `over` (a set of several intervals, or a body without a batch there).
+    void RunKernelTile(Hit* hits) {
+        const int np = tileW_ * tileH_;
+        for (int p = 0; p < np; ++p) hits[p] = Hit{};
+        std::int64_t over[kLanePixels] = {};
+        if (lanes_.size() < kernelStack_.size()) lanes_.resize(kernelStack_.size());
+        for (const KernelSolid& s : kernelSolids_) {
+            std::size_t sp = 0;
+            for (std::int32_t k = s.begin; k < s.end; ++k) {
+                const KernelOp& op = kernelCode_[static_cast<std::size_t>(k)];
+                if (op.kind == NodeKind::kBody) {
+                    Lane& l = lanes_[sp++];
+                    const std::int32_t b = nodeBatch_[static_cast<std::size_t>(op.node)];
+                    if (batchOn_ && b != kNoBatchWanted) {
+                        const BodyBatch& batch =
+                            batches_[static_cast<std::size_t>(b >= 0 ? b : ComputeBatch(op.node))];
+                        LanePush(np, xs_, ys_, op.xy, batch.state, batch.lo, batch.hi, batch.loId,
+                                 batch.hiId, l, over);
+                    } else {  // no batch: every pixel in its bounds goes to RunKernel
+                        LanePush(np, xs_, ys_, op.xy, kAllScalar, kNoValues, kNoValues, kNoIds,
+                                 kNoIds, l, over);
+                    }
+                    continue;
+                }
+                --sp;
+                if (op.kind == NodeKind::kUnion)
+                    LaneUnion(np, lanes_[sp - 1], lanes_[sp]);
+                else if (op.kind == NodeKind::kIntersection)
+                    LaneIntersection(np, lanes_[sp - 1], lanes_[sp]);
+                else
+                    LaneDifference(np, lanes_[sp - 1], lanes_[sp]);
+            }
+            // FirstVisible of the solid's set when it lies below the lane's cut (else RunKernel),
+            // combined by Trace's rule.
+            const Lane& l = lanes_[0];
+            for (int p = 0; p < np; ++p) {
+                if (over[p]) continue;
+                if (xs_[p] < s.xy.x0 || xs_[p] > s.xy.x1 || ys_[p] < s.xy.y0 || ys_[p] > s.xy.y1)
+                    continue;
+                const auto loId = static_cast<std::int32_t>(l.loId[p]);
+                const auto hiId = static_cast<std::int32_t>(l.hiId[p]);
+                double t = HUGE_VAL;
+                std::int32_t tag = -1;
+                if (!l.n[p]) {
+                } else if (loId >= 0 && std::isfinite(l.lo[p]) && TagOf(loId).opaque) {
+                    t = l.lo[p];
+                    tag = loId;
+                } else if (hiId >= 0 && std::isfinite(l.hi[p]) && TagOf(hiId).opaque) {
+                    t = l.hi[p];
+                    tag = hiId;
+                }
+                if (!(t < l.cut[p])) {
+                    // Nothing visible below the cut: exact only without one.
+                    if (l.cut[p] != HUGE_VAL) over[p] = 1;
+                    continue;
+                }
+                Hit& best = hits[p];
+                if (t < best.t || (t == best.t && s.solid < best.solid)) best = {t, tag, s.solid};
+            }
+        }
+        for (int p = 0; p < np; ++p) {
+            if (!over[p]) continue;
+            pixel_ = static_cast<std::size_t>(p);
+            hits[p] = RunKernel(xs_[p], ys_[p]);
+            ++counters.kernelScalarPixels;
+        }
+        counters.kernelPixels += static_cast<std::uint64_t>(np);
     }
 
   private:
@@ -992,6 +1173,12 @@ class Worker {
         double zlo;
     };
     static constexpr int kKernelMaxBodies = 8;  // bodies a kernel may hold
+    static constexpr std::uint8_t kAllScalar[kLanePixels] = {
+        2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2,
+        2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2};
+    static constexpr double kNoValues[kLanePixels] = {};
+    static constexpr std::int64_t kNoIds[kLanePixels] = {};
+    std::vector<Lane> lanes_;
 
     // Appends the code of node n: 1 when code was emitted, 0 when the node is ∅ on every pixel
     // of r (nothing emitted), -1 when the node cannot be compiled (an operator whose bounds do
@@ -1228,6 +1415,8 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             if (single) ++w.counters.bodyFillTiles;
             const bool kernel =
                 !single && w.CompileKernel(w.subTileProgram, Centres(sx, sy, ex, ey));
+            Hit kernelHits[kLanePixels];
+            if (kernel) w.RunKernelTile(kernelHits);
             for (int j = sy; j < ey; ++j) {
                 for (int i = sx; i < ex; ++i) {
                     double x = i + 0.5, y = j + 0.5;
@@ -1237,7 +1426,7 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
                         if (single->state[w.Pixel()] == Worker::BodyBatch::kOne)
                             hit = w.FirstVisibleOfOne(*single, w.Pixel(), w.subTileProgram);
                     } else if (kernel) {
-                        hit = w.RunKernel(x, y);
+                        hit = kernelHits[w.Pixel()];
                     } else {
                         hit = w.Trace(w.subTileProgram, x, y);
                     }
@@ -1366,6 +1555,7 @@ class RaycastEngine final : public Engine {
         add("kernel_sub_tiles", total.kernelTiles);
         add("kernel_pixels", total.kernelPixels);
         add("kernel_scalar_bodies", total.kernelScalarBodies);
+        add("kernel_scalar_pixels", total.kernelScalarPixels);
         return stats;
     }
 };

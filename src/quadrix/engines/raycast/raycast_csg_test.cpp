@@ -226,6 +226,28 @@ TEST(RaycastCsg, RandomScenesMatchThePointClassificationOracle) {
     EXPECT_GT(covered, compared / 10);   // and the scenes are not mostly empty
 }
 
+// The per-sub-tile kernels (lanes of one interval with a cut, RunKernel for the rest) against
+// Trace, bit for bit, on random trees of every operator and piece structure: kernel=off renders
+// every pixel with Trace.
+TEST(RaycastCsg, KernelsMatchTraceBitForBitOnRandomScenes) {
+    std::mt19937_64 rng(77);
+    double lanePixels = 0, scalarPixels = 0;
+    for (int n = 0; n < 60; ++n) {
+        const FlatScene scene = RandomCsgScene(rng, 72, 56);
+        RenderOptions on, off;
+        off.engineOptions = {{"kernel", "off"}};
+        Frame a, b;
+        RenderStats stats = MakeRaycastEngine()->Render(scene, on, a);
+        MakeRaycastEngine()->Render(scene, off, b);
+        ASSERT_EQ(FrameDifference(a, b), "") << "scene " << n;
+        lanePixels += Counter(stats, "kernel_pixels") - Counter(stats, "kernel_scalar_pixels");
+        scalarPixels += Counter(stats, "kernel_scalar_pixels");
+    }
+    // Both ways of the kernel were taken, often.
+    EXPECT_GT(lanePixels, 20000);
+    EXPECT_GT(scalarPixels, 2000);
+}
+
 // ---- Invariances
 // ----------------------------------------------------------------------------------
 
