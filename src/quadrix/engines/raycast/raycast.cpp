@@ -276,7 +276,9 @@ __attribute__((target_clones("avx2", "default"))) void LanePush(
     const double* lo, const double* hi, const std::int64_t* loId, const std::int64_t* hiId,
     Lane& out, std::int64_t* __restrict over) {
     for (int p = 0; p < np; ++p) {
-        const bool in = !(xs[p] < r.x0 || xs[p] > r.x1 || ys[p] < r.y0 || ys[p] > r.y1);
+        // Bitwise, not short-circuit, so that every comparison is made and the loop has no
+        // branches (a skipped comparison could not be if-converted under -ftrapping-math).
+        const bool in = !((xs[p] < r.x0) | (xs[p] > r.x1) | (ys[p] < r.y0) | (ys[p] > r.y1));
         out.lo[p] = lo[p];
         out.hi[p] = hi[p];
         out.loId[p] = loId[p];
@@ -290,26 +292,33 @@ __attribute__((target_clones("avx2", "default"))) void LanePush(
 // a = a ∪ b (UnionOfOne; ∅ ∪ B = B, A ∪ ∅ = A); two disjoint pieces keep the first.
 __attribute__((target_clones("avx2", "default"))) void LaneUnion(int np, Lane& a, const Lane& b) {
     for (int p = 0; p < np; ++p) {
+        const double alo = a.lo[p], ahi = a.hi[p], blo = b.lo[p], bhi = b.hi[p];
+        const std::int64_t aloId = a.loId[p], ahiId = a.hiId[p], bloId = b.loId[p],
+                           bhiId = b.hiId[p];
         const bool na = a.n[p] != 0, nb = b.n[p] != 0;
-        const bool aFirst = a.lo[p] <= b.lo[p];
-        const double flo = aFirst ? a.lo[p] : b.lo[p], fhi = aFirst ? a.hi[p] : b.hi[p];
-        const std::int64_t floId = aFirst ? a.loId[p] : b.loId[p];
-        const std::int64_t fhiId = aFirst ? a.hiId[p] : b.hiId[p];
-        const double glo = aFirst ? b.lo[p] : a.lo[p];
+        const bool aFirst = alo <= blo;
+        const double flo = aFirst ? alo : blo, fhi = aFirst ? ahi : bhi;
+        const std::int64_t floId = aFirst ? aloId : bloId, fhiId = aFirst ? ahiId : bhiId;
+        const double glo = aFirst ? blo : alo;
         const bool joined = glo <= fhi;
-        const bool bLast = b.hi[p] >= a.hi[p];
-        const double uhi = joined ? (bLast ? b.hi[p] : a.hi[p]) : fhi;
-        const std::int64_t uhiId = joined ? (bLast ? b.hiId[p] : a.hiId[p]) : fhiId;
+        const bool bLast = bhi >= ahi;
+        const double lastHi = bLast ? bhi : ahi;
+        const std::int64_t lastHiId = bLast ? bhiId : ahiId;
+        const double uhi = joined ? lastHi : fhi;
+        const std::int64_t uhiId = joined ? lastHiId : fhiId;
         const bool both = na & nb, onlyB = !na & nb;
-        double cut = a.cut[p] < b.cut[p] ? a.cut[p] : b.cut[p];
-        cut = both & !joined & (glo < cut) ? glo : cut;
+        const double ac = a.cut[p], bc = b.cut[p];
+        const double cut0 = ac < bc ? ac : bc;
+        const bool cutHere = both & !joined & (glo < cut0);
         // Both: the joined (or first) piece; only b: b; else a as it is.
-        a.lo[p] = both ? flo : onlyB ? b.lo[p] : a.lo[p];
-        a.loId[p] = both ? floId : onlyB ? b.loId[p] : a.loId[p];
-        a.hi[p] = both ? uhi : onlyB ? b.hi[p] : a.hi[p];
-        a.hiId[p] = both ? uhiId : onlyB ? b.hiId[p] : a.hiId[p];
+        const double keepLo = onlyB ? blo : alo, keepHi = onlyB ? bhi : ahi;
+        const std::int64_t keepLoId = onlyB ? bloId : aloId, keepHiId = onlyB ? bhiId : ahiId;
+        a.lo[p] = both ? flo : keepLo;
+        a.loId[p] = both ? floId : keepLoId;
+        a.hi[p] = both ? uhi : keepHi;
+        a.hiId[p] = both ? uhiId : keepHiId;
         a.n[p] = na | nb;
-        a.cut[p] = cut;
+        a.cut[p] = cutHere ? glo : cut0;
     }
 }
 
@@ -339,8 +348,10 @@ __attribute__((target_clones("avx2", "default"))) void LaneDifference(int np, La
     for (int p = 0; p < np; ++p) {
         const bool na = a.n[p] != 0, nb = b.n[p] != 0;
         const double alo = a.lo[p], ahi = a.hi[p], blo = b.lo[p], bhi = b.hi[p];
-        const bool covers = blo < alo && bhi >= alo;
-        const bool apart = bhi < alo || blo > ahi;
+        const std::int64_t aloId = a.loId[p], ahiId = a.hiId[p], bloId = b.loId[p],
+                           bhiId = b.hiId[p];
+        const bool covers = (blo < alo) & (bhi >= alo);
+        const bool apart = (bhi < alo) | (blo > ahi);
         const bool tail = bhi < ahi;  // [b.hi, a.hi] is a piece
         const bool head = alo < blo;  // [a.lo, b.lo] is a piece (when b starts inside a)
         const bool inside = !covers & !apart;
@@ -350,14 +361,16 @@ __attribute__((target_clones("avx2", "default"))) void LaneDifference(int np, La
         const bool useHead = inside & head;
         const bool nonEmpty = apart | (useTail & tail) | useHead;
         const bool change = na & nb;
-        double cut = a.cut[p] < b.cut[p] ? a.cut[p] : b.cut[p];
-        cut = change & useHead & tail & (bhi < cut) ? bhi : cut;
-        a.lo[p] = change & useTail ? bhi : alo;
-        a.loId[p] = change & useTail ? b.hiId[p] : a.loId[p];
-        a.hi[p] = change & useHead ? blo : ahi;
-        a.hiId[p] = change & useHead ? b.loId[p] : a.hiId[p];
+        const double ac = a.cut[p], bc = b.cut[p];
+        const double cut0 = ac < bc ? ac : bc;
+        const bool cutHere = change & useHead & tail & (bhi < cut0);
+        const bool newLo = change & useTail, newHi = change & useHead;
+        a.lo[p] = newLo ? bhi : alo;
+        a.loId[p] = newLo ? bhiId : aloId;
+        a.hi[p] = newHi ? blo : ahi;
+        a.hiId[p] = newHi ? bloId : ahiId;
         a.n[p] = na & (!nb | nonEmpty);
-        a.cut[p] = cut;
+        a.cut[p] = cutHere ? bhi : cut0;
     }
 }
 
