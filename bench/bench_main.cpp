@@ -278,6 +278,31 @@ int main(int argc, char** argv) {
                    "run as the coverage reference)");
     CLI11_PARSE(app, argc, argv);
 
+    // Engine options, checked before any work: ENGINE:KEY=VALUE with a known engine that takes it.
+    std::map<std::string, std::map<std::string, std::string>> optionsOf;
+    for (const std::string& opt : engineOpts) {
+        const auto colon = opt.find(':'), eq = opt.find('=');
+        if (colon == std::string::npos || eq == std::string::npos || eq < colon) {
+            std::fprintf(stderr, "error: --engine-opt '%s' is not ENGINE:KEY=VALUE\n", opt.c_str());
+            return 2;
+        }
+        const std::string engineName = opt.substr(0, colon);
+        if (!MakeEngine(engineName)) {
+            std::fprintf(stderr, "error: --engine-opt '%s': no engine '%s'\n", opt.c_str(),
+                         engineName.c_str());
+            return 2;
+        }
+        optionsOf[engineName][opt.substr(colon + 1, eq - colon - 1)] = opt.substr(eq + 1);
+    }
+    for (const auto& [engineName, options] : optionsOf) {
+        RenderOptions ro;
+        ro.engineOptions = options;
+        if (std::string err = MakeEngine(engineName)->ValidateOptions(ro); !err.empty()) {
+            std::fprintf(stderr, "error: %s\n", err.c_str());
+            return 2;
+        }
+    }
+
     std::filesystem::create_directories(outDir + "/scenes");
     std::vector<BenchScene> scenes = {
         FromFile("machined_part", sourceDir + "/examples/machined_part.uq"),
@@ -379,20 +404,8 @@ int main(int argc, char** argv) {
                 auto engine = MakeEngine(name);
                 RenderOptions ro;
                 ro.threads = threads;
-                for (const std::string& opt : engineOpts) {
-                    const auto colon = opt.find(':'), eq = opt.find('=');
-                    if (colon == std::string::npos || eq == std::string::npos || eq < colon) {
-                        std::fprintf(stderr, "error: --engine-opt '%s' is not ENGINE:KEY=VALUE\n",
-                                     opt.c_str());
-                        return 2;
-                    }
-                    if (opt.substr(0, colon) == name)
-                        ro.engineOptions[opt.substr(colon + 1, eq - colon - 1)] = opt.substr(eq + 1);
-                }
-                if (std::string err = MakeEngine(name)->ValidateOptions(ro); !err.empty()) {
-                    std::fprintf(stderr, "error: %s\n", err.c_str());
-                    return 2;
-                }
+                if (auto it = optionsOf.find(name); it != optionsOf.end())
+                    ro.engineOptions = it->second;
                 Frame frame;
                 const auto tw = std::chrono::steady_clock::now();
                 engine->Render(pr.flat, ro, frame);  // warm-up
