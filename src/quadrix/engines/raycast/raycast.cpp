@@ -10,14 +10,23 @@
 //     many threads). Each level prunes its parent's program against its pixel centres, so a
 //     sub-tile sees only the solids and leaves whose bounds reach it, and pruning a 10,000-leaf
 //     union costs one walk per block rather than one per sub-tile.
-//  4. Per pixel, solids are visited by nearest depth until the best depth found is nearer than the
-//     next solid can be. A solid's interval list is computed by recursion over its pruned tree
-//     (bodies clip their literals' sets into each other, operators fold their operands left to
-//     right, with short cuts on ∅) using lists preallocated per thread, so no pixel allocates once
-//     warm. The
-//     solid's visible point is its first finite endpoint whose surface is opaque (transparent
-//     half-spaces and clipping planes bound but are not drawn); across solids the nearest wins and
-//     exact ties keep the lower solid index.
+//  4. Per sub-tile, before any pixel: its bodies' literals are reduced (planes that cannot bound
+//     a body there dropped, bodies proved empty; once per tile, then per sub-tile: PrepareStrip,
+//     PrepareTile), and the sub-tile is filled as background or as one plane when that is proved
+//     (AllEmpty, TryFlatFill). Bodies covering the sub-tile are evaluated for all its pixels at
+//     once when first needed (body batches, vectorised).
+//  5. The pixels of the rest, by the first of these that applies: one body left (its batch);
+//     a small tree of bodies (a kernel: postfix code run over lanes of pixels, CompileKernel,
+//     RunKernelTile); otherwise Trace. Trace visits the solids by nearest depth until the best
+//     depth found is nearer than the next solid can be; a solid's interval list is computed by
+//     recursion over its pruned tree (bodies clip their literals' sets into each other,
+//     operators fold their operands left to right, with short cuts on ∅) using lists
+//     preallocated per thread, so no pixel allocates once warm. The solid's visible point is its
+//     first finite endpoint whose surface is opaque (transparent half-spaces and clipping planes
+//     bound but are not drawn); across solids the nearest wins and exact ties keep the lower
+//     solid index. Every fast path gives Trace's result bit for bit (the engine options switch
+//     them off to show it: Settings).
+//  6. A tile's pixels are written into a per-thread staging copy, then into the Frame row by row.
 //
 // Every pixel's result depends only on the scene and the pixel's tile rectangles, never on the
 // thread that ran it, so renders are bit-for-bit reproducible for any thread count.
