@@ -204,16 +204,60 @@ namespace {
 
 constexpr int kBatchMax = 64;
 
-// One pixel of QuadricBatch the reference way.
+// One pixel of QuadricBatch the reference way. With `cut` (cut mode, see ray_literal.h) a set of
+// two pieces p0 < p1 is taken in too: the running interval is clipped by each piece with the
+// rules below (IntersectionOfOne's, which the scalar body evaluation's sweep follows); the first
+// non-empty result is kept, and when both are non-empty the second one's start lowers the cut.
+// Both empty is ∅ exactly only without a cut; with one it is "∅ below the cut" (lo >= hi).
 void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int p,
                        const double* xs, const double* ys, double* lo, std::int64_t* loId,
-                       double* hi, std::int64_t* hiId, std::uint8_t* flag,
+                       double* hi, std::int64_t* hiId, std::uint8_t* flag, double* cut,
                        LiteralCounters& counters) {
     const RaySet s = LiteralOnRay(hs, complemented, xs[p], ys[p], tag, counters);
     if (s.count == 0) {
         flag[p] = kBatchDead;
-    } else if (s.count == 2) {
+    } else if (s.count == 2 && !cut) {
         flag[p] = kBatchScalar;
+    } else if (s.count == 2) {
+        auto clip = [&](const Interval& v, double& l, std::int64_t& lId, double& h,
+                        std::int64_t& hId) {
+            l = lo[p];
+            lId = loId[p];
+            h = hi[p];
+            hId = hiId[p];
+            if (!(l > v.lo)) {
+                l = v.lo;
+                lId = v.loId;
+            }
+            if (!(h <= v.hi)) {
+                h = v.hi;
+                hId = v.hiId;
+            }
+            return l < h;
+        };
+        double l0, h0, l1, h1;
+        std::int64_t l0Id, h0Id, l1Id, h1Id;
+        const bool first = clip(s.piece[0], l0, l0Id, h0, h0Id);
+        const bool second = clip(s.piece[1], l1, l1Id, h1, h1Id);
+        if (first) {
+            lo[p] = l0;
+            loId[p] = l0Id;
+            hi[p] = h0;
+            hiId[p] = h0Id;
+            if (second && l1 < cut[p]) cut[p] = l1;
+        } else if (second) {
+            lo[p] = l1;
+            loId[p] = l1Id;
+            hi[p] = h1;
+            hiId[p] = h1Id;
+        } else if (cut[p] == kInf) {
+            flag[p] = kBatchDead;
+        } else {
+            lo[p] = l0;  // ∅ below the cut (l0 >= h0)
+            loId[p] = l0Id;
+            hi[p] = h0;
+            hiId[p] = h0Id;
+        }
     } else {
         const Interval& v = s.piece[0];
         if (!(lo[p] > v.lo)) {
@@ -244,13 +288,14 @@ void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t t
 // piece for piece, ids included. Complementing twice gives J back, so the literal's set is J
 // when (c > 0) != complemented and Complement(J) otherwise (kFlip):
 //   !kFlip: J = [a, b] -> that piece (kNoId on an infinite end); J = ∅ -> dead;
-//    kFlip: J = ∅ -> (−∞, ∞); J = [a, b] finite -> two pieces (scalar); an infinite end -> need.
+//    kFlip: J = ∅ -> (−∞, ∞); J = [a, b] finite -> two pieces (scalar; in cut mode, need: the
+//           scalar QuadricBatchPixel takes them in); an infinite end -> need.
 // Every operation is the scalar one in the same order (IEEE +, −, ×, /, √, no contraction: the
 // project builds with -ffp-contract=off and no fast-math), so the bits are the same; the √ is a
 // separate pass with SSE2 intrinsics because std::sqrt's errno handling stops the vectoriser.
 template <bool kFlip>
 __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
-    const RayHalfSpace& hs, std::int64_t tag, int n, const double* __restrict xs,
+    const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n, const double* __restrict xs,
     const double* __restrict ys, double* __restrict lo, std::int64_t* __restrict loId,
     double* __restrict hi, std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,
     std::uint8_t* __restrict need) {
@@ -316,7 +361,7 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
         if (kFlip) {
             piece = ok & !j;
             dead = false;
-            scalar = ok & j & !aInf & !bInf;
+            scalar = !cutMode & ok & j & !aInf & !bInf;  // cut mode: QuadricBatchPixel
             vlo = -kInf;
             vhi = kInf;
             vloId = vhiId = kNoId;
@@ -345,31 +390,32 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
 
 void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int n,
                   const double* xs, const double* ys, double* lo, std::int64_t* loId, double* hi,
-                  std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters) {
+                  std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters, double* cut) {
     // A plane (not what this is for), or a c that leaves no pixel to the vectorised pass (c = 0:
     // a cylinder or paraboloid along the rays; non-finite; beyond 2^200): the plain loop.
     if (hs.isPlane || !(std::fabs(hs.c) <= 0x1p200 && hs.c != 0)) {
         for (int p = 0; p < n; ++p)
             if (flag[p] == kBatchLive)
-                QuadricBatchPixel(hs, complemented, tag, p, xs, ys, lo, loId, hi, hiId, flag,
+                QuadricBatchPixel(hs, complemented, tag, p, xs, ys, lo, loId, hi, hiId, flag, cut,
                                   counters);
         return;
     }
     const bool flip = (hs.c > 0) == complemented;
+    const bool cutMode = cut != nullptr;
     for (int base = 0; base < n; base += kBatchMax) {
         const int m = n - base < kBatchMax ? n - base : kBatchMax;
         std::uint8_t need[kBatchMax];
         const int live =
-            flip ? QuadricBatchFast<true>(hs, tag, m, xs + base, ys + base, lo + base, loId + base,
-                                          hi + base, hiId + base, flag + base, need)
-                 : QuadricBatchFast<false>(hs, tag, m, xs + base, ys + base, lo + base, loId + base,
-                                           hi + base, hiId + base, flag + base, need);
+            flip ? QuadricBatchFast<true>(hs, cutMode, tag, m, xs + base, ys + base, lo + base,
+                                          loId + base, hi + base, hiId + base, flag + base, need)
+                 : QuadricBatchFast<false>(hs, cutMode, tag, m, xs + base, ys + base, lo + base,
+                                           loId + base, hi + base, hiId + base, flag + base, need);
         counters.quadrics += static_cast<std::uint64_t>(live);
         LiteralCounters unused;  // already counted
         for (int p = 0; p < m; ++p)
             if (need[p])
                 QuadricBatchPixel(hs, complemented, tag, base + p, xs, ys, lo, loId, hi, hiId, flag,
-                                  unused);
+                                  cut, unused);
     }
 }
 

@@ -104,9 +104,20 @@ enum : std::uint8_t { kBatchLive = 0, kBatchDead = 1, kBatchScalar = 2 };
 // the pixels it leaves (c = 0, tangent rays, non-finite or extreme coefficients, …) go through
 // LiteralOnRay itself. The output arrays must not overlap each other or xs, ys. Meant for
 // quadrics (for a plane it is just the loop above).
+//
+// Cut mode (`cut` not null; cut[p] = +inf at the start of a body): the running [lo, hi] of a pixel
+// is then the *first interval* of the body's set so far, exact on t < cut[p] (ids included), and
+// a literal set of two pieces p0 < p1 is taken in instead of marking the pixel kBatchScalar: the
+// running interval clipped by p0 (the rules above) if that is not empty, and then, when the one
+// clipped by p1 is not empty either, cut[p] lowered to its start; else the one clipped by p1.
+// Both empty is kBatchDead only while cut[p] is +inf (with a cut, the set beyond it may remain:
+// lo >= hi then means "∅ below the cut"). Set operations are pointwise in t and the pieces of a
+// body's list are separated, so the first interval and everything below the cut are those of the
+// scalar body evaluation (raycast.cpp, EvaluateBodyLists), bit for bit.
 void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int n,
                   const double* xs, const double* ys, double* lo, std::int64_t* loId, double* hi,
-                  std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters);
+                  std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters,
+                  double* cut = nullptr);
 
 // The same as an IntervalList (for tests and callers that want a list).
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,

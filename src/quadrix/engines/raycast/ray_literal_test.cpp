@@ -718,6 +718,103 @@ TEST(RayLiteralBatch, MatchesTheScalarLoopAtTheLimitsOfTheFastPath) {
     }
 }
 
+// Cut mode: a body of several quadric literals taken in literal by literal, as the engine's body
+// batches do, must state per pixel its first interval exactly below its cut, against the body's
+// whole interval list (the intersection of the literals' sets, in order, ids included).
+TEST(RayLiteralBatch, CutModeKeepsTheFirstIntervalExactBelowTheCut) {
+    Rng rng(4242);
+    long cuts = 0, exact = 0, scalar = 0, emptyBelow = 0;
+    double xs[kBatchRoom] = {}, ys[kBatchRoom] = {};
+    for (int body = 0; body < 3000; ++body) {
+        const int literals = UniformInt(rng, 2, 5);
+        std::vector<RayHalfSpace> hs;
+        std::vector<bool> complemented;
+        Vec3 centre;
+        double radius = 0;
+        for (int k = 0; k < literals; ++k) {
+            Vec3 c;
+            double r = 0;
+            Quadric q = RandomShape(rng, c, r);
+            if (k == 0) {
+                centre = c;
+                radius = r;
+            }
+            hs.push_back(RecentredShape(rng, q));
+            complemented.push_back(k > 0 && Chance(rng, 0.5));
+        }
+        const int n = GridPixels(std::floor(centre.x + Uniform(rng, -1.5, 1.5) * radius),
+                                 std::floor(centre.y + Uniform(rng, -1.5, 1.5) * radius), xs, ys);
+        double lo[kBatchRoom], hi[kBatchRoom], cut[kBatchRoom];
+        std::int64_t loId[kBatchRoom], hiId[kBatchRoom];
+        std::uint8_t flag[kBatchRoom];
+        for (int p = 0; p < n; ++p) {
+            lo[p] = -kInf;
+            hi[p] = kInf;
+            cut[p] = kInf;
+            loId[p] = hiId[p] = kNo;
+            flag[p] = kBatchLive;
+        }
+        LiteralCounters counters;
+        for (int k = 0; k < literals; ++k)
+            QuadricBatch(hs[k], complemented[k], 100 + k, n, xs, ys, lo, loId, hi, hiId, flag,
+                         counters, cut);
+        for (int p = 0; p < n; ++p) {
+            IntervalList list = IntervalList::All(), literal, next;
+            for (int k = 0; k < literals; ++k) {
+                LiteralSetOnRay(hs[k], complemented[k], xs[p], ys[p], 100 + k, literal, counters);
+                Intersection(list, literal, next);
+                std::swap(list, next);
+            }
+            const std::string where = "body " + std::to_string(body) + " pixel " + std::to_string(p);
+            if (flag[p] == kBatchScalar) {
+                ++scalar;
+                continue;
+            }
+            if (flag[p] == kBatchDead) {
+                ASSERT_TRUE(list.empty()) << where;
+                continue;
+            }
+            const double c = cut[p];
+            if (c == kInf) {
+                ++exact;
+                if (lo[p] < hi[p]) {
+                    ASSERT_EQ(list.size(), 1u) << where;
+                    ASSERT_EQ(Interval({lo[p], hi[p], static_cast<std::int32_t>(loId[p]),
+                                        static_cast<std::int32_t>(hiId[p])}),
+                              list[0])
+                        << where;
+                } else {
+                    ASSERT_TRUE(list.empty()) << where;
+                }
+                continue;
+            }
+            ++cuts;
+            // (A cut promises nothing beyond it: later literals may have emptied the rest.)
+            if (!(lo[p] < hi[p]) || !(lo[p] < c)) {
+                ++emptyBelow;
+                ASSERT_TRUE(list.empty() || list[0].lo >= c) << where;
+                continue;
+            }
+            ASSERT_GE(list.size(), 1u) << where;
+            ASSERT_EQ(list[0].lo, lo[p]) << where;
+            ASSERT_EQ(list[0].loId, loId[p]) << where;
+            if (hi[p] < c) {
+                ASSERT_EQ(list[0].hi, hi[p]) << where;
+                ASSERT_EQ(list[0].hiId, hiId[p]) << where;
+                ASSERT_TRUE(list.size() == 1 || list[1].lo >= c) << where;
+            } else {
+                ASSERT_GE(list[0].hi, c) << where;
+            }
+        }
+    }
+    // Every kind of outcome, often.
+    EXPECT_GT(cuts, 20000);
+    EXPECT_GT(emptyBelow, 5000);
+    EXPECT_GT(exact, 30000);
+    std::printf("[ cut mode ] %ld pixels with a cut (%ld empty below it), %ld exact, %ld scalar\n",
+                cuts, emptyBelow, exact, scalar);
+}
+
 TEST(RayLiteralBatch, LeavesPixelsThatAreNotLiveAlone) {
     // Nothing but dead and scalar pixels: no byte changes and nothing is counted; a plane (not
     // what QuadricBatch is for) gets the reference result too.

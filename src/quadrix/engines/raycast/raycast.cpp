@@ -279,11 +279,12 @@ struct Lane {
 };
 
 // A body's set from its batch: ∅ where the pixel centre is outside the body's bounds `r` or the
-// batch is kEmpty, its interval where kOne, `over` where kScalar.
+// batch is kEmpty, its interval where kOne, its first interval and cut where kCut, `over` where
+// kScalar.
 __attribute__((target_clones("avx2", "default"))) void LanePush(
     int np, const double* xs, const double* ys, const Rect& r, const std::uint8_t* state,
-    const double* lo, const double* hi, const std::int64_t* loId, const std::int64_t* hiId,
-    Lane& out, std::int64_t* __restrict over) {
+    const double* lo, const double* hi, const double* cut, const std::int64_t* loId,
+    const std::int64_t* hiId, Lane& out, std::int64_t* __restrict over) {
     for (int p = 0; p < np; ++p) {
         // Bitwise, not short-circuit, so that every comparison is made and the loop has no
         // branches (a skipped comparison could not be if-converted under -ftrapping-math).
@@ -292,9 +293,11 @@ __attribute__((target_clones("avx2", "default"))) void LanePush(
         out.hi[p] = hi[p];
         out.loId[p] = loId[p];
         out.hiId[p] = hiId[p];
-        out.cut[p] = HUGE_VAL;
-        out.n[p] = in & (state[p] == 1);  // BodyBatch::kOne
-        over[p] |= in & (state[p] == 2);  // BodyBatch::kScalar
+        // BodyBatch::kOne: the interval; kCut: its first interval below its cut; kScalar: over.
+        const bool isCut = in & (state[p] == 3);
+        out.cut[p] = isCut ? cut[p] : HUGE_VAL;
+        out.n[p] = (in & (state[p] == 1)) | (isCut & (lo[p] < hi[p]));
+        over[p] |= in & (state[p] == 2);
     }
 }
 
@@ -851,7 +854,7 @@ class Worker {
                                   batch.hi[p], static_cast<std::int32_t>(batch.hiId[p]));
                     return;
                 }
-                // kScalar: evaluated below, literal by literal, exactly as without batches.
+                // kScalar, kCut: evaluated below, literal by literal, exactly as without batches.
             }
         }
         const auto [begin, end] = nodeTags_[static_cast<std::size_t>(node)];
@@ -913,9 +916,11 @@ class Worker {
     // the rays that does not simply hold, a quadric set of two pieces — is marked kScalar and
     // evaluated by EvaluateBody's scalar loop when asked; every other pixel gets the very
     // interval, ids included, that loop would give.
+    // kCut: the pixel's set has more than one interval; [lo, hi] is its first (∅ when lo >= hi)
+    // and is exact on t < cut (QuadricBatch's cut mode). EvaluateBody takes kCut as kScalar.
     struct BodyBatch {
-        static constexpr std::uint8_t kEmpty = 0, kOne = 1, kScalar = 2;
-        double lo[kSubTile * kSubTile], hi[kSubTile * kSubTile];
+        static constexpr std::uint8_t kEmpty = 0, kOne = 1, kScalar = 2, kCut = 3;
+        double lo[kSubTile * kSubTile], hi[kSubTile * kSubTile], cut[kSubTile * kSubTile];
         std::int64_t loId[kSubTile * kSubTile], hiId[kSubTile * kSubTile];  // 64-bit: vectorises
                                                                              // with the doubles
         std::uint8_t state[kSubTile * kSubTile];
@@ -1127,11 +1132,11 @@ class Worker {
                     if (batchOn_ && b != kNoBatchWanted) {
                         const BodyBatch& batch =
                             batches_[static_cast<std::size_t>(b >= 0 ? b : ComputeBatch(op.node))];
-                        LanePush(np, xs_, ys_, op.xy, batch.state, batch.lo, batch.hi, batch.loId,
-                                 batch.hiId, l, over);
+                        LanePush(np, xs_, ys_, op.xy, batch.state, batch.lo, batch.hi, batch.cut,
+                                 batch.loId, batch.hiId, l, over);
                     } else {  // no batch: every pixel in its bounds goes to RunKernel
-                        LanePush(np, xs_, ys_, op.xy, kAllScalar, kNoValues, kNoValues, kNoIds,
-                                 kNoIds, l, over);
+                        LanePush(np, xs_, ys_, op.xy, kAllScalar, kNoValues, kNoValues, kNoValues,
+                                 kNoIds, kNoIds, l, over);
                     }
                     continue;
                 }
@@ -1253,11 +1258,13 @@ class Worker {
         double* const hi = out.hi;
         std::int64_t* const loId = out.loId;
         std::int64_t* const hiId = out.hiId;
+        double* const cut = out.cut;
         std::uint8_t flag[kSubTile * kSubTile];  // kBatchLive, kBatchDead or kBatchScalar
         double bad[kSubTile * kSubTile];  // non-zero: a plane bound was not finite
         for (int p = 0; p < n; ++p) {
             lo[p] = -HUGE_VAL;
             hi[p] = HUGE_VAL;
+            cut[p] = HUGE_VAL;
             loId[p] = hiId[p] = Interval::kNoId;
             flag[p] = kBatchLive;
             bad[p] = 0;
@@ -1286,13 +1293,16 @@ class Worker {
             }
             // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
             // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
+            // Cut mode: a two-piece set keeps the first piece below a cut (BodyBatch::kCut).
             QuadricBatch(hs, t.complemented, tag, n, xs_, ys_, lo, loId, hi, hiId, flag,
-                         counters.literals);
+                         counters.literals, cut);
         }
         for (int p = 0; p < n; ++p)
             out.state[p] = flag[p] == kBatchScalar || bad[p] != 0 ? BodyBatch::kScalar
-                           : flag[p] == kBatchDead || !(lo[p] < hi[p]) ? BodyBatch::kEmpty
-                                                                        : BodyBatch::kOne;
+                           : flag[p] == kBatchDead           ? BodyBatch::kEmpty
+                           : cut[p] != HUGE_VAL              ? BodyBatch::kCut
+                           : !(lo[p] < hi[p])                ? BodyBatch::kEmpty
+                                                             : BodyBatch::kOne;
         return b;
     }
 
@@ -1432,7 +1442,7 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
                 continue;
             w.StartBatches(w.subTileProgram, sx, sy, ex, ey);
             // A sub-tile that is one body (SingleBody) is read straight from the body's batch;
-            // only its kScalar pixels are traced.
+            // only its kScalar pixels, and kCut pixels with nothing visible below the cut, are traced.
             const Worker::BodyBatch* single = w.SingleBodyBatch(w.subTileProgram, Centres(sx, sy, ex, ey));
             if (single) ++w.counters.bodyFillTiles;
             const bool kernel =
@@ -1444,9 +1454,18 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
                     double x = i + 0.5, y = j + 0.5;
                     w.SetPixel(i, j);
                     Hit hit;
-                    if (single && single->state[w.Pixel()] != Worker::BodyBatch::kScalar) {
-                        if (single->state[w.Pixel()] == Worker::BodyBatch::kOne)
-                            hit = w.FirstVisibleOfOne(*single, w.Pixel(), w.subTileProgram);
+                    using Batch = Worker::BodyBatch;
+                    const std::uint8_t state = single ? single->state[w.Pixel()] : Batch::kScalar;
+                    if (state == Batch::kEmpty) {
+                        // background
+                    } else if (state == Batch::kOne) {
+                        hit = w.FirstVisibleOfOne(*single, w.Pixel(), w.subTileProgram);
+                    } else if (state == Batch::kCut) {
+                        // The first interval is exact below the cut; beyond it, trace.
+                        const std::size_t p = w.Pixel();
+                        if (single->lo[p] < single->hi[p])
+                            hit = w.FirstVisibleOfOne(*single, p, w.subTileProgram);
+                        if (!(hit.t < single->cut[p])) hit = w.Trace(w.subTileProgram, x, y);
                     } else if (kernel) {
                         hit = kernelHits[w.Pixel()];
                     } else {
