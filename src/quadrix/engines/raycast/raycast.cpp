@@ -950,6 +950,7 @@ class Worker {
             }
         }
         batchOn_ = wanted > 0 && settings_.batch;
+        bodyBatchesWanted_ = wanted;
         if (batches_.size() < wanted) batches_.resize(wanted);
         for (int j = 0; j < tileH_; ++j)
             for (int i = 0; i < tileW_; ++i) {
@@ -1016,6 +1017,7 @@ class Worker {
     bool CompileKernel(const CsgProgram& program, const Rect& r) {
         if (!settings_.kernel || cuts.size() != 1) return false;
         program_ = &program;
+        extraBatches_ = 0;
         kernelCode_.clear();
         kernelSolids_.clear();
         int bodies = 0;
@@ -1221,6 +1223,29 @@ class Worker {
                 return 0;
             kernelCode_.push_back({NodeKind::kBody, n, node.xy});
             ++bodies;
+            // A body whose bounds cover at least half of the sub-tile's pixel centres is batched
+            // too (StartBatches batches only those covering all of them): its pixels then stay
+            // in the lanes instead of going to RunKernel. Smaller ones (a sphere of a big union)
+            // are evaluated only where needed.
+            if (nodeBatch_[static_cast<std::size_t>(n)] == kNoBatchWanted && settings_.batch) {
+                int nx = 0, ny = 0;
+                for (int i = 0; i < tileW_; ++i) {
+                    const double x = tileX0_ + i + 0.5;
+                    nx += x >= node.xy.x0 && x <= node.xy.x1;
+                }
+                for (int j = 0; j < tileH_; ++j) {
+                    const double y = tileY0_ + j + 0.5;
+                    ny += y >= node.xy.y0 && y <= node.xy.y1;
+                }
+                if (2 * nx * ny >= tileW_ * tileH_) {
+                    // (Room for its batch now: Trace may compute it even if compiling fails.)
+                    nodeBatch_[static_cast<std::size_t>(n)] = kNoBatch;
+                    batchOn_ = true;
+                    ++extraBatches_;
+                    if (batches_.size() < bodyBatchesWanted_ + extraBatches_)
+                        batches_.resize(bodyBatchesWanted_ + extraBatches_);
+                }
+            }
             return 1;
         }
         if (!(node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 &&
@@ -1286,7 +1311,20 @@ class Worker {
             // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
             for (int p = 0; p < n; ++p)
                 if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
-            if (hs.isPlane) {  // parallel to the rays, or non-finite: rare
+            if (hs.isPlane && hs.c == 0) {
+                // Parallel to the rays (a mitre or slot plane seen edge-on): on each ray the
+                // literal holds everywhere or nowhere, as EvaluateBody decides it: nowhere where
+                // e = px x + py y + pd is not finite or on the wrong side.
+                counters.literals.planes += static_cast<std::uint64_t>(n);
+                const double px = hs.px, py = hs.py, pd = hs.pd;
+                for (int p = 0; p < n; ++p) {
+                    const double e = px * xs_[p] + py * ys_[p] + pd;
+                    const bool none = !std::isfinite(e) || (e <= 0) == t.complemented;
+                    if (none && flag[p] == kBatchLive) flag[p] = kBatchDead;
+                }
+                continue;
+            }
+            if (hs.isPlane) {  // a non-finite coefficient: rare
                 for (int p = 0; p < n; ++p)
                     if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
                 continue;
@@ -1393,6 +1431,8 @@ class Worker {
     std::vector<std::int32_t> tileBody_ = std::vector<std::int32_t>(kTilePixels);
     std::vector<std::int32_t> tileSolid_ = std::vector<std::int32_t>(kTilePixels);
     const CsgProgram* program_ = nullptr;  // the sub-tile program of the kernel
+    std::size_t extraBatches_ = 0;         // bodies the kernel batches beyond StartBatches'
+    std::size_t bodyBatchesWanted_ = 0;    // StartBatches' count
     std::vector<KernelOp> kernelCode_;
     std::vector<KernelSolid> kernelSolids_;
     std::vector<IntervalList> kernelLists_;
