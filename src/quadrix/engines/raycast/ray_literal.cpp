@@ -298,7 +298,7 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
     const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n, const double* __restrict xs,
     const double* __restrict ys, double* __restrict lo, std::int64_t* __restrict loId,
     double* __restrict hi, std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,
-    std::uint8_t* __restrict need) {
+    double* __restrict cut, std::uint8_t* __restrict need) {
     const double c = hs.c, x0 = hs.x0, y0 = hs.y0, z0 = hs.z0, hx = hs.hx, hy = hs.hy, h0 = hs.h0,
                  axx = hs.axx, axy = hs.axy, ax = hs.ax, byy = hs.byy, by = hs.by, k0 = hs.k0;
     constexpr double kBig = 0x1p200, kSmall = 0x1p-200;
@@ -307,7 +307,8 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
     const bool cOk = std::fabs(c) <= kBig && c != 0;
     const bool cLarge = std::fabs(c) >= kSmall;
     double hv[kBatchMax], kv[kBatchMax], pv[kBatchMax], cv[kBatchMax], dv[kBatchMax], sv[kBatchMax];
-    std::int64_t usePlain[kBatchMax], fast[kBatchMax];
+    double av[kBatchMax], bv[kBatchMax];
+    std::int64_t usePlain[kBatchMax], fast[kBatchMax], twov[kBatchMax];
 
     // 1. h, k and both discriminants; which pixels are in the common case (but for disc ≠ 0).
     // Both discriminants are stored and chosen in the next loop: a choice here would let the
@@ -361,7 +362,7 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
         if (kFlip) {
             piece = ok & !j;
             dead = false;
-            scalar = !cutMode & ok & j & !aInf & !bInf;  // cut mode: QuadricBatchPixel
+            scalar = !cutMode & ok & j & !aInf & !bInf;  // cut mode: below
             vlo = -kInf;
             vhi = kInf;
             vloId = vhiId = kNoId;
@@ -374,14 +375,56 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
             vloId = aInf ? std::int64_t{kNoId} : tag;
             vhiId = bInf ? std::int64_t{kNoId} : tag;
         }
-        const bool takeLo = piece & !(lo[p] > vlo), takeHi = piece & !(hi[p] <= vhi);
-        lo[p] = takeLo ? vlo : lo[p];
-        loId[p] = takeLo ? vloId : loId[p];
-        hi[p] = takeHi ? vhi : hi[p];
-        hiId[p] = takeHi ? vhiId : hiId[p];
+        const double curLo = lo[p], curHi = hi[p];
+        const std::int64_t curLoId = loId[p], curHiId = hiId[p];
+        const bool takeLo = piece & !(curLo > vlo), takeHi = piece & !(curHi <= vhi);
+        double newLo = takeLo ? vlo : curLo, newHi = takeHi ? vhi : curHi;
+        std::int64_t newLoId = takeLo ? vloId : curLoId, newHiId = takeHi ? vhiId : curHiId;
+        // Cut mode, two finite pieces (−∞, a] and [b, ∞): step 4.
+        const bool two = kFlip & cutMode & ok & j & !aInf & !bInf;
+        av[p] = a;
+        bv[p] = b;
+        twov[p] = two;
+        lo[p] = newLo;
+        loId[p] = newLoId;
+        hi[p] = newHi;
+        hiId[p] = newHiId;
         flag[p] = dead ? std::uint8_t{kBatchDead} : scalar ? std::uint8_t{kBatchScalar} : flag[p];
-        need[p] = isLive & !(piece | dead | scalar);
+        need[p] = isLive & !(piece | dead | scalar | two);
         live += isLive;
+    }
+
+    // 4. Cut mode, two finite pieces (−∞, a] and [b, ∞): QuadricBatchPixel's rules as selects.
+    // The running interval clipped by each piece; the first non-empty one is kept, and the
+    // second one's start lowers the cut when both are non-empty; both empty is dead only without
+    // a cut. (A loop of its own: inside step 3 GCC no longer vectorises.)
+    if (kFlip && cutMode) {
+        for (int p = 0; p < n; ++p) {
+            const bool two = twov[p] != 0;
+            const double a = av[p], b = bv[p];
+            const double curLo = lo[p], curHi = hi[p], curCut = cut[p];
+            const std::int64_t curLoId = loId[p], curHiId = hiId[p];
+            const bool l0Take = !(curLo > -kInf), h0Take = !(curHi <= a);
+            const double l0 = l0Take ? -kInf : curLo, h0 = h0Take ? a : curHi;
+            const std::int64_t l0Id = l0Take ? std::int64_t{kNoId} : curLoId;
+            const std::int64_t h0Id = h0Take ? tag : curHiId;
+            const bool l1Take = !(curLo > b), h1Take = !(curHi <= kInf);
+            const double l1 = l1Take ? b : curLo, h1 = h1Take ? kInf : curHi;
+            const std::int64_t l1Id = l1Take ? tag : curLoId;
+            const std::int64_t h1Id = h1Take ? std::int64_t{kNoId} : curHiId;
+            const bool first = l0 < h0, second = l1 < h1;
+            const bool useSecond = !first & second;
+            const double twoLo = useSecond ? l1 : l0, twoHi = useSecond ? h1 : h0;
+            const std::int64_t twoLoId = useSecond ? l1Id : l0Id, twoHiId = useSecond ? h1Id : h0Id;
+            lo[p] = two ? twoLo : curLo;
+            loId[p] = two ? twoLoId : curLoId;
+            hi[p] = two ? twoHi : curHi;
+            hiId[p] = two ? twoHiId : curHiId;
+            const bool dead = two & !first & !second & (curCut == kInf);
+            flag[p] = dead ? std::uint8_t{kBatchDead} : flag[p];
+            const bool lower = two & first & second & (l1 < curCut);
+            cut[p] = lower ? l1 : curCut;
+        }
     }
     return live;
 }
@@ -402,14 +445,20 @@ void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, i
     }
     const bool flip = (hs.c > 0) == complemented;
     const bool cutMode = cut != nullptr;
+    double noCut[kBatchMax];  // the fast pass's cut array outside cut mode (read, left as is)
     for (int base = 0; base < n; base += kBatchMax) {
         const int m = n - base < kBatchMax ? n - base : kBatchMax;
         std::uint8_t need[kBatchMax];
+        double* const cuts = cutMode ? cut + base : noCut;
+        if (!cutMode)
+            for (int p = 0; p < m; ++p) noCut[p] = kInf;
         const int live =
             flip ? QuadricBatchFast<true>(hs, cutMode, tag, m, xs + base, ys + base, lo + base,
-                                          loId + base, hi + base, hiId + base, flag + base, need)
+                                          loId + base, hi + base, hiId + base, flag + base, cuts,
+                                          need)
                  : QuadricBatchFast<false>(hs, cutMode, tag, m, xs + base, ys + base, lo + base,
-                                           loId + base, hi + base, hiId + base, flag + base, need);
+                                           loId + base, hi + base, hiId + base, flag + base, cuts,
+                                           need);
         counters.quadrics += static_cast<std::uint64_t>(live);
         LiteralCounters unused;  // already counted
         for (int p = 0; p < m; ++p)
