@@ -6,11 +6,14 @@
 #include <sstream>
 #include <string>
 
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 
 namespace quadrix {
 namespace {
+
+using testing_util::Counter;
 
 constexpr const char* kTwoCylinders = R"(
 quadric c1 <1 0 1 0 0 0 0 0 0 -4>;  plane t1 <0 1 0 -3>;  plane b1 <0 1 0 3>;
@@ -188,12 +191,6 @@ TEST(PixelPowersScenes, StatsTableAndBadOption) {
     EXPECT_NE(pp.result.stats.report.find("MBB"), std::string::npos);
     SceneRun bad = Render(kTwoCylinders, "", "pixelpowers", {{"mode", "fast"}});
     EXPECT_FALSE(bad.ok);
-}
-
-double Counter(const RenderStats& st, const std::string& name) {
-    for (const auto& [k, v] : st.counters)
-        if (k == name) return v;
-    return -1;
 }
 
 // The paper's shading (seed 004 §III step 4, default in approx mode) on the example scenes: the

@@ -26,6 +26,7 @@
 #include <tuple>
 
 #include "quadrix/engines/engine.h"
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/test_scene_builder.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -34,6 +35,8 @@
 namespace quadrix {
 namespace {
 
+using testing_util::Counter;
+using testing_util::RenderWith;
 using testing_util::TestSceneBuilder;
 
 struct Agreement {
@@ -97,25 +100,6 @@ void ExpectAgree(const Frame& ref, const Frame& got, const std::string& what) {
         << a.mismatches << " of " << a.covered;
     EXPECT_LE(a.maxDepthError, 1e-6 * a.depthRange);
     EXPECT_LE(a.maxNormalError, 1e-6);
-}
-
-Frame RenderWith(const char* engine, const FlatScene& scene, RenderStats* stats = nullptr,
-                 std::map<std::string, std::string> opts = {}) {
-    auto e = MakeEngine(engine);
-    EXPECT_NE(e, nullptr);
-    RenderOptions o;
-    o.engineOptions = std::move(opts);
-    EXPECT_EQ(e->ValidateOptions(o), "");
-    Frame f;
-    RenderStats s = e->Render(scene, o, f);
-    if (stats) *stats = s;
-    return f;
-}
-
-double Counter(const RenderStats& s, const std::string& name) {
-    for (const auto& [k, v] : s.counters)
-        if (k == name) return v;
-    return -1;
 }
 
 void CheckScene(FlatScene& scene, const std::string& what, std::size_t minCovered = 1) {

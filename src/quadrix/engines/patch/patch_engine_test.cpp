@@ -7,12 +7,15 @@
 #include <cstdio>
 #include <random>
 
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/patch/host_setup.h"
 #include "quadrix/engines/patch/patch_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
 
 namespace quadrix {
 namespace {
+
+using testing_util::CounterOrFail;
 
 using patch::testing::SceneBuilder;
 using patch::testing::Sphere;
@@ -22,13 +25,6 @@ RenderOptions Options(std::map<std::string, std::string> kv) {
     RenderOptions o;
     o.engineOptions = std::move(kv);
     return o;
-}
-
-double Counter(const RenderStats& s, const std::string& name) {
-    for (const auto& [k, v] : s.counters)
-        if (k == name) return v;
-    ADD_FAILURE() << "no counter " << name;
-    return -1;
 }
 
 TEST(PatchEngine, ValidatesItsOptions) {
@@ -71,16 +67,16 @@ TEST(PatchEngine, SkipsCsgAndUndrawableBodiesAndReportsThem) {
     auto e = MakePatchEngine();
     Frame frame;
     const RenderStats s = e->Render(b.scene(), Options({}), frame);
-    EXPECT_EQ(Counter(s, "patches"), 1);
-    EXPECT_EQ(Counter(s, "csg solids skipped"), 1);
-    EXPECT_EQ(Counter(s, "bodies skipped: opaque plane face (caps=skip)"), 1);
-    EXPECT_EQ(Counter(s, "bodies skipped: more than one quadric"), 1);
+    EXPECT_EQ(CounterOrFail(s, "patches"), 1);
+    EXPECT_EQ(CounterOrFail(s, "csg solids skipped"), 1);
+    EXPECT_EQ(CounterOrFail(s, "bodies skipped: opaque plane face (caps=skip)"), 1);
+    EXPECT_EQ(CounterOrFail(s, "bodies skipped: more than one quadric"), 1);
     EXPECT_NE(s.report.find("cannot do CSG"), std::string::npos) << s.report;
     EXPECT_GT(frame.CoveredCount(), 150u);  // the sphere of radius 8: about 201 pixels
     // caps=open draws the capped body too.
     const RenderStats open = e->Render(b.scene(), Options({{"caps", "open"}}), frame);
-    EXPECT_EQ(Counter(open, "patches"), 2);
-    EXPECT_EQ(Counter(open, "bodies drawn open"), 1);
+    EXPECT_EQ(CounterOrFail(open, "patches"), 2);
+    EXPECT_EQ(CounterOrFail(open, "bodies drawn open"), 1);
 }
 
 TEST(PatchEngine, StatsReportCyclesTimeAndTheCostTable) {
@@ -91,10 +87,10 @@ TEST(PatchEngine, StatsReportCyclesTimeAndTheCostTable) {
     Frame frame;
     const RenderStats s = e->Render(b.scene(), Options({}), frame);
     // One patch with a 30 × 30 window: 900 pixels + the 58-cycle pipeline.
-    EXPECT_EQ(Counter(s, "window pixels"), 900);
-    EXPECT_EQ(Counter(s, "cycles"), 958);
-    EXPECT_DOUBLE_EQ(Counter(s, "estimated seconds"), 958 / 50e6);
-    EXPECT_EQ(Counter(s, "transistors"), 225732);
+    EXPECT_EQ(CounterOrFail(s, "window pixels"), 900);
+    EXPECT_EQ(CounterOrFail(s, "cycles"), 958);
+    EXPECT_DOUBLE_EQ(CounterOrFail(s, "estimated seconds"), 958 / 50e6);
+    EXPECT_EQ(CounterOrFail(s, "transistors"), 225732);
     for (const char* text :
          {"50 MHz", "start-up 58 cycles", "Table 1.6", "Table 1.7", "225732", "paper  225732"})
         EXPECT_NE(s.report.find(text), std::string::npos) << text << "\n" << s.report;
@@ -108,7 +104,7 @@ TEST(PatchEngine, FixedModeMatchesFloatAndItsIntegerReference) {
     Frame flt, fix;
     e->Render(b.scene(), Options({}), flt);
     const RenderStats s = e->Render(b.scene(), Options({{"mode", "fixed"}, {"verify", "on"}}), fix);
-    EXPECT_EQ(Counter(s, "reference mismatches"), 0);
+    EXPECT_EQ(CounterOrFail(s, "reference mismatches"), 0);
     EXPECT_NE(s.report.find("depth error histogram"), std::string::npos) << s.report;
     EXPECT_NE(s.report.find("integer reference: 0 of"), std::string::npos) << s.report;
     // Same coverage on all but a few silhouette pixels; depths within the fixed format's
@@ -133,8 +129,8 @@ TEST(PatchEngine, FixedModeMatchesFloatAndItsIntegerReference) {
     EXPECT_GT(both, 300u);
     EXPECT_LT(differ, both / 50);
     // A priori bound for a 40 × 40 window (host_setup.h), in device units.
-    const double bound = patch::DepthErrorBoundLsb({0, 0, 40, 40}) * Counter(s, "depth ulp");
-    EXPECT_LE(Counter(s, "max depth error lsb"), patch::DepthErrorBoundLsb({0, 0, 40, 40}));
+    const double bound = patch::DepthErrorBoundLsb({0, 0, 40, 40}) * CounterOrFail(s, "depth ulp");
+    EXPECT_LE(CounterOrFail(s, "max depth error lsb"), patch::DepthErrorBoundLsb({0, 0, 40, 40}));
     EXPECT_LE(maxDepth, bound);
     EXPECT_GT(minDot, 1 - 1e-3);  // 16-bit normal words: well within a degree
 }
@@ -174,7 +170,7 @@ TEST(PatchEngine, DegenerateInputNeverCrashes) {
                 EXPECT_TRUE(IsFinite(f.normal[i]));
             }
         if (opts.count("verify")) {
-            EXPECT_EQ(Counter(s, "reference mismatches"), 0);
+            EXPECT_EQ(CounterOrFail(s, "reference mismatches"), 0);
         }
     }
 }
@@ -207,7 +203,7 @@ TEST(PatchVsRaycast, FloatPatchAgreesWithRaycastOnRandomPatches) {
         Frame pf, rf;
         const RenderStats ps = patchEngine->Render(b.scene(), Options({}), pf);
         raycast->Render(b.scene(), RenderOptions{}, rf);
-        patches += static_cast<std::size_t>(Counter(ps, "patches"));
+        patches += static_cast<std::size_t>(CounterOrFail(ps, "patches"));
         if (rf.CoveredCount() == 0) {
             // Nothing to compare: the patch engine must draw nothing as well (this also fails if
             // raycast were to draw nothing while the patches are visible).

@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/pixelpowers/compiler.h"
 #include "quadrix/engines/pixelpowers/machine.h"
 #include "quadrix/engines/raycast/raycast.h"
@@ -16,6 +17,7 @@
 namespace quadrix::pixelpowers {
 namespace {
 
+using testing_util::Counter;
 using testing_util::TestSceneBuilder;
 
 struct Agreement {
@@ -278,12 +280,6 @@ TEST(PixelPowersEngine, StatisticsAndExplosionGuard) {
     EXPECT_FALSE(pp->ValidateOptions(o).size());
     o.engineOptions = {{"max-product", "100"}};
     EXPECT_NE(pp->ValidateOptions(o).find("no option"), std::string::npos);
-}
-
-double Counter(const RenderStats& st, const std::string& name) {
-    for (const auto& [k, v] : st.counters)
-        if (k == name) return v;
-    return -1;
 }
 
 bool AnyWarningWith(const RenderStats& st, const std::string& text) {

@@ -216,58 +216,51 @@ void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t t
     const RaySet s = LiteralOnRay(hs, complemented, xs[p], ys[p], tag, counters);
     if (s.count == 0) {
         flag[p] = kBatchDead;
-    } else if (s.count == 2 && !cut) {
+        return;
+    }
+    if (s.count == 2 && !cut) {
         flag[p] = kBatchScalar;
-    } else if (s.count == 2) {
-        auto clip = [&](const Interval& v, double& l, std::int64_t& lId, double& h,
-                        std::int64_t& hId) {
-            l = lo[p];
-            lId = loId[p];
-            h = hi[p];
-            hId = hiId[p];
-            if (!(l > v.lo)) {
-                l = v.lo;
-                lId = v.loId;
-            }
-            if (!(h <= v.hi)) {
-                h = v.hi;
-                hId = v.hiId;
-            }
-            return l < h;
-        };
-        double l0, h0, l1, h1;
-        std::int64_t l0Id, h0Id, l1Id, h1Id;
-        const bool first = clip(s.piece[0], l0, l0Id, h0, h0Id);
-        const bool second = clip(s.piece[1], l1, l1Id, h1, h1Id);
-        if (first) {
-            lo[p] = l0;
-            loId[p] = l0Id;
-            hi[p] = h0;
-            hiId[p] = h0Id;
-            if (second && l1 < cut[p]) cut[p] = l1;
-        } else if (second) {
-            lo[p] = l1;
-            loId[p] = l1Id;
-            hi[p] = h1;
-            hiId[p] = h1Id;
-        } else if (cut[p] == kInf) {
-            flag[p] = kBatchDead;
-        } else {
-            lo[p] = l0;  // ∅ below the cut (l0 >= h0)
-            loId[p] = l0Id;
-            hi[p] = h0;
-            hiId[p] = h0Id;
+        return;
+    }
+    // The running interval clipped by piece v (the rules of ray_literal.h), as a candidate.
+    struct Candidate {
+        double lo, hi;
+        std::int64_t loId, hiId;
+    };
+    auto clip = [&](const Interval& v) {
+        Candidate c{lo[p], hi[p], loId[p], hiId[p]};
+        if (!(c.lo > v.lo)) {
+            c.lo = v.lo;
+            c.loId = v.loId;
         }
+        if (!(c.hi <= v.hi)) {
+            c.hi = v.hi;
+            c.hiId = v.hiId;
+        }
+        return c;
+    };
+    auto keep = [&](const Candidate& c) {
+        lo[p] = c.lo;
+        loId[p] = c.loId;
+        hi[p] = c.hi;
+        hiId[p] = c.hiId;
+    };
+    const Candidate first = clip(s.piece[0]);
+    if (s.count == 1) {
+        keep(first);
+        return;
+    }
+    const Candidate second = clip(s.piece[1]);
+    const bool firstNonEmpty = first.lo < first.hi, secondNonEmpty = second.lo < second.hi;
+    if (firstNonEmpty) {
+        keep(first);
+        if (secondNonEmpty && second.lo < cut[p]) cut[p] = second.lo;
+    } else if (secondNonEmpty) {
+        keep(second);
+    } else if (cut[p] == kInf) {
+        flag[p] = kBatchDead;
     } else {
-        const Interval& v = s.piece[0];
-        if (!(lo[p] > v.lo)) {
-            lo[p] = v.lo;
-            loId[p] = v.loId;
-        }
-        if (!(hi[p] <= v.hi)) {
-            hi[p] = v.hi;
-            hiId[p] = v.hiId;
-        }
+        keep(first);  // ∅ below the cut (first.lo >= first.hi)
     }
 }
 

@@ -78,6 +78,9 @@ struct SceneTables {
     // at every point and is computed once here, in `planeNormal`.
     std::vector<bool> constantNormal;
     std::vector<Vec3> planeNormal;
+    // 0, 1, 2, … (one per tag): body b's literal tags as an array, tagSequence.data() +
+    // bodyFirstTag[b] (Worker::ReduceBody takes its literals as an array).
+    std::vector<std::int32_t> tagSequence;
 
     explicit SceneTables(const FlatScene& scene) {
         std::vector<Vec3> reference = ReferencePoints(scene);
@@ -107,6 +110,9 @@ struct SceneTables {
             }
         }
         bodyFirstTag.push_back(static_cast<std::int32_t>(tags.size()));
+        tagSequence.resize(tags.size());
+        for (std::size_t i = 0; i < tagSequence.size(); ++i)
+            tagSequence[i] = static_cast<std::int32_t>(i);
     }
 
     // Re-centring points for the quadrics (ray_literal.h): the quadric's own centre when it has
@@ -446,11 +452,7 @@ class Worker {
             StripBody& sb = stripBody_[body];
             if (sb.stamp == stripStamp_) continue;  // (a body is one node; cheap guard anyway)
             const auto begin = static_cast<std::int32_t>(stripTags_.size());
-            scratchTags_.clear();
-            for (std::int32_t tag = tables_.bodyFirstTag[body]; tag < tables_.bodyFirstTag[body + 1];
-                 ++tag)
-                scratchTags_.push_back(tag);
-            const bool empty = ReduceBody(scratchTags_.data(), scratchTags_.size(), r, stripTags_);
+            const bool empty = ReduceBody(BodyTags(body), BodyTagCount(body), r, stripTags_);
             sb = {begin, static_cast<std::int32_t>(stripTags_.size()), empty, stripStamp_};
         }
     }
@@ -463,7 +465,7 @@ class Worker {
             if (node.kind != NodeKind::kBody) continue;
             const auto body = static_cast<std::size_t>(node.first);
             const auto begin = static_cast<std::int32_t>(tileTags_.size());
-            const std::int32_t all = tables_.bodyFirstTag[body + 1] - tables_.bodyFirstTag[body];
+            const auto all = static_cast<std::int32_t>(BodyTagCount(body));
             bool empty;
             if (body < stripBody_.size() && stripBody_[body].stamp == stripStamp_) {
                 const StripBody& sb = stripBody_[body];
@@ -471,11 +473,7 @@ class Worker {
                         ReduceBody(stripTags_.data() + sb.begin,
                                    static_cast<std::size_t>(sb.end - sb.begin), r, tileTags_);
             } else {
-                scratchTags_.clear();
-                for (std::int32_t tag = tables_.bodyFirstTag[body];
-                     tag < tables_.bodyFirstTag[body + 1]; ++tag)
-                    scratchTags_.push_back(tag);
-                empty = ReduceBody(scratchTags_.data(), scratchTags_.size(), r, tileTags_);
+                empty = ReduceBody(BodyTags(body), BodyTagCount(body), r, tileTags_);
             }
             if (empty) {
                 tileTags_.resize(static_cast<std::size_t>(begin));
@@ -488,6 +486,14 @@ class Worker {
             counters.prunedLiterals +=
                 static_cast<std::uint64_t>(all - (nodeTags_[n].second - begin));
         }
+    }
+
+    // All of body b's literal tags, in its order.
+    const std::int32_t* BodyTags(std::size_t b) const {
+        return tables_.tagSequence.data() + tables_.bodyFirstTag[b];
+    }
+    std::size_t BodyTagCount(std::size_t b) const {
+        return static_cast<std::size_t>(tables_.bodyFirstTag[b + 1] - tables_.bodyFirstTag[b]);
     }
 
     // The reduction of PrepareTile for one body on the rectangle r: appends to `out` the literals
@@ -751,21 +757,28 @@ class Worker {
 
     const Tag& TagOf(std::int32_t tag) const { return tables_.tags[static_cast<std::size_t>(tag)]; }
 
+    // The visible end of one interval: its near end when it is finite and on an opaque surface,
+    // else its far end on the same terms; false when neither is.
+    bool VisibleEnd(double lo, std::int32_t loId, double hi, std::int32_t hiId, double& t,
+                    std::int32_t& tag) const {
+        if (loId >= 0 && std::isfinite(lo) && TagOf(loId).opaque) {
+            t = lo;
+            tag = loId;
+            return true;
+        }
+        if (hiId >= 0 && std::isfinite(hi) && TagOf(hiId).opaque) {
+            t = hi;
+            tag = hiId;
+            return true;
+        }
+        return false;
+    }
+
   private:
     // The first finite endpoint on an opaque surface.
     bool FirstVisible(const IntervalList& list, double& t, std::int32_t& tag) const {
-        for (const Interval& v : list) {
-            if (v.loId >= 0 && std::isfinite(v.lo) && TagOf(v.loId).opaque) {
-                t = v.lo;
-                tag = v.loId;
-                return true;
-            }
-            if (v.hiId >= 0 && std::isfinite(v.hi) && TagOf(v.hiId).opaque) {
-                t = v.hi;
-                tag = v.hiId;
-                return true;
-            }
-        }
+        for (const Interval& v : list)
+            if (VisibleEnd(v.lo, v.loId, v.hi, v.hiId, t, tag)) return true;
         return false;
     }
 
@@ -984,13 +997,11 @@ class Worker {
     // and on an opaque surface, else its far end on the same terms, else nothing.
     Hit FirstVisibleOfOne(const BodyBatch& batch, std::size_t p, const CsgProgram&) const {
         Hit h;
-        const auto loId = static_cast<std::int32_t>(batch.loId[p]);
-        const auto hiId = static_cast<std::int32_t>(batch.hiId[p]);
-        if (loId >= 0 && std::isfinite(batch.lo[p]) && TagOf(loId).opaque) {
-            h = {batch.lo[p], loId, singleSolid_};
-        } else if (hiId >= 0 && std::isfinite(batch.hi[p]) && TagOf(hiId).opaque) {
-            h = {batch.hi[p], hiId, singleSolid_};
-        }
+        double t;
+        std::int32_t tag;
+        if (VisibleEnd(batch.lo[p], static_cast<std::int32_t>(batch.loId[p]), batch.hi[p],
+                       static_cast<std::int32_t>(batch.hiId[p]), t, tag))
+            h = {t, tag, singleSolid_};
         return h;
     }
 
@@ -1157,18 +1168,11 @@ class Worker {
                 if (over[p]) continue;
                 if (xs_[p] < s.xy.x0 || xs_[p] > s.xy.x1 || ys_[p] < s.xy.y0 || ys_[p] > s.xy.y1)
                     continue;
-                const auto loId = static_cast<std::int32_t>(l.loId[p]);
-                const auto hiId = static_cast<std::int32_t>(l.hiId[p]);
                 double t = HUGE_VAL;
                 std::int32_t tag = -1;
-                if (!l.n[p]) {
-                } else if (loId >= 0 && std::isfinite(l.lo[p]) && TagOf(loId).opaque) {
-                    t = l.lo[p];
-                    tag = loId;
-                } else if (hiId >= 0 && std::isfinite(l.hi[p]) && TagOf(hiId).opaque) {
-                    t = l.hi[p];
-                    tag = hiId;
-                }
+                if (l.n[p])  // (t stays +inf when neither end is visible)
+                    VisibleEnd(l.lo[p], static_cast<std::int32_t>(l.loId[p]), l.hi[p],
+                               static_cast<std::int32_t>(l.hiId[p]), t, tag);
                 if (!(t < l.cut[p])) {
                     // Nothing visible below the cut: exact only without one.
                     if (l.cut[p] != HUGE_VAL) over[p] = 1;
@@ -1400,7 +1404,6 @@ class Worker {
     const Settings settings_;
     std::vector<double> zlos_;  // SetCuts scratch
     std::vector<PlaneBound> bounds_;  // ReduceBody scratch
-    std::vector<std::int32_t> scratchTags_;
     // PrepareStrip's result per FlatScene body, valid when its stamp is stripStamp_.
     struct StripBody {
         std::int32_t begin = 0, end = 0;  // its literals: stripTags_[begin, end)

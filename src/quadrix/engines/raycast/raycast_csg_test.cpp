@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/engines/raycast/test_scene_builder.h"
 #include "quadrix/math/quadratic.h"
@@ -19,6 +20,7 @@ namespace quadrix {
 namespace {
 
 using scene::CsgOp;
+using testing_util::CounterOrFail;
 using testing_util::FrameDifference;
 using testing_util::FrameHasNaN;
 using testing_util::SphereBounds;
@@ -32,13 +34,6 @@ Frame Render(const FlatScene& scene, int threads = 0, RenderStats* statsOut = nu
     if (statsOut) *statsOut = stats;
     EXPECT_FALSE(FrameHasNaN(f));
     return f;
-}
-
-double Counter(const RenderStats& s, const std::string& name) {
-    for (const auto& [n, v] : s.counters)
-        if (n == name) return v;
-    ADD_FAILURE() << "no counter " << name;
-    return -1;
 }
 
 // ---- The oracle -----------------------------------------------------------------------------
@@ -240,8 +235,9 @@ TEST(RaycastCsg, KernelsMatchTraceBitForBitOnRandomScenes) {
         RenderStats stats = MakeRaycastEngine()->Render(scene, on, a);
         MakeRaycastEngine()->Render(scene, off, b);
         ASSERT_EQ(FrameDifference(a, b), "") << "scene " << n;
-        lanePixels += Counter(stats, "kernel_pixels") - Counter(stats, "kernel_scalar_pixels");
-        scalarPixels += Counter(stats, "kernel_scalar_pixels");
+        lanePixels +=
+            CounterOrFail(stats, "kernel_pixels") - CounterOrFail(stats, "kernel_scalar_pixels");
+        scalarPixels += CounterOrFail(stats, "kernel_scalar_pixels");
     }
     // Both ways of the kernel were taken, often.
     EXPECT_GT(lanePixels, 20000);
@@ -301,8 +297,9 @@ TEST(RaycastCsg, BoundsCullingChangesNoBit) {
     EXPECT_GT(f.CoveredCount(), 8000u);
     // And culling is what makes it fast: far fewer quadrics solved per pixel. (Without bounds
     // the per-sub-tile discriminant test, which needs none, still skips most misses.)
-    EXPECT_LT(Counter(culled, "quadric_solves") * 2, Counter(unculled, "quadric_solves"));
-    EXPECT_GT(Counter(unculled, "tile_bodies_empty"), 1000.0);
+    EXPECT_LT(CounterOrFail(culled, "quadric_solves") * 2,
+              CounterOrFail(unculled, "quadric_solves"));
+    EXPECT_GT(CounterOrFail(unculled, "tile_bodies_empty"), 1000.0);
 }
 
 TEST(RaycastCsg, ThreadCountChangesNoBit) {
@@ -343,8 +340,8 @@ TEST(RaycastCsg, NearestSolidWinsAndDepthOrderStopsEarly) {
     Frame f = Render(b.scene(), 0, &stats);
     ASSERT_EQ(f.CoveredCount(), 32u * 32u);
     for (std::size_t k = 0; k < f.solid.size(); ++k) ASSERT_EQ(f.solid[k], 0);
-    EXPECT_EQ(Counter(stats, "depth_early_outs"), 32 * 32);
-    EXPECT_EQ(Counter(stats, "pixel_solids"), 32 * 32);
+    EXPECT_EQ(CounterOrFail(stats, "depth_early_outs"), 32 * 32);
+    EXPECT_EQ(CounterOrFail(stats, "pixel_solids"), 32 * 32);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// The raycast engine's speed-only options (batch, tile-cull, kernel): every combination gives the same
-// frame, bit for bit, on the example and gallery scenes in parallel and perspective views, and
+// The raycast engine's speed-only options (batch, tile-cull, kernel): every combination gives the
+// same frame, bit for bit, on the example and gallery scenes in parallel and perspective views, and
 // bad option values are refused.
 #include <gtest/gtest.h>
 
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "quadrix/engines/engine.h"
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/engines/raycast/test_scene_builder.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -14,7 +15,9 @@
 namespace quadrix::raycast {
 namespace {
 
+using testing_util::Counter;
 using testing_util::FrameDifference;
+using testing_util::RenderWith;
 
 FlatScene Load(const std::string& text, int w, int h) {
     PipelineOptions po;
@@ -33,20 +36,8 @@ std::string Include(const std::string& example) {
 
 Frame Render(const FlatScene& scene, const std::string& batch, const std::string& cull,
              RenderStats* stats = nullptr, const std::string& kernel = "on") {
-    RenderOptions options;
-    options.engineOptions = {{"batch", batch}, {"tile-cull", cull}, {"kernel", kernel}};
-    auto engine = MakeRaycastEngine();
-    EXPECT_EQ(engine->ValidateOptions(options), "");
-    Frame f;
-    RenderStats s = engine->Render(scene, options, f);
-    if (stats) *stats = s;
-    return f;
-}
-
-double Counter(const RenderStats& s, const std::string& name) {
-    for (const auto& [n, v] : s.counters)
-        if (n == name) return v;
-    return -1;
+    return RenderWith("raycast", scene, stats,
+                      {{"batch", batch}, {"tile-cull", cull}, {"kernel", kernel}});
 }
 
 TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
@@ -57,7 +48,8 @@ TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
         Include("gallery/gear.uq"),
         Include("gallery/clover_knot.uq"),
         // The machined part in perspective, close enough for strong foreshortening.
-        Include("machined_part.uq") + "view close vrp 0 10 0 cop 40 70 -90 =r whh 40 fbp -200 200;\n",
+        Include("machined_part.uq") +
+            "view close vrp 0 10 0 cop 40 70 -90 =r whh 40 fbp -200 200;\n",
     };
     double flat = 0, empty = 0, batched = 0, kernel = 0;
     for (const std::string& text : scenes) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "quadrix/engines/engine.h"
+#include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/test_scene_builder.h"
 #include "quadrix/engines/scanline/resolver.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -21,7 +22,9 @@
 namespace quadrix {
 namespace {
 
+using testing_util::Counter;
 using testing_util::FrameDifference;
+using testing_util::RenderWith;
 using testing_util::TestSceneBuilder;
 
 // The quadric of an ellipsoid centred at c with radii (rx, ry, rz), turned by t about z:
@@ -38,25 +41,6 @@ std::array<double, 10> TurnedEllipsoid(const Vec3& c, double rx, double ry, doub
     q[8] = -cc * c.z;
     q[9] = a * c.x * c.x + bb * c.y * c.y + 2 * d * c.x * c.y + cc * c.z * c.z - 1;
     return q;
-}
-
-double Counter(const RenderStats& s, const std::string& name) {
-    for (const auto& [k, v] : s.counters)
-        if (k == name) return v;
-    return -1;
-}
-
-Frame Render(const char* engine, const FlatScene& scene, RenderStats* stats = nullptr,
-             std::map<std::string, std::string> opts = {}) {
-    auto e = MakeEngine(engine);
-    EXPECT_NE(e, nullptr);
-    RenderOptions o;
-    o.engineOptions = std::move(opts);
-    EXPECT_EQ(e->ValidateOptions(o), "");
-    Frame f;
-    RenderStats s = e->Render(scene, o, f);
-    if (stats) *stats = s;
-    return f;
 }
 
 // Surface-id mismatches between two frames, and the largest depth difference where the ids
@@ -224,8 +208,8 @@ TEST(ScanlineCarriedStacks, MitredJointMakesNoSpuriousShowEdges) {
 
     // Renderer: nothing for the verifier to correct, and raycast's frame.
     RenderStats stats;
-    Frame got = Render("scanline", scene, &stats, {{"verify", "on"}});
-    ExpectRaycastFrame(Render("raycast", scene), got, 0, "mitred joint");
+    Frame got = RenderWith("scanline", scene, &stats, {{"verify", "on"}});
+    ExpectRaycastFrame(RenderWith("raycast", scene), got, 0, "mitred joint");
     EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0);
     EXPECT_EQ(Counter(stats, "verify_body_face_mismatches"), 0);
@@ -255,11 +239,12 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
             b.AddSolidOfBody(b.AddBody(lits));
         }
         RenderStats stats;
-        Frame got = Render("scanline", b.scene(), &stats, {{"verify", "on"}});
+        Frame got = RenderWith("scanline", b.scene(), &stats, {{"verify", "on"}});
         const std::string what = "random scene " + std::to_string(scene);
-        ExpectRaycastFrame(Render("raycast", b.scene()), got, 2, what);
+        ExpectRaycastFrame(RenderWith("raycast", b.scene()), got, 2, what);
         EXPECT_EQ(
-            FrameDifference(Render("scanline", b.scene(), nullptr, {{"render", "exact"}}), got), "")
+            FrameDifference(RenderWith("scanline", b.scene(), nullptr, {{"render", "exact"}}), got),
+            "")
             << what;
         EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
         EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0) << what;
@@ -268,8 +253,9 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
         EXPECT_EQ(Counter(stats, "face_stack_rebuilds"), 0) << what;
         EXPECT_EQ(Counter(stats, "face_stack_inserts"), Counter(stats, "face_stack_deletes"))
             << what;
-        EXPECT_EQ(FrameDifference(Render("scanline", b.scene(), nullptr, {{"check", "off"}}), got),
-                  "")
+        EXPECT_EQ(
+            FrameDifference(RenderWith("scanline", b.scene(), nullptr, {{"check", "off"}}), got),
+            "")
             << what;
         swaps += Counter(stats, "face_stack_swap_updates");
         derivations += Counter(stats, "face_stack_derivations");
@@ -294,8 +280,8 @@ TEST(ScanlineCarriedStacks, EdgesEndingOnARowCentreKeepTheirFacesForThatRow) {
     b.AddSolidOfBody(
         b.AddBody({{mid2, false}, {bot, false}, {l, false}, {r, false}, {f2, false}, {bk, false}}));
     RenderStats stats;
-    Frame got = Render("scanline", b.scene(), &stats);
-    ExpectRaycastFrame(Render("raycast", b.scene()), got, 0, "shared edge on a row centre");
+    Frame got = RenderWith("scanline", b.scene(), &stats);
+    ExpectRaycastFrame(RenderWith("raycast", b.scene()), got, 0, "shared edge on a row centre");
     EXPECT_GT(Counter(stats, "face_stack_closed_row_faces"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0);
 }
@@ -327,12 +313,12 @@ void AddSlantedBox(TestSceneBuilder& b, const SlantedBox& x) {
 RenderStats ExpectVerticesClosed(const FlatScene& scene, std::size_t allowed,
                                  const std::string& what) {
     RenderStats stats;
-    Frame got = Render("scanline", scene, &stats, {{"verify", "on"}});
-    const Frame ref = Render("raycast", scene);
+    Frame got = RenderWith("scanline", scene, &stats, {{"verify", "on"}});
+    const Frame ref = RenderWith("raycast", scene);
     ExpectRaycastFrame(ref, got, allowed, what);
     // The carried stacks alone: the same frame (a vertex processed wrongly would leave wrong
     // stacks to the right of it, which only the verifier corrects).
-    const Frame unchecked = Render("scanline", scene, nullptr, {{"check", "off"}});
+    const Frame unchecked = RenderWith("scanline", scene, nullptr, {{"check", "off"}});
     EXPECT_EQ(FrameDifference(unchecked, got), "") << what;
     EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0) << what;
@@ -367,14 +353,14 @@ TEST(ScanlineVertexProcessing, RowsExactlyOnHorizontalEdges) {
     AddSlantedBox(b, {20, 100, 20.5, 70.5, 50, 81, 0.5});  // back edges at y 5 and 86
     b.AddSolidOfBody(b.AddBody({{b.AddSphere({58, 20, 30}, 12.2), false}}));
     RenderStats stats;
-    const Frame got = Render("scanline", b.scene(), &stats);
-    const Frame unchecked = Render("scanline", b.scene(), nullptr, {{"check", "off"}});
+    const Frame got = RenderWith("scanline", b.scene(), &stats);
+    const Frame unchecked = RenderWith("scanline", b.scene(), nullptr, {{"check", "off"}});
     EXPECT_EQ(FrameDifference(unchecked, got), "");
     EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_vertex_fallbacks"), 0);
     EXPECT_GT(Counter(stats, "face_stack_vertex_recursions"), 0);
-    const Frame ref = Render("raycast", b.scene());
+    const Frame ref = RenderWith("raycast", b.scene());
     std::size_t covered = 0, tieRows = 0;
     for (int y = 0; y < ref.height; ++y) {
         for (int x = 0; x < ref.width; ++x) {
