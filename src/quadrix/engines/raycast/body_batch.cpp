@@ -1,0 +1,171 @@
+#include "quadrix/engines/raycast/body_batch.h"
+
+#include <cmath>
+
+#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/math/interval_list.h"
+
+namespace quadrix::raycast {
+namespace {
+
+// One plane literal over the n pixels of a body batch: r = -(px x + py y + pd)/c as EvaluateBody
+// computes it, a near bound replacing lo unless lo > r, a far bound replacing hi unless hi <= r;
+// `bad` becomes non-zero where r is not finite. Branch-free, so the compiler vectorises it; built
+// for AVX2 and for the baseline, chosen at load time (the results are the same bits: IEEE
+// division and comparisons, no FMA contraction).
+// kNear: a near bound (t >= r) into lo/loId; else a far bound (t <= r) into hi/hiId.
+template <bool kNear>
+__attribute__((target_clones("avx2", "default"))) void PlaneBatch(
+    int n, const double* xs, const double* ys, double px, double py, double pd, double c,
+    std::int64_t tag, double* __restrict bound, std::int64_t* __restrict boundId,
+    double* __restrict bad) {
+    for (int p = 0; p < n; ++p) {
+        const double r = -(px * xs[p] + py * ys[p] + pd) / c;
+        bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;
+        const bool take = kNear ? !(bound[p] > r) : !(bound[p] <= r);
+        bound[p] = take ? r : bound[p];
+        boundId[p] = take ? tag : boundId[p];
+    }
+}
+
+}  // namespace
+
+void BodyBatches::Start(const CsgProgram& program, int x0, int y0, int x1, int y1) {
+    tileX0_ = x0;
+    tileY0_ = y0;
+    tileW_ = x1 - x0;
+    tileH_ = y1 - y0;
+    batchesUsed_ = 0;
+    extraBatches_ = 0;
+    nodeBatch_.assign(program.nodes.size(), kNoBatchWanted);
+    // Only bodies whose bounds cover the whole sub-tile are batched: they are likely wanted at
+    // most of its pixels (a small body in a big union — spheres — is evaluated where needed
+    // only).
+    const Rect r = {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5};
+    std::size_t wanted = 0;
+    for (std::size_t n = 0; n < program.nodes.size(); ++n) {
+        const ProgNode& node = program.nodes[n];
+        if (node.kind != NodeKind::kBody || reduction_.NodeEmpty(n)) continue;
+        if (node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1) {
+            nodeBatch_[n] = kNoBatch;
+            ++wanted;
+        }
+    }
+    batchOn_ = wanted > 0 && settings_.batch;
+    bodyBatchesWanted_ = wanted;
+    if (batches_.size() < wanted) batches_.resize(wanted);
+    for (int j = 0; j < tileH_; ++j)
+        for (int i = 0; i < tileW_; ++i) {
+            xs_[j * tileW_ + i] = x0 + i + 0.5;
+            ys_[j * tileW_ + i] = y0 + j + 0.5;
+        }
+}
+
+void BodyBatches::WantIfHalfCovered(std::int32_t node, const Rect& xy) {
+    if (nodeBatch_[static_cast<std::size_t>(node)] != kNoBatchWanted || !settings_.batch) return;
+    int nx = 0, ny = 0;
+    for (int i = 0; i < tileW_; ++i) {
+        const double x = tileX0_ + i + 0.5;
+        nx += x >= xy.x0 && x <= xy.x1;
+    }
+    for (int j = 0; j < tileH_; ++j) {
+        const double y = tileY0_ + j + 0.5;
+        ny += y >= xy.y0 && y <= xy.y1;
+    }
+    if (2 * nx * ny < tileW_ * tileH_) return;
+    // (Room for its batch now: Trace may compute it even if compiling the kernel fails.)
+    nodeBatch_[static_cast<std::size_t>(node)] = kNoBatch;
+    batchOn_ = true;
+    ++extraBatches_;
+    if (batches_.size() < bodyBatchesWanted_ + extraBatches_)
+        batches_.resize(bodyBatchesWanted_ + extraBatches_);
+}
+
+const BodyBatch* BodyBatches::SingleBodyBatch(const CsgProgram& program, const Rect& r) {
+    if (!settings_.tileCull || !batchOn_ || program.solids.size() != 1) return nullptr;
+    const ProgSolid& solid = program.solids[0];
+    if (!(solid.xy.x0 <= r.x0 && solid.xy.x1 >= r.x1 && solid.xy.y0 <= r.y0 && solid.xy.y1 >= r.y1))
+        return nullptr;
+    const std::int32_t node = reduction_.SingleBody(program, solid.root, r);
+    if (node < 0 || !Wanted(node)) return nullptr;
+    if (tables_.BodyVoid(
+            static_cast<std::size_t>(program.nodes[static_cast<std::size_t>(node)].first)))
+        return nullptr;
+    singleSolid_ = solid.solid;
+    return Find(node);
+}
+
+std::int32_t BodyBatches::Compute(std::int32_t node) {
+    const auto b = static_cast<std::int32_t>(batchesUsed_++);
+    nodeBatch_[static_cast<std::size_t>(node)] = b;
+    BodyBatch& out = batches_[static_cast<std::size_t>(b)];
+    const int n = tileW_ * tileH_;
+    ++counters_.batchBodies;
+    counters_.batchPixels += static_cast<std::uint64_t>(n);
+    double* const lo = out.lo;
+    double* const hi = out.hi;
+    std::int64_t* const loId = out.loId;
+    std::int64_t* const hiId = out.hiId;
+    double* const cut = out.cut;
+    std::uint8_t flag[kLanePixels];  // kBatchLive, kBatchDead or kBatchScalar
+    double bad[kLanePixels];         // non-zero: a plane bound was not finite
+    for (int p = 0; p < n; ++p) {
+        lo[p] = -HUGE_VAL;
+        hi[p] = HUGE_VAL;
+        cut[p] = HUGE_VAL;
+        loId[p] = hiId[p] = Interval::kNoId;
+        flag[p] = kBatchLive;
+        bad[p] = 0;
+    }
+    const auto [begin, end] = reduction_.NodeTags(static_cast<std::size_t>(node));
+    const std::int32_t* const tileTags = reduction_.TileTags();
+    for (std::int32_t k = begin; k < end; ++k) {
+        const std::int32_t tag = tileTags[k];
+        const Tag& t = tables_.TagOf(tag);
+        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
+            counters_.literals.planes += static_cast<std::uint64_t>(n);
+            const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
+            if ((c > 0) != t.complemented)  // t <= r: a far bound
+                PlaneBatch<false>(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
+            else  // t >= r: a near bound
+                PlaneBatch<true>(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
+            continue;
+        }
+        // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
+        for (int p = 0; p < n; ++p)
+            if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
+        if (hs.isPlane && hs.c == 0) {
+            // Parallel to the rays (a mitre or slot plane seen edge-on): on each ray the literal
+            // holds everywhere or nowhere, as EvaluateBody decides it: nowhere where
+            // e = px x + py y + pd is not finite or on the wrong side.
+            counters_.literals.planes += static_cast<std::uint64_t>(n);
+            const double px = hs.px, py = hs.py, pd = hs.pd;
+            for (int p = 0; p < n; ++p) {
+                const double e = px * xs_[p] + py * ys_[p] + pd;
+                const bool none = !std::isfinite(e) || (e <= 0) == t.complemented;
+                if (none && flag[p] == kBatchLive) flag[p] = kBatchDead;
+            }
+            continue;
+        }
+        if (hs.isPlane) {  // a non-finite coefficient: rare
+            for (int p = 0; p < n; ++p)
+                if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
+            continue;
+        }
+        // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
+        // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
+        // Cut mode: a two-piece set keeps the first piece below a cut (BodyBatch::kCut).
+        QuadricBatch(hs, t.complemented, tag, n, xs_, ys_, lo, loId, hi, hiId, flag,
+                     counters_.literals, cut);
+    }
+    for (int p = 0; p < n; ++p)
+        out.state[p] = flag[p] == kBatchScalar || bad[p] != 0 ? BodyBatch::kScalar
+                       : flag[p] == kBatchDead                ? BodyBatch::kEmpty
+                       : cut[p] != HUGE_VAL                   ? BodyBatch::kCut
+                       : !(lo[p] < hi[p])                     ? BodyBatch::kEmpty
+                                                              : BodyBatch::kOne;
+    return b;
+}
+
+}  // namespace quadrix::raycast
