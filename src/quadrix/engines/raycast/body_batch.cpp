@@ -95,6 +95,53 @@ const BodyBatch* BodyBatches::SingleBodyBatch(const CsgProgram& program, const R
     return Find(node);
 }
 
+// One literal of the body over the batch's pixels, in the body's order (as EvaluateBody).
+void BodyBatches::BatchLiteral(std::int32_t tag, int n, BodyBatch& out, std::uint8_t* flag,
+                               double* bad) {
+    double* const lo = out.lo;
+    double* const hi = out.hi;
+    std::int64_t* const loId = out.loId;
+    std::int64_t* const hiId = out.hiId;
+    double* const cut = out.cut;
+    const Tag& t = tables_.TagOf(tag);
+    const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+    if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
+        counters_.literals.planes += static_cast<std::uint64_t>(n);
+        const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
+        if ((c > 0) != t.complemented)  // t <= r: a far bound
+            PlaneBatch<false>(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
+        else  // t >= r: a near bound
+            PlaneBatch<true>(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
+        return;
+    }
+    // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
+    for (int p = 0; p < n; ++p)
+        if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
+    if (hs.isPlane && hs.c == 0) {
+        // Parallel to the rays (a mitre or slot plane seen edge-on): on each ray the literal
+        // holds everywhere or nowhere, as EvaluateBody decides it: nowhere where
+        // e = px x + py y + pd is not finite or on the wrong side.
+        counters_.literals.planes += static_cast<std::uint64_t>(n);
+        const double px = hs.px, py = hs.py, pd = hs.pd;
+        for (int p = 0; p < n; ++p) {
+            const double e = px * xs_[p] + py * ys_[p] + pd;
+            const bool none = !std::isfinite(e) || (e <= 0) == t.complemented;
+            if (none && flag[p] == kBatchLive) flag[p] = kBatchDead;
+        }
+        return;
+    }
+    if (hs.isPlane) {  // a non-finite coefficient: rare
+        for (int p = 0; p < n; ++p)
+            if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
+        return;
+    }
+    // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
+    // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
+    // Cut mode: a two-piece set keeps the first piece below a cut (BodyBatch::kCut).
+    QuadricBatch(hs, t.complemented, tag, n, xs_, ys_, lo, loId, hi, hiId, flag, counters_.literals,
+                 cut);
+}
+
 std::int32_t BodyBatches::Compute(std::int32_t node) {
     const auto b = static_cast<std::int32_t>(batchesUsed_++);
     nodeBatch_[static_cast<std::size_t>(node)] = b;
@@ -119,46 +166,7 @@ std::int32_t BodyBatches::Compute(std::int32_t node) {
     }
     const auto [begin, end] = reduction_.NodeTags(static_cast<std::size_t>(node));
     const std::int32_t* const tileTags = reduction_.TileTags();
-    for (std::int32_t k = begin; k < end; ++k) {
-        const std::int32_t tag = tileTags[k];
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-        if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
-            counters_.literals.planes += static_cast<std::uint64_t>(n);
-            const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
-            if ((c > 0) != t.complemented)  // t <= r: a far bound
-                PlaneBatch<false>(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
-            else  // t >= r: a near bound
-                PlaneBatch<true>(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
-            continue;
-        }
-        // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
-        for (int p = 0; p < n; ++p)
-            if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
-        if (hs.isPlane && hs.c == 0) {
-            // Parallel to the rays (a mitre or slot plane seen edge-on): on each ray the literal
-            // holds everywhere or nowhere, as EvaluateBody decides it: nowhere where
-            // e = px x + py y + pd is not finite or on the wrong side.
-            counters_.literals.planes += static_cast<std::uint64_t>(n);
-            const double px = hs.px, py = hs.py, pd = hs.pd;
-            for (int p = 0; p < n; ++p) {
-                const double e = px * xs_[p] + py * ys_[p] + pd;
-                const bool none = !std::isfinite(e) || (e <= 0) == t.complemented;
-                if (none && flag[p] == kBatchLive) flag[p] = kBatchDead;
-            }
-            continue;
-        }
-        if (hs.isPlane) {  // a non-finite coefficient: rare
-            for (int p = 0; p < n; ++p)
-                if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
-            continue;
-        }
-        // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
-        // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
-        // Cut mode: a two-piece set keeps the first piece below a cut (BodyBatch::kCut).
-        QuadricBatch(hs, t.complemented, tag, n, xs_, ys_, lo, loId, hi, hiId, flag,
-                     counters_.literals, cut);
-    }
+    for (std::int32_t k = begin; k < end; ++k) BatchLiteral(tileTags[k], n, out, flag, bad);
     for (int p = 0; p < n; ++p)
         out.state[p] = flag[p] == kBatchScalar || bad[p] != 0 ? BodyBatch::kScalar
                        : flag[p] == kBatchDead                ? BodyBatch::kEmpty

@@ -99,6 +99,7 @@ class BodyBatches {
   private:
     // The batch of the body of program node `node` (Find): its index.
     std::int32_t Compute(std::int32_t node);
+    void BatchLiteral(std::int32_t tag, int n, BodyBatch& out, std::uint8_t* flag, double* bad);
 
     const SceneTables& tables_;
     const Settings settings_;

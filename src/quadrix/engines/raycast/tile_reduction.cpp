@@ -143,6 +143,42 @@ bool TileReduction::Dominated(std::size_t i) const {
     return false;
 }
 
+// TryFlatFill's plane test for the body of program node bodyNode on r: the tag of the one opaque
+// near plane that every kept far plane lies beyond by a margin at the four corner centres, or −1
+// when the body's kept literals are not such planes.
+std::int32_t TileReduction::FlatNearPlane(std::int32_t bodyNode, const Rect& r) const {
+    const auto [begin, end] = nodeTags_[static_cast<std::size_t>(bodyNode)];
+    const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
+    std::int32_t nearTag = -1;
+    double nearR[4] = {0, 0, 0, 0};
+    for (std::int32_t i = begin; i < end; ++i) {
+        const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
+        const Tag& t = tables_.TagOf(tag);
+        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        if (!hs.isPlane || !std::isfinite(hs.c) || hs.c == 0) return -1;
+        if ((hs.c > 0) != t.complemented) continue;  // a far bound: checked below
+        if (nearTag >= 0 || !t.opaque) return -1;
+        nearTag = tag;
+        for (int k = 0; k < 4; ++k) {
+            nearR[k] = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
+            if (!(std::fabs(nearR[k]) < 1e300)) return -1;
+        }
+    }
+    if (nearTag < 0) return -1;
+    for (std::int32_t i = begin; i < end; ++i) {
+        const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
+        const Tag& t = tables_.TagOf(tag);
+        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        if ((hs.c > 0) == t.complemented) continue;  // the near bound
+        for (int k = 0; k < 4; ++k) {
+            const double far = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
+            const double m = 1e-9 * (std::fabs(far) + std::fabs(nearR[k])) + 1e-300;
+            if (!(far - nearR[k] > m)) return -1;
+        }
+    }
+    return nearTag;
+}
+
 // Flat sub-tiles. When the sub-tile program is one solid whose tree is one body, PrepareTile has
 // kept only planes, every pixel centre of `r` lies inside the node's and the solid's bounds, and
 // exactly one kept plane bounds the body from the near side, that plane is the body's near end at
@@ -165,35 +201,8 @@ bool TileReduction::TryFlatFill(const CsgProgram& program, const Rect& r, int x0
     if (bodyNode < 0) return false;
     const ProgNode& node = program.nodes[static_cast<std::size_t>(bodyNode)];
     if (tables_.BodyVoid(static_cast<std::size_t>(node.first))) return false;
-    const auto [begin, end] = nodeTags_[static_cast<std::size_t>(bodyNode)];
-    const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
-    std::int32_t nearTag = -1;
-    double nearR[4] = {0, 0, 0, 0};
-    for (std::int32_t i = begin; i < end; ++i) {
-        const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-        if (!hs.isPlane || !std::isfinite(hs.c) || hs.c == 0) return false;
-        if ((hs.c > 0) != t.complemented) continue;  // a far bound: checked below
-        if (nearTag >= 0 || !t.opaque) return false;
-        nearTag = tag;
-        for (int k = 0; k < 4; ++k) {
-            nearR[k] = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
-            if (!(std::fabs(nearR[k]) < 1e300)) return false;
-        }
-    }
+    const std::int32_t nearTag = FlatNearPlane(bodyNode, r);
     if (nearTag < 0) return false;
-    for (std::int32_t i = begin; i < end; ++i) {
-        const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-        if ((hs.c > 0) == t.complemented) continue;  // the near bound
-        for (int k = 0; k < 4; ++k) {
-            const double far = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
-            const double m = 1e-9 * (std::fabs(far) + std::fabs(nearR[k])) + 1e-300;
-            if (!(far - nearR[k] > m)) return false;
-        }
-    }
     const Tag& near = tables_.TagOf(nearTag);
     const auto hsIndex = static_cast<std::size_t>(near.halfSpace);
     const RayHalfSpace& hs = tables_.halfSpaces[hsIndex];

@@ -97,6 +97,8 @@ class TileReduction {
     bool CornerBounds(const std::int32_t* tags, std::size_t n, const Rect& r);
     // Whether some near bound lies beyond some far bound at all four corners (by the margin).
     bool NearBeyondFar() const;
+    // TryFlatFill's plane test (tile_reduction.cpp): the near plane's tag, or −1.
+    std::int32_t FlatNearPlane(std::int32_t bodyNode, const Rect& r) const;
     // Whether bounds_[i] is dominated by another bound of the same side at all four corners.
     bool Dominated(std::size_t i) const;
 

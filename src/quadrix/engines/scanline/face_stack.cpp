@@ -294,7 +294,7 @@ void FaceStacks::ResolveToggles(ActiveEdge& a, double xq, double y) {
 // stacks): the stack of edge a from its left neighbour's stack `prev` — the faces of a that
 // are on prev leave, the others enter in depth order (§5.5.1 at the crossing and at Q); a
 // show-edge's two faces change sides at it. Used for every stack at a band's first row, and
-// afterwards only for marked edges: after a vertex fallback (PassOne), when S0 changed
+// afterwards only for marked edges: after a vertex fallback (VertexPass), when S0 changed
 // (SeedStack), and for conic legs lost to rounding and found again (TraceAndSort). With
 // `propagate`, a derived set that differs from the carried one marks the next stack edge,
 // so the change is carried right until a derived stack equals the carried one.

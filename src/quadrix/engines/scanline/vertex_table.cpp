@@ -17,24 +17,17 @@ double EndX(const ShowEdge& s, double y, bool top) {
     return std::isfinite(x) ? x : HUGE_VAL;
 }
 
-}  // namespace
+struct End {
+    int band;
+    double x, y;
+    int edge;
+    bool isTop;
+};
 
-int VertexBand(double y) { return static_cast<int>(std::ceil(SnapToRow(y) - 0.5)); }
-
-VertexTable BuildVertices(const std::vector<ShowEdge>& edges, const std::vector<char>& stack,
-                          int h) {
-    VertexTable vt;
+// The ends of the stack bodies' show-edges that lie in a band of the image (and vt.toggling).
+std::vector<End> CollectEnds(const std::vector<ShowEdge>& edges, const std::vector<char>& stack,
+                             int h, VertexTable& vt) {
     const std::size_t n = edges.size();
-    vt.bottom.assign(n, -1);
-    vt.top.assign(n, -1);
-    vt.toggling.assign(n, 0);
-    vt.startsAt.resize(static_cast<std::size_t>(std::max(h, 0)));
-    struct End {
-        int band;
-        double x, y;
-        int edge;
-        bool isTop;
-    };
     std::vector<End> ends;
     for (std::size_t e = 0; e < n; ++e) {
         const ShowEdge& s = edges[e];
@@ -51,6 +44,22 @@ VertexTable BuildVertices(const std::vector<ShowEdge>& edges, const std::vector<
         if (bt >= 0 && bt < h)
             ends.push_back({bt, EndX(s, s.yTop, true), yt, static_cast<int>(e), true});
     }
+    return ends;
+}
+
+}  // namespace
+
+int VertexBand(double y) { return static_cast<int>(std::ceil(SnapToRow(y) - 0.5)); }
+
+VertexTable BuildVertices(const std::vector<ShowEdge>& edges, const std::vector<char>& stack,
+                          int h) {
+    VertexTable vt;
+    const std::size_t n = edges.size();
+    vt.bottom.assign(n, -1);
+    vt.top.assign(n, -1);
+    vt.toggling.assign(n, 0);
+    vt.startsAt.resize(static_cast<std::size_t>(std::max(h, 0)));
+    std::vector<End> ends = CollectEnds(edges, stack, h, vt);
     std::sort(ends.begin(), ends.end(), [](const End& p, const End& q) {
         return p.band < q.band || (p.band == q.band && p.x < q.x);
     });
