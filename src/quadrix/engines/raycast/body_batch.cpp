@@ -28,38 +28,54 @@ __attribute__((target_clones("avx2", "default"))) void PlaneBatch(
     }
 }
 
-}  // namespace
-
-void BodyBatches::Start(const CsgProgram& program, int x0, int y0, int x1, int y1) {
-    tileX0_ = x0;
-    tileY0_ = y0;
-    tileW_ = x1 - x0;
-    tileH_ = y1 - y0;
-    batchesUsed_ = 0;
-    extraBatches_ = 0;
-    nodeBatch_.assign(program.nodes.size(), kNoBatchWanted);
-    // Only bodies whose bounds cover the whole sub-tile are batched: they are likely wanted at
-    // most of its pixels (a small body in a big union — spheres — is evaluated where needed
-    // only).
-    const Rect r = {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5};
-    std::size_t wanted = 0;
-    for (std::size_t n = 0; n < program.nodes.size(); ++n) {
-        const ProgNode& node = program.nodes[n];
-        if (node.kind != NodeKind::kBody || reduction_.NodeEmpty(n)) continue;
-        if (node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1) {
-            nodeBatch_[n] = kNoBatch;
-            ++wanted;
-        }
+// One literal of the body over the batch's pixels, in the body's order (as EvaluateBody).
+void BatchLiteral(const SceneTables& tables, Counters& counters, const double* xs, const double* ys,
+                  std::int32_t tag, int n, BodyBatch& out, std::uint8_t* flag, double* bad) {
+    double* const lo = out.lo;
+    double* const hi = out.hi;
+    std::int64_t* const loId = out.loId;
+    std::int64_t* const hiId = out.hiId;
+    double* const cut = out.cut;
+    const Tag& t = tables.TagOf(tag);
+    const RayHalfSpace& hs = tables.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+    if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
+        counters.literals.planes += static_cast<std::uint64_t>(n);
+        const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
+        if ((c > 0) != t.complemented)  // t <= r: a far bound
+            PlaneBatch<false>(n, xs, ys, px, py, pd, c, tag, hi, hiId, bad);
+        else  // t >= r: a near bound
+            PlaneBatch<true>(n, xs, ys, px, py, pd, c, tag, lo, loId, bad);
+        return;
     }
-    batchOn_ = wanted > 0 && settings_.batch;
-    bodyBatchesWanted_ = wanted;
-    if (batches_.size() < wanted) batches_.resize(wanted);
-    for (int j = 0; j < tileH_; ++j)
-        for (int i = 0; i < tileW_; ++i) {
-            xs_[j * tileW_ + i] = x0 + i + 0.5;
-            ys_[j * tileW_ + i] = y0 + j + 0.5;
+    // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
+    for (int p = 0; p < n; ++p)
+        if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
+    if (hs.isPlane && hs.c == 0) {
+        // Parallel to the rays (a mitre or slot plane seen edge-on): on each ray the literal
+        // holds everywhere or nowhere, as EvaluateBody decides it: nowhere where
+        // e = px x + py y + pd is not finite or on the wrong side.
+        counters.literals.planes += static_cast<std::uint64_t>(n);
+        const double px = hs.px, py = hs.py, pd = hs.pd;
+        for (int p = 0; p < n; ++p) {
+            const double e = px * xs[p] + py * ys[p] + pd;
+            const bool none = !std::isfinite(e) || (e <= 0) == t.complemented;
+            if (none && flag[p] == kBatchLive) flag[p] = kBatchDead;
         }
+        return;
+    }
+    if (hs.isPlane) {  // a non-finite coefficient: rare
+        for (int p = 0; p < n; ++p)
+            if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
+        return;
+    }
+    // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
+    // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
+    // Cut mode: a two-piece set keeps the first piece below a cut (BodyBatch::kCut).
+    QuadricBatch(hs, t.complemented, tag, n, xs, ys, lo, loId, hi, hiId, flag, counters.literals,
+                 cut);
 }
+
+}  // namespace
 
 void BodyBatches::WantIfHalfCovered(std::int32_t node, const Rect& xy) {
     if (nodeBatch_[static_cast<std::size_t>(node)] != kNoBatchWanted || !settings_.batch) return;
@@ -95,53 +111,6 @@ const BodyBatch* BodyBatches::SingleBodyBatch(const CsgProgram& program, const R
     return Find(node);
 }
 
-// One literal of the body over the batch's pixels, in the body's order (as EvaluateBody).
-void BodyBatches::BatchLiteral(std::int32_t tag, int n, BodyBatch& out, std::uint8_t* flag,
-                               double* bad) {
-    double* const lo = out.lo;
-    double* const hi = out.hi;
-    std::int64_t* const loId = out.loId;
-    std::int64_t* const hiId = out.hiId;
-    double* const cut = out.cut;
-    const Tag& t = tables_.TagOf(tag);
-    const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-    if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
-        counters_.literals.planes += static_cast<std::uint64_t>(n);
-        const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;
-        if ((c > 0) != t.complemented)  // t <= r: a far bound
-            PlaneBatch<false>(n, xs_, ys_, px, py, pd, c, tag, hi, hiId, bad);
-        else  // t >= r: a near bound
-            PlaneBatch<true>(n, xs_, ys_, px, py, pd, c, tag, lo, loId, bad);
-        return;
-    }
-    // A pixel with a bad plane bound is kScalar in the end whatever follows: skip it.
-    for (int p = 0; p < n; ++p)
-        if (bad[p] != 0 && flag[p] == kBatchLive) flag[p] = kBatchScalar;
-    if (hs.isPlane && hs.c == 0) {
-        // Parallel to the rays (a mitre or slot plane seen edge-on): on each ray the literal
-        // holds everywhere or nowhere, as EvaluateBody decides it: nowhere where
-        // e = px x + py y + pd is not finite or on the wrong side.
-        counters_.literals.planes += static_cast<std::uint64_t>(n);
-        const double px = hs.px, py = hs.py, pd = hs.pd;
-        for (int p = 0; p < n; ++p) {
-            const double e = px * xs_[p] + py * ys_[p] + pd;
-            const bool none = !std::isfinite(e) || (e <= 0) == t.complemented;
-            if (none && flag[p] == kBatchLive) flag[p] = kBatchDead;
-        }
-        return;
-    }
-    if (hs.isPlane) {  // a non-finite coefficient: rare
-        for (int p = 0; p < n; ++p)
-            if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
-        return;
-    }
-    // The quadric's set at every live pixel (one piece clipped in, none: dead, two pieces:
-    // kScalar), exactly as LiteralOnRay gives it (ray_literal.h).
-    // Cut mode: a two-piece set keeps the first piece below a cut (BodyBatch::kCut).
-    QuadricBatch(hs, t.complemented, tag, n, xs_, ys_, lo, loId, hi, hiId, flag, counters_.literals,
-                 cut);
-}
-
 std::int32_t BodyBatches::Compute(std::int32_t node) {
     const auto b = static_cast<std::int32_t>(batchesUsed_++);
     nodeBatch_[static_cast<std::size_t>(node)] = b;
@@ -166,7 +135,8 @@ std::int32_t BodyBatches::Compute(std::int32_t node) {
     }
     const auto [begin, end] = reduction_.NodeTags(static_cast<std::size_t>(node));
     const std::int32_t* const tileTags = reduction_.TileTags();
-    for (std::int32_t k = begin; k < end; ++k) BatchLiteral(tileTags[k], n, out, flag, bad);
+    for (std::int32_t k = begin; k < end; ++k)
+        BatchLiteral(tables_, counters_, xs_, ys_, tileTags[k], n, out, flag, bad);
     for (int p = 0; p < n; ++p)
         out.state[p] = flag[p] == kBatchScalar || bad[p] != 0 ? BodyBatch::kScalar
                        : flag[p] == kBatchDead                ? BodyBatch::kEmpty

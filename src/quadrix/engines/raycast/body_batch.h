@@ -99,7 +99,6 @@ class BodyBatches {
   private:
     // The batch of the body of program node `node` (Find): its index.
     std::int32_t Compute(std::int32_t node);
-    void BatchLiteral(std::int32_t tag, int n, BodyBatch& out, std::uint8_t* flag, double* bad);
 
     const SceneTables& tables_;
     const Settings settings_;
@@ -116,5 +115,37 @@ class BodyBatches {
     std::int32_t singleSolid_ = -1;  // the solid of SingleBodyBatch's body
     double xs_[kLanePixels] = {}, ys_[kLanePixels] = {};
 };
+
+// Per sub-tile (tiling.cpp), so defined here.
+inline void BodyBatches::Start(const CsgProgram& program, int x0, int y0, int x1, int y1) {
+    tileX0_ = x0;
+    tileY0_ = y0;
+    tileW_ = x1 - x0;
+    tileH_ = y1 - y0;
+    batchesUsed_ = 0;
+    extraBatches_ = 0;
+    nodeBatch_.assign(program.nodes.size(), kNoBatchWanted);
+    // Only bodies whose bounds cover the whole sub-tile are batched: they are likely wanted at
+    // most of its pixels (a small body in a big union — spheres — is evaluated where needed
+    // only).
+    const Rect r = {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5};
+    std::size_t wanted = 0;
+    for (std::size_t n = 0; n < program.nodes.size(); ++n) {
+        const ProgNode& node = program.nodes[n];
+        if (node.kind != NodeKind::kBody || reduction_.NodeEmpty(n)) continue;
+        if (node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1) {
+            nodeBatch_[n] = kNoBatch;
+            ++wanted;
+        }
+    }
+    batchOn_ = wanted > 0 && settings_.batch;
+    bodyBatchesWanted_ = wanted;
+    if (batches_.size() < wanted) batches_.resize(wanted);
+    for (int j = 0; j < tileH_; ++j)
+        for (int i = 0; i < tileW_; ++i) {
+            xs_[j * tileW_ + i] = x0 + i + 0.5;
+            ys_[j * tileW_ + i] = y0 + j + 0.5;
+        }
+}
 
 }  // namespace quadrix::raycast

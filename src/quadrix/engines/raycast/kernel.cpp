@@ -37,7 +37,7 @@ bool Kernel::Compile(const CsgProgram& program, const Rect& r) {
     return true;
 }
 
-int Kernel::Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies) {
+inline int Kernel::Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies) {
     const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
     if (reduction_.NodeEmpty(static_cast<std::size_t>(n))) return 0;
     if (node.kind == NodeKind::kBody) {
@@ -95,7 +95,7 @@ Hit Kernel::Run(double x, double y) {
     return best;
 }
 
-void Kernel::PushBody(const KernelOp& op, double x, double y, IntervalList& l) {
+inline void Kernel::PushBody(const KernelOp& op, double x, double y, IntervalList& l) {
     l.clear();
     if (x < op.xy.x0 || x > op.xy.x1 || y < op.xy.y0 || y > op.xy.y1) return;
     // The body's batch when it has one (BodyBatches::Start batches the bodies that cover the
@@ -117,7 +117,7 @@ void Kernel::PushBody(const KernelOp& op, double x, double y, IntervalList& l) {
     l = tracer_.Slot(0);
 }
 
-void Kernel::ApplyOp(NodeKind kind, IntervalList** stack, std::size_t sp) {
+inline void Kernel::ApplyOp(NodeKind kind, IntervalList** stack, std::size_t sp) {
     IntervalList& b = *stack[sp];
     IntervalList& a = *stack[sp - 1];
     IntervalList& out = *stack[sp + 1];  // free: above the operand
@@ -174,7 +174,7 @@ void Kernel::RunTile(Hit* hits) {
     counters_.kernelPixels += static_cast<std::uint64_t>(np);
 }
 
-void Kernel::RunLanes(const KernelSolid& s, int np, std::int64_t* over) {
+inline void Kernel::RunLanes(const KernelSolid& s, int np, std::int64_t* over) {
     const double* xs = batches_.Xs();
     const double* ys = batches_.Ys();
     std::size_t sp = 0;
@@ -202,7 +202,7 @@ void Kernel::RunLanes(const KernelSolid& s, int np, std::int64_t* over) {
     }
 }
 
-void Kernel::MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int64_t* over) const {
+inline void Kernel::MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int64_t* over) const {
     const double* xs = batches_.Xs();
     const double* ys = batches_.Ys();
     const Lane& l = lanes_[0];

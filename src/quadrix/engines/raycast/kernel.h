@@ -77,16 +77,16 @@ class Kernel {
     // Appends the code of node n: 1 when code was emitted, 0 when the node is ∅ on every pixel of
     // r (nothing emitted), -1 when the node cannot be compiled (an operator whose bounds do not
     // contain r: MissesPoint could then empty it at some pixels).
-    int Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies);
+    inline int Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies);
     // Run's body operation: the body's set at the pixel into l.
-    void PushBody(const KernelOp& op, double x, double y, IntervalList& l);
+    inline void PushBody(const KernelOp& op, double x, double y, IntervalList& l);
     // Run's operator: *stack[sp - 1] = *stack[sp - 1] op *stack[sp] (stack[sp + 1] is scratch).
-    void ApplyOp(NodeKind kind, IntervalList** stack, std::size_t sp);
+    inline void ApplyOp(NodeKind kind, IntervalList** stack, std::size_t sp);
     // RunTile for one solid: its code over the lanes (the result in lanes_[0]).
-    void RunLanes(const KernelSolid& s, int np, std::int64_t* over);
+    inline void RunLanes(const KernelSolid& s, int np, std::int64_t* over);
     // FirstVisible of the solid's lanes where it lies below the lane's cut (else `over`),
     // combined into hits by Trace's rule.
-    void MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int64_t* over) const;
+    inline void MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int64_t* over) const;
 
     const SceneTables& tables_;
     const Settings settings_;

@@ -3,6 +3,92 @@
 #include <cmath>
 
 namespace quadrix::raycast {
+namespace {
+
+// ReduceBody's first step: the literals' plane bounds at the corners into `bounds`, dropping
+// those that hold on every ray; true when a quadric literal holds on no ray of r.
+bool CornerBounds(const SceneTables& tables, bool tileCull, const std::int32_t* tags, std::size_t n,
+                  const Rect& r, std::vector<PlaneBound>& bounds) {
+    const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
+    bounds.clear();
+    bool bodyEmptyByQuadric = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::int32_t tag = tags[i];
+        const Tag& t = tables.TagOf(tag);
+        const RayHalfSpace& hs = tables.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        PlaneBound b{tag, 0, {}};
+        if (hs.isPlane && std::isfinite(hs.c)) {
+            bool finite = true;
+            for (int k = 0; k < 4; ++k) {
+                const double e = hs.px * cx[k] + hs.py * cy[k] + hs.pd;
+                finite &= std::isfinite(e);
+                b.r[k] = hs.c == 0 ? e : -e / hs.c;
+                finite &= std::isfinite(b.r[k]);
+            }
+            if (finite && hs.c == 0) {
+                bool holds = true;  // strictly, everywhere in the rectangle
+                for (int k = 0; k < 4; ++k) {
+                    const double m = 1e-9 * (std::fabs(hs.px * cx[k]) + std::fabs(hs.py * cy[k]) +
+                                             std::fabs(hs.pd)) +
+                                     1e-300;
+                    holds &= t.complemented ? b.r[k] > m : b.r[k] < -m;
+                }
+                if (holds) continue;  // the literal holds on every ray: drop it
+            } else if (finite) {
+                b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
+            }
+        } else if (!hs.isPlane && tileCull) {
+            const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
+            if (q != QuadricOnRect::kUnknown) {
+                // No ray of the rectangle meets the surface: the literal holds on all of every
+                // ray (dropped) or on none (the body is empty).
+                const bool holds = (q == QuadricOnRect::kInsideEverywhere) != t.complemented;
+                if (holds) continue;
+                bodyEmptyByQuadric = true;
+            }
+        }
+        bounds.push_back(b);
+    }
+    return bodyEmptyByQuadric;
+}
+
+// Whether some near bound lies beyond some far bound at all four corners (by the margin).
+bool NearBeyondFar(const std::vector<PlaneBound>& bounds) {
+    for (std::size_t i = 0; i < bounds.size(); ++i) {
+        if (bounds[i].side >= 0) continue;
+        for (std::size_t j = 0; j < bounds.size(); ++j) {
+            if (bounds[j].side <= 0) continue;
+            bool all = true;
+            for (int k = 0; k < 4 && all; ++k) {
+                const double m =
+                    1e-9 * (std::fabs(bounds[i].r[k]) + std::fabs(bounds[j].r[k])) + 1e-300;
+                all = bounds[i].r[k] - bounds[j].r[k] > m;
+            }
+            if (all) return true;
+        }
+    }
+    return false;
+}
+
+// Whether bounds[i] is dominated by another bound of the same side at all four corners.
+bool Dominated(const std::vector<PlaneBound>& bounds, std::size_t i) {
+    const PlaneBound& b = bounds[i];
+    if (b.side == 0) return false;
+    for (std::size_t j = 0; j < bounds.size(); ++j) {
+        const PlaneBound& a = bounds[j];
+        if (j == i || a.side != b.side) continue;
+        bool all = true;
+        for (int k = 0; k < 4 && all; ++k) {
+            const double m = 1e-9 * (std::fabs(a.r[k]) + std::fabs(b.r[k])) + 1e-300;
+            // Near bounds: a is tighter where r_a > r_b; far bounds where r_a < r_b.
+            all = b.side < 0 ? a.r[k] - b.r[k] > m : b.r[k] - a.r[k] > m;
+        }
+        if (all) return true;
+    }
+    return false;
+}
+
+}  // namespace
 
 void TileReduction::PrepareStrip(const CsgProgram& program, const Rect& r) {
     ++stripStamp_;
@@ -51,102 +137,24 @@ void TileReduction::PrepareTile(const CsgProgram& program, const Rect& r) {
     }
 }
 
-bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
-                               std::vector<std::int32_t>& out) {
-    const bool bodyEmptyByQuadric = CornerBounds(tags, n, r);
+inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
+                                      std::vector<std::int32_t>& out) {
+    const bool bodyEmptyByQuadric = CornerBounds(tables_, settings_.tileCull, tags, n, r, bounds_);
     // Empty everywhere: a near bound beyond a far bound at the four corners (margin as below)
     // stays beyond it on the whole rectangle, so no ray of the sub-tile meets the body, and
     // Evaluate takes it as ∅ without evaluating it (exactly what the body's literals would give:
     // an empty set, and ∅ is an exact identity of every operator).
-    const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar());
+    const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds_));
     if (empty) return true;
     for (std::size_t i = 0; i < bounds_.size(); ++i)
-        if (!Dominated(i)) out.push_back(bounds_[i].tag);
-    return false;
-}
-
-bool TileReduction::CornerBounds(const std::int32_t* tags, std::size_t n, const Rect& r) {
-    const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
-    bounds_.clear();
-    bool bodyEmptyByQuadric = false;
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::int32_t tag = tags[i];
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
-        PlaneBound b{tag, 0, {}};
-        if (hs.isPlane && std::isfinite(hs.c)) {
-            bool finite = true;
-            for (int k = 0; k < 4; ++k) {
-                const double e = hs.px * cx[k] + hs.py * cy[k] + hs.pd;
-                finite &= std::isfinite(e);
-                b.r[k] = hs.c == 0 ? e : -e / hs.c;
-                finite &= std::isfinite(b.r[k]);
-            }
-            if (finite && hs.c == 0) {
-                bool holds = true;  // strictly, everywhere in the rectangle
-                for (int k = 0; k < 4; ++k) {
-                    const double m = 1e-9 * (std::fabs(hs.px * cx[k]) + std::fabs(hs.py * cy[k]) +
-                                             std::fabs(hs.pd)) +
-                                     1e-300;
-                    holds &= t.complemented ? b.r[k] > m : b.r[k] < -m;
-                }
-                if (holds) continue;  // the literal holds on every ray: drop it
-            } else if (finite) {
-                b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
-            }
-        } else if (!hs.isPlane && settings_.tileCull) {
-            const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
-            if (q != QuadricOnRect::kUnknown) {
-                // No ray of the rectangle meets the surface: the literal holds on all of every
-                // ray (dropped) or on none (the body is empty).
-                const bool holds = (q == QuadricOnRect::kInsideEverywhere) != t.complemented;
-                if (holds) continue;
-                bodyEmptyByQuadric = true;
-            }
-        }
-        bounds_.push_back(b);
-    }
-    return bodyEmptyByQuadric;
-}
-
-bool TileReduction::NearBeyondFar() const {
-    for (std::size_t i = 0; i < bounds_.size(); ++i) {
-        if (bounds_[i].side >= 0) continue;
-        for (std::size_t j = 0; j < bounds_.size(); ++j) {
-            if (bounds_[j].side <= 0) continue;
-            bool all = true;
-            for (int k = 0; k < 4 && all; ++k) {
-                const double m =
-                    1e-9 * (std::fabs(bounds_[i].r[k]) + std::fabs(bounds_[j].r[k])) + 1e-300;
-                all = bounds_[i].r[k] - bounds_[j].r[k] > m;
-            }
-            if (all) return true;
-        }
-    }
-    return false;
-}
-
-bool TileReduction::Dominated(std::size_t i) const {
-    const PlaneBound& b = bounds_[i];
-    if (b.side == 0) return false;
-    for (std::size_t j = 0; j < bounds_.size(); ++j) {
-        const PlaneBound& a = bounds_[j];
-        if (j == i || a.side != b.side) continue;
-        bool all = true;
-        for (int k = 0; k < 4 && all; ++k) {
-            const double m = 1e-9 * (std::fabs(a.r[k]) + std::fabs(b.r[k])) + 1e-300;
-            // Near bounds: a is tighter where r_a > r_b; far bounds where r_a < r_b.
-            all = b.side < 0 ? a.r[k] - b.r[k] > m : b.r[k] - a.r[k] > m;
-        }
-        if (all) return true;
-    }
+        if (!Dominated(bounds_, i)) out.push_back(bounds_[i].tag);
     return false;
 }
 
 // TryFlatFill's plane test for the body of program node bodyNode on r: the tag of the one opaque
 // near plane that every kept far plane lies beyond by a margin at the four corner centres, or −1
 // when the body's kept literals are not such planes.
-std::int32_t TileReduction::FlatNearPlane(std::int32_t bodyNode, const Rect& r) const {
+inline std::int32_t TileReduction::FlatNearPlane(std::int32_t bodyNode, const Rect& r) const {
     const auto [begin, end] = nodeTags_[static_cast<std::size_t>(bodyNode)];
     const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
     std::int32_t nearTag = -1;
@@ -224,13 +232,6 @@ bool TileReduction::TryFlatFill(const CsgProgram& program, const Rect& r, int x0
     counters_.covered += n;
     counters_.flatPixels += n;
     ++counters_.flatTiles;
-    return true;
-}
-
-bool TileReduction::AllEmpty(const CsgProgram& program, const Rect& r) const {
-    if (!settings_.tileCull) return false;
-    for (const ProgSolid& s : program.solids)
-        if (SingleBody(program, s.root, r) != kEmptyNode) return false;
     return true;
 }
 

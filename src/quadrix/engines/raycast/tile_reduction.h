@@ -36,6 +36,14 @@
 
 namespace quadrix::raycast {
 
+// A literal's bound at the four corners of a sub-tile (ReduceBody): side 1 = t <= r,
+// -1 = t >= r, 0 = not a plane bound (kept as it is).
+struct PlaneBound {
+    std::int32_t tag;
+    int side;
+    double r[4];
+};
+
 class TileReduction {
   public:
     TileReduction(const SceneTables& tables, Settings settings, Counters& counters)
@@ -72,13 +80,6 @@ class TileReduction {
     std::int32_t SingleBody(const CsgProgram& p, std::int32_t n, const Rect& r) const;
 
   private:
-    // A literal's bound at the four corners of a sub-tile (ReduceBody): side 1 = t <= r,
-    // -1 = t >= r, 0 = not a plane bound (kept as it is).
-    struct PlaneBound {
-        std::int32_t tag;
-        int side;
-        double r[4];
-    };
     // PrepareStrip's result per FlatScene body, valid when its stamp is stripStamp_.
     struct StripBody {
         std::int32_t begin = 0, end = 0;  // its literals: stripTags_[begin, end)
@@ -90,17 +91,10 @@ class TileReduction {
     // (a body's literals in its order, or a subsequence of them already reduced on a rectangle
     // containing r) that may bound the body somewhere in r, and returns true (with nothing
     // appended) when the body is provably empty on every ray of r.
-    bool ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
-                    std::vector<std::int32_t>& out);
-    // ReduceBody's first step: the literals' plane bounds at the corners into bounds_, dropping
-    // those that hold on every ray; true when a quadric literal holds on no ray of r.
-    bool CornerBounds(const std::int32_t* tags, std::size_t n, const Rect& r);
-    // Whether some near bound lies beyond some far bound at all four corners (by the margin).
-    bool NearBeyondFar() const;
+    inline bool ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
+                           std::vector<std::int32_t>& out);
     // TryFlatFill's plane test (tile_reduction.cpp): the near plane's tag, or −1.
-    std::int32_t FlatNearPlane(std::int32_t bodyNode, const Rect& r) const;
-    // Whether bounds_[i] is dominated by another bound of the same side at all four corners.
-    bool Dominated(std::size_t i) const;
+    inline std::int32_t FlatNearPlane(std::int32_t bodyNode, const Rect& r) const;
 
     const SceneTables& tables_;
     const Settings settings_;
@@ -113,5 +107,13 @@ class TileReduction {
     std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
     std::vector<bool> nodeEmpty_;  // per program node: a body empty on every ray of the sub-tile
 };
+
+// Per sub-tile (tiling.cpp), so defined here.
+inline bool TileReduction::AllEmpty(const CsgProgram& program, const Rect& r) const {
+    if (!settings_.tileCull) return false;
+    for (const ProgSolid& s : program.solids)
+        if (SingleBody(program, s.root, r) != kEmptyNode) return false;
+    return true;
+}
 
 }  // namespace quadrix::raycast

@@ -12,21 +12,6 @@ Tracer::Tracer(const SceneTables& tables, int maxDepth, const TileReduction& red
     for (IntervalList& l : lists_) slots_.push_back(&l);
 }
 
-void Tracer::SetCuts(const CsgProgram& program) {
-    cuts_.clear();
-    zlos_.clear();
-    for (const ProgNode& n : program.nodes)
-        if (n.kind == NodeKind::kBody) zlos_.push_back(n.zlo);
-    for (std::size_t k : {8u, 32u, 128u, 512u}) {
-        if (zlos_.size() <= k) break;
-        std::nth_element(zlos_.begin(), zlos_.begin() + static_cast<std::ptrdiff_t>(k),
-                         zlos_.end());
-        const double cut = zlos_[k];
-        if (std::isfinite(cut) && (cuts_.empty() || cut > cuts_.back())) cuts_.push_back(cut);
-    }
-    cuts_.push_back(HUGE_VAL);
-}
-
 Hit Tracer::Trace(const CsgProgram& program, double x, double y) {
     Hit best;
     for (const ProgSolid& s : program.solids) {
@@ -53,8 +38,8 @@ Hit Tracer::Trace(const CsgProgram& program, double x, double y) {
     return best;
 }
 
-void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
-                      double cut) {
+inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, double y,
+                             std::size_t slot, double cut) {
     const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
     if (node.MissesPoint(x, y) || node.zlo >= cut ||
         reduction_.NodeEmpty(static_cast<std::size_t>(n))) {
@@ -187,8 +172,9 @@ void Tracer::EvaluateBody(std::int32_t body, std::int32_t node, double x, double
     AppendPiece(result, run);
 }
 
-void Tracer::EvaluateBodyLists(const Interval& run, const RaySet& set, const std::int32_t* next,
-                               const std::int32_t* last, double x, double y, std::size_t slot) {
+inline void Tracer::EvaluateBodyLists(const Interval& run, const RaySet& set,
+                                      const std::int32_t* next, const std::int32_t* last, double x,
+                                      double y, std::size_t slot) {
     {
         IntervalList& out = *slots_[slot];
         out.clear();

@@ -17,6 +17,7 @@
 // grows with the depth complexity near the visible surface, not with every primitive behind it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -64,12 +65,12 @@ class Tracer {
   private:
     // *slots_[slot] = the set of node n on the ray through (x, y), exact on t < cut (nodes with
     // zlo >= cut are taken as ∅; see Trace).
-    void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
-                  double cut);
+    inline void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
+                         double cut);
     // The rest of a body from the first literal with a two-piece set: the running interval `run`
     // intersected with `set`, then literals [next, last) as interval lists.
-    void EvaluateBodyLists(const Interval& run, const RaySet& set, const std::int32_t* next,
-                           const std::int32_t* last, double x, double y, std::size_t slot);
+    inline void EvaluateBodyLists(const Interval& run, const RaySet& set, const std::int32_t* next,
+                                  const std::int32_t* last, double x, double y, std::size_t slot);
     static void AppendPiece(IntervalList& l, const Interval& v) {
         l.Append(v.lo, v.loId, v.hi, v.hiId);
     }
@@ -86,5 +87,21 @@ class Tracer {
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
 };
+
+// Per sub-tile (tiling.cpp), so defined here.
+inline void Tracer::SetCuts(const CsgProgram& program) {
+    cuts_.clear();
+    zlos_.clear();
+    for (const ProgNode& n : program.nodes)
+        if (n.kind == NodeKind::kBody) zlos_.push_back(n.zlo);
+    for (std::size_t k : {8u, 32u, 128u, 512u}) {
+        if (zlos_.size() <= k) break;
+        std::nth_element(zlos_.begin(), zlos_.begin() + static_cast<std::ptrdiff_t>(k),
+                         zlos_.end());
+        const double cut = zlos_[k];
+        if (std::isfinite(cut) && (cuts_.empty() || cut > cuts_.back())) cuts_.push_back(cut);
+    }
+    cuts_.push_back(HUGE_VAL);
+}
 
 }  // namespace quadrix::raycast

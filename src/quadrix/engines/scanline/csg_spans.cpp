@@ -73,7 +73,7 @@ void CsgSpans::PruneSpanUnits() {
 
 // Template faces: the two ends of an operand's interval are often the two sheets of one quadric,
 // with the same incremental state: one solve for both.
-void CsgSpans::UpdateTemplateDepths() {
+inline void CsgSpans::UpdateTemplateDepths() {
     for (std::size_t k = 0; k < tFaces_.size(); ++k) {
         StackFace& f = tFaces_[k];
         if (f.ray->isPlane) {
@@ -85,6 +85,19 @@ void CsgSpans::UpdateTemplateDepths() {
             lastRoots_ = SolveQuadratic(f.ray->c, f.h, f.k);
         ++ctx_.c.depthCalcs;
         f.depth = SheetDepth(f, lastRoots_);
+    }
+}
+
+void CsgSpans::OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid) {
+    UpdateTemplateDepths();
+    for (const CsgSpanUnit& cu : units_) {
+        RayEvaluator::Hit h;
+        if (!CsgPixel(cu, i, y, h)) continue;
+        const int s = ctx_.UnitOf(cu.unit).solid;
+        if (h.t < hit.t || (h.t == hit.t && s < solid)) {
+            hit = h;
+            solid = s;
+        }
     }
 }
 
@@ -177,7 +190,7 @@ void CsgSpans::ReadTemplate(int body, int sample, double y, CachedTemplate& cach
     }
 }
 
-void CsgSpans::TemplateSet(int tmpl, IntervalList& out, bool& broken) {
+inline void CsgSpans::TemplateSet(int tmpl, IntervalList& out, bool& broken) {
     out.clear();
     const BodyTemplate& t = templates_[static_cast<std::size_t>(tmpl)];
     double prevLo = -HUGE_VAL;
@@ -287,8 +300,8 @@ int CsgSpans::Assemble(int node) {
 // The set of pruned node pn on the ray through (x, y): template leaves from the span's
 // templates (exact leaves, or all leaves with `exact`, by the interval code of raycast),
 // combined as RayEvaluator::TreeSet does. Scratch lists come from pool_ by depth.
-void CsgSpans::EvalPruned(int pn, std::size_t depth, double x, double y, IntervalList& out,
-                          bool& broken, bool exact) {
+inline void CsgSpans::EvalPruned(int pn, std::size_t depth, double x, double y, IntervalList& out,
+                                 bool& broken, bool exact) {
     const PNode& p = pNodes_[static_cast<std::size_t>(pn)];
     if (p.leaf) {
         if (exact || p.tmpl < 0)
@@ -314,7 +327,7 @@ void CsgSpans::EvalPruned(int pn, std::size_t depth, double x, double y, Interva
     }
 }
 
-bool CsgSpans::CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit) {
+inline bool CsgSpans::CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit) {
     ++ctx_.c.csgPixels;
     bool broken = false;
     IntervalList& l = Pool(0);

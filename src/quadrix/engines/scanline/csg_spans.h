@@ -56,20 +56,22 @@ class CsgSpans {
     const std::vector<CsgSpanUnit>& Units() const { return units_; }
 
     // ---- per pixel of the span ----
-    // The template faces' depths at the current pixel (two sheets of one quadric share a solve).
-    void UpdateTemplateDepths();
+    // Some CSG unit or template face is present in the span.
+    bool Active() const { return !units_.empty() || !tFaces_.empty(); }
+    // At pixel i: the template faces' depths from their conics, then each CSG unit's visible
+    // point offered to (hit, solid): taken when strictly nearer, or as near and of a lower solid.
+    void OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid);
     void AdvanceTemplates() {
         for (StackFace& f : tFaces_) AdvanceFace(f);
     }
-    // The CSG unit's visible point at pixel i from its pruned tree and templates; false when
-    // nothing is visible. Where a template does not hold, the pruned tree is evaluated exactly.
-    bool CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit);
 
     // An exact pixel (x, y): CSG unit u's tree pruned to the operands whose x range on this row
     // holds x, each evaluated exactly.
     bool EvaluateExact(int u, double x, double y, RayEvaluator::Hit& hit);
 
   private:
+    // (The functions declared inline here are defined in csg_spans.cpp and used there only: the
+    // per-pixel path, inlined into OfferPixel as when it was one class body.)
     struct TemplateInterval {
         int lo = -1, hi = -1;        // indices of endpoint faces; −1 = infinite end
         int loTag = -1, hiTag = -1;  // the evaluator's tags of the endpoints
@@ -101,15 +103,20 @@ class CsgSpans {
         int unit = -1, leaf = -1, tmpl = -1;
     };
 
+    // The template faces' depths at the current pixel (two sheets of one quadric share a solve).
+    inline void UpdateTemplateDepths();
+    // The CSG unit's visible point at pixel i from its pruned tree and templates; false when
+    // nothing is visible. Where a template does not hold, the pruned tree is evaluated exactly.
+    inline bool CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit);
     // BuildTemplate's read at the sample pixel: the ends of the body's intervals into `cache`.
     void ReadTemplate(int body, int sample, double y, CachedTemplate& cache);
     // The set of template t at the current pixel (depths from the span shader's conics).
     // `broken` when the template does not hold here (a root vanished, the order changed).
-    void TemplateSet(int tmpl, IntervalList& out, bool& broken);
+    inline void TemplateSet(int tmpl, IntervalList& out, bool& broken);
     int BuildPruned(int root, const std::vector<std::pair<int, int>>& leaves);
     int Assemble(int node);
-    void EvalPruned(int pn, std::size_t depth, double x, double y, IntervalList& out, bool& broken,
-                    bool exact);
+    inline void EvalPruned(int pn, std::size_t depth, double x, double y, IntervalList& out,
+                           bool& broken, bool exact);
     IntervalList& Pool(std::size_t i) { return pool_[i]; }
 
     ScanContext& ctx_;

@@ -31,46 +31,6 @@ EdgeStartList BuildEsl(const std::vector<ShowEdge>& edges, int h) {
     return esl;
 }
 
-void ActiveEdgeList::Start(ActiveEdge& a, double y) {
-    const ShowEdge& s = ctx_.Edge(a.edge);
-    a.stackEdge = ctx_.stackOn && ctx_.useStack[static_cast<std::size_t>(s.body)];
-    if (s.conic) {
-        const Conic2& k = s.shape;
-        a.br = k.c * y + k.d;
-        a.cr = (k.b * y + k.e) * y + k.f;
-        a.dcr = k.b * (2 * y + 1) + k.e;
-    } else {
-        a.dx = -s.line.b / s.line.a;
-        a.x = s.XAt(y);
-    }
-    ++ctx_.c.edgesStarted;
-}
-
-void ActiveEdgeList::Trace(ActiveEdge& a, bool first) {
-    const ShowEdge& s = ctx_.Edge(a.edge);
-    if (!s.conic) {
-        if (!first) a.x += a.dx;
-        return;
-    }
-    if (!first) {
-        a.br += s.shape.c;
-        a.cr += a.dcr;
-        a.dcr += 2 * s.shape.b;
-    }
-    const double A = s.shape.a, B = a.br, C = a.cr;
-    double disc = B * B - 4 * A * C;
-    if (disc < 0) {
-        if (disc < -(64 * kUnit) * (B * B + 4 * std::fabs(A * C))) {
-            a.x = std::numeric_limits<double>::quiet_NaN();
-            return;
-        }
-        disc = 0;
-    }
-    const double r = std::sqrt(disc), q = -0.5 * (B + (B >= 0 ? r : -r));
-    const double minus = B >= 0 ? q / A : C / q, plus = B >= 0 ? C / q : q / A;
-    a.x = s.leg < 0 ? minus : plus;
-}
-
 void ActiveEdgeList::DropFinishingEdges(int j) {
     std::size_t keep = 0;
     for (std::size_t i = 0; i < ael_.size(); ++i) {

@@ -9,9 +9,11 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
+#include "quadrix/engines/scanline/coefficients.h"
 #include "quadrix/engines/scanline/resolver.h"
 #include "quadrix/engines/scanline/scan_context.h"
 
@@ -121,5 +123,46 @@ class ActiveEdgeList {
     std::vector<ActiveEdge> ael_;
     std::vector<ActiveEdge> starting_, merged_;  // starting edges of a row, merge scratch
 };
+
+// Per edge and row, used by passes one and two (vertex_processing.cpp, edge_list.cpp).
+inline void ActiveEdgeList::Start(ActiveEdge& a, double y) {
+    const ShowEdge& s = ctx_.Edge(a.edge);
+    a.stackEdge = ctx_.stackOn && ctx_.useStack[static_cast<std::size_t>(s.body)];
+    if (s.conic) {
+        const Conic2& k = s.shape;
+        a.br = k.c * y + k.d;
+        a.cr = (k.b * y + k.e) * y + k.f;
+        a.dcr = k.b * (2 * y + 1) + k.e;
+    } else {
+        a.dx = -s.line.b / s.line.a;
+        a.x = s.XAt(y);
+    }
+    ++ctx_.c.edgesStarted;
+}
+
+inline void ActiveEdgeList::Trace(ActiveEdge& a, bool first) {
+    const ShowEdge& s = ctx_.Edge(a.edge);
+    if (!s.conic) {
+        if (!first) a.x += a.dx;
+        return;
+    }
+    if (!first) {
+        a.br += s.shape.c;
+        a.cr += a.dcr;
+        a.dcr += 2 * s.shape.b;
+    }
+    const double A = s.shape.a, B = a.br, C = a.cr;
+    double disc = B * B - 4 * A * C;
+    if (disc < 0) {
+        if (disc < -(64 * kUnit) * (B * B + 4 * std::fabs(A * C))) {
+            a.x = std::numeric_limits<double>::quiet_NaN();
+            return;
+        }
+        disc = 0;
+    }
+    const double r = std::sqrt(disc), q = -0.5 * (B + (B >= 0 ? r : -r));
+    const double minus = B >= 0 ? q / A : C / q, plus = B >= 0 ? C / q : q / A;
+    a.x = s.leg < 0 ? minus : plus;
+}
 
 }  // namespace quadrix::scanline

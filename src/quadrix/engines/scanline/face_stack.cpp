@@ -205,7 +205,7 @@ bool FaceStacks::ApplyEdgesBefore(double x, double y) {
 
 // One event (crossings [b, e) of the AEL): derive the stacks marked in pass one/two from
 // the left neighbour's, then verify the event's resulting stack.
-void FaceStacks::ApplyEvent(std::size_t b, std::size_t e, double xq, double y) {
+inline void FaceStacks::ApplyEvent(std::size_t b, std::size_t e, double xq, double y) {
     const std::vector<int>* before = cur_;
     std::size_t last = e;
     bool ending = false;
@@ -240,7 +240,7 @@ void FaceStacks::ApplyEvent(std::size_t b, std::size_t e, double xq, double y) {
 // may still be on its body's boundary: a box whose bottom side y = j + ½ is an edge-on plane
 // covers row j. The face test at Q decides these faces for this row only: they are shown in
 // the span stacks (`shown_`) without entering the carried ones (closedRowFaces counts them).
-void FaceStacks::UpdateClosedRowFaces(std::size_t b, std::size_t e, double xq, double y) {
+inline void FaceStacks::UpdateClosedRowFaces(std::size_t b, std::size_t e, double xq, double y) {
     for (std::size_t k = b; k < e; ++k) {
         const ActiveEdge& a = ael_[k];
         if (!(a.stackEdge && !a.lost && a.ending)) continue;
@@ -261,7 +261,7 @@ void FaceStacks::UpdateClosedRowFaces(std::size_t b, std::size_t e, double xq, d
 
 // The stack the spans after this event are drawn from: the carried one, adjusted by the
 // closed-row faces when there are any on this row.
-void FaceStacks::ShowStack(double xe, double xq, double y) {
+inline void FaceStacks::ShowStack(double xe, double xq, double y) {
     if (closedAdd_.empty() && closedDrop_.empty()) {
         shown_ = cur_;
         return;
@@ -276,7 +276,7 @@ void FaceStacks::ShowStack(double xe, double xq, double y) {
 
 // Pass three, at a's crossing: the faces waiting in a.toggles leave a's stack or enter it in
 // depth order (§5.5.1 at the crossing and at Q).
-void FaceStacks::ResolveToggles(ActiveEdge& a, double xq, double y) {
+inline void FaceStacks::ResolveToggles(ActiveEdge& a, double xq, double y) {
     for (int f : a.toggles) {
         auto it = std::find(a.stack.begin(), a.stack.end(), f);
         if (it != a.stack.end()) {
@@ -298,7 +298,8 @@ void FaceStacks::ResolveToggles(ActiveEdge& a, double xq, double y) {
 // (SeedStack), and for conic legs lost to rounding and found again (TraceAndSort). With
 // `propagate`, a derived set that differs from the carried one marks the next stack edge,
 // so the change is carried right until a derived stack equals the carried one.
-void FaceStacks::DeriveEdge(ActiveEdge& a, const std::vector<int>& prev, double xq, double y) {
+inline void FaceStacks::DeriveEdge(ActiveEdge& a, const std::vector<int>& prev, double xq,
+                                   double y) {
     ++ctx_.c.stackDerivations;
     if (!bandStartRow_) ++ctx_.c.stackRebuilds;
     a.toggles.clear();

@@ -108,11 +108,11 @@ class FaceStacks {
     const std::vector<int>& Shown() const { return *shown_; }
 
   private:
-    void ApplyEvent(std::size_t b, std::size_t e, double xq, double y);
-    void UpdateClosedRowFaces(std::size_t b, std::size_t e, double xq, double y);
-    void ShowStack(double xe, double xq, double y);
-    void ResolveToggles(ActiveEdge& a, double xq, double y);
-    void DeriveEdge(ActiveEdge& a, const std::vector<int>& prev, double xq, double y);
+    inline void ApplyEvent(std::size_t b, std::size_t e, double xq, double y);
+    inline void UpdateClosedRowFaces(std::size_t b, std::size_t e, double xq, double y);
+    inline void ShowStack(double xe, double xq, double y);
+    inline void ResolveToggles(ActiveEdge& a, double xq, double y);
+    inline void DeriveEdge(ActiveEdge& a, const std::vector<int>& prev, double xq, double y);
 
     ScanContext& ctx_;
     FaceOrder& order_;

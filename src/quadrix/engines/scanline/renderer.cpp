@@ -231,26 +231,21 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
             ExactPixel(i, j);
         } else {
             // Units evaluated per pixel (refused bodies, CSG solids) compete with the stack.
+            // (Their order is kept: ties between equal depths of one solid go to the first.)
             RayEvaluator::Hit ph;
             int phSolid = -1;
-            csg_.UpdateTemplateDepths();
-            auto offer = [&](const RayEvaluator::Hit& hit, int solid) {
-                if (hit.t < ph.t || (hit.t == ph.t && solid < phSolid)) {
-                    ph = hit;
-                    phSolid = solid;
-                }
-            };
             for (int u : perPixel_) {
                 const Unit& unit = ctx_.UnitOf(u);
                 if (i < unit.x0 || i > unit.x1) continue;
                 ++ctx_.c.perPixelUnitPixels;
                 RayEvaluator::Hit hit;
-                if (EvaluateUnit(u, i + 0.5, y, hit)) offer(hit, unit.solid);
+                if (EvaluateUnit(u, i + 0.5, y, hit) &&
+                    (hit.t < ph.t || (hit.t == ph.t && unit.solid < phSolid))) {
+                    ph = hit;
+                    phSolid = unit.solid;
+                }
             }
-            for (const CsgSpanUnit& cu : csg_.Units()) {
-                RayEvaluator::Hit hit;
-                if (csg_.CsgPixel(cu, i, y, hit)) offer(hit, ctx_.UnitOf(cu.unit).solid);
-            }
+            if (csg_.Active()) csg_.OfferPixel(i, y, ph, phSolid);
             std::vector<StackFace>& faces = shader_.Faces();
             if (ph.halfSpace >= 0 &&
                 (best < 0 || ph.t < bestT ||

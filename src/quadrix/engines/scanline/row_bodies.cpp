@@ -93,7 +93,7 @@ void RowBodies::BuildRow(int j, const std::vector<ActiveEdge>& ael) {
     spanBodies_.clear();
 }
 
-void RowBodies::AddUnitRanges(int j) {
+inline void RowBodies::AddUnitRanges(int j) {
     for (int u : activeUnits_) {
         const Unit& unit = ctx_.UnitOf(u);
         for (int b : unitPixelBodies_[static_cast<std::size_t>(u)]) {
@@ -109,7 +109,7 @@ void RowBodies::AddUnitRanges(int j) {
     }
 }
 
-void RowBodies::AddSideBody(const SideBody& sb, int j) {
+inline void RowBodies::AddSideBody(const SideBody& sb, int j) {
     const double yc = j + 0.5;
     const int w = ctx_.frame.width;
     const auto k = static_cast<std::size_t>(sb.body);
@@ -132,7 +132,7 @@ void RowBodies::AddSideBody(const SideBody& sb, int j) {
     }
 }
 
-void RowBodies::TouchBody(int b, int j) {
+inline void RowBodies::TouchBody(int b, int j) {
     const auto k = static_cast<std::size_t>(b);
     if (rangeRow_[k] == j) return;
     rangeRow_[k] = j;
@@ -144,7 +144,7 @@ void RowBodies::TouchBody(int b, int j) {
 
 // The units whose bounds hold row j, kept by a sweep over the units sorted on y0 (a band starts
 // it at its first row), so that a row costs the units active there, not all units.
-void RowBodies::UpdateActiveUnits(int j) {
+inline void RowBodies::UpdateActiveUnits(int j) {
     while (unitPos_ < unitsByY_.size() && ctx_.UnitOf(unitsByY_[unitPos_]).y0 <= j) {
         const int u = unitsByY_[unitPos_++];
         const Unit& unit = ctx_.UnitOf(u);
@@ -156,7 +156,7 @@ void RowBodies::UpdateActiveUnits(int j) {
     activeUnits_.resize(keep);
 }
 
-bool RowBodies::SideCovered(int body, double x, double y) {
+inline bool RowBodies::SideCovered(int body, double x, double y) {
     IntervalList l;
     ctx_.eval.BodySet(body, x, y, l);
     return !l.empty();

@@ -53,15 +53,15 @@ class RowBodies {
         int y0 = 0, y1 = -1;
     };
 
-    void UpdateActiveUnits(int j);
+    inline void UpdateActiveUnits(int j);
     // First touch of body b on row j: its x range starts empty and it joins rowBodies_.
-    void TouchBody(int b, int j);
+    inline void TouchBody(int b, int j);
     // Refused bodies (their unit's bounds) and side bodies' coverage of the image sides.
-    void AddUnitRanges(int j);
-    void AddSideBody(const SideBody& sb, int j);
+    inline void AddUnitRanges(int j);
+    inline void AddSideBody(const SideBody& sb, int j);
     // Whether the body's set on the ray has any finite endpoint or covers it (for the x range we
     // need where the body is, not where it is visible: a CSG operand matters where it is).
-    bool SideCovered(int body, double x, double y);
+    inline bool SideCovered(int body, double x, double y);
 
     ScanContext& ctx_;
     std::vector<std::vector<int>> unitPixelBodies_;      // per unit: its refused bodies

@@ -13,28 +13,6 @@ void SpanShader::AddExactFace(const RayEvaluator::Hit& hit, int unit, int sample
     InsertFace(f, sample + 0.5, y);
 }
 
-Vec3 SpanShader::ShadedNormal(StackFace& f, int i, int i0, int i1, int delta, double y, double t) {
-    if (ctx_.settings.fastShading) return f.fastNormal;
-    if (delta <= 1) return Normal(f.halfSpace, i + 0.5, y, t);
-    int g0 = i0 + ((i - i0) / delta) * delta, g1 = std::min(g0 + delta, i1);
-    if (g1 == g0) return Normal(f.halfSpace, i + 0.5, y, t);
-    if (f.g0 != g0 || f.g1 != g1) {
-        // Moving on by one interval: the old right end is the new left end.
-        bool reuse = f.g1 == g0;
-        double t0 = reuse ? 0 : FaceDepthAt(f, g0, y), t1 = FaceDepthAt(f, g1, y);
-        if (!std::isfinite(t0) || !std::isfinite(t1)) return Normal(f.halfSpace, i + 0.5, y, t);
-        f.n0 = reuse ? f.n1 : Normal(f.halfSpace, g0 + 0.5, y, t0);
-        f.n1 = Normal(f.halfSpace, g1 + 0.5, y, t1);
-        f.g0 = g0;
-        f.g1 = g1;
-    }
-    if (i == g0) return f.n0;
-    double s = static_cast<double>(i - g0) / (g1 - g0);
-    Vec3 n = f.n0 * (1 - s) + f.n1 * s;
-    double len = Length(n);
-    return len > 0 ? n / len : f.n0;
-}
-
 void SpanShader::TakeStackFaces(const std::vector<int>& shown, int sample, double y) {
     stackHead_ = faces_.empty() ? 0 : -1;
     ++ctx_.c.stackSpans;
@@ -64,7 +42,7 @@ void SpanShader::TakeStackFaces(const std::vector<int>& shown, int sample, doubl
     for (int b : taken_) bodyTaken_[static_cast<std::size_t>(b)] = 0;
 }
 
-void SpanShader::InsertFace(const StackFace& f, double x, double y) {
+inline void SpanShader::InsertFace(const StackFace& f, double x, double y) {
     ++ctx_.c.faceInserts;
     std::size_t pos = faces_.size();
     FaceRef fr{f.halfSpace, f.sheet};

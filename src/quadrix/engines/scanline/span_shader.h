@@ -160,7 +160,7 @@ class SpanShader {
         return FaceDepth(g, ctx_.c);
     }
     // Face stack insertion in depth order with the §5.5.1 tie-breaks.
-    void InsertFace(const StackFace& f, double x, double y);
+    inline void InsertFace(const StackFace& f, double x, double y);
 
     ScanContext& ctx_;
     std::vector<StackFace> faces_;
@@ -168,5 +168,29 @@ class SpanShader {
     std::vector<int> taken_;
     int stackHead_ = -1;
 };
+
+// Per pixel, so defined here (inlined into the span loop, renderer.cpp).
+inline Vec3 SpanShader::ShadedNormal(StackFace& f, int i, int i0, int i1, int delta, double y,
+                                     double t) {
+    if (ctx_.settings.fastShading) return f.fastNormal;
+    if (delta <= 1) return Normal(f.halfSpace, i + 0.5, y, t);
+    int g0 = i0 + ((i - i0) / delta) * delta, g1 = std::min(g0 + delta, i1);
+    if (g1 == g0) return Normal(f.halfSpace, i + 0.5, y, t);
+    if (f.g0 != g0 || f.g1 != g1) {
+        // Moving on by one interval: the old right end is the new left end.
+        bool reuse = f.g1 == g0;
+        double t0 = reuse ? 0 : FaceDepthAt(f, g0, y), t1 = FaceDepthAt(f, g1, y);
+        if (!std::isfinite(t0) || !std::isfinite(t1)) return Normal(f.halfSpace, i + 0.5, y, t);
+        f.n0 = reuse ? f.n1 : Normal(f.halfSpace, g0 + 0.5, y, t0);
+        f.n1 = Normal(f.halfSpace, g1 + 0.5, y, t1);
+        f.g0 = g0;
+        f.g1 = g1;
+    }
+    if (i == g0) return f.n0;
+    double s = static_cast<double>(i - g0) / (g1 - g0);
+    Vec3 n = f.n0 * (1 - s) + f.n1 * s;
+    double len = Length(n);
+    return len > 0 ? n / len : f.n0;
+}
 
 }  // namespace quadrix::scanline

@@ -51,7 +51,7 @@ bool StackVerifier::PresentAt(int f, double x, double y) const {
     return FaceZ(sf, x, y, z) && InsideOtherLiterals(sf, x, y, z);
 }
 
-bool StackVerifier::FaceZ(const ShowFace& sf, double x, double y, double& z) const {
+inline bool StackVerifier::FaceZ(const ShowFace& sf, double x, double y, double& z) const {
     const FlatHalfSpace& hs = ctx_.scene.halfSpaces[static_cast<std::size_t>(sf.halfSpace)];
     if (hs.isPlane) {
         if (hs.plane.c == 0) return false;
@@ -80,7 +80,8 @@ bool StackVerifier::FaceZ(const ShowFace& sf, double x, double y, double& z) con
     return std::isfinite(z);
 }
 
-bool StackVerifier::InsideOtherLiterals(const ShowFace& sf, double x, double y, double z) const {
+inline bool StackVerifier::InsideOtherLiterals(const ShowFace& sf, double x, double y,
+                                               double z) const {
     const Vec3 p{x, y, z};
     // The face point comes from one plane or quadratic solve (relative error ~1e-15 away from a
     // double root); 1e-9 (1 + |z|) px leaves a wide margin and still resolves Q, which lies at
@@ -156,8 +157,8 @@ bool StackVerifier::VerifyEvent(const std::vector<int>& before, std::vector<Acti
     return rebuilt;
 }
 
-void StackVerifier::CollectToggles(const std::vector<ActiveEdge>& ael, std::size_t b,
-                                   std::size_t e) {
+inline void StackVerifier::CollectToggles(const std::vector<ActiveEdge>& ael, std::size_t b,
+                                          std::size_t e) {
     toggles_.clear();
     for (std::size_t k = b; k < e; ++k) {
         if (!ael[k].Participates()) continue;
@@ -173,12 +174,13 @@ void StackVerifier::CollectToggles(const std::vector<ActiveEdge>& ael, std::size
     }
 }
 
-bool StackVerifier::Toggled(int f) const {
+inline bool StackVerifier::Toggled(int f) const {
     return std::any_of(toggles_.begin(), toggles_.end(),
                        [&](const std::pair<int, bool>& p) { return p.first == f; });
 }
 
-bool StackVerifier::Structural(const std::vector<int>& before, const std::vector<int>& t) const {
+inline bool StackVerifier::Structural(const std::vector<int>& before,
+                                      const std::vector<int>& t) const {
     bool structural = true;
     for (int f : t) structural = structural && (Toggled(f) || InP(f));
     for (int f : before) structural = structural && (Toggled(f) || InT(f));
@@ -186,7 +188,7 @@ bool StackVerifier::Structural(const std::vector<int>& before, const std::vector
     return structural;
 }
 
-bool StackVerifier::FaceTestsAgree(double xq, double y) {
+inline bool StackVerifier::FaceTestsAgree(double xq, double y) {
     bool geometric = true;
     present_.clear();
     for (auto [f, odd] : toggles_) {
@@ -200,8 +202,8 @@ bool StackVerifier::FaceTestsAgree(double xq, double y) {
     return geometric;
 }
 
-void StackVerifier::Rebuild(const std::vector<int>& before, std::vector<int>& t, double xe,
-                            double xq, double y) {
+inline void StackVerifier::Rebuild(const std::vector<int>& before, std::vector<int>& t, double xe,
+                                   double xq, double y) {
     // From the stack before the event: it was verified at its own event.
     derived_.assign(before.begin(), before.end());
     for (std::size_t k = 0; k < toggles_.size(); ++k) {
@@ -216,7 +218,7 @@ void StackVerifier::Rebuild(const std::vector<int>& before, std::vector<int>& t,
 // Order: each entering face against the nearest faces of its own body above and below. A
 // misplaced face is inserted again (InsertInto leaves it in order with its own body's faces) and
 // the scan restarts, a bounded number of times.
-void StackVerifier::FixOrder(std::vector<int>& t, double xe, double xq, double y) {
+inline void StackVerifier::FixOrder(std::vector<int>& t, double xe, double xq, double y) {
     int retries = static_cast<int>(t.size());
     for (std::size_t s = 0; s < t.size(); ++s) {
         const int f = t[s];

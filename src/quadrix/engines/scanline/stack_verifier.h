@@ -52,21 +52,21 @@ class StackVerifier {
     };
 
     // The depth of show-face f's sheet at (x, y); false when it has no point there.
-    bool FaceZ(const ShowFace& sf, double x, double y, double& z) const;
+    inline bool FaceZ(const ShowFace& sf, double x, double y, double& z) const;
     // The face's point (x, y, z) lies definitely inside every other HSI of its body.
-    bool InsideOtherLiterals(const ShowFace& sf, double x, double y, double z) const;
+    inline bool InsideOtherLiterals(const ShowFace& sf, double x, double y, double z) const;
     // The faces the event's stack edges toggle (odd number of crossings) into toggles_.
-    void CollectToggles(const std::vector<ActiveEdge>& ael, std::size_t b, std::size_t e);
-    bool Toggled(int f) const;
+    inline void CollectToggles(const std::vector<ActiveEdge>& ael, std::size_t b, std::size_t e);
+    inline bool Toggled(int f) const;
     // The structural check: t = before ⊕ toggles_.
-    bool Structural(const std::vector<int>& before, const std::vector<int>& t) const;
+    inline bool Structural(const std::vector<int>& before, const std::vector<int>& t) const;
     // The face test at Q for every toggled face (into present_); false when one disagrees.
-    bool FaceTestsAgree(double xq, double y);
+    inline bool FaceTestsAgree(double xq, double y);
     // t rebuilt from `before` with the toggled faces the face test finds.
-    void Rebuild(const std::vector<int>& before, std::vector<int>& t, double xe, double xq,
-                 double y);
+    inline void Rebuild(const std::vector<int>& before, std::vector<int>& t, double xe, double xq,
+                        double y);
     // The entering faces of t against the nearest faces of their own body (order, §5.5.1).
-    void FixOrder(std::vector<int>& t, double xe, double xq, double y);
+    inline void FixOrder(std::vector<int>& t, double xe, double xq, double y);
     bool InP(int f) const { return markP_[static_cast<std::size_t>(f)] == gen_; }
     bool InT(int f) const { return markT_[static_cast<std::size_t>(f)] == gen_; }
 

@@ -46,7 +46,7 @@ void VertexPass::Run(int j) {
 // Where CE is at the height of vertex v (the next one with starting edges): its own top
 // vertex's x if it finishes on this scan line, else x on its show-edge at v's y (the AEL's
 // x are on row j − 1, up to a row below v).
-double VertexPass::CeX(const ActiveEdge& a, int v, int j) const {
+inline double VertexPass::CeX(const ActiveEdge& a, int v, int j) const {
     const int top = FinishingVertex(a, j);
     if (top >= 0) return ctx_.vt.vertices[static_cast<std::size_t>(top)].x;
     const double yv = ctx_.vt.vertices[static_cast<std::size_t>(v)].y;
@@ -57,7 +57,7 @@ double VertexPass::CeX(const ActiveEdge& a, int v, int j) const {
 }
 
 // The vertex v of scan line j where a toggling stack edge finishes, or −1.
-int VertexPass::FinishingVertex(const ActiveEdge& a, int j) const {
+inline int VertexPass::FinishingVertex(const ActiveEdge& a, int j) const {
     if (!a.stackEdge) return -1;
     const auto e = static_cast<std::size_t>(a.edge);
     if (!ctx_.vt.toggling[e]) return -1;
@@ -67,7 +67,7 @@ int VertexPass::FinishingVertex(const ActiveEdge& a, int j) const {
 
 // Appends an edge to the new AEL (pass one); the first stack edge after a fallback is
 // marked for derivation.
-void VertexPass::Emit(ActiveEdge&& a) {
+inline void VertexPass::Emit(ActiveEdge&& a) {
     ael_.push_back(std::move(a));
     ActiveEdge& b = ael_.back();
     if (!b.Participates()) return;
@@ -80,7 +80,7 @@ void VertexPass::Emit(ActiveEdge&& a) {
 
 // A vertex and, recursively, those linked to it by edges within the scan line; then step
 // (3) for all of them: their starting edges enter at CE in x order on row j.
-void VertexPass::ProcessComponent(int v, int j) {
+inline void VertexPass::ProcessComponent(int v, int j) {
     const double y = j + 0.5;
     parity_.clear();
     starts_.clear();
@@ -124,7 +124,7 @@ void VertexPass::ProcessComponent(int v, int j) {
 }
 
 // Steps (1) and (2) of §5.4 for vertex v; step (3) is collected in starts_.
-void VertexPass::ProcessVertex(int v, int j, int depth) {
+inline void VertexPass::ProcessVertex(int v, int j, int depth) {
     vertexRow_[static_cast<std::size_t>(v)] = j;
     ++ctx_.c.stackVertices;
     if (depth > 0) ++ctx_.c.stackVertexRecursions;

@@ -52,15 +52,15 @@ class VertexPass {
 
   private:
     // Where CE is at the height of vertex v (the next one with starting edges).
-    double CeX(const ActiveEdge& a, int v, int j) const;
+    inline double CeX(const ActiveEdge& a, int v, int j) const;
     // The vertex v of scan line j where a toggling stack edge finishes, or −1.
-    int FinishingVertex(const ActiveEdge& a, int j) const;
+    inline int FinishingVertex(const ActiveEdge& a, int j) const;
     // Appends an edge to the new AEL.
-    void Emit(ActiveEdge&& a);
+    inline void Emit(ActiveEdge&& a);
     // A vertex and, recursively, those linked to it by edges within the scan line; then step (3).
-    void ProcessComponent(int v, int j);
+    inline void ProcessComponent(int v, int j);
     // Steps (1) and (2) of §5.4 for vertex v; step (3) is collected in starts_.
-    void ProcessVertex(int v, int j, int depth);
+    inline void ProcessVertex(int v, int j, int depth);
 
     ScanContext& ctx_;
     ActiveEdgeList& list_;
