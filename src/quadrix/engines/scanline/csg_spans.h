@@ -60,7 +60,7 @@ class CsgSpans {
     bool Active() const { return !units_.empty() || !tFaces_.empty(); }
     // At pixel i: the template faces' depths from their conics, then each CSG unit's visible
     // point offered to (hit, solid): taken when strictly nearer, or as near and of a lower solid.
-    void OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid);
+    inline void OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid);  // (_inline.h)
     void AdvanceTemplates() {
         for (StackFace& f : tFaces_) AdvanceFace(f);
     }
@@ -70,8 +70,7 @@ class CsgSpans {
     bool EvaluateExact(int u, double x, double y, RayEvaluator::Hit& hit);
 
   private:
-    // (The functions declared inline here are defined in csg_spans.cpp and used there only: the
-    // per-pixel path, inlined into OfferPixel as when it was one class body.)
+    // (The functions declared inline here are defined in csg_spans_inline.h: the per-pixel path.)
     struct TemplateInterval {
         int lo = -1, hi = -1;        // indices of endpoint faces; −1 = infinite end
         int loTag = -1, hiTag = -1;  // the evaluator's tags of the endpoints

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "quadrix/engines/scanline/csg_spans.h"
+#include "quadrix/engines/scanline/csg_spans_inline.h"
 #include "quadrix/engines/scanline/edge_list.h"
 #include "quadrix/engines/scanline/face_stack.h"
 #include "quadrix/engines/scanline/row_bodies.h"

@@ -72,7 +72,7 @@ inline void AdvanceFace(StackFace& f) {
 }
 
 // The depth of f's sheet from the roots of its quadric on the current ray.
-inline double SheetDepth(const StackFace& f, const QuadraticRoots& roots) {
+[[gnu::always_inline]] inline double SheetDepth(const StackFace& f, const QuadraticRoots& roots) {
     const raycast::RayHalfSpace& r = *f.ray;
     switch (roots.kind) {
         case RootKind::kTwo:
@@ -85,8 +85,9 @@ inline double SheetDepth(const StackFace& f, const QuadraticRoots& roots) {
     }
 }
 
-// Depth from the current state (NaN when the sheet has no point here).
-inline double FaceDepth(const StackFace& f, RendererCounters& c) {
+// Depth from the current state (NaN when the sheet has no point here). (always_inline: the span
+// loop is large enough that GCC stops inlining these per-pixel helpers there.)
+[[gnu::always_inline]] inline double FaceDepth(const StackFace& f, RendererCounters& c) {
     ++c.depthCalcs;
     const raycast::RayHalfSpace& r = *f.ray;
     if (r.isPlane) return r.c != 0 ? -f.planeE / r.c : std::numeric_limits<double>::quiet_NaN();
@@ -142,7 +143,8 @@ class SpanShader {
     }
     // The normal of face f at pixel i of the span [i0, i1] (shading interval `delta`, (6.9)).
     Vec3 ShadedNormal(StackFace& f, int i, int i0, int i1, int delta, double y, double t);
-    void Write(int i, int j, double t, const Vec3& n, int hs, int body, int solid) {
+    [[gnu::always_inline]] void Write(int i, int j, double t, const Vec3& n, int hs, int body,
+                                      int solid) {
         std::size_t idx = ctx_.frame.Index(i, j);
         ctx_.frame.depth[idx] = t;
         ctx_.frame.normal[idx] = n;
