@@ -1,4 +1,5 @@
-// The switches of engine `raycast`'s fast paths (--engine-opt KEY=on|off, parsed in raycast.cpp).
+// The switches of engine `raycast`'s fast paths (--engine-opt KEY=on|off, declared in raycast.cpp's
+// option schema).
 // Each fast path gives Trace's result bit for bit (DESIGN.md "Engines in more detail"), so
 // switching one off changes speed only, never a bit of the frame (RaycastOptions.* tests):
 //   batch      body batches over the pixels of a sub-tile (body_batch.h);
