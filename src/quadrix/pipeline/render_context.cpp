@@ -141,6 +141,8 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     flattenSeconds = SecondsSince(t0);
     if (!flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);
+    const std::string invalid = flat_.Validate();
+    QUADRIX_CHECK(invalid.empty(), "{}", invalid);
     flatValid_ = true;
     flatFor_ = view;
     return true;

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 namespace quadrix {
 
 std::string FormatStatsText(const StatsInput& in) {
@@ -53,7 +55,13 @@ std::string FormatStatsJson(const StatsInput& in) {
     j["composition"] = {{"solids_by_raycast", byRef},
                         {"freeforms_by_isocurve", r.freeformsByIsocurve}};
     json counters = json::object();
-    for (const auto& [name, value] : r.stats.counters) counters[name] = value;
+    for (const auto& [name, value] : r.stats.counters) {
+        // Counts as integers, measures as numbers.
+        if (value == std::floor(value) && std::fabs(value) < 9007199254740992.0)
+            counters[name] = static_cast<long long>(value);
+        else
+            counters[name] = value;
+    }
     j["counters"] = counters;
     j["warnings"] = r.stats.warnings;
     j["notes"] = r.notes;
