@@ -23,6 +23,7 @@ struct RenderArgs {
     // Importers and rt-style views (docs/import.md).
     std::vector<std::string> top;
     bool strict = false;
+    bool allowMissing = false;
     std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
     std::string rtView;                                     // file of rt view commands
 };

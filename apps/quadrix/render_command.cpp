@@ -55,7 +55,11 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_flag("--strict", args.strict,
-                  "Primitives that cannot be drawn exactly (torus, ...) are an error");
+                  "Primitives that cannot be drawn are an error even with --allow-missing (the "
+                  "default is already an error)");
+    cmd->add_flag("--allow-missing", args.allowMissing,
+                  "Draw an imported model without the primitives that cannot be drawn (torus, "
+                  "...): a warning and a count in --stats instead of an error");
     cmd->add_option("--az", args.az, "Azimuth in degrees (rt convention), orthographic fit")
         ->expected(1);
     cmd->add_option("--el", args.el, "Elevation in degrees (rt convention)")->expected(1);
@@ -126,6 +130,7 @@ int RunRender(const RenderArgs& args) {
     po.threads = args.threads;
     po.topObjects = args.top;
     po.strict = args.strict;
+    po.allowMissing = args.allowMissing;
     if (auto e = RtViewOptions(args, po, diags); !e.empty()) {
         diags.Print(stderr);
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
@@ -182,8 +187,9 @@ int RunRender(const RenderArgs& args) {
                      result.readSeconds, result.flattenSeconds, result.renderSeconds,
                      writeSeconds);
         for (const auto& [path, r] : result.inputs.imports)
-            std::fprintf(stderr, "%s: %s, %d solids drawn; %s\n", path.c_str(), r.format.c_str(),
-                         r.solids, r.CensusText().c_str());
+            std::fprintf(stderr, "%s: %s, %d solids drawn; %s%s%s\n", path.c_str(),
+                         r.format.c_str(), r.solids, r.CensusText().c_str(),
+                         r.skipped.empty() ? "" : "; left out: ", r.SkippedText().c_str());
         for (const auto& [name, value] : result.stats.counters)
             std::fprintf(stderr, "  %s: %.17g\n", name.c_str(), value);
         if (!result.stats.report.empty()) std::fprintf(stderr, "%s\n", result.stats.report.c_str());

@@ -40,6 +40,7 @@ bool ReadAndFlatten(const PipelineOptions& options, PipelineResult& result, Diag
         import::InputOptions io;
         io.import.topObjects = options.topObjects;
         io.import.strict = options.strict;
+        io.import.allowMissing = options.allowMissing;
         import::ReadSceneInputs(options.scenePaths, io, result.scene, diags, result.inputs);
     }
     result.readSeconds = SecondsSince(t0);
