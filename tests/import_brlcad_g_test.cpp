@@ -405,5 +405,127 @@ TEST(ImportBrlcadG, V4BinaryIsRefusedClearly) {
     EXPECT_NE(AllMessages(d).find("v4 binary"), std::string::npos) << AllMessages(d);
 }
 
+// Meshes and arbn are planes (brlcad/mesh_solid.h): a solid-mode bot cube, a plate-mode
+// triangle, an arbn tetrahedron; read from v5 text, written to .g and read back the same.
+TEST(ImportBrlcadG, BotAndArbnAreDrawnAndRoundTrip) {
+    const std::string text =
+        "title {meshes}\n"
+        "put {cube.bot} bot mode volume orient rh V { {0 0 0} {10 0 0} {10 10 0} {0 10 0} "
+        "{0 0 10} {10 0 10} {10 10 10} {0 10 10} } F { {0 2 1} {0 3 2} {4 5 6} {4 6 7} {0 1 5} "
+        "{0 5 4} {1 2 6} {1 6 5} {2 3 7} {2 7 6} {3 0 4} {3 4 7} }\n"
+        "put {plate.bot} bot mode plate orient no V { {20 0 0} {30 0 0} {20 10 0} } F { {0 1 2} } "
+        "T { 2 } fm 0\n"
+        "put {tet} arbn N 4 P0 {-1 0 0 0} P1 {0 -1 0 0} P2 {0 0 -1 0} P3 {1 1 1 1}\n"
+        "put {open.bot} bot mode volume orient rh V { {0 0 0} {1 0 0} {0 1 0} } F { {0 1 2} }\n"
+        "put {a.r} comb region yes tree {l cube.bot}\n"
+        "put {b.r} comb region yes tree {l plate.bot}\n"
+        "put {c.r} comb region yes tree {l tet {1 0 0 40  0 1 0 0  0 0 1 0  0 0 0 1}}\n"
+        "put {all.g} comb region no tree {u {u {l a.r} {l b.r}} {l c.r}}\n"
+        "put {bad.r} comb region yes tree {l open.bot}\n";
+    auto inside = [](const scene::Scene& sc, const std::string& id, double x, double y, double z) {
+        const Vec3 p{x, z, y};
+        for (const scene::Csg& c : sc.top.csgs) {
+            if (c.id != id) continue;
+            std::function<bool(int)> node = [&](int n) {
+                const scene::CsgNode& nd = c.nodes[n];
+                if (nd.isLeaf) {
+                    for (const scene::Literal& l : sc.top.bodies[nd.ref.index].literals) {
+                        const scene::HalfSpace& h = sc.top.halfSpaces[l.halfSpace];
+                        double v = h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
+                                                                            : h.quadric.Evaluate(p);
+                        if ((v <= 0) == l.complemented) return false;
+                    }
+                    return true;
+                }
+                bool a = node(nd.left), b = node(nd.right);
+                return nd.op == scene::CsgOp::kUnion          ? a || b
+                       : nd.op == scene::CsgOp::kIntersection ? a && b
+                                                              : a && !b;
+            };
+            return node(c.root);
+        }
+        return false;
+    };
+    ImportOptions top;
+    top.topObjects = {"all.g"};
+    for (int pass = 0; pass < 2; ++pass) {
+        std::string input = text;
+        if (pass == 1) {
+            Database db;
+            Diagnostics d;
+            ASSERT_TRUE(brlcad::ParseV5(text, "m.asc", db, d)) << AllMessages(d);
+            auto g = brlcad::WriteG(db, nullptr);
+            ASSERT_TRUE(g);
+            Database back;
+            ASSERT_TRUE(brlcad::ParseG(*g, "m.g", back, d)) << AllMessages(d);
+            EXPECT_EQ(Objects(back), Objects(db));
+            input = *g;
+        }
+        scene::Scene s;
+        Diagnostics d;
+        ImportReport r;
+        ASSERT_TRUE(ImportBrlcad(input, "m", top, s, d, r)) << AllMessages(d);
+        EXPECT_EQ(r.solids, 3);
+        EXPECT_TRUE(inside(s, "a.r", 5, 5, 5));
+        EXPECT_FALSE(inside(s, "a.r", 5, 5, 10.1));
+        EXPECT_TRUE(inside(s, "b.r", 21, 1, 0.9));  // 2 mm plate centred on z = 0
+        EXPECT_FALSE(inside(s, "b.r", 21, 1, 1.1));
+        EXPECT_FALSE(inside(s, "b.r", 29, 9, 0));  // beyond the hypotenuse
+        EXPECT_TRUE(inside(s, "c.r", 40.2, 0.2, 0.2));
+        EXPECT_FALSE(inside(s, "c.r", 40.5, 0.5, 0.5));
+        // The arbn's box comes from its vertices: x in [40, 41] (Quadrix x = model x).
+        EXPECT_NEAR(r.bounds.hi.x, 41, 1e-12);
+        EXPECT_NEAR(r.bounds.lo.x, 0, 1e-12);
+        // An open mesh bounds no solid: an error naming it, unless allowMissing.
+        ImportOptions bad;
+        bad.topObjects = {"bad.r"};
+        scene::Scene s2;
+        Diagnostics d2;
+        ImportReport r2;
+        EXPECT_FALSE(ImportBrlcad(input, "m", bad, s2, d2, r2));
+        EXPECT_NE(AllMessages(d2).find("primitive 'open.bot' (bot)"), std::string::npos)
+            << AllMessages(d2);
+        EXPECT_NE(AllMessages(d2).find("closed mesh"), std::string::npos);
+        if (pass == 0)
+            EXPECT_NE(AllMessages(d2).find("m:5:1: error"), std::string::npos) << AllMessages(d2);
+        else
+            EXPECT_NE(AllMessages(d2).find("(object at byte "), std::string::npos)
+                << AllMessages(d2);
+    }
+}
+
+// The command line: `quadrix render model.g --top ...`, and the error for tori without
+// --allow-missing.
+TEST(ImportBrlcadG, RenderCommandReadsG) {
+    if (!std::filesystem::exists(kSampleDir)) GTEST_SKIP() << "no " << kSampleDir;
+    testing::TempDir tmp;
+    for (const char* f : {"operators.asc", "truck.asc"}) {
+        Database a;
+        Diagnostics d;
+        ASSERT_TRUE(ParseText(ReadAll(std::string(kSampleDir) + "/" + f), a, d));
+        auto g = brlcad::WriteG(a, nullptr);
+        ASSERT_TRUE(g);
+        const std::string path = tmp.Write(std::filesystem::path(f).stem().string() + ".g", *g);
+        const std::string out = tmp.File("o.png");
+        std::filesystem::remove(out);
+        const std::string cmd = testing::QuadrixBinary() + " render " + path + " -o " + out +
+                                " --size 64x64 --az 35 --el 25";
+        if (std::string(f) == "operators.asc") {
+            auto r = testing::RunShell(cmd + " --top subtraction");
+            EXPECT_EQ(r.exitCode, 0) << r.err;
+            EXPECT_TRUE(testing::FileExists(out));
+        } else {
+            auto r = testing::RunShell(cmd + " --top all");
+            EXPECT_EQ(r.exitCode, 1);
+            EXPECT_NE(r.err.find("(tor) (object at byte"), std::string::npos) << r.err;
+            EXPECT_FALSE(testing::FileExists(out));
+            auto ok = testing::RunShell(cmd + " --top all --allow-missing --stats");
+            EXPECT_EQ(ok.exitCode, 0) << ok.err;
+            EXPECT_NE(ok.err.find("BRL-CAD v5 binary"), std::string::npos) << ok.err;
+            EXPECT_NE(ok.err.find("left out: tor ×11"), std::string::npos) << ok.err;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace quadrix::import

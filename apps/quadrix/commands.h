@@ -37,6 +37,7 @@ struct ExportArgs {
     std::string size = "512x512";
     std::string view;
     bool mask = false;
+    bool allowMissing = false;
 };
 void AddExportCommand(CLI::App& app, ExportArgs& args);
 int RunExport(const ExportArgs& args);
