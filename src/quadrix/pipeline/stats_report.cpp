@@ -18,8 +18,8 @@ std::string FormatStatsText(const StatsInput& in) {
         r.seconds, in.shadeWriteSeconds);
     for (const auto& [path, imp] : ctx.Inputs().imports)
         s += fmt::format("{}: {}, {} solids drawn; {}{}{}\n", path, imp.format, imp.solids,
-                         imp.CensusText(), imp.skipped.empty() ? "" : "; left out: ",
-                         imp.SkippedText());
+                         imp.CensusText(),
+                         imp.skipped.empty() ? "" : "; left out: ", imp.SkippedText());
     for (const UndrawnSolid& u : r.byReference)
         s += fmt::format("  by raycast: solid '{}' ({})\n",
                          flat.solids[static_cast<std::size_t>(u.solid)].name, u.reason);
