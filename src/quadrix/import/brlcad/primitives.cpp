@@ -245,6 +245,8 @@ ConvertResult Tgc(const Primitive& p) {
         ConvertResult r;
         r.status = ConvertResult::Status::kNonQuadric;
         r.censusName = "tgc (quartic)";
+        r.problem =
+            "its end ellipses are not similar, which makes a quartic surface (not drawn yet)";
         return r;
     }
     if (la == 0 || lb == 0) {  // apex at the base: describe it from the top end
@@ -261,6 +263,8 @@ ConvertResult Tgc(const Primitive& p) {
         ConvertResult r;
         r.status = ConvertResult::Status::kNonQuadric;
         r.censusName = "tgc (quartic)";
+        r.problem =
+            "its end ellipses are not similar, which makes a quartic surface (not drawn yet)";
         return r;
     }
     LocalFrame f(v, a, b, h);
@@ -451,8 +455,13 @@ ConvertResult ConvertPrimitive(const Primitive& p) {
         r = Hyp(p);
     else if (t == "part")
         r = Part(p);
-    else
+    else {
         r.status = ConvertResult::Status::kNonQuadric;
+        r.problem = t == "tor"    ? "a torus is a quartic surface (not drawn yet)"
+                    : t == "eto"  ? "an elliptical torus is a quartic surface (not drawn yet)"
+                    : t == "pipe" ? "a pipe's bends are tori, quartic surfaces (not drawn yet)"
+                                  : "this primitive type is not made of quadrics and planes";
+    }
     if (r.censusName.empty()) r.censusName = t;
     return r;
 }
