@@ -98,6 +98,7 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
         import::InputOptions io;
         io.import.topObjects = request.topObjects;
         io.import.strict = request.strict;
+        io.import.allowMissing = request.allowMissing;
         import::ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
     }
     readSeconds = SecondsSince(t0);
