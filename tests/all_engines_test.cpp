@@ -78,6 +78,32 @@ const std::vector<CorpusScene>& Corpus() {
          "solid box right =from 0 0 0 =to 2 1 1;\n"
          "solid box mid =from -1 0 0 =to 1 1.5 .5;\n"
          "csg joined (left | right | mid); view front dop .3 .4 -1;"},
+        // Issue 23's coincident cases. A − A: two bodies on one sphere, and two spheres with the
+        // same coefficients; nothing is left (the box beside keeps the scene visible).
+        {"a_minus_a",
+         "quadric unit <1 1 1 0 0 0 0 0 0 -1>; body one (unit); body two (unit);\n"
+         "csg none (one - two);\n"
+         "solid sphere ball1 =at 0 0 0 =r 1; solid sphere ball2 =at 0 0 0 =r 1;\n"
+         "csg gone (ball1 - ball2);\n"
+         "solid box side =from 1.5 -1 -1 =to 3 1 1; view front dop .3 .4 -1;"},
+        // A body holding p and !p is the plane z = 0 only: empty as a regular set.
+        {"body_s_p_not_p",
+         "quadric unit <1 1 1 0 0 0 0 0 0 -1>; plane zero <0 0 1 0>;\n"
+         "body thin (unit zero !zero);\n"
+         "solid box side =from 1.5 -1 -1 =to 3 1 1; view front dop .3 .4 -1;"},
+        // Pockets sharing the block's front and back faces (z = 0 and z = 1): the pockets' far
+        // (near) faces show through.
+        {"pockets_shared_faces",
+         "solid box block =from -2 -1 0 =to 2 1 1;\n"
+         "solid box front =from -1.5 -.5 0 =to -.2 .5 .5;\n"
+         "solid box back =from .2 -.5 .5 =to 1.5 .5 1;\n"
+         "csg pocketed (block - front - back); view front dop .3 .4 -1;"},
+        // An intersection and a difference of boxes sharing faces (x = .5, y = -.5, z = 0).
+        {"shared_faces_intersection",
+         "solid box block =from -1 -1 0 =to 1 1 1;\n"
+         "solid box slab =from -2 -.5 0 =to .5 .5 .6;\n"
+         "solid box notch =from 0 -.5 0 =to .5 0 .6;\n"
+         "csg part ((block & slab) - notch); view front dop .3 .4 -1;"},
         {"intersection_difference",
          "solid sphere ball =at 0 0 0 =r 1.2;\n"
          "solid box cube =from -1 -1 -1 =to 1 1 1;\n"

@@ -299,7 +299,11 @@ class Compiler {
             if (ValidBody(f.primitive))
                 for (const FlatLiteral& l : Body(f.primitive).literals)
                     exits = exits || (!Opaque(l) && !HoldsOver(l, productBox));
-        for (std::size_t i = 0; i < p.size(); ++i) {
+        // Terms in reverse factor order: ZTEST keeps the earlier patch on an exact tie, and
+        // raycast's left fold ((X0 ∩ X1) − X2 …) gives a tie of entries to the later factor (an
+        // intersection is opened by its right operand's start on a tie, a difference reopened at
+        // the subtrahend's exit: math/interval_list.h), so coincident faces name its surface.
+        for (std::size_t i = p.size(); i-- > 0;) {
             const csg::Factor& xi = p[i];
             if (!ValidBody(xi.primitive)) continue;  // an empty − factor draws nothing
             Box3 termBox = productBox.Intersected(BoxOf(xi.primitive));
@@ -333,7 +337,7 @@ class Compiler {
                         ++stats_.prunedPatches;
                         continue;
                     }
-                    EmitPatch(xi.primitive, k, exitFace, paring,
+                    EmitPatch(xi.primitive, k, exitFace, face == 1, paring,
                               exits ? Others(p, termBox) : std::vector<const csg::Product*>{},
                               patchRect, solid);
                 }
@@ -432,7 +436,9 @@ class Compiler {
         return RectOf(b).Intersected(rect);
     }
 
-    void EmitPatch(int bodyIndex, std::size_t k, bool exitFace,
+    // `productExit`: the patch's points are exits of the product (face 1), else entries; for a −
+    // factor that is the opposite of `exitFace`, the sheet of the factor's own literal.
+    void EmitPatch(int bodyIndex, std::size_t k, bool exitFace, bool productExit,
                    const std::vector<csg::Factor>& paring,
                    const std::vector<const csg::Product*>& others, const PixelRect& rect,
                    std::int32_t solid) {
@@ -450,35 +456,47 @@ class Compiler {
         // Early depth test: ZMIN does not change within a block, so dropping hidden pixels now
         // gives the same result as the final test and spares them the paring.
         Emit(Opcode::kZTest, kF1);
-        // The patch is the part of the sheet inside the primitive's other literals.
+        // The patch is the part of the sheet inside the primitive's other literals. The tests
+        // are one-sided (InsideMode): a point at depth z is an entry (exit) of the product iff
+        // every other factor holds, or for a − factor does not hold, just beyond (before) z, which
+        // is what the regularised interval sets of raycast give on coincident surfaces (a door
+        // exactly as thick as its wall leaves nothing; `body (s p !p)` is empty). The sheet is an
+        // entry (exit) of the primitive itself where its other literals hold beyond (before) it.
+        const std::uint8_t ownSide = exitFace ? kInsideBefore : kInsideAfter;
         for (std::size_t m = 0; m < body.literals.size(); ++m)
-            if (m != k) EmitInside(body.literals[m], kF1);
+            if (m != k) EmitInside(body.literals[m], kF1, ownSide);
+        const std::uint8_t side = productExit ? kInsideBefore : kInsideAfter;
         // CSG operation: pare with the other factors of the product.
         for (const csg::Factor& y : paring) {
             const FlatBody& other = Body(y.primitive);
             if (!y.subtracted) {
-                for (const FlatLiteral& l : other.literals) EmitInside(l, kF1);
+                for (const FlatLiteral& l : other.literals) EmitInside(l, kF1, side);
             } else {
                 Emit(Opcode::kFlagCopy, kF2, kF1);
-                for (const FlatLiteral& l : other.literals) EmitInside(l, kF2);
+                for (const FlatLiteral& l : other.literals) EmitInside(l, kF2, side);
                 Emit(Opcode::kFlagAndNot, kF1, kF2);
             }
         }
         // With exit terms: keep only points outside the solid's other products (F2 = inside Q,
-        // F3 = inside a − factor of Q). "Inside Q" is its interior along the ray, so that a
-        // boundary point shared by two products (the same literal's root, the same double) is
-        // kept. The root unit does these tests in both modes: approximate depths err outward
-        // (near sheets nearer, far sheets farther), so shared boundaries stay outside.
+        // F3 = inside a − factor of Q). An entry (exit) of this product is one of the union iff
+        // Q does not hold just before (beyond) it, so Q is tested on the other side; a boundary
+        // point shared by two products (the same literal's root, the same double) is kept where
+        // the union changes there. The root unit does these tests in both modes: approximate
+        // depths err outward (near sheets nearer, far sheets farther), so shared boundaries stay
+        // outside.
+        const std::uint8_t otherSide = productExit ? kInsideAfter : kInsideBefore;
         for (const csg::Product* q : others) {
             Emit(Opcode::kFlagCopy, kF2, kF1);
             for (const csg::Factor& y : *q) {
                 if (!ValidBody(y.primitive)) continue;
                 const FlatBody& other = Body(y.primitive);
                 if (!y.subtracted) {
-                    for (const FlatLiteral& l : other.literals) EmitRootUnitInside(l, kF2, true);
+                    for (const FlatLiteral& l : other.literals)
+                        EmitRootUnitInside(l, kF2, otherSide);
                 } else {
                     Emit(Opcode::kFlagCopy, kF3, kF2);
-                    for (const FlatLiteral& l : other.literals) EmitRootUnitInside(l, kF3, false);
+                    for (const FlatLiteral& l : other.literals)
+                        EmitRootUnitInside(l, kF3, otherSide);
                     Emit(Opcode::kFlagAndNot, kF2, kF3);
                 }
             }
@@ -689,23 +707,25 @@ class Compiler {
         for (int i = 0; i < 6; ++i) in.q[i] = q[static_cast<std::size_t>(i)];
     }
 
-    void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, bool open) {
+    void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
         if (options_.mode != DepthMode::kExact) ++stats_.extendedFallbacks;
-        Emit(Opcode::kInside, f, open ? 1 : 0, LiteralIndex(lit));
+        Emit(Opcode::kInside, f, mode, LiteralIndex(lit));
     }
 
-    // F[f] ∧= (ZTEMP inside literal `lit`), on pixels where F[f] is set.
-    void EmitInside(const FlatLiteral& lit, std::uint8_t f) {
+    // F[f] ∧= (ZTEMP inside literal `lit` in the sense of `mode`, an InsideMode), on pixels where
+    // F[f] is set. f is F1 or F2 (F3 is scratch here). The approximate machine tests planes
+    // one-sidedly too (its plane depths are exact); quadric strips are closed tests.
+    void EmitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
         std::int32_t li = LiteralIndex(lit);
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
         if (options_.mode == DepthMode::kExact) {
-            Emit(Opcode::kInside, f, 0, li);
+            Emit(Opcode::kInside, f, mode, li);
             return;
         }
         if (hs.isPlane) {
             const Plane& pl = hs.plane;
             if (!pl.AllFinite()) {
-                Emit(Opcode::kInside, f, 0, li);
+                Emit(Opcode::kInside, f, mode, li);
                 return;
             }
             if (pl.c == 0) {  // inside iff A x + B y + D <= 0 along the whole ray
@@ -715,13 +735,22 @@ class Compiler {
             }
             Coeffs r{0, 0, 0, -pl.a / pl.c, -pl.b / pl.c, -pl.d / pl.c};
             bool below = (pl.c > 0) != lit.complemented;  // inside is z <= r
-            EmitQ(below ? Opcode::kZKeepLE : Opcode::kZKeepGE, f, r);
+            // The endpoint is excluded when the tested side lies beyond it: z < r is ¬(z >= r).
+            bool strict = below ? mode == kInsideAfter || mode == kInsideOpen
+                                : mode == kInsideBefore || mode == kInsideOpen;
+            if (!strict) {
+                EmitQ(below ? Opcode::kZKeepLE : Opcode::kZKeepGE, f, r);
+                return;
+            }
+            Emit(Opcode::kFlagCopy, kF3, f);
+            EmitQ(below ? Opcode::kZKeepGE : Opcode::kZKeepLE, kF3, r);
+            Emit(Opcode::kFlagAndNot, f, kF3);
             return;
         }
         RayForm r = RayFormOf(hs.quadric);
         if (r.c == 0 || !hs.quadric.AllFinite()) {
             ++stats_.extendedFallbacks;
-            Emit(Opcode::kInside, f, 0, li);
+            Emit(Opcode::kInside, f, mode, li);
             return;
         }
         // F3 = between the sheets (Δ > 0, z >= near envelope, z <= far envelope), then inside is

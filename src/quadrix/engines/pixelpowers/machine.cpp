@@ -41,16 +41,34 @@ double Qee(const double* q, double x, double y) {
 // C = 0, empty both ways for non-finite values, closure of the complement when complemented), so
 // results stay bit-identical to the oracle; this only skips the call and the interval bookkeeping.
 bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y, double z,
-                 bool open) {
+                 std::uint8_t mode) {
     double e = h.px * x + h.py * y + h.pd;
     if (!std::isfinite(e) || !std::isfinite(h.c)) return false;
-    if (h.c == 0) return (e <= 0) != complemented;
+    if (h.c == 0) return (e <= 0) != complemented;  // all of the ray or nothing: every mode
     double r = -e / h.c;
     bool below = (h.c > 0) != complemented;  // the set is (−∞, r] (else [r, ∞))
     // A piece with lo == hi is dropped (regularised), which only happens for r = ±∞.
-    // `open`: the interior along the ray (the endpoint itself excluded).
-    if (below) return r > -HUGE_VAL && (open ? z < r : z <= r);
-    return r < HUGE_VAL && (open ? z > r : z >= r);
+    // The mode (InsideMode) decides whether the endpoint r itself counts.
+    if (below) {
+        bool closedEnd = mode == kInsideClosed || mode == kInsideBefore;
+        return r > -HUGE_VAL && (closedEnd ? z <= r : z < r);
+    }
+    bool closedEnd = mode == kInsideClosed || mode == kInsideAfter;
+    return r < HUGE_VAL && (closedEnd ? z >= r : z > r);
+}
+
+// z in the piece v in the sense of `mode` (InsideMode).
+bool InPiece(const Interval& v, double z, std::uint8_t mode) {
+    switch (mode) {
+        case kInsideOpen:
+            return v.lo < z && z < v.hi;
+        case kInsideAfter:
+            return v.lo <= z && z < v.hi;
+        case kInsideBefore:
+            return v.lo < z && z <= v.hi;
+        default:
+            return v.lo <= z && z <= v.hi;
+    }
 }
 
 // The plane's finite entry (exit) point, if any.
@@ -247,11 +265,11 @@ class TileRunner {
             }
             case Opcode::kInside: {
                 const MachineLiteral& lit = Literal(in.arg);
-                bool open = in.b != 0;
+                const std::uint8_t mode = in.b;
                 if (lit.isPlane) {
                     ForEach(rect, [&](std::size_t k, double x, double y) {
                         if (!fa[k]) return;
-                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], open);
+                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], mode);
                         ++ops;
                     });
                     break;
@@ -263,10 +281,7 @@ class TileRunner {
                     ++ops;
                     double z = r_.ztemp[k];
                     bool in = false;
-                    for (int p = 0; p < s.count; ++p) {
-                        const Interval& v = s.piece[p];
-                        in = in || (open ? v.lo < z && z < v.hi : v.lo <= z && z <= v.hi);
-                    }
+                    for (int p = 0; p < s.count; ++p) in = in || InPiece(s.piece[p], z, mode);
                     fa[k] = in;
                 });
                 counters_.rootSolves += ops;

@@ -811,15 +811,16 @@ class ScanRenderer {
         ++c_.exactPixels;
         const double x = i + 0.5, y = j + 0.5;
         RayEvaluator::Hit best;
-        int bestSolid = -1;
+        int bestSolid = -1, bestUnit = -1;
         for (int u : activeUnits_) {
             const Unit& unit = units_[static_cast<std::size_t>(u)];
             if (i < unit.x0 || i > unit.x1) continue;
             RayEvaluator::Hit hit;
             if (EvaluateUnit(u, x, y, hit) &&
-                (hit.t < best.t || (hit.t == best.t && unit.solid < bestSolid))) {
+                (hit.t < best.t || (hit.t == best.t && u < bestUnit))) {  // UnitWinsTie
                 best = hit;
                 bestSolid = unit.solid;
+                bestUnit = u;
             }
         }
         if (best.halfSpace < 0) return;
@@ -1226,9 +1227,9 @@ class ScanRenderer {
                     fallback = true;
                     continue;
                 }
-                // Strictly nearer wins; exact ties go to the lower solid, then stack order.
+                // Strictly nearer wins; exact ties go to the lower unit (UnitWinsTie).
                 if (f.depth < bestT || (f.depth == bestT && best >= 0 &&
-                                        f.solid < stack_[static_cast<std::size_t>(best)].solid)) {
+                                        f.unit < stack_[static_cast<std::size_t>(best)].unit)) {
                     best = static_cast<int>(s);
                     bestT = f.depth;
                 }
@@ -1240,7 +1241,7 @@ class ScanRenderer {
             } else {
                 // Units evaluated per pixel (refused bodies, CSG solids) compete with the stack.
                 RayEvaluator::Hit ph;
-                int phSolid = -1;
+                int phSolid = -1, phUnit = -1;
                 // Template faces: the two ends of an operand's interval are often the two
                 // sheets of one quadric, with the same incremental state: one solve for both.
                 for (std::size_t k = 0; k < tFaces_.size(); ++k) {
@@ -1255,10 +1256,11 @@ class ScanRenderer {
                     ++c_.depthCalcs;
                     f.depth = SheetDepth(f, lastRoots_);
                 }
-                auto offer = [&](const RayEvaluator::Hit& hit, int solid) {
-                    if (hit.t < ph.t || (hit.t == ph.t && solid < phSolid)) {
+                auto offer = [&](const RayEvaluator::Hit& hit, int u) {
+                    if (hit.t < ph.t || (hit.t == ph.t && u < phUnit)) {  // UnitWinsTie
                         ph = hit;
-                        phSolid = solid;
+                        phSolid = units_[static_cast<std::size_t>(u)].solid;
+                        phUnit = u;
                     }
                 };
                 for (int u : perPixel_) {
@@ -1266,16 +1268,15 @@ class ScanRenderer {
                     if (i < unit.x0 || i > unit.x1) continue;
                     ++c_.perPixelUnitPixels;
                     RayEvaluator::Hit hit;
-                    if (EvaluateUnit(u, i + 0.5, y, hit)) offer(hit, unit.solid);
+                    if (EvaluateUnit(u, i + 0.5, y, hit)) offer(hit, u);
                 }
                 for (const CsgSpanUnit& cu : csgUnits_) {
                     RayEvaluator::Hit hit;
-                    if (CsgPixel(cu, i, y, hit))
-                        offer(hit, units_[static_cast<std::size_t>(cu.unit)].solid);
+                    if (CsgPixel(cu, i, y, hit)) offer(hit, cu.unit);
                 }
                 if (ph.halfSpace >= 0 &&
                     (best < 0 || ph.t < bestT ||
-                     (ph.t == bestT && phSolid < stack_[static_cast<std::size_t>(best)].solid))) {
+                     (ph.t == bestT && phUnit < stack_[static_cast<std::size_t>(best)].unit))) {
                     Write(i, j, ph.t, Normal(ph.halfSpace, i + 0.5, y, ph.t), ph.halfSpace, ph.body,
                           phSolid);
                 } else if (best >= 0) {

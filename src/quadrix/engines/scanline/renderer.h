@@ -109,6 +109,11 @@ namespace quadrix::scanline {
 
 // Something the renderer draws: a body on its own (a solid of one body, or one operand of a
 // union of bodies), or a CSG solid whose tree is combined per pixel.
+// Units are numbered by solid and, within a union of bodies, in operand order
+// (scanline_engine.cpp), so "the lower unit wins an exact depth tie" (UnitWinsTie in
+// renderer.cpp) is raycast's rule: the lower solid, then the leftmost operand of the union (a
+// union of interval lists is opened by the first start, the left operand's on a tie:
+// math/interval_list.h). Coplanar faces of a union's bodies then name raycast's surface.
 struct Unit {
     enum class Kind : std::uint8_t { kBody, kCsg } kind = Kind::kBody;
     int solid = -1;
