@@ -714,7 +714,8 @@ class Compiler {
 
     // F[f] ∧= (ZTEMP inside literal `lit` in the sense of `mode`, an InsideMode), on pixels where
     // F[f] is set. f is F1 or F2 (F3 is scratch here). The approximate machine tests planes
-    // one-sidedly too (its plane depths are exact); quadric strips are closed tests.
+    // one-sidedly too (ZLT/ZGT; its plane depths are those of the plane's own ZLOAD); its quadric
+    // strips are closed tests of approximate sheets.
     void EmitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
         std::int32_t li = LiteralIndex(lit);
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
@@ -735,16 +736,12 @@ class Compiler {
             }
             Coeffs r{0, 0, 0, -pl.a / pl.c, -pl.b / pl.c, -pl.d / pl.c};
             bool below = (pl.c > 0) != lit.complemented;  // inside is z <= r
-            // The endpoint is excluded when the tested side lies beyond it: z < r is ¬(z >= r).
+            // The endpoint is excluded when the tested side lies beyond it (InsideMode).
             bool strict = below ? mode == kInsideAfter || mode == kInsideOpen
                                 : mode == kInsideBefore || mode == kInsideOpen;
-            if (!strict) {
-                EmitQ(below ? Opcode::kZKeepLE : Opcode::kZKeepGE, f, r);
-                return;
-            }
-            Emit(Opcode::kFlagCopy, kF3, f);
-            EmitQ(below ? Opcode::kZKeepGE : Opcode::kZKeepLE, kF3, r);
-            Emit(Opcode::kFlagAndNot, f, kF3);
+            Opcode op = below ? (strict ? Opcode::kZKeepLT : Opcode::kZKeepLE)
+                              : (strict ? Opcode::kZKeepGT : Opcode::kZKeepGE);
+            EmitQ(op, f, r);
             return;
         }
         RayForm r = RayFormOf(hs.quadric);

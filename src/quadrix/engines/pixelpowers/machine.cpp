@@ -93,6 +93,8 @@ bool ClearsF1(const Instruction& in) {
         case Opcode::kQeeKeepNonPositive:
         case Opcode::kZKeepGE:
         case Opcode::kZKeepLE:
+        case Opcode::kZKeepGT:
+        case Opcode::kZKeepLT:
         case Opcode::kFlagAnd:
         case Opcode::kFlagAndNot:
         case Opcode::kFlagClear:
@@ -223,6 +225,16 @@ class TileRunner {
             case Opcode::kZKeepLE:
                 ForEach(rect, [&](std::size_t k, double x, double y) {
                     if (fa[k]) fa[k] = r_.ztemp[k] <= Word(Qee(in.q, x, y)), ++ops;
+                });
+                break;
+            case Opcode::kZKeepGT:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] > Word(Qee(in.q, x, y)), ++ops;
+                });
+                break;
+            case Opcode::kZKeepLT:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] < Word(Qee(in.q, x, y)), ++ops;
                 });
                 break;
             case Opcode::kNLoad: {
