@@ -714,8 +714,8 @@ class Compiler {
 
     // F[f] ∧= (ZTEMP inside literal `lit` in the sense of `mode`, an InsideMode), on pixels where
     // F[f] is set. f is F1 or F2 (F3 is scratch here). The approximate machine tests planes
-    // one-sidedly too (ZLT/ZGT; its plane depths are those of the plane's own ZLOAD); its quadric
-    // strips are closed tests of approximate sheets.
+    // one-sidedly too (ZLT/ZGT; its plane depths are those of the plane's own ZLOAD), and its
+    // quadric strip tests at the strict end.
     void EmitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
         std::int32_t li = LiteralIndex(lit);
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
@@ -751,14 +751,21 @@ class Compiler {
             return;
         }
         // F3 = between the sheets (Δ > 0, z >= near envelope, z <= far envelope), then inside is
-        // F3 when c > 0, ¬F3 when c < 0, flipped by a complement.
+        // F3 when c > 0, ¬F3 when c < 0, flipped by a complement. One-sided: the set [n, f] holds
+        // after z iff n <= z < f and before z iff n < z <= f, and the closure of its complement
+        // holds after (before) z iff [n, f] does not, so the same strict end serves both; against
+        // envelopes, z < min fᵢ is z < fᵢ for every strip (ZLT), z > max nᵢ is ZGT for every one.
+        // The strips are those of the sheet's own ZLOAD/ZMAX when the patch is on the same
+        // quadric (same coefficients, same rectangle), so `A − A` is exact here too.
         Coeffs disc = Discriminant(r);
         std::vector<Coeffs> nearS = Strips(r, disc, true, currentRect_);
         std::vector<Coeffs> farS = Strips(r, disc, false, currentRect_);
+        const bool nearStrict = mode == kInsideBefore, farStrict = mode == kInsideAfter;
         Emit(Opcode::kFlagCopy, kF3, f);
         EmitQ(Opcode::kQeeKeepPositive, kF3, disc);
-        for (const Coeffs& z : nearS) EmitQ(Opcode::kZKeepGE, kF3, z);
-        for (const Coeffs& z : farS) EmitQ(Opcode::kZKeepLE, kF3, z);
+        for (const Coeffs& z : nearS)
+            EmitQ(nearStrict ? Opcode::kZKeepGT : Opcode::kZKeepGE, kF3, z);
+        for (const Coeffs& z : farS) EmitQ(farStrict ? Opcode::kZKeepLT : Opcode::kZKeepLE, kF3, z);
         bool insideIsBetween = (r.c > 0) != lit.complemented;
         Emit(insideIsBetween ? Opcode::kFlagAnd : Opcode::kFlagAndNot, f, kF3);
     }

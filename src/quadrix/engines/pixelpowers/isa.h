@@ -44,7 +44,7 @@ enum class Opcode : std::uint8_t {
     kZMin,     // QEE: where F[a]: ZTEMP ← min(ZTEMP, Q)    (envelope of a back sheet)
     kZKeepGE,  // QEE: where F[a]: F[a] ← (ZTEMP >= Q)      (seed 004 §III step 3 b)
     kZKeepLE,  // QEE: where F[a]: F[a] ← (ZTEMP <= Q)
-    kZKeepGT,  // QEE: where F[a]: F[a] ← (ZTEMP > Q)   (one-sided plane tests, InsideMode)
+    kZKeepGT,  // QEE: where F[a]: F[a] ← (ZTEMP > Q)   (one-sided inside tests, InsideMode)
     kZKeepLT,  // QEE: where F[a]: F[a] ← (ZTEMP < Q)
     kRoot,     // extended, every pixel of the rectangle: ZTEMP ← entry (b = 0) or exit
                // (b = 1) point of literal `arg` on the pixel's ray, F[a] ← it exists
