@@ -104,6 +104,14 @@ const std::vector<CorpusScene>& Corpus() {
          "solid box slab =from -2 -.5 0 =to .5 .5 .6;\n"
          "solid box notch =from 0 -.5 0 =to .5 0 .6;\n"
          "csg part ((block & slab) - notch); view front dop .3 .4 -1;"},
+        // The coplanar union minus a hole, cut by a front clipping plane: rays start inside, so
+        // the picture shows exits, whose ties go to a union's right operand (interval_list.h).
+        {"coplanar_union_clipped",
+         "solid box left =from -2 0 0 =to 0 1 1;\n"
+         "solid box right =from 0 0 0 =to 2 1 1;\n"
+         "solid box mid =from -1 0 0 =to 1 1.5 .5;\n"
+         "solid box hole =from -.5 .2 0 =to .5 .8 1;\n"
+         "csg joined ((left | right | mid) - hole); view front dop .3 .4 -1 fbp .25 .75;"},
         {"intersection_difference",
          "solid sphere ball =at 0 0 0 =r 1.2;\n"
          "solid box cube =from -1 -1 -1 =to 1 1 1;\n"
@@ -204,7 +212,8 @@ INSTANTIATE_TEST_SUITE_P(Corpus, AllEngines, ::testing::ValuesIn(Cases()), CaseN
 // compared: they err by up to the tolerance).
 TEST(AllEnginesCoincident, PixelPowersApproxModeIsExactOnCoincidentFaces) {
     for (const char* name : {"doorway_coincident", "a_minus_a", "body_s_p_not_p",
-                             "pockets_shared_faces", "shared_faces_intersection", "coplanar_union"}) {
+                             "pockets_shared_faces", "shared_faces_intersection", "coplanar_union",
+                             "coplanar_union_clipped"}) {
         const CorpusScene* scene = nullptr;
         for (const CorpusScene& s : Corpus())
             if (s.name == name) scene = &s;

@@ -141,6 +141,10 @@ class Compiler {
                 }
                 CompileProduct(p, static_cast<std::int32_t>(s), sb);
             }
+            for (std::size_t g = exitGroups_.size(); g-- > 0;)
+                program_.blocks.insert(program_.blocks.end(), exitGroups_[g].begin(),
+                                       exitGroups_[g].end());
+            exitGroups_.clear();
             if (tooBig || program_.code.size() > options_.maxInstructions) {
                 program_.code.resize(codeMark);
                 program_.blocks.resize(blockMark);
@@ -299,11 +303,14 @@ class Compiler {
             if (ValidBody(f.primitive))
                 for (const FlatLiteral& l : Body(f.primitive).literals)
                     exits = exits || (!Opaque(l) && !HoldsOver(l, productBox));
-        // Terms in reverse factor order: ZTEST keeps the earlier patch on an exact tie, and
-        // raycast's left fold ((X0 ∩ X1) − X2 …) gives a tie of entries to the later factor (an
-        // intersection is opened by its right operand's start on a tie, a difference reopened at
-        // the subtrahend's exit: math/interval_list.h), so coincident faces name its surface.
-        for (std::size_t i = p.size(); i-- > 0;) {
+        struct Term {
+            std::size_t i;
+            Box3 box;
+            PixelRect rect;
+            std::vector<csg::Factor> paring;
+        };
+        std::vector<Term> terms;
+        for (std::size_t i = 0; i < p.size(); ++i) {
             const csg::Factor& xi = p[i];
             if (!ValidBody(xi.primitive)) continue;  // an empty − factor draws nothing
             Box3 termBox = productBox.Intersected(BoxOf(xi.primitive));
@@ -324,25 +331,46 @@ class Compiler {
                 }
                 paring.push_back(y);
             }
-            // Display theorem: front (entry) face for ∩ factors, back (exit) face for − ones;
-            // with `exits`, also the opposite faces (raycast draws the first opaque endpoint).
-            const FlatBody& body = Body(xi.primitive);
-            for (int face = 0; face < (exits ? 2 : 1); ++face) {
-                bool exitFace = xi.subtracted != (face == 1);
-                for (std::size_t k = 0; k < body.literals.size(); ++k) {
-                    const FlatLiteral& lit = body.literals[k];
-                    if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
-                    PixelRect patchRect = PlaneFaceRect(body, k, termBox, rect);
-                    if (patchRect.Empty()) {
-                        ++stats_.prunedPatches;
-                        continue;
-                    }
-                    EmitPatch(xi.primitive, k, exitFace, face == 1, paring,
-                              exits ? Others(p, termBox) : std::vector<const csg::Product*>{},
-                              patchRect, solid);
-                }
-            }
+            terms.push_back({i, termBox, rect, std::move(paring)});
         }
+        // Display theorem: front (entry) face for ∩ factors, back (exit) face for − ones;
+        // with `exits`, also the opposite faces (raycast draws the first opaque endpoint).
+        auto emitTerm = [&](const Term& t, int face) {
+            const csg::Factor& xi = p[t.i];
+            const FlatBody& body = Body(xi.primitive);
+            bool exitFace = xi.subtracted != (face == 1);
+            for (std::size_t k = 0; k < body.literals.size(); ++k) {
+                const FlatLiteral& lit = body.literals[k];
+                if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
+                PixelRect patchRect = PlaneFaceRect(body, k, t.box, t.rect);
+                if (patchRect.Empty()) {
+                    ++stats_.prunedPatches;
+                    continue;
+                }
+                EmitPatch(xi.primitive, k, exitFace, face == 1, t.paring,
+                          exits ? Others(p, t.box) : std::vector<const csg::Product*>{}, patchRect,
+                          solid);
+            }
+        };
+        // Order of the blocks, for exact ties (ZTEST keeps the earlier patch): raycast's left fold
+        // ((X0 ∩ X1) − X2 …, math/interval_list.h) gives a tie of the product's entries to the
+        // later factor (an intersection is opened by its right operand's start on a tie, a
+        // difference reopened at the subtrahend's exit), so entry terms go last factor first. A
+        // tie of exits goes to the later − factor (a difference closed at the subtrahend's start)
+        // and else to the earlier ∩ factor (an intersection closed by its left operand's end):
+        // − terms last first, then ∩ terms first first. Exit blocks are set aside and appended
+        // after the solid's entries in reverse product order (a union is closed by its right
+        // operand's end on a tie; Run).
+        for (std::size_t n = terms.size(); n-- > 0;) emitTerm(terms[n], 0);
+        if (!exits) return;
+        const std::size_t exitMark = program_.blocks.size();
+        for (std::size_t n = terms.size(); n-- > 0;)
+            if (p[terms[n].i].subtracted) emitTerm(terms[n], 1);
+        for (const Term& t : terms)
+            if (!p[t.i].subtracted) emitTerm(t, 1);
+        exitGroups_.emplace_back(program_.blocks.begin() + static_cast<std::ptrdiff_t>(exitMark),
+                                 program_.blocks.end());
+        program_.blocks.resize(exitMark);
     }
 
     Instruction& Emit(Opcode op, std::uint8_t a, std::uint8_t b = 0, std::int32_t arg = -1) {
@@ -707,8 +735,18 @@ class Compiler {
         for (int i = 0; i < 6; ++i) in.q[i] = q[static_cast<std::size_t>(i)];
     }
 
+    // Approx mode: planes are tested by the QEE as in EmitInside (the same formula as a plane
+    // sheet's ZLOAD, so a plane shared by two products compares equal to itself), quadrics by
+    // the root unit.
     void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
-        if (options_.mode != DepthMode::kExact) ++stats_.extendedFallbacks;
+        if (options_.mode != DepthMode::kExact) {
+            const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
+            if (hs.isPlane && hs.plane.AllFinite()) {
+                EmitInside(lit, f, mode);
+                return;
+            }
+            ++stats_.extendedFallbacks;
+        }
         Emit(Opcode::kInside, f, mode, LiteralIndex(lit));
     }
 
@@ -778,6 +816,8 @@ class Compiler {
     std::map<std::pair<int, bool>, std::int32_t> literalIndex_;
     PixelRect currentRect_;
     const std::vector<csg::Product>* products_ = nullptr;
+    // The current solid's exit blocks, one group per product (CompileProduct).
+    std::vector<std::vector<Block>> exitGroups_;
 };
 
 }  // namespace
