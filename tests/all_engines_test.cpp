@@ -112,6 +112,11 @@ const std::vector<CorpusScene>& Corpus() {
          "solid box mid =from -1 0 0 =to 1 1.5 .5;\n"
          "solid box hole =from -.5 .2 0 =to .5 .8 1;\n"
          "csg joined ((left | right | mid) - hole); view front dop .3 .4 -1 fbp .25 .75;"},
+        // A union of two identical boxes, cut by a front clipping plane: every visible point is
+        // an exact tie, of entries (left operand wins) or, behind the cut, of exits (right wins).
+        {"identical_union_clipped",
+         "solid box one =from -1 -1 -1 =to 1 1 1; solid box two =from -1 -1 -1 =to 1 1 1;\n"
+         "csg twice (one | two); view front dop -.35 .25 -1 fbp -.2 .6;"},
         {"intersection_difference",
          "solid sphere ball =at 0 0 0 =r 1.2;\n"
          "solid box cube =from -1 -1 -1 =to 1 1 1;\n"
@@ -213,7 +218,7 @@ INSTANTIATE_TEST_SUITE_P(Corpus, AllEngines, ::testing::ValuesIn(Cases()), CaseN
 TEST(AllEnginesCoincident, PixelPowersApproxModeIsExactOnCoincidentFaces) {
     for (const char* name : {"doorway_coincident", "a_minus_a", "body_s_p_not_p",
                              "pockets_shared_faces", "shared_faces_intersection", "coplanar_union",
-                             "coplanar_union_clipped"}) {
+                             "coplanar_union_clipped", "identical_union_clipped"}) {
         const CorpusScene* scene = nullptr;
         for (const CorpusScene& s : Corpus())
             if (s.name == name) scene = &s;

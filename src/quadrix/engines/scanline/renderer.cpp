@@ -807,6 +807,36 @@ class ScanRenderer {
         return j >= unit.y0 && j <= unit.y1 && unit.x1 >= unit.x0;
     }
 
+    // UnitWinsTie: does a hit of unit u on half-space hs win an exact depth tie (at depth t, pixel
+    // centre (x, y)) against one of unit v on half-space hv? Raycast's rules (renderer.h, Unit):
+    // the lower solid; within a union of bodies the union's interval fold, which is opened by its
+    // left operand's start and closed by its right operand's end on a tie, so the lower unit for
+    // entries and the higher one for exits (a body's exit is visible where a transparent plane
+    // clips it). Only called on exact ties, so the facing test costs nothing elsewhere.
+    bool UnitWinsTie(int u, int hs, int v, int hv, double x, double y, double t) const {
+        if (v < 0) return true;
+        if (u == v) return false;
+        const Unit& a = units_[static_cast<std::size_t>(u)];
+        const Unit& b = units_[static_cast<std::size_t>(v)];
+        if (a.solid != b.solid) return a.solid < b.solid;
+        if (a.kind == Unit::Kind::kBody && b.kind == Unit::Kind::kBody &&
+            IsExit(a.body, hs, x, y, t) && IsExit(b.body, hv, x, y, t))
+            return u > v;
+        return u < v;
+    }
+    // Is the point at depth t of half-space hs on the ray through (x, y) where body leaves the
+    // literal (its ray function grows through zero, or falls for a complemented literal)?
+    bool IsExit(int body, int hs, double x, double y, double t) const {
+        if (body < 0 || static_cast<std::size_t>(body) >= scene_.bodies.size()) return false;
+        bool complemented = false;
+        for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(body)].literals)
+            if (l.halfSpace == hs) complemented = l.complemented;
+        const raycast::RayHalfSpace& r = eval_.Ray(hs);
+        const double slope =
+            r.isPlane ? r.c : r.c * (t - r.z0) + r.hx * (x - r.x0) + r.hy * (y - r.y0) + r.h0;
+        return (slope > 0) != complemented;
+    }
+
     void ExactPixel(int i, int j) {
         ++c_.exactPixels;
         const double x = i + 0.5, y = j + 0.5;
@@ -817,7 +847,8 @@ class ScanRenderer {
             if (i < unit.x0 || i > unit.x1) continue;
             RayEvaluator::Hit hit;
             if (EvaluateUnit(u, x, y, hit) &&
-                (hit.t < best.t || (hit.t == best.t && u < bestUnit))) {  // UnitWinsTie
+                (hit.t < best.t || (hit.t == best.t && UnitWinsTie(u, hit.halfSpace, bestUnit,
+                                                                   best.halfSpace, x, y, hit.t)))) {
                 best = hit;
                 bestSolid = unit.solid;
                 bestUnit = u;
@@ -1227,9 +1258,12 @@ class ScanRenderer {
                     fallback = true;
                     continue;
                 }
-                // Strictly nearer wins; exact ties go to the lower unit (UnitWinsTie).
-                if (f.depth < bestT || (f.depth == bestT && best >= 0 &&
-                                        f.unit < stack_[static_cast<std::size_t>(best)].unit)) {
+                // Strictly nearer wins; exact ties by raycast's rule (UnitWinsTie).
+                if (f.depth < bestT ||
+                    (f.depth == bestT && best >= 0 &&
+                     UnitWinsTie(f.unit, f.halfSpace, stack_[static_cast<std::size_t>(best)].unit,
+                                 stack_[static_cast<std::size_t>(best)].halfSpace, i + 0.5, y,
+                                 f.depth))) {
                     best = static_cast<int>(s);
                     bestT = f.depth;
                 }
@@ -1257,7 +1291,9 @@ class ScanRenderer {
                     f.depth = SheetDepth(f, lastRoots_);
                 }
                 auto offer = [&](const RayEvaluator::Hit& hit, int u) {
-                    if (hit.t < ph.t || (hit.t == ph.t && u < phUnit)) {  // UnitWinsTie
+                    if (hit.t < ph.t ||
+                        (hit.t == ph.t &&
+                         UnitWinsTie(u, hit.halfSpace, phUnit, ph.halfSpace, i + 0.5, y, hit.t))) {
                         ph = hit;
                         phSolid = units_[static_cast<std::size_t>(u)].solid;
                         phUnit = u;
@@ -1276,7 +1312,10 @@ class ScanRenderer {
                 }
                 if (ph.halfSpace >= 0 &&
                     (best < 0 || ph.t < bestT ||
-                     (ph.t == bestT && phUnit < stack_[static_cast<std::size_t>(best)].unit))) {
+                     (ph.t == bestT &&
+                      UnitWinsTie(phUnit, ph.halfSpace, stack_[static_cast<std::size_t>(best)].unit,
+                                  stack_[static_cast<std::size_t>(best)].halfSpace, i + 0.5, y,
+                                  ph.t)))) {
                     Write(i, j, ph.t, Normal(ph.halfSpace, i + 0.5, y, ph.t), ph.halfSpace, ph.body,
                           phSolid);
                 } else if (best >= 0) {
