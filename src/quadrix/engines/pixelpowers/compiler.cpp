@@ -352,16 +352,21 @@ class Compiler {
                           solid);
             }
         };
-        // Order of the blocks, for exact ties (ZTEST keeps the earlier patch): raycast's left fold
-        // ((X0 ∩ X1) − X2 …, math/interval_list.h) gives a tie of the product's entries to the
-        // later factor (an intersection is opened by its right operand's start on a tie, a
-        // difference reopened at the subtrahend's exit), so entry terms go last factor first. A
-        // tie of exits goes to the later − factor (a difference closed at the subtrahend's start)
-        // and else to the earlier ∩ factor (an intersection closed by its left operand's end):
-        // − terms last first, then ∩ terms first first. Exit blocks are set aside and appended
-        // after the solid's entries in reverse product order (a union is closed by its right
-        // operand's end on a tie; Run).
-        for (std::size_t n = terms.size(); n-- > 0;) emitTerm(terms[n], 0);
+        // Exact ties, as raycast's left fold ((X0 ∩ X1) − X2 …, math/interval_list.h) breaks
+        // them. A tie of the product's entries goes to the later factor (an intersection is
+        // opened by its right operand's start on a tie, a difference reopened at the
+        // subtrahend's exit; within a body the later literal's start opens it): entry terms in
+        // factor order, whose ZTESTs let a patch win a tie against the patches of this product
+        // drawn before it (tieFrom_) and against no other (a union is opened by its left
+        // operand, and the lower solid wins). A tie of exits goes to the later − factor (a
+        // difference closed at the subtrahend's start) and else to the earlier ∩ factor (an
+        // intersection closed by its left operand's end): exit terms − factors last first, then
+        // ∩ factors first first, with strict ZTESTs; they are set aside and appended after the
+        // solid's entries in reverse product order (a union is closed by its right operand's end
+        // on a tie; Run).
+        tieFrom_ = static_cast<std::int32_t>(program_.patches.size());
+        for (const Term& t : terms) emitTerm(t, 0);
+        tieFrom_ = -1;
         if (!exits) return;
         const std::size_t exitMark = program_.blocks.size();
         for (std::size_t n = terms.size(); n-- > 0;)
@@ -483,7 +488,7 @@ class Compiler {
         }
         // Early depth test: ZMIN does not change within a block, so dropping hidden pixels now
         // gives the same result as the final test and spares them the paring.
-        Emit(Opcode::kZTest, kF1);
+        Emit(Opcode::kZTest, kF1, 0, tieFrom_);
         // The patch is the part of the sheet inside the primitive's other literals. The tests
         // are one-sided (InsideMode): a point at depth z is an entry (exit) of the product iff
         // every other factor holds, or for a − factor does not hold, just beyond (before) z, which
@@ -531,7 +536,7 @@ class Compiler {
             Emit(Opcode::kFlagAndNot, kF1, kF2);
         }
         // Z-buffer merge (the union of terms, seed 004 §II.a) and COLOR.
-        Emit(Opcode::kZTest, kF1);
+        Emit(Opcode::kZTest, kF1, 0, tieFrom_);
         // Shading (seed 004 §III step 4) on the pixels about to be written.
         bool machineNormal = options_.paperShading && EmitShading(lit, exitFace, rect);
         stats_.shadedPatches += machineNormal;
@@ -818,6 +823,8 @@ class Compiler {
     const std::vector<csg::Product>* products_ = nullptr;
     // The current solid's exit blocks, one group per product (CompileProduct).
     std::vector<std::vector<Block>> exitGroups_;
+    // ZTEST's tie threshold for the blocks being emitted (−1: strict; CompileProduct).
+    std::int32_t tieFrom_ = -1;
 };
 
 }  // namespace

@@ -50,7 +50,9 @@ enum class Opcode : std::uint8_t {
                // (b = 1) point of literal `arg` on the pixel's ray, F[a] ← it exists
     kInside,   // extended: where F[a]: F[a] ← ZTEMP inside literal `arg`, in the sense
                // b = InsideMode (closed set, interior, or one side of ZTEMP)
-    kZTest,    // where F[a]: F[a] ← (ZTEMP < ZMIN)   (strict: ties keep the earlier patch)
+    kZTest,    // where F[a]: F[a] ← (ZTEMP < ZMIN), or with arg >= 0 also ZTEMP == ZMIN where
+               // COLOR >= arg (a tie won against the patches from arg on); arg < 0: strict, ties
+               // keep the earlier patch
     kZWrite,   // where F[a]: ZMIN ← ZTEMP, COLOR ← arg (a patch id)
     kNLoad,    // QEE: where F[a]: N[b] ← Q(x,y), b = world axis 0..2 — the paper's approximate
                // shading (seed 004 §III step 4): the numerator "L + sqrt Q" of the diffuse shade

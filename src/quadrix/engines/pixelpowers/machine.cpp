@@ -300,8 +300,17 @@ class TileRunner {
                 break;
             }
             case Opcode::kZTest:
+                if (in.arg < 0) {
+                    ForEach(rect, [&](std::size_t k, double, double) {
+                        if (fa[k]) fa[k] = r_.ztemp[k] < r_.zmin[k], ++ops;
+                    });
+                    break;
+                }
                 ForEach(rect, [&](std::size_t k, double, double) {
-                    if (fa[k]) fa[k] = r_.ztemp[k] < r_.zmin[k], ++ops;
+                    if (fa[k])
+                        fa[k] = r_.ztemp[k] < r_.zmin[k] ||
+                                (r_.ztemp[k] == r_.zmin[k] && r_.color[k] >= in.arg),
+                        ++ops;
                 });
                 break;
             case Opcode::kZWrite:
