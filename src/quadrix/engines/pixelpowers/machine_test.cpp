@@ -249,5 +249,33 @@ TEST(PixelPowersMachine, InsideModesAndStrictDepthTests) {
     EXPECT_EQ(run(lits, Opcode::kZKeepLE, 0, -1), range(0, 10));
 }
 
+// ZTEST's tie threshold: three patches at one depth on pixels 0..9. Patch 1's ZTEST (from 0)
+// wins the tie against patch 0; patch 2's (from 2) loses it to patch 1, and so does a strict one.
+TEST(PixelPowersMachine, ZTestTieThreshold) {
+    Assembler as;
+    auto block = [&](std::int32_t from) {
+        std::int32_t p = as.Patch(0);
+        as.Begin({0, 0, 10, 1});
+        as.Op(Opcode::kFlagSet, kF1);
+        as.Op(Opcode::kZLoad, kF1, 0, -1, {0, 0, 0, 0, 0, 4});
+        as.Op(Opcode::kZTest, kF1, 0, from);
+        as.Op(Opcode::kZWrite, kF1, 0, p);
+        as.End();
+    };
+    FlatScene scene = PlaneScene(10, 1);
+    scene.halfSpaces.push_back(scene.halfSpaces[0]);  // a second plane names patch 1
+    block(-1);
+    block(0);
+    block(2);
+    block(-1);
+    as.program.patches[1].halfSpace = 1;
+    Frame f;
+    Execute(as.program, scene, f);
+    for (int i = 0; i < 10; ++i) {
+        EXPECT_EQ(f.surface[static_cast<std::size_t>(i)], 1) << i;
+        EXPECT_EQ(f.depth[static_cast<std::size_t>(i)], 4);
+    }
+}
+
 }  // namespace
 }  // namespace quadrix::pixelpowers
