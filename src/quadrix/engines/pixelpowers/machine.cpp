@@ -40,12 +40,16 @@ double Qee(const double* q, double x, double y) {
 // e = A x + B y + D, r = −e/C, the set (−∞, r] for C > 0, [r, ∞) for C < 0, all or nothing for
 // C = 0, empty both ways for non-finite values, closure of the complement when complemented), so
 // results stay bit-identical to the oracle; this only skips the call and the interval bookkeeping.
+// `word` rounds the finite root as ZTEMP's words do (depth-bits; the identity otherwise), so that
+// coincident surfaces compare equal in the rounded domain too.
+template <class Word>
 bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y, double z,
-                 std::uint8_t mode) {
+                 std::uint8_t mode, const Word& word) {
     double e = h.px * x + h.py * y + h.pd;
     if (!std::isfinite(e) || !std::isfinite(h.c)) return false;
     if (h.c == 0) return (e <= 0) != complemented;  // all of the ray or nothing: every mode
     double r = -e / h.c;
+    if (std::isfinite(r)) r = word(r);
     bool below = (h.c > 0) != complemented;  // the set is (−∞, r] (else [r, ∞))
     // A piece with lo == hi is dropped (regularised), which only happens for r = ±∞.
     // The mode (InsideMode) decides whether the endpoint r itself counts.
@@ -281,7 +285,8 @@ class TileRunner {
                 if (lit.isPlane) {
                     ForEach(rect, [&](std::size_t k, double x, double y) {
                         if (!fa[k]) return;
-                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], mode);
+                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], mode,
+                                            [this](double t) { return Word(t); });
                         ++ops;
                     });
                     break;
@@ -293,7 +298,15 @@ class TileRunner {
                     ++ops;
                     double z = r_.ztemp[k];
                     bool in = false;
-                    for (int p = 0; p < s.count; ++p) in = in || InPiece(s.piece[p], z, mode);
+                    for (int p = 0; p < s.count; ++p) {
+                        Interval v = s.piece[p];
+                        // Roots as depth words, like ZTEMP's (identity without depth-bits).
+                        if (step_ != 0) {
+                            if (std::isfinite(v.lo)) v.lo = Word(v.lo);
+                            if (std::isfinite(v.hi)) v.hi = Word(v.hi);
+                        }
+                        in = in || InPiece(v, z, mode);
+                    }
                     fa[k] = in;
                 });
                 counters_.rootSolves += ops;
