@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quadrix/engines/registry.h"
@@ -211,34 +212,39 @@ TEST_P(AllEngines, MatchesRaycastThroughTheRenderContext) {
 
 INSTANTIATE_TEST_SUITE_P(Corpus, AllEngines, ::testing::ValuesIn(Cases()), CaseName);
 
-// pixelpowers' paper machine (mode=approx) on the coincident-face rows: its depths are
-// approximate, but planes are loaded exactly and a quadric's strips are the same in the sheet and
-// in the inside test, so coverage and surface ids agree off-edge as in exact mode (depths are not
-// compared: they err by up to the tolerance).
-TEST(AllEnginesCoincident, PixelPowersApproxModeIsExactOnCoincidentFaces) {
-    for (const char* name : {"doorway_coincident", "a_minus_a", "body_s_p_not_p",
-                             "pockets_shared_faces", "shared_faces_intersection", "coplanar_union",
-                             "coplanar_union_clipped", "identical_union_clipped"}) {
-        const CorpusScene* scene = nullptr;
-        for (const CorpusScene& s : Corpus())
-            if (s.name == name) scene = &s;
-        ASSERT_NE(scene, nullptr) << name;
-        RenderContext ctx;
-        Diagnostics diags;
-        InputRequest in;
-        in.text = scene->text;
-        in.textName = std::string(name) + ".uq";
-        ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(Size(160, 120), diags)) << name;
-        Frame reference, got;
-        RenderReport refReport, report;
-        ASSERT_TRUE(ctx.Render(Request("raycast"), reference, refReport, diags));
-        EngineRequest approx = Request("pixelpowers");
-        approx.options["mode"] = "approx";
-        ASSERT_TRUE(ctx.Render(approx, got, report, diags)) << name;
-        const FrameComparison cmp = CompareFrames(got, reference, {});
-        EXPECT_EQ(cmp.offEdgeDifferences, 0u) << name << ": " << cmp.firstDifference << "\n"
-                                              << cmp.Summary();
-    }
+// pixelpowers' paper machine (mode=approx) and its fixed-point depth words (depth-bits=24) on the
+// coincident-face rows: depths are approximate or rounded, but a plane's sheet and its inside test
+// use one formula, a quadric's strips are the same in the sheet and in the inside test, and roots
+// are rounded as ZTEMP is, so coverage and surface ids agree off-edge as in exact mode (depths
+// are not compared: they err by up to the tolerance or half a step).
+TEST(AllEnginesCoincident, PixelPowersApproxAndDepthWordsExactOnCoincidentFaces) {
+    for (const auto& [key, value] :
+         std::vector<std::pair<std::string, std::string>>{{"mode", "approx"}, {"depth-bits", "24"}})
+        for (const char* name :
+             {"doorway_coincident", "a_minus_a", "body_s_p_not_p", "pockets_shared_faces",
+              "shared_faces_intersection", "coplanar_union", "coplanar_union_clipped",
+              "identical_union_clipped"}) {
+            const CorpusScene* scene = nullptr;
+            for (const CorpusScene& s : Corpus())
+                if (s.name == name) scene = &s;
+            ASSERT_NE(scene, nullptr) << name;
+            RenderContext ctx;
+            Diagnostics diags;
+            InputRequest in;
+            in.text = scene->text;
+            in.textName = std::string(name) + ".uq";
+            ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(Size(160, 120), diags)) << name;
+            Frame reference, got;
+            RenderReport refReport, report;
+            ASSERT_TRUE(ctx.Render(Request("raycast"), reference, refReport, diags));
+            EngineRequest approx = Request("pixelpowers");
+            approx.options[key] = value;
+            ASSERT_TRUE(ctx.Render(approx, got, report, diags)) << name;
+            const FrameComparison cmp = CompareFrames(got, reference, {});
+            EXPECT_EQ(cmp.offEdgeDifferences, 0u)
+                << name << " with " << key << "=" << value << ": " << cmp.firstDifference << "\n"
+                << cmp.Summary();
+        }
 }
 
 // With strict, an engine that cannot draw a solid refuses instead of composing.
@@ -246,8 +252,9 @@ TEST(RenderContextComposition, StrictRefusesWhatTheEngineCannotDraw) {
     RenderContext ctx;
     Diagnostics diags;
     InputRequest in;
-    in.text = "solid box cube =from -1 -1 -1 =to 1 1 1; solid sphere ball =at 0 0 0 =r 1.3;"
-              "csg part (cube - ball);";
+    in.text =
+        "solid box cube =from -1 -1 -1 =to 1 1 1; solid sphere ball =at 0 0 0 =r 1.3;"
+        "csg part (cube - ball);";
     ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(Size(64, 64), diags));
     Frame frame;
     RenderReport report;

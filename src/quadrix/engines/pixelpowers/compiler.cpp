@@ -514,9 +514,9 @@ class Compiler {
         // F3 = inside a − factor of Q). An entry (exit) of this product is one of the union iff
         // Q does not hold just before (beyond) it, so Q is tested on the other side; a boundary
         // point shared by two products (the same literal's root, the same double) is kept where
-        // the union changes there. The root unit does these tests in both modes: approximate
-        // depths err outward (near sheets nearer, far sheets farther), so shared boundaries stay
-        // outside.
+        // the union changes there. The root unit does these tests for quadrics in both modes:
+        // approximate depths err outward (near sheets nearer, far sheets farther), so shared
+        // boundaries stay outside; planes in approx mode by the QEE (EmitRootUnitInside).
         const std::uint8_t otherSide = productExit ? kInsideAfter : kInsideBefore;
         for (const csg::Product* q : others) {
             Emit(Opcode::kFlagCopy, kF2, kF1);
