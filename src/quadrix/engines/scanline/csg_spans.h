@@ -59,8 +59,10 @@ class CsgSpans {
     // Some CSG unit or template face is present in the span.
     bool Active() const { return !units_.empty() || !tFaces_.empty(); }
     // At pixel i: the template faces' depths from their conics, then each CSG unit's visible
-    // point offered to (hit, solid): taken when strictly nearer, or as near and of a lower solid.
-    inline void OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid);  // (_inline.h)
+    // point offered to (hit, solid, unit): taken when strictly nearer, or as near and winning
+    // raycast's tie rule (ScanContext::UnitWinsTie).
+    inline void OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid,
+                           int& unit);  // (_inline.h)
     void AdvanceTemplates() {
         for (StackFace& f : tFaces_) AdvanceFace(f);
     }

@@ -27,15 +27,18 @@ inline void CsgSpans::UpdateTemplateDepths() {
     }
 }
 
-inline void CsgSpans::OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid) {
+inline void CsgSpans::OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid,
+                                 int& unit) {
     UpdateTemplateDepths();
     for (const CsgSpanUnit& cu : units_) {
         RayEvaluator::Hit h;
         if (!CsgPixel(cu, i, y, h)) continue;
-        const int s = ctx_.UnitOf(cu.unit).solid;
-        if (h.t < hit.t || (h.t == hit.t && s < solid)) {
+        if (h.t < hit.t ||
+            (h.t == hit.t && ctx_.UnitWinsTie(cu.unit, h.halfSpace, unit, hit.halfSpace, i + 0.5, y,
+                                              h.t))) {
             hit = h;
-            solid = s;
+            solid = ctx_.UnitOf(cu.unit).solid;
+            unit = cu.unit;
         }
     }
 }

@@ -225,7 +225,7 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
         int best = -1;
         double bestT = HUGE_VAL;
         bool fallback = false;
-        shader_.NearestFace(best, bestT, fallback);
+        shader_.NearestFace(i + 0.5, y, best, bestT, fallback);
         if (ctx_.stackOn && shader_.StackHead() == 0 && best > 0) ++ctx_.c.interpenetrationPixels;
         if (fallback) {
             ++ctx_.c.rootFallbackPixels;
@@ -234,23 +234,29 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
             // Units evaluated per pixel (refused bodies, CSG solids) compete with the stack.
             // (Their order is kept: ties between equal depths of one solid go to the first.)
             RayEvaluator::Hit ph;
-            int phSolid = -1;
+            int phSolid = -1, phUnit = -1;
             for (int u : perPixel_) {
                 const Unit& unit = ctx_.UnitOf(u);
                 if (i < unit.x0 || i > unit.x1) continue;
                 ++ctx_.c.perPixelUnitPixels;
                 RayEvaluator::Hit hit;
                 if (EvaluateUnit(u, i + 0.5, y, hit) &&
-                    (hit.t < ph.t || (hit.t == ph.t && unit.solid < phSolid))) {
+                    (hit.t < ph.t || (hit.t == ph.t && ctx_.UnitWinsTie(u, hit.halfSpace, phUnit,
+                                                                        ph.halfSpace, i + 0.5, y,
+                                                                        hit.t)))) {
                     ph = hit;
                     phSolid = unit.solid;
+                    phUnit = u;
                 }
             }
-            if (csg_.Active()) csg_.OfferPixel(i, y, ph, phSolid);
+            if (csg_.Active()) csg_.OfferPixel(i, y, ph, phSolid, phUnit);
             std::vector<StackFace>& faces = shader_.Faces();
             if (ph.halfSpace >= 0 &&
                 (best < 0 || ph.t < bestT ||
-                 (ph.t == bestT && phSolid < faces[static_cast<std::size_t>(best)].solid))) {
+                 (ph.t == bestT &&
+                  ctx_.UnitWinsTie(phUnit, ph.halfSpace, faces[static_cast<std::size_t>(best)].unit,
+                                   faces[static_cast<std::size_t>(best)].halfSpace, i + 0.5, y,
+                                   ph.t)))) {
                 shader_.Write(i, j, ph.t, shader_.Normal(ph.halfSpace, i + 0.5, y, ph.t),
                               ph.halfSpace, ph.body, phSolid);
             } else if (best >= 0) {
@@ -272,20 +278,23 @@ bool ScanRenderer::EvaluateUnit(int u, double x, double y, RayEvaluator::Hit& hi
 }
 
 // A pixel within kOnEdge of a crossing (or where a face has no root): every unit active there
-// evaluated exactly; the nearest wins, exact ties to the lower solid.
+// evaluated exactly; the nearest wins, exact ties by raycast's rule (ScanContext::UnitWinsTie).
 void ScanRenderer::ExactPixel(int i, int j) {
     ++ctx_.c.exactPixels;
     const double x = i + 0.5, y = j + 0.5;
     RayEvaluator::Hit best;
-    int bestSolid = -1;
+    int bestSolid = -1, bestUnit = -1;
     for (int u : row_.ActiveUnits()) {
         const Unit& unit = ctx_.UnitOf(u);
         if (i < unit.x0 || i > unit.x1) continue;
         RayEvaluator::Hit hit;
         if (EvaluateUnit(u, x, y, hit) &&
-            (hit.t < best.t || (hit.t == best.t && unit.solid < bestSolid))) {
+            (hit.t < best.t ||
+             (hit.t == best.t &&
+              ctx_.UnitWinsTie(u, hit.halfSpace, bestUnit, best.halfSpace, x, y, hit.t)))) {
             best = hit;
             bestSolid = unit.solid;
+            bestUnit = u;
         }
     }
     if (best.halfSpace < 0) return;

@@ -48,6 +48,12 @@ namespace quadrix::scanline {
 
 // Something the renderer draws: a body on its own (a solid of one body, or one operand of a
 // union of bodies), or a CSG solid whose tree is combined per pixel.
+// Units are numbered by solid and, within a union of bodies, in operand order
+// (scanline_engine.cpp), so raycast's rule for exact depth ties (ScanContext::UnitWinsTie) is:
+// the lower solid; within a union, the lower unit where the tied points are entries and the
+// higher one where both are exits (a union of interval lists is opened by the first start, the
+// left operand's on a tie, and closed by the last end, the right operand's on a tie:
+// math/interval_list.h). Coplanar faces of a union's bodies then name raycast's surface.
 struct Unit {
     enum class Kind : std::uint8_t { kBody, kCsg } kind = Kind::kBody;
     int solid = -1;

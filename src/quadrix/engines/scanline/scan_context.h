@@ -53,6 +53,36 @@ struct ScanContext {
         const Unit& unit = UnitOf(u);
         return j >= unit.y0 && j <= unit.y1 && unit.x1 >= unit.x0;
     }
+
+    // Does a hit of unit u on half-space hs win an exact depth tie (at depth t, pixel centre
+    // (x, y)) against one of unit v on half-space hv? Raycast's rules (renderer.h, Unit): the
+    // lower solid; within a union of bodies the union's interval fold, which is opened by its left
+    // operand's start and closed by its right operand's end on a tie, so the lower unit for
+    // entries and the higher one for exits (a body's exit is visible where a transparent plane
+    // clips it). Only called on exact ties, so the facing test costs nothing elsewhere.
+    bool UnitWinsTie(int u, int hs, int v, int hv, double x, double y, double t) const {
+        if (v < 0) return true;
+        if (u == v) return false;
+        const Unit& a = UnitOf(u);
+        const Unit& b = UnitOf(v);
+        if (a.solid != b.solid) return a.solid < b.solid;
+        if (a.kind == Unit::Kind::kBody && b.kind == Unit::Kind::kBody &&
+            IsExit(a.body, hs, x, y, t) && IsExit(b.body, hv, x, y, t))
+            return u > v;
+        return u < v;
+    }
+    // Is the point at depth t of half-space hs on the ray through (x, y) where `body` leaves the
+    // literal (its ray function grows through zero, or falls for a complemented literal)?
+    bool IsExit(int body, int hs, double x, double y, double t) const {
+        if (body < 0 || static_cast<std::size_t>(body) >= scene.bodies.size()) return false;
+        bool complemented = false;
+        for (const FlatLiteral& l : scene.bodies[static_cast<std::size_t>(body)].literals)
+            if (l.halfSpace == hs) complemented = l.complemented;
+        const raycast::RayHalfSpace& r = eval.Ray(hs);
+        const double slope =
+            r.isPlane ? r.c : r.c * (t - r.z0) + r.hx * (x - r.x0) + r.hy * (y - r.y0) + r.h0;
+        return (slope > 0) != complemented;
+    }
 };
 
 // Depth first over the valid nodes of the CSG tree at `root` (the last child first): fn(node,

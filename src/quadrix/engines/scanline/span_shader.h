@@ -112,8 +112,9 @@ class SpanShader {
     void TakeStackFaces(const std::vector<int>& shown, int sample, double y);
 
     // Per pixel: every face's depth from its state; the nearest (exact ties to the lower solid,
-    // then face order) into best / bestT; `fallback` when some face has no root here.
-    void NearestFace(int& best, double& bestT, bool& fallback) {
+    // by raycast's rule) into best / bestT; `fallback` when some face has no root here. (x, y)
+    // is the pixel centre.
+    void NearestFace(double x, double y, int& best, double& bestT, bool& fallback) {
         for (std::size_t s = 0; s < faces_.size(); ++s) {
             StackFace& f = faces_[s];
             f.depth = FaceDepth(f, ctx_.c);
@@ -121,9 +122,11 @@ class SpanShader {
                 fallback = true;
                 continue;
             }
-            // Strictly nearer wins; exact ties go to the lower solid, then stack order.
-            if (f.depth < bestT || (f.depth == bestT && best >= 0 &&
-                                    f.solid < faces_[static_cast<std::size_t>(best)].solid)) {
+            // Strictly nearer wins; exact ties by raycast's rule (ScanContext::UnitWinsTie).
+            if (f.depth < bestT ||
+                (f.depth == bestT && best >= 0 &&
+                 ctx_.UnitWinsTie(f.unit, f.halfSpace, faces_[static_cast<std::size_t>(best)].unit,
+                                  faces_[static_cast<std::size_t>(best)].halfSpace, x, y, f.depth))) {
                 best = static_cast<int>(s);
                 bestT = f.depth;
             }
