@@ -6,12 +6,11 @@
 // bound, fit the window (auto-fit where whh/whw are missing), map to device space with a
 // uniform scale and a translation, cull solids that cannot reach the image.
 //
-// Window fit. In provisional space x and y are view-plane coordinates centred on vrp (y down).
-// An axis with a window half-size w (whw for x, whh for y) asks for scale W/(2w) (or H/(2w))
-// centred on vrp; an axis without one asks for the scene's extent on that axis, E, to fill the
-// image less autoFitMargin per side: scale W(1 - 2m)/E, centred on the extent's middle. Pixels
-// are square, so the scale k is the smallest asked for, and each axis is centred in the image.
-// The extent ignores fbp (seed 001 §2.1.6: "It has no effect on auto-scaling").
+// Window fit (window_fit.h). In provisional space x and y are view-plane coordinates centred on
+// vrp (y down). whh or whw, alone or together, give the scale and centre the window on vrp; with
+// neither, the bounded part of the scene's extent fills the image less autoFitMargin per side,
+// and unbounded solids are drawn clipped to that window. Pixels are square. The extent ignores
+// fbp (seed 001 §2.1.6: "It has no effect on auto-scaling").
 //
 // Device map: x_dev = k x + ox, y_dev = k y + oy, z_dev = k z (the same k for depth, so for
 // parallel views device space is a similarity of view space up to the reflection of y, and for
@@ -25,16 +24,16 @@
 // are dropped: they cannot cover a pixel.
 #include "quadrix/flatten/flattener.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-
-#include <fmt/format.h>
 
 #include <cmath>
 
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/hierarchy.h"
 #include "quadrix/flatten/view_setup.h"
+#include "quadrix/flatten/window_fit.h"
 
 namespace quadrix {
 
@@ -54,10 +53,6 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view) {
     s = std::fmax(s, view.d);
     return s > 0 && std::isfinite(s) ? s : 1.0;
 }
-
-struct Fit {
-    double k = 1, ox = 0, oy = 0;
-};
 
 class FlattenerImpl {
   public:
@@ -127,7 +122,7 @@ class FlattenerImpl {
             freeformNames_.push_back(f.name);
         }
 
-        std::optional<Fit> fit = FitWindow(fitBoxes);
+        std::optional<WindowFit> fit = Fit(fitBoxes);
         if (!fit) return std::nullopt;
         ToDevice(*fit, bodyBoxes);
         Cull();
@@ -184,79 +179,72 @@ class FlattenerImpl {
             }
         }
         std::vector<Box3> nodeBoxes = TreeBounds(flat, bodyBoxes);
+        std::vector<Box3> fitBoxes =
+            FitTreeBounds(flat, bodyBoxes, nodeBoxes, view_.perspective ? view_.d : 0.0);
         std::vector<Box3> solidBoxes(flat.solids.size());
         for (std::size_t i = 0; i < flat.solids.size(); ++i)
-            solidBoxes[i] = nodeBoxes[flat.solids[i].root];
+            solidBoxes[i] = fitBoxes[flat.solids[i].root];
         return solidBoxes;
     }
 
-    std::optional<Fit> FitWindow(const std::vector<Box3>& solidBoxes) {
-        const double w = options_.width, h = options_.height, m = options_.autoFitMargin;
-        const bool needX = !view_.whw, needY = !view_.whh;
-        Box3 extent;
-        if (needX || needY) {
-            for (std::size_t i = 0; i < solidBoxes.size(); ++i) {
-                const Box3& b = solidBoxes[i];
-                if (b.Empty()) continue;
-                bool unboundedX = needX && !(std::isfinite(b.lo.x) && std::isfinite(b.hi.x));
-                bool unboundedY = needY && !(std::isfinite(b.lo.y) && std::isfinite(b.hi.y));
-                if (unboundedX || unboundedY) {
-                    if (i >= flat_.solids.size()) {
-                        diags_.Error({}, fmt::format("freeform surface '{}' reaches infinity in "
-                                                     "the view (a weight vanishes); give the view "
-                                                     "a window with whh and whw",
-                                                     freeformNames_[i - flat_.solids.size()]));
-                        return std::nullopt;
-                    }
-                    const SourceLoc& loc = hierarchy_.solidLocs[i];
-                    bool isBody = !hierarchy_.solidIsCsg[i];
-                    diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view; give "
-                                                  "the view a window with whh and whw",
-                                                  isBody ? "body" : "csg solid",
-                                                  flat_.solids[i].name, loc.ToString()));
+    // The window fit (window_fit.h); freeform surfaces reaching infinity, and a scene with
+    // nothing bounded and no window, are errors.
+    std::optional<WindowFit> Fit(const std::vector<Box3>& fitBoxes) {
+        const bool autoFit = !view_.whw && !view_.whh;
+        if (autoFit)
+            for (std::size_t i = flat_.solids.size(); i < fitBoxes.size(); ++i)
+                if (!fitBoxes[i].Empty() && !fitBoxes[i].Finite()) {
+                    diags_.Error({}, fmt::format("freeform surface '{}' reaches infinity in the "
+                                                 "view (a weight vanishes); give the view a "
+                                                 "window with whh or whw",
+                                                 freeformNames_[i - flat_.solids.size()]));
                     return std::nullopt;
                 }
-                extent.Extend(b);
-            }
-            if (extent.Empty()) {
-                diags_.Error(view_.loc,
-                             fmt::format("nothing to draw in view '{}': every solid is empty or "
-                                         "behind the eye",
-                                         view_.id));
+        WindowRequest request;
+        request.width = options_.width;
+        request.height = options_.height;
+        request.margin = options_.autoFitMargin;
+        request.whh = view_.whh;
+        request.whw = view_.whw;
+        WindowFit fit;
+        switch (FitWindow(request, fitBoxes, fit)) {
+            case WindowFitStatus::kOk:
+                return fit;
+            case WindowFitStatus::kNothingBounded: {
+                bool any = false;
+                for (const Box3& b : fitBoxes) any |= !b.Empty();
+                if (!any) {
+                    diags_.Error(view_.loc,
+                                 fmt::format("nothing to draw in view '{}': every solid is empty "
+                                             "or behind the eye",
+                                             view_.id));
+                    return std::nullopt;
+                }
+                // Name the first solid: every one of them is unbounded.
+                std::size_t i = 0;
+                while (fitBoxes[i].Empty()) ++i;
+                if (i >= flat_.solids.size()) return std::nullopt;  // (freeforms are finite)
+                const SourceLoc& loc = hierarchy_.solidLocs[i];
+                bool isBody = !hierarchy_.solidIsCsg[i];
+                diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view and "
+                                              "nothing bounded is there to fit the window to; "
+                                              "give the view a window with whh or whw",
+                                              isBody ? "body" : "csg solid", flat_.solids[i].name,
+                                              loc.ToString()));
                 return std::nullopt;
             }
+            case WindowFitStatus::kNoExtent:
+                diags_.Error(view_.loc, fmt::format("the scene has no extent in view '{}' (it is "
+                                                    "flat or a point seen edge-on); give the "
+                                                    "view a window with whh or whw",
+                                                    view_.id));
+                return std::nullopt;
         }
-        double scaleX = kInf, scaleY = kInf, cx = 0, cy = 0;
-        if (view_.whw) {
-            scaleX = 0.5 * w / *view_.whw;
-        } else {
-            double span = extent.hi.x - extent.lo.x;
-            cx = 0.5 * (extent.lo.x + extent.hi.x);
-            if (span > 0) scaleX = w * (1 - 2 * m) / span;
-        }
-        if (view_.whh) {
-            scaleY = 0.5 * h / *view_.whh;
-        } else {
-            double span = extent.hi.y - extent.lo.y;
-            cy = 0.5 * (extent.lo.y + extent.hi.y);
-            if (span > 0) scaleY = h * (1 - 2 * m) / span;
-        }
-        Fit fit;
-        fit.k = std::fmin(scaleX, scaleY);
-        if (!(fit.k < kInf) || !(fit.k > 0)) {
-            diags_.Error(view_.loc, fmt::format("the scene has no extent in view '{}' (it is "
-                                                "flat or a point seen edge-on); give the view a "
-                                                "window with whh and whw",
-                                                view_.id));
-            return std::nullopt;
-        }
-        fit.ox = 0.5 * w - fit.k * cx;
-        fit.oy = 0.5 * h - fit.k * cy;
-        return fit;
+        return std::nullopt;
     }
 
     // Maps everything from provisional to device space: D = T(ox, oy, 0) · S(k, k, k).
-    void ToDevice(const Fit& fit, const std::vector<Box3>& bodyBoxes) {
+    void ToDevice(const WindowFit& fit, const std::vector<Box3>& bodyBoxes) {
         FlatScene& flat = flat_;
         Transform dev =
             Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
@@ -366,7 +354,7 @@ class FlattenerImpl {
         return nodeMap[root];
     }
 
-    void SetDepthTolerance(const Fit& fit) {
+    void SetDepthTolerance(const WindowFit& fit) {
         double extent = std::fmax(options_.width, options_.height);
         Box3 all;
         for (const FlatSolid& s : flat_.solids) all.Extend(s.bounds);
