@@ -213,7 +213,7 @@ TEST(Framing, PerspectiveGroundPlaneIsLeftOutOfTheFit) {
 
 // A bounded BRL-CAD cone frustum 10 m from the origin was refused as "unbounded" (its quadric's
 // A, normalised with its large constant term, passed for positive semidefinite): it must be
-// fitted like any solid, for frusta close to cylinders (apex 10⁵ mm away) too.
+// fitted like any solid, for frusta close to cylinders (apex 10⁵ mm away) and 1 km away too.
 TEST(Framing, FarAwayBrlcadConeFrustumIsFitted) {
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / "quadrix_framing_test";
@@ -225,6 +225,8 @@ TEST(Framing, FarAwayBrlcadConeFrustumIsFitted) {
         "V {10000 0 0} H {0 0 500} A {200 0 0} B {0 200 0} C {100 0 0} D {0 100 0}",
         "V {-10000 3000 2000} H {300 400 0} A {0 0 200} B {160 -120 0} C {0 0 100} "
         "D {80 -60 0}",
+        // 1 km away: bounded 50x too loosely in provisional space, refitted in device space.
+        "V {1000000 0 0} H {0 0 500} A {200 0 0} B {0 200 0} C {.001 0 0} D {0 .001 0}",
     };
     int n = 0;
     for (const char* f : frusta) {
