@@ -16,6 +16,7 @@ struct RenderArgs {
     std::string engine = "raycast";
     bool fast = false;
     bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
+    bool png16 = false;  // 16-bit PNG output
     bool stats = false;
     int threads = 0;
     std::string dumpFrame;

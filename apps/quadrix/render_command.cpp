@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "quadrix/engines/patch/phong.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/shader.h"
@@ -41,6 +40,7 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                   "Phong shading per pixel (diffuse + specular highlight; seed 000's post-shading "
                   "unit) instead of Lambert")
         ->excludes(fast);
+    cmd->add_flag("--png16", args.png16, "16 bits per channel in PNG output (sRGB-encoded)");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_option("--threads", args.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024));
@@ -160,9 +160,11 @@ int RunRender(const RenderArgs& args) {
     if (format == ImageFormat::kFrameDump) {
         error = WriteFrameDump(args.output, result.frame);
     } else {
-        Image image = args.phong ? patch::PhongShade(result.frame, result.flat)
-                                 : Shade(result.frame, result.flat, so);
-        error = format == ImageFormat::kPng ? WritePng(args.output, image)
+        if (args.phong) so.model = ShadingModel::kPhong;
+        Image image = Shade(result.frame, result.flat, so);
+        PngOptions png;
+        png.bitDepth = args.png16 ? 16 : 8;
+        error = format == ImageFormat::kPng ? WritePng(args.output, image, png)
                                             : WritePnm(args.output, image);
     }
     if (error.empty() && !args.dumpFrame.empty()) error = WriteFrameDump(args.dumpFrame, result.frame);

@@ -3,6 +3,7 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <csetjmp>
@@ -14,6 +15,8 @@
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "quadrix/math/srgb.h"
 
 namespace quadrix {
 
@@ -66,7 +69,46 @@ std::string CheckImage(const Image& image) {
     return {};
 }
 
+// 8-bit linear → 8-bit sRGB.
+const std::array<std::uint8_t, 256>& SrgbTable() {
+    static const std::array<std::uint8_t, 256> table = [] {
+        std::array<std::uint8_t, 256> t{};
+        for (int i = 0; i < 256; ++i)
+            t[static_cast<std::size_t>(i)] =
+                static_cast<std::uint8_t>(std::lround(SrgbFromLinear(i / 255.0) * 255.0));
+        return t;
+    }();
+    return table;
+}
+
+bool HasLinear(const Image& image) { return image.linear.size() == image.pixels.size(); }
+
+// Row y as big-endian 16-bit sRGB samples.
+void EncodeRow16(const Image& image, int y, std::vector<png_byte>& row) {
+    const std::size_t n = static_cast<std::size_t>(image.width) * image.channels;
+    const std::size_t at = static_cast<std::size_t>(y) * n;
+    row.resize(2 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double v = HasLinear(image) ? image.linear[at + k] : image.pixels[at + k] / 255.0;
+        const auto s = static_cast<unsigned>(std::lround(SrgbFromLinear(v) * 65535.0));
+        row[2 * k] = static_cast<png_byte>(s >> 8);
+        row[2 * k + 1] = static_cast<png_byte>(s & 0xff);
+    }
+}
+
 }  // namespace
+
+std::vector<std::uint8_t> EncodeSrgb8(const Image& image) {
+    std::vector<std::uint8_t> out(image.pixels.size());
+    if (HasLinear(image)) {
+        for (std::size_t k = 0; k < out.size(); ++k)
+            out[k] = static_cast<std::uint8_t>(std::lround(SrgbFromLinear(image.linear[k]) * 255.0));
+    } else {
+        const auto& t = SrgbTable();
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = t[image.pixels[k]];
+    }
+    return out;
+}
 
 bool ImageFormatFromPath(const std::string& path, ImageFormat& format) {
     std::string ext = Lower(std::filesystem::path(path).extension().string());
@@ -84,8 +126,16 @@ std::string WriteFileAtomically(const std::string& path, const std::string& cont
     return f.Commit();
 }
 
-std::string WritePng(const std::string& path, const Image& image) {
+std::string WritePng(const std::string& path, const Image& image, const PngOptions& options) {
     if (auto e = CheckImage(image); !e.empty()) return e;
+    if (options.bitDepth != 8 && options.bitDepth != 16)
+        return fmt::format("internal error: PNG bit depth {} (8 or 16)", options.bitDepth);
+    const bool sixteen = options.srgb && options.bitDepth == 16;
+    // Encoded before libpng starts: nothing with a destructor may be created after setjmp.
+    std::vector<std::uint8_t> encoded;
+    if (options.srgb && !sixteen) encoded = EncodeSrgb8(image);
+    std::vector<png_byte> row;
+    static const std::string software = std::string("Quadrix ") + QUADRIX_VERSION;
     AtomicFile f(path);
     if (!f.get()) return f.error();
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -103,7 +153,7 @@ std::string WritePng(const std::string& path, const Image& image) {
     }
     png_init_io(png, f.get());
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-                 static_cast<png_uint_32>(image.height), 8,
+                 static_cast<png_uint_32>(image.height), sixteen ? 16 : 8,
                  image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     // Speed over size (docs/performance.md): libpng's defaults try five row filters and zlib
@@ -112,9 +162,24 @@ std::string WritePng(const std::string& path, const Image& image) {
     // a few percent larger files, several times faster).
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_set_compression_level(png, 2);
+    if (options.srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_text text{};
+    text.compression = PNG_TEXT_COMPRESSION_NONE;
+    text.key = const_cast<png_charp>("Software");
+    text.text = const_cast<png_charp>(software.c_str());
+    png_set_text(png, info, &text, 1);
     png_write_info(png, info);
-    for (int y = 0; y < image.height; ++y)
-        png_write_row(png, const_cast<png_bytep>(image.At(0, y)));
+    const std::size_t stride = static_cast<std::size_t>(image.width) * image.channels;
+    for (int y = 0; y < image.height; ++y) {
+        if (sixteen) {
+            EncodeRow16(image, y, row);
+            png_write_row(png, row.data());
+        } else if (options.srgb) {
+            png_write_row(png, encoded.data() + static_cast<std::size_t>(y) * stride);
+        } else {
+            png_write_row(png, const_cast<png_bytep>(image.At(0, y)));
+        }
+    }
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     return f.Commit();
@@ -126,7 +191,8 @@ std::string WritePnm(const std::string& path, const Image& image) {
     if (!f.get()) return f.error();
     std::fprintf(f.get(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
                  image.height);
-    std::fwrite(image.pixels.data(), 1, image.pixels.size(), f.get());
+    const std::vector<std::uint8_t> encoded = EncodeSrgb8(image);
+    std::fwrite(encoded.data(), 1, encoded.size(), f.get());
     return f.Commit();
 }
 

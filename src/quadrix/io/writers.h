@@ -3,7 +3,9 @@
 // truncated file (DESIGN.md "Reliability rules").
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
@@ -16,10 +18,23 @@ enum class ImageFormat { kPng, kPnm, kFrameDump };
 // From the file extension: .png, .pgm/.ppm/.pnm, .qxf (frame dump). Unknown → false.
 bool ImageFormatFromPath(const std::string& path, ImageFormat& format);
 
+// Colour encoding (issue 17): images are shaded in linear light (io/image.h); PNG and PNM files
+// are written sRGB-encoded (math/srgb.h), from Image::linear when the shader filled it, else from
+// the 8-bit linear pixels (which bands in the darks). PNG files carry the sRGB chunk (perceptual
+// intent) with the gAMA (1/2.2) and cHRM (BT.709 primaries, D65) chunks libpng writes with it for
+// readers that do not know sRGB, and a Software text chunk "Quadrix <version>".
+struct PngOptions {
+    int bitDepth = 8;   // 8 or 16 bits per channel
+    bool srgb = true;   // false: the pixels as they are (8-bit), no colour chunks (bilevel output)
+};
+
 // Returns an empty string on success, else a one-line error message (no file left behind).
-std::string WritePng(const std::string& path, const Image& image);
-// PGM (gray) or PPM (RGB), binary.
+std::string WritePng(const std::string& path, const Image& image, const PngOptions& options = {});
+// PGM (gray) or PPM (RGB), binary, 8-bit sRGB-encoded (Netpbm's samples are gamma-encoded).
 std::string WritePnm(const std::string& path, const Image& image);
+
+// The sRGB-encoded samples of an image, 8 bits (for viewers and writers).
+std::vector<std::uint8_t> EncodeSrgb8(const Image& image);
 
 // Frame dump for tests and tools: a text header then one line per pixel
 //   QXF1 <width> <height>

@@ -57,9 +57,10 @@ std::optional<View> Scene::ViewToUse(const std::string& name) const {
 
 std::vector<Light> Scene::LightsToUse() const {
     std::vector<Light> result = lights;
-    bool anyParallel = false;
-    for (const Light& l : lights) anyParallel |= l.kind == Light::Kind::kParallel;
-    if (!anyParallel) result.push_back(DefaultLight());
+    if (lights.empty()) return result;  // the default rig (built by the Flattener from the view)
+    bool anyDirected = false;
+    for (const Light& l : lights) anyDirected |= l.kind != Light::Kind::kAmbient;
+    if (!anyDirected) result.push_back(DefaultLight());
     return result;
 }
 
