@@ -1,8 +1,8 @@
 #include "quadrix/io/pov_export.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace quadrix {
 
@@ -11,7 +11,7 @@ namespace {
 std::string Num(double v) { return fmt::format("{:.17g}", v); }
 
 class PovWriter {
-public:
+  public:
     PovWriter(const FlatScene& scene, const PovExportOptions& options)
         : scene_(scene), options_(options) {}
 
@@ -23,7 +23,7 @@ public:
         return out_;
     }
 
-private:
+  private:
     void Header() {
         const double w = scene_.width, h = scene_.height;
         double zmin = HUGE_VAL;
@@ -46,13 +46,15 @@ private:
             }
         if (options_.mask) {
             out_ += "global_settings { assumed_gamma 1.0 ambient_light rgb <1,1,1> }\n";
-            out_ += "#default { finish { ambient 1 diffuse 0 specular 0 phong 0 } pigment { color rgb <1,1,1> } }\n";
+            out_ +=
+                "#default { finish { ambient 1 diffuse 0 specular 0 phong 0 } pigment { color rgb "
+                "<1,1,1> } }\n";
             return;
         }
         // Linear light in, as Quadrix shades (assumed_gamma 1.0); the output encoding is the
         // renderer's File_Gamma (docs/pov-export.md: File_Gamma=sRGB matches Quadrix's PNGs).
-        out_ += fmt::format("global_settings {{ assumed_gamma 1.0 ambient_light {} }}\n",
-                            Rgb(ambient));
+        out_ +=
+            fmt::format("global_settings {{ assumed_gamma 1.0 ambient_light {} }}\n", Rgb(ambient));
         out_ += "#default { finish { ambient 1 diffuse 1 brilliance 1 specular 0 phong 0 } }\n";
         Background(w, h);
         const Mat4& m = scene_.projection.deviceFromWorld.Matrix();
@@ -66,26 +68,30 @@ private:
                     // Direction toward the light in device space, then into POV space (y flipped).
                     Vec3 d = Normalize(m.MapVector(l.direction));
                     Vec3 p = d * 1e7;
-                    out_ += fmt::format(
-                        "light_source {{ {} color {} parallel point_at <0,0,0> }}\n", Pov(p),
-                        Rgb(c));
+                    out_ +=
+                        fmt::format("light_source {{ {} color {} parallel point_at <0,0,0>{} }}\n",
+                                    Pov(p), Rgb(c), Shadow());
                     break;
                 }
                 case scene::Light::Kind::kPoint:
-                    out_ += fmt::format("light_source {{ {} color {} }}\n",
-                                        Pov(m.MapPoint(l.position)), Rgb(c));
+                    out_ += fmt::format("light_source {{ {} color {}{} }}\n",
+                                        Pov(m.MapPoint(l.position)), Rgb(c), Shadow());
                     break;
                 case scene::Light::Kind::kSpot:
                     // POV-Ray's spot attenuation is the same cubic spline in cos θ (lighting.h).
                     out_ += fmt::format(
                         "light_source {{ {} color {} spotlight point_at {} radius {} falloff {} "
-                        "tightness 0 }}\n",
+                        "tightness 0{} }}\n",
                         Pov(m.MapPoint(l.position)), Rgb(c), Pov(m.MapPoint(l.aim)),
-                        Num(l.coneDegrees), Num(l.falloffDegrees));
+                        Num(l.coneDegrees), Num(l.falloffDegrees), Shadow());
                     break;
             }
         }
     }
+
+    // Quadrix casts no shadows yet (issue 17 deliverable 3), so neither does the export unless
+    // asked to.
+    const char* Shadow() const { return options_.shadows ? "" : " shadowless"; }
 
     static std::string Rgb(const scene::Color& c) {
         return fmt::format("rgb <{},{},{}>", Num(c.r), Num(c.g), Num(c.b));
@@ -126,10 +132,10 @@ private:
                                 Num(h.plane.c), Num(len > 0 ? -h.plane.d / len : 0));
         } else {
             const Quadric& q = h.quadric;
-            out_ += fmt::format("quadric {{ <{},{},{}>, <{},{},{}>, <{},{},{}>, {}", Num(q.A()),
-                                Num(q.B()), Num(q.C()), Num(2 * q.D()), Num(2 * q.F()),
-                                Num(2 * q.E()), Num(2 * q.G()), Num(2 * q.H()), Num(2 * q.J()),
-                                Num(q.K()));
+            out_ +=
+                fmt::format("quadric {{ <{},{},{}>, <{},{},{}>, <{},{},{}>, {}", Num(q.A()),
+                            Num(q.B()), Num(q.C()), Num(2 * q.D()), Num(2 * q.F()), Num(2 * q.E()),
+                            Num(2 * q.G()), Num(2 * q.H()), Num(2 * q.J()), Num(q.K()));
         }
         out_ += lit.complemented ? " inverse }\n" : " }\n";
     }

@@ -35,6 +35,9 @@ namespace quadrix {
 
 struct PovExportOptions {
     bool mask = false;  // white, ambient 1, no lights: coverage masks
+    // Lights cast shadows in POV-Ray. Off by default: Quadrix's shader has no shadows yet, and
+    // the export is meant to reproduce Quadrix's picture.
+    bool shadows = false;
 };
 
 std::string ExportPov(const FlatScene& scene, const PovExportOptions& options = {});

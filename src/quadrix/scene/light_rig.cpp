@@ -19,7 +19,8 @@ std::vector<Light> DefaultRig(const Vec3& towardViewer, const Vec3& right, const
     Light key = head;
     key.id = "rig_key";
     key.intensity = kRigKey;
-    key.direction = Normalize(Normalize(towardViewer) + Normalize(up) - Normalize(right) * 0.5);
+    key.direction =
+        Normalize(Normalize(towardViewer) * 0.5 + Normalize(up) - Normalize(right) * 0.6);
     return {ambient, head, key};
 }
 
