@@ -20,6 +20,7 @@ struct PovCase {
     std::string scene;  // path under the source tree, or inline text when it starts with "text:"
     int width, height;
     bool perspective = false;
+    bool shadows = false;  // both renderers with shadows
     friend void PrintTo(const PovCase& c, std::ostream* os) { *os << c.name; }
 };
 
@@ -97,7 +98,8 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
                                                            : SourcePath(c.scene);
     std::string size = fmt::format("{}x{}", c.width, c.height);
     CommandResult e = RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " +
-                               size + " -o '" + dir.File("s.pov") + "'");
+                               size + " -o '" + dir.File("s.pov") + "'" +
+                               (c.shadows ? " --shadows" : ""));
     ASSERT_EQ(e.exitCode, 0) << e.err;
     CommandResult p = RunShell(fmt::format(
         "cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} -A +FP -D -V -GA +WT2 File_Gamma=sRGB",
@@ -115,7 +117,9 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
     Diagnostics d;
     ASSERT_TRUE(RunPipeline(o, r, d));
     const Frame& f = r.frame;
-    const Image ours = Shade(f, r.flat);
+    ShadeOptions so;
+    so.shadows = c.shadows;
+    const Image ours = Shade(f, r.flat, so);
     const std::vector<std::uint8_t> srgb = EncodeSrgb8(ours);
 
     auto nearEdge = [&](int x, int y) {
@@ -181,7 +185,12 @@ INSTANTIATE_TEST_SUITE_P(
                       PovCase{"BundleOfTubes", "examples/bundle_of_tubes.uq", 200, 160},
                       PovCase{"LitScene", kLitScene, 240, 160},
                       PovCase{"DefaultRigColors", kDefaultRigColors, 240, 160},
-                      PovCase{"PerspectiveCsg", kPerspectiveBalls, 240, 180, true}),
+                      PovCase{"PerspectiveCsg", kPerspectiveBalls, 240, 180, true},
+                      PovCase{"LitSceneShadows", kLitScene, 240, 160, false, true},
+                      PovCase{"StackOfBundlesShadows", "examples/stack_of_bundles.uq", 200, 200,
+                              false, true},
+                      PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240,
+                              false, true}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

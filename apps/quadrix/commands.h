@@ -17,6 +17,7 @@ struct RenderArgs {
     bool fast = false;
     bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
     bool png16 = false;  // 16-bit PNG output
+    bool shadows = false;
     bool stats = false;
     int threads = 0;
     std::string dumpFrame;
@@ -37,6 +38,7 @@ struct ExportArgs {
     std::string size = "512x512";
     std::string view;
     bool mask = false;
+    bool shadows = false;
 };
 void AddExportCommand(CLI::App& app, ExportArgs& args);
 int RunExport(const ExportArgs& args);

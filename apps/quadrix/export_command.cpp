@@ -20,6 +20,8 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
         ->capture_default_str();
     cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
     cmd->add_flag("--mask", args.mask, "Unlit white solids on black (coverage masks)");
+    cmd->add_flag("--shadows", args.shadows,
+                  "Lights cast shadows (as quadrix render --shadows; default: shadowless)");
 }
 
 int RunExport(const ExportArgs& args) {
@@ -52,6 +54,7 @@ int RunExport(const ExportArgs& args) {
     const FlatScene* flat = &result.flat;
     PovExportOptions po;
     po.mask = args.mask;
+    po.shadows = args.shadows;
     if (auto e = WriteFileAtomically(args.output, ExportPov(*flat, po)); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;

@@ -41,6 +41,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                   "unit) instead of Lambert")
         ->excludes(fast);
     cmd->add_flag("--png16", args.png16, "16 bits per channel in PNG output (sRGB-encoded)");
+    cmd->add_flag("--shadows", args.shadows,
+                  "Shadows from every light, by shadow rays through the CSG (parallel views)");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_option("--threads", args.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024));
@@ -156,6 +158,7 @@ int RunRender(const RenderArgs& args) {
     auto t0 = std::chrono::steady_clock::now();
     ShadeOptions so;
     so.fast = args.fast;
+    so.shadows = args.shadows;
     std::string error;
     if (format == ImageFormat::kFrameDump) {
         error = WriteFrameDump(args.output, result.frame);

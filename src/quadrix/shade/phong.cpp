@@ -7,9 +7,10 @@
 namespace quadrix {
 
 PhongTerms PhongAt(const std::vector<scene::Light>& lights, const Vec3& point, const Vec3& normal,
-                   const Vec3& towardViewer, const Reflectance& m) {
+                   const Vec3& towardViewer, const Reflectance& m, const ShadowTest& inShadow) {
     PhongTerms t;
-    for (const scene::Light& light : lights) {
+    for (std::size_t k = 0; k < lights.size(); ++k) {
+        const scene::Light& light = lights[k];
         const Incident in = IncidentLight(light, point);
         if (in.ambient) {
             t.diffuse.r += in.rgb.r;
@@ -19,6 +20,7 @@ PhongTerms PhongAt(const std::vector<scene::Light>& lights, const Vec3& point, c
         }
         const double nl = Dot(normal, in.toLight);
         if (!(nl > 0)) continue;  // the light is behind the surface: no diffuse, no highlight
+        if (inShadow && inShadow(k, in)) continue;
         // seed 001 (6.1): only θ < π/2 contributes.
         t.diffuse.r += in.rgb.r * m.diffuse * nl;
         t.diffuse.g += in.rgb.g * m.diffuse * nl;

@@ -16,11 +16,13 @@
 // bit-identical to the historical shader (multiplications by 1 are exact).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/math/vec.h"
 #include "quadrix/scene/scene.h"
+#include "quadrix/shade/lighting.h"
 
 namespace quadrix {
 
@@ -37,9 +39,14 @@ struct PhongTerms {
     scene::Color specular{0, 0, 0};
 };
 
-// The terms at world point `point` (needed by point and spot lights only).
+// Whether light k (an index into the lights) is blocked before it reaches the point.
+using ShadowTest = std::function<bool(std::size_t light, const Incident& incident)>;
+
+// The terms at world point `point` (needed by point and spot lights only). A light for which
+// `inShadow` (when given) says true contributes nothing but is asked only where n·l > 0.
 PhongTerms PhongAt(const std::vector<scene::Light>& lights, const Vec3& point, const Vec3& normal,
-                   const Vec3& towardViewer, const Reflectance& reflectance);
+                   const Vec3& towardViewer, const Reflectance& reflectance,
+                   const ShadowTest& inShadow = {});
 
 // The viewer's side of a scene: the unit vector toward the viewer from a world point, and the
 // world point seen at a device point. Precomputes the inverse of the device map once.

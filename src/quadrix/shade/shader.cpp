@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "quadrix/shade/phong.h"
+#include "quadrix/shade/shadows.h"
 
 namespace quadrix {
 
@@ -100,6 +101,9 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
     image.linear.assign(image.pixels.size(), 0.0f);
     const ViewerGeometry viewer(scene.projection);
     const bool needPoint = NeedsPoint(scene, model);
+    const bool shadows = options.shadows && !scene.projection.perspective;
+    const ShadowTester shadowTester(scene);
+    const Mat4& deviceFromWorld = scene.projection.deviceFromWorld.Matrix();
 
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     std::map<std::pair<int, int>, Vec3> meanNormal;
@@ -128,8 +132,20 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
                     const Reflectance m = ReflectanceOf(finish, options, reflection);
                     Vec3 point{0, 0, 0};
                     if (needPoint) point = viewer.WorldPoint({x + 0.5, y + 0.5, frame.depth[i]});
+                    ShadowTest inShadow;
+                    if (shadows) {
+                        const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
+                        inShadow = [&, p](std::size_t k, const Incident& in) {
+                            const scene::Light& l = scene.lights[k];
+                            if (l.kind == scene::Light::Kind::kParallel)
+                                return shadowTester.Blocked(
+                                    p, deviceFromWorld.MapVector(in.toLight), HUGE_VAL);
+                            return shadowTester.Blocked(p, deviceFromWorld.MapPoint(l.position) - p,
+                                                        1.0);
+                        };
+                    }
                     const PhongTerms t =
-                        PhongAt(scene.lights, point, n, viewer.TowardViewer(point), m);
+                        PhongAt(scene.lights, point, n, viewer.TowardViewer(point), m, inShadow);
                     const scene::Color base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
                     // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
                     c = {base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,

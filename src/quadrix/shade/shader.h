@@ -44,6 +44,10 @@ struct ShadeOptions {
     bool fast = false;
     std::optional<scene::Color> background;  // overrides the scene's background
     bool forceColor = false;                 // RGB output even when every solid is white
+    // Shadows from every parallel, point and spot light by shadow rays through the CSG
+    // (shadows.h). Off by default: existing pictures stay as they were. Parallel projections
+    // only; ignored for perspective views.
+    bool shadows = false;
     // Finish defaults of kPhong and kBlinnPhong (seed 000's post-shading unit).
     double phongDiffuse = 0.8, phongSpecular = 0.4, phongShininess = 24;
 };
