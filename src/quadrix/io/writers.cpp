@@ -81,6 +81,27 @@ const std::array<std::uint8_t, 256>& SrgbTable() {
     return table;
 }
 
+// Linear in [0, 1] quantised to 1/65535 → 8-bit sRGB. The quantisation moves a value by at most
+// 1/131070, which is at most 0.026 of an 8-bit sRGB level (the steepest part of the curve, slope
+// 12.92, is at black), so the byte is the correctly rounded one except within that distance of a
+// rounding boundary. A pow per sample would cost more than shading the picture.
+const std::vector<std::uint8_t>& SrgbTable16() {
+    static const std::vector<std::uint8_t> table = [] {
+        std::vector<std::uint8_t> t(65536);
+        for (int i = 0; i < 65536; ++i)
+            t[static_cast<std::size_t>(i)] =
+                static_cast<std::uint8_t>(std::lround(SrgbFromLinear(i / 65535.0) * 255.0));
+        return t;
+    }();
+    return table;
+}
+
+std::uint8_t EncodeLinear8(const std::uint8_t* table, float v) {
+    if (!(v > 0)) return 0;
+    if (v >= 1) return 255;
+    return table[static_cast<std::size_t>(v * 65535.0f + 0.5f)];
+}
+
 bool HasLinear(const Image& image) { return image.linear.size() == image.pixels.size(); }
 
 // Row y as big-endian 16-bit sRGB samples.
@@ -101,8 +122,8 @@ void EncodeRow16(const Image& image, int y, std::vector<png_byte>& row) {
 std::vector<std::uint8_t> EncodeSrgb8(const Image& image) {
     std::vector<std::uint8_t> out(image.pixels.size());
     if (HasLinear(image)) {
-        for (std::size_t k = 0; k < out.size(); ++k)
-            out[k] = static_cast<std::uint8_t>(std::lround(SrgbFromLinear(image.linear[k]) * 255.0));
+        const std::uint8_t* table = SrgbTable16().data();
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = EncodeLinear8(table, image.linear[k]);
     } else {
         const auto& t = SrgbTable();
         for (std::size_t k = 0; k < out.size(); ++k) out[k] = t[image.pixels[k]];
@@ -112,10 +133,14 @@ std::vector<std::uint8_t> EncodeSrgb8(const Image& image) {
 
 bool ImageFormatFromPath(const std::string& path, ImageFormat& format) {
     std::string ext = Lower(std::filesystem::path(path).extension().string());
-    if (ext == ".png") format = ImageFormat::kPng;
-    else if (ext == ".pgm" || ext == ".ppm" || ext == ".pnm") format = ImageFormat::kPnm;
-    else if (ext == ".qxf") format = ImageFormat::kFrameDump;
-    else return false;
+    if (ext == ".png")
+        format = ImageFormat::kPng;
+    else if (ext == ".pgm" || ext == ".ppm" || ext == ".pnm")
+        format = ImageFormat::kPnm;
+    else if (ext == ".qxf")
+        format = ImageFormat::kFrameDump;
+    else
+        return false;
     return true;
 }
 
@@ -154,8 +179,8 @@ std::string WritePng(const std::string& path, const Image& image, const PngOptio
     png_init_io(png, f.get());
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                  static_cast<png_uint_32>(image.height), sixteen ? 16 : 8,
-                 image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+                 image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     // Speed over size (docs/performance.md): libpng's defaults try five row filters and zlib
     // level 6, which cost more than rendering a frame. Rendered images are mostly smooth
     // gradients and flat background, where the Sub filter and a low level lose little (measured:
@@ -222,7 +247,8 @@ std::string ReadFrameDump(const std::string& path, Frame& frame) {
     int x, y, s, b, o;
     double z, nx, ny, nz;
     while (in >> x >> y >> z >> nx >> ny >> nz >> s >> b >> o) {
-        if (x < 0 || y < 0 || x >= w || y >= h) return fmt::format("'{}': pixel out of range", path);
+        if (x < 0 || y < 0 || x >= w || y >= h)
+            return fmt::format("'{}': pixel out of range", path);
         std::size_t i = frame.Index(x, y);
         frame.depth[i] = z;
         frame.normal[i] = {nx, ny, nz};

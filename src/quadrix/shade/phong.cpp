@@ -7,11 +7,14 @@
 namespace quadrix {
 
 PhongTerms PhongAt(const std::vector<scene::Light>& lights, const Vec3& point, const Vec3& normal,
-                   const Vec3& towardViewer, const Reflectance& m, const ShadowTest& inShadow) {
+                   const Vec3& towardViewer, const Reflectance& m, const ShadowTest& inShadow,
+                   const std::vector<Incident>* fixed) {
     PhongTerms t;
     for (std::size_t k = 0; k < lights.size(); ++k) {
         const scene::Light& light = lights[k];
-        const Incident in = IncidentLight(light, point);
+        const bool isFixed = fixed && (light.kind == scene::Light::Kind::kAmbient ||
+                                       light.kind == scene::Light::Kind::kParallel);
+        const Incident in = isFixed ? (*fixed)[k] : IncidentLight(light, point);
         if (in.ambient) {
             t.diffuse.r += in.rgb.r;
             t.diffuse.g += in.rgb.g;

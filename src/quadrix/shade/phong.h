@@ -44,9 +44,11 @@ using ShadowTest = std::function<bool(std::size_t light, const Incident& inciden
 
 // The terms at world point `point` (needed by point and spot lights only). A light for which
 // `inShadow` (when given) says true contributes nothing but is asked only where n·l > 0.
+// `fixed`, when given, holds IncidentLight(lights[k], ·) for the ambient and parallel lights
+// (which do not depend on the point), computed once per picture.
 PhongTerms PhongAt(const std::vector<scene::Light>& lights, const Vec3& point, const Vec3& normal,
                    const Vec3& towardViewer, const Reflectance& reflectance,
-                   const ShadowTest& inShadow = {});
+                   const ShadowTest& inShadow = {}, const std::vector<Incident>* fixed = nullptr);
 
 // The viewer's side of a scene: the unit vector toward the viewer from a world point, and the
 // world point seen at a device point. Precomputes the inverse of the device map once.

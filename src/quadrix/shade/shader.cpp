@@ -103,6 +103,8 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
     const bool needPoint = NeedsPoint(scene, model);
     const bool shadows = options.shadows && !scene.projection.perspective;
     const ShadowTester shadowTester(scene);
+    std::vector<Incident> fixedLight;
+    for (const scene::Light& l : scene.lights) fixedLight.push_back(IncidentLight(l, {}));
     const Mat4& deviceFromWorld = scene.projection.deviceFromWorld.Matrix();
 
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
@@ -144,8 +146,8 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
                                                         1.0);
                         };
                     }
-                    const PhongTerms t =
-                        PhongAt(scene.lights, point, n, viewer.TowardViewer(point), m, inShadow);
+                    const PhongTerms t = PhongAt(scene.lights, point, n, viewer.TowardViewer(point),
+                                                 m, inShadow, &fixedLight);
                     const scene::Color base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
                     // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
                     c = {base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
