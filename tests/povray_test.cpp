@@ -187,6 +187,8 @@ INSTANTIATE_TEST_SUITE_P(
                       PovCase{"DefaultRigColors", kDefaultRigColors, 240, 160},
                       PovCase{"PerspectiveCsg", kPerspectiveBalls, 240, 180, true},
                       PovCase{"LitSceneShadows", kLitScene, 240, 160, false, true},
+                      PovCase{"Materials", "examples/materials.uq", 240, 180},
+                      PovCase{"MaterialsShadows", "examples/materials.uq", 240, 180, false, true},
                       PovCase{"StackOfBundlesShadows", "examples/stack_of_bundles.uq", 200, 200,
                               false, true},
                       PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240,

@@ -19,7 +19,10 @@ class PovWriter {
         Header();
         out_ += "union {\n";
         for (std::size_t s = 0; s < scene_.solids.size(); ++s) Node(scene_.solids[s].root, 1);
-        out_ += "  scale <1,-1,1>\n}\n";
+        // Quadrix renders without shadows unless asked to, so the export's solids cast none then
+        // (`no_shadow` on the objects, not `shadowless` lights: POV-Ray's shadowless lights give no
+        // highlights).
+        out_ += options_.shadows ? "  scale <1,-1,1>\n}\n" : "  scale <1,-1,1>\n  no_shadow\n}\n";
         return out_;
     }
 
@@ -69,29 +72,25 @@ class PovWriter {
                     Vec3 d = Normalize(m.MapVector(l.direction));
                     Vec3 p = d * 1e7;
                     out_ +=
-                        fmt::format("light_source {{ {} color {} parallel point_at <0,0,0>{} }}\n",
-                                    Pov(p), Rgb(c), Shadow());
+                        fmt::format("light_source {{ {} color {} parallel point_at <0,0,0> }}\n",
+                                    Pov(p), Rgb(c));
                     break;
                 }
                 case scene::Light::Kind::kPoint:
-                    out_ += fmt::format("light_source {{ {} color {}{} }}\n",
-                                        Pov(m.MapPoint(l.position)), Rgb(c), Shadow());
+                    out_ += fmt::format("light_source {{ {} color {} }}\n",
+                                        Pov(m.MapPoint(l.position)), Rgb(c));
                     break;
                 case scene::Light::Kind::kSpot:
                     // POV-Ray's spot attenuation is the same cubic spline in cos θ (lighting.h).
                     out_ += fmt::format(
                         "light_source {{ {} color {} spotlight point_at {} radius {} falloff {} "
-                        "tightness 0{} }}\n",
+                        "tightness 0 }}\n",
                         Pov(m.MapPoint(l.position)), Rgb(c), Pov(m.MapPoint(l.aim)),
-                        Num(l.coneDegrees), Num(l.falloffDegrees), Shadow());
+                        Num(l.coneDegrees), Num(l.falloffDegrees));
                     break;
             }
         }
     }
-
-    // Quadrix casts no shadows yet (issue 17 deliverable 3), so neither does the export unless
-    // asked to.
-    const char* Shadow() const { return options_.shadows ? "" : " shadowless"; }
 
     static std::string Rgb(const scene::Color& c) {
         return fmt::format("rgb <{},{},{}>", Num(c.r), Num(c.g), Num(c.b));

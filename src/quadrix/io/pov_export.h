@@ -35,8 +35,8 @@ namespace quadrix {
 
 struct PovExportOptions {
     bool mask = false;  // white, ambient 1, no lights: coverage masks
-    // Lights cast shadows in POV-Ray. Off by default: Quadrix's shader has no shadows yet, and
-    // the export is meant to reproduce Quadrix's picture.
+    // Solids cast shadows in POV-Ray. Off by default (the union is `no_shadow`), as Quadrix's
+    // shader without ShadeOptions::shadows: the export reproduces Quadrix's picture.
     bool shadows = false;
 };
 
