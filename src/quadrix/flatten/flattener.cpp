@@ -81,9 +81,11 @@ class FlattenerImpl {
         flat.width = options_.width;
         flat.height = options_.height;
         flat.viewName = view_.id;
-        flat.lights = scene_.LightsToUse();
+        flat.lights = options_.lights ? scene::Scene::WithDefaultLight(*options_.lights)
+                                      : scene_.LightsToUse();
         // No light declared: the default rig, which follows the view (scene/light_rig.h).
-        if (flat.lights.empty()) flat.lights = scene::DefaultRig(view_.towardViewer, view_.u, view_.v);
+        if (flat.lights.empty())
+            flat.lights = scene::DefaultRig(view_.towardViewer, view_.u, view_.v);
         if (scene_.background) {
             flat.background = *scene_.background;
             flat.backgroundBottom = scene_.backgroundBottom.value_or(*scene_.background);

@@ -121,6 +121,16 @@ void EncodeRow16(const Image& image, int y, std::vector<png_byte>& row) {
 
 std::vector<std::uint8_t> EncodeSrgb8(const Image& image) {
     std::vector<std::uint8_t> out(image.pixels.size());
+    // From the 8-bit pixels, not Image::linear: the devices (uq's png device, the prompt) rebuild
+    // the picture from 8-bit spans, and every front end must write the same bytes
+    // (tests/front_ends_test.cpp). EncodeSrgb8Precise uses the floats.
+    const auto& t = SrgbTable();
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = t[image.pixels[k]];
+    return out;
+}
+
+std::vector<std::uint8_t> EncodeSrgb8Precise(const Image& image) {
+    std::vector<std::uint8_t> out(image.pixels.size());
     if (HasLinear(image)) {
         const std::uint8_t* table = SrgbTable16().data();
         for (std::size_t k = 0; k < out.size(); ++k) out[k] = EncodeLinear8(table, image.linear[k]);

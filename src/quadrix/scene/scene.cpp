@@ -56,10 +56,13 @@ std::optional<View> Scene::ViewToUse(const std::string& name) const {
 }
 
 std::vector<Light> Scene::LightsToUse() const {
-    std::vector<Light> result = lights;
-    if (lights.empty()) return result;  // the default rig (built by the Flattener from the view)
+    if (lights.empty()) return {};  // the default rig (built by the Flattener from the view)
+    return WithDefaultLight(lights);
+}
+
+std::vector<Light> Scene::WithDefaultLight(std::vector<Light> result) {
     bool anyDirected = false;
-    for (const Light& l : lights) anyDirected |= l.kind != Light::Kind::kAmbient;
+    for (const Light& l : result) anyDirected |= l.kind != Light::Kind::kAmbient;
     if (!anyDirected) result.push_back(DefaultLight());
     return result;
 }

@@ -214,6 +214,9 @@ struct Scene {
     // instead (shade/light_rig.h), which the Flattener builds from the view; this returns an empty
     // list then.
     std::vector<Light> LightsToUse() const;
+    // The UniQuadrix rule applied to a given list of lights (a front end's current lights): the
+    // default light added when none is directed; never the rig, even for an empty list.
+    static std::vector<Light> WithDefaultLight(std::vector<Light> lights);
     // True when nothing would be drawn (no drawable solid in the top scope).
     bool Empty() const;
 };
