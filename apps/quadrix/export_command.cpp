@@ -22,6 +22,8 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
     cmd->add_flag("--mask", args.mask, "Unlit white solids on black (coverage masks)");
     cmd->add_flag("--shadows", args.shadows,
                   "Lights cast shadows (as quadrix render --shadows; default: shadowless)");
+    cmd->add_flag("--allow-missing", args.allowMissing,
+                  "Export an imported model without the primitives that cannot be drawn");
 }
 
 int RunExport(const ExportArgs& args) {
@@ -33,6 +35,7 @@ int RunExport(const ExportArgs& args) {
     Diagnostics diags;
     InputRequest input;
     input.paths = args.scenes;
+    input.allowMissing = args.allowMissing;
     ViewRequest view;
     view.width = width;
     view.height = height;

@@ -114,6 +114,11 @@ struct FlatScene {
     scene::Color SurfaceColor(int surface, int body) const;
     // Its finish, looked up likewise (an empty Finish for neither).
     scene::Finish SurfaceFinish(int surface, int body) const;
+
+    // The structure's invariants, checked once after flattening (the render context does): every
+    // index in range, children before their parents. Empty when they hold, else the first
+    // violation (an internal error: user input never breaks them).
+    std::string Validate() const;
 };
 
 }  // namespace quadrix
