@@ -211,6 +211,30 @@ TEST(ImportBrlcad, ColoursAirAndColorTable) {
     }
 }
 
+// Region colours are sRGB bytes (decoded to linear light); rt shader names give finishes.
+TEST(ImportBrlcad, RegionColoursAreSrgbAndShadersGiveFinishes) {
+    std::string text =
+        "title {t}\n"
+        "put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n"
+        "put {pane} comb region yes tree {l s}\n"
+        "attr set {pane} {region} {R} {rgb} {128/64/255} {oshader} {glass}\n"
+        "put {cup} comb region yes tree {l s {1 0 0 5  0 1 0 0  0 0 1 0  0 0 0 1}}\n"
+        "attr set {cup} {region} {R} {shader} {plastic {sh 20}}\n"
+        "put {all} comb region no tree {u {l pane} {l cup}}\n";
+    auto im = Import(text, {{"all"}, false});
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    const scene::Csg* pane = FindCsg(im->scene, "pane");
+    ASSERT_TRUE(pane && pane->color);
+    EXPECT_NEAR(pane->color->r, 0.2158605, 1e-6);  // sRGB 128/255 → linear
+    EXPECT_NEAR(pane->color->g, 0.0512695, 1e-6);
+    EXPECT_EQ(pane->color->b, 1);
+    EXPECT_NEAR(*pane->finish.opacity, 0.2, 1e-15);
+    const scene::Csg* cup = FindCsg(im->scene, "cup");
+    ASSERT_TRUE(cup);
+    EXPECT_EQ(*cup->finish.shininess, 10);
+    EXPECT_FALSE(cup->finish.opacity);
+}
+
 // --- bad input: clear messages naming the record, never a crash ---
 
 struct BadCase {

@@ -12,6 +12,8 @@
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/import/scene_input.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/math/srgb.h"
+#include "quadrix/scene/css_colors.h"
 #include "test_util.h"
 
 namespace quadrix::import {
@@ -235,6 +237,39 @@ TEST(ImportOpenScad, ColorAppliesToItsSubtree) {
     ASSERT_EQ(s.top.bodies.size(), 2u);
     EXPECT_EQ(s.top.bodies[0].color, (scene::Color{1, 0, 0}));
     EXPECT_EQ(s.top.bodies[1].color, (scene::Color{0, 0, 1}));
+}
+
+// Every CSS/SVG name, hex strings and alpha; OpenSCAD's values are sRGB, decoded to linear.
+TEST(ImportOpenScad, ColorNamesHexAndAlpha) {
+    scene::Scene s;
+    Diagnostics d;
+    ImportReport r;
+    ASSERT_TRUE(ImportOpenScad("color(\"SteelBlue\", 0.5) sphere(1);\n"
+                               "color([1, 0.5, 0, 0.25]) cube(1);\n"
+                               "color(\"#ff8000\") cube(1);\n"
+                               "color(c = \"#0f08\") cube(1);\n"
+                               "color(\"rebeccapurple\") cube(1);\n",
+                               "t.csg", {}, s, d, r));
+    ASSERT_EQ(s.top.bodies.size(), 5u);
+    const auto& b = s.top.bodies;
+    EXPECT_EQ(*b[0].color, *scene::CssColor("steelblue"));
+    EXPECT_EQ(*b[0].finish.opacity, 0.5);
+    EXPECT_NEAR(b[1].color->g, LinearFromSrgb(0.5), 1e-15);  // 0.214
+    EXPECT_NEAR(b[1].color->g, 0.2140, 1e-4);
+    EXPECT_EQ(*b[1].finish.opacity, 0.25);
+    EXPECT_EQ(b[2].color->r, 1);
+    EXPECT_NEAR(b[2].color->g, LinearFromSrgb(128 / 255.0), 1e-15);
+    EXPECT_FALSE(b[2].finish.opacity);
+    EXPECT_EQ(*b[3].color, (scene::Color{0, 1, 0}));
+    EXPECT_NEAR(*b[3].finish.opacity, 0x88 / 255.0, 1e-15);
+    EXPECT_EQ(*b[4].color, *scene::CssColor("RebeccaPurple"));
+    EXPECT_EQ(d.WarningCount(), 0);
+    // An unknown name warns and is ignored.
+    scene::Scene s2;
+    Diagnostics d2;
+    ASSERT_TRUE(ImportOpenScad("color(\"notacolor\") sphere(1);", "t.csg", {}, s2, d2, r));
+    EXPECT_FALSE(s2.top.bodies[0].color);
+    EXPECT_EQ(d2.WarningCount(), 1);
 }
 
 TEST(ImportOpenScad, UnsupportedAndBadInput) {

@@ -16,6 +16,8 @@ struct RenderArgs {
     std::string engine = "raycast";
     bool fast = false;
     bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
+    bool png16 = false;  // 16-bit PNG output
+    bool shadows = false;
     bool stats = false;
     bool json = false;  // --stats --json
     int threads = 0;
@@ -38,6 +40,7 @@ struct ExportArgs {
     std::string size = "512x512";
     std::string view;
     bool mask = false;
+    bool shadows = false;
     bool allowMissing = false;
 };
 void AddExportCommand(CLI::App& app, ExportArgs& args);

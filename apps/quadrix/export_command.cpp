@@ -20,6 +20,8 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
         ->capture_default_str();
     cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
     cmd->add_flag("--mask", args.mask, "Unlit white solids on black (coverage masks)");
+    cmd->add_flag("--shadows", args.shadows,
+                  "Lights cast shadows (as quadrix render --shadows; default: shadowless)");
     cmd->add_flag("--allow-missing", args.allowMissing,
                   "Export an imported model without the primitives that cannot be drawn");
 }
@@ -56,6 +58,7 @@ int RunExport(const ExportArgs& args) {
     const FlatScene* flat = &ctx.Flat();
     PovExportOptions po;
     po.mask = args.mask;
+    po.shadows = args.shadows;
     if (auto e = WriteFileAtomically(args.output, ExportPov(*flat, po)); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;

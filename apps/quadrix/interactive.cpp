@@ -413,16 +413,23 @@ std::unique_ptr<device::Device> UqSession::CurrentDevice(std::string& error) {
 }
 
 std::vector<scene::Light> UqSession::CurrentLights() const {
-    // Every ambient light and the current parallel light (interactive.h), else the default one.
-    std::vector<scene::Light> lights;
+    // Every ambient, point and spot light and the current parallel light (interactive.h), in
+    // the scene's order (the shader's sums then match `quadrix render` bit for bit); the default
+    // light when none of them is directed. Empty when the scene declares no light: the Flattener
+    // then lights it with the default rig, as `quadrix render` does (docs/language.md §3.7).
     const scene::Light* parallel = nullptr;
-    for (const scene::Light& l : scene_.lights) {
-        if (l.kind == scene::Light::Kind::kAmbient) lights.push_back(l);
+    for (const scene::Light& l : scene_.lights)
         if (l.kind == scene::Light::Kind::kParallel &&
             (currentLight_.empty() || l.id == currentLight_))
             parallel = &l;
+    std::vector<scene::Light> lights;
+    bool directed = false;
+    for (const scene::Light& l : scene_.lights) {
+        if (l.kind == scene::Light::Kind::kParallel && &l != parallel) continue;
+        directed |= l.kind != scene::Light::Kind::kAmbient;
+        lights.push_back(l);
     }
-    lights.push_back(parallel ? *parallel : scene::DefaultLight());
+    if (!scene_.lights.empty() && !directed) lights.push_back(scene::DefaultLight());
     return lights;
 }
 
@@ -432,7 +439,9 @@ bool UqSession::FlattenCurrent(const std::string& view, const device::DeviceInfo
     request.width = info.width;
     request.height = info.height;
     request.viewName = view;
-    request.lights = CurrentLights();  // passed in, never swapped into the scene
+    // Passed in, never swapped into the scene; none declared: the Flattener's default rig.
+    if (std::vector<scene::Light> lights = CurrentLights(); !lights.empty())
+        request.lights = std::move(lights);
     ctx_.SceneChanged();               // the reader may have added statements since
     if (!ctx_.Flatten(request, diags_)) return false;
     const FlatScene& flat = ctx_.Flat();

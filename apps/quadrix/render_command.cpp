@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "quadrix/engines/patch/phong.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/engines/registry.h"
 #include "quadrix/pipeline/output.h"
@@ -49,6 +48,9 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                   "Phong shading per pixel (diffuse + specular highlight; seed 000's post-shading "
                   "unit) instead of Lambert")
         ->excludes(fast);
+    cmd->add_flag("--png16", args.png16, "16 bits per channel in PNG output (sRGB-encoded)");
+    cmd->add_flag("--shadows", args.shadows,
+                  "Shadows from every light, by shadow rays through the CSG (parallel views)");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_flag("--json", args.json,
                   "With --stats: the statistics as one JSON object on standard output");
@@ -128,7 +130,8 @@ int RunRender(const RenderArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
-    const OutputRequest outputs{args.output, args.dumpFrame};
+    OutputRequest outputs{args.output, args.dumpFrame, {}};
+    outputs.png.bitDepth = args.png16 ? 16 : 8;
     if (auto e = CheckOutputs(outputs); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
@@ -181,7 +184,9 @@ int RunRender(const RenderArgs& args) {
     if (NeedsImage(outputs)) {
         ShadeOptions so;
         so.fast = args.fast;
-        image = args.phong ? patch::PhongShade(frame, ctx.Flat()) : ctx.Shade(frame, so);
+        so.shadows = args.shadows;
+        if (args.phong) so.model = ShadingModel::kPhong;
+        image = ctx.Shade(frame, so);
     }
     const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);
     const double writeSeconds =

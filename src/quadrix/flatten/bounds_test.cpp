@@ -461,7 +461,7 @@ TEST(Bounds, TreeBoundsCombineChildren) {
     EXPECT_NEAR(f.solids[0].bounds.lo.z, -5, tol);
     FlatSolid off;
     f.halfSpaces.push_back(QuadricHs(Ellipsoid(1, 1, 1)));  // around (0,0): partly in the image
-    f.bodies.push_back(FlatBody{{{2, false}}, {}, -1, "", {}});
+    f.bodies.push_back(FlatBody{{{2, false}}, {}, -1, "", {}, {}});
     FlatCsgNode leaf;
     leaf.body = 2;
     f.nodes.push_back(leaf);

@@ -28,6 +28,15 @@ scene::Color FlatScene::SurfaceColor(int surface, int body) const {
     return {};
 }
 
+scene::Finish FlatScene::SurfaceFinish(int surface, int body) const {
+    if (body >= 0 && static_cast<std::size_t>(body) < bodies.size())
+        return bodies[static_cast<std::size_t>(body)].finish;
+    const long long k = static_cast<long long>(surface) - static_cast<long long>(halfSpaces.size());
+    if (k >= 0 && k < static_cast<long long>(freeforms.size()))
+        return freeforms[static_cast<std::size_t>(k)].finish;
+    return {};
+}
+
 std::string FlatScene::Validate() const {
     auto bad = [](const std::string& what) { return "FlatScene: " + what; };
     if (width < 0 || height < 0) return bad("negative size");

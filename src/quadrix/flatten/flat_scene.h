@@ -49,6 +49,7 @@ struct FlatBody {
     int solid = -1;            // the FlatSolid this body belongs to
     std::string name;
     Box3 bounds;               // conservative device-space bounds (may be infinite)
+    scene::Finish finish;      // resolved like color, property by property (unset = model default)
 };
 
 struct FlatCsgNode {
@@ -75,6 +76,7 @@ struct FlatFreeform {
     freeform::Surface surface;  // world coordinates
     scene::Color color;         // resolved like a body's
     std::string name;
+    scene::Finish finish;       // resolved like a body's
 };
 
 // How the world was projected; the shader needs it to express normals in world space.
@@ -92,7 +94,11 @@ struct FlatScene {
     std::vector<FlatCsgNode> nodes;
     std::vector<FlatSolid> solids;
     std::vector<FlatFreeform> freeforms;
-    std::vector<scene::Light> lights;  // world space, defaults applied
+    std::vector<scene::Light> lights;  // world space, defaults (or the default rig) applied
+    // Background of the picture: `background` at the top row blending linearly to
+    // `backgroundBottom` at the bottom row (equal = a plain color). From the scene's
+    // `background` statement; ShadeOptions may override it.
+    scene::Color background{0, 0, 0}, backgroundBottom{0, 0, 0};
     Projection projection;
     std::string viewName;
     // One tolerance for the scene, in device units of depth (see docs/engines.md): used for
@@ -106,6 +112,8 @@ struct FlatScene {
     // The base color of a pixel with Frame ids (surface, body): the body's, else the freeform
     // surface's (surface ids past the half-spaces), else white.
     scene::Color SurfaceColor(int surface, int body) const;
+    // Its finish, looked up likewise (an empty Finish for neither).
+    scene::Finish SurfaceFinish(int surface, int body) const;
 
     // The structure's invariants, checked once after flattening (the render context does): every
     // index in range, children before their parents. Empty when they hold, else the first

@@ -35,6 +35,7 @@
 #include "quadrix/flatten/hierarchy.h"
 #include "quadrix/flatten/view_setup.h"
 #include "quadrix/flatten/window_fit.h"
+#include "quadrix/scene/light_rig.h"
 
 namespace quadrix {
 
@@ -78,6 +79,13 @@ class FlattenerImpl {
         flat.viewName = view_.id;
         flat.lights = options_.lights ? scene::Scene::WithDefaultLight(*options_.lights)
                                       : scene_.LightsToUse();
+        // No light declared: the default rig, which follows the view (scene/light_rig.h).
+        if (flat.lights.empty())
+            flat.lights = scene::DefaultRig(view_.towardViewer, view_.u, view_.v);
+        if (scene_.background) {
+            flat.background = *scene_.background;
+            flat.backgroundBottom = scene_.backgroundBottom.value_or(*scene_.background);
+        }
         // The clip planes come first in halfSpaces: shared by every body.
         for (const Plane& p : view_.finalClips) {
             FlatHalfSpace h;
@@ -386,6 +394,8 @@ class FlattenerImpl {
         out.width = flat.width;
         out.height = flat.height;
         out.lights = std::move(flat.lights);
+        out.background = flat.background;
+        out.backgroundBottom = flat.backgroundBottom;
         out.projection = flat.projection;
         out.viewName = flat.viewName;
         out.freeforms = std::move(flat.freeforms);

@@ -70,9 +70,11 @@ TEST(FlattenView, DefaultViewOrientation) {
     Vec3 expected = Normalize({0.3, 0.3, -1});
     EXPECT_NEAR(Length(toward - expected), 0, 1e-15);
     EXPECT_EQ(r.flat->viewName, "default");
-    // The default light is added when there is no parallel light.
-    ASSERT_EQ(r.flat->lights.size(), 1u);
-    EXPECT_TRUE(r.flat->lights[0].isDefault);
+    // A scene without lights gets the default rig (scene/light_rig.h), which follows the view:
+    // its headlight points toward the viewer.
+    ASSERT_EQ(r.flat->lights.size(), 3u);
+    EXPECT_TRUE(r.flat->lights[1].isRig);
+    EXPECT_NEAR(Length(r.flat->lights[1].direction - expected), 0, 1e-15);
 }
 
 TEST(FlattenView, DopZeroOneOneLooksDownFromAbove) {

@@ -205,6 +205,7 @@ struct Term {
     int csg = -1;                        // kNode: csg index in si->scope
     int node = -1;                       // kNode: node index in that csg
     std::optional<Color> color;          // innermost enclosing csg/instance color
+    scene::Finish finish;                // likewise, property by property
     std::string path;                    // csg ids inside the scope instance, "" or "c/"
     std::shared_ptr<InstanceIter> iter;  // kInstanceCopy
 };
@@ -218,7 +219,7 @@ class Walker {
         worldFromTarget_ = targetFromWorld.Inverted();
         ScopeInst top{&scene_.top, targetFromWorld, "", {}};
         top.hsMap.assign(scene_.top.halfSpaces.size(), -1);
-        DrawScope(top, std::nullopt);
+        DrawScope(top, std::nullopt, {});
         return !failed_;
     }
 
@@ -231,11 +232,11 @@ class Walker {
         failed_ = true;
     }
 
-    void DrawScope(ScopeInst& si, const std::optional<Color>& color) {
+    void DrawScope(ScopeInst& si, const std::optional<Color>& color, const scene::Finish& finish) {
         const scene::Scope& s = *si.scope;
         for (std::size_t i = 0; i < s.bodies.size() && !failed_; ++i) {
             if (s.bodies[i].usedAsOperand) continue;
-            Term t = RefTerm(si, {SolidRef::Kind::kBody, int(i)}, color);
+            Term t = RefTerm(si, {SolidRef::Kind::kBody, int(i)}, color, finish);
             AddSolid(t, si.path + BodyName(s.bodies[i], int(i)), s.bodies[i].loc);
         }
         for (std::size_t i = 0; i < s.instances.size() && !failed_; ++i) {
@@ -243,11 +244,12 @@ class Walker {
             if (inst.usedAsOperand || inst.count <= 0) continue;
             const scene::Scope& def = scene_.definitions[inst.definition];
             std::optional<Color> c = inst.color ? inst.color : color;
+            const scene::Finish fin = scene::Finish::Over(inst.finish, finish);
             Transform deltaK;
             for (int k = 0; k < inst.count && !failed_; ++k) {
                 ScopeInst child{&def, si.t * deltaK * inst.init, CopyPath(si.path, inst, k), {}};
                 child.hsMap.assign(def.halfSpaces.size(), -1);
-                DrawScope(child, c);
+                DrawScope(child, c, fin);
                 deltaK = inst.delta * deltaK;
             }
         }
@@ -263,22 +265,25 @@ class Walker {
             // The walk composes target-from-object; freeform surfaces stay in world space.
             ff.surface = f.surface.Transformed((worldFromTarget_ * si.t).Matrix());
             ff.color = f.color ? *f.color : color ? *color : Color{};
+            ff.finish = scene::Finish::Over(f.finish, finish);
             ff.name = si.path + f.id;
             out_.freeforms.push_back(std::move(ff));
         }
         for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i) {
             if (s.csgs[i].usedAsOperand) continue;
-            Term t = RefTerm(si, {SolidRef::Kind::kCsg, int(i)}, color);
+            Term t = RefTerm(si, {SolidRef::Kind::kCsg, int(i)}, color, finish);
             AddSolid(t, si.path + CsgName(s.csgs[i], int(i)), s.csgs[i].loc);
         }
     }
 
-    static Term RefTerm(ScopeInst& si, SolidRef ref, const std::optional<Color>& color) {
+    static Term RefTerm(ScopeInst& si, SolidRef ref, const std::optional<Color>& color,
+                        const scene::Finish& finish) {
         Term t;
         t.kind = Term::Kind::kRef;
         t.si = &si;
         t.ref = ref;
         t.color = color;
+        t.finish = finish;
         return t;
     }
 
@@ -322,6 +327,7 @@ class Walker {
             t.csg = t.ref.index;
             t.node = c.root;
             if (c.color) t.color = c.color;
+            t.finish = scene::Finish::Over(c.finish, t.finish);
             t.path += CsgName(c, t.csg) + "/";
         }
         Fail(t.si->scope->loc, "internal error: CSG references loop");
@@ -334,6 +340,7 @@ class Walker {
         c.csg = t.csg;
         c.node = node;
         c.color = t.color;
+        c.finish = t.finish;
         c.path = t.path;
         return c;
     }
@@ -423,6 +430,7 @@ class Walker {
                 copy.kind = Term::Kind::kInstanceCopy;
                 copy.si = t.si;
                 copy.color = inst.color ? inst.color : t.color;
+                copy.finish = scene::Finish::Over(inst.finish, t.finish);
                 copy.path = t.path;
                 copy.iter = std::make_shared<InstanceIter>();
                 copy.iter->parent = t.si;
@@ -462,6 +470,7 @@ class Walker {
             item.si = &si;
             item.ref = {kind, index};
             item.color = t.color;
+            item.finish = t.finish;
             items.push_back(std::move(item));
         };
         for (std::size_t i = 0; i < def.bodies.size(); ++i)
@@ -484,6 +493,7 @@ class Walker {
             fb.literals.push_back({hs, l.complemented});
         }
         fb.color = body.color ? *body.color : (t.color ? *t.color : Color{});
+        fb.finish = scene::Finish::Over(body.finish, t.finish);
         fb.solid = currentSolid_;
         fb.name = si.path + t.path + BodyName(body, t.ref.index);
         out_.bodies.push_back(std::move(fb));

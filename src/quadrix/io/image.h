@@ -1,4 +1,9 @@
-// An 8-bit image, gray (1 channel) or RGB (3 channels), rows top to bottom.
+// An image in LINEAR light, gray (1 channel) or RGB (3 channels), rows top to bottom.
+//
+// `pixels` holds 8-bit linear intensities (value/255): what the devices, the terminal and the
+// tests read. The shader also fills `linear` with the same values unquantised (floats in [0, 1]),
+// so that the writers can encode the picture to sRGB 8 or 16 bits without banding in the darks
+// (io/writers.h); an image made by hand may leave it empty.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +15,7 @@ struct Image {
     int width = 0, height = 0;
     int channels = 1;  // 1 = gray, 3 = RGB
     std::vector<std::uint8_t> pixels;  // row-major, channels interleaved
+    std::vector<float> linear;         // empty, or the same layout as pixels, in [0, 1]
 
     Image() = default;
     Image(int w, int h, int c)

@@ -15,9 +15,16 @@
 //         transparent literals (and clips)   → clipped_by { intersection { … } } (bound, not drawn)
 //   CSG union / intersection / difference    → union / intersection / difference
 // Lights: ambient lights sum into global ambient_light; parallel lights become `parallel` light
-// sources far away in their (device-space) direction. Shading therefore matches for parallel
-// views; for perspective views device-space normals differ from world normals (coverage and depth
-// are still exact). Mask mode writes every solid as unlit white for coverage comparisons.
+// sources far away in their (device-space) direction; point and spot lights are placed at their
+// device-space positions (spot: radius/falloff = cone/falloff, tightness 0). The default rig of a
+// scene without lights is exported as the three lights it is. Colors are linear with
+// `assumed_gamma 1.0`; rendered with `File_Gamma=sRGB` POV-Ray writes the sRGB-encoded picture
+// Quadrix writes. Shading therefore matches for parallel views; for perspective views
+// device-space normals differ from world normals (coverage and depth are still exact). Finishes
+// map to `finish { diffuse kd specular ks roughness 1/shininess }` (POV-Ray's Blinn highlight);
+// opacity to `rgbt` transmit (POV-Ray then shows what is behind, Quadrix the background). The
+// background is `background`, or for a gradient an emitting plane behind every solid.
+// Mask mode writes every solid as unlit white for coverage comparisons.
 #pragma once
 
 #include <string>
@@ -28,6 +35,9 @@ namespace quadrix {
 
 struct PovExportOptions {
     bool mask = false;  // white, ambient 1, no lights: coverage masks
+    // Solids cast shadows in POV-Ray. Off by default (the union is `no_shadow`), as Quadrix's
+    // shader without ShadeOptions::shadows: the export reproduces Quadrix's picture.
+    bool shadows = false;
 };
 
 std::string ExportPov(const FlatScene& scene, const PovExportOptions& options = {});

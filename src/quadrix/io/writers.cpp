@@ -3,6 +3,7 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <csetjmp>
@@ -14,6 +15,8 @@
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "quadrix/math/srgb.h"
 
 namespace quadrix {
 
@@ -66,14 +69,88 @@ std::string CheckImage(const Image& image) {
     return {};
 }
 
+// 8-bit linear → 8-bit sRGB.
+const std::array<std::uint8_t, 256>& SrgbTable() {
+    static const std::array<std::uint8_t, 256> table = [] {
+        std::array<std::uint8_t, 256> t{};
+        for (int i = 0; i < 256; ++i)
+            t[static_cast<std::size_t>(i)] =
+                static_cast<std::uint8_t>(std::lround(SrgbFromLinear(i / 255.0) * 255.0));
+        return t;
+    }();
+    return table;
+}
+
+// Linear in [0, 1] quantised to 1/65535 → 8-bit sRGB. The quantisation moves a value by at most
+// 1/131070, which is at most 0.026 of an 8-bit sRGB level (the steepest part of the curve, slope
+// 12.92, is at black), so the byte is the correctly rounded one except within that distance of a
+// rounding boundary. A pow per sample would cost more than shading the picture.
+const std::vector<std::uint8_t>& SrgbTable16() {
+    static const std::vector<std::uint8_t> table = [] {
+        std::vector<std::uint8_t> t(65536);
+        for (int i = 0; i < 65536; ++i)
+            t[static_cast<std::size_t>(i)] =
+                static_cast<std::uint8_t>(std::lround(SrgbFromLinear(i / 65535.0) * 255.0));
+        return t;
+    }();
+    return table;
+}
+
+std::uint8_t EncodeLinear8(const std::uint8_t* table, float v) {
+    if (!(v > 0)) return 0;
+    if (v >= 1) return 255;
+    return table[static_cast<std::size_t>(v * 65535.0f + 0.5f)];
+}
+
+bool HasLinear(const Image& image) { return image.linear.size() == image.pixels.size(); }
+
+// Row y as big-endian 16-bit sRGB samples.
+void EncodeRow16(const Image& image, int y, std::vector<png_byte>& row) {
+    const std::size_t n = static_cast<std::size_t>(image.width) * image.channels;
+    const std::size_t at = static_cast<std::size_t>(y) * n;
+    row.resize(2 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double v = HasLinear(image) ? image.linear[at + k] : image.pixels[at + k] / 255.0;
+        const auto s = static_cast<unsigned>(std::lround(SrgbFromLinear(v) * 65535.0));
+        row[2 * k] = static_cast<png_byte>(s >> 8);
+        row[2 * k + 1] = static_cast<png_byte>(s & 0xff);
+    }
+}
+
 }  // namespace
+
+std::vector<std::uint8_t> EncodeSrgb8(const Image& image) {
+    std::vector<std::uint8_t> out(image.pixels.size());
+    // From the 8-bit pixels, not Image::linear: the devices (uq's png device, the prompt) rebuild
+    // the picture from 8-bit spans, and every front end must write the same bytes
+    // (tests/front_ends_test.cpp). EncodeSrgb8Precise uses the floats.
+    const auto& t = SrgbTable();
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = t[image.pixels[k]];
+    return out;
+}
+
+std::vector<std::uint8_t> EncodeSrgb8Precise(const Image& image) {
+    std::vector<std::uint8_t> out(image.pixels.size());
+    if (HasLinear(image)) {
+        const std::uint8_t* table = SrgbTable16().data();
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = EncodeLinear8(table, image.linear[k]);
+    } else {
+        const auto& t = SrgbTable();
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = t[image.pixels[k]];
+    }
+    return out;
+}
 
 bool ImageFormatFromPath(const std::string& path, ImageFormat& format) {
     std::string ext = Lower(std::filesystem::path(path).extension().string());
-    if (ext == ".png") format = ImageFormat::kPng;
-    else if (ext == ".pgm" || ext == ".ppm" || ext == ".pnm") format = ImageFormat::kPnm;
-    else if (ext == ".qxf") format = ImageFormat::kFrameDump;
-    else return false;
+    if (ext == ".png")
+        format = ImageFormat::kPng;
+    else if (ext == ".pgm" || ext == ".ppm" || ext == ".pnm")
+        format = ImageFormat::kPnm;
+    else if (ext == ".qxf")
+        format = ImageFormat::kFrameDump;
+    else
+        return false;
     return true;
 }
 
@@ -84,8 +161,16 @@ std::string WriteFileAtomically(const std::string& path, const std::string& cont
     return f.Commit();
 }
 
-std::string WritePng(const std::string& path, const Image& image) {
+std::string WritePng(const std::string& path, const Image& image, const PngOptions& options) {
     if (auto e = CheckImage(image); !e.empty()) return e;
+    if (options.bitDepth != 8 && options.bitDepth != 16)
+        return fmt::format("internal error: PNG bit depth {} (8 or 16)", options.bitDepth);
+    const bool sixteen = options.srgb && options.bitDepth == 16;
+    // Encoded before libpng starts: nothing with a destructor may be created after setjmp.
+    std::vector<std::uint8_t> encoded;
+    if (options.srgb && !sixteen) encoded = EncodeSrgb8(image);
+    std::vector<png_byte> row;
+    static const std::string software = std::string("Quadrix ") + QUADRIX_VERSION;
     AtomicFile f(path);
     if (!f.get()) return f.error();
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -103,18 +188,33 @@ std::string WritePng(const std::string& path, const Image& image) {
     }
     png_init_io(png, f.get());
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-                 static_cast<png_uint_32>(image.height), 8,
-                 image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+                 static_cast<png_uint_32>(image.height), sixteen ? 16 : 8,
+                 image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     // Speed over size (docs/performance.md): libpng's defaults try five row filters and zlib
     // level 6, which cost more than rendering a frame. Rendered images are mostly smooth
     // gradients and flat background, where the Sub filter and a low level lose little (measured:
     // a few percent larger files, several times faster).
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_set_compression_level(png, 2);
+    if (options.srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_text text{};
+    text.compression = PNG_TEXT_COMPRESSION_NONE;
+    text.key = const_cast<png_charp>("Software");
+    text.text = const_cast<png_charp>(software.c_str());
+    png_set_text(png, info, &text, 1);
     png_write_info(png, info);
-    for (int y = 0; y < image.height; ++y)
-        png_write_row(png, const_cast<png_bytep>(image.At(0, y)));
+    const std::size_t stride = static_cast<std::size_t>(image.width) * image.channels;
+    for (int y = 0; y < image.height; ++y) {
+        if (sixteen) {
+            EncodeRow16(image, y, row);
+            png_write_row(png, row.data());
+        } else if (options.srgb) {
+            png_write_row(png, encoded.data() + static_cast<std::size_t>(y) * stride);
+        } else {
+            png_write_row(png, const_cast<png_bytep>(image.At(0, y)));
+        }
+    }
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     return f.Commit();
@@ -126,7 +226,8 @@ std::string WritePnm(const std::string& path, const Image& image) {
     if (!f.get()) return f.error();
     std::fprintf(f.get(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
                  image.height);
-    std::fwrite(image.pixels.data(), 1, image.pixels.size(), f.get());
+    const std::vector<std::uint8_t> encoded = EncodeSrgb8(image);
+    std::fwrite(encoded.data(), 1, encoded.size(), f.get());
     return f.Commit();
 }
 
@@ -156,7 +257,8 @@ std::string ReadFrameDump(const std::string& path, Frame& frame) {
     int x, y, s, b, o;
     double z, nx, ny, nz;
     while (in >> x >> y >> z >> nx >> ny >> nz >> s >> b >> o) {
-        if (x < 0 || y < 0 || x >= w || y >= h) return fmt::format("'{}': pixel out of range", path);
+        if (x < 0 || y < 0 || x >= w || y >= h)
+            return fmt::format("'{}': pixel out of range", path);
         std::size_t i = frame.Index(x, y);
         frame.depth[i] = z;
         frame.normal[i] = {nx, ny, nz};

@@ -3,7 +3,9 @@
 // truncated file (DESIGN.md "Reliability rules").
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
@@ -16,10 +18,27 @@ enum class ImageFormat { kPng, kPnm, kFrameDump };
 // From the file extension: .png, .pgm/.ppm/.pnm, .qxf (frame dump). Unknown → false.
 bool ImageFormatFromPath(const std::string& path, ImageFormat& format);
 
+// Colour encoding (issue 17): images are shaded in linear light (io/image.h); PNG and PNM files
+// are written sRGB-encoded (math/srgb.h). 8-bit output is encoded from the 8-bit linear pixels,
+// so that every front end (render, and uq's devices, which rebuild the picture from 8-bit spans)
+// writes the same bytes; this loses levels in the darks (linear 1/255 is sRGB 13/255). 16-bit
+// PNG is encoded from Image::linear when the shader filled it (no banding). PNG files carry the sRGB chunk (perceptual
+// intent) with the gAMA (1/2.2) and cHRM (BT.709 primaries, D65) chunks libpng writes with it for
+// readers that do not know sRGB, and a Software text chunk "Quadrix <version>".
+struct PngOptions {
+    int bitDepth = 8;   // 8 or 16 bits per channel
+    bool srgb = true;   // false: the pixels as they are (8-bit), no colour chunks (bilevel output)
+};
+
 // Returns an empty string on success, else a one-line error message (no file left behind).
-std::string WritePng(const std::string& path, const Image& image);
-// PGM (gray) or PPM (RGB), binary.
+std::string WritePng(const std::string& path, const Image& image, const PngOptions& options = {});
+// PGM (gray) or PPM (RGB), binary, 8-bit sRGB-encoded (Netpbm's samples are gamma-encoded).
 std::string WritePnm(const std::string& path, const Image& image);
+
+// The sRGB-encoded samples of an image, 8 bits: from the 8-bit pixels (what the writers use), or
+// from Image::linear when present (for viewers that want the smoother darks).
+std::vector<std::uint8_t> EncodeSrgb8(const Image& image);
+std::vector<std::uint8_t> EncodeSrgb8Precise(const Image& image);
 
 // Frame dump for tests and tools: a text header then one line per pixel
 //   QXF1 <width> <height>

@@ -35,7 +35,8 @@ const char* const kTokens[] = {
     "{",     "}",       "\"",    "=t",   "=0",         "=c",         "=tx",      "=ry",   "=sa",
     "=vzy",  "=p",      "=r",    "=",    "vrp",        "cop",        "dop",      "whh",   "fbp",
     "1e308", "1e999",   "-0",    ".5",   "0",          "1e-320",     "nan",      "inf",   "#",
-    "_x",    "tube",    "x",     "\n",   "read part;", "read loop;", "(((((((("};
+    "_x",    "tube",    "x",     "\n",   "read part;", "read loop;", "((((((((", "=finish",
+    "=alpha", "=at",    "=aim",  "=cone", "background", "steelblue", "solid sphere s =r 1"};
 
 std::string MutateOnce(std::string s, std::mt19937& rng) {
     auto pick = [&](std::size_t n) {

@@ -35,6 +35,7 @@ constexpr std::array kSpellings = {
     Spelling{"bspline", Keyword::kBspline},
     Spelling{"patches", Keyword::kPatches},
     Spelling{"solid", Keyword::kSolid},
+    Spelling{"background", Keyword::kBackground},
     Spelling{"vrp", Keyword::kVrp},
     Spelling{"vpn", Keyword::kVpn},
     Spelling{"vup", Keyword::kVup},

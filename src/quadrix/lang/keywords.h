@@ -32,6 +32,7 @@ enum class Keyword {
     kBezier,    // freeform surfaces (extension, stmt_freeform.cpp)
     kBspline,
     kPatches,
+    kBackground,  // background color or gradient (extension, stmt_background.cpp)
     // View parameters (§2.1.6).
     kVrp,
     kVpn,

@@ -133,6 +133,7 @@ bool Parser::ExpectId(std::string_view what, std::string& id, SourceLoc& loc) {
 }
 
 std::optional<scene::Color> Parser::ParseColor(const Token& option) {
+    if (PeekIs(TokenKind::kId) || PeekIs(TokenKind::kKeyword)) return ParseColorName(option);
     static constexpr const char* kNames[3] = {"red", "green", "blue"};
     double rgb[3];
     for (int i = 0; i < 3; ++i) {

@@ -80,10 +80,23 @@ public:
     bool OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow)(Keyword) = nullptr);
     // A required id (`what` names it: "definition id").
     bool ExpectId(std::string_view what, std::string& id, SourceLoc& loc);
-    // `=c r g b` after its option token has been taken: three numbers in [0, 1].
+    // `=c r g b` after its option token has been taken: three numbers in [0, 1] (linear light),
+    // or `=c name` with one of the CSS/SVG color names (sRGB, converted to linear; appearance.cpp).
     std::optional<scene::Color> ParseColor(const Token& option);
+    // The appearance options of solids (the color and materials extensions, docs/language.md
+    // §3.6), after the option token has been taken:
+    //   =c r g b | =c name          the color
+    //   =finish kd ks shininess     diffuse and specular coefficients, specular exponent
+    //   =alpha a                    opacity in [0, 1]
+    // A repeated option warns and the last one is used. False on a syntax error (reported).
+    static bool IsAppearanceOption(std::string_view name) {
+        return name == "c" || name == "finish" || name == "alpha";
+    }
+    bool ParseAppearance(const Token& option, std::optional<scene::Color>& color,
+                         scene::Finish& finish);
 
 private:
+    std::optional<scene::Color> ParseColorName(const Token& option);
     bool RunStatement();
     void SkipToSemicolon();
     void CheckUnclosedDefinition();

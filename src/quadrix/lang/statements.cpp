@@ -21,6 +21,7 @@ constexpr std::array kStatements = {
     StatementEntry{Keyword::kArray, ParseArray, true},
     StatementEntry{Keyword::kRead, ParseRead, true},
     StatementEntry{Keyword::kLight, ParseLight, false},
+    StatementEntry{Keyword::kBackground, ParseBackground, false},
     StatementEntry{Keyword::kView, ParseView, false},
     StatementEntry{Keyword::kRedef, ParseRedef, false},
     StatementEntry{Keyword::kDevice, ParseDevice, false},

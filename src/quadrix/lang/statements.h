@@ -47,6 +47,7 @@ bool ParseEnddef(Parser& p, const Token& keyword);
 bool ParseInstance(Parser& p, const Token& keyword);
 bool ParseArray(Parser& p, const Token& keyword);
 bool ParseLight(Parser& p, const Token& keyword);
+bool ParseBackground(Parser& p, const Token& keyword);  // stmt_background.cpp
 bool ParseView(Parser& p, const Token& keyword);
 bool ParseRead(Parser& p, const Token& keyword);
 bool ParseRedef(Parser& p, const Token& keyword);

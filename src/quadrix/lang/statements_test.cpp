@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "quadrix/lang/test_util.h"
+#include "quadrix/math/srgb.h"
 
 namespace quadrix::lang {
 namespace {
@@ -32,6 +33,47 @@ TEST(LangStatements, PlaneAndQuadricWithOptions) {
     EXPECT_EQ(r.diags.WarningCount(), 0);
     EXPECT_EQ(hs[0].loc.line, 1);
     EXPECT_EQ(hs[0].loc.column, 1);
+}
+
+// The materials extension, point and spot lights and the background (docs/language.md §3.6-3.7).
+TEST(LangStatements, MaterialsLightsAndBackground) {
+    Parsed r = Parse(
+        "plane ha <1 0 0 0>; body bb (ha) =c SteelBlue =finish .5 .25 12 =alpha .75;\n"
+        "csg c (bb) =alpha .5;\n"
+        "def d; plane hd <1 0 0 0>; body (hd) =c 1 0 0; end; array row (d) =finish 1 0 3 2 =tx 1 =alpha .1;\n"
+        "solid sphere s =r 1 =c gold =finish 1 .5 20;\n"
+        "light bulb .5 =at 1 2 3 =c 1 .5 0; light spot .75 =at 0 5 0 =aim 0 0 0 =cone 15;\n"
+        "light sp2 1 =at 0 5 0 =aim 0 0 0 =cone 15 25;\n"
+        "background navy white;\n");
+    ASSERT_TRUE(r.ok) << r.All();
+    const auto& bodies = r.scene.top.bodies;
+    ASSERT_EQ(bodies.size(), 2u);
+    EXPECT_NEAR(bodies[0].color->r, 0.0612, 1e-4);  // #4682b4 decoded from sRGB
+    EXPECT_EQ(*bodies[0].finish.diffuse, 0.5);
+    EXPECT_EQ(*bodies[0].finish.specular, 0.25);
+    EXPECT_EQ(*bodies[0].finish.shininess, 12);
+    EXPECT_EQ(*bodies[0].finish.opacity, 0.75);
+    EXPECT_EQ(*r.scene.top.csgs[0].finish.opacity, 0.5);
+    const auto& inst = r.scene.top.instances[0];
+    EXPECT_EQ(*inst.finish.shininess, 3);
+    EXPECT_EQ(*inst.finish.opacity, 0.1);
+    EXPECT_EQ(inst.count, 2);
+    EXPECT_EQ(*bodies[1].finish.specular, 0.5);
+    const auto& lights = r.scene.lights;
+    ASSERT_EQ(lights.size(), 3u);
+    EXPECT_EQ(lights[0].kind, scene::Light::Kind::kPoint);
+    EXPECT_EQ(lights[0].position, (Vec3{1, 2, 3}));
+    EXPECT_EQ(lights[0].color, (scene::Color{1, .5, 0}));
+    EXPECT_EQ(lights[1].kind, scene::Light::Kind::kSpot);
+    EXPECT_EQ(lights[1].coneDegrees, 15);
+    EXPECT_EQ(lights[1].falloffDegrees, 25);  // default: cone + 10
+    EXPECT_EQ(lights[2].falloffDegrees, 25);
+    EXPECT_EQ(*r.scene.background, (scene::Color{0, 0, LinearFromSrgb(128 / 255.0)}));
+    EXPECT_EQ(*r.scene.backgroundBottom, (scene::Color{1, 1, 1}));
+    EXPECT_EQ(r.diags.WarningCount(), 0);
+    // Finishes resolve like colors, property by property.
+    Parsed twice = Parse("plane ha <1 0 0 0>; body (ha) =alpha .5 =alpha .25;");
+    EXPECT_EQ(twice.Warnings().size(), 1u);
 }
 
 TEST(LangStatements, QuadricWithoutSecondOrderTermsWarns) {

@@ -1,5 +1,5 @@
 // body statement (seed 001 §2.1.2) with the Quadrix color extension:
-//   body [id] ( [!]hsId ... ) [=c r g b];
+//   body [id] ( [!]hsId ... ) [=c r g b | =c name] [=finish kd ks n] [=alpha a];
 // The list may also be written with angle brackets, < ... >, as in the paper's tube example.
 // A body is the intersection of the half-spaces it names; '!' takes the complement of one.
 // Bodies may name only half-spaces of their own scope (§2.1.3).
@@ -76,17 +76,15 @@ bool ParseBody(Parser& p, const Token& keyword) {
 
     while (p.PeekIs(TokenKind::kOption)) {
         Token option = p.Take();
-        if (option.text != "c") {
-            p.Error(
-                option.loc,
-                fmt::format("unknown option {} for a body (expected =c r g b)", Describe(option)),
-                kSyntax);
+        if (!Parser::IsAppearanceOption(option.text)) {
+            p.Error(option.loc,
+                    fmt::format("unknown option {} for a body (expected =c r g b, =finish or "
+                                "=alpha)",
+                                Describe(option)),
+                    kSyntax);
             return false;
         }
-        if (body.color) p.Warning(option.loc, "color given twice; the last one is used");
-        auto color = p.ParseColor(option);
-        if (!color) return false;
-        body.color = color;
+        if (!p.ParseAppearance(option, body.color, body.finish)) return false;
     }
     if (!p.ExpectSemicolon("body list")) return false;
 

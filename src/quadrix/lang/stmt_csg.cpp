@@ -1,5 +1,5 @@
 // The CSG extension statement (docs/language.md; decided in the project's design notes):
-//   csg [id] ( expr ) [=c r g b];
+//   csg [id] ( expr ) [=c r g b | =c name] [=finish kd ks n] [=alpha a];
 //   expr   := term { '|' term }                  union, lowest precedence
 //   term   := factor { ('&' | '-') factor }      intersection / difference, left-associative
 //   factor := id | '(' expr ')'
@@ -133,17 +133,15 @@ bool ParseCsg(Parser& p, const Token& keyword) {
     if (!root) return false;
     while (p.PeekIs(TokenKind::kOption)) {
         Token option = p.Take();
-        if (option.text != "c") {
-            p.Error(
-                option.loc,
-                fmt::format("unknown option {} for a csg (expected =c r g b)", Describe(option)),
-                kSyntax);
+        if (!Parser::IsAppearanceOption(option.text)) {
+            p.Error(option.loc,
+                    fmt::format("unknown option {} for a csg (expected =c r g b, =finish or "
+                                "=alpha)",
+                                Describe(option)),
+                    kSyntax);
             return false;
         }
-        if (csg.color) p.Warning(option.loc, "color given twice; the last one is used");
-        auto color = p.ParseColor(option);
-        if (!color) return false;
-        csg.color = color;
+        if (!p.ParseAppearance(option, csg.color, csg.finish)) return false;
     }
     if (!p.ExpectSemicolon("the csg expression")) return false;
 

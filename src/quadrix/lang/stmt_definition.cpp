@@ -63,14 +63,12 @@ bool ParseDefinitionRef(Parser& p, scene::Instance& inst, const char* statement)
     return true;
 }
 
-// `=c r g b` when the next token is that option; false on a syntax error.
-bool ParseOptionalColor(Parser& p, std::optional<scene::Color>& color) {
-    if (!p.PeekIsOption("c")) return true;
-    Token option = p.Take();
-    if (color) p.Warning(option.loc, "color given twice; the last one is used");
-    auto c = p.ParseColor(option);
-    if (!c) return false;
-    color = c;
+// Appearance options (=c, =finish, =alpha) while the next token is one; false on a syntax error.
+bool ParseOptionalColor(Parser& p, scene::Instance& inst) {
+    while (p.PeekIs(TokenKind::kOption) && Parser::IsAppearanceOption(p.Peek().text)) {
+        Token option = p.Take();
+        if (!p.ParseAppearance(option, inst.color, inst.finish)) return false;
+    }
     return true;
 }
 
@@ -142,11 +140,11 @@ bool ParseInstance(Parser& p, const Token& keyword) {
     SourceLoc idLoc = keyword.loc;
     if (!p.OptionalId(inst.id, idLoc)) return false;
     if (!ParseDefinitionRef(p, inst, "instance")) return false;
-    if (!ParseOptionalColor(p, inst.color)) return false;
-    if (p.PeekIs(TokenKind::kOption) && !p.PeekIsOption("c")) {
+    if (!ParseOptionalColor(p, inst)) return false;
+    if (p.PeekIs(TokenKind::kOption)) {
         p.Error(p.Peek().loc,
                 fmt::format("unexpected {} after ')': an instance's transforms go inside the "
-                            "parentheses, and only =c r g b may follow them",
+                            "parentheses, and only =c, =finish and =alpha may follow them",
                             Describe(p.Peek())),
                 kSyntax);
         return false;
@@ -163,7 +161,7 @@ bool ParseArray(Parser& p, const Token& keyword) {
     SourceLoc idLoc = keyword.loc;
     if (!p.OptionalId(inst.id, idLoc)) return false;
     if (!ParseDefinitionRef(p, inst, "array")) return false;
-    if (!ParseOptionalColor(p, inst.color)) return false;
+    if (!ParseOptionalColor(p, inst)) return false;
 
     SourceLoc countLoc = p.Peek().loc;
     auto count = p.ExpectNumber("the number of copies after ')'");
@@ -179,14 +177,14 @@ bool ParseArray(Parser& p, const Token& keyword) {
 
     bool sawDelta = false;
     while (p.PeekIs(TokenKind::kOption)) {
-        if (p.PeekIsOption("c")) {
-            if (!ParseOptionalColor(p, inst.color)) return false;
+        if (Parser::IsAppearanceOption(p.Peek().text)) {
+            if (!ParseOptionalColor(p, inst)) return false;
             continue;
         }
         if (!IsTransformOption(p.Peek().text)) {
             p.Error(p.Peek().loc,
                     fmt::format("unknown delta transform {} (expected =tx =ty =tz =ta =sx =sy "
-                                "=sz =sa =rx =ry =rz =vxy ... or =c)",
+                                "=sz =sa =rx =ry =rz =vxy ..., =c, =finish or =alpha)",
                                 Describe(p.Peek())),
                     kSyntax);
             return false;

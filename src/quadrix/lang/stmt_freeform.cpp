@@ -96,6 +96,7 @@ struct Tail {
     bool rational = false;
     Transform transform;
     std::optional<scene::Color> color;
+    scene::Finish finish;
 };
 
 bool ParseTail(Parser& p, std::string_view statement, std::size_t points, bool allowWeights,
@@ -116,14 +117,12 @@ bool ParseTail(Parser& p, std::string_view statement, std::size_t points, bool a
             tail.rational = true;
         } else if (IsTransformOption(option.text)) {
             if (!ParseTransforms(p, tail.transform)) return false;
-        } else if (option.text == "c") {
+        } else if (Parser::IsAppearanceOption(option.text)) {
             Token c = p.Take();
-            if (tail.color) p.Warning(c.loc, "color given twice; the last one is used");
-            tail.color = p.ParseColor(c);
-            if (!tail.color) return false;
+            if (!p.ParseAppearance(c, tail.color, tail.finish)) return false;
         } else {
             p.Error(option.loc,
-                    fmt::format("unknown option {} for a {} (expected {}transforms or =c r g b)",
+                    fmt::format("unknown option {} for a {} (expected {}transforms, =c r g b, =finish or =alpha)",
                                 Describe(option), statement, allowWeights ? "=r <weights>, " : ""),
                     kSyntax);
             return false;
@@ -151,6 +150,7 @@ void AddSurface(Parser& p, const Token& keyword, std::string id, const SourceLoc
     surface.SetName(id);
     f.surface = surface.Transformed(tail.transform.Matrix());
     f.color = tail.color;
+    f.finish = tail.finish;
     f.loc = keyword.loc;
     s.CurrentScope().freeforms.push_back(std::move(f));
 }

@@ -1,7 +1,10 @@
-// Light statements (seed 001 §2.1.5, §2.3):
+// Light statements (seed 001 §2.1.5, §2.3, and the point/spot extension, docs/language.md §3.7):
 //   light [id] intensity;          ambient (isotropic)
 //   light [id] intensity x y z;    parallel; (x y z) is the direction TO the light
-//   redef light id [intensity [x y z]];
+//   light [id] intensity =at x y z;                                  point light at (x y z)
+//   light [id] intensity =at x y z =aim x y z [=cone deg [deg]];     spot light
+//   any of them [=c r g b | =c name]                                 the light's color
+//   redef light id [intensity [x y z] [options]];
 // Intensities outside [0, 1] are truncated with a warning ("UniQuadrix truncates values outside
 // this range"). A light written without an id gets one, announced by a warning as in the paper's
 // session ("warning: id l#1 created").
@@ -19,16 +22,60 @@ namespace {
 struct LightValues {
     std::optional<double> intensity;
     std::optional<Vec3> direction;
-    SourceLoc intensityLoc, directionLoc;
+    std::optional<Vec3> position, aim;
+    std::optional<double> cone, falloff;
+    std::optional<scene::Color> color;
+    SourceLoc intensityLoc, directionLoc, positionLoc, aimLoc, coneLoc;
 };
+
+bool ParsePoint(Parser& p, const Token& option, Vec3& v) {
+    static constexpr const char* kAxes[3] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i) {
+        auto c =
+            p.ExpectNumber(fmt::format("the {} coordinate after {}", kAxes[i], Describe(option)));
+        if (!c) return false;
+        v[i] = *c;
+    }
+    return true;
+}
+
+// =at, =aim, =cone and =c after the numbers. False on a syntax error.
+bool ParseLightOptions(Parser& p, LightValues& v) {
+    while (p.PeekIs(TokenKind::kOption)) {
+        Token option = p.Take();
+        if (option.text == "at" || option.text == "aim") {
+            Vec3 point;
+            (option.text == "at" ? v.positionLoc : v.aimLoc) = option.loc;
+            if (!ParsePoint(p, option, point)) return false;
+            (option.text == "at" ? v.position : v.aim) = point;
+        } else if (option.text == "cone") {
+            v.coneLoc = option.loc;
+            v.cone = p.ExpectNumber("the cone half-angle in degrees after =cone");
+            if (!v.cone) return false;
+            v.falloff.reset();
+            if (p.PeekIs(TokenKind::kNumber)) v.falloff = p.Take().number;
+        } else if (option.text == "c") {
+            if (v.color) p.Warning(option.loc, "color given twice; the last one is used");
+            v.color = p.ParseColor(option);
+            if (!v.color) return false;
+        } else {
+            p.Error(option.loc,
+                    fmt::format("unknown option {} for a light (expected =at, =aim, =cone or =c)",
+                                Describe(option)),
+                    kSyntax);
+            return false;
+        }
+    }
+    return true;
+}
 
 // intensity [x y z], or nothing at all when `optional` (redef). False on a syntax error.
 bool ParseLightValues(Parser& p, LightValues& v, bool optional) {
-    if (optional && !p.PeekIs(TokenKind::kNumber)) return true;
+    if (optional && !p.PeekIs(TokenKind::kNumber)) return ParseLightOptions(p, v);
     v.intensityLoc = p.Peek().loc;
     v.intensity = p.ExpectNumber("the light's intensity");
     if (!v.intensity) return false;
-    if (!p.PeekIs(TokenKind::kNumber)) return true;
+    if (!p.PeekIs(TokenKind::kNumber)) return ParseLightOptions(p, v);
     v.directionLoc = p.Peek().loc;
     Vec3 d;
     static constexpr const char* kAxes[3] = {"x", "y", "z"};
@@ -41,7 +88,7 @@ bool ParseLightValues(Parser& p, LightValues& v, bool optional) {
         d[i] = *c;
     }
     v.direction = d;
-    return true;
+    return ParseLightOptions(p, v);
 }
 
 // Truncation and direction checks shared by light and redef light.
@@ -62,6 +109,49 @@ void ApplyLightValues(Parser& p, const LightValues& v, scene::Light& light) {
             light.kind = scene::Light::Kind::kParallel;
             light.direction = *v.direction;
         }
+    }
+    if (v.color) light.color = *v.color;
+    if (v.position) {
+        if (v.direction) {
+            p.Error(v.positionLoc, fmt::format("light '{}' has both a direction (parallel) and =at "
+                                               "(point or spot); give one of them",
+                                               light.id));
+            return;
+        }
+        light.kind = scene::Light::Kind::kPoint;
+        light.position = *v.position;
+    }
+    if (v.aim) {
+        if (light.kind != scene::Light::Kind::kPoint && light.kind != scene::Light::Kind::kSpot) {
+            p.Error(v.aimLoc, fmt::format("=aim makes light '{}' a spot light, which needs =at "
+                                          "(its position)",
+                                          light.id));
+            return;
+        }
+        if (*v.aim == light.position) {
+            p.Error(v.aimLoc,
+                    fmt::format("spot light '{}' is aimed at its own position", light.id));
+            return;
+        }
+        light.kind = scene::Light::Kind::kSpot;
+        light.aim = *v.aim;
+    }
+    if (v.cone) {
+        if (light.kind != scene::Light::Kind::kSpot) {
+            p.Error(v.coneLoc, fmt::format("=cone is for spot lights (=at ... =aim ...); light "
+                                           "'{}' is not one",
+                                           light.id));
+            return;
+        }
+        const double falloff = v.falloff.value_or(std::min(*v.cone + 10, 89.0));
+        if (!(*v.cone > 0) || !(falloff >= *v.cone) || !(falloff < 90)) {
+            p.Error(v.coneLoc, fmt::format("=cone {} {}: the half-angles must satisfy 0 < cone "
+                                           "<= falloff < 90 degrees",
+                                           *v.cone, falloff));
+            return;
+        }
+        light.coneDegrees = *v.cone;
+        light.falloffDegrees = falloff;
     }
 }
 
@@ -87,8 +177,9 @@ bool ParseLight(Parser& p, const Token& keyword) {
         return true;
     }
     light.kind = scene::Light::Kind::kAmbient;
+    const int errors = s.diags.ErrorCount();
     ApplyLightValues(p, values, light);
-    if (values.direction && light.kind != scene::Light::Kind::kParallel) return true;  // reported
+    if (s.diags.ErrorCount() != errors) return true;  // reported
     s.AddLight(std::move(light));
     return true;
 }
@@ -105,7 +196,7 @@ bool ParseRedefLight(Parser& p, const Token& keyword) {
 
     ReaderState& s = p.State();
     int index = s.FindLight(command.id);
-    bool changed = values.intensity.has_value();
+    bool changed = values.intensity || values.position || values.aim || values.cone || values.color;
     if (index < 0 && command.id != "default") {
         p.Error(idLoc, fmt::format("unknown light '{}'", command.id));
         return true;

@@ -338,7 +338,7 @@ std::string OptionList(const Kind& kind) {
     std::string s;
     for (const ParamSpec& ps : kind.params) s += "=" + std::string(ps.name) + ", ";
     if (kind.axial) s += "=open, =open0, =open1, ";
-    if (kind.makesBody) s += "=hsb, =c, ";
+    if (kind.makesBody) s += "=hsb, =c, =finish, =alpha, ";
     return s + "=t, =0 or a transform (=tx, =ry, ...)";
 }
 
@@ -347,6 +347,7 @@ struct Flags {
     bool open0 = false, open1 = false;
     bool hsbOnly = false;
     std::optional<scene::Color> color;
+    scene::Finish finish;
 };
 
 // Reads the options up to the ';'. Returns false after a syntax error (reported).
@@ -372,11 +373,8 @@ bool ParseOptions(Parser& p, const Kind& kind, SolidContext& ctx, Flags& flags,
             flags.hsbOnly = true;
             continue;
         }
-        if (kind.makesBody && name == "c") {
-            if (flags.color) p.Warning(option.loc, "color given twice; the last one is used");
-            auto color = p.ParseColor(option);
-            if (!color) return false;
-            flags.color = color;
+        if (kind.makesBody && Parser::IsAppearanceOption(name)) {
+            if (!p.ParseAppearance(option, flags.color, flags.finish)) return false;
             continue;
         }
         const ParamSpec* spec = nullptr;
@@ -476,6 +474,7 @@ bool ParseSolid(Parser& p, const Token& keyword) {
     body.id = id;
     body.loc = keyword.loc;
     body.color = flags.color;
+    body.finish = flags.finish;
     for (const model::SolidSurface& surface : placed.surfaces) {
         scene::HalfSpace hs;
         hs.id = id + surface.suffix;

@@ -40,7 +40,7 @@ std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const
     else if (!image)
         error = "internal error: no image to write";
     else if (format == ImageFormat::kPng)
-        error = WritePng(request.image, *image);
+        error = WritePng(request.image, *image, request.png);
     else
         error = WritePnm(request.image, *image);
     if (error.empty() && !request.dumpFrame.empty()) error = WriteFrameDump(request.dumpFrame, frame);

@@ -14,6 +14,7 @@ namespace quadrix {
 struct OutputRequest {
     std::string image;      // the main output; its extension picks the format
     std::string dumpFrame;  // optional .qxf dump of the Frame (--dump-frame)
+    PngOptions png;         // bit depth of a PNG main output (--png16)
 };
 
 // Checks the request before any work: a known format, two different paths. Error or empty.

@@ -53,6 +53,8 @@ FlatScene SubsetOfSolids(const FlatScene& flat, const std::vector<int>& solids) 
     sub.bodies = flat.bodies;
     sub.nodes = flat.nodes;
     sub.lights = flat.lights;
+    sub.background = flat.background;
+    sub.backgroundBottom = flat.backgroundBottom;
     sub.projection = flat.projection;
     sub.viewName = flat.viewName;
     sub.depthTolerance = flat.depthTolerance;

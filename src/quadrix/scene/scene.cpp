@@ -55,12 +55,15 @@ std::optional<View> Scene::ViewToUse(const std::string& name) const {
     return DefaultView();
 }
 
-std::vector<Light> Scene::LightsToUse() const { return WithDefaultLight(lights); }
+std::vector<Light> Scene::LightsToUse() const {
+    if (lights.empty()) return {};  // the default rig (built by the Flattener from the view)
+    return WithDefaultLight(lights);
+}
 
 std::vector<Light> Scene::WithDefaultLight(std::vector<Light> result) {
-    bool anyParallel = false;
-    for (const Light& l : result) anyParallel |= l.kind == Light::Kind::kParallel;
-    if (!anyParallel) result.push_back(DefaultLight());
+    bool anyDirected = false;
+    for (const Light& l : result) anyDirected |= l.kind != Light::Kind::kAmbient;
+    if (!anyDirected) result.push_back(DefaultLight());
     return result;
 }
 

@@ -30,6 +30,28 @@ struct Color {
     bool operator==(const Color&) const = default;
 };
 
+// The finish of a surface (the materials extension, docs/language.md §3.6): diffuse and specular
+// coefficients, the specular exponent and the opacity. Every property is optional and resolved
+// like the color (the body's own, else the innermost enclosing CSG solid's or instance's); what is
+// still unset after that takes the shading model's default (shade/shader.h).
+struct Finish {
+    std::optional<double> diffuse;    // kd >= 0
+    std::optional<double> specular;   // ks >= 0
+    std::optional<double> shininess;  // Phong/Blinn exponent > 0
+    std::optional<double> opacity;    // alpha in [0, 1]; 1 = opaque
+    bool operator==(const Finish&) const = default;
+    bool Empty() const { return *this == Finish{}; }
+    // Each property of `inner` that is set, else `outer`'s.
+    static Finish Over(const Finish& inner, const Finish& outer) {
+        Finish f = inner;
+        if (!f.diffuse) f.diffuse = outer.diffuse;
+        if (!f.specular) f.specular = outer.specular;
+        if (!f.shininess) f.shininess = outer.shininess;
+        if (!f.opacity) f.opacity = outer.opacity;
+        return f;
+    }
+};
+
 // A half-space bound (HSB), seed 001 §2.1.1: a surface that is drawn (when opaque) and bounds the
 // other surfaces of the bodies that name it.
 struct HalfSpace {
@@ -53,6 +75,7 @@ struct Body {
     std::string id;
     std::vector<Literal> literals;
     std::optional<Color> color;
+    Finish finish;
     bool usedAsOperand = false;  // set by the reader when a CSG solid names this body
     SourceLoc loc;
 };
@@ -69,6 +92,7 @@ struct Instance {
     // Color given to the bodies of the instanced definition that have none of their own
     // (`=c r g b` after the parenthesised transforms).
     std::optional<Color> color;
+    Finish finish;
     bool usedAsOperand = false;
     SourceLoc loc;
 };
@@ -101,6 +125,7 @@ struct Csg {
     std::vector<CsgNode> nodes;
     int root = -1;
     std::optional<Color> color;
+    Finish finish;
     bool usedAsOperand = false;
     SourceLoc loc;
 };
@@ -113,6 +138,7 @@ struct FreeformSurface {
     std::string id;
     freeform::Surface surface;
     std::optional<Color> color;
+    Finish finish;
     SourceLoc loc;
 };
 
@@ -126,15 +152,24 @@ struct Scope {
     SourceLoc loc;
 };
 
-// Lights (seed 001 §2.1.5). Ambient lights are isotropic; parallel lights shine from `direction`
-// (the vector *to* the light, world space). Intensities are already truncated to [0, 1].
+// Lights (seed 001 §2.1.5, and the point/spot extension of docs/language.md §3.7). Ambient lights
+// are isotropic; parallel lights shine from `direction` (the vector *to* the light, world space);
+// point lights shine from `position` in every direction, spot lights from `position` toward
+// `aim` within a cone: full intensity up to `coneDegrees` from the axis, falling smoothly to 0 at
+// `falloffDegrees`. Point and spot lights are not attenuated with distance (as POV-Ray's default
+// `fade_power 0`). Intensities are already truncated to [0, 1].
 struct Light {
-    enum class Kind { kAmbient, kParallel };
+    enum class Kind { kAmbient, kParallel, kPoint, kSpot };
     std::string id;
     Kind kind = Kind::kAmbient;
     double intensity = 0;
-    Vec3 direction;
+    Vec3 direction;  // kParallel: toward the light
+    Vec3 position;   // kPoint, kSpot: world space
+    Vec3 aim;        // kSpot: the point the spot is aimed at
+    double coneDegrees = 30, falloffDegrees = 40;  // kSpot: half-angles, cone <= falloff < 90
+    Color color;     // the light's color (white unless given)
     bool isDefault = false;  // the automatic `light default 1 0 0 -1`
+    bool isRig = false;      // one of the default rig's lights (no light declared)
     SourceLoc loc;
 };
 
@@ -161,6 +196,9 @@ struct Scene {
     std::vector<Scope> definitions;
     std::vector<Light> lights;
     std::vector<View> views;
+    // `background r g b [r g b]` (docs/language.md §3.8): the picture's background, a plain color
+    // or a vertical gradient from the top color to the bottom one. Unset = black.
+    std::optional<Color> background, backgroundBottom;
 
     // Lookups by id; -1 when absent.
     int FindDefinition(const std::string& id) const;
@@ -170,10 +208,14 @@ struct Scene {
     // The view used for rendering: `name` if given, else the last view defined, else the default
     // view `dop .3 .3 -1`. nullopt when `name` is not a view.
     std::optional<View> ViewToUse(const std::string& name = {}) const;
-    // The lights used for shading: all ambient lights and all parallel lights; when there is no
-    // parallel light, the default `light default 1 0 0 -1` is added.
+    // The lights used for shading when the scene declares lights: all of them; when none of them
+    // is a parallel, point or spot light, the default `light default 1 0 0 -1` is added
+    // (UniQuadrix's semantics). A scene that declares no light at all is lit by the default rig
+    // instead (shade/light_rig.h), which the Flattener builds from the view; this returns an empty
+    // list then.
     std::vector<Light> LightsToUse() const;
-    // The same rule applied to a given list of lights (a front end's current lights).
+    // The UniQuadrix rule applied to a given list of lights (a front end's current lights): the
+    // default light added when none is directed; never the rig, even for an empty list.
     static std::vector<Light> WithDefaultLight(std::vector<Light> lights);
     // True when nothing would be drawn (no drawable solid in the top scope).
     bool Empty() const;

@@ -8,6 +8,9 @@
 #include <map>
 #include <utility>
 
+#include "quadrix/shade/phong.h"
+#include "quadrix/shade/shadows.h"
+
 namespace quadrix {
 
 double LambertIntensity(const FlatScene& scene, const Vec3& n) {
@@ -15,7 +18,7 @@ double LambertIntensity(const FlatScene& scene, const Vec3& n) {
     for (const scene::Light& l : scene.lights) {
         if (l.kind == scene::Light::Kind::kAmbient) {
             sum += l.intensity;
-        } else {
+        } else if (l.kind == scene::Light::Kind::kParallel) {
             double c = Dot(n, Normalize(l.direction));
             if (c > 0) sum += l.intensity * c;  // seed 001 (6.1): only θ < π/2 contributes
         }
@@ -33,10 +36,19 @@ std::uint8_t ToByte(double v) {
     return static_cast<std::uint8_t>(v * 255.0 + 0.5);
 }
 
+float ToUnit(double v) { return v > 0 ? (v < 1 ? static_cast<float>(v) : 1.0f) : 0.0f; }
+
+bool Gray(const scene::Color& c) { return c.r == c.g && c.g == c.b; }
+
 bool AnyColor(const FlatScene& scene, const ShadeOptions& options) {
     if (options.forceColor) return true;
-    auto gray = [](const scene::Color& c) { return c.r == c.g && c.g == c.b; };
-    if (!gray(options.background)) return true;
+    if (options.background) {
+        if (!Gray(*options.background)) return true;
+    } else if (!Gray(scene.background) || !Gray(scene.backgroundBottom)) {
+        return true;
+    }
+    for (const scene::Light& l : scene.lights)
+        if (!Gray(l.color)) return true;
     for (const FlatBody& b : scene.bodies)
         if (!(b.color == scene::Color{})) return true;
     for (const FlatFreeform& f : scene.freeforms)
@@ -44,45 +56,124 @@ bool AnyColor(const FlatScene& scene, const ShadeOptions& options) {
     return false;
 }
 
+// The background of row y (a vertical gradient, or one color).
+scene::Color BackgroundAt(const FlatScene& scene, const ShadeOptions& options, int y, int height) {
+    if (options.background) return *options.background;
+    const scene::Color& a = scene.background;
+    const scene::Color& b = scene.backgroundBottom;
+    if (a == b) return a;
+    const double t = height > 1 ? (y + 0.5) / height : 0.5;
+    return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t};
+}
+
+// Whether the shader needs the world point of each pixel: for point and spot lights, and for
+// highlights under perspective (the direction to the eye varies).
+bool NeedsPoint(const FlatScene& scene, ShadingModel model) {
+    for (const scene::Light& l : scene.lights)
+        if (l.kind == scene::Light::Kind::kPoint || l.kind == scene::Light::Kind::kSpot)
+            return true;
+    if (!scene.projection.perspective) return false;
+    if (model == ShadingModel::kPhong || model == ShadingModel::kBlinnPhong) return true;
+    for (const FlatBody& b : scene.bodies)
+        if (b.finish.specular && *b.finish.specular > 0) return true;
+    for (const FlatFreeform& f : scene.freeforms)
+        if (f.finish.specular && *f.finish.specular > 0) return true;
+    return false;
+}
+
+// The reflectance of a surface under a model: the finish's properties, else the model's.
+Reflectance ReflectanceOf(const scene::Finish& f, const ShadeOptions& o, ShadingModel model) {
+    Reflectance r;
+    const bool phong = model == ShadingModel::kPhong || model == ShadingModel::kBlinnPhong;
+    r.diffuse = f.diffuse.value_or(phong ? o.phongDiffuse : 1.0);
+    r.specular = f.specular.value_or(phong ? o.phongSpecular : 0.0);
+    r.shininess = f.shininess.value_or(phong ? o.phongShininess : 24.0);
+    r.blinn = model != ShadingModel::kPhong;
+    return r;
+}
+
 }  // namespace
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
+    const ShadingModel model = options.fast ? ShadingModel::kFast : options.model;
     const bool color = AnyColor(scene, options);
     Image image(frame.width, frame.height, color ? 3 : 1);
+    image.linear.assign(image.pixels.size(), 0.0f);
+    const ViewerGeometry viewer(scene.projection);
+    const bool needPoint = NeedsPoint(scene, model);
+    const bool shadows = options.shadows && !scene.projection.perspective;
+    const ShadowTester shadowTester(scene);
+    std::vector<Incident> fixedLight;
+    for (const scene::Light& l : scene.lights) fixedLight.push_back(IncidentLight(l, {}));
+    const Mat4& deviceFromWorld = scene.projection.deviceFromWorld.Matrix();
 
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     std::map<std::pair<int, int>, Vec3> meanNormal;
-    if (options.fast) {
+    if (model == ShadingModel::kFast) {
         for (std::size_t i = 0; i < frame.surface.size(); ++i)
             if (frame.surface[i] != Frame::kNone)
                 meanNormal[{frame.surface[i], frame.body[i]}] += frame.normal[i];
         for (auto& [key, n] : meanNormal) n = Normalize(n);
     }
+    const ShadingModel reflection = model == ShadingModel::kFast ? ShadingModel::kLambert : model;
 
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
     // is the same for any thread count.
     auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            const scene::Color background = BackgroundAt(scene, options, y, frame.height);
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);
-                scene::Color c = options.background;
+                scene::Color c = background;
                 if (frame.surface[i] != Frame::kNone) {
-                    const Vec3 n = options.fast
+                    const Vec3 n = model == ShadingModel::kFast
                                        ? meanNormal.find({frame.surface[i], frame.body[i]})->second
                                        : frame.normal[i];
-                    const double intensity = LambertIntensity(scene, n);
+                    const scene::Finish finish =
+                        scene.SurfaceFinish(frame.surface[i], frame.body[i]);
+                    const Reflectance m = ReflectanceOf(finish, options, reflection);
+                    Vec3 point{0, 0, 0};
+                    if (needPoint) point = viewer.WorldPoint({x + 0.5, y + 0.5, frame.depth[i]});
+                    ShadowTest inShadow;
+                    if (shadows) {
+                        const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
+                        inShadow = [&, p](std::size_t k, const Incident& in) {
+                            const scene::Light& l = scene.lights[k];
+                            if (l.kind == scene::Light::Kind::kParallel)
+                                return shadowTester.Blocked(
+                                    p, deviceFromWorld.MapVector(in.toLight), HUGE_VAL);
+                            return shadowTester.Blocked(p, deviceFromWorld.MapPoint(l.position) - p,
+                                                        1.0);
+                        };
+                    }
+                    const PhongTerms t = PhongAt(scene.lights, point, n, viewer.TowardViewer(point),
+                                                 m, inShadow, &fixedLight);
                     const scene::Color base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
-                    c = {base.r * intensity, base.g * intensity, base.b * intensity};
+                    // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
+                    c = {base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
+                         base.g * std::min(t.diffuse.g, 1.0) + t.specular.g,
+                         base.b * std::min(t.diffuse.b, 1.0) + t.specular.b};
+                    if (finish.opacity && *finish.opacity < 1) {
+                        const double a = *finish.opacity;
+                        c = {a * c.r + (1 - a) * background.r, a * c.g + (1 - a) * background.g,
+                             a * c.b + (1 - a) * background.b};
+                    }
                 }
                 std::uint8_t* p = image.At(x, y);
+                float* f = &image.linear[static_cast<std::size_t>(p - image.pixels.data())];
                 if (color) {
                     p[0] = ToByte(c.r);
                     p[1] = ToByte(c.g);
                     p[2] = ToByte(c.b);
+                    f[0] = ToUnit(c.r);
+                    f[1] = ToUnit(c.g);
+                    f[2] = ToUnit(c.b);
                 } else {
                     p[0] = ToByte(c.r);
+                    f[0] = ToUnit(c.r);
                 }
             }
+        }
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, frame.height, 16), shadeRows);
     return image;

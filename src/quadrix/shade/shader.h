@@ -1,13 +1,34 @@
-// Shader (seed 001 §6.1): ambient plus Lambert parallel lights, saturating at 1.
+// The shader: a Frame (per pixel normal, depth and ids) and the flat scene's lights and
+// materials become an Image in linear light. One entry point, Shade(), used by every front end.
 //
-//   i = min(1, Σ ambient + Σ_parallel intensity · max(0, n·l)) · color
+// Models (ShadeOptions::model; the reflection formulas are in phong.h):
+//   kLambert    seed 001 §6.1: i = min(1, Σ ambient + Σ intensity·kd·max(0, n·l))·color; a
+//               surface whose finish declares a specular coefficient adds its highlight
+//               (Blinn–Phong). With the defaults (kd 1, ks 0) and white lights this is
+//               bit-for-bit the historical shader, which the paper defines with one parallel
+//               light (the last); Quadrix sums every light, which is the same when there is one.
+//   kFast       the -f option (§2.1.5): every (surface, body) pair gets one constant intensity,
+//               computed from the mean of its visible normals: the flat look used for debugging.
+//   kPhong      seed 000's post-shading unit: diffuse plus a Phong highlight (defaults kd .8,
+//   kBlinnPhong ks .4, shininess 24 for surfaces whose finish does not say); Blinn–Phong uses
+//               the half vector.
+// Lights: ambient, parallel, point and spot (lighting.h); the scene's, or the default rig when it
+// declares none (scene/light_rig.h). Materials: the body's color and finish
+// (scene::Finish, resolved by the Flattener); unset finish properties take the model's defaults.
 //
-// n is the Frame's world-space normal (facing the viewer), l the unit vector toward a parallel
-// light. The paper shades with one parallel light (the last); Quadrix sums every parallel light,
-// which is the same when there is one. Gray when no solid has a color, RGB otherwise.
-// "Fast" shading (the -f option, §2.1.5) gives every (surface, body) pair one constant intensity
-// computed from the mean of its visible normals: the flat look the paper used for debugging.
+// Transparency (=alpha a, a < 1) is limited to what ONE Frame holds: the first surface along each
+// ray. The pixel is a · shaded + (1 - a) · background, so a transparent solid shows the
+// background through it but not the solids behind it (those are not in the Frame); the CAD
+// "glass" look with hidden parts showing needs the engines to keep more than the first hit.
+//
+// Background: ShadeOptions::background when given, else the scene's `background` statement (a
+// color or a vertical gradient, FlatScene::background/backgroundBottom), else black.
+//
+// Output: 8-bit gray when every color involved is gray, else RGB; Image::linear carries the
+// unquantised values for the writers' sRGB encoding (io/writers.h).
 #pragma once
+
+#include <optional>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
@@ -15,15 +36,27 @@
 
 namespace quadrix {
 
+enum class ShadingModel { kLambert, kFast, kPhong, kBlinnPhong };
+
 struct ShadeOptions {
+    ShadingModel model = ShadingModel::kLambert;
+    // The front ends' historical spelling of model = kFast (UniQuadrix's -f); either selects it.
     bool fast = false;
-    scene::Color background{0, 0, 0};
-    bool forceColor = false;  // RGB output even when every solid is white
+    std::optional<scene::Color> background;  // overrides the scene's background
+    bool forceColor = false;                 // RGB output even when every solid is white
+    // Shadows from every parallel, point and spot light by shadow rays through the CSG
+    // (shadows.h). Off by default: existing pictures stay as they were. Parallel projections
+    // only; ignored for perspective views.
+    bool shadows = false;
+    // Finish defaults of kPhong and kBlinnPhong (seed 000's post-shading unit).
+    double phongDiffuse = 0.8, phongSpecular = 0.4, phongShininess = 24;
 };
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options = {});
 
-// Intensity of a surface with world normal n under the scene's lights (before color, in [0,1]).
+// Intensity of a surface with world normal n under the scene's ambient and parallel lights
+// (Lambert, before color, in [0,1]; point and spot lights, which need the surface point, are
+// not counted). Used by the engines' shading comparisons.
 double LambertIntensity(const FlatScene& scene, const Vec3& n);
 
 }  // namespace quadrix

@@ -11,6 +11,7 @@
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/scene_input.h"
+#include "quadrix/math/srgb.h"
 
 namespace quadrix::import {
 
@@ -57,6 +58,27 @@ struct Expr {
     Box3 box;
 };
 
+// The finish of an rt shader name, from the defaults of BRL-CAD's liboptical (plastic: shine 10,
+// specular .7, diffuse .3; mirror: shine 4, specular .6; glass: shine 4, specular .7,
+// transmission .8). The specular weights are halved and the diffuse left to the shading model:
+// Quadrix's lights are weaker than rt's, and rt's diffuse .3 would darken every region.
+// Parameters written after the name (`plastic {sh 20}`) are not read. Unknown names: no finish.
+scene::Finish ShaderFinish(const std::string& shader) {
+    scene::Finish f;
+    if (shader == "plastic") {
+        f.specular = 0.35;
+        f.shininess = 10;
+    } else if (shader == "mirror") {
+        f.specular = 0.3;
+        f.shininess = 4;
+    } else if (shader == "glass") {
+        f.specular = 0.35;
+        f.shininess = 4;
+        f.opacity = 0.2;
+    }
+    return f;
+}
+
 struct ColorCtx {
     std::optional<std::array<int, 3>> rgb;
     bool locked = false;
@@ -67,6 +89,7 @@ struct Term {
     std::string name;
     std::optional<std::array<int, 3>> rgb;
     SourceLoc loc;
+    std::string shader;  // the region's shader name ("plastic", "glass", ...), empty if none
 };
 
 class Converter {
@@ -413,7 +436,7 @@ class Converter {
         if (!it->second.first) {  // a bare primitive: a region of its own
             const Primitive& p = db_.primitives[it->second.second];
             int e = Leaf(it->second.second, m, ref ? loc : p.loc);
-            if (e >= 0) out.push_back({e, p.name, ctx.rgb, p.loc});
+            if (e >= 0) out.push_back({e, p.name, ctx.rgb, p.loc, {}});
             return out;
         }
         int ci = it->second.second;
@@ -426,6 +449,7 @@ class Converter {
             combOnPath_[ci] = 0;
             t.name = c.name;
             t.loc = c.loc;
+            t.shader = c.shader;
             if (ctx.locked && ctx.rgb)
                 t.rgb = ctx.rgb;
             else if (c.rgb)
@@ -476,14 +500,14 @@ class Converter {
                 for (const Term& a : l)
                     for (const Term& b : r) {
                         int e = Combine(scene::CsgOp::kIntersection, a.expr, b.expr);
-                        if (e >= 0) out.push_back({e, a.name, a.rgb, a.loc});
+                        if (e >= 0) out.push_back({e, a.name, a.rgb, a.loc, a.shader});
                     }
                 break;
             default: {  // (A∪B) − (C∪D) = (A − C − D) ∪ (B − C − D)
                 for (const Term& a : l) {
                     int e = a.expr;
                     for (const Term& b : r) e = Combine(scene::CsgOp::kDifference, e, b.expr);
-                    if (e >= 0) out.push_back({e, a.name, a.rgb, a.loc});
+                    if (e >= 0) out.push_back({e, a.name, a.rgb, a.loc, a.shader});
                 }
                 break;
             }
@@ -551,9 +575,12 @@ class Converter {
             int k = used[t.name]++;
             csg.id = k == 0 ? t.name : fmt::format("{}#{}", t.name, k + 1);
             csg.loc = t.loc;
+            // rt's colors are display (sRGB) values: decoded to linear light (math/srgb.h).
             if (t.rgb)
-                csg.color =
-                    scene::Color{(*t.rgb)[0] / 255.0, (*t.rgb)[1] / 255.0, (*t.rgb)[2] / 255.0};
+                csg.color = scene::Color{LinearFromSrgb((*t.rgb)[0] / 255.0),
+                                         LinearFromSrgb((*t.rgb)[1] / 255.0),
+                                         LinearFromSrgb((*t.rgb)[2] / 255.0)};
+            csg.finish = ShaderFinish(t.shader);
             csg.root = EmitNode(csg, t.expr);
             if (aborted_) return;
             const Box3& b = exprs_[t.expr].box;

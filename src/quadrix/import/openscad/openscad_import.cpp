@@ -28,10 +28,18 @@
 #include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/openscad/polygon_solids.h"
 #include "quadrix/import/scene_input.h"
+#include "quadrix/math/srgb.h"
+#include "quadrix/scene/css_colors.h"
 
 namespace quadrix::import {
 
 namespace {
+
+// A color() of the scene: linear-light color and optional opacity (OpenSCAD's alpha).
+struct Paint {
+    scene::Color color;
+    std::optional<double> alpha;
+};
 
 struct Value {
     enum class Kind { kUndef, kNumber, kBool, kString, kVector };
@@ -306,7 +314,7 @@ class Builder {
             Diagnostics& diags, ImportReport& report)
         : map_(map), options_(options), scene_(scene), diags_(diags), report_(report) {}
 
-    void Top(const std::vector<Node>& nodes, const Mat4& m, std::optional<scene::Color> color) {
+    void Top(const std::vector<Node>& nodes, const Mat4& m, std::optional<Paint> color) {
         SpecialsScope scope(*this, nodes);
         for (const Node& n : nodes) {
             if (n.dropped || n.name == "=") continue;
@@ -394,28 +402,60 @@ class Builder {
         return std::nullopt;
     }
 
-    std::optional<scene::Color> ColorOf(const Node& n) {
+    // color(c, alpha) (OpenSCAD manual, "Transformations: color"): c is [r, g, b] or [r, g, b, a]
+    // with components in [0, 1], a CSS/SVG color name or "#rgb", "#rgba", "#rrggbb",
+    // "#rrggbbaa"; alpha (default 1) is overridden by an alpha inside c. OpenSCAD's values are
+    // sRGB (display) values: they are decoded to linear light (math/srgb.h), so the PNG shows the
+    // color OpenSCAD shows.
+    std::optional<Paint> ColorOf(const Node& n) {
         const Value* v = Find(n, "c", 0);
         if (!v) return std::nullopt;
+        auto clamp = [](double x) { return std::fmin(1.0, std::fmax(0.0, x)); };
+        Paint paint;
+        if (const Value* a = Find(n, "alpha", 1); a && a->kind == Value::Kind::kNumber)
+            paint.alpha = clamp(a->number);
         if (v->kind == Value::Kind::kVector && v->items.size() >= 3) {
-            scene::Color c{v->items[0].number, v->items[1].number, v->items[2].number};
-            auto clamp = [](double x) { return std::fmin(1.0, std::fmax(0.0, x)); };
-            return scene::Color{clamp(c.r), clamp(c.g), clamp(c.b)};
+            paint.color = {LinearFromSrgb(clamp(v->items[0].number)),
+                           LinearFromSrgb(clamp(v->items[1].number)),
+                           LinearFromSrgb(clamp(v->items[2].number))};
+            if (v->items.size() >= 4 && v->items[3].kind == Value::Kind::kNumber)
+                paint.alpha = clamp(v->items[3].number);
+            return paint;
         }
         if (v->kind == Value::Kind::kString) {
-            static const std::map<std::string, scene::Color> kNames = {
-                {"red", {1, 0, 0}},      {"green", {0, 0.5, 0}},     {"lime", {0, 1, 0}},
-                {"blue", {0, 0, 1}},     {"white", {1, 1, 1}},       {"black", {0, 0, 0}},
-                {"yellow", {1, 1, 0}},   {"cyan", {0, 1, 1}},        {"magenta", {1, 0, 1}},
-                {"gray", {.5, .5, .5}},  {"grey", {.5, .5, .5}},     {"orange", {1, .647, 0}},
-                {"purple", {.5, 0, .5}}, {"silver", {.75, .75, .75}}};
-            std::string key;
-            for (char ch : v->text) key += static_cast<char>(std::tolower(ch));
-            if (auto it = kNames.find(key); it != kNames.end()) return it->second;
-            Warn(n,
-                 fmt::format("colour name '{}' is not known here; the colour is ignored", v->text));
+            if (auto hex = HexColor(v->text)) {
+                paint.color = hex->color;
+                if (hex->alpha) paint.alpha = hex->alpha;
+                return paint;
+            }
+            if (auto c = scene::CssColor(v->text)) {
+                paint.color = *c;
+                return paint;
+            }
+            Warn(n, fmt::format("colour name '{}' is not a CSS/SVG colour name; the colour is "
+                                "ignored",
+                                v->text));
         }
         return std::nullopt;
+    }
+
+    static std::optional<Paint> HexColor(const std::string& text) {
+        if (text.empty() || text[0] != '#') return std::nullopt;
+        const std::string h = text.substr(1);
+        if (h.size() != 3 && h.size() != 4 && h.size() != 6 && h.size() != 8) return std::nullopt;
+        for (char c : h)
+            if (!std::isxdigit(static_cast<unsigned char>(c))) return std::nullopt;
+        const bool shortForm = h.size() <= 4;
+        const std::size_t count = shortForm ? h.size() : h.size() / 2;
+        double v[4] = {0, 0, 0, 1};
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::string digits = shortForm ? std::string(2, h[k]) : h.substr(2 * k, 2);
+            v[k] = std::strtol(digits.c_str(), nullptr, 16) / 255.0;
+        }
+        Paint p;
+        p.color = {LinearFromSrgb(v[0]), LinearFromSrgb(v[1]), LinearFromSrgb(v[2])};
+        if (count == 4) p.alpha = v[3];
+        return p;
     }
 
     int Add(scene::Csg& csg, scene::CsgNode node) {
@@ -494,14 +534,14 @@ class Builder {
     }
 
     int Leaf(scene::Csg& csg, const Node& n, const brlcad::Primitive& p, const Mat4& m,
-             const std::optional<scene::Color>& color, Box3& box) {
+             const std::optional<Paint>& color, Box3& box) {
         brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
         if (cr.status != brlcad::ConvertResult::Status::kOk) return -1;  // zero sizes: nothing
         return LeafShape(csg, n, cr.shape, m, color, box);
     }
 
     int LeafShape(scene::Csg& csg, const Node& n, const brlcad::Shape& shape, const Mat4& m,
-                  const std::optional<scene::Color>& color, Box3& box) {
+                  const std::optional<Paint>& color, Box3& box) {
         struct {
             const brlcad::Shape& shape;
         } cr{shape};
@@ -518,7 +558,10 @@ class Builder {
             body.id = csg.id;
             body.loc = map_.At(n.offset);
             body.usedAsOperand = true;
-            body.color = color;
+            if (color) {
+                body.color = color->color;
+                body.finish.opacity = color->alpha;
+            }
             for (const brlcad::ShapeHalfSpace& h : sb) {
                 scene::HalfSpace hs;
                 hs.id = fmt::format("{}.{}", n.name, scene_.top.halfSpaces.size());
@@ -545,8 +588,7 @@ class Builder {
         return root;
     }
 
-    int Emit(scene::Csg& csg, const Node& n, const Mat4& m, std::optional<scene::Color> color,
-             Box3& box) {
+    int Emit(scene::Csg& csg, const Node& n, const Mat4& m, std::optional<Paint> color, Box3& box) {
         box = Box3{};
         if (n.dropped || failed_) return -1;
         const std::string& k = n.name;
@@ -617,8 +659,8 @@ class Builder {
         return -1;
     }
 
-    int Children(scene::Csg& csg, const Node& n, const Mat4& m,
-                 const std::optional<scene::Color>& color, scene::CsgOp op, Box3& box) {
+    int Children(scene::Csg& csg, const Node& n, const Mat4& m, const std::optional<Paint>& color,
+                 scene::CsgOp op, Box3& box) {
         int acc = -1;
         bool first = true;
         SpecialsScope scope(*this, n.children);
@@ -691,7 +733,7 @@ class Builder {
 
     // polyhedron(points, faces | triangles): the solid the closed mesh bounds.
     int Polyhedron(scene::Csg& csg, const Node& n, const Mat4& m,
-                   const std::optional<scene::Color>& color, Box3& box) {
+                   const std::optional<Paint>& color, Box3& box) {
         ++report_.census[n.name];
         const Value* pts = Find(n, "points", 0);
         const Value* faces = Find(n, "faces", 1);
@@ -736,7 +778,7 @@ class Builder {
     // transforms and booleans) become 3D leaves combined by the same booleans, which commute
     // with both extrusions.
     int Extrude(scene::Csg& csg, const Node& n, const Mat4& m,
-                const std::optional<scene::Color>& color, Box3& box) {
+                const std::optional<Paint>& color, Box3& box) {
         ++report_.census[n.name];
         if (extrusion_) return Refuse(n, fmt::format("'{}' inside another extrusion", n.name));
         Extrusion e;
@@ -782,7 +824,7 @@ class Builder {
 
     // A node of the 2D profile under an extrusion; m2 places it in the extrusion's plane.
     int Emit2D(scene::Csg& csg, const Node& n, const Mat4& m2,
-               const std::optional<scene::Color>& color, Box3& box) {
+               const std::optional<Paint>& color, Box3& box) {
         box = Box3{};
         if (n.dropped || failed_) return -1;
         const std::string& k = n.name;
@@ -807,7 +849,7 @@ class Builder {
 
     // square, circle, polygon → rings in the extrusion plane → the extruded or revolved shape.
     int Profile(scene::Csg& csg, const Node& n, const Mat4& m2,
-                const std::optional<scene::Color>& color, Box3& box) {
+                const std::optional<Paint>& color, Box3& box) {
         ++report_.census[n.name];
         const Extrusion& e = *extrusion_;
         const std::string& k = n.name;
