@@ -61,6 +61,21 @@ struct PipeArgs {
 void AddPipeCommand(CLI::App& app, PipeArgs& args);
 int RunPipe(const PipeArgs& args);
 
+// `quadrix draw`: exact hidden-line drawings (draw_command.cpp, draw/drawing.h).
+struct DrawArgs {
+    std::vector<std::string> scenes;
+    std::string output;
+    std::string size = "800x600";
+    std::string view;
+    std::string views;  // comma-separated standard views for a sheet
+    std::string sheet = "A4";
+    std::string projection = "third";
+    std::string hidden = "dashed";
+    bool stats = false;
+};
+void AddDrawCommand(CLI::App& app, DrawArgs& args);
+int RunDraw(const DrawArgs& args);
+
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);
 

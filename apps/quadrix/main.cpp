@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
         "  quadrix render examples/stack_of_bundles.uq -o stack.png --size 800x600 --fast\n"
         "  quadrix render - -o out.ppm < scene.uq\n"
         "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
-        "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n",
+        "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n"
+        "  quadrix draw examples/machined_part.uq -o part.svg --views front,top,right,iso\n",
         "quadrix"};
     app.set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
     app.require_subcommand(1);
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
     quadrix::cli::AddUqCommand(app);
     quadrix::cli::PipeArgs pipeArgs;
     quadrix::cli::AddPipeCommand(app, pipeArgs);
+    quadrix::cli::DrawArgs drawArgs;
+    quadrix::cli::AddDrawCommand(app, drawArgs);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     try {
@@ -45,5 +48,6 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return quadrix::cli::RunRender(renderArgs);
     if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
     if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
+    if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
     return 2;
 }

@@ -1,0 +1,160 @@
+#include "quadrix/draw/trim.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "quadrix/math/quadratic.h"
+
+namespace quadrix::draw {
+
+namespace {
+
+Vec3 GradientOf(const FlatHalfSpace& h, const Vec3& p) {
+    return h.isPlane ? h.plane.Normal() : h.quadric.Gradient(p);
+}
+
+Box3 CurveBox(const Curve3& c) {
+    Box3 b;
+    if (c.kind == CurveKind::kPolyline) {
+        for (const Vec3& p : c.points) b.Extend(p);
+        return b;
+    }
+    if (c.kind == CurveKind::kLine) {
+        b.Extend(c.At(c.t0));
+        b.Extend(c.At(c.t1));
+        return b;
+    }
+    if (c.kind == CurveKind::kEllipse) {
+        const Vec3 r{std::hypot(c.u.x, c.v.x), std::hypot(c.u.y, c.v.y), std::hypot(c.u.z, c.v.z)};
+        b.Extend(c.o - r);
+        b.Extend(c.o + r);
+        return b;
+    }
+    for (int i = 0; i <= 64; ++i) b.Extend(c.At(c.t0 + (c.t1 - c.t0) * i / 64));
+    const Vec3 pad = b.Size() * 0.05;  // sampled: widen a little
+    b.lo -= pad;
+    b.hi += pad;
+    return b;
+}
+
+bool Overlap(const Box3& a, const Box3& b) {
+    return !(a.hi.x < b.lo.x || b.hi.x < a.lo.x || a.hi.y < b.lo.y || b.hi.y < a.lo.y ||
+             a.hi.z < b.lo.z || b.hi.z < a.lo.z);
+}
+
+}  // namespace
+
+std::vector<double> CurveBreaks(const Curve3& c, const FlatHalfSpace& s) {
+    std::vector<double> out;
+    auto keep = [&](double t) {
+        if (t > c.t0 && t < c.t1 && std::isfinite(t)) out.push_back(t);
+    };
+    if (c.kind == CurveKind::kLine) {
+        if (s.isPlane) {
+            const double du = Dot(s.plane.Normal(), c.u);
+            if (du != 0) keep(-s.plane.Evaluate(c.o) / du);
+        } else {
+            // Q(o + t u) = (uᵀA u) t² + 2 (Q o)·u t + Q(o): with the homogeneous gradient.
+            const Mat4 q = s.quadric.Matrix();
+            const Vec4 u4(c.u, 0), o4(c.o, 1);
+            const double a = Dot(u4, q * u4), h = Dot(u4, q * o4), k = Dot(o4, q * o4);
+            const QuadraticRoots r = SolveQuadratic(a, h, k);
+            if (r.kind == RootKind::kTwo || r.kind == RootKind::kSingle) {
+                keep(r.t0);
+                if (r.kind == RootKind::kTwo) keep(r.t1);
+            }
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+    int n = 96;
+    if (c.kind == CurveKind::kPolyline) n = static_cast<int>(c.points.size()) - 1;
+    if (n < 1) return out;
+    auto param = [&](int i) { return c.t0 + (c.t1 - c.t0) * i / n; };
+    double tp = param(0), vp = s.Evaluate(c.At(tp));
+    for (int i = 1; i <= n; ++i) {
+        const double t = param(i), v = s.Evaluate(c.At(t));
+        if ((vp < 0) != (v < 0) && std::isfinite(v) && std::isfinite(vp)) {
+            double lo = tp, hi = t, vlo = vp;
+            for (int k = 0; k < 100; ++k) {
+                const double mid = 0.5 * (lo + hi);
+                if (mid <= lo || mid >= hi) break;
+                const double vm = s.Evaluate(c.At(mid));
+                if ((vm < 0) == (vlo < 0)) {
+                    lo = mid;
+                    vlo = vm;
+                } else {
+                    hi = mid;
+                }
+            }
+            keep(0.5 * (lo + hi));
+        }
+        tp = t;
+        vp = v;
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c, double t,
+                double eps) {
+    const Vec3 p = c.At(t);
+    const FlatHalfSpace& A = scene.halfSpaces[static_cast<std::size_t>(c.surfaceA)];
+    const Vec3 ga = GradientOf(A, p);
+    const double la = Length(ga);
+    if (!(la > 0) || !std::isfinite(la)) return false;
+    if (c.role == CurveRole::kSilhouette) {
+        const Vec3 d = ga * (eps / la);
+        return probe.Inside(p + d) != probe.Inside(p - d);
+    }
+    const FlatHalfSpace& B = scene.halfSpaces[static_cast<std::size_t>(c.surfaceB)];
+    const Vec3 gb = GradientOf(B, p);
+    const double lb = Length(gb);
+    if (!(lb > 0) || !std::isfinite(lb)) return false;
+    const double sinAngle = Length(Cross(ga, gb)) / (la * lb);
+    if (!(sinAngle > 1e-4)) return false;  // tangent: a smooth join
+    const double aa = Dot(ga, ga), ab = Dot(ga, gb), bb = Dot(gb, gb);
+    const double det = aa * bb - ab * ab;
+    bool m[2][2];
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+            const double ra = (i ? 1 : -1) * la * eps, rb = (j ? 1 : -1) * lb * eps;
+            const double alpha = (ra * bb - rb * ab) / det, beta = (rb * aa - ra * ab) / det;
+            m[i][j] = probe.Inside(p + ga * alpha + gb * beta);
+        }
+    const bool onlyA = m[0][0] == m[0][1] && m[1][0] == m[1][1];
+    const bool onlyB = m[0][0] == m[1][0] && m[0][1] == m[1][1];
+    return !onlyA && !onlyB;
+}
+
+std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& surfaces,
+                                       const SceneProbe& probe, const std::vector<Curve3>& curves) {
+    std::vector<CurvePiece> out;
+    const double eps = 1e-7 * std::max({scene.width, scene.height, 1});
+    for (std::size_t ci = 0; ci < curves.size(); ++ci) {
+        const Curve3& c = curves[ci];
+        const Box3 cb = CurveBox(c);
+        std::vector<double> ts{c.t0, c.t1};
+        for (int r : surfaces.reps) {
+            if (r == c.surfaceA || r == c.surfaceB) continue;
+            if (!Overlap(cb, surfaces.box[static_cast<std::size_t>(r)])) continue;
+            auto b = CurveBreaks(c, scene.halfSpaces[static_cast<std::size_t>(r)]);
+            ts.insert(ts.end(), b.begin(), b.end());
+        }
+        std::sort(ts.begin(), ts.end());
+        const double minLen = 1e-12 * (std::fabs(c.t1 - c.t0) + 1);
+        std::size_t first = out.size();
+        for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+            if (!(ts[i + 1] - ts[i] > minLen)) continue;
+            if (!OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps)) continue;
+            if (out.size() > first && out.back().t1 == ts[i]) {
+                out.back().t1 = ts[i + 1];  // consecutive pieces merge
+            } else {
+                out.push_back({static_cast<int>(ci), ts[i], ts[i + 1], true});
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace quadrix::draw
