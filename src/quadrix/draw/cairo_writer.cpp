@@ -135,46 +135,4 @@ std::string WriteCairo(const std::string& path, const Page& page, CairoFormat fo
     return {};
 }
 
-std::vector<unsigned char> RasteriseCoverage(const Page& page, double scale, bool visibleOnly,
-                                             int& width, int& height) {
-    width = static_cast<int>(std::ceil(page.width * scale));
-    height = static_cast<int>(std::ceil(page.height * scale));
-    std::vector<unsigned char> out;
-    if (width <= 0 || height <= 0) return out;
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_A8, width, height);
-    cairo_t* cr = cairo_create(s);
-    cairo_scale(cr, scale, scale);
-    // A8: draw ink as alpha on a transparent surface.
-    cairo_set_operator(cr, CAIRO_OPERATOR_SOURCE);
-    cairo_set_source_rgba(cr, 0, 0, 0, 0);
-    cairo_paint(cr);
-    cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
-    Page p = page;
-    if (visibleOnly) {
-        p.frameLines.clear();
-        p.texts.clear();
-    }
-    // Paint() paints white paper first; on A8 that would be full alpha, so draw strokes here.
-    cairo_set_source_rgba(cr, 0, 0, 0, 1);
-    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-    cairo_set_tolerance(cr, 0.001);
-    cairo_set_line_width(cr, 1.0 / scale);
-    for (const Stroke& st : p.strokes) {
-        if (visibleOnly && !st.visible) continue;
-        StrokePath(cr, st);
-        cairo_stroke(cr);
-    }
-    cairo_surface_flush(s);
-    const int stride = cairo_image_surface_get_stride(s);
-    const unsigned char* data = cairo_image_surface_get_data(s);
-    out.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            out[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                static_cast<std::size_t>(x)] = data[y * stride + x];
-    cairo_destroy(cr);
-    cairo_surface_destroy(s);
-    return out;
-}
-
 }  // namespace quadrix::draw

@@ -9,7 +9,6 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 #include "quadrix/draw/page.h"
 
@@ -20,11 +19,5 @@ enum class CairoFormat { kPdf, kEps, kPng };
 
 // Returns an error message or empty.
 std::string WriteCairo(const std::string& path, const Page& page, CairoFormat format);
-
-// Rasterises the page at `scale` pixels per page unit into 8-bit gray coverage (0 = paper,
-// 255 = ink), row-major, width = ceil(page.width · scale). With `visibleOnly`, hidden strokes and
-// the sheet's frame are left out. For tests (comparison with a Frame's edges).
-std::vector<unsigned char> RasteriseCoverage(const Page& page, double scale, bool visibleOnly,
-                                             int& width, int& height);
 
 }  // namespace quadrix::draw

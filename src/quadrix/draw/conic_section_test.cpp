@@ -19,7 +19,9 @@ void ExpectOnBoth(const std::vector<Curve3>& curves, const Plane& p, const Quadr
             // Distances to the surfaces: value / |gradient|, to 1e-9 of the box size.
             EXPECT_NEAR(p.Evaluate(x) / Length(p.Normal()), 0, 1e-9 * 100) << ToString(c.kind);
             const double g = Length(q.Gradient(x));
-            if (g > 1e-6) EXPECT_NEAR(q.Evaluate(x) / g, 0, 1e-9 * 100) << ToString(c.kind);
+            if (g > 1e-6) {
+                EXPECT_NEAR(q.Evaluate(x) / g, 0, 1e-9 * 100) << ToString(c.kind);
+            }
         }
 }
 

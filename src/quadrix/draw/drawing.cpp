@@ -65,6 +65,8 @@ Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol) {
     return s;
 }
 
+constexpr double kSliver = 0.01;  // device px
+
 // Pieces of a closed curve that meet across θ = 0 = 2π with the same visibility become one.
 void MergeWrapAround(const std::vector<Curve3>& curves, std::vector<CurvePiece>& pieces) {
     std::vector<CurvePiece> out;
@@ -77,8 +79,24 @@ void MergeWrapAround(const std::vector<Curve3>& curves, std::vector<CurvePiece>&
                                       pieces.begin() + static_cast<long>(j));
         // Consecutive pieces with the same visibility merge too (trim splits and visibility
         // changes that cancel).
-        std::vector<CurvePiece> merged;
+        // Slivers shorter than kSliver px in projection (a hidden edge emerging at a vertex is
+        // judged visible within the depth tolerance for ~1e-5 px) join their neighbour.
+        std::vector<CurvePiece> solid;
         for (const CurvePiece& p : group) {
+            const bool sliver = ProjectedLength(c, p.t0, p.t1) < kSliver;
+            if (sliver && !solid.empty() && solid.back().t1 == p.t0) {
+                solid.back().t1 = p.t1;
+            } else if (!solid.empty() && solid.back().t1 == p.t0 &&
+                       ProjectedLength(c, solid.back().t0, solid.back().t1) < kSliver) {
+                const double t0 = solid.back().t0;
+                solid.back() = p;
+                solid.back().t0 = t0;
+            } else {
+                solid.push_back(p);
+            }
+        }
+        std::vector<CurvePiece> merged;
+        for (const CurvePiece& p : solid) {
             if (!merged.empty() && merged.back().t1 == p.t0 && merged.back().visible == p.visible)
                 merged.back().t1 = p.t1;
             else

@@ -11,6 +11,25 @@ bool XYInside(const Box3& b, double x, double y) {
     return !(x < b.lo.x || x > b.hi.x || y < b.lo.y || y > b.hi.y);
 }
 
+// A surface parallel to the rays (a plane seen edge-on, a cylinder seen along its axis) whose
+// value on the ray vanishes to within the rounding of its evaluation (1e-11 of the sum of the
+// magnitudes of its terms).
+bool ContainsRay(const raycast::RayHalfSpace& h, double x, double y) {
+    if (h.c != 0) return false;
+    if (h.isPlane) {
+        const double e = h.px * x + h.py * y + h.pd;
+        return std::fabs(e) <=
+               1e-11 * (std::fabs(h.px * x) + std::fabs(h.py * y) + std::fabs(h.pd));
+    }
+    if (h.hx != 0 || h.hy != 0 || h.h0 != 0) return false;
+    const double dx = x - h.x0, dy = y - h.y0;
+    const double k = dx * (h.axx * dx + h.axy * dy + h.ax) + dy * (h.byy * dy + h.by) + h.k0;
+    const double scale = std::fabs(h.axx * dx * dx) + std::fabs(h.axy * dx * dy) +
+                         std::fabs(h.ax * dx) + std::fabs(h.byy * dy * dy) + std::fabs(h.by * dy) +
+                         std::fabs(h.k0);
+    return std::fabs(k) <= 1e-11 * scale;
+}
+
 }  // namespace
 
 SceneProbe::SceneProbe(const FlatScene& scene) : scene_(scene) {
@@ -86,8 +105,16 @@ void SceneProbe::BodyOnRay(int body, double x, double y, IntervalList& out) {
             out.clear();
             return;
         }
-        raycast::RaySet s = raycast::LiteralOnRay(rays_[static_cast<std::size_t>(lit.halfSpace)],
-                                                  lit.complemented, x, y, lit.halfSpace, counters);
+        const raycast::RayHalfSpace& rh = rays_[static_cast<std::size_t>(lit.halfSpace)];
+        raycast::RaySet s;
+        if (ContainsRay(rh, x, y)) {
+            // The ray lies in the surface (to rounding): H holds along all of it, !H nowhere
+            // (raycast's convention for a plane containing the ray), decided the same way at
+            // every point of the curve instead of by the sign of a rounding error.
+            if (!lit.complemented) s.piece[s.count++] = {-HUGE_VAL, HUGE_VAL, -1, -1};
+        } else {
+            s = raycast::LiteralOnRay(rh, lit.complemented, x, y, lit.halfSpace, counters);
+        }
         if (s.count == 0) {
             out.clear();
             return;

@@ -13,10 +13,16 @@
 //    surface (transparent half-spaces and clipping planes bound but are not drawn), and the nearest
 //    solid wins. This is raycast's visible-point rule on an arbitrary ray (not only pixel centres),
 //    written as a small recursive evaluator because raycast's own is private to its tiles.
+//    One difference: curves lie ON surfaces, so their rays often lie exactly in a plane seen
+//    edge-on (or on a cylinder seen along its axis); where such a surface's value on the ray is
+//    zero to within rounding (1e-11 relative), the literal is taken to contain the ray (H holds
+//    along all of it, !H nowhere: raycast's rule for an exact zero), so that visibility along an
+//    edge does not flicker with the sign of rounding errors.
 //
 // Not thread-safe (scratch lists are members); one probe per thread.
 #pragma once
 
+#include <deque>
 #include <vector>
 
 #include "quadrix/engines/raycast/ray_literal.h"
@@ -51,7 +57,7 @@ class SceneProbe {
 
     const FlatScene& scene_;
     std::vector<raycast::RayHalfSpace> rays_;
-    std::vector<IntervalList> scratch_;  // 3 lists per recursion depth
+    std::deque<IntervalList> scratch_;  // 3 lists per recursion depth (deque: stable references)
     IntervalList solidList_, literalList_, tmp_;
 };
 
