@@ -23,7 +23,12 @@ Vec3 Curve3::At(double t) const {
             std::size_t i = static_cast<std::size_t>(std::floor(c));
             if (i >= points.size() - 1) i = points.size() - 2;
             const double f = c - static_cast<double>(i);
-            return points[i] + (points[i + 1] - points[i]) * f;
+            Vec3 p = points[i] + (points[i + 1] - points[i]) * f;
+            if (project && f > 0) {
+                Vec3 q = p;
+                if (ProjectOntoBoth(onA, onB, q, 1e-12 * (1 + Length(p)))) p = q;
+            }
+            return p;
         }
     }
     return {};
@@ -48,6 +53,35 @@ Vec3 Curve3::Derivative(double t) const {
         }
     }
     return {};
+}
+
+bool ProjectOntoBoth(const Quadric& a, const Quadric& b, Vec3& p, double tol) {
+    for (int it = 0; it < 30; ++it) {
+        const double fa = a.Evaluate(p), fb = b.Evaluate(p);
+        const Vec3 ga = a.Gradient(p), gb = b.Gradient(p);
+        const double aa = Dot(ga, ga), ab = Dot(ga, gb), bb = Dot(gb, gb);
+        const double det = aa * bb - ab * ab;
+        if (!(det > 1e-20 * aa * bb)) return false;
+        // Δ = α ga + β gb with ga·Δ = −fa, gb·Δ = −fb.
+        const double alpha = (-fa * bb + fb * ab) / det, beta = (-fb * aa + fa * ab) / det;
+        const Vec3 d = ga * alpha + gb * beta;
+        p += d;
+        if (!IsFinite(p)) return false;
+        if (Length(d) <= tol) return true;
+    }
+    return false;
+}
+
+double ProjectedLength(const Curve3& c, double t0, double t1) {
+    double len = 0;
+    Vec3 prev = c.At(t0);
+    const int n = c.kind == CurveKind::kLine ? 1 : 64;
+    for (int i = 1; i <= n; ++i) {
+        const Vec3 p = c.At(t0 + (t1 - t0) * i / n);
+        len += std::hypot(p.x - prev.x, p.y - prev.y);
+        prev = p;
+    }
+    return len;
 }
 
 const char* ToString(CurveKind k) {

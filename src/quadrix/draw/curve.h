@@ -12,12 +12,15 @@
 //   kHyperbola  X(t) = o + u cosh t + v sinh t (one branch)
 //   kParabola   X(t) = o + u t + v t²
 //   kPolyline   X(t) = points[i] + (t − i)(points[i+1] − points[i]), t in [0, n − 1]
-//               (quadric–quadric curves, traced with a bounded error; see quartic_trace.h)
+//               (quadric–quadric curves, traced with a bounded error; see quartic_trace.h),
+//               then pulled back onto both quadrics (`onA`, `onB`) by Newton's method, so that
+//               every point the drawer tests lies on the true curve, not on a chord
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "quadrix/math/quadric.h"
 #include "quadrix/math/vec.h"
 
 namespace quadrix::draw {
@@ -31,7 +34,9 @@ struct Curve3 {
     int surfaceA = -1, surfaceB = -1;  // FlatScene half-spaces; B = −1 for a silhouette
     Vec3 o, u, v;
     std::vector<Vec3> points;  // kPolyline
-    double t0 = 0, t1 = 0;     // parameter domain
+    bool project = false;      // kPolyline: At() projects onto onA ∩ onB
+    Quadric onA, onB;
+    double t0 = 0, t1 = 0;  // parameter domain
 
     Vec3 At(double t) const;
     // dX/dt.
@@ -40,5 +45,18 @@ struct Curve3 {
 };
 
 const char* ToString(CurveKind k);
+
+// Length of the orthographic image (x, y) of c on [t0, t1] (device pixels), from 64 chords.
+double ProjectedLength(const Curve3& c, double t0, double t1);
+
+// Pieces shorter than this in projection (device pixels) are below any drawing's resolution:
+// gaps that short between kept pieces are closed, and visibility slivers that short join their
+// neighbours (they come from tolerances at vertices and tangent points, not from the geometry).
+inline constexpr double kSliver = 0.01;
+
+// Newton projection of p onto a = b = 0 with minimum-norm steps in the span of the gradients;
+// false when it does not converge to `tol` (device units) in 30 steps (p is then unchanged only
+// in the sense that the caller should not trust it).
+bool ProjectOntoBoth(const Quadric& a, const Quadric& b, Vec3& p, double tol);
 
 }  // namespace quadrix::draw

@@ -65,8 +65,6 @@ Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol) {
     return s;
 }
 
-constexpr double kSliver = 0.01;  // device px
-
 // Pieces of a closed curve that meet across θ = 0 = 2π with the same visibility become one.
 void MergeWrapAround(const std::vector<Curve3>& curves, std::vector<CurvePiece>& pieces) {
     std::vector<CurvePiece> out;

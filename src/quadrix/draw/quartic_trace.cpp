@@ -14,22 +14,8 @@ bool InBox(const Box3& b, const Vec3& p) {
            p.z <= b.hi.z;
 }
 
-// Newton projection of p onto A = B = 0 (minimum-norm steps). False when it does not converge.
 bool Project(const Quadric& a, const Quadric& b, Vec3& p, double tol) {
-    for (int it = 0; it < 30; ++it) {
-        const double fa = a.Evaluate(p), fb = b.Evaluate(p);
-        const Vec3 ga = a.Gradient(p), gb = b.Gradient(p);
-        const double aa = Dot(ga, ga), ab = Dot(ga, gb), bb = Dot(gb, gb);
-        const double det = aa * bb - ab * ab;
-        if (!(det > 1e-20 * aa * bb)) return false;
-        // Δ = α ga + β gb with ga·Δ = −fa, gb·Δ = −fb.
-        const double alpha = (-fa * bb + fb * ab) / det, beta = (-fb * aa + fa * ab) / det;
-        const Vec3 d = ga * alpha + gb * beta;
-        p += d;
-        if (!IsFinite(p)) return false;
-        if (Length(d) <= tol) return true;
-    }
-    return false;
+    return ProjectOntoBoth(a, b, p, tol);
 }
 
 Vec3 TangentAt(const Quadric& a, const Quadric& b, const Vec3& p) {
@@ -161,6 +147,9 @@ std::vector<Curve3> TraceQuadricQuadric(const Quadric& a, const Quadric& b, cons
         c.points = std::move(pts);
         c.t0 = 0;
         c.t1 = static_cast<double>(c.points.size() - 1);
+        c.project = true;
+        c.onA = a;
+        c.onB = b;
         out.push_back(std::move(c));
     }
     return out;

@@ -147,11 +147,18 @@ std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& s
         for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
             if (!(ts[i + 1] - ts[i] > minLen)) continue;
             if (!OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps)) continue;
-            if (out.size() > first && out.back().t1 == ts[i]) {
-                out.back().t1 = ts[i + 1];  // consecutive pieces merge
+            if (out.size() > first &&
+                (out.back().t1 == ts[i] || ProjectedLength(c, out.back().t1, ts[i]) < kSliver)) {
+                out.back().t1 = ts[i + 1];  // consecutive pieces merge, tiny gaps close
             } else {
                 out.push_back({static_cast<int>(ci), ts[i], ts[i + 1], true});
             }
+        }
+        if (c.Closed() && out.size() > first) {  // a tiny gap across t0 = t1 closes too
+            if (out[first].t0 != c.t0 && ProjectedLength(c, c.t0, out[first].t0) < kSliver)
+                out[first].t0 = c.t0;
+            if (out.back().t1 != c.t1 && ProjectedLength(c, out.back().t1, c.t1) < kSliver)
+                out.back().t1 = c.t1;
         }
     }
     return out;

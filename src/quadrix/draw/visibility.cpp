@@ -12,18 +12,6 @@ bool PointVisible(SceneProbe& probe, const Vec3& p) {
     return probe.FirstOpaqueHit(p.x, p.y) >= p.z - tau;
 }
 
-double ProjectedLength(const Curve3& c, double t0, double t1) {
-    double len = 0;
-    Vec3 prev = c.At(t0);
-    const int n = c.kind == CurveKind::kLine ? 1 : 64;
-    for (int i = 1; i <= n; ++i) {
-        const Vec3 p = c.At(t0 + (t1 - t0) * i / n);
-        len += std::hypot(p.x - prev.x, p.y - prev.y);
-        prev = p;
-    }
-    return len;
-}
-
 std::vector<CurvePiece> SplitByVisibility(const std::vector<Curve3>& curves,
                                           const std::vector<CurvePiece>& pieces, SceneProbe& probe,
                                           double step, VisibilityCounters& counters) {

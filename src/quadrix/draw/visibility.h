@@ -22,9 +22,6 @@ namespace quadrix::draw {
 
 bool PointVisible(SceneProbe& probe, const Vec3& p);
 
-// Length of the piece's orthographic image (device pixels), from 64 chords.
-double ProjectedLength(const Curve3& c, double t0, double t1);
-
 struct VisibilityCounters {
     long long rayTests = 0;
     int changes = 0;
