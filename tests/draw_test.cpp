@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -256,6 +257,7 @@ struct EdgeAgreement {
     double curveNearEdge = 0;  // share of visible curve samples within 0.5 px of a Frame edge
     double edgeCovered = 0;  // share of Frame edge pairs (in runs > 3 px) within 0.75 px of a curve
     int samples = 0, edgePairs = 0;
+    double farthest = 0;  // px, largest distance of a visible curve sample from a Frame edge
 };
 
 EdgeAgreement Compare(const Frame& fr, const Drawing& d) {
@@ -270,7 +272,11 @@ EdgeAgreement Compare(const Frame& fr, const Drawing& d) {
         grid[static_cast<std::size_t>(static_cast<int>(p.y) * e.w + static_cast<int>(p.x))]
             .push_back(p);
         ++counted;
-        near += DistanceToFrameEdge(e, p.x, p.y) <= 0.5 + 1e-9;
+        const double dist = DistanceToFrameEdge(e, p.x, p.y);
+        near += dist <= 0.5 + 1e-9;
+        a.farthest = std::fmax(a.farthest, dist);
+        if (dist > 0.5 + 1e-9 && std::getenv("QUADRIX_DRAW_DEBUG"))
+            std::printf("  far sample (%.3f, %.3f): %.3f px\n", p.x, p.y, dist);
     }
     a.samples = counted;
     a.curveNearEdge = counted ? static_cast<double>(near) / counted : 1;
@@ -356,10 +362,18 @@ TEST_P(DrawAgainstFrame, VisibleCurvesAreFrameEdgesAndFrameEdgesAreDrawn) {
     ASSERT_TRUE(RunPipeline(o, r, diags)) << (diags.Print(stderr), "");
     const Drawing d = draw::MakeDrawing(r.flat);
     const EdgeAgreement a = Compare(r.frame, d);
-    std::printf("[ %s ] %d samples, %.4f near a Frame edge; %d edge pairs, %.4f covered\n",
-                c.name.c_str(), a.samples, a.curveNearEdge, a.edgePairs, a.edgeCovered);
+    std::printf(
+        "[ %s ] %d samples, %.4f near a Frame edge (farthest %.3f px); %d edge pairs, %.4f "
+        "covered\n",
+        c.name.c_str(), a.samples, a.curveNearEdge, a.farthest, a.edgePairs, a.edgeCovered);
     EXPECT_GT(a.samples, 100);
+    // Measured: 0.998–1.000 of the samples, every far one within a quarter pixel of a vertex
+    // (QUADRIX_DRAW_DEBUG=1 lists them): at a convex corner the nearest pair of differing pixel
+    // centres can be up to ~0.8 px away although the drawn corner is exact. 1 % is left for that;
+    // nothing may be farther than one pixel.
     EXPECT_GE(a.curveNearEdge, 0.99);
+    EXPECT_LE(a.farthest, 1.0);
+    // Measured: 1.000 everywhere.
     EXPECT_GE(a.edgeCovered, 0.99);
 }
 
