@@ -324,13 +324,14 @@ EdgeAgreement Compare(const Frame& fr, const Drawing& d) {
         for (int i = 2; i < e.w - 2; ++i) {
             const std::size_t p = static_cast<std::size_t>(j * e.w + i);
             if (comp[p] < 0 || size[static_cast<std::size_t>(comp[p])] <= 3) continue;
-            if (e.horiz[p]) {
+            for (int k = 0; k < 2; ++k) {
+                if (!(k == 0 ? e.horiz[p] : e.vert[p])) continue;
+                const double x = i + (k == 0 ? 1.0 : 0.5), y = j + (k == 0 ? 0.5 : 1.0);
                 ++pairs;
-                covered += nearCurve(i + 1.0, j + 0.5);
-            }
-            if (e.vert[p]) {
-                ++pairs;
-                covered += nearCurve(i + 0.5, j + 1.0);
+                const bool ok = nearCurve(x, y);
+                covered += ok;
+                if (!ok && std::getenv("QUADRIX_DRAW_DEBUG"))
+                    std::printf("  uncovered Frame edge at (%.1f, %.1f)\n", x, y);
             }
         }
     a.edgePairs = pairs;
@@ -347,6 +348,7 @@ std::string ReadText(const std::string& path) {
 
 struct EdgeCase {
     std::string name, scene, view;
+    std::string path = {};  // read this file instead of `scene` (scenes that include others)
 };
 
 class DrawAgainstFrame : public ::testing::TestWithParam<EdgeCase> {};
@@ -354,7 +356,11 @@ class DrawAgainstFrame : public ::testing::TestWithParam<EdgeCase> {};
 TEST_P(DrawAgainstFrame, VisibleCurvesAreFrameEdgesAndFrameEdgesAreDrawn) {
     const EdgeCase& c = GetParam();
     PipelineOptions o;
-    o.sceneText = c.scene + "\n" + c.view;
+    if (c.path.empty()) {
+        o.sceneText = c.scene + "\n" + c.view;
+    } else {
+        o.scenePaths = {c.path};
+    }
     o.width = 480;
     o.height = 360;
     PipelineResult r;
@@ -397,7 +403,15 @@ std::vector<EdgeCase> EdgeCases() {
         "quadric cy <0 1 1 0 0 0 0 -4 0 15>; plane cr <1 0 0 -4>; plane cl <-1 0 0 -4>;\n"
         "body tube <cy cr cl>;\n"  // (y − 4)² + z² <= 1 along x
         "csg s (cone | tube);\n";
-    return {
+    std::vector<EdgeCase> cases;
+    for (const char* f : {"bundle_of_tubes", "cylinder_minus_cylinder", "stack_of_bundles", "tube",
+                          "gallery/gear", "gallery/solids", "gallery/clover_knot",
+                          "gallery/hilbert3", "gallery/triangles", "gallery/name"}) {
+        std::string name = f;
+        std::replace(name.begin(), name.end(), '/', '_');
+        cases.push_back({name, "", "", testing::SourcePath(std::string("examples/") + f + ".uq")});
+    }
+    std::vector<EdgeCase> fixed = {
         {"part_own_view", part, ""},
         {"part_front", part, "view vw_front dop 0 0 -1;"},
         {"part_top", part, "view vw_top dop 0 1 0 vup 0 0 1;"},
@@ -410,6 +424,8 @@ std::vector<EdgeCase> EdgeCases() {
         {"sphere_cylinder", sphereCylinder, "view v dop .5 .6 -1;"},
         {"cone_cylinder", coneCylinder, "view v dop .8 .5 -1;"},
     };
+    cases.insert(cases.begin(), fixed.begin(), fixed.end());
+    return cases;
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, DrawAgainstFrame, ::testing::ValuesIn(EdgeCases()),

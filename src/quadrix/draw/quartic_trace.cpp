@@ -75,6 +75,17 @@ std::vector<Vec3> Follow(const Quadric& a, const Quadric& b, const Box3& box, co
     return pts;
 }
 
+// Points strictly between p and q on the curve such that every chord's midpoint is within tol.
+void Refine(const Quadric& a, const Quadric& b, const Vec3& p, const Vec3& q, double tol,
+            int depth, std::vector<Vec3>& out) {
+    const Vec3 m = (p + q) * 0.5;
+    Vec3 c = m;
+    if (depth > 20 || !Project(a, b, c, 1e-12 * (1 + Length(m))) || Length(c - m) <= tol) return;
+    Refine(a, b, p, c, tol, depth + 1, out);
+    out.push_back(c);
+    Refine(a, b, c, q, tol, depth + 1, out);
+}
+
 }  // namespace
 
 std::vector<Curve3> TraceQuadricQuadric(const Quadric& a, const Quadric& b, const Box3& box,
@@ -84,38 +95,38 @@ std::vector<Curve3> TraceQuadricQuadric(const Quadric& a, const Quadric& b, cons
     const Vec3 size = box.Size();
     const double diag = Length(size);
     if (!(diag > 0)) return out;
-    const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
     const double hMax = std::fmax(diag / 64, 10 * chordTolerance);
     std::vector<Vec3> seeds;
-    constexpr int kSlices = 32, kSamples = 64;
-    for (int s = 0; s < kSlices; ++s) {
-        const double c = box.lo[axis] + size[axis] * (s + 0.5) / kSlices;
-        Plane slice{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0, -c};
-        for (const Curve3& conic : PlaneQuadricCurves(slice, a, box)) {
-            double prevT = conic.t0;
-            double prevV = b.Evaluate(conic.At(prevT));
-            for (int i = 1; i <= kSamples; ++i) {
-                const double t = conic.t0 + (conic.t1 - conic.t0) * i / kSamples;
-                const double v = b.Evaluate(conic.At(t));
-                if ((prevV < 0) != (v < 0)) {
-                    double lo = prevT, hi = t, vlo = prevV;
-                    for (int k = 0; k < 80 && lo != hi; ++k) {
-                        const double mid = 0.5 * (lo + hi);
-                        const double vm = b.Evaluate(conic.At(mid));
-                        if ((vm < 0) == (vlo < 0)) {
-                            lo = mid;
-                            vlo = vm;
-                        } else {
-                            hi = mid;
+    constexpr int kSlices = 24, kSamples = 64;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int s = 0; s < kSlices; ++s) {
+            const double c = box.lo[axis] + size[axis] * (s + 0.5) / kSlices;
+            Plane slice{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0, -c};
+            for (const Curve3& conic : PlaneQuadricCurves(slice, a, box)) {
+                double prevT = conic.t0;
+                double prevV = b.Evaluate(conic.At(prevT));
+                for (int i = 1; i <= kSamples; ++i) {
+                    const double t = conic.t0 + (conic.t1 - conic.t0) * i / kSamples;
+                    const double v = b.Evaluate(conic.At(t));
+                    if ((prevV < 0) != (v < 0)) {
+                        double lo = prevT, hi = t, vlo = prevV;
+                        for (int k = 0; k < 80 && lo != hi; ++k) {
+                            const double mid = 0.5 * (lo + hi);
+                            const double vm = b.Evaluate(conic.At(mid));
+                            if ((vm < 0) == (vlo < 0)) {
+                                lo = mid;
+                                vlo = vm;
+                            } else {
+                                hi = mid;
+                            }
                         }
+                        seeds.push_back(conic.At(0.5 * (lo + hi)));
                     }
-                    seeds.push_back(conic.At(0.5 * (lo + hi)));
+                    prevT = t;
+                    prevV = v;
                 }
-                prevT = t;
-                prevV = v;
             }
         }
-    }
     std::vector<std::vector<Vec3>> traced;
     for (Vec3 seed : seeds) {
         if (!Project(a, b, seed, 1e-10 * (1 + Length(seed)))) continue;
@@ -132,6 +143,12 @@ std::vector<Curve3> TraceQuadricQuadric(const Quadric& a, const Quadric& b, cons
         if (closed) {
             pts.push_back(seed);
             pts.insert(pts.end(), fwd.begin(), fwd.end());
+            // The closing chord was not checked by Follow's step control: split it until its
+            // midpoints are within the tolerance of the curve.
+            const Vec3 last = pts.back();
+            std::vector<Vec3> closing;
+            Refine(a, b, last, seed, chordTolerance, 0, closing);
+            pts.insert(pts.end(), closing.begin(), closing.end());
             pts.push_back(seed);
         } else {
             bool closed2 = false;

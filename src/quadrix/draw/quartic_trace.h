@@ -1,7 +1,9 @@
 // The intersection curve of two quadrics (a space quartic), traced with a bounded error
 // (docs/drawings.md). Closed forms exist only in special cases, so the curve is followed
 // numerically, as a polyline whose chords stay within `chordTolerance` (device pixels) of it:
-//  1. Seeds: the box is cut by 32 planes across its longest side; on each plane the first
+//  1. Seeds: the box is cut by 24 planes across each axis (three families, so that a curve
+//     parallel to one family — the lines where parallel cylinders meet — is met by another);
+//     on each plane the first
 //     quadric's section is a conic in closed form (conic_section.h); where the second quadric
 //     changes sign along it (64 samples per conic, then bisection to machine precision) the
 //     section meets the curve.
