@@ -43,13 +43,46 @@ Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol) {
     if (c.kind == CurveKind::kEllipse) {
         const double det = c.u.x * c.v.y - c.u.y * c.v.x;
         const double size = c.u.x * c.u.x + c.u.y * c.u.y + c.v.x * c.v.x + c.v.y * c.v.y;
-        if (std::fabs(det) > 1e-9 * size) {  // else seen edge-on: a segment traced back and forth
+        if (std::fabs(det) > 1e-9 * size) {
             s.kind = StrokeKind::kEllipseArc;
             s.c = XY(c.o);
             s.U = XY(c.u);
             s.V = XY(c.v);
             s.a0 = p.t0;
             s.a1 = p.t1;
+            return s;
+        }
+        // Seen edge-on: the arc's image runs along one segment, perhaps back and forth. Its
+        // extent along the segment's direction d is that of d·(U cos θ + V sin θ) over the arc:
+        // the ends and the interior extremes θ* = atan2(d·V, d·U) (+ kπ).
+        const Point2 U = XY(c.u), V = XY(c.v);
+        Point2 d = std::hypot(U.x, U.y) >= std::hypot(V.x, V.y) ? U : V;
+        const double dl = std::hypot(d.x, d.y);
+        if (dl > 0) {
+            d = {d.x / dl, d.y / dl};
+            const double du = d.x * U.x + d.y * U.y, dv = d.x * V.x + d.y * V.y;
+            std::vector<double> ts{p.t0, p.t1};
+            const double ts0 = std::atan2(dv, du);
+            for (int k = -4; k <= 4; ++k) {
+                const double t = ts0 + k * M_PI;
+                if (t > p.t0 && t < p.t1) ts.push_back(t);
+            }
+            double lo = HUGE_VAL, hi = -HUGE_VAL;
+            Point2 plo, phi;
+            for (double t : ts) {
+                const Point2 q = XY(c.At(t));
+                const double proj = d.x * q.x + d.y * q.y;
+                if (proj < lo) {
+                    lo = proj;
+                    plo = q;
+                }
+                if (proj > hi) {
+                    hi = proj;
+                    phi = q;
+                }
+            }
+            s.kind = StrokeKind::kSegment;
+            s.points = {plo, phi};
             return s;
         }
     }
