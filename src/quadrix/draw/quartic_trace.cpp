@@ -76,8 +76,8 @@ std::vector<Vec3> Follow(const Quadric& a, const Quadric& b, const Box3& box, co
 }
 
 // Points strictly between p and q on the curve such that every chord's midpoint is within tol.
-void Refine(const Quadric& a, const Quadric& b, const Vec3& p, const Vec3& q, double tol,
-            int depth, std::vector<Vec3>& out) {
+void Refine(const Quadric& a, const Quadric& b, const Vec3& p, const Vec3& q, double tol, int depth,
+            std::vector<Vec3>& out) {
     const Vec3 m = (p + q) * 0.5;
     Vec3 c = m;
     if (depth > 20 || !Project(a, b, c, 1e-12 * (1 + Length(m))) || Length(c - m) <= tol) return;

@@ -37,6 +37,18 @@ Box3 CurveBox(const Curve3& c) {
     return b;
 }
 
+// Does surface h contain the curve (to `tol` device px at 16 points)? At a mitred joint the
+// bisecting plane meets both tubes in one ellipse, so three surfaces share it.
+bool ContainsCurve(const FlatHalfSpace& h, const Curve3& c, double tol) {
+    for (int i = 0; i <= 16; ++i) {
+        const Vec3 p = c.At(c.t0 + (c.t1 - c.t0) * (i + 0.37) / 17.37);
+        const Vec3 g = GradientOf(h, p);
+        const double gl = Length(g);
+        if (!(gl > 0) || !(std::fabs(h.Evaluate(p)) <= tol * gl)) return false;
+    }
+    return true;
+}
+
 bool Overlap(const Box3& a, const Box3& b) {
     return !(a.hi.x < b.lo.x || b.hi.x < a.lo.x || a.hi.y < b.lo.y || b.hi.y < a.lo.y ||
              a.hi.z < b.lo.z || b.hi.z < a.lo.z);
@@ -96,8 +108,43 @@ std::vector<double> CurveBreaks(const Curve3& c, const FlatHalfSpace& s) {
     return out;
 }
 
-bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c, double t,
+namespace {
+
+// The local structure around a curve point when a third surface passes through the curve (see
+// trim.h): membership on a circle of radius eps in the curve's normal plane, transitions located
+// by bisection on the angle. Two antipodal transitions are one smooth face through the point.
+bool CircleTest(const SceneProbe& probe, const Vec3& p, const Vec3& ga, const Vec3& gb,
                 double eps) {
+    const Vec3 t = Normalize(Cross(ga, gb));
+    const Vec3 n1 = Normalize(ga), n2 = Cross(t, n1);
+    auto inside = [&](double phi) {
+        return probe.Inside(p + (n1 * std::cos(phi) + n2 * std::sin(phi)) * eps);
+    };
+    constexpr int kSteps = 48;
+    std::vector<double> transitions;
+    bool prev = inside(0);
+    for (int k = 1; k <= kSteps; ++k) {
+        const double phi = 2 * M_PI * k / kSteps;
+        const bool cur = inside(phi);
+        if (cur != prev) {
+            double lo = 2 * M_PI * (k - 1) / kSteps, hi = phi;
+            for (int i = 0; i < 30; ++i) {
+                const double mid = 0.5 * (lo + hi);
+                (inside(mid) == prev ? lo : hi) = mid;
+            }
+            transitions.push_back(0.5 * (lo + hi));
+        }
+        prev = cur;
+    }
+    if (transitions.empty()) return false;
+    if (transitions.size() != 2) return true;
+    return std::fabs(transitions[1] - transitions[0] - M_PI) > 1e-3;
+}
+
+}  // namespace
+
+bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c, double t,
+                double eps, bool shared) {
     const Vec3 p = c.At(t);
     const FlatHalfSpace& A = scene.halfSpaces[static_cast<std::size_t>(c.surfaceA)];
     const Vec3 ga = GradientOf(A, p);
@@ -113,6 +160,7 @@ bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c
     if (!(lb > 0) || !std::isfinite(lb)) return false;
     const double sinAngle = Length(Cross(ga, gb)) / (la * lb);
     if (!(sinAngle > 1e-4)) return false;  // tangent: a smooth join
+    if (shared) return CircleTest(probe, p, ga, gb, eps);
     const double aa = Dot(ga, ga), ab = Dot(ga, gb), bb = Dot(gb, gb);
     const double det = aa * bb - ab * ab;
     bool m[2][2];
@@ -131,14 +179,21 @@ std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& s
                                        const SceneProbe& probe, const std::vector<Curve3>& curves) {
     std::vector<CurvePiece> out;
     const double eps = 1e-7 * std::max({scene.width, scene.height, 1});
+    const double containTol = 1e-9 * std::max({scene.width, scene.height, 1});
     for (std::size_t ci = 0; ci < curves.size(); ++ci) {
         const Curve3& c = curves[ci];
         const Box3 cb = CurveBox(c);
         std::vector<double> ts{c.t0, c.t1};
+        bool shared = false;
         for (int r : surfaces.reps) {
             if (r == c.surfaceA || r == c.surfaceB) continue;
             if (!Overlap(cb, surfaces.box[static_cast<std::size_t>(r)])) continue;
-            auto b = CurveBreaks(c, scene.halfSpaces[static_cast<std::size_t>(r)]);
+            const FlatHalfSpace& h = scene.halfSpaces[static_cast<std::size_t>(r)];
+            if (ContainsCurve(h, c, containTol)) {
+                shared = true;  // its sign along the curve is rounding noise: no breaks
+                continue;
+            }
+            auto b = CurveBreaks(c, h);
             ts.insert(ts.end(), b.begin(), b.end());
         }
         std::sort(ts.begin(), ts.end());
@@ -146,7 +201,7 @@ std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& s
         std::size_t first = out.size();
         for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
             if (!(ts[i + 1] - ts[i] > minLen)) continue;
-            if (!OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps)) continue;
+            if (!OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps, shared)) continue;
             if (out.size() > first &&
                 (out.back().t1 == ts[i] || ProjectedLength(c, out.back().t1, ts[i]) < kSliver)) {
                 out.back().t1 = ts[i + 1];  // consecutive pieces merge, tiny gaps close

@@ -16,6 +16,9 @@
 //     boundary there is that surface's face and the other surface just passes through it; when
 //     it is constant, the curve is inside or outside material. Surfaces meeting at less than
 //     1e-4 rad are tangent there (a smooth join): not an edge.
+//     When a third surface contains the whole curve (a mitre: the bisecting plane and both
+//     tubes share one ellipse), its breaks are skipped (its sign along the curve is rounding
+//     noise) and the circle test of OnBoundary decides instead.
 //   - a silhouette of quadric A: p ± ε gA/|gA| differ in membership.
 // ε = 1e-7 times the image's larger side (device pixels): far above the rounding of p (1e-13 px)
 // and far below any feature a drawing can show.
@@ -39,8 +42,12 @@ struct CurvePiece {
 std::vector<double> CurveBreaks(const Curve3& curve, const FlatHalfSpace& s);
 
 // Is the point at parameter t an edge (or silhouette) of the solids? (see the file comment)
+// `shared`: a third surface contains the whole curve; then the four wedges do not describe the
+// neighbourhood and membership is sampled on a circle around the curve instead (48 directions,
+// transitions bisected): a boundary that crosses the circle at two antipodal angles (within
+// 1e-3 rad) is a smooth face, anything else an edge.
 bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& curve, double t,
-                double eps);
+                double eps, bool shared = false);
 
 std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& surfaces,
                                        const SceneProbe& probe, const std::vector<Curve3>& curves);
