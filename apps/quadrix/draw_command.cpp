@@ -190,6 +190,9 @@ int RunDraw(const DrawArgs& args) {
             std::fprintf(stderr, "draw sheet: %zu views, scale %s, %.1f ms drawing\n",
                          viewNames.size(), scaleText.c_str(), total * 1e3);
     }
+    if (page.strokes.empty())
+        diags.Warning({}, "the drawing is empty: no edge or outline of the solids lies in the view",
+                      {}, "draw");
     diags.Print(stderr);
     std::string err;
     if (format == OutFormat::kSvg) {
