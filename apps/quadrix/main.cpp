@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
         "  quadrix render - -o out.ppm < scene.uq\n"
         "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
         "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n"
+        "  quadrix compare --engines scanline,raycast examples/machined_part.uq\n"
         "  quadrix draw examples/machined_part.uq -o part.svg --views front,top,right,iso\n",
         "quadrix"};
     app.set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
@@ -29,6 +30,10 @@ int main(int argc, char** argv) {
     quadrix::cli::AddUqCommand(app);
     quadrix::cli::PipeArgs pipeArgs;
     quadrix::cli::AddPipeCommand(app, pipeArgs);
+    quadrix::cli::CompareArgs compareArgs;
+    quadrix::cli::AddCompareCommand(app, compareArgs);
+    bool enginesMarkdown = false;
+    quadrix::cli::AddEnginesCommand(app, enginesMarkdown);
     quadrix::cli::DrawArgs drawArgs;
     quadrix::cli::AddDrawCommand(app, drawArgs);
 
@@ -48,6 +53,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return quadrix::cli::RunRender(renderArgs);
     if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
     if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
+    if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);
+    if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
     if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
     return 2;
 }

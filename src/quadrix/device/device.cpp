@@ -13,7 +13,7 @@
 #include <filesystem>
 
 #include "quadrix/device/device_internal.h"
-#include "quadrix/pipeline/pipeline.h"
+#include "quadrix/frame/image_limits.h"
 
 namespace quadrix::device {
 
