@@ -8,8 +8,8 @@
 #include "quadrix/draw/drawing.h"
 #include "quadrix/draw/sheet.h"
 #include "quadrix/draw/svg_writer.h"
-#include "quadrix/flatten/flattener.h"
-#include "quadrix/pipeline/pipeline.h"
+#include "quadrix/frame/image_limits.h"
+#include "quadrix/pipeline/render_context.h"
 
 namespace quadrix::cli {
 
@@ -116,6 +116,10 @@ int RunDraw(const DrawArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
+    if (auto e = CheckImageSize(width, height); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: --size: %s\n", e.c_str());
+        return 2;
+    }
     const std::vector<std::string> viewNames = SplitComma(args.views);
     if (!viewNames.empty() && !args.view.empty()) {
         std::fprintf(stderr, "quadrix: error: --view and --views cannot be combined\n");
@@ -135,27 +139,37 @@ int RunDraw(const DrawArgs& args) {
             return 2;
         }
     }
+    // Stages 1 and 2 of the render context (pipeline/render_context.h); the drawer takes the
+    // flat scene where an engine would.
     Diagnostics diags;
-    PipelineOptions options;
-    options.scenePaths = args.scenes;
-    options.width = width;
-    options.height = height;
-    options.viewName = args.view;
-    PipelineResult result;
-    if (!ReadAndFlatten(options, result, diags) || diags.HasErrors()) return Fail(diags);
-    if (!result.flat.freeforms.empty())
-        diags.Warning({},
-                      fmt::format("{} freeform surface(s) not drawn (the drawer handles planes "
-                                  "and quadrics)",
-                                  result.flat.freeforms.size()),
-                      {}, "draw");
+    RenderContext context(1);
+    InputRequest input;
+    input.paths = args.scenes;
+    if (!context.Read(input, diags) || diags.HasErrors()) return Fail(diags);
+    ViewRequest request;
+    request.width = width;
+    request.height = height;
+    request.viewName = args.view;
+    if (viewNames.empty() && (!context.Flatten(request, diags) || diags.HasErrors()))
+        return Fail(diags);
     draw::DrawOptions dopt;
     dopt.hidden = args.hidden != "off";
     const std::string title = args.scenes.empty() ? "" : args.scenes.back();
     draw::Page page;
+    bool warnedFreeform = false;
+    auto warnFreeform = [&] {
+        if (warnedFreeform || context.Flat().freeforms.empty()) return;
+        warnedFreeform = true;
+        diags.Warning({},
+                      fmt::format("{} freeform surface(s) not drawn (the drawer handles planes "
+                                  "and quadrics)",
+                                  context.Flat().freeforms.size()),
+                      {}, "draw");
+    };
     if (viewNames.empty()) {
-        draw::Drawing d = draw::MakeDrawing(result.flat, dopt);
-        if (args.stats) PrintStats(result.flat.viewName, d.stats);
+        warnFreeform();
+        draw::Drawing d = draw::MakeDrawing(context.Flat(), dopt);
+        if (args.stats) PrintStats(context.Flat().viewName, d.stats);
         page = draw::SingleViewPage(d, title);
     } else {
         std::vector<draw::SheetView> views;
@@ -164,18 +178,21 @@ int RunDraw(const DrawArgs& args) {
             scene::View sv;
             draw::StandardView(name, sv);
             sv.id = "draw#" + sv.id;
-            scene::Scene sc = result.scene;
-            sc.views.push_back(sv);
-            FlattenOptions fo;
-            fo.width = 1000;
-            fo.height = 1000;
-            fo.viewName = sv.id;
-            auto flat = Flatten(sc, fo, diags);
-            if (!flat || diags.HasErrors()) return Fail(diags);
+            context.Scene().views.push_back(sv);
+            context.SceneChanged();
+            ViewRequest vr;
+            vr.width = 1000;
+            vr.height = 1000;
+            vr.viewName = sv.id;
+            const bool ok = context.Flatten(vr, diags);
+            context.Scene().views.pop_back();
+            context.SceneChanged();
+            if (!ok || diags.HasErrors()) return Fail(diags);
+            warnFreeform();
             draw::SheetView v;
             v.name = name;
-            v.drawing = draw::MakeDrawing(*flat, dopt);
-            v.pixelsPerUnit = PixelsPerUnit(*flat);
+            v.drawing = draw::MakeDrawing(context.Flat(), dopt);
+            v.pixelsPerUnit = PixelsPerUnit(context.Flat());
             total += v.drawing.stats.seconds;
             if (args.stats) PrintStats(name, v.drawing.stats);
             views.push_back(std::move(v));
