@@ -181,15 +181,19 @@ view front dop 0 0 -1;
 // ---- Drawn curves against the edges of raycast's Frame. ----
 
 // A pair of neighbouring pixels is a Frame edge when exactly one is background, or their surface
-// ids differ and either their normals differ by more than 3° or their depths by more than 2 px
-// (a tangent join — same normal, same depth — is no edge, and the drawer draws none), unless each
-// pixel's point lies on the other's surface (coincident faces of different bodies).
+// ids differ and either their normals differ by more than `creaseDegrees` or their depths by more
+// than 2 px, unless each pixel's point lies on the other's surface (coincident faces of different
+// bodies). Two thresholds are used: drawn curves must lie near a WEAK edge (0.25°: a mitre crease
+// whose dihedral angle falls to zero along the ellipse is still an edge, and the Frame's ids
+// alternate along it), and STRONG edges (3°) must be drawn (a tangent join — the slot's flat side
+// meeting its round bottom — changes ids with a normal jump of about a degree per pixel of
+// curvature; the drawer draws no tangent edges).
 struct FrameEdges {
     int w = 0, h = 0;
     std::vector<unsigned char> horiz, vert;  // pair (i, j)–(i+1, j) and (i, j)–(i, j+1)
 };
 
-FrameEdges EdgesOf(const Frame& fr, const FlatScene& flat) {
+FrameEdges EdgesOf(const Frame& fr, const FlatScene& flat, double creaseDegrees) {
     FrameEdges e;
     e.w = fr.width;
     e.h = fr.height;
@@ -210,7 +214,7 @@ FrameEdges EdgesOf(const Frame& fr, const FlatScene& flat) {
             return g > 0 && std::fabs(h.Evaluate(q)) <= 0.01 * g;
         };
         if (onSurface(a, b) && onSurface(b, a)) return false;
-        return Dot(fr.normal[a], fr.normal[b]) < std::cos(3 * M_PI / 180) ||
+        return Dot(fr.normal[a], fr.normal[b]) < std::cos(creaseDegrees * M_PI / 180) ||
                std::fabs(fr.depth[a] - fr.depth[b]) > 2;
     };
     for (int j = 0; j < e.h; ++j)
@@ -287,7 +291,8 @@ struct EdgeAgreement {
 };
 
 EdgeAgreement Compare(const Frame& fr, const FlatScene& flat, const Drawing& d) {
-    const FrameEdges e = EdgesOf(fr, flat);
+    const FrameEdges weak = EdgesOf(fr, flat, 0.25);
+    const FrameEdges e = EdgesOf(fr, flat, 3);
     EdgeAgreement a;
     const auto samples = VisibleSamples(d, 0.25);
     // Curve samples → Frame edges (away from the image border, where the Frame ends).
@@ -298,7 +303,7 @@ EdgeAgreement Compare(const Frame& fr, const FlatScene& flat, const Drawing& d) 
         grid[static_cast<std::size_t>(static_cast<int>(p.y) * e.w + static_cast<int>(p.x))]
             .push_back(p);
         ++counted;
-        const double dist = DistanceToFrameEdge(e, p.x, p.y);
+        const double dist = DistanceToFrameEdge(weak, p.x, p.y);
         near += dist <= 0.5 + 1e-9;
         a.farthest = std::fmax(a.farthest, dist);
         if (dist > 0.5 + 1e-9 && std::getenv("QUADRIX_DRAW_DEBUG"))
@@ -377,8 +382,10 @@ std::string ReadText(const std::string& path) {
 
 struct EdgeCase {
     std::string name, scene, view;
-    // Share of visible curve samples required near a Frame edge (see the test).
+    // Share of visible curve samples required near a Frame edge, and the largest distance
+    // allowed (see the test).
     double nearShare = 0.99;
+    double farthest = 1.0;
     std::string path = {};  // read this file instead of `scene` (scenes that include others)
 };
 
@@ -404,14 +411,12 @@ TEST_P(DrawAgainstFrame, VisibleCurvesAreFrameEdgesAndFrameEdgesAreDrawn) {
         "covered\n",
         c.name.c_str(), a.samples, a.curveNearEdge, a.farthest, a.edgePairs, a.edgeCovered);
     EXPECT_GT(a.samples, 100);
-    // Measured: 0.998–1.000 of the samples, every far one within a quarter pixel of a vertex
+    // Measured: 0.998–1.000 of the samples, the far ones within a quarter pixel of a vertex
     // (QUADRIX_DRAW_DEBUG=1 lists them): at a convex corner the nearest pair of differing pixel
     // centres can be up to ~0.8 px away although the drawn corner is exact. 1 % is left for that;
-    // nothing may be farther than one pixel.
+    // nothing may be farther than one pixel (except the sub-pixel cases below).
     EXPECT_GE(a.curveNearEdge, c.nearShare);
-    if (c.nearShare >= 0.99) {
-        EXPECT_LE(a.farthest, 1.0);
-    }
+    EXPECT_LE(a.farthest, c.farthest);
     // Measured: 1.000 everywhere.
     EXPECT_GE(a.edgeCovered, 0.99);
 }
@@ -442,16 +447,15 @@ std::vector<EdgeCase> EdgeCases() {
                           "gallery/hilbert3", "gallery/triangles", "gallery/name"}) {
         std::string name = f;
         std::replace(name.begin(), name.end(), '/', '_');
-        // KNOWN GAP (docs/drawings.md "Verification"): in the scenes made of many tubes of
-        // separate bodies meeting at mitred joints, 0.6–4 % of the visible curve samples lie
-        // more than 0.5 px from any Frame edge (mostly within 1.3 px). Partly explained
-        // (sub-pixel crescent tips, mitre creases under 3°); these scenes are held to 0.9 here
-        // so that a regression still shows, while every Frame edge must still be drawn.
+        // Scenes of tubes as separate overlapping bodies: where the bore of one tube is
+        // partly filled by its neighbours, the visible crescent of the bore ends in tips
+        // thinner than a pixel, which the drawing shows and the Frame cannot (samples there
+        // lie up to ~2 px from the nearest Frame edge; 0.8–1.7 % of the samples). Held to 98 %
+        // and 2.5 px; every Frame edge must still be drawn.
         const std::string n = f;
-        const bool tubes = n == "bundle_of_tubes" || n == "stack_of_bundles" ||
-                           n == "gallery/clover_knot" || n == "gallery/hilbert3" ||
-                           n == "gallery/triangles";
-        cases.push_back({name, "", "", tubes ? 0.9 : 0.99,
+        const bool subPixel =
+            n == "bundle_of_tubes" || n == "stack_of_bundles" || n == "gallery/clover_knot";
+        cases.push_back({name, "", "", subPixel ? 0.98 : 0.99, subPixel ? 2.5 : 1.0,
                          testing::SourcePath(std::string("examples/") + f + ".uq")});
     }
     std::vector<EdgeCase> fixed = {
