@@ -12,6 +12,7 @@ PACKAGES=(
   libtbb-dev                         # oneTBB: parallel tiles
   libgtest-dev                       # GoogleTest
   libedit-dev                        # line editing at the uq> prompt (BSD license)
+  libcairo2-dev                      # PDF/EPS output of `quadrix draw` (vector drawings)
   povray                             # the independent exact renderer the tests compare against
   clang libclang-rt-14-dev           # libFuzzer: the reader's fuzz target (tests/fuzz_reader)
 )

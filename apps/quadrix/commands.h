@@ -83,6 +83,21 @@ int RunCompare(const CompareArgs& args);
 void AddEnginesCommand(CLI::App& app, bool& markdown);
 int RunEngines(bool markdown);
 
+// `quadrix draw`: exact hidden-line drawings (draw_command.cpp, draw/drawing.h).
+struct DrawArgs {
+    std::vector<std::string> scenes;
+    std::string output;
+    std::string size = "800x600";
+    std::string view;
+    std::string views;  // comma-separated standard views for a sheet
+    std::string sheet = "A4";
+    std::string projection = "third";
+    std::string hidden = "dashed";
+    bool stats = false;
+};
+void AddDrawCommand(CLI::App& app, DrawArgs& args);
+int RunDraw(const DrawArgs& args);
+
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);
 

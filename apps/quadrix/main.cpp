@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
         "  quadrix render - -o out.ppm < scene.uq\n"
         "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
         "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n"
-        "  quadrix compare --engines scanline,raycast examples/machined_part.uq\n",
+        "  quadrix compare --engines scanline,raycast examples/machined_part.uq\n"
+        "  quadrix draw examples/machined_part.uq -o part.svg --views front,top,right,iso\n",
         "quadrix"};
     app.set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
     app.require_subcommand(1);
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
     quadrix::cli::AddCompareCommand(app, compareArgs);
     bool enginesMarkdown = false;
     quadrix::cli::AddEnginesCommand(app, enginesMarkdown);
+    quadrix::cli::DrawArgs drawArgs;
+    quadrix::cli::AddDrawCommand(app, drawArgs);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     try {
@@ -52,5 +55,6 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
     if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);
     if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
+    if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
     return 2;
 }

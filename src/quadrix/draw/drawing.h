@@ -1,0 +1,67 @@
+// A hidden-line drawing of a flattened scene (docs/drawings.md; seed 001 §7.2.3, "wire-frame
+// images with hidden edges removed"): the stages in order,
+//   1. curve_extraction.h  candidate edges and silhouettes (exact lines and conics, traced
+//   quartics)
+//   2. trim.h              pieces that lie on the solids' boundary after CSG
+//   3. visibility.h        split where visibility changes (ray casts + bisection)
+//   4. here                pieces as 2-D strokes: exact elliptical arcs, segments, polylines
+// and the writers (svg_writer.h, cairo_writer.h) take the strokes. Coordinates of strokes are
+// device pixels (x right, y down), the same as the Frame's, so a drawing overlays the render of
+// the same view exactly.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "quadrix/draw/curve.h"
+#include "quadrix/flatten/flat_scene.h"
+
+namespace quadrix::draw {
+
+struct Point2 {
+    double x = 0, y = 0;
+};
+
+enum class StrokeKind : std::uint8_t { kSegment, kEllipseArc, kPolyline };
+
+struct Stroke {
+    StrokeKind kind = StrokeKind::kSegment;
+    CurveRole role = CurveRole::kEdge;
+    CurveKind source = CurveKind::kLine;
+    bool visible = true;
+    int surfaceA = -1, surfaceB = -1;
+    // kEllipseArc: P(θ) = c + U cos θ + V sin θ for θ from a0 to a1 (a1 > a0; a1 − a0 = 2π is the
+    // whole ellipse). U, V are conjugate semi-diameters (the image of the 3-D ones).
+    Point2 c, U, V;
+    double a0 = 0, a1 = 0;
+    std::vector<Point2> points;  // kSegment (two) and kPolyline
+    Point2 ArcPoint(double t) const;
+};
+
+struct DrawOptions {
+    double visibilityStep = 0.5;   // device px between ray tests along a curve
+    double chordTolerance = 0.01;  // device px: polylines of non-elliptic curves
+    bool hidden = true;            // compute (and keep) hidden pieces
+};
+
+struct DrawStats {
+    int candidates = 0, pieces = 0, strokes = 0;
+    int lines = 0, conics = 0, silhouettes = 0, quartics = 0, tangentPairs = 0;
+    long long rayTests = 0;
+    int visibilityChanges = 0;
+    double seconds = 0;
+};
+
+struct Drawing {
+    int width = 0, height = 0;  // device size (px)
+    std::vector<Stroke> strokes;
+    DrawStats stats;
+};
+
+Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options = {});
+
+// Maps every stroke by p → s p + (dx, dy) (s > 0): used to place views on a sheet.
+void TransformDrawing(Drawing& d, double s, double dx, double dy);
+
+}  // namespace quadrix::draw
