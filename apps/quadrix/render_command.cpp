@@ -1,11 +1,13 @@
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "commands.h"
 #include "quadrix/engines/patch/phong.h"
+#include "quadrix/io/bounded_read.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/shader.h"
@@ -88,13 +90,9 @@ std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnosti
         po.rtView = rt;
     }
     if (!args.rtView.empty()) {
-        std::FILE* f = std::fopen(args.rtView.c_str(), "rb");
-        if (!f) return fmt::format("--rt-view: cannot open '{}'", args.rtView);
         std::string text;
-        char buf[4096];
-        std::size_t n = 0;
-        while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-        std::fclose(f);
+        if (auto why = ReadBoundedFile(args.rtView, text); !why.empty())
+            return fmt::format("--rt-view: cannot read '{}': {}", args.rtView, why);
         auto rt = import::ParseRtViewScript(text, args.rtView, diags);
         if (!rt) return "--rt-view: the view file has errors";
         po.rtView = *rt;
@@ -141,6 +139,17 @@ int RunRender(const RenderArgs& args) {
         po.engineOptions[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
 
+    // Every output is checked before anything is read or drawn (io/output_file.h): none may be a
+    // device, FIFO, directory or input, and a refused --dump-frame must not follow a written image.
+    std::vector<std::string> outputs{args.output};
+    if (!args.dumpFrame.empty()) outputs.push_back(args.dumpFrame);
+    std::vector<std::string> inputs = args.scenes;
+    if (!args.rtView.empty()) inputs.push_back(args.rtView);
+    if (auto e = CheckOutputPaths(outputs, inputs); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 1;
+    }
+
     PipelineResult result;
     bool ok = RunPipeline(po, result, diags);
     diags.Print(stderr);
@@ -156,16 +165,21 @@ int RunRender(const RenderArgs& args) {
     auto t0 = std::chrono::steady_clock::now();
     ShadeOptions so;
     so.fast = args.fast;
+    // Both outputs are written to temporary files, then renamed together (CommitAll).
     std::string error;
+    OutputFile mainFile(args.output);
+    std::optional<OutputFile> dumpFile;
+    if (!args.dumpFrame.empty()) dumpFile.emplace(args.dumpFrame);
     if (format == ImageFormat::kFrameDump) {
-        error = WriteFrameDump(args.output, result.frame);
+        error = WriteFrameDump(mainFile, result.frame);
     } else {
         Image image = args.phong ? patch::PhongShade(result.frame, result.flat)
                                  : Shade(result.frame, result.flat, so);
-        error = format == ImageFormat::kPng ? WritePng(args.output, image)
-                                            : WritePnm(args.output, image);
+        error = format == ImageFormat::kPng ? WritePng(mainFile, image) : WritePnm(mainFile, image);
     }
-    if (error.empty() && !args.dumpFrame.empty()) error = WriteFrameDump(args.dumpFrame, result.frame);
+    if (error.empty() && dumpFile) error = WriteFrameDump(*dumpFile, result.frame);
+    if (error.empty())
+        error = dumpFile ? CommitAll({&mainFile, &*dumpFile}) : CommitAll({&mainFile});
     double writeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!error.empty()) {

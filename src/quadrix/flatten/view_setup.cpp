@@ -64,8 +64,10 @@ class ViewResolver {
         }
         s.n = Normalize(vpn);
         Vec3 vup = view_.vup.value_or(Vec3{0, 1, 0});
-        Vec3 right = Cross(vup, s.n);
-        if (Length(right) <= 1e-9 * Length(vup))
+        // Both unit vectors first: a vup or vpn of any magnitude (1e-200, 1e200) gives the same
+        // screen (issue 23), where the raw cross product under- or overflowed.
+        Vec3 right = Cross(Normalize(vup), s.n);
+        if (!(Length(right) > 1e-9))
             return Fail(
                 fmt::format("view '{}': vup {} is parallel to the view plane normal {}; "
                             "the screen's up direction is undefined",

@@ -1,7 +1,6 @@
 #include "quadrix/io/writers.h"
 
 #include <png.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
@@ -10,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -23,41 +21,6 @@ std::string Lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return s;
 }
-
-// A temporary file next to `path` that is removed unless Commit() renames it into place.
-class AtomicFile {
-public:
-    explicit AtomicFile(const std::string& path) : path_(path) {
-        std::random_device rd;
-        tmp_ = fmt::format("{}.tmp{}", path, rd() % 1000000);
-        file_ = std::fopen(tmp_.c_str(), "wb");
-        if (!file_) error_ = fmt::format("cannot write '{}': {}", path, std::strerror(errno));
-    }
-    ~AtomicFile() {
-        if (file_) std::fclose(file_);
-        if (!committed_ && !tmp_.empty()) std::remove(tmp_.c_str());
-    }
-    std::FILE* get() { return file_; }
-    const std::string& error() const { return error_; }
-    std::string Commit() {
-        if (!file_) return error_;
-        bool bad = std::ferror(file_) != 0;
-        bad |= std::fflush(file_) != 0;
-        int closeResult = std::fclose(file_);
-        file_ = nullptr;
-        if (bad || closeResult != 0)
-            return fmt::format("cannot write '{}': {}", path_, std::strerror(errno ? errno : EIO));
-        if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
-            return fmt::format("cannot write '{}': {}", path_, std::strerror(errno));
-        committed_ = true;
-        return {};
-    }
-
-private:
-    std::string path_, tmp_, error_;
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
-};
 
 std::string CheckImage(const Image& image) {
     if (image.width <= 0 || image.height <= 0 || (image.channels != 1 && image.channels != 3) ||
@@ -78,16 +41,12 @@ bool ImageFormatFromPath(const std::string& path, ImageFormat& format) {
 }
 
 std::string WriteFileAtomically(const std::string& path, const std::string& contents) {
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
-    std::fwrite(contents.data(), 1, contents.size(), f.get());
-    return f.Commit();
+    return WriteOutputFile(path, contents);
 }
 
-std::string WritePng(const std::string& path, const Image& image) {
+std::string WritePng(OutputFile& f, const Image& image) {
     if (auto e = CheckImage(image); !e.empty()) return e;
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
+    if (!f.ok()) return f.error();
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     if (!png) return "cannot initialise libpng";
     png_infop info = png_create_info_struct(png);
@@ -99,9 +58,9 @@ std::string WritePng(const std::string& path, const Image& image) {
     // the end of the block.
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        return fmt::format("cannot write '{}': PNG encoding failed", path);
+        return fmt::format("cannot write '{}': PNG encoding failed", f.path());
     }
-    png_init_io(png, f.get());
+    png_init_io(png, f.stream());
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                  static_cast<png_uint_32>(image.height), 8,
                  image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY,
@@ -117,32 +76,55 @@ std::string WritePng(const std::string& path, const Image& image) {
         png_write_row(png, const_cast<png_bytep>(image.At(0, y)));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    return f.Commit();
+    return {};
 }
 
-std::string WritePnm(const std::string& path, const Image& image) {
+std::string WritePnm(OutputFile& f, const Image& image) {
     if (auto e = CheckImage(image); !e.empty()) return e;
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
-    std::fprintf(f.get(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
+    if (!f.ok()) return f.error();
+    std::fprintf(f.stream(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
                  image.height);
-    std::fwrite(image.pixels.data(), 1, image.pixels.size(), f.get());
-    return f.Commit();
+    std::fwrite(image.pixels.data(), 1, image.pixels.size(), f.stream());
+    return {};
 }
 
-std::string WriteFrameDump(const std::string& path, const Frame& frame) {
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
-    std::fprintf(f.get(), "QXF1 %d %d\n", frame.width, frame.height);
+std::string WriteFrameDump(OutputFile& f, const Frame& frame) {
+    if (!f.ok()) return f.error();
+    std::fprintf(f.stream(), "QXF1 %d %d\n", frame.width, frame.height);
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width; ++x) {
             std::size_t i = frame.Index(x, y);
             if (frame.surface[i] == Frame::kNone) continue;
             const Vec3& n = frame.normal[i];
-            std::fprintf(f.get(), "%d %d %.17g %.17g %.17g %.17g %d %d %d\n", x, y, frame.depth[i],
-                         n.x, n.y, n.z, frame.surface[i], frame.body[i], frame.solid[i]);
+            std::fprintf(f.stream(), "%d %d %.17g %.17g %.17g %.17g %d %d %d\n", x, y,
+                         frame.depth[i], n.x, n.y, n.z, frame.surface[i], frame.body[i],
+                         frame.solid[i]);
         }
+    return {};
+}
+
+namespace {
+template <typename T>
+std::string WriteThrough(const std::string& path, const T& data,
+                         std::string (*write)(OutputFile&, const T&)) {
+    OutputFile f(path);
+    if (auto e = write(f, data); !e.empty()) return e;
     return f.Commit();
+}
+}  // namespace
+
+std::string WritePng(const std::string& path, const Image& image) {
+    if (auto e = CheckImage(image); !e.empty()) return e;
+    return WriteThrough<Image>(path, image, WritePng);
+}
+
+std::string WritePnm(const std::string& path, const Image& image) {
+    if (auto e = CheckImage(image); !e.empty()) return e;
+    return WriteThrough<Image>(path, image, WritePnm);
+}
+
+std::string WriteFrameDump(const std::string& path, const Frame& frame) {
+    return WriteThrough<Frame>(path, frame, WriteFrameDump);
 }
 
 std::string ReadFrameDump(const std::string& path, Frame& frame) {

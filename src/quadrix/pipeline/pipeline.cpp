@@ -6,6 +6,7 @@
 
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/flatten/flattener.h"
+#include "quadrix/frame/memory_budget.h"
 #include "quadrix/lang/reader.h"
 
 namespace quadrix {
@@ -22,7 +23,9 @@ std::string CheckImageSize(long long width, long long height) {
     if (width > kMaxSide || height > kMaxSide || width * height > kMaxPixels)
         return fmt::format("image size {}x{} is too large (at most {} pixels a side and {} pixels)",
                            width, height, kMaxSide, kMaxPixels);
-    return {};
+    // Before the Frame is allocated (frame/memory_budget.h): a clear error, not std::bad_alloc.
+    return CheckMemory(RenderBytes(width, height),
+                       fmt::format("an image of {}x{} pixels", width, height));
 }
 
 bool ReadAndFlatten(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
