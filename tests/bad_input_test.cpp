@@ -94,9 +94,14 @@ std::vector<BadInput> HardeningRows() {
          "truncate -s 257M big.scad"},
         {"SceneIsADirectory", {}, "{dir}/sub.uq", R"(sub\.uq.*directory)", "mkdir sub.uq"},
         {"RtViewIsADirectory", {{"main.uq", sphere}}, "--rt-view {dir}", R"(rt-view.*directory)"},
-        // ---- Memory: a size the budget cannot hold is a clear error, not SIGABRT.
-        {"ImageLargerThanUlimit", {{"main.uq", sphere}}, "--size 8192x8192",
-         R"(8192x8192.*memory budget.*ulimit -v)", "ulimit -v 2097152"},
+        // ---- Memory and time: a size the budget cannot hold is a clear error, not SIGABRT.
+        {"ImageLargerThanMaxMemory", {{"main.uq", sphere}}, "--size 4096x4096 --max-memory 100M",
+         R"(4096x4096.*memory budget is 100 MiB \(--max-memory\))"},
+        {"MaxMemoryMalformed", {{"main.uq", sphere}}, "--max-memory lots",
+         R"(error: --max-memory.*lots)"},
+        {"TimeLimitOnStalledInput", {}, "- --time-limit 0.3", R"(error: time limit of 0\.3 s)",
+         "sleep 2 |"},
+        {"TimeLimitMalformed", {{"main.uq", sphere}}, "--time-limit -1", R"(error: --time-limit)"},
         // ---- BRL-CAD: numbers beyond int are positioned errors (were UBSan float-cast overflow).
         {"V4ColorTableHugeId", {{"m.asc", "I 1 v4\nt\nm 4 2.5e12 3 0 0 0\n"}}, "{dir}/m.asc",
          R"(m\.asc:3:\d+: error.*low region id)"},
@@ -147,6 +152,24 @@ std::vector<BadInput> HardeningRows() {
          "--rt-view {dir}/v.rt", "", "", 100},
         {"V5TreeAtTheDepthLimit", {{"m.asc", DeepV5Tree(2000)}}, "{dir}/m.asc", "", "", 100},
     };
+}
+
+// Rows that need `ulimit -v`: AddressSanitizer reserves terabytes of address space and cannot
+// even start under it, so the sanitizer build leaves them out.
+std::vector<BadInput> AddressLimitRows() {
+#ifdef __SANITIZE_ADDRESS__
+    return {};
+#else
+    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
+    return {
+        {"ImageLargerThanUlimit", {{"main.uq", sphere}}, "--size 8192x8192",
+         R"(8192x8192.*memory budget.*ulimit -v)", "ulimit -v 2097152"},
+        // 200 MB of blanks (under the input limit) in 300 MB of address space: the reader's
+        // copies fail to allocate, and std::bad_alloc is caught in main.
+        {"AllocationFailureIsAnError", {}, "{dir}/big.uq", R"(error: out of memory)",
+         "head -c 200000000 /dev/zero | tr '\\0' ' ' > big.uq; ulimit -v 300000"},
+    };
+#endif
 }
 
 std::vector<BadInput> Table() {
@@ -218,6 +241,7 @@ std::vector<BadInput> Table() {
     for (BadInput& b : t)
         if (std::string(b.name) == "IncludeDepth17") b.files["main.uq"] = IncludeChain(17, b.files);
     for (BadInput& b : HardeningRows()) t.push_back(std::move(b));
+    for (BadInput& b : AddressLimitRows()) t.push_back(std::move(b));
     return t;
 }
 
@@ -238,7 +262,9 @@ TEST_P(BadInputTest, OneLineErrorNonZeroExitNoOutput) {
     std::string scene = b.files.count("main.uq") ? dir.File("main.uq") : "";
     // An explicit -o in extraArgs replaces the default output.
     bool ownOutput = args.find("-o ") != std::string::npos;
-    std::string cmd = "cd '" + dir.path() + "' && " + (b.setup.empty() ? "" : b.setup + "; ") +
+    std::string cmd = "cd '" + dir.path() + "' && " + (b.setup.empty()             ? ""
+                                           : b.setup.back() == '|' ? b.setup + " "
+                                                                   : b.setup + "; ") +
                       QuadrixBinary() + " render " + scene + " " + args +
                       (ownOutput ? "" : std::string(picture ? " --size 64x64" : "") + " -o '" + out + "'");
     CommandResult r = RunShell(cmd);

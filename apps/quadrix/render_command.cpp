@@ -7,7 +7,9 @@
 
 #include "commands.h"
 #include "quadrix/engines/patch/phong.h"
+#include "quadrix/frame/memory_budget.h"
 #include "quadrix/io/bounded_read.h"
+#include "quadrix/io/time_limit.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/shader.h"
@@ -68,6 +70,10 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->expected(16);
     cmd->add_option("--rt-view", args.rtView,
                     "File of rt view commands (viewsize; eye_pt; viewrot or orientation)");
+    cmd->add_option("--max-memory", args.maxMemory,
+                    "Memory budget, e.g. 2G or 512M: larger images are refused (docs/output.md)");
+    cmd->add_option("--time-limit", args.timeLimit,
+                    "Give up after this many seconds (exit 124, no output left)");
 }
 
 namespace {
@@ -104,6 +110,20 @@ std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnosti
 }  // namespace
 
 int RunRender(const RenderArgs& args) {
+    if (!args.maxMemory.empty()) {
+        std::size_t bytes = 0;
+        if (!ParseByteSize(args.maxMemory, bytes)) {
+            std::fprintf(stderr, "quadrix: error: --max-memory: expected a size of at least 1M "
+                                 "such as 512M or 2G, found '%s'\n", args.maxMemory.c_str());
+            return 2;
+        }
+        SetMemoryBudget(bytes);
+    }
+    if (args.timeLimit != 0 && !SetTimeLimit(args.timeLimit)) {
+        std::fprintf(stderr, "quadrix: error: --time-limit: expected a positive number of "
+                             "seconds\n");
+        return 2;
+    }
     Diagnostics diags;
     PipelineOptions po;
     if (auto e = ParseSize(args.size, po.width, po.height); !e.empty()) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstdio>
 #include <limits>
 
@@ -69,6 +70,33 @@ std::size_t RenderBytes(long long width, long long height) {
     constexpr std::size_t kBytesPerPixel = 96;
     if (width <= 0 || height <= 0) return 0;
     return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * kBytesPerPixel;
+}
+
+bool ParseByteSize(const std::string& text, std::size_t& bytes) {
+    double value = 0;
+    int used = 0;
+    if (std::sscanf(text.c_str(), "%lf%n", &value, &used) != 1 || !(value > 0)) return false;
+    std::string unit = text.substr(static_cast<std::size_t>(used));
+    for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (unit.size() >= 2 && unit.compare(unit.size() - 2, 2, "IB") == 0)
+        unit.resize(unit.size() - 2);
+    else if (!unit.empty() && unit.back() == 'B')
+        unit.pop_back();
+    double scale = 1;
+    if (unit == "K")
+        scale = 1024.0;
+    else if (unit == "M")
+        scale = 1024.0 * 1024;
+    else if (unit == "G")
+        scale = 1024.0 * 1024 * 1024;
+    else if (unit == "T")
+        scale = 1024.0 * 1024 * 1024 * 1024;
+    else if (!unit.empty())
+        return false;
+    const double b = value * scale;
+    if (!(b >= 1024.0 * 1024) || b > 1e18) return false;
+    bytes = static_cast<std::size_t>(b);
+    return true;
 }
 
 std::string CheckMemory(std::size_t bytes, const std::string& what) {

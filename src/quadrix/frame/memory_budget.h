@@ -22,6 +22,10 @@ void SetMemoryBudget(std::size_t bytes);
 // and the engines' per-pixel scratch), in bytes.
 std::size_t RenderBytes(long long width, long long height);
 
+// "2G", "512M", "1.5GiB", "64k", "1000000" (bytes; K/M/G/T are powers of 1024, with or without
+// "iB"/"B"). Returns false for anything else or a value below 1 MiB.
+bool ParseByteSize(const std::string& text, std::size_t& bytes);
+
 // Empty when `bytes` fit the budget, else "WHAT needs about N; the memory budget is M (SOURCE)".
 std::string CheckMemory(std::size_t bytes, const std::string& what);
 

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <mutex>
 
 #include "quadrix/io/output_file.h"
@@ -99,7 +100,37 @@ std::string ReadBoundedFile(const std::string& path, std::string& text, std::siz
     return e;
 }
 
+namespace {
+
+// The buffer std::cin had at start-up: while it is still in place, standard input is read through
+// stdio (fast, and with its error flag); a program or test that swapped in another buffer
+// (std::cin.rdbuf(x)) is read through that one.
+std::streambuf* const gOriginalCinBuffer = std::cin.rdbuf();
+
+bool ReadLineFromStreambuf(std::streambuf& in, std::string& text) {
+    const std::size_t room = kMaxInputBytes - std::min(kMaxInputBytes, gStdinBytes.load());
+    std::string line;
+    using Traits = std::streambuf::traits_type;
+    for (int c = in.sbumpc(); !Traits::eq_int_type(c, Traits::eof()); c = in.sbumpc()) {
+        if (line.size() >= room) {
+            gStdinBytes += line.size();
+            SetStdinError(TooLarge(kMaxInputBytes));
+            return false;
+        }
+        line.push_back(Traits::to_char_type(c));
+        if (line.back() == '\n') break;
+    }
+    gStdinBytes += line.size();
+    if (line.empty()) return false;
+    text += line;
+    return true;
+}
+
+}  // namespace
+
 bool ReadBoundedStdinLine(std::string& text) {
+    if (std::streambuf* buffer = std::cin.rdbuf(); buffer != gOriginalCinBuffer)
+        return buffer && ReadLineFromStreambuf(*buffer, text);
     std::FILE* in = stdin;
     flockfile(in);
     bool any = false;

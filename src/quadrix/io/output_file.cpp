@@ -63,10 +63,14 @@ static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs l
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
-extern "C" void RemoveTemporariesAndReraise(int sig) {
-    const int savedErrno = errno;
+void UnlinkRegistered() {
     for (int i = 0; i < kSlots; ++i)
         if (gSlotState[i].load() == 2) unlink(gSlotPaths[i]);  // async-signal-safe
+}
+
+extern "C" void RemoveTemporariesAndReraise(int sig) {
+    const int savedErrno = errno;
+    UnlinkRegistered();
     errno = savedErrno;
     // SA_RESETHAND restored the default action; the signal is blocked until this returns, then
     // delivered again and ends the process as it would have without us.
@@ -335,6 +339,8 @@ std::string WriteOutputFile(const std::string& path, std::string_view contents) 
     out.Write(contents);
     return out.Commit();
 }
+
+void RemoveTemporaryOutputFiles() { UnlinkRegistered(); }
 
 int PendingOutputFiles() {
     int n = 0;

@@ -90,6 +90,10 @@ std::string CommitAll(const std::vector<OutputFile*>& files);
 // on success, else a one-line message (and no file is left behind).
 std::string WriteOutputFile(const std::string& path, std::string_view contents);
 
+// Unlinks every temporary output file in the making. Async-signal-safe (for a signal handler
+// that ends the process, e.g. the time limit's).
+void RemoveTemporaryOutputFiles();
+
 // Number of temporary files currently registered with the signal handlers (tests).
 int PendingOutputFiles();
 
