@@ -497,7 +497,9 @@ class Builder {
         auto t = Transform::FromMatrix(total);
         if (!t) {
             Error(n.offset,
-                  fmt::format("{}: the transformation is singular (a zero scale?)", n.name));
+                  fmt::format("{}: the transformation cannot be inverted: singular (a zero "
+                              "scale?), not finite, or scales more than 1e14 apart",
+                              n.name));
             return -1;
         }
         int root = -1;
