@@ -7,6 +7,7 @@ PACKAGES=(
   cmake ninja-build g++ pkg-config   # build
   libfmt-dev                         # formatting of messages and numbers
   libcli11-dev                       # command-line parsing
+  nlohmann-json3-dev                 # JSON output (--stats --json)
   libpng-dev                         # PNG output
   libtbb-dev                         # oneTBB: parallel tiles
   libgtest-dev                       # GoogleTest

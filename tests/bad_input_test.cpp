@@ -70,8 +70,12 @@ std::vector<BadInput> HardeningRows() {
          R"(cannot write.*input)", "ln main.uq main.uq.png"},
         {"OutputIsAFileTheSceneReads", {{"main.uq", "read \"part.uq\";\n"}, {"part.uq", sphere}},
          "-o {dir}/part.png", R"(cannot write.*input)", "ln part.uq part.png"},
+        // The issue's `--dump-frame scene.uq` is now refused by its extension (not .qxf); the same
+        // file under a .qxf name (a hard link) is refused as the input.
         {"DumpFrameIsTheScene", {{"main.uq", sphere}}, "--dump-frame {dir}/main.uq",
-         R"(cannot write.*main\.uq.*input)"},
+         R"(error.*main\.uq)"},
+        {"DumpFrameIsALinkToTheScene", {{"main.uq", sphere}}, "--dump-frame {dir}/main.qxf",
+         R"(cannot write.*main\.qxf.*input)", "ln main.uq main.qxf"},
         {"DumpFrameIsADirectory", {{"main.uq", sphere}}, "--dump-frame {dir}/d.qxf",
          R"(cannot write.*d\.qxf.*directory)", "mkdir d.qxf"},
         {"DumpFrameIsTheOutput", {{"main.uq", sphere}}, "-o {dir}/a.qxf --dump-frame ./a.qxf",

@@ -150,9 +150,13 @@ TEST(OutputSafety, ReadOnlyDirectoryLeavesNothing) {
 TEST(OutputSafety, InputIsNeverAnOutput) {
     TempDir dir;
     const std::string scene = dir.Write("s.uq", kSphere);
-    // --dump-frame onto the scene (the case), refused before the image is written.
-    ExpectRefused(Render(dir, "s.uq --size 16x16 -o out.ppm --dump-frame s.uq"), dir, {"s.uq"});
+    // --dump-frame onto the scene (the case; .uq is no dump name any more, so a .qxf
+    // hard link stands for it), refused before the image is written.
+    fs::create_hard_link(scene, dir.File("s.qxf"));
+    ExpectRefused(Render(dir, "s.uq --size 16x16 -o out.ppm --dump-frame s.qxf"), dir,
+                  {"s.uq", "s.qxf"});
     EXPECT_EQ(Slurp(scene), kSphere);
+    fs::remove(dir.File("s.qxf"));
     // export onto its own input.
     CommandResult r =
         RunShell("cd '" + dir.path() + "' && " + QuadrixBinary() + " export --to pov s.uq -o s.uq");

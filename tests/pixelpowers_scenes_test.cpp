@@ -224,17 +224,22 @@ TEST(PixelPowersScenes, PaperShadingErrorWithinHostBound) {
     }
 }
 
-// A solid the engine cannot draw reaches RenderStats::warnings through the pipeline (the CLI
-// prints them after every render), naming the solid and the option to raise.
-TEST(PixelPowersScenes, UndrawnSolidIsAWarning) {
+// A solid the engine cannot draw is drawn by raycast through the render context's composition,
+// and the note (printed by the CLI after every render) names the solid's reason and the option.
+TEST(PixelPowersScenes, UndrawnSolidIsComposedFromRaycastWithANote) {
     SceneRun pp =
         Render("", "examples/machined_part.uq", "pixelpowers", {{"max-instructions", "100"}});
     ASSERT_TRUE(pp.ok) << pp.errors;
-    ASSERT_EQ(pp.result.stats.warnings.size(), 1u);
-    EXPECT_NE(pp.result.stats.warnings[0].find("solid 'part' not drawn"), std::string::npos)
-        << pp.result.stats.warnings[0];
-    EXPECT_NE(pp.result.stats.warnings[0].find("max-instructions"), std::string::npos);
-    EXPECT_EQ(pp.result.frame.CoveredCount(), 0u);
+    ASSERT_EQ(pp.result.report.byReference.size(), 1u);
+    EXPECT_NE(pp.result.report.byReference[0].reason.find("solid 'part' not drawn"),
+              std::string::npos);
+    ASSERT_EQ(pp.result.report.notes.size(), 1u);
+    EXPECT_NE(pp.result.report.notes[0].find("max-instructions"), std::string::npos)
+        << pp.result.report.notes[0];
+    SceneRun ray = Render("", "examples/machined_part.uq", "raycast", {});
+    ASSERT_TRUE(ray.ok);
+    EXPECT_EQ(pp.result.frame.CoveredCount(), ray.result.frame.CoveredCount());
+    EXPECT_GT(pp.result.frame.CoveredCount(), 1000u);
 }
 
 }  // namespace

@@ -589,7 +589,8 @@ TEST(ScanlineFaceStacks, OptionsAreValidated) {
                             {"render", "stack", false},
                             {"verify", "on", true},
                             {"verify", "off", true},
-                            {"verify", "1", false}}) {
+                            {"verify", "1", true},  // one boolean vocabulary for all engines
+                            {"verify", "2", false}}) {
         o.engineOptions = {{k, v}};
         EXPECT_EQ(MakeEngine("scanline")->ValidateOptions(o).empty(), ok) << k << "=" << v;
     }

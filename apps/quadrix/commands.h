@@ -17,6 +17,7 @@ struct RenderArgs {
     bool fast = false;
     bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
     bool stats = false;
+    bool json = false;  // --stats --json
     int threads = 0;
     std::string dumpFrame;
     std::vector<std::string> engineOptions;  // key=value
@@ -63,6 +64,22 @@ struct PipeArgs {
 };
 void AddPipeCommand(CLI::App& app, PipeArgs& args);
 int RunPipe(const PipeArgs& args);
+
+// `quadrix compare`: two Frames pixel by pixel (compare_command.cpp, frame/compare.h).
+struct CompareArgs {
+    std::vector<std::string> inputs;
+    std::string engines;  // "a,b"
+    std::string size = "320x240";
+    std::string view;
+    std::string diff;
+    double tolerance = 1e-6;
+};
+void AddCompareCommand(CLI::App& app, CompareArgs& args);
+int RunCompare(const CompareArgs& args);
+
+// `quadrix engines`: the registry's rows (engines_command.cpp).
+void AddEnginesCommand(CLI::App& app, bool& markdown);
+int RunEngines(bool markdown);
 
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);

@@ -6,7 +6,7 @@
 #include "quadrix/io/output_file.h"
 #include "quadrix/io/pov_export.h"
 #include "quadrix/io/writers.h"
-#include "quadrix/pipeline/pipeline.h"
+#include "quadrix/pipeline/render_context.h"
 
 namespace quadrix::cli {
 
@@ -34,19 +34,20 @@ int RunExport(const ExportArgs& args) {
         return 1;
     }
     Diagnostics diags;
-    PipelineOptions options;
-    options.scenePaths = args.scenes;
-    options.width = width;
-    options.height = height;
-    options.viewName = args.view;
-    PipelineResult result;
-    const bool ok = ReadAndFlatten(options, result, diags);
-    if (ok && !result.flat.freeforms.empty())
+    InputRequest input;
+    input.paths = args.scenes;
+    ViewRequest view;
+    view.width = width;
+    view.height = height;
+    view.viewName = args.view;
+    RenderContext ctx;
+    const bool ok = ctx.Read(input, diags) && ctx.Flatten(view, diags);
+    if (ok && !ctx.Flat().freeforms.empty())
         diags.Warning({},
                       fmt::format("{} freeform surface{} not exported (POV-Ray has no exact "
                                   "NURBS primitive)",
-                                  result.flat.freeforms.size(),
-                                  result.flat.freeforms.size() == 1 ? " is" : "s are"),
+                                  ctx.Flat().freeforms.size(),
+                                  ctx.Flat().freeforms.size() == 1 ? " is" : "s are"),
                       {}, "export");
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
@@ -54,7 +55,7 @@ int RunExport(const ExportArgs& args) {
                      diags.ErrorCount() == 1 ? "" : "s");
         return 1;
     }
-    const FlatScene* flat = &result.flat;
+    const FlatScene* flat = &ctx.Flat();
     PovExportOptions po;
     po.mask = args.mask;
     if (auto e = WriteOutputFile(args.output, ExportPov(*flat, po)); !e.empty()) {

@@ -433,25 +433,22 @@ std::vector<scene::Light> UqSession::CurrentLights() const {
     return lights;
 }
 
-std::optional<FlatScene> UqSession::FlattenCurrent(const std::string& view,
-                                                   const device::DeviceInfo& info) {
+bool UqSession::FlattenCurrent(const std::string& view, const device::DeviceInfo& info) {
     auto t0 = std::chrono::steady_clock::now();
-    FlattenOptions fo;
-    fo.width = info.width;
-    fo.height = info.height;
-    fo.viewName = view;
-    // The Flattener takes the scene's lights; lend it the current ones for this picture.
-    std::vector<scene::Light> saved = std::exchange(scene_.lights, CurrentLights());
-    const int errorsBefore = diags_.ErrorCount();
-    auto flat = Flatten(scene_, fo, diags_);
-    scene_.lights = std::move(saved);
-    if (!flat || diags_.ErrorCount() != errorsBefore) return std::nullopt;
+    ViewRequest request;
+    request.width = info.width;
+    request.height = info.height;
+    request.viewName = view;
+    request.lights = CurrentLights();  // passed in, never swapped into the scene
+    ctx_.SceneChanged();               // the reader may have added statements since
+    if (!ctx_.Flatten(request, diags_)) return false;
+    const FlatScene& flat = ctx_.Flat();
     Trace(
         fmt::format("flattener: {} solids, {} bodies, {} half-spaces in device space, {} "
                     "lights; {:.4f} s",
-                    flat->solids.size(), flat->bodies.size(), flat->halfSpaces.size(),
-                    flat->lights.size(), SecondsSince(t0)));
-    return flat;
+                    flat.solids.size(), flat.bodies.size(), flat.halfSpaces.size(),
+                    flat.lights.size(), SecondsSince(t0)));
+    return true;
 }
 
 bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc) {
@@ -481,17 +478,20 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
                     view.empty() ? "(last defined)" : "'" + view + "'", info.name, info.width,
                     info.height, info.levels, info.aspect, info.deltaMax,
                     fast ? "fast constant" : "smooth", settings.engine));
-    auto flat = FlattenCurrent(view, info);
-    if (!flat) return fail({}, "input");  // the Flattener reported why
+    if (!FlattenCurrent(view, info)) return fail({}, "input");  // the Flattener reported why
 
-    auto engine = MakeEngine(settings.engine);
-    if (!engine) return fail(fmt::format("unknown engine '{}'", settings.engine), "command line");
+    EngineRequest request;
+    request.engine = settings.engine;
     auto t0 = std::chrono::steady_clock::now();
     Frame frame;
-    RenderStats stats = engine->Render(*flat, RenderOptions{}, frame);
+    RenderReport report;
+    if (!ctx_.Render(request, frame, report, diags_)) return fail({}, "command line");
+    for (const std::string& w : report.stats.warnings)
+        std::fprintf(err_, "quadrix: warning: engine %s: %s\n", settings.engine.c_str(), w.c_str());
+    for (const std::string& n : report.notes) std::fprintf(err_, "quadrix: note: %s\n", n.c_str());
     if (trace_) {
         std::string counters;
-        for (const auto& [name, value] : stats.counters)
+        for (const auto& [name, value] : report.Counters())
             counters += fmt::format(", {} {}", name, value);
         Trace(fmt::format("engine {}: {} of {} pixels covered{}; {:.4f} s", settings.engine,
                           frame.CoveredCount(), frame.depth.size(), counters, SecondsSince(t0)));
@@ -500,7 +500,7 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
     t0 = std::chrono::steady_clock::now();
     ShadeOptions so;
     so.fast = fast;
-    Image image = Shade(frame, *flat, so);
+    Image image = ctx_.Shade(frame, so);
     Trace(fmt::format("shader: {} pixels, {}; {:.4f} s", frame.depth.size(),
                       image.channels == 3 ? "RGB" : "gray", SecondsSince(t0)));
 

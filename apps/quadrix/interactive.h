@@ -29,6 +29,7 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/lang/reader.h"
 #include "quadrix/lang/reader_state.h"
+#include "quadrix/pipeline/render_context.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 
@@ -95,15 +96,17 @@ class UqSession : public lang::CommandHandler {
     // The current device, with a fresh file name when keep is on; nullptr with `error`.
     std::unique_ptr<device::Device> CurrentDevice(std::string& error);
     std::vector<scene::Light> CurrentLights() const;
-    // The scene in device space for `view` under the current lights; nullopt after errors.
-    std::optional<FlatScene> FlattenCurrent(const std::string& view,
-                                            const device::DeviceInfo& info);
+    // Flattens the scene in the render context for `view` under the current lights; false after
+    // errors.
+    bool FlattenCurrent(const std::string& view, const device::DeviceInfo& info);
     std::string NextKeptPath(const std::string& path);
     void Trace(const std::string& line);
     void Message(const std::string& line);
     void TraceRead(const std::string& what, double seconds);
 
-    scene::Scene scene_;
+    // The render context holds the scene the reader fills (one render path: pipeline/).
+    RenderContext ctx_;
+    scene::Scene& scene_ = ctx_.Scene();
     Diagnostics diags_;
     std::unique_ptr<lang::ReaderState> state_;
     std::unique_ptr<LineInput> input_;

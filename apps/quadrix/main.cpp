@@ -19,7 +19,8 @@ int Run(int argc, char** argv) {
         "  quadrix render examples/stack_of_bundles.uq -o stack.png --size 800x600 --fast\n"
         "  quadrix render - -o out.ppm < scene.uq\n"
         "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
-        "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n",
+        "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n"
+        "  quadrix compare --engines scanline,raycast examples/machined_part.uq\n",
         "quadrix"};
     app.set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
     app.require_subcommand(1);
@@ -32,6 +33,10 @@ int Run(int argc, char** argv) {
     quadrix::cli::AddUqCommand(app);
     quadrix::cli::PipeArgs pipeArgs;
     quadrix::cli::AddPipeCommand(app, pipeArgs);
+    quadrix::cli::CompareArgs compareArgs;
+    quadrix::cli::AddCompareCommand(app, compareArgs);
+    bool enginesMarkdown = false;
+    quadrix::cli::AddEnginesCommand(app, enginesMarkdown);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     try {
@@ -49,6 +54,8 @@ int Run(int argc, char** argv) {
     if (app.got_subcommand("render")) return quadrix::cli::RunRender(renderArgs);
     if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
     if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
+    if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);
+    if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
     return 2;
 }
 

@@ -7,11 +7,16 @@
 
 #include "commands.h"
 #include "quadrix/engines/patch/phong.h"
+#include "quadrix/engines/registry.h"
 #include "quadrix/frame/memory_budget.h"
 #include "quadrix/io/bounded_read.h"
+#include "quadrix/io/output_file.h"
 #include "quadrix/io/time_limit.h"
 #include "quadrix/io/writers.h"
+#include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/pipeline/render_context.h"
+#include "quadrix/pipeline/stats_report.h"
 #include "quadrix/shade/shader.h"
 
 namespace quadrix::cli {
@@ -38,7 +43,10 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT in pixels")
         ->capture_default_str();
     cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
-    cmd->add_option("--engine", args.engine, "Rendering engine")->capture_default_str();
+    cmd->add_option("--engine", args.engine,
+                    "Rendering engine (" + EngineList() +
+                        "); what it cannot draw is drawn by raycast and composed by depth")
+        ->capture_default_str();
     auto* fast =
         cmd->add_flag("--fast", args.fast, "Constant (flat) shading per surface, as UniQuadrix -f");
     cmd->add_flag("--phong", args.phong,
@@ -46,6 +54,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                   "unit) instead of Lambert")
         ->excludes(fast);
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
+    cmd->add_flag("--json", args.json,
+                  "With --stats: the statistics as one JSON object on standard output");
     cmd->add_option("--threads", args.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024));
     cmd->add_option("--engine-opt", args.engineOptions,
@@ -59,7 +69,10 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_flag("--strict", args.strict,
-                  "Primitives that cannot be drawn exactly (torus, ...) are an error");
+                  "Refuse what cannot be drawn as asked: primitives that cannot be drawn exactly "
+                  "(torus, ...), and solids the engine cannot draw (instead of composing them "
+                  "from raycast)");
+    cmd->footer(EnginesHelp());
     cmd->add_option("--az", args.az, "Azimuth in degrees (rt convention), orthographic fit")
         ->expected(1);
     cmd->add_option("--el", args.el, "Elevation in degrees (rt convention)")->expected(1);
@@ -113,8 +126,10 @@ int RunRender(const RenderArgs& args) {
     if (!args.maxMemory.empty()) {
         std::size_t bytes = 0;
         if (!ParseByteSize(args.maxMemory, bytes)) {
-            std::fprintf(stderr, "quadrix: error: --max-memory: expected a size of at least 1M "
-                                 "such as 512M or 2G, found '%s'\n", args.maxMemory.c_str());
+            std::fprintf(stderr,
+                         "quadrix: error: --max-memory: expected a size of at least 1M such as "
+                         "512M or 2G, found '%s'\n",
+                         args.maxMemory.c_str());
             return 2;
         }
         SetMemoryBudget(bytes);
@@ -130,12 +145,9 @@ int RunRender(const RenderArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
-    ImageFormat format;
-    if (!ImageFormatFromPath(args.output, format)) {
-        std::fprintf(stderr,
-                     "quadrix: error: cannot tell the image format of '%s' (use .png, .pgm, .ppm, "
-                     ".pnm or .qxf)\n",
-                     args.output.c_str());
+    const OutputRequest outputs{args.output, args.dumpFrame};
+    if (auto e = CheckOutputs(outputs); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
     po.scenePaths = args.scenes;
@@ -158,69 +170,57 @@ int RunRender(const RenderArgs& args) {
         }
         po.engineOptions[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
+    // The engine and its options are checked before anything is read (a usage error).
+    const EngineRequest engine = po.EngineRun();
+    if (auto e = RenderContext::CheckEngine(engine); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
 
-    // Every output is checked before anything is read or drawn (io/output_file.h): none may be a
-    // device, FIFO, directory or input, and a refused --dump-frame must not follow a written image.
-    std::vector<std::string> outputs{args.output};
-    if (!args.dumpFrame.empty()) outputs.push_back(args.dumpFrame);
+    // The outputs against the inputs named on the command line (io/output_file.h); files read
+    // later (`read`) are refused when the output is opened.
     std::vector<std::string> inputs = args.scenes;
     if (!args.rtView.empty()) inputs.push_back(args.rtView);
-    if (auto e = CheckOutputPaths(outputs, inputs); !e.empty()) {
+    if (auto e = CheckOutputPaths({args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
+                                  inputs);
+        !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }
 
-    PipelineResult result;
-    bool ok = RunPipeline(po, result, diags);
+    RenderContext ctx(args.threads);
+    Frame frame;
+    RenderReport report;
+    bool ok = ctx.Read(po.Input(), diags) && ctx.Flatten(po.View(), diags) &&
+              ctx.Render(engine, frame, report, diags);
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; no image written\n", diags.ErrorCount(),
                      diags.ErrorCount() == 1 ? "" : "s");
         return 1;
     }
-
-    for (const std::string& w : result.stats.warnings)
+    for (const std::string& w : report.stats.warnings)
         std::fprintf(stderr, "quadrix: warning: engine %s: %s\n", args.engine.c_str(), w.c_str());
+    for (const std::string& n : report.notes) std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
 
     auto t0 = std::chrono::steady_clock::now();
-    ShadeOptions so;
-    so.fast = args.fast;
-    // Both outputs are written to temporary files, then renamed together (CommitAll).
-    std::string error;
-    OutputFile mainFile(args.output);
-    std::optional<OutputFile> dumpFile;
-    if (!args.dumpFrame.empty()) dumpFile.emplace(args.dumpFrame);
-    if (format == ImageFormat::kFrameDump) {
-        error = WriteFrameDump(mainFile, result.frame);
-    } else {
-        Image image = args.phong ? patch::PhongShade(result.frame, result.flat)
-                                 : Shade(result.frame, result.flat, so);
-        error = format == ImageFormat::kPng ? WritePng(mainFile, image) : WritePnm(mainFile, image);
+    std::optional<Image> image;
+    if (NeedsImage(outputs)) {
+        ShadeOptions so;
+        so.fast = args.fast;
+        image = args.phong ? patch::PhongShade(frame, ctx.Flat()) : ctx.Shade(frame, so);
     }
-    if (error.empty() && dumpFile) error = WriteFrameDump(*dumpFile, result.frame);
-    if (error.empty())
-        error = dumpFile ? CommitAll({&mainFile, &*dumpFile}) : CommitAll({&mainFile});
-    double writeSeconds =
+    const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);
+    const double writeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!error.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", error.c_str());
         return 1;
     }
     if (args.stats) {
-        std::fprintf(stderr,
-                     "engine %s  %dx%d  solids %zu  bodies %zu  half-spaces %zu  covered %zu px\n"
-                     "read %.3f s  flatten %.3f s  render %.3f s  shade+write %.3f s\n",
-                     args.engine.c_str(), result.frame.width, result.frame.height,
-                     result.flat.solids.size(), result.flat.bodies.size(),
-                     result.flat.halfSpaces.size(), result.frame.CoveredCount(),
-                     result.readSeconds, result.flattenSeconds, result.renderSeconds,
-                     writeSeconds);
-        for (const auto& [path, r] : result.inputs.imports)
-            std::fprintf(stderr, "%s: %s, %d solids drawn; %s\n", path.c_str(), r.format.c_str(),
-                         r.solids, r.CensusText().c_str());
-        for (const auto& [name, value] : result.stats.counters)
-            std::fprintf(stderr, "  %s: %.17g\n", name.c_str(), value);
-        if (!result.stats.report.empty()) std::fprintf(stderr, "%s\n", result.stats.report.c_str());
+        const StatsInput in{&ctx, &report, &frame, writeSeconds};
+        const std::string text = args.json ? FormatStatsJson(in) : FormatStatsText(in);
+        std::fputs(text.c_str(), args.json ? stdout : stderr);
     }
     return 0;
 }

@@ -13,8 +13,8 @@
 #include <filesystem>
 
 #include "quadrix/device/device_internal.h"
+#include "quadrix/frame/image_limits.h"
 #include "quadrix/io/output_file.h"
-#include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::device {
 

@@ -1,24 +1,50 @@
 #include "quadrix/engines/engine.h"
 
-#include "quadrix/engines/isocurve/isocurve_engine.h"
-#include "quadrix/engines/patch/patch_engine.h"
-#include "quadrix/engines/pixelpowers/pixelpowers_engine.h"
-#include "quadrix/engines/raycast/raycast.h"
-#include "quadrix/engines/scanline/scanline_engine.h"
+#include <tbb/task_arena.h>
+
+#include "quadrix/engines/registry.h"
 
 namespace quadrix {
 
-std::unique_ptr<Engine> MakeEngine(std::string_view name) {
-    if (name == "raycast") return MakeRaycastEngine();
-    if (name == "patch") return MakePatchEngine();
-    if (name == "pixelpowers") return MakePixelPowersEngine();
-    if (name == "scanline") return MakeScanlineEngine();
-    if (name == "isocurve")
-        return std::make_unique<isocurve::IsocurveEngine>(MakeRaycastEngine(),
-                                                          std::vector<freeform::Surface>{});
-    return nullptr;
+const OptionSchema& Engine::Schema() const {
+    static const OptionSchema kNone;
+    return kNone;
 }
 
-std::vector<std::string> EngineNames() { return {"raycast", "patch", "isocurve", "scanline", "pixelpowers"}; }
+std::string Engine::ValidateOptions(const RenderOptions& options) const {
+    EngineOptions parsed;
+    if (std::string e = ParseEngineOptions(Name(), Schema(), options.engineOptions, parsed);
+        !e.empty())
+        return e;
+    return CheckOptions(parsed);
+}
+
+RenderStats Engine::Render(const FlatScene& scene, const RenderOptions& options, Frame& frame) {
+    EngineOptions parsed;
+    std::string error = ParseEngineOptions(Name(), Schema(), options.engineOptions, parsed);
+    if (error.empty()) error = CheckOptions(parsed);
+    if (!error.empty()) {
+        RenderStats stats;
+        frame.Reset(std::max(scene.width, 0), std::max(scene.height, 0));
+        stats.warnings.push_back(error + "; nothing drawn");
+        return stats;
+    }
+    if (options.threads > 0) {
+        tbb::task_arena arena(options.threads);
+        return arena.execute([&] { return Draw(scene, parsed, frame); });
+    }
+    return Draw(scene, parsed, frame);
+}
+
+std::unique_ptr<Engine> MakeEngine(std::string_view name) {
+    const EngineInfo* info = FindEngine(name);
+    return info ? info->make() : nullptr;
+}
+
+std::vector<std::string> EngineNames() {
+    std::vector<std::string> names;
+    for (const EngineInfo& e : Engines()) names.push_back(e.name);
+    return names;
+}
 
 }  // namespace quadrix

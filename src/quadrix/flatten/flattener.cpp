@@ -80,7 +80,8 @@ class FlattenerImpl {
         flat.width = options_.width;
         flat.height = options_.height;
         flat.viewName = view_.id;
-        flat.lights = scene_.LightsToUse();
+        flat.lights = options_.lights ? scene::Scene::WithDefaultLight(*options_.lights)
+                                      : scene_.LightsToUse();
         // The clip planes come first in halfSpaces: shared by every body.
         for (const Plane& p : view_.finalClips) {
             FlatHalfSpace h;

@@ -20,6 +20,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/scene/diagnostics.h"
@@ -33,6 +34,9 @@ struct FlattenOptions {
     std::string viewName;  // empty = the last view defined (or the default view)
     // Fraction of the image left free around an auto-fitted scene, per side.
     double autoFitMargin = 0.02;
+    // Lights to shade with instead of the scene's (uq's current light); the default parallel
+    // light is added to them when they have none, as to the scene's (Scene::LightsToUse).
+    std::optional<std::vector<scene::Light>> lights;
 };
 
 // nullopt (with errors in diags) when the scene cannot be flattened.

@@ -1,75 +1,64 @@
 #include "quadrix/pipeline/pipeline.h"
 
-#include <chrono>
-
-#include <fmt/format.h>
-
-#include "quadrix/engines/isocurve/isocurve_engine.h"
-#include "quadrix/flatten/flattener.h"
-#include "quadrix/frame/memory_budget.h"
-#include "quadrix/lang/reader.h"
-
 namespace quadrix {
 
+InputRequest PipelineOptions::Input() const {
+    InputRequest r;
+    r.paths = scenePaths;
+    r.text = sceneText;
+    r.topObjects = topObjects;
+    r.strict = strict;
+    return r;
+}
+
+ViewRequest PipelineOptions::View() const {
+    ViewRequest v;
+    v.width = width;
+    v.height = height;
+    v.viewName = viewName;
+    v.azimuth = azimuth;
+    v.elevation = elevation;
+    v.viewsize = viewsize;
+    v.rtView = rtView;
+    return v;
+}
+
+EngineRequest PipelineOptions::EngineRun() const {
+    EngineRequest e;
+    e.engine = engine;
+    e.options = engineOptions;
+    e.strict = strict;
+    return e;
+}
+
 namespace {
-double SecondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
 
-std::string CheckImageSize(long long width, long long height) {
-    if (width <= 0 || height <= 0)
-        return fmt::format("image size {}x{} is not positive", width, height);
-    if (width > kMaxSide || height > kMaxSide || width * height > kMaxPixels)
-        return fmt::format("image size {}x{} is too large (at most {} pixels a side and {} pixels)",
-                           width, height, kMaxSide, kMaxPixels);
-    // Before the Frame is allocated (frame/memory_budget.h): a clear error, not std::bad_alloc.
-    return CheckMemory(RenderBytes(width, height),
-                       fmt::format("an image of {}x{} pixels", width, height));
-}
-
-bool ReadAndFlatten(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
+bool ReadAndFlattenIn(RenderContext& ctx, const PipelineOptions& options, PipelineResult& result,
+                      Diagnostics& diags) {
     if (auto e = CheckImageSize(options.width, options.height); !e.empty()) {
         diags.Error({}, e, {}, "command line");
         return false;
     }
-    auto t0 = std::chrono::steady_clock::now();
-    std::string viewName = options.viewName;
-    if (options.scenePaths.empty()) {
-        lang::Reader reader(result.scene, diags);
-        reader.ReadText(options.sceneText, "<text>");
-    } else {
-        // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
-        import::InputOptions io;
-        io.import.topObjects = options.topObjects;
-        io.import.strict = options.strict;
-        import::ReadSceneInputs(options.scenePaths, io, result.scene, diags, result.inputs);
+    const bool read = ctx.Read(options.Input(), diags);
+    result.readSeconds = ctx.readSeconds;
+    result.inputs = ctx.Inputs();
+    if (!read) {
+        result.scene = ctx.Scene();
+        return false;
     }
-    result.readSeconds = SecondsSince(t0);
-    if (diags.HasErrors()) return false;
-    if (options.rtView || options.azimuth || options.elevation) {
-        scene::View view =
-            options.rtView
-                ? import::MakeRtView(*options.rtView, options.width, options.height)
-                : import::MakeAzElView(options.azimuth.value_or(35),
-                                       options.elevation.value_or(25),
-                                       result.inputs.importedBounds, options.viewsize,
-                                       options.width, options.height);
-        import::AddRtLights(result.scene, view);
-        result.scene.views.push_back(view);
-        viewName = view.id;
-    }
-
-    t0 = std::chrono::steady_clock::now();
-    FlattenOptions fo;
-    fo.width = options.width;
-    fo.height = options.height;
-    fo.viewName = viewName;
-    auto flat = Flatten(result.scene, fo, diags);
-    result.flattenSeconds = SecondsSince(t0);
-    if (!flat || diags.HasErrors()) return false;
-    result.flat = std::move(*flat);
+    const bool flat = ctx.Flatten(options.View(), diags);
+    result.flattenSeconds = ctx.flattenSeconds;
+    result.scene = ctx.Scene();
+    if (!flat) return false;
+    result.flat = ctx.Flat();
     return true;
+}
+
+}  // namespace
+
+bool ReadAndFlatten(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
+    RenderContext ctx(options.threads);
+    return ReadAndFlattenIn(ctx, options, result, diags);
 }
 
 bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnostics& diags) {
@@ -77,38 +66,20 @@ bool RunPipeline(const PipelineOptions& options, PipelineResult& result, Diagnos
         diags.Error({}, e, {}, "command line");
         return false;
     }
-    auto engine = MakeEngine(options.engine);
-    if (!engine) {
-        std::string names;
-        for (const auto& n : EngineNames()) names += (names.empty() ? "" : ", ") + n;
-        diags.Error({}, fmt::format("unknown engine '{}' (known: {})", options.engine, names), {},
-                    "command line");
-        return false;
-    }
-
-    RenderOptions ro;
-    ro.threads = options.threads;
-    ro.engineOptions = options.engineOptions;
-    if (auto e = engine->ValidateOptions(ro); !e.empty()) {
+    const EngineRequest request = options.EngineRun();
+    if (auto e = RenderContext::CheckEngine(request); !e.empty()) {
         diags.Error({}, e, {}, "command line");
         return false;
     }
-
-    if (!ReadAndFlatten(options, result, diags)) return false;
-
-    auto t0 = std::chrono::steady_clock::now();
-    result.stats = engine->Render(result.flat, ro, result.frame);
-    if (engine->Name() != "isocurve" && !result.flat.freeforms.empty()) {
-        // Freeform surfaces are drawn by adaptive isocurves (seed 002) over any engine's solids,
-        // with the isocurve engine's default tolerance (curves at most one pixel apart).
-        isocurve::IsocurveStats st = isocurve::RenderFreeform(
-            isocurve::SceneDrawables(result.flat), result.flat.projection, {}, result.frame);
-        result.stats.report += fmt::format(
-            "freeform surfaces: {} drawn by adaptive isocurves after engine '{}' ({} curves, "
-            "delta {:.3g}; --engine isocurve gives the isocurve options and statistics)\n",
-            st.surfaces, engine->Name(), st.curves, st.delta);
-    }
-    result.renderSeconds = SecondsSince(t0);
+    RenderContext ctx(options.threads);
+    if (!ReadAndFlattenIn(ctx, options, result, diags)) return false;
+    if (!ctx.Render(request, result.frame, result.report, diags)) return false;
+    result.stats = result.report.stats;
+    result.stats.counters = result.report.Counters();
+    for (const std::string& n : result.report.notes) result.stats.report += "note: " + n + "\n";
+    if (!result.report.isocurveSummary.empty())
+        result.stats.report += result.report.isocurveSummary + "\n";
+    result.renderSeconds = result.report.seconds;
     return true;
 }
 

@@ -1,6 +1,7 @@
-// The whole pipeline in one call (DESIGN.md "Pipeline"): Reader → Scene → Flattener → Engine →
-// Frame. The CLI, the tests and the benchmarks all render through this, so they exercise the same
-// path. Shading and writing stay separate (shade/, io/): a Frame is the product.
+// The whole pipeline in one call, for tests and simple callers: a RenderContext
+// (pipeline/render_context.h) run once — read, flatten, render with composition — with the
+// products copied out. Front ends that render more than once (uq, the viewer, batch runs) keep a
+// RenderContext instead.
 #pragma once
 
 #include <map>
@@ -11,7 +12,9 @@
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
+#include "quadrix/frame/image_limits.h"
 #include "quadrix/import/scene_input.h"
+#include "quadrix/pipeline/render_context.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 
@@ -26,30 +29,31 @@ struct PipelineOptions {
     int threads = 0;
     std::map<std::string, std::string> engineOptions;  // --engine-opt key=value
     // Importers (docs/import.md): objects to draw from BRL-CAD/OpenSCAD files (--top) and whether
-    // primitives that cannot be drawn exactly are an error (--strict).
+    // primitives that cannot be drawn exactly are an error (--strict); strict also refuses to
+    // compose what the engine cannot draw.
     std::vector<std::string> topObjects;
     bool strict = false;
     // rt-style views (FORMAT.md §9.4), in the imported model's coordinates; they replace
     // viewName. azimuth/elevation in degrees, fitted to the imported model's bounding box.
     std::optional<double> azimuth, elevation, viewsize;
     std::optional<import::RtView> rtView;
+
+    InputRequest Input() const;
+    ViewRequest View() const;
+    EngineRequest EngineRun() const;
 };
 
 struct PipelineResult {
     scene::Scene scene;
     FlatScene flat;
     Frame frame;
+    // The engine's statistics; the composition's counters first, its notes and the isocurve
+    // summary appended to the report.
     RenderStats stats;
+    RenderReport report;
     import::InputReport inputs;  // what the importers found (census, skipped primitives, bounds)
     double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0;
 };
-
-// Largest image accepted (pixels); larger requests are a user error, not an allocation failure.
-inline constexpr long long kMaxPixels = 8192LL * 8192LL;
-inline constexpr int kMaxSide = 16384;
-
-// Checks a requested image size; returns an error message or empty.
-std::string CheckImageSize(long long width, long long height);
 
 // Reads (every input format, docs/import.md), applies rt-style views and flattens: fills
 // result.scene, result.flat, result.inputs and the read/flatten times. The engine is not involved

@@ -55,10 +55,11 @@ std::optional<View> Scene::ViewToUse(const std::string& name) const {
     return DefaultView();
 }
 
-std::vector<Light> Scene::LightsToUse() const {
-    std::vector<Light> result = lights;
+std::vector<Light> Scene::LightsToUse() const { return WithDefaultLight(lights); }
+
+std::vector<Light> Scene::WithDefaultLight(std::vector<Light> result) {
     bool anyParallel = false;
-    for (const Light& l : lights) anyParallel |= l.kind == Light::Kind::kParallel;
+    for (const Light& l : result) anyParallel |= l.kind == Light::Kind::kParallel;
     if (!anyParallel) result.push_back(DefaultLight());
     return result;
 }

@@ -173,6 +173,8 @@ struct Scene {
     // The lights used for shading: all ambient lights and all parallel lights; when there is no
     // parallel light, the default `light default 1 0 0 -1` is added.
     std::vector<Light> LightsToUse() const;
+    // The same rule applied to a given list of lights (a front end's current lights).
+    static std::vector<Light> WithDefaultLight(std::vector<Light> lights);
     // True when nothing would be drawn (no drawable solid in the top scope).
     bool Empty() const;
 };

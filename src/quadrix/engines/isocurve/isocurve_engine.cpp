@@ -23,26 +23,12 @@ IsocurveEngine::IsocurveEngine(std::unique_ptr<Engine> quadrics,
       surfaces_(std::move(surfaces)),
       bodyIds_(std::move(bodyIds)) {}
 
-std::string IsocurveEngine::ValidateOptions(const RenderOptions& options) const {
-    IsocurveOptions o;
-    return ParseIsocurveOptions(options.engineOptions, o);
-}
-
-RenderStats IsocurveEngine::Render(const FlatScene& scene, const RenderOptions& options,
-                                   Frame& frame) {
+RenderStats IsocurveEngine::Draw(const FlatScene& scene, const EngineOptions& options,
+                                 Frame& frame) {
     RenderStats stats;
-    IsocurveOptions o;
-    std::string error = ParseIsocurveOptions(options.engineOptions, o);
-    if (!error.empty()) {
-        // ValidateOptions reports this before any work; never throw from Render.
-        stats.report = error + "\n";
-        frame.Reset(scene.width, scene.height);
-        return stats;
-    }
+    const IsocurveOptions o = ReadIsocurveOptions(options);
     if (quadrics_ && !scene.solids.empty()) {
-        RenderOptions inner;
-        inner.threads = options.threads;
-        stats = quadrics_->Render(scene, inner, frame);
+        stats = quadrics_->Render(scene, RenderOptions{}, frame);
     } else {
         frame.Reset(scene.width, scene.height);
     }
@@ -61,6 +47,10 @@ RenderStats IsocurveEngine::Render(const FlatScene& scene, const RenderOptions& 
         stats.report +=
             CompareCoverage(drawables, scene.projection, o, scene.width, scene.height).Format();
     return stats;
+}
+
+std::unique_ptr<Engine> MakeIsocurveEngine() {
+    return std::make_unique<IsocurveEngine>(nullptr, std::vector<freeform::Surface>{});
 }
 
 }  // namespace quadrix::isocurve

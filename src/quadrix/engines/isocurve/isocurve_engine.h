@@ -27,16 +27,26 @@ class IsocurveEngine : public Engine {
                    std::vector<std::int32_t> bodyIds = {});
 
     std::string_view Name() const override { return "isocurve"; }
-    // Accepts the isocurve options (render.h ParseIsocurveOptions); none go to the inner engine.
-    std::string ValidateOptions(const RenderOptions& options) const override;
-    // Resets `frame` to the scene size, renders the quadrics, then the freeform surfaces; --stats
-    // gets the isocurve statistics and, with compare=1, the comparison table of item 5.
-    RenderStats Render(const FlatScene& scene, const RenderOptions& options, Frame& frame) override;
+    // The isocurve options (render.h IsocurveSchema); none go to the inner engine.
+    const OptionSchema& Schema() const override { return IsocurveSchema(); }
+    std::string CheckOptions(const EngineOptions& options) const override {
+        return CheckIsocurveOptions(options);
+    }
+
+  protected:
+    // Resets `frame` to the scene size, renders the quadrics (when there is an inner engine),
+    // then the freeform surfaces; --stats gets the isocurve statistics and, with compare=on, the
+    // comparison table of item 5.
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) override;
 
   private:
     std::unique_ptr<Engine> quadrics_;
     std::vector<freeform::Surface> surfaces_;
     std::vector<std::int32_t> bodyIds_;
 };
+
+// The registry's engine: freeform surfaces only (the render context draws the solids with
+// raycast and composes the Frames).
+std::unique_ptr<Engine> MakeIsocurveEngine();
 
 }  // namespace quadrix::isocurve

@@ -144,80 +144,58 @@ void RenderFreeformProgressive(
     }
 }
 
-namespace {
-
-bool ParseDouble(const std::string& s, double& out) {
-    char* end = nullptr;
-    out = std::strtod(s.c_str(), &end);
-    return !s.empty() && end == s.c_str() + s.size() && std::isfinite(out);
+const OptionSchema& IsocurveSchema() {
+    using O = OptionSpec;
+    static const OptionSchema kSchema{
+        O::Number("delta", "", 0, HUGE_VAL, true,
+                  "world tolerance between adjacent isocurves (default: from spacing)"),
+        O::Number("spacing", "1", 0, 1000, true,
+                  "screen gap between adjacent isocurves when delta is not given (pixels)"),
+        O::Number("thickness", "", 0, 1000, true,
+                  "curve width in pixels (default 1.5 x spacing + 0.25)"),
+        O::Choice("direction", "auto", {"u", "v", "auto"},
+                  "isocurves of constant u, constant v, or chosen per surface"),
+        O::Int("min-level", "2", 0, 20, "subdivision levels always made"),
+        O::Int("max-level", "24", 1, 50, "subdivision levels at most"),
+        O::Int("base", "1", 1, 4096, "base intervals: 1 = Algorithm 1, auto = from the spacing, or N")
+            .AllowingAuto(),
+        O::Bool("uniform", "off", "uniformly spaced curves instead of adaptive ones"),
+        O::Int("progressive", "1", 0, 8, "coarse levels drawn before the final one"),
+        O::Bool("compare", "off",
+                "also measure uniform curves and a polygon mesh (a comparison table)"),
+    };
+    return kSchema;
 }
 
-bool ParseInt(const std::string& s, int& out) {
-    char* end = nullptr;
-    long v = std::strtol(s.c_str(), &end, 10);
-    if (s.empty() || end != s.c_str() + s.size() || v < -1000000 || v > 1000000) return false;
-    out = static_cast<int>(v);
-    return true;
+std::string CheckIsocurveOptions(const EngineOptions& options) {
+    if (options.Int("min-level") > options.Int("max-level"))
+        return "engine 'isocurve': min-level exceeds max-level";
+    return {};
 }
 
-}  // namespace
+IsocurveOptions ReadIsocurveOptions(const EngineOptions& v) {
+    IsocurveOptions o;
+    if (v.Given("delta")) o.delta = v.Number("delta");
+    o.pixelSpacing = v.Number("spacing");
+    if (v.Given("thickness")) o.thickness = v.Number("thickness");
+    const std::string& d = v.Choice("direction");
+    o.direction = d == "u" ? Direction::kConstU : d == "v" ? Direction::kConstV : Direction::kAuto;
+    o.minLevel = v.Int("min-level");
+    o.maxLevel = v.Int("max-level");
+    o.baseCount = v.Int("base");
+    o.uniform = v.Bool("uniform");
+    o.progressiveLevels = v.Int("progressive");
+    o.compare = v.Bool("compare");
+    return o;
+}
 
 std::string ParseIsocurveOptions(const std::map<std::string, std::string>& values,
                                  IsocurveOptions& o) {
-    for (const auto& [key, value] : values) {
-        auto bad = [&](const char* what) {
-            return fmt::format("isocurve option '{}': expected {}, got '{}'", key, what, value);
-        };
-        double d = 0;
-        int n = 0;
-        if (key == "delta") {
-            if (!ParseDouble(value, d) || !(d > 0)) return bad("a positive world distance");
-            o.delta = d;
-        } else if (key == "spacing") {
-            if (!ParseDouble(value, d) || !(d > 0) || d > 1000) return bad("pixels in (0, 1000]");
-            o.pixelSpacing = d;
-        } else if (key == "thickness") {
-            if (!ParseDouble(value, d) || !(d > 0) || d > 1000) return bad("pixels in (0, 1000]");
-            o.thickness = d;
-        } else if (key == "direction") {
-            if (value == "u")
-                o.direction = Direction::kConstU;
-            else if (value == "v")
-                o.direction = Direction::kConstV;
-            else if (value == "auto")
-                o.direction = Direction::kAuto;
-            else
-                return bad("u, v or auto");
-        } else if (key == "min-level") {
-            if (!ParseInt(value, n) || n < 0 || n > 20) return bad("an integer in 0..20");
-            o.minLevel = n;
-        } else if (key == "max-level") {
-            if (!ParseInt(value, n) || n < 1 || n > 50) return bad("an integer in 1..50");
-            o.maxLevel = n;
-        } else if (key == "base") {
-            if (value == "auto") {
-                o.baseCount = 0;
-            } else if (!ParseInt(value, n) || n < 1 || n > 4096) {
-                return bad("auto or a number of intervals in 1..4096");
-            } else {
-                o.baseCount = n;
-            }
-        } else if (key == "uniform" || key == "compare") {
-            if (value != "0" && value != "1") return bad("0 or 1");
-            (key == "uniform" ? o.uniform : o.compare) = value == "1";
-        } else if (key == "progressive") {
-            if (!ParseInt(value, n) || n < 0 || n > 8) return bad("a number of levels in 0..8");
-            o.progressiveLevels = n;
-        } else {
-            return fmt::format(
-                "engine 'isocurve' has no option '{}' (known: delta, spacing, "
-                "thickness, direction, min-level, max-level, base, uniform, "
-                "progressive, compare)",
-                key);
-        }
-    }
-    if (o.minLevel > o.maxLevel) return "isocurve options: min-level exceeds max-level";
-    return {};
+    EngineOptions parsed;
+    std::string error = ParseEngineOptions("isocurve", IsocurveSchema(), values, parsed);
+    if (error.empty()) error = CheckIsocurveOptions(parsed);
+    if (error.empty()) o = ReadIsocurveOptions(parsed);
+    return error;
 }
 
 void FillRenderStats(const IsocurveStats& s, RenderStats& out) {

@@ -87,10 +87,13 @@ void RenderFreeformProgressive(
     const IsocurveOptions& options, const Frame& base,
     const std::function<void(int level, int levels, const Frame&, const IsocurveStats&)>& show);
 
-// Engine options (RenderOptions::engineOptions, CLI --engine-opt key=value): delta, spacing,
-// thickness, direction (u|v|auto), min-level, max-level, base (auto|N), uniform (0|1),
-// progressive (levels), compare (0|1). Returns an error message for an unknown key or a bad value,
-// else "".
+// Engine options (CLI --engine-opt key=value), declared once in IsocurveSchema: delta, spacing,
+// thickness, direction (u|v|auto), min-level, max-level, base (auto|N), uniform, progressive
+// (levels), compare. ParseIsocurveOptions checks a raw map against the schema (an error message
+// for an unknown key or a bad value, else "") and fills `options`.
+const OptionSchema& IsocurveSchema();
+std::string CheckIsocurveOptions(const EngineOptions& options);
+IsocurveOptions ReadIsocurveOptions(const EngineOptions& options);
 std::string ParseIsocurveOptions(const std::map<std::string, std::string>& values,
                                  IsocurveOptions& options);
 

@@ -245,9 +245,9 @@ TEST(IsocurveRender, OptionsAreCheckedAndReported) {
     EXPECT_EQ(o.progressiveLevels, 3);
     EXPECT_TRUE(o.uniform);
     EXPECT_EQ(ParseIsocurveOptions({{"delta", "-1"}}, o),
-              "isocurve option 'delta': expected a positive world distance, got '-1'");
+              "engine 'isocurve': option 'delta' must be a number > 0, not '-1'");
     EXPECT_EQ(ParseIsocurveOptions({{"direction", "diagonal"}}, o),
-              "isocurve option 'direction': expected u, v or auto, got 'diagonal'");
+              "engine 'isocurve': option 'direction' must be u, v or auto, not 'diagonal'");
     EXPECT_NE(ParseIsocurveOptions({{"dleta", "1"}}, o).find("has no option 'dleta'"),
               std::string::npos);
 

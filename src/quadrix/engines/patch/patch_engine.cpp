@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -37,60 +36,36 @@ struct Settings {
     bool verify = false;
 };
 
-bool ParseInt(const std::string& s, int& out) {
-    char* end = nullptr;
-    const long v = std::strtol(s.c_str(), &end, 10);
-    if (s.empty() || *end != '\0' || v < -1000000 || v > 1000000) return false;
-    out = static_cast<int>(v);
-    return true;
+const OptionSchema& PatchSchema() {
+    using O = OptionSpec;
+    static const OptionSchema kSchema{
+        O::Choice("mode", "float", {"float", "fixed"},
+                  "the algorithm in double precision, or the bit-exact fixed-point emulator"),
+        O::Int("depth-bits", "24", DatapathWidths::kMinDepthBits, DatapathWidths::kMaxDepthBits,
+               "fixed mode: depth word width d (the EP2 and square-root extractor use 2d)"),
+        O::Int("normal-bits", "16", DatapathWidths::kMinNormalBits, DatapathWidths::kMaxDepthBits,
+               "fixed mode: normal and multiplier width n (8..d)"),
+        O::Choice("caps", "skip", {"skip", "open"},
+                  "bodies cut by opaque planes: left to raycast (skip) or drawn open"),
+        O::Number("clock-mhz", "50", 0, 1e6, true, "clock of the timing model (the paper's)"),
+        O::Bool("compare", "on",
+                "fixed mode: also run the float algorithm and report the depth error histogram"),
+        O::Bool("verify", "off",
+                "fixed mode: also run the integer reference and count mismatching pixels"),
+    };
+    return kSchema;
 }
 
-bool ParseOnOff(const std::string& s, bool& out) {
-    if (s == "on" || s == "1" || s == "true") return out = true, true;
-    if (s == "off" || s == "0" || s == "false") return out = false, true;
-    return false;
-}
-
-// Empty when every option is known and valid.
-std::string ParseSettings(const RenderOptions& options, Settings& st) {
-    for (const auto& [key, value] : options.engineOptions) {
-        const std::string bad =
-            "engine 'patch': invalid value '" + value + "' for option '" + key + "'";
-        if (key == "mode") {
-            if (value == "float")
-                st.fixed = false;
-            else if (value == "fixed")
-                st.fixed = true;
-            else
-                return bad + " (float or fixed)";
-        } else if (key == "depth-bits") {
-            if (!ParseInt(value, st.widths.depthBits)) return bad;
-        } else if (key == "normal-bits") {
-            if (!ParseInt(value, st.widths.normalBits)) return bad;
-        } else if (key == "caps") {
-            if (value == "skip")
-                st.caps = CapPolicy::kSkip;
-            else if (value == "open")
-                st.caps = CapPolicy::kOpen;
-            else
-                return bad + " (skip or open)";
-        } else if (key == "clock-mhz") {
-            char* end = nullptr;
-            const double mhz = std::strtod(value.c_str(), &end);
-            if (value.empty() || *end != '\0' || !(mhz > 0) || !std::isfinite(mhz) || mhz > 1e6)
-                return bad + " (a positive number of MHz)";
-            st.clockHz = mhz * 1e6;
-        } else if (key == "compare") {
-            if (!ParseOnOff(value, st.compare)) return bad + " (on or off)";
-        } else if (key == "verify") {
-            if (!ParseOnOff(value, st.verify)) return bad + " (on or off)";
-        } else {
-            return "engine 'patch' has no option '" + key +
-                   "' (options: mode, depth-bits, normal-bits, caps, clock-mhz, compare, verify)";
-        }
-    }
-    if (std::string why = st.widths.Validate(); !why.empty()) return "engine 'patch': " + why;
-    return {};
+Settings ReadSettings(const EngineOptions& o) {
+    Settings st;
+    st.fixed = o.Choice("mode") == "fixed";
+    st.widths.depthBits = o.Int("depth-bits");
+    st.widths.normalBits = o.Int("normal-bits");
+    st.caps = o.Choice("caps") == "open" ? CapPolicy::kOpen : CapPolicy::kSkip;
+    st.clockHz = o.Number("clock-mhz") * 1e6;
+    st.compare = o.Bool("compare");
+    st.verify = o.Bool("verify");
+    return st;
 }
 
 // What one band of rows contributes to the statistics (summed in band order: deterministic).
@@ -198,22 +173,14 @@ void ScanFixedBand(const FixedJob& job, const FlatScene& scene, const Settings& 
 
 // Runs `bandFn(band, stats)` over the bands of rows, in parallel, and sums the stats in order.
 template <class Fn>
-BandStats ForEachBand(int height, int threads, Fn&& bandFn) {
+BandStats ForEachBand(int height, Fn&& bandFn) {
     const int bands = (height + kBandRows - 1) / kBandRows;
     std::vector<BandStats> perBand(static_cast<std::size_t>(bands));
-    auto body = [&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, bands), [&](const tbb::blocked_range<int>& r) {
-            for (int b = r.begin(); b < r.end(); ++b)
-                bandFn(b * kBandRows, std::min(height, (b + 1) * kBandRows),
-                       perBand[static_cast<std::size_t>(b)]);
-        });
-    };
-    if (threads > 0) {
-        tbb::task_arena arena(threads);
-        arena.execute(body);
-    } else {
-        body();
-    }
+    tbb::parallel_for(tbb::blocked_range<int>(0, bands), [&](const tbb::blocked_range<int>& r) {
+        for (int b = r.begin(); b < r.end(); ++b)
+            bandFn(b * kBandRows, std::min(height, (b + 1) * kBandRows),
+                   perBand[static_cast<std::size_t>(b)]);
+    });
     BandStats total;
     for (const BandStats& b : perBand) total.Add(b);
     return total;
@@ -222,35 +189,36 @@ BandStats ForEachBand(int height, int threads, Fn&& bandFn) {
 class PatchEngine final : public Engine {
   public:
     std::string_view Name() const override { return "patch"; }
-
-    std::string ValidateOptions(const RenderOptions& options) const override {
-        Settings st;
-        return ParseSettings(options, st);
+    const OptionSchema& Schema() const override { return PatchSchema(); }
+    std::string CheckOptions(const EngineOptions& options) const override {
+        if (std::string why = ReadSettings(options).widths.Validate(); !why.empty())
+            return "engine 'patch': " + why;
+        return {};
     }
 
-    RenderStats Render(const FlatScene& scene, const RenderOptions& options, Frame& frame) override;
+  protected:
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) override;
 };
 
-RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& options,
-                                Frame& frame) {
+RenderStats PatchEngine::Draw(const FlatScene& scene, const EngineOptions& options,
+                              Frame& frame) {
     const auto t0 = std::chrono::steady_clock::now();
     RenderStats stats;
     frame.Reset(scene.width, scene.height);
-    Settings st;
-    if (std::string err = ParseSettings(options, st); !err.empty()) {
-        stats.report = err + "\n";
-        return stats;
-    }
+    const Settings st = ReadSettings(options);
 
     // Solids made of one body become patches; CSG trees of several bodies are skipped.
     std::vector<QuadricPatch> patches;
     std::map<Rejection, std::int64_t> rejected;
     std::int64_t csgSkipped = 0, drawnOpen = 0, planesDropped = 0;
-    for (const FlatSolid& solid : scene.solids) {
+    for (std::size_t s = 0; s < scene.solids.size(); ++s) {
+        const FlatSolid& solid = scene.solids[s];
         if (solid.root < 0 || solid.root >= static_cast<int>(scene.nodes.size())) continue;
         const FlatCsgNode& node = scene.nodes[static_cast<std::size_t>(solid.root)];
         if (!node.isLeaf) {
             ++csgSkipped;
+            stats.undrawn.push_back({static_cast<int>(s), "a CSG solid (the patch processor "
+                                                          "draws one quadric within four planes)"});
             continue;
         }
         if (node.body < 0 || node.body >= static_cast<int>(scene.bodies.size())) continue;
@@ -258,6 +226,8 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
         planesDropped += c.planesDropped;
         if (!c.patch) {
             ++rejected[c.why];
+            if (c.why != Rejection::kEmpty && c.why != Rejection::kInvisible)
+                stats.undrawn.push_back({static_cast<int>(s), std::string(RejectionName(c.why))});
             continue;
         }
         drawnOpen += c.drawnOpen;
@@ -274,7 +244,7 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
 
     if (!st.fixed) {
         for (const QuadricPatch& p : patches) timing.AddPatch(p.window.Pixels(), latency);
-        bs = ForEachBand(scene.height, options.threads, [&](int y0, int y1, BandStats& b) {
+        bs = ForEachBand(scene.height, [&](int y0, int y1, BandStats& b) {
             for (const QuadricPatch& p : patches) {
                 if (p.window.y1 <= y0 || p.window.y0 >= y1) continue;
                 RenderPatchRowsFloat(p, scene, y0, y1, frame, b.flt);
@@ -306,7 +276,7 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
             timing.AddPatch(patches[k].window.Pixels(), latency);
             jobs.push_back({&patches[k], *hp, DepthErrorBoundLsb(patches[k].window)});
         }
-        bs = ForEachBand(scene.height, options.threads, [&](int y0, int y1, BandStats& b) {
+        bs = ForEachBand(scene.height, [&](int y0, int y1, BandStats& b) {
             for (const FixedJob& job : jobs) {
                 const PixelWindow& w = job.host.program.window;
                 if (w.y1 <= y0 || w.y0 >= y1) continue;
@@ -368,16 +338,6 @@ RenderStats PatchEngine::Render(const FlatScene& scene, const RenderOptions& opt
             {"bodies skipped: " + std::string(RejectionName(why)), static_cast<double>(count)});
         if (why != Rejection::kEmpty && why != Rejection::kInvisible) notDrawable += count;
     }
-    if (csgSkipped > 0)
-        stats.warnings.push_back(fmt::format(
-            "{} CSG solid{} of several bodies not drawn (the patch processor draws one quadric "
-            "and up to four planes at a time; use --engine raycast)",
-            csgSkipped, csgSkipped == 1 ? "" : "s"));
-    if (notDrawable > 0)
-        stats.warnings.push_back(fmt::format(
-            "{} bod{} not drawn (not one quadric within four planes, or cut by opaque planes: "
-            "--stats lists the reasons; --engine-opt caps=open draws cut bodies open)",
-            notDrawable, notDrawable == 1 ? "y" : "ies"));
     c.push_back({"window pixels", static_cast<double>(bs.flt.windowPixels)});
     c.push_back({"surface pixels",
                  static_cast<double>(st.fixed ? bs.fixedSurfacePixels : bs.flt.surfacePixels)});

@@ -52,7 +52,9 @@ TEST(PatchEngine, ValidatesItsOptions) {
     Frame f;
     const RenderStats s = e->Render(b.scene(), Options({{"mode", "x"}}), f);
     EXPECT_EQ(f.CoveredCount(), 0u);
-    EXPECT_NE(s.report.find("invalid value"), std::string::npos);
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("option 'mode' must be float or fixed"), std::string::npos)
+        << s.warnings[0];
 }
 
 TEST(PatchEngine, SkipsCsgAndUndrawableBodiesAndReportsThem) {

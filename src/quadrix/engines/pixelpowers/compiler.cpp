@@ -120,6 +120,7 @@ class Compiler {
             const std::string who = SolidName(s);
             if (!nf.ok) {
                 stats_.errors.push_back(who + " not drawn: " + nf.error);
+                stats_.undrawnSolids.push_back(static_cast<int>(s));
                 continue;
             }
             const std::size_t cappedMark = stats_.stripsCapped;
@@ -150,6 +151,7 @@ class Compiler {
                     std::to_string(codeMark) + " instructions before it, " +
                     std::to_string(nf.products.size()) +
                     " products); simplify the tree or raise --engine-opt max-instructions");
+                stats_.undrawnSolids.push_back(static_cast<int>(s));
             } else if (stats_.stripsCapped > cappedMark) {
                 stats_.warnings.push_back(
                     who + ": " + std::to_string(stats_.stripsCapped - cappedMark) +

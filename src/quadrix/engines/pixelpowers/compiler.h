@@ -68,6 +68,7 @@ struct CompileStats {
     // cylinders under a parallel view). |paper − exact| ≤ sqrt bound + this, per unit light.
     double shadingDenominatorSpread = 0;
     std::vector<std::string> errors;    // solids not drawn (normal form too large, program size)
+    std::vector<int> undrawnSolids;     // their FlatScene::solids indices, parallel to errors
     std::vector<std::string> warnings;  // drawn, but less accurately than asked
 };
 

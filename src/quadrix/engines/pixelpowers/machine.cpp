@@ -3,7 +3,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -339,7 +338,7 @@ Vec3 ShadingUnitNormal(const Vec3& approx, const Vec3& key) {
     return key * c + perp * (std::sqrt(std::max(0.0, 1 - c * c)) / pl);
 }
 
-MachineCounters Execute(const Program& program, const FlatScene& scene, int threads, Frame& frame) {
+MachineCounters Execute(const Program& program, const FlatScene& scene, Frame& frame) {
     int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
     frame.Reset(width, height);
     int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
@@ -380,12 +379,7 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, int thre
                               for (int t = range.begin(); t < range.end(); ++t) runTile(t);
                           });
     };
-    if (threads > 0) {
-        tbb::task_arena arena(threads);
-        arena.execute(run);
-    } else {
-        run();
-    }
+    run();
     MachineCounters total;
     for (const Worker& w : workers) total.Add(w.counters);
     return total;

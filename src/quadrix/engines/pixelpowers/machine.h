@@ -54,7 +54,7 @@ Vec3 ShadingUnitNormal(const Vec3& approx, const Vec3& key);
 // Runs `program` and scans out into `frame` (resized to the scene's size): depth = ZMIN, and the
 // patch in COLOR gives surface, body, solid and the normal (FlatScene::WorldNormal at ZMIN, or
 // ShadingUnitNormal of N0–N2 for patches with PatchInfo::machineNormal).
-// threads > 0 limits the worker threads.
-MachineCounters Execute(const Program& program, const FlatScene& scene, int threads, Frame& frame);
+// Runs in the caller's oneTBB arena.
+MachineCounters Execute(const Program& program, const FlatScene& scene, Frame& frame);
 
 }  // namespace quadrix::pixelpowers

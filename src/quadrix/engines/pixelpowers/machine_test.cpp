@@ -72,7 +72,7 @@ TEST(PixelPowersMachine, ScanConversionAndZBuffer) {
     }
     FlatScene scene = PlaneScene(20, 16);
     Frame f;
-    MachineCounters c = Execute(as.program, scene, 1, f);
+    MachineCounters c = Execute(as.program, scene, f);
     int covered = 0;
     for (int j = 0; j < 16; ++j) {
         for (int i = 0; i < 20; ++i) {
@@ -109,7 +109,7 @@ TEST(PixelPowersMachine, EnvelopesAndFlagLogic) {
     as.End();
     FlatScene scene = PlaneScene(20, 1);
     Frame f;
-    Execute(as.program, scene, 0, f);
+    Execute(as.program, scene, f);
     for (int i = 0; i < 20; ++i) {
         double d = std::fabs(i + 0.5 - 10);
         bool drawn = !(d <= 3 || d >= 8);
@@ -134,7 +134,7 @@ TEST(PixelPowersMachine, RectanglesAndTiles) {
     as.End();
     FlatScene scene = PlaneScene(150, 70);
     Frame f;
-    MachineCounters c = Execute(as.program, scene, 0, f);
+    MachineCounters c = Execute(as.program, scene, f);
     EXPECT_EQ(c.tiles, 6u);
     for (int j = 0; j < 70; ++j) {
         for (int i = 0; i < 150; ++i) {
@@ -170,7 +170,7 @@ TEST(PixelPowersMachine, NormalRegistersAndScanOut) {
     l.direction = {0, 0, -2};
     scene.lights = {l};
     Frame f;
-    MachineCounters c = Execute(as.program, scene, 1, f);
+    MachineCounters c = Execute(as.program, scene, f);
     EXPECT_EQ(as.program.Equations(), 5u);  // QNPOS, ZLOAD and three NLOADs
     for (int i = 0; i < 10; ++i) {
         double x = i + 0.5;

@@ -35,74 +35,42 @@ struct Settings {
 // Bits of the N0–N2 registers of paper shading in this simulation (three doubles).
 constexpr int kNormalBits = 3 * 64;
 
-bool ParseOnOff(const std::string& v, bool& out) {
-    if (v == "on" || v == "1" || v == "true") return out = true, true;
-    if (v == "off" || v == "0" || v == "false") return out = false, true;
-    return false;
+const OptionSchema& PixelPowersSchema() {
+    using O = OptionSpec;
+    static const OptionSchema kSchema{
+        O::Choice("mode", "exact", {"exact", "approx"},
+                  "exact: the extended machine with a per-pixel square root; approx: the "
+                  "paper's machine, depths from parabolic-strip envelopes"),
+        O::Number("tolerance", "0.25", 0, HUGE_VAL, true,
+                  "approx: depth tolerance of a strip envelope, device z units"),
+        O::Choice("shading", "", {"exact", "paper"},
+                  "exact normals at ZMIN, or the paper's approximate shading (default: paper "
+                  "in approx mode, else exact)"),
+        O::Int("depth-bits", "", 8, 52, "fixed-point ZTEMP/ZMIN words of N bits (default: doubles)"),
+        O::Int("max-products", "20000", 1, 10000000,
+               "normal-form explosion guard per solid (a solid past it goes to raycast)"),
+        O::Int("max-instructions", "1000000", 1, 100000000,
+               "program size guard per scene (a solid past it goes to raycast)"),
+        O::Int("max-strips", "64", 1, 4096, "approx: strips per sheet at most"),
+        O::Bool("compare", "",
+                "also render with raycast and report agreement and depth error (default: on in "
+                "approx mode, off in exact mode)"),
+    };
+    return kSchema;
 }
 
-std::string ParseSettings(const RenderOptions& options, Settings& st) {
-    bool compareSet = false, shadingSet = false;
-    for (const auto& [key, value] : options.engineOptions) {
-        char* end = nullptr;
-        if (key == "mode") {
-            if (value == "exact") {
-                st.compile.mode = DepthMode::kExact;
-            } else if (value == "approx") {
-                st.compile.mode = DepthMode::kApprox;
-            } else {
-                return "engine 'pixelpowers': mode must be exact or approx, not '" + value + "'";
-            }
-        } else if (key == "tolerance") {
-            double t = std::strtod(value.c_str(), &end);
-            if (value.empty() || *end || !(t > 0) || !std::isfinite(t))
-                return "engine 'pixelpowers': tolerance must be a positive number, not '" + value +
-                       "'";
-            st.compile.tolerance = t;
-        } else if (key == "max-products") {
-            long n = std::strtol(value.c_str(), &end, 10);
-            if (value.empty() || *end || n < 1 || n > 10000000)
-                return "engine 'pixelpowers': max-products must be 1..10000000, not '" + value +
-                       "'";
-            st.compile.maxProducts = static_cast<std::size_t>(n);
-        } else if (key == "max-instructions") {
-            long n = std::strtol(value.c_str(), &end, 10);
-            if (value.empty() || *end || n < 1 || n > 100000000)
-                return "engine 'pixelpowers': max-instructions must be 1..100000000, not '" +
-                       value + "'";
-            st.compile.maxInstructions = static_cast<std::size_t>(n);
-        } else if (key == "max-strips") {
-            long n = std::strtol(value.c_str(), &end, 10);
-            if (value.empty() || *end || n < 1 || n > 4096)
-                return "engine 'pixelpowers': max-strips must be 1..4096, not '" + value + "'";
-            st.compile.maxStrips = static_cast<int>(n);
-        } else if (key == "shading") {
-            if (value == "exact") {
-                st.compile.paperShading = false;
-            } else if (value == "paper") {
-                st.compile.paperShading = true;
-            } else {
-                return "engine 'pixelpowers': shading must be exact or paper, not '" + value + "'";
-            }
-            shadingSet = true;
-        } else if (key == "depth-bits") {
-            long n = std::strtol(value.c_str(), &end, 10);
-            if (value.empty() || *end || n < 8 || n > 52)
-                return "engine 'pixelpowers': depth-bits must be 8..52, not '" + value + "'";
-            st.compile.depthBits = static_cast<int>(n);
-        } else if (key == "compare") {
-            if (!ParseOnOff(value, st.compare))
-                return "engine 'pixelpowers': compare must be on or off, not '" + value + "'";
-            compareSet = true;
-        } else {
-            return "engine 'pixelpowers' has no option '" + key +
-                   "' (mode, tolerance, shading, depth-bits, max-products, max-instructions, "
-                   "max-strips, compare)";
-        }
-    }
-    if (!compareSet) st.compare = st.compile.mode == DepthMode::kApprox;
-    if (!shadingSet) st.compile.paperShading = st.compile.mode == DepthMode::kApprox;
-    return {};
+Settings ReadSettings(const EngineOptions& o) {
+    Settings st;
+    st.compile.mode = o.Choice("mode") == "approx" ? DepthMode::kApprox : DepthMode::kExact;
+    st.compile.tolerance = o.Number("tolerance");
+    st.compile.maxProducts = static_cast<std::size_t>(o.Int("max-products"));
+    st.compile.maxInstructions = static_cast<std::size_t>(o.Int("max-instructions"));
+    st.compile.maxStrips = o.Int("max-strips");
+    if (o.Given("depth-bits")) st.compile.depthBits = o.Int("depth-bits");
+    const bool approx = st.compile.mode == DepthMode::kApprox;
+    st.compile.paperShading = o.Given("shading") ? o.Choice("shading") == "paper" : approx;
+    st.compare = o.Given("compare") ? o.Bool("compare") : approx;
+    return st;
 }
 
 struct Agreement {
@@ -196,28 +164,20 @@ class PixelPowersEngine final : public Engine {
   public:
     std::string_view Name() const override { return "pixelpowers"; }
 
-    std::string ValidateOptions(const RenderOptions& options) const override {
-        Settings st;
-        return ParseSettings(options, st);
-    }
+    const OptionSchema& Schema() const override { return PixelPowersSchema(); }
 
-    RenderStats Render(const FlatScene& scene, const RenderOptions& options,
-                       Frame& frame) override {
+  protected:
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
+                     Frame& frame) override {
         auto start = std::chrono::steady_clock::now();
         RenderStats stats;
-        Settings st;
-        if (std::string err = ParseSettings(options, st); !err.empty()) {
-            frame.Reset(std::max(scene.width, 0), std::max(scene.height, 0));
-            stats.report = err + "\n";
-            stats.warnings.push_back(err + "; nothing drawn");
-            return stats;
-        }
+        const Settings st = ReadSettings(options);
         Program program;
         CompileStats cs;
         auto t0 = std::chrono::steady_clock::now();
         Compile(scene, st.compile, program, cs);
         auto t1 = std::chrono::steady_clock::now();
-        MachineCounters mc = Execute(program, scene, options.threads, frame);
+        MachineCounters mc = Execute(program, scene, frame);
         auto t2 = std::chrono::steady_clock::now();
         stats.seconds = std::chrono::duration<double>(t2 - start).count();
 
@@ -309,9 +269,9 @@ class PixelPowersEngine final : public Engine {
         }
         // Every solid not drawn, and every accuracy guard that fired, also as a warning the CLI
         // prints without --stats.
-        for (const std::string& e : cs.errors) {
-            report += "error: " + e + "\n";
-            stats.warnings.push_back(e);
+        for (std::size_t k = 0; k < cs.errors.size(); ++k) {
+            report += "not drawn (left to raycast): " + cs.errors[k] + "\n";
+            stats.undrawn.push_back({cs.undrawnSolids[k], cs.errors[k]});
         }
         for (const std::string& w : cs.warnings) {
             report += "warning: " + w + "\n";
@@ -321,9 +281,7 @@ class PixelPowersEngine final : public Engine {
         if (st.compare) {
             Frame ref;
             auto reference = MakeRaycastEngine();
-            RenderOptions ro;
-            ro.threads = options.threads;
-            reference->Render(scene, ro, ref);
+            reference->Render(scene, RenderOptions{}, ref);
             // Fixed-point words add up to half a step to every depth (rounding is monotone).
             const double tolerance = st.compile.mode == DepthMode::kApprox
                                          ? st.compile.tolerance + 0.5 * program.depthStep

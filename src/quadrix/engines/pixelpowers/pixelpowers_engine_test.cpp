@@ -426,16 +426,19 @@ TEST(PixelPowersEngine, WarningsNameSolidsNotDrawn) {
     EXPECT_TRUE(plain.warnings.empty()) << plain.warnings.front();
 
     o.engineOptions = {{"max-products", "50"}};
+    // A solid past a guard is reported undrawn (the render context draws it with raycast).
     RenderStats st = pp->Render(scene, o, f);
-    ASSERT_EQ(st.warnings.size(), 1u);
-    EXPECT_TRUE(AnyWarningWith(st, "solid 'maze' not drawn"));
-    EXPECT_TRUE(AnyWarningWith(st, "max-products"));
+    EXPECT_TRUE(st.warnings.empty());
+    ASSERT_EQ(st.undrawn.size(), 1u);
+    EXPECT_EQ(st.undrawn[0].solid, 0);
+    EXPECT_NE(st.undrawn[0].reason.find("solid 'maze' not drawn"), std::string::npos);
+    EXPECT_NE(st.undrawn[0].reason.find("max-products"), std::string::npos);
     EXPECT_GT(f.CoveredCount(), 0u) << "the other solid is still drawn";
 
     o.engineOptions = {{"max-instructions", "40"}};
     st = pp->Render(scene, o, f);
-    EXPECT_TRUE(AnyWarningWith(st, "solid 'maze' not drawn"));
-    EXPECT_TRUE(AnyWarningWith(st, "max-instructions"));
+    ASSERT_EQ(st.undrawn.size(), 1u);
+    EXPECT_NE(st.undrawn[0].reason.find("max-instructions"), std::string::npos);
 
     o.engineOptions = {{"mode", "approx"}, {"max-strips", "1"}, {"tolerance", "0.01"}};
     st = pp->Render(scene, o, f);

@@ -6,8 +6,8 @@
 //     body.
 //  2. The scene's solids become one CsgProgram (csg_program.h), sorted by nearest depth.
 //  3. The image is cut into 256×256 blocks, 256×8 tiles and 8×8 sub-tiles, run in parallel
-//     (oneTBB, nested parallel_for; RenderOptions::threads > 0 runs them in a task_arena of that
-//     many threads). Each level prunes its parent's program against its pixel centres, so a
+//     (oneTBB, nested parallel_for, in the arena of the caller: Engine::Render makes one of
+//     RenderOptions::threads when it is > 0). Each level prunes its parent's program against its pixel centres, so a
 //     sub-tile sees only the solids and leaves whose bounds reach it, and pruning a 10,000-leaf
 //     union costs one walk per block rather than one per sub-tile.
 //  4. Per sub-tile, before any pixel: its bodies' literals are reduced (planes that cannot bound
@@ -35,7 +35,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -143,20 +142,24 @@ struct Settings {
     bool kernel = true;
 };
 
-std::string ParseSettings(const RenderOptions& options, Settings& st) {
-    for (const auto& [key, value] : options.engineOptions) {
-        bool* flag = key == "batch"       ? &st.batch
-                     : key == "tile-cull" ? &st.tileCull
-                     : key == "kernel"    ? &st.kernel
-                                          : nullptr;
-        if (!flag)
-            return "engine 'raycast' has no option '" + key +
-                   "' (options: batch, tile-cull, kernel)";
-        if (value != "on" && value != "off")
-            return "engine 'raycast': option '" + key + "' must be on or off, not '" + value + "'";
-        *flag = value == "on";
-    }
-    return "";
+const OptionSchema& RaycastSchema() {
+    using O = OptionSpec;
+    static const OptionSchema kSchema{
+        O::Bool("batch", "on", "body batches over the pixels of a sub-tile"),
+        O::Bool("tile-cull", "on",
+                "per-sub-tile proofs (empty bodies, literals that always hold, flat fills)"),
+        O::Bool("kernel", "on",
+                "sub-tile programs compiled to postfix code over body batches (needs batch)"),
+    };
+    return kSchema;
+}
+
+Settings ReadSettings(const EngineOptions& options) {
+    Settings st;
+    st.batch = options.Bool("batch");
+    st.tileCull = options.Bool("tile-cull");
+    st.kernel = options.Bool("kernel");
+    return st;
 }
 
 struct Counters {
@@ -1539,13 +1542,11 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
 class RaycastEngine final : public Engine {
   public:
     std::string_view Name() const override { return "raycast"; }
-    std::string ValidateOptions(const RenderOptions& options) const override {
-        Settings st;
-        return ParseSettings(options, st);
-    }
+    const OptionSchema& Schema() const override { return RaycastSchema(); }
 
-    RenderStats Render(const FlatScene& scene, const RenderOptions& options,
-                       Frame& frame) override {
+  protected:
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
+                     Frame& frame) override {
         auto start = std::chrono::steady_clock::now();
         int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
         frame.ResizeForOverwrite(width, height);
@@ -1555,14 +1556,7 @@ class RaycastEngine final : public Engine {
 
         int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
         constexpr int kTilesX = kBlock / kTileW, kTilesY = kBlock / kTileH;
-        Settings settings;
-        if (std::string err = ParseSettings(options, settings); !err.empty()) {
-            // ValidateOptions reports this before any work; draw nothing rather than guess.
-            RenderStats stats;
-            stats.warnings.push_back(err);
-            for (std::size_t i = 0; i < frame.depth.size(); ++i) frame.SetBackground(i);
-            return stats;
-        }
+        const Settings settings = ReadSettings(options);
         tbb::enumerable_thread_specific<Worker> workers(&tables, full.maxDepth, settings);
         // Blocks own their pruned program (not the thread: a thread waiting in the nested loop may
         // run another block); tiles use per-thread scratch, held by no task across a wait.
@@ -1591,18 +1585,10 @@ class RaycastEngine final : public Engine {
                                   }
                               });
         };
-        auto run = [&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, blocksX * blocksY, 1),
-                              [&](const tbb::blocked_range<int>& range) {
-                                  for (int b = range.begin(); b < range.end(); ++b) renderBlock(b);
-                              });
-        };
-        if (options.threads > 0) {
-            tbb::task_arena arena(options.threads);
-            arena.execute(run);
-        } else {
-            run();
-        }
+        tbb::parallel_for(tbb::blocked_range<int>(0, blocksX * blocksY, 1),
+                          [&](const tbb::blocked_range<int>& range) {
+                              for (int b = range.begin(); b < range.end(); ++b) renderBlock(b);
+                          });
 
         Counters total;
         for (const Worker& w : workers) total.Add(w.counters);

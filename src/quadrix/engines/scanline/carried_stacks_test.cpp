@@ -148,7 +148,7 @@ TEST(ScanlineCarriedStacks, ExamplesAndGalleryNeedNoCorrections) {
 
 TEST(ScanlineCarriedStacks, CheckOptionIsValidated) {
     RenderOptions o;
-    for (auto [v, ok] : {std::pair{"on", true}, {"off", true}, {"no", false}}) {
+    for (auto [v, ok] : {std::pair{"on", true}, {"off", true}, {"no", true}, {"maybe", false}}) {
         o.engineOptions = {{"check", v}};
         EXPECT_EQ(MakeEngine("scanline")->ValidateOptions(o).empty(), ok) << v;
     }

@@ -19,14 +19,6 @@ double Seconds(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
 }
 
-bool ParseInt(const std::string& s, int& v) {
-    if (s.empty() || s.size() > 9) return false;
-    for (char ch : s)
-        if (ch < '0' || ch > '9') return false;
-    v = std::stoi(s);
-    return true;
-}
-
 // Inclusive pixel range of the centres i + ½ inside [lo, hi], clipped to [0, n).
 void PixelRange(double lo, double hi, int n, int& a, int& b) {
     double fa = std::ceil(lo - 0.5), fb = std::floor(hi - 0.5);
@@ -47,54 +39,34 @@ class ScanlineEngine final : public Engine {
   public:
     std::string_view Name() const override { return "scanline"; }
 
-    std::string ValidateOptions(const RenderOptions& options) const override {
-        for (const auto& [key, value] : options.engineOptions) {
-            if (key == "sd") {
-                int v;
-                if (!ParseInt(value, v) || v < 1)
-                    return "engine 'scanline': option sd needs an integer >= 1, got '" + value +
-                           "'";
-            } else if (key == "csg") {
-                if (value != "spans" && value != "pixels")
-                    return "engine 'scanline': option csg is 'spans' or 'pixels', got '" + value +
-                           "'";
-            } else if (key == "render") {
-                if (value != "stacks" && value != "exact")
-                    return "engine 'scanline': option render is 'stacks' or 'exact', got '" +
-                           value + "'";
-            } else if (key == "check") {
-                if (value != "on" && value != "off")
-                    return "engine 'scanline': option check is 'on' or 'off', got '" + value + "'";
-            } else if (key == "verify") {
-                if (value != "on" && value != "off")
-                    return "engine 'scanline': option verify is 'on' or 'off', got '" + value + "'";
-            } else if (key == "shade") {
-                if (value != "exact" && value != "fast")
-                    return "engine 'scanline': option shade is 'exact' or 'fast', got '" + value +
-                           "'";
-            } else {
-                return "engine 'scanline' has no option '" + key +
-                       "' (options: sd=N, shade=exact|fast, csg=spans|pixels, "
-                       "render=stacks|exact, check=on|off, verify=on|off)";
-            }
-        }
-        return {};
+    const OptionSchema& Schema() const override {
+        using O = OptionSpec;
+        static const OptionSchema kSchema{
+            O::Int("sd", "1", 1, 1e9, "shading interval in pixels (seed 001 §6.2; 1 = exact)"),
+            O::Choice("shade", "exact", {"exact", "fast"},
+                      "span normals exact per pixel, or fast (flat per span)"),
+            O::Choice("csg", "spans", {"spans", "pixels"},
+                      "CSG by span templates, or the whole tree per pixel"),
+            O::Choice("render", "stacks", {"stacks", "exact"},
+                      "face stacks carried along the row (seed 001 ch. 5), or exact per span"),
+            O::Bool("check", "on", "verify the carried face stacks (off: trust them, to measure)"),
+            O::Bool("verify", "off", "count spans whose stack head differs from exact evaluation"),
+        };
+        return kSchema;
     }
 
-    RenderStats Render(const FlatScene& scene, const RenderOptions& options,
-                       Frame& frame) override {
+  protected:
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
+                     Frame& frame) override {
         const auto t0 = Clock::now();
         RenderSettings settings;
-        settings.threads = options.threads;
-        for (const auto& [key, value] : options.engineOptions) {
-            int v;
-            if (key == "sd" && ParseInt(value, v) && v >= 1) settings.shadeInterval = v;
-            if (key == "shade") settings.fastShading = value == "fast";
-            if (key == "csg") settings.csgTemplates = value == "spans";
-            if (key == "render") settings.faceStacks = value == "stacks";
-            if (key == "verify") settings.verify = value == "on";
-            if (key == "check") settings.checkStacks = value == "on";
-        }
+        settings.threads = 0;  // the caller's arena (Engine::Render)
+        settings.shadeInterval = options.Int("sd");
+        settings.fastShading = options.Choice("shade") == "fast";
+        settings.csgTemplates = options.Choice("csg") == "spans";
+        settings.faceStacks = options.Choice("render") == "stacks";
+        settings.verify = options.Bool("verify");
+        settings.checkStacks = options.Bool("check");
         const int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
         frame.Reset(width, height);
 

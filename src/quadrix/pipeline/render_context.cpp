@@ -1,0 +1,274 @@
+#include "quadrix/pipeline/render_context.h"
+
+#include <fmt/format.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "quadrix/engines/isocurve/isocurve_engine.h"
+#include "quadrix/engines/registry.h"
+#include "quadrix/frame/image_limits.h"
+#include "quadrix/lang/reader.h"
+#include "quadrix/util/check.h"
+
+namespace quadrix {
+
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool SameLights(const std::optional<std::vector<scene::Light>>& a,
+                const std::optional<std::vector<scene::Light>>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    if (!a) return true;
+    if (a->size() != b->size()) return false;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+        const scene::Light &x = (*a)[i], &y = (*b)[i];
+        if (x.id != y.id || x.kind != y.kind || x.intensity != y.intensity ||
+            !(x.direction == y.direction) || x.isDefault != y.isDefault)
+            return false;
+    }
+    return true;
+}
+
+bool SameRtView(const std::optional<import::RtView>& a, const std::optional<import::RtView>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    if (!a) return true;
+    if (a->viewsize != b->viewsize || !(a->eye == b->eye)) return false;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            if (a->viewrot.m[i][j] != b->viewrot.m[i][j]) return false;
+    return true;
+}
+
+// The flat scene with only `solids` (in order) left to draw and no freeform surfaces; half-space
+// and body indices are unchanged, so Frame surface and body ids mean the same in both.
+FlatScene SubsetOfSolids(const FlatScene& flat, const std::vector<int>& solids) {
+    FlatScene sub;
+    sub.width = flat.width;
+    sub.height = flat.height;
+    sub.halfSpaces = flat.halfSpaces;
+    sub.bodies = flat.bodies;
+    sub.nodes = flat.nodes;
+    sub.lights = flat.lights;
+    sub.projection = flat.projection;
+    sub.viewName = flat.viewName;
+    sub.depthTolerance = flat.depthTolerance;
+    for (int s : solids) sub.solids.push_back(flat.solids[static_cast<std::size_t>(s)]);
+    return sub;
+}
+
+}  // namespace
+
+bool SameView(const ViewRequest& a, const ViewRequest& b) {
+    return a.width == b.width && a.height == b.height && a.viewName == b.viewName &&
+           a.azimuth == b.azimuth && a.elevation == b.elevation && a.viewsize == b.viewsize &&
+           SameRtView(a.rtView, b.rtView) && SameLights(a.lights, b.lights);
+}
+
+std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
+    std::vector<std::pair<std::string, double>> c;
+    c.emplace_back("freeforms_by_isocurve", freeformsByIsocurve);
+    c.emplace_back("solids_by_raycast", static_cast<double>(byReference.size()));
+    c.insert(c.end(), stats.counters.begin(), stats.counters.end());
+    return c;
+}
+
+struct RenderContext::Arena {
+    explicit Arena(int threads)
+        : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+    tbb::task_arena arena;
+};
+
+RenderContext::RenderContext(int threads) : arena_(std::make_unique<Arena>(threads)) {}
+RenderContext::~RenderContext() = default;
+
+bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
+    const auto t0 = std::chrono::steady_clock::now();
+    scene_ = scene::Scene{};
+    inputs_ = import::InputReport{};
+    flatValid_ = false;
+    if (request.paths.empty()) {
+        lang::Reader reader(scene_, diags);
+        reader.ReadText(request.text, request.textName);
+    } else {
+        // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
+        import::InputOptions io;
+        io.import.topObjects = request.topObjects;
+        io.import.strict = request.strict;
+        import::ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
+    }
+    readSeconds = SecondsSince(t0);
+    return !diags.HasErrors();
+}
+
+bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
+    lastReused_ = false;
+    if (auto e = CheckImageSize(view.width, view.height); !e.empty()) {
+        diags.Error({}, e, {}, "command line");
+        return false;
+    }
+    if (flatValid_ && flatFor_ && SameView(*flatFor_, view)) {
+        lastReused_ = true;
+        flattenSeconds = 0;
+        return true;
+    }
+    flatValid_ = false;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string viewName = view.viewName;
+    if (view.rtView || view.azimuth || view.elevation) {
+        // An rt-style view is made once per request and added to the scene like a view statement
+        // (with rt's lights when the scene has none); asking again replaces it.
+        std::erase_if(scene_.views, [](const scene::View& v) { return v.id == "rt"; });
+        scene::View made =
+            view.rtView ? import::MakeRtView(*view.rtView, view.width, view.height)
+                        : import::MakeAzElView(view.azimuth.value_or(35), view.elevation.value_or(25),
+                                               inputs_.importedBounds, view.viewsize, view.width,
+                                               view.height);
+        import::AddRtLights(scene_, made);
+        scene_.views.push_back(made);
+        viewName = made.id;
+    }
+    FlattenOptions fo;
+    fo.width = view.width;
+    fo.height = view.height;
+    fo.viewName = viewName;
+    fo.lights = view.lights;
+    const int errorsBefore = diags.ErrorCount();
+    auto flat = quadrix::Flatten(scene_, fo, diags);
+    flattenSeconds = SecondsSince(t0);
+    if (!flat || diags.ErrorCount() != errorsBefore) return false;
+    flat_ = std::move(*flat);
+    flatValid_ = true;
+    flatFor_ = view;
+    return true;
+}
+
+std::string RenderContext::CheckEngine(const EngineRequest& request) {
+    const EngineInfo* info = FindEngine(request.engine);
+    if (!info) return fmt::format("unknown engine '{}' (known: {})", request.engine, EngineList());
+    RenderOptions ro;
+    ro.engineOptions = request.options;
+    return info->make()->ValidateOptions(ro);
+}
+
+Engine* RenderContext::EngineNamed(const std::string& name) {
+    auto it = engines_.find(name);
+    if (it != engines_.end()) return it->second.get();
+    const EngineInfo* info = FindEngine(name);
+    if (!info) return nullptr;
+    return engines_.emplace(name, info->make()).first->second.get();
+}
+
+void RenderContext::ComposeReference(const std::vector<int>& solids, Frame& frame) {
+    Engine* reference = EngineNamed(std::string(kReferenceEngine));
+    QUADRIX_CHECK(reference != nullptr, "the reference engine is not registered");
+    Frame other;
+    if (solids.size() == flat_.solids.size()) {
+        reference->Render(flat_, RenderOptions{}, other);
+    } else {
+        const FlatScene sub = SubsetOfSolids(flat_, solids);
+        reference->Render(sub, RenderOptions{}, other);
+        for (auto& s : other.solid)
+            if (s != Frame::kNone) s = solids[static_cast<std::size_t>(s)];
+    }
+    ComposeMin(frame, other);
+}
+
+bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderReport& report,
+                           Diagnostics& diags) {
+    QUADRIX_CHECK(flatValid_, "RenderContext::Render before a successful Flatten");
+    const auto t0 = std::chrono::steady_clock::now();
+    report = RenderReport{};
+    report.engine = request.engine;
+    const EngineInfo* info = FindEngine(request.engine);
+    if (auto e = CheckEngine(request); !e.empty()) {
+        diags.Error({}, e, {}, "command line");
+        return false;
+    }
+    Engine* engine = EngineNamed(request.engine);
+    RenderOptions ro;
+    ro.engineOptions = request.options;
+    const EngineCapabilities caps = info->capabilities;
+    const bool drawsSomething = (caps.solids && !flat_.solids.empty()) ||
+                                (caps.freeforms && !flat_.freeforms.empty());
+
+    arena_->arena.execute([&] {
+        if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))
+            report.stats = engine->Render(flat_, ro, frame);
+        else
+            frame.Reset(flat_.width, flat_.height);
+    });
+
+    // What the engine left out, and why.
+    std::vector<UndrawnSolid> undrawn;
+    if (!caps.solids) {
+        for (std::size_t s = 0; s < flat_.solids.size(); ++s)
+            undrawn.push_back({static_cast<int>(s),
+                               fmt::format("engine '{}' draws no quadric solids", request.engine)});
+    } else {
+        undrawn = report.stats.undrawn;
+    }
+    const bool freeformsLeft = !caps.freeforms && !flat_.freeforms.empty();
+    if (request.strict && (!undrawn.empty() || freeformsLeft)) {
+        std::string what;
+        for (std::size_t k = 0; k < undrawn.size() && k < 5; ++k)
+            what += fmt::format("{}  solid '{}': {}", what.empty() ? "" : "\n",
+                                flat_.solids[static_cast<std::size_t>(undrawn[k].solid)].name,
+                                undrawn[k].reason);
+        if (undrawn.size() > 5) what += fmt::format("\n  ... and {} more", undrawn.size() - 5);
+        if (freeformsLeft)
+            what += fmt::format("{}  {} freeform surface(s)", what.empty() ? "" : "\n",
+                                flat_.freeforms.size());
+        diags.Error({},
+                    fmt::format("engine '{}' cannot draw the whole scene (strict: nothing is "
+                                "drawn by another engine):\n{}",
+                                request.engine, what),
+                    {}, "engine");
+        return false;
+    }
+    if (!undrawn.empty()) {
+        std::vector<int> solids;
+        for (const UndrawnSolid& u : undrawn) solids.push_back(u.solid);
+        arena_->arena.execute([&] { ComposeReference(solids, frame); });
+        report.byReference = undrawn;
+        if (caps.solids) {
+            std::map<std::string, int> reasons;
+            for (const UndrawnSolid& u : undrawn) ++reasons[u.reason];
+            std::string why;
+            for (const auto& [reason, n] : reasons)
+                why += fmt::format("{}{} × {}", why.empty() ? "" : "; ", n, reason);
+            report.notes.push_back(fmt::format(
+                "engine {} cannot draw {} of {} solid{}; drawn by raycast and composed by depth "
+                "({}; --strict refuses instead)",
+                request.engine, undrawn.size(), flat_.solids.size(),
+                flat_.solids.size() == 1 ? "" : "s", why));
+        }
+    }
+    if (freeformsLeft) {
+        // Freeform surfaces by adaptive isocurves (seed 002) with the isocurve engine's default
+        // tolerance (curves at most one pixel apart), composed by depth.
+        Frame other(flat_.width, flat_.height);
+        isocurve::IsocurveStats st;
+        arena_->arena.execute([&] {
+            st = isocurve::RenderFreeform(isocurve::SceneDrawables(flat_), flat_.projection, {},
+                                          other);
+        });
+        ComposeMin(frame, other);
+        report.freeformsByIsocurve = st.surfaces;
+        report.isocurveSummary = fmt::format(
+            "freeform surfaces: {} drawn by adaptive isocurves after engine '{}' ({} curves, "
+            "delta {:.3g}; --engine isocurve gives the isocurve options and statistics)",
+            st.surfaces, request.engine, st.curves, st.delta);
+    }
+    report.seconds = SecondsSince(t0);
+    return true;
+}
+
+Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
+    return quadrix::Shade(frame, flat_, options);
+}
+
+}  // namespace quadrix

@@ -1,0 +1,147 @@
+// The render context: the one place where "read → flatten → engines → compose → shade → write"
+// happens, for every front end (quadrix render, uq and the uq> prompt, export, the benchmark, and
+// the viewer, drawings, batch runs and bindings to come). No front end assembles these stages.
+//
+// Stages, each a method, each keeping what the next one needs:
+//   1. Read      every input format (pipeline/inputs.h dispatches by extension and content) into
+//                one scene::Scene; rt-style views (--az/--el, --rt-view) are made here.
+//   2. Flatten   the scene for one view and image size (FlattenOptions, lights passed in, never
+//                swapped into the scene). The flat scene is kept: asking again for the same view,
+//                size and lights costs nothing, so re-rendering (another engine, the viewer's next
+//                frame of a still view) does not flatten again. A scene change or another view
+//                flattens again (the Flattener folds the view into every half-space).
+//   3. Render    the requested engine (a registry row, engines/registry.h) draws what it can into
+//                the Frame; what it cannot — solids it reports undrawn, or all solids for an
+//                engine without that capability — the reference engine (raycast) draws into a
+//                second Frame, and freeform surfaces an engine cannot draw the isocurve drawer
+//                draws into a third; the Frames are merged by per-pixel minimum depth
+//                (ComposeMin). With `strict` the context refuses instead (an error naming what
+//                could not be drawn). Engines are kept per name, so their tables stay warm.
+//   4. Shade     the Frame into an Image (shade/), by the chosen model.
+//   5. Write     the outputs (pipeline/output.h): PNG, PNM, .qxf frame dumps, all checked before
+//                any is written.
+// One oneTBB arena, owned here, runs every engine: engines never make their own.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "quadrix/engines/engine.h"
+#include "quadrix/flatten/flat_scene.h"
+#include "quadrix/flatten/flattener.h"
+#include "quadrix/frame/frame.h"
+#include "quadrix/io/image.h"
+#include "quadrix/import/scene_input.h"
+#include "quadrix/scene/diagnostics.h"
+#include "quadrix/scene/scene.h"
+#include "quadrix/shade/shader.h"
+
+namespace quadrix {
+
+// Stage 1: what to read.
+struct InputRequest {
+    std::vector<std::string> paths;  // "-" = standard input; empty: read `text`
+    std::string text;
+    std::string textName = "<text>";
+    // Importers (docs/import.md): objects to draw from BRL-CAD/OpenSCAD files (--top), and
+    // whether primitives that cannot be drawn exactly are an error (--strict).
+    std::vector<std::string> topObjects;
+    bool strict = false;
+};
+
+// Stage 2: the view of one picture.
+struct ViewRequest {
+    int width = 512, height = 512;
+    std::string viewName;  // empty = the last view defined (or the default view)
+    // rt-style views (FORMAT.md §9.4) in the imported model's coordinates; they replace viewName.
+    // Azimuth/elevation in degrees, fitted to the imported model's bounding box.
+    std::optional<double> azimuth, elevation, viewsize;
+    std::optional<import::RtView> rtView;
+    // Lights to shade with instead of the scene's own (uq's current light, seed 001 §2.3).
+    std::optional<std::vector<scene::Light>> lights;
+};
+
+// Stage 3: which engine and how.
+struct EngineRequest {
+    std::string engine = "raycast";
+    std::map<std::string, std::string> options;  // --engine-opt KEY=VALUE
+    // Refuse (an error) rather than compose what the engine cannot draw.
+    bool strict = false;
+};
+
+// How the picture was made: the engine's own statistics and what composition added.
+struct RenderReport {
+    std::string engine;
+    RenderStats stats;                 // the requested engine's
+    std::vector<UndrawnSolid> byReference;  // solids drawn by raycast instead, with the reason
+    int freeformsByIsocurve = 0;       // freeform surfaces drawn by the isocurve drawer
+    std::string isocurveSummary;       // one line about them (curves, tolerance)
+    double seconds = 0;                // whole stage, composition included
+    // Lines for the user ("note: ..."): printed without --stats, like warnings.
+    std::vector<std::string> notes;
+    // Counters of the composition (solids_by_engine, solids_by_raycast, freeforms_by_isocurve)
+    // followed by the engine's own.
+    std::vector<std::pair<std::string, double>> Counters() const;
+};
+
+class RenderContext {
+  public:
+    // threads: 0 = all hardware threads.
+    explicit RenderContext(int threads = 0);
+    ~RenderContext();
+    RenderContext(const RenderContext&) = delete;
+    RenderContext& operator=(const RenderContext&) = delete;
+
+    // Stage 1. Replaces the scene. false with errors in diags.
+    bool Read(const InputRequest& request, Diagnostics& diags);
+    // The scene, for front ends that build it statement by statement (uq's prompt). Call
+    // SceneChanged() after changing it so that the next Flatten does not reuse a stale result.
+    scene::Scene& Scene() { return scene_; }
+    const scene::Scene& Scene() const { return scene_; }
+    void SceneChanged() { flatValid_ = false; }
+    const import::InputReport& Inputs() const { return inputs_; }
+
+    // Stage 2. false with errors in diags. Reuses the kept flat scene when nothing changed.
+    bool Flatten(const ViewRequest& view, Diagnostics& diags);
+    const FlatScene& Flat() const { return flat_; }
+    // Whether the last Flatten call reused the kept result (for tests and --stats).
+    bool LastFlattenReused() const { return lastReused_; }
+
+    // Stage 3 on the last flattened scene. false with errors in diags (unknown engine, bad
+    // options, or — strict — something the engine cannot draw). `frame` is resized.
+    bool Render(const EngineRequest& request, Frame& frame, RenderReport& report,
+                Diagnostics& diags);
+    // Checks the engine name and options without rendering (front ends call it before reading,
+    // so a typo fails at once). Error message or empty.
+    static std::string CheckEngine(const EngineRequest& request);
+
+    // Stage 4.
+    Image Shade(const Frame& frame, const ShadeOptions& options) const;
+
+    // Seconds spent by the last Read and Flatten calls.
+    double readSeconds = 0, flattenSeconds = 0;
+
+  private:
+    struct Arena;
+    Engine* EngineNamed(const std::string& name);
+    // Draws `solids` of the flat scene with the reference engine and merges them into `frame`.
+    void ComposeReference(const std::vector<int>& solids, Frame& frame);
+
+    std::unique_ptr<Arena> arena_;
+    scene::Scene scene_;
+    import::InputReport inputs_;
+    FlatScene flat_;
+    bool flatValid_ = false, lastReused_ = false;
+    // The request the kept flat scene was made for (lights and view as given).
+    std::optional<ViewRequest> flatFor_;
+    std::string flatViewName_;
+    std::map<std::string, std::unique_ptr<Engine>> engines_;
+};
+
+// Whether two view requests give the same flat scene.
+bool SameView(const ViewRequest& a, const ViewRequest& b);
+
+}  // namespace quadrix
