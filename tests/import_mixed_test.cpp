@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "quadrix/import/scene_input.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -76,18 +77,25 @@ TEST(ImportMixed, RenderCommandFlags) {
         return testing::RunShell(testing::QuadrixBinary() + " render " + asc + " -o " + out +
                                  " --size 64x64 " + flags);
     };
-    auto ok = run("--top all.g --az 30 --el 20");
+    auto ok = run("--top all.g --az 30 --el 20 --allow-missing --stats");
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
     EXPECT_NE(ok.err.find("tor ×1"), std::string::npos) << ok.err;
-    auto strict = run("--top all.g --az 30 --el 20 --strict");
+    EXPECT_NE(ok.err.find("left out: tor ×1"), std::string::npos) << ok.err;  // --stats
+    std::filesystem::remove(out);
+    auto missing = run("--top all.g --az 30 --el 20");
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_NE(missing.err.find("m.asc:3:1: error: primitive 't' (tor) cannot be drawn"),
+              std::string::npos)
+        << missing.err;
+    EXPECT_FALSE(testing::FileExists(out));
+    auto strict = run("--top all.g --az 30 --el 20 --strict --allow-missing");
     EXPECT_EQ(strict.exitCode, 1);
-    EXPECT_NE(strict.err.find("--strict"), std::string::npos) << strict.err;
     auto ballOnly = run("--top ball.r --strict --az 30 --el 20");
     EXPECT_EQ(ballOnly.exitCode, 0) << ballOnly.err;
-    auto missing = run("--top nosuch");
-    EXPECT_EQ(missing.exitCode, 1);
-    EXPECT_NE(missing.err.find("--top nosuch: no object of that name"), std::string::npos)
-        << missing.err;
+    auto noSuch = run("--top nosuch");
+    EXPECT_EQ(noSuch.exitCode, 1);
+    EXPECT_NE(noSuch.err.find("--top nosuch: no object of that name"), std::string::npos)
+        << noSuch.err;
     auto explicitView = run(
         "--top ball.r --viewsize 40 --eye-pt 0 0 100 --viewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1");
     EXPECT_EQ(explicitView.exitCode, 0) << explicitView.err;

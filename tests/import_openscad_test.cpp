@@ -242,20 +242,29 @@ TEST(ImportOpenScad, UnsupportedAndBadInput) {
         scene::Scene s;
         Diagnostics d;
         ImportReport r;
-        EXPECT_TRUE(
-            ImportOpenScad("sphere(1);\npolyhedron(points = [[0, 0, 0]], faces = []);\n"
-                           "hull() { cube(1); }\n",
-                           "t.csg", {}, s, d, r));
-        EXPECT_EQ(r.skipped, (std::map<std::string, int>{{"hull", 1}, {"polyhedron", 1}}));
+        // What cannot be drawn is an error naming it and its line (nothing dropped silently);
+        // with allowMissing a warning, and the rest is drawn.
+        const char* text =
+            "sphere(1);\npolyhedron(points = [[0, 0, 0]], faces = []);\nhull() { cube(1); }\n";
+        EXPECT_FALSE(ImportOpenScad(text, "t.csg", {}, s, d, r));
         ASSERT_GE(d.Items().size(), 2u);
-        EXPECT_EQ(d.Items()[0].Format(false),
-                  "t.csg:2:1: warning: 'polyhedron' cannot be drawn exactly with quadrics and "
-                  "planes; it is left out");
-        Diagnostics strictDiags;
+        EXPECT_EQ(d.Items()[1].Format(false),
+                  "t.csg:3:1: error: 'hull' cannot be drawn exactly with quadrics and planes; it "
+                  "is left out (--allow-missing draws the model without it)");
+        ImportOptions allow;
+        allow.allowMissing = true;
+        Diagnostics d2;
         scene::Scene s2;
+        ImportReport r2;
+        EXPECT_TRUE(ImportOpenScad(text, "t.csg", allow, s2, d2, r2));
+        EXPECT_EQ(r2.skipped, (std::map<std::string, int>{{"hull", 1}, {"polyhedron", 1}}));
+        EXPECT_EQ(d2.Items()[0].Format(false).substr(0, 31), "t.csg:2:1: warning: polyhedron:");
+        Diagnostics strictDiags;
+        scene::Scene s3;
         ImportOptions strict;
         strict.strict = true;
-        EXPECT_FALSE(ImportOpenScad("hull() { cube(1); }", "t.csg", strict, s2, strictDiags, r));
+        strict.allowMissing = true;
+        EXPECT_FALSE(ImportOpenScad("hull() { cube(1); }", "t.csg", strict, s3, strictDiags, r));
     }
     const std::pair<const char*, const char*> bad[] = {
         {"sphere(r = 1;", "t.csg:1:13: error: expected ')'"},

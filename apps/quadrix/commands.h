@@ -24,6 +24,7 @@ struct RenderArgs {
     // Importers and rt-style views (docs/import.md).
     std::vector<std::string> top;
     bool strict = false;
+    bool allowMissing = false;
     std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
     std::string rtView;                                     // file of rt view commands
     // Limits for servers and batch runs (docs/output.md).
@@ -40,6 +41,7 @@ struct ExportArgs {
     std::string size = "512x512";
     std::string view;
     bool mask = false;
+    bool allowMissing = false;
 };
 void AddExportCommand(CLI::App& app, ExportArgs& args);
 int RunExport(const ExportArgs& args);

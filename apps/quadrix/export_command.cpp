@@ -21,6 +21,8 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
         ->capture_default_str();
     cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
     cmd->add_flag("--mask", args.mask, "Unlit white solids on black (coverage masks)");
+    cmd->add_flag("--allow-missing", args.allowMissing,
+                  "Export an imported model without the primitives that cannot be drawn");
 }
 
 int RunExport(const ExportArgs& args) {
@@ -36,6 +38,7 @@ int RunExport(const ExportArgs& args) {
     Diagnostics diags;
     InputRequest input;
     input.paths = args.scenes;
+    input.allowMissing = args.allowMissing;
     ViewRequest view;
     view.width = width;
     view.height = height;

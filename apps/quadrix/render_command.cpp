@@ -69,9 +69,12 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_flag("--strict", args.strict,
-                  "Refuse what cannot be drawn as asked: primitives that cannot be drawn exactly "
-                  "(torus, ...), and solids the engine cannot draw (instead of composing them "
-                  "from raycast)");
+                  "Refuse what cannot be drawn as asked: primitives that cannot be drawn "
+                  "(torus, ...) even with --allow-missing, and solids the engine cannot draw "
+                  "(instead of composing them from raycast)");
+    cmd->add_flag("--allow-missing", args.allowMissing,
+                  "Draw an imported model without the primitives that cannot be drawn (torus, "
+                  "...): a warning and a count in --stats instead of an error");
     cmd->footer(EnginesHelp());
     cmd->add_option("--az", args.az, "Azimuth in degrees (rt convention), orthographic fit")
         ->expected(1);
@@ -156,6 +159,7 @@ int RunRender(const RenderArgs& args) {
     po.threads = args.threads;
     po.topObjects = args.top;
     po.strict = args.strict;
+    po.allowMissing = args.allowMissing;
     if (auto e = RtViewOptions(args, po, diags); !e.empty()) {
         diags.Print(stderr);
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());

@@ -36,7 +36,10 @@ std::string Names(const OptionSchema& schema) {
 
 // What a value of `spec` may be, for messages and help: "on or off", "an integer in 1..4096".
 std::string Accepted(const OptionSpec& spec) {
-    auto num = [](double v) { return fmt::format("{:g}", v); };
+    auto num = [&](double v) {
+        return spec.type == OptionSpec::Type::kInt ? fmt::format("{}", static_cast<long long>(v))
+                                                   : fmt::format("{:g}", v);
+    };
     switch (spec.type) {
         case OptionSpec::Type::kBool: return "on or off";
         case OptionSpec::Type::kChoice: {

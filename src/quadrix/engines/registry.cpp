@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/engines/patch/patch_engine.h"
 #include "quadrix/engines/pixelpowers/pixelpowers_engine.h"
@@ -67,7 +69,9 @@ std::string EnginesMarkdown() {
     std::string s;
     for (const EngineInfo& e : Table()) {
         if (e.hidden) continue;
-        s += fmt::format("## `{}`\n\n{}.", e.name, e.help);
+        std::string help = e.help;
+        if (!help.empty()) help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
+        s += fmt::format("## `{}`\n\n{}.", e.name, help);
         s += fmt::format(" Draws {}.\n\n",
                          e.capabilities.solids && e.capabilities.freeforms ? "solids and freeforms"
                          : e.capabilities.solids ? "solids (freeform surfaces go to isocurve)"

@@ -16,6 +16,8 @@
 //        (p-c)ᵀA(p-c) <= R, whose support along e_i is sqrt(R e_iᵀA⁻¹e_i)); R < 0: empty.
 //      Literals containing all of B0 are dropped; when a single ellipsoid (or axis cylinder) is
 //      left, B0 is exact and we stop (10,000 spheres: ~5 ms).
+//  (a') A body of planes only (at most 16): the box of its vertices, enumerated over triples of
+//      its planes and the search region's faces (exact; bounds.cpp PolytopeBox).
 //  (b1) The convex relaxation (bounds_relaxation.cpp): planes, positive semidefinite quadrics
 //      (ellipsoids, cylinders, paraboloids) and "nappes" (one nappe of a cone or the inside of one
 //      sheet of a two-sheet hyperboloid: convex, and proven to contain the body by a separating
@@ -70,6 +72,9 @@ struct BoundsOptions {
     double relTolerance = 1e-3;
     // Boxes popped per direction before giving up (the bound returned is still conservative).
     int maxBoxesPerDirection = 4000;
+    // Stage (a') for bodies of at most 16 planes: the box of the polytope's vertices (exact, far
+    // cheaper than the relaxation); off only to compare the two in tests.
+    bool polytopeVertices = true;
 };
 
 struct BoundsStats {

@@ -472,5 +472,61 @@ TEST(Bounds, TreeBoundsCombineChildren) {
     EXPECT_NEAR(f.solids.back().bounds.hi.x, 1, tol);
 }
 
+// Stage (a'): bodies of planes only get the box of their vertices. Random polytopes (planes
+// tangent to a sphere of radius s at random directions, s = 10^-4 .. 10^4, some open towards +z):
+// random points of each lie in its box (conservative); a bounded one's box equals the convex
+// relaxation's (the oracle, fast path off, exact for bounded convex bodies) to 1e-7 of its size;
+// an unbounded one's box is never looser than the relaxation's.
+TEST(Bounds, PolytopesTakeTheVertexPathAndAgreeWithTheRelaxation) {
+    std::mt19937_64 rng(17);
+    std::normal_distribution<double> g(0, 1);
+    int bounded = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        const double scale = std::pow(10.0, (trial % 9) - 4);
+        const Vec3 centre{g(rng) * scale, g(rng) * scale, g(rng) * scale};
+        const int n = 4 + trial % 12;
+        std::vector<FlatHalfSpace> hs;
+        for (int i = 0; i < n; ++i) {
+            Vec3 d = Normalize(Vec3{g(rng), g(rng), g(rng)});
+            if (trial % 10 == 0) d.z = -std::fabs(d.z);  // open towards +z: unbounded
+            hs.push_back(PlaneHs({d.x, d.y, d.z, -Dot(d, centre) - scale}));
+        }
+        std::vector<BoundLiteral> lits;
+        for (const FlatHalfSpace& h : hs) lits.push_back({&h, false});
+        BoundsOptions fast, slow;
+        slow.polytopeVertices = false;
+        fast.searchLimit = slow.searchLimit = 1e6 * scale;
+        const Box3 a = IntersectionBounds(lits, fast);
+        const Box3 b = IntersectionBounds(lits, slow);
+        ASSERT_FALSE(a.Empty()) << trial;  // the centre is inside
+        ASSERT_FALSE(b.Empty()) << trial;
+        const bool isBounded = b.Finite();
+        bounded += isBounded;
+        for (int k = 0; k < 3; ++k) {
+            const double size = isBounded ? b.hi[k] - b.lo[k] : 0;
+            if (isBounded) {
+                EXPECT_NEAR(a.lo[k], b.lo[k], 1e-7 * size) << trial;
+                EXPECT_NEAR(a.hi[k], b.hi[k], 1e-7 * size) << trial;
+            } else {
+                EXPECT_GE(a.lo[k], b.lo[k] - 1e-9 * std::fabs(b.lo[k])) << trial;
+                EXPECT_LE(a.hi[k], b.hi[k] + 1e-9 * std::fabs(b.hi[k])) << trial;
+            }
+        }
+        // Random points of the polytope (rejection sampling in a box around the centre).
+        std::uniform_real_distribution<double> u(-20 * scale, 20 * scale);
+        for (int t = 0; t < 2000; ++t) {
+            const Vec3 p = centre + Vec3{u(rng), u(rng), u(rng)};
+            bool in = true;
+            for (const FlatHalfSpace& h : hs) in = in && h.plane.Evaluate(p) <= 0;
+            if (!in) continue;
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_GE(p[k], a.lo[k]) << trial;
+                EXPECT_LE(p[k], a.hi[k]) << trial;
+            }
+        }
+    }
+    EXPECT_GT(bounded, 100);
+}
+
 }  // namespace
 }  // namespace quadrix

@@ -106,6 +106,11 @@ struct FlatScene {
     // The base color of a pixel with Frame ids (surface, body): the body's, else the freeform
     // surface's (surface ids past the half-spaces), else white.
     scene::Color SurfaceColor(int surface, int body) const;
+
+    // The structure's invariants, checked once after flattening (the render context does): every
+    // index in range, children before their parents. Empty when they hold, else the first
+    // violation (an internal error: user input never breaks them).
+    std::string Validate() const;
 };
 
 }  // namespace quadrix

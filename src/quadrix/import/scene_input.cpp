@@ -52,13 +52,14 @@ SourceLoc FileLoc(const std::string& path) {
 InputFormat DetectInputFormat(const std::string& path, std::string_view text) {
     std::string p = Lower(path);
     if (EndsWith(p, ".uq")) return InputFormat::kUniQuadrix;
-    for (const char* ext : {".asc", ".g-ascii", ".comgeom", ".cg"})
+    for (const char* ext : {".asc", ".g-ascii", ".comgeom", ".cg", ".g"})
         if (EndsWith(p, ext)) return InputFormat::kBrlcad;
     for (const char* ext : {".csg", ".scad"})
         if (EndsWith(p, ext)) return InputFormat::kOpenScad;
     for (const char* ext : {".obj", ".bpt", ".bez", ".bbp", ".teaset"})
         if (EndsWith(p, ext)) return InputFormat::kFreeform;
-    if (brlcad::DetectFormat(text) == brlcad::TextFormat::kV4) return InputFormat::kBrlcad;
+    if (brlcad::DetectFormat(text) == brlcad::TextFormat::kV4 || brlcad::IsV5Binary(text))
+        return InputFormat::kBrlcad;
     return InputFormat::kUniQuadrix;
 }
 
@@ -72,14 +73,6 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
     for (const std::string& path : paths) {
         if (path == "-") {
             uqReader().ReadFile(path);
-            continue;
-        }
-        if (EndsWith(Lower(path), ".g")) {
-            diags.Error(FileLoc(path),
-                        fmt::format("'{}' is a binary BRL-CAD database; convert it to text with "
-                                    "BRL-CAD's g2asc and render the .asc file",
-                                    path),
-                        {}, "input");
             continue;
         }
         // Every format through the bounded reader (io/bounded_read.h), read once: a FIFO or

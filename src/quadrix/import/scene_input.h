@@ -3,9 +3,11 @@
 // Format by extension, then by content (docs/import.md):
 //   .uq (and anything not recognised)      UniQuadrix language (lang::Reader)
 //   .asc .g-ascii .cg .comgeom             BRL-CAD ASCII v4 / v5 / COMGEOM deck (content decides)
+//   .g                                     BRL-CAD binary database, format v5 (brlcad/g_format.h)
 //   .csg .scad                             OpenSCAD CSG subset
 //   .obj .bpt .bez .bbp .teaset            freeform models (import/freeform; drawn by isocurves)
-// A file with an unknown extension whose first line looks like a BRL-CAD database is read as one.
+// A file with an unknown extension whose first line looks like a BRL-CAD database (or that starts
+// with the v5 binary header 76 01 .. 35) is read as one.
 //
 // Imported (Z-up, right-handed) models are mapped into Quadrix space by QuadrixFromZUp:
 // (x, y, z) → (x, z, y). Views and lights of .uq files in the same render are in Quadrix space.

@@ -8,6 +8,7 @@ InputRequest PipelineOptions::Input() const {
     r.text = sceneText;
     r.topObjects = topObjects;
     r.strict = strict;
+    r.allowMissing = allowMissing;
     return r;
 }
 

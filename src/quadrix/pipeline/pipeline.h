@@ -33,6 +33,9 @@ struct PipelineOptions {
     // compose what the engine cannot draw.
     std::vector<std::string> topObjects;
     bool strict = false;
+    // Primitives that cannot be drawn are an error unless allowMissing (--allow-missing): then
+    // they are left out with a warning and counted in inputs (ImportReport::skipped).
+    bool allowMissing = false;
     // rt-style views (FORMAT.md §9.4), in the imported model's coordinates; they replace
     // viewName. azimuth/elevation in degrees, fitted to the imported model's bounding box.
     std::optional<double> azimuth, elevation, viewsize;

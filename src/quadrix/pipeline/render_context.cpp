@@ -98,6 +98,7 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
         import::InputOptions io;
         io.import.topObjects = request.topObjects;
         io.import.strict = request.strict;
+        io.import.allowMissing = request.allowMissing;
         import::ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
     }
     readSeconds = SecondsSince(t0);
@@ -141,6 +142,8 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     flattenSeconds = SecondsSince(t0);
     if (!flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);
+    const std::string invalid = flat_.Validate();
+    QUADRIX_CHECK(invalid.empty(), "{}", invalid);
     flatValid_ = true;
     flatFor_ = view;
     return true;

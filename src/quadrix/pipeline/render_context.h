@@ -50,6 +50,9 @@ struct InputRequest {
     // whether primitives that cannot be drawn exactly are an error (--strict).
     std::vector<std::string> topObjects;
     bool strict = false;
+    // Primitives that cannot be drawn are an error unless allowMissing (--allow-missing): then
+    // they are left out with a warning and counted in Inputs() (ImportReport::skipped).
+    bool allowMissing = false;
 };
 
 // Stage 2: the view of one picture.

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 namespace quadrix {
 
 std::string FormatStatsText(const StatsInput& in) {
@@ -17,8 +19,9 @@ std::string FormatStatsText(const StatsInput& in) {
         flat.halfSpaces.size(), in.frame->CoveredCount(), ctx.readSeconds, ctx.flattenSeconds,
         r.seconds, in.shadeWriteSeconds);
     for (const auto& [path, imp] : ctx.Inputs().imports)
-        s += fmt::format("{}: {}, {} solids drawn; {}\n", path, imp.format, imp.solids,
-                         imp.CensusText());
+        s += fmt::format("{}: {}, {} solids drawn; {}{}{}\n", path, imp.format, imp.solids,
+                         imp.CensusText(),
+                         imp.skipped.empty() ? "" : "; left out: ", imp.SkippedText());
     for (const UndrawnSolid& u : r.byReference)
         s += fmt::format("  by raycast: solid '{}' ({})\n",
                          flat.solids[static_cast<std::size_t>(u.solid)].name, u.reason);
@@ -46,6 +49,13 @@ std::string FormatStatsJson(const StatsInput& in) {
                     {"flatten", ctx.flattenSeconds},
                     {"render", r.seconds},
                     {"shade_write", in.shadeWriteSeconds}};
+    json imports = json::array();
+    for (const auto& [path, imp] : ctx.Inputs().imports)
+        imports.push_back({{"path", path},
+                           {"format", imp.format},
+                           {"solids", imp.solids},
+                           {"left_out", imp.skipped}});  // --allow-missing: type → count
+    j["imports"] = imports;
     json byRef = json::array();
     for (const UndrawnSolid& u : r.byReference)
         byRef.push_back({{"solid", flat.solids[static_cast<std::size_t>(u.solid)].name},
@@ -53,7 +63,13 @@ std::string FormatStatsJson(const StatsInput& in) {
     j["composition"] = {{"solids_by_raycast", byRef},
                         {"freeforms_by_isocurve", r.freeformsByIsocurve}};
     json counters = json::object();
-    for (const auto& [name, value] : r.stats.counters) counters[name] = value;
+    for (const auto& [name, value] : r.stats.counters) {
+        // Counts as integers, measures as numbers.
+        if (value == std::floor(value) && std::fabs(value) < 9007199254740992.0)
+            counters[name] = static_cast<long long>(value);
+        else
+            counters[name] = value;
+    }
     j["counters"] = counters;
     j["warnings"] = r.stats.warnings;
     j["notes"] = r.notes;

@@ -23,6 +23,13 @@ std::string ImportReport::CensusText() const {
     return s.empty() ? "no primitives" : s;
 }
 
+std::string ImportReport::SkippedText() const {
+    std::string s;
+    for (const auto& [type, n] : skipped)
+        s += fmt::format("{}{} ×{}", s.empty() ? "" : ", ", type, n);
+    return s;
+}
+
 namespace {
 
 // Limits that keep a hostile or exploding file from exhausting memory.
@@ -251,6 +258,8 @@ class Converter {
                                         ? cr.censusName + " (degenerate)"
                                         : cr.censusName;
                 ++report_.skipped[label];
+                if (cr.status == ConvertResult::Status::kNonQuadric)
+                    missing_.push_back({primIndex, cr.censusName, cr.problem});
                 if (cr.status == ConvertResult::Status::kInvalid)
                     diags_.Warning(p.loc,
                                    fmt::format("primitive '{}' ({}) is degenerate: {}; "
@@ -556,25 +565,39 @@ class Converter {
         }
     }
 
+    // Deliverable "nothing dropped silently" (brlcad_import.h ImportOptions): one error per
+    // primitive that is not drawn (the first kMaxNamed, then a count), or with allowMissing one
+    // warning with the counts by type.
     void ReportSkipped() {
         if (report_.skipped.empty()) return;
-        std::string list;
-        int total = 0;
-        for (const auto& [type, n] : report_.skipped) {
-            list += fmt::format("{}{} ×{}", list.empty() ? "" : ", ", type, n);
-            total += n;
-        }
         SourceLoc loc;
         loc.file = file_;
-        if (options_.strict)
-            diags_.Error(loc, fmt::format("{} primitive{} cannot be drawn exactly with quadrics "
-                                          "and planes: {} (--strict)",
-                                          total, total == 1 ? "" : "s", list));
-        else
-            diags_.Warning(loc, fmt::format("{} primitive{} left out (not quadric or planar): "
-                                            "{}; the model is drawn without them (--strict makes "
-                                            "this an error)",
-                                            total, total == 1 ? "" : "s", list));
+        int total = 0;
+        for (const auto& [type, n] : report_.skipped) total += n;
+        if (missing_.empty()) return;  // only degenerate primitives: warned one by one
+        if (options_.MissingIsError()) {
+            constexpr std::size_t kMaxNamed = 20;
+            for (std::size_t i = 0; i < missing_.size() && i < kMaxNamed; ++i) {
+                const Primitive& p = db_.primitives[missing_[i].prim];
+                std::string where =
+                    p.byteOffset >= 0 ? fmt::format(" (object at byte {})", p.byteOffset) : "";
+                diags_.Error(p.loc,
+                             fmt::format("primitive '{}' ({}){} cannot be drawn: {}; the render "
+                                         "stops (--allow-missing draws the model without it)",
+                                         p.name, missing_[i].label, where,
+                                         missing_[i].why.empty()
+                                             ? std::string("it is not made of quadrics and planes")
+                                             : missing_[i].why),
+                             p.sourceLine);
+            }
+            if (missing_.size() > kMaxNamed)
+                diags_.Error(loc, fmt::format("... and {} more primitives that cannot be drawn",
+                                              missing_.size() - kMaxNamed));
+            return;
+        }
+        diags_.Warning(loc, fmt::format("{} primitive{} left out (--allow-missing): {}; the model "
+                                        "is drawn without them",
+                                        total, total == 1 ? "" : "s", report_.SkippedText()));
     }
 
   public:
@@ -590,6 +613,11 @@ class Converter {
     std::vector<char> combOnPath_;
     std::vector<std::optional<ConvertResult>> converted_;
     std::set<int> reachedSkipped_;
+    struct Missing {
+        int prim;
+        std::string label, why;
+    };
+    std::vector<Missing> missing_;  // reached, not drawable, in the order they were reached
     std::set<std::string> warnedMissing_;
     std::map<std::array<double, 17>, int> leafCache_;
     std::string refParent_;
@@ -603,6 +631,25 @@ bool ImportBrlcad(std::string_view text, const std::string& file, const ImportOp
                   scene::Scene& scene, Diagnostics& diags, ImportReport& report) {
     Database db;
     bool ok = false;
+    if (IsV5Binary(text)) {
+        ok = ParseG(text, file, db, diags);
+        report.format = "BRL-CAD v5 binary";
+        report.title = db.title;
+        if (!ok) return false;
+        Converter conv(db, options, scene, diags, report);
+        conv.file_ = std::make_shared<const std::string>(file);
+        return conv.Run() && !diags.HasErrors();
+    }
+    if (!text.empty() && text[0] == 'I' &&
+        text.substr(0, 128).find('\0') != std::string_view::npos) {
+        // A v4 binary ident record ('I', a units byte, "v4", NUL padding): text never has NULs.
+        SourceLoc loc;
+        loc.file = std::make_shared<const std::string>(file);
+        diags.Error(loc,
+                    "a BRL-CAD v4 binary database: only v5 binary files are read; upgrade it "
+                    "with BRL-CAD's dbupgrade, or dump it with g2asc");
+        return false;
+    }
     switch (DetectFormat(text)) {
         case TextFormat::kV4:
             ok = ParseV4(text, file, db, diags);
@@ -622,8 +669,9 @@ bool ImportBrlcad(std::string_view text, const std::string& file, const ImportOp
             loc.line = 1;
             loc.column = 1;
             diags.Error(loc,
-                        "not a BRL-CAD ASCII database: expected 'I <units> v4' (v4), a "
-                        "title/units/put command (v5) or a COMGEOM deck");
+                        "not a BRL-CAD database: expected 'I <units> v4' (v4), a "
+                        "title/units/put command (v5), a COMGEOM deck or the v5 binary header "
+                        "(a .g file)");
             return false;
         }
     }

@@ -28,8 +28,21 @@ struct Primitive {
     Vec3 V, H, A, B, C, D, N;
     double r = 0, r1 = 0, r2 = 0, c = 0, d = 0, b = 0, bnr = 0, rv = 0, rh = 0;
     std::vector<Plane> planes;  // arbn, already as Quadrix planes (inside <= 0)
+    // tor: V, H (unit normal), r1 = r_a (ring radius), r2 = r_h (tube radius).
+    // eto: V, N, C, r, rd.
+    double rd = 0;
+    // bot (triangle mesh, FORMAT.md §3.1): vertices, 0-based triangles, mode (1 surface, 2 solid,
+    // 3 plate, 4 plate without obliquity), orientation (1 unoriented, 2 counter-clockwise seen
+    // from outside, 3 clockwise), and in plate modes one thickness and one "appended" flag
+    // (thickness on one side instead of centred) per face.
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> faces;
+    int botMode = 2, botOrientation = 1;
+    std::vector<double> thickness;
+    std::vector<char> faceAppended;
     SourceLoc loc;
     std::string sourceLine;
+    long long byteOffset = -1;  // binary .g: where the object starts (loc has no line there)
 };
 
 // A node of a combination's boolean tree (v5 form; v4 GIFT lists are converted to it).
@@ -54,6 +67,7 @@ struct Combination {
     int root = -1;  // -1: an empty combination
     SourceLoc loc;
     std::string sourceLine;
+    long long byteOffset = -1;
 };
 
 struct ColorTableEntry {

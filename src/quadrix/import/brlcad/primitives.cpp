@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "quadrix/import/brlcad/mesh_solid.h"
+
 namespace quadrix::import::brlcad {
 
 namespace {
@@ -152,9 +154,62 @@ ConvertResult Arbn(const Primitive& p) {
         body.push_back(h);
     }
     r.shape.bodies.push_back(std::move(body));
-    // The extent of an arbn is the box of its vertices; without a vertex enumeration we fall
-    // back to "unbounded" for the fit (the renderer bounds the planes itself).
-    r.shape.unbounded = true;
+    // The extent of an arbn (a bounded convex polyhedron, as librt requires) is the box of its
+    // vertices: every point where three planes meet and no plane is violated (rt_arbn_prep does
+    // the same enumeration). Tolerance relative to the planes' offsets.
+    std::vector<Plane> u;
+    double scale = 0;
+    for (const Plane& pl : p.planes) {
+        double n = Length(pl.Normal());
+        u.push_back(Plane{pl.a / n, pl.b / n, pl.c / n, pl.d / n});
+        scale = std::fmax(scale, std::fabs(pl.d / n));
+    }
+    const double tol = 1e-9 * std::fmax(scale, 1.0);
+    const std::size_t n = u.size();
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
+            for (std::size_t k = j + 1; k < n; ++k) {
+                const Vec3 a = u[i].Normal(), b = u[j].Normal(), c = u[k].Normal();
+                const double det = Dot(a, Cross(b, c));
+                if (std::fabs(det) < 1e-12) continue;
+                // x = (-d_i (b×c) - d_j (c×a) - d_k (a×b)) / det
+                const Vec3 x =
+                    (Cross(b, c) * -u[i].d + Cross(c, a) * -u[j].d + Cross(a, b) * -u[k].d) / det;
+                bool in = true;
+                for (const Plane& q : u) in = in && q.Evaluate(x) <= tol;
+                if (in) r.shape.extent.push_back({x, {}, {}, {}});
+            }
+    if (r.shape.extent.size() < 4) return Invalid(p, "its planes bound no solid");
+    return r;
+}
+
+// bot (mesh_solid.h): solid mode (and surface mode when the mesh is closed) → the solid it
+// bounds; plate mode with centred faces → prisms. Appended plates and plate_nocos put the
+// thickness along each ray (FASTGEN), which is not a fixed solid: not drawn.
+ConvertResult Bot(const Primitive& p) {
+    ConvertResult r;
+    r.censusName = "bot";
+    auto refuse = [&](std::string why) {
+        r.status = ConvertResult::Status::kNonQuadric;
+        r.problem = std::move(why);
+        return r;
+    };
+    MeshSolid m;
+    if (p.botMode == 3 || p.botMode == 4) {
+        bool appended = false;
+        for (char a : p.faceAppended) appended = appended || a;
+        if (p.botMode == 4 || appended)
+            return refuse(
+                "a plate-mode bot whose thickness follows each ray (plate_nocos or "
+                "appended faces) is not a fixed solid");
+        m = PlatesToSolid(p.vertices, p.faces, p.thickness);
+    } else {
+        std::vector<std::vector<int>> faces;
+        for (const auto& f : p.faces) faces.push_back({f[0], f[1], f[2]});
+        m = MeshToSolid(p.vertices, faces);
+    }
+    if (!m.ok) return refuse(m.problem);
+    r.shape = std::move(m.shape);
     return r;
 }
 
@@ -190,6 +245,8 @@ ConvertResult Tgc(const Primitive& p) {
         ConvertResult r;
         r.status = ConvertResult::Status::kNonQuadric;
         r.censusName = "tgc (quartic)";
+        r.problem =
+            "its end ellipses are not similar, which makes a quartic surface (not drawn yet)";
         return r;
     }
     if (la == 0 || lb == 0) {  // apex at the base: describe it from the top end
@@ -206,6 +263,8 @@ ConvertResult Tgc(const Primitive& p) {
         ConvertResult r;
         r.status = ConvertResult::Status::kNonQuadric;
         r.censusName = "tgc (quartic)";
+        r.problem =
+            "its end ellipses are not similar, which makes a quartic surface (not drawn yet)";
         return r;
     }
     LocalFrame f(v, a, b, h);
@@ -376,6 +435,8 @@ ConvertResult ConvertPrimitive(const Primitive& p) {
         r = Arb8(p);
     else if (t == "arbn")
         r = Arbn(p);
+    else if (t == "bot")
+        r = Bot(p);
     else if (t == "half")
         r = Half(p);
     else if (t == "ell")
@@ -394,8 +455,13 @@ ConvertResult ConvertPrimitive(const Primitive& p) {
         r = Hyp(p);
     else if (t == "part")
         r = Part(p);
-    else
+    else {
         r.status = ConvertResult::Status::kNonQuadric;
+        r.problem = t == "tor"    ? "a torus is a quartic surface (not drawn yet)"
+                    : t == "eto"  ? "an elliptical torus is a quartic surface (not drawn yet)"
+                    : t == "pipe" ? "a pipe's bends are tori, quartic surfaces (not drawn yet)"
+                                  : "this primitive type is not made of quadrics and planes";
+    }
     if (r.censusName.empty()) r.censusName = t;
     return r;
 }

@@ -22,6 +22,11 @@ bool ParseV4(std::string_view text, const std::string& file, Database& db, Diagn
 bool ParseV5(std::string_view text, const std::string& file, Database& db, Diagnostics& diags);
 bool ParseComgeom(std::string_view text, const std::string& file, Database& db, Diagnostics& diags);
 
+// The binary v5 database (g_reader.cpp; layout in g_format.h). IsV5Binary: the file starts with
+// the v5 header object (76 01 .. 35).
+bool IsV5Binary(std::string_view bytes);
+bool ParseG(std::string_view bytes, const std::string& file, Database& db, Diagnostics& diags);
+
 // One member of a GIFT-precedence list (v4 'M' records, COMGEOM region cards).
 struct GiftMember {
     char op = 'u';  // 'u' union, '+' intersection, '-' difference

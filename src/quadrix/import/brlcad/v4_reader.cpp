@@ -187,11 +187,16 @@ class V4Reader {
                 p.type = "hyp";
                 p.V = vec(0), p.H = vec(1), p.A = vec(2), p.b = v[9], p.bnr = v[10];
                 break;
-            case 16:
+            case 16:  // V H A B C D E F: H is the normal scaled to r2, |A| = r1 (FORMAT.md §2.3)
                 p.type = "tor";
+                p.V = vec(0);
+                p.r2 = Length(vec(1));
+                p.H = p.r2 > 0 ? vec(1) / p.r2 : vec(1);
+                p.r1 = Length(vec(2));
                 break;
-            case 30:
+            case 30:  // V N C r rd
                 p.type = "eto";
+                p.V = vec(0), p.N = vec(1), p.C = vec(2), p.r = v[9], p.rd = v[10];
                 break;
             case 31:
                 p.type = "grip";

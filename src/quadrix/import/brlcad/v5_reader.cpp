@@ -6,6 +6,7 @@
 // reported at their own line and column.
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -279,6 +280,12 @@ class V5Reader {
             vec("V", p.V), vec("H", p.H), vec("A", p.A), num("b", p.b), num("bnr", p.bnr);
         } else if (type == "part") {
             vec("V", p.V), vec("H", p.H), num("r_v", p.rv), num("r_h", p.rh);
+        } else if (type == "tor") {
+            vec("V", p.V), vec("H", p.H), num("r_a", p.r1), num("r_h", p.r2);
+        } else if (type == "eto") {
+            vec("V", p.V), vec("N", p.N), vec("C", p.C), num("r", p.r), num("r_d", p.rd);
+        } else if (type == "bot") {
+            ok = Bot(w, kv, what, p);
         } else if (type == "arbn") {
             double n = 0;
             num("N", n);
@@ -309,6 +316,106 @@ class V5Reader {
             }
         }
         if (ok) db_.AddPrimitive(std::move(p));
+    }
+
+    // bot: mode surf|volume|plate|plate_nocos (or 1-4), orient no|rh|lh (or 1-3), V {{x y z}
+    // ...}, F {{a b c} ...}, in plate modes T {t ...} and fm (hex bit vector, bit i = face i
+    // appended).
+    bool Bot(const std::vector<Word>& w, const std::map<std::string, Word>& kv,
+             const std::string& what, Primitive& p) {
+        auto word = [&](const char* key) -> const Word* {
+            auto it = kv.find(key);
+            return it == kv.end() ? nullptr : &it->second;
+        };
+        const Word* mode = word("mode");
+        const Word* orient = word("orient");
+        const Word* verts = word("V");
+        const Word* faces = word("F");
+        if (!mode || !verts || !faces) {
+            Error(w[0].offset, fmt::format("{}: a bot needs mode, V and F", what));
+            return false;
+        }
+        static const std::map<std::string_view, int> kModes = {
+            {"surf", 1}, {"volume", 2}, {"plate", 3}, {"plate_nocos", 4},
+            {"1", 1},    {"2", 2},      {"3", 3},     {"4", 4}};
+        static const std::map<std::string_view, int> kOrients = {{"no", 1}, {"rh", 2}, {"lh", 3},
+                                                                 {"1", 1},  {"2", 2},  {"3", 3}};
+        auto m = kModes.find(mode->text);
+        if (m == kModes.end()) {
+            Error(mode->offset, fmt::format("{}: unknown bot mode '{}' (surf, volume, plate or "
+                                            "plate_nocos)",
+                                            what, mode->text));
+            return false;
+        }
+        p.botMode = m->second;
+        if (orient) {
+            auto o = kOrients.find(orient->text);
+            if (o == kOrients.end()) {
+                Error(orient->offset, fmt::format("{}: unknown bot orientation '{}' (no, rh or lh)",
+                                                  what, orient->text));
+                return false;
+            }
+            p.botOrientation = o->second;
+        }
+        auto vl = List(*verts);
+        if (!vl) return false;
+        for (const Word& v : *vl) {
+            Vec3 x;
+            if (!Vector(v, x, what + " V")) return false;
+            p.vertices.push_back(x);
+        }
+        auto fl = List(*faces);
+        if (!fl) return false;
+        for (const Word& f : *fl) {
+            Vec3 x;
+            if (!Vector(f, x, what + " F")) return false;
+            std::array<int, 3> tri{};
+            for (int k = 0; k < 3; ++k) {
+                if (x[k] != std::floor(x[k]) || x[k] < 0 ||
+                    x[k] >= static_cast<double>(p.vertices.size())) {
+                    Error(f.offset, fmt::format("{}: face vertex {} is not one of the {} vertices",
+                                                what, x[k], p.vertices.size()));
+                    return false;
+                }
+                tri[k] = static_cast<int>(x[k]);
+            }
+            p.faces.push_back(tri);
+        }
+        if (p.botMode >= 3) {
+            const Word* t = word("T");
+            auto tl = t ? List(*t) : std::optional<std::vector<Word>>{};
+            if (!tl || tl->size() != p.faces.size()) {
+                Error(
+                    t ? t->offset : w[0].offset,
+                    fmt::format("{}: a plate-mode bot needs T with one thickness per face", what));
+                return false;
+            }
+            for (const Word& x : *tl) {
+                double th = 0;
+                if (!Number(x, th, what + " T")) return false;
+                p.thickness.push_back(th);
+            }
+            p.faceAppended.assign(p.faces.size(), 0);
+            if (const Word* fm = word("fm")) {
+                // bu_bitv hex: the last hex digit holds bits 0-3.
+                std::string_view hex = fm->text;
+                if (hex.substr(0, 2) == "0x" || hex.substr(0, 2) == "0X") hex.remove_prefix(2);
+                for (std::size_t i = 0; i < hex.size(); ++i) {
+                    char ch = hex[hex.size() - 1 - i];
+                    int v = std::isdigit(static_cast<unsigned char>(ch)) ? ch - '0'
+                            : (ch | 32) >= 'a' && (ch | 32) <= 'f'       ? (ch | 32) - 'a' + 10
+                                                                         : -1;
+                    if (v < 0) {
+                        Error(fm->offset,
+                              fmt::format("{}: fm '{}' is not hexadecimal", what, fm->text));
+                        return false;
+                    }
+                    for (int b = 0; b < 4; ++b)
+                        if (v >> b & 1 && 4 * i + b < p.faces.size()) p.faceAppended[4 * i + b] = 1;
+                }
+            }
+        }
+        return true;
     }
 
     // Deepest combination tree accepted. The parser below keeps its own stack (no recursion,

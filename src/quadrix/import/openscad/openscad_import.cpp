@@ -23,8 +23,10 @@
 #include <map>
 #include <optional>
 
+#include "quadrix/import/brlcad/mesh_solid.h"
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
+#include "quadrix/import/openscad/polygon_solids.h"
 #include "quadrix/import/scene_input.h"
 
 namespace quadrix::import {
@@ -203,14 +205,16 @@ class Parser {
             return Fail(n.offset, fmt::format("'{}' is not supported: this reader takes the CSG "
                                               "subset written by 'openscad -o model.csg'",
                                               name));
-        if (Peek('=')) {  // a special-variable assignment such as $fn = 64; (ignored)
+        if (Peek('=')) {  // a special-variable assignment such as $fn = 6; for its scope
             ++i_;
             Value v;
             if (!ParseValue(v, 0)) return false;
             if (name[0] != '$')
                 return Fail(n.offset, fmt::format("variable '{}': variables are not supported, "
-                                                  "only $fn/$fa/$fs-style settings (ignored)",
+                                                  "only $fn/$fa/$fs-style settings",
                                                   name));
+            n.name = "=";
+            n.args.push_back({name, std::move(v), n.offset});
             return Expect(';', "after the assignment");
         }
         n.name = name;
@@ -305,8 +309,9 @@ class Builder {
         : map_(map), options_(options), scene_(scene), diags_(diags), report_(report) {}
 
     void Top(const std::vector<Node>& nodes, const Mat4& m, std::optional<scene::Color> color) {
+        SpecialsScope scope(*this, nodes);
         for (const Node& n : nodes) {
-            if (n.dropped) continue;
+            if (n.dropped || n.name == "=") continue;
             // Unions at the top level are split so that each part is its own named solid.
             if (n.name.empty() || n.name == "group" || n.name == "union") {
                 Top(n.children, m, color);
@@ -337,6 +342,16 @@ class Builder {
             diags_.Error(map_.At(n.offset), message + " (--strict)", map_.LineText(n.offset));
         else
             diags_.Warning(map_.At(n.offset), message, map_.LineText(n.offset));
+    }
+    // A statement that is not drawn: an error unless --allow-missing (brlcad_import.h).
+    void Missing(const Node& n, const std::string& message) {
+        if (options_.MissingIsError())
+            diags_.Error(map_.At(n.offset),
+                         message + " (--allow-missing draws the model without it)",
+                         map_.LineText(n.offset));
+        else
+            diags_.Warning(map_.At(n.offset), message + " (--allow-missing)",
+                           map_.LineText(n.offset));
     }
     void Error(std::size_t at, const std::string& message) {
         diags_.Error(map_.At(at), message, map_.LineText(at));
@@ -493,6 +508,14 @@ class Builder {
              const std::optional<scene::Color>& color, Box3& box) {
         brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
         if (cr.status != brlcad::ConvertResult::Status::kOk) return -1;  // zero sizes: nothing
+        return LeafShape(csg, n, cr.shape, m, color, box);
+    }
+
+    int LeafShape(scene::Csg& csg, const Node& n, const brlcad::Shape& shape, const Mat4& m,
+                  const std::optional<scene::Color>& color, Box3& box) {
+        struct {
+            const brlcad::Shape& shape;
+        } cr{shape};
         Mat4 total = QuadrixFromZUp() * m;
         auto t = Transform::FromMatrix(total);
         if (!t) {
@@ -549,6 +572,9 @@ class Builder {
             if (!Positive(n, "r", r)) return -1;
             p.type = "ell";
             p.A = {r, 0, 0}, p.B = {0, r, 0}, p.C = {0, 0, r};
+            if (auto sides = scad::PolygonSides(r, SpecialsOf(n)); sides && r > 0)
+                if (auto shape = scad::PolygonalSphere(r, *sides))
+                    return LeafShape(csg, n, *shape, m, color, box);
             return Leaf(csg, n, p, m, color, box);
         }
         if (k == "cube") {
@@ -585,8 +611,18 @@ class Builder {
             p.type = "tgc";
             p.V = {0, 0, z0}, p.H = {0, 0, h};
             p.A = {r1, 0, 0}, p.B = {0, r1, 0}, p.C = {r2, 0, 0}, p.D = {0, r2, 0};
+            if (auto sides = scad::PolygonSides(std::fmax(r1, r2), SpecialsOf(n));
+                sides && h > 0 && std::fmax(r1, r2) > 0)
+                return LeafShape(csg, n, scad::PolygonalCylinder(r1, r2, z0, h, *sides), m, color,
+                                 box);
             return Leaf(csg, n, p, m, color, box);
         }
+        if (k == "polyhedron") return Polyhedron(csg, n, m, color, box);
+        if (k == "linear_extrude" || k == "rotate_extrude") return Extrude(csg, n, m, color, box);
+        if (k == "square" || k == "circle" || k == "polygon")
+            return Refuse(n, fmt::format("'{}' is a 2D shape outside linear_extrude or "
+                                         "rotate_extrude; it is left out",
+                                         k));
         if (k == "color") {
             auto c = ColorOf(n);
             return Children(csg, n, m, c ? c : color, scene::CsgOp::kUnion, box);
@@ -600,9 +636,9 @@ class Builder {
             return Children(csg, n, m * *t, color, scene::CsgOp::kUnion, box);
         if (failed_) return -1;
         ++report_.skipped[k];
-        Warn(n, fmt::format("'{}' cannot be drawn exactly with quadrics and planes; it is left "
-                            "out",
-                            k));
+        Missing(n, fmt::format("'{}' cannot be drawn exactly with quadrics and planes; it is left "
+                               "out",
+                               k));
         return -1;
     }
 
@@ -610,10 +646,11 @@ class Builder {
                  const std::optional<scene::Color>& color, scene::CsgOp op, Box3& box) {
         int acc = -1;
         bool first = true;
+        SpecialsScope scope(*this, n.children);
         for (const Node& c : n.children) {
-            if (c.dropped) continue;
+            if (c.dropped || c.name == "=") continue;
             Box3 cb;
-            int e = Emit(csg, c, m, color, cb);
+            int e = extrusion_ ? Emit2D(csg, c, m, color, cb) : Emit(csg, c, m, color, cb);
             if (op == scene::CsgOp::kUnion) {
                 if (e >= 0) {
                     acc = acc < 0 ? e : Op(csg, op, acc, e);
@@ -640,12 +677,261 @@ class Builder {
         return acc;
     }
 
+    // --- $fn/$fa/$fs, polyhedron and extrusions (polygon_solids.h, brlcad/mesh_solid.h) ---
+
+    // The specials of a scope: the enclosing ones overridden by the scope's assignments (the last
+    // assignment of a name holds for the whole scope, as in OpenSCAD).
+    class SpecialsScope {
+      public:
+        SpecialsScope(Builder& b, const std::vector<Node>& nodes) : b_(b) {
+            scad::Specials s = b.specials_.back();
+            for (const Node& n : nodes)
+                if (n.name == "=" && !n.args.empty()) SetSpecial(s, n.args[0]);
+            b.specials_.push_back(s);
+        }
+        ~SpecialsScope() { b_.specials_.pop_back(); }
+        SpecialsScope(const SpecialsScope&) = delete;
+        SpecialsScope& operator=(const SpecialsScope&) = delete;
+
+      private:
+        Builder& b_;
+    };
+    static void SetSpecial(scad::Specials& s, const Arg& a) {
+        if (a.value.kind != Value::Kind::kNumber) return;
+        if (a.name == "$fn") s.fn = a.value.number;
+        if (a.name == "$fa") s.fa = a.value.number;
+        if (a.name == "$fs") s.fs = a.value.number;
+    }
+    scad::Specials SpecialsOf(const Node& n) const {
+        scad::Specials s = specials_.back();
+        for (const Arg& a : n.args) SetSpecial(s, a);
+        return s;
+    }
+
+    int Refuse(const Node& n, const std::string& message) {
+        ++report_.skipped[n.name];
+        Missing(n, message);
+        return -1;
+    }
+
+    // polyhedron(points, faces | triangles): the solid the closed mesh bounds.
+    int Polyhedron(scene::Csg& csg, const Node& n, const Mat4& m,
+                   const std::optional<scene::Color>& color, Box3& box) {
+        ++report_.census[n.name];
+        const Value* pts = Find(n, "points", 0);
+        const Value* faces = Find(n, "faces", 1);
+        if (!faces) faces = Find(n, "triangles", -1);
+        std::vector<Vec3> v;
+        std::vector<std::vector<int>> f;
+        bool ok = pts && faces && pts->kind == Value::Kind::kVector &&
+                  faces->kind == Value::Kind::kVector;
+        for (std::size_t i = 0; ok && i < pts->items.size(); ++i) {
+            const Value& p = pts->items[i];
+            ok = p.kind == Value::Kind::kVector && p.items.size() == 3;
+            Vec3 x;
+            for (std::size_t k = 0; ok && k < 3; ++k) {
+                ok = p.items[k].kind == Value::Kind::kNumber;
+                if (ok) x[k] = p.items[k].number;
+            }
+            v.push_back(x);
+        }
+        for (std::size_t i = 0; ok && i < faces->items.size(); ++i) {
+            const Value& fc = faces->items[i];
+            ok = fc.kind == Value::Kind::kVector;
+            std::vector<int> idx;
+            for (std::size_t k = 0; ok && k < fc.items.size(); ++k) {
+                ok = fc.items[k].kind == Value::Kind::kNumber &&
+                     fc.items[k].number == std::floor(fc.items[k].number);
+                if (ok) idx.push_back(static_cast<int>(fc.items[k].number));
+            }
+            f.push_back(std::move(idx));
+        }
+        if (!ok) {
+            Error(n.offset,
+                  "polyhedron: 'points' must be [[x, y, z], ...] and 'faces' a list of "
+                  "vertex-index lists");
+            return -1;
+        }
+        brlcad::MeshSolid ms = brlcad::MeshToSolid(v, f);
+        if (!ms.ok) return Refuse(n, fmt::format("polyhedron: {}; it is left out", ms.problem));
+        return LeafShape(csg, n, ms.shape, m, color, box);
+    }
+
+    // linear_extrude / rotate_extrude: the 2D children (square, circle, polygon, their
+    // transforms and booleans) become 3D leaves combined by the same booleans, which commute
+    // with both extrusions.
+    int Extrude(scene::Csg& csg, const Node& n, const Mat4& m,
+                const std::optional<scene::Color>& color, Box3& box) {
+        ++report_.census[n.name];
+        if (extrusion_) return Refuse(n, fmt::format("'{}' inside another extrusion", n.name));
+        Extrusion e;
+        e.node = &n;
+        e.outer = m;
+        if (n.name == "linear_extrude") {
+            const double h = Num(n, "height", 0).value_or(100);
+            const double twist = Num(n, "twist", -1).value_or(0);
+            const Value* sc = Find(n, "scale", -1);
+            if (sc && sc->kind == Value::Kind::kNumber) {
+                e.scale = sc->number;
+            } else if (sc && sc->kind == Value::Kind::kVector && sc->items.size() == 2 &&
+                       sc->items[0].kind == Value::Kind::kNumber &&
+                       sc->items[1].kind == Value::Kind::kNumber) {
+                if (sc->items[0].number != sc->items[1].number)
+                    return Refuse(n,
+                                  "linear_extrude with a non-uniform scale sweeps twisted "
+                                  "(ruled) sides, which are not planes; it is left out");
+                e.scale = sc->items[0].number;
+            }
+            if (twist != 0)
+                return Refuse(n,
+                              "linear_extrude with twist ≠ 0 sweeps twisted (ruled) sides, "
+                              "which are not quadrics or planes; it is left out");
+            if (!(e.scale >= 0))
+                return Refuse(n, "linear_extrude: a negative scale; it is left out");
+            if (!(h > 0)) return -1;  // nothing to extrude
+            e.h = h;
+            e.z0 = Flag(n, "center", -1) ? -h / 2 : 0;
+        } else {
+            const double angle = Num(n, "angle", -1).value_or(360);
+            if (std::fabs(angle) != 360)
+                return Refuse(n,
+                              "rotate_extrude with an angle other than 360° is not supported; "
+                              "it is left out");
+            e.rotate = true;
+        }
+        extrusion_ = e;
+        int root = Children(csg, n, Mat4::Identity(), color, scene::CsgOp::kUnion, box);
+        extrusion_.reset();
+        return root;
+    }
+
+    // A node of the 2D profile under an extrusion; m2 places it in the extrusion's plane.
+    int Emit2D(scene::Csg& csg, const Node& n, const Mat4& m2,
+               const std::optional<scene::Color>& color, Box3& box) {
+        box = Box3{};
+        if (n.dropped || failed_) return -1;
+        const std::string& k = n.name;
+        if (k == "square" || k == "circle" || k == "polygon")
+            return Profile(csg, n, m2, color, box);
+        if (k == "color") {
+            auto c = ColorOf(n);
+            return Children(csg, n, m2, c ? c : color, scene::CsgOp::kUnion, box);
+        }
+        if (k.empty() || k == "group" || k == "union" || k == "render" || k == "children")
+            return Children(csg, n, m2, color, scene::CsgOp::kUnion, box);
+        if (k == "difference") return Children(csg, n, m2, color, scene::CsgOp::kDifference, box);
+        if (k == "intersection")
+            return Children(csg, n, m2, color, scene::CsgOp::kIntersection, box);
+        if (auto t = TransformOf(n))
+            return Children(csg, n, m2 * *t, color, scene::CsgOp::kUnion, box);
+        if (failed_) return -1;
+        return Refuse(n, fmt::format("'{}' in the profile of {} cannot be drawn exactly; it is "
+                                     "left out",
+                                     k, extrusion_->node->name));
+    }
+
+    // square, circle, polygon → rings in the extrusion plane → the extruded or revolved shape.
+    int Profile(scene::Csg& csg, const Node& n, const Mat4& m2,
+                const std::optional<scene::Color>& color, Box3& box) {
+        ++report_.census[n.name];
+        const Extrusion& e = *extrusion_;
+        const std::string& k = n.name;
+        auto at = [&](double x, double y) {
+            const Vec3 p = m2.MapPoint({x, y, 0});
+            return scad::Pt2{p.x, p.y};
+        };
+        std::vector<scad::Ring> rings;
+        if (k == "square") {
+            const Vec3 s = Vec(n, "size", 0, true).value_or(Vec3{1, 1, 1});
+            const bool centre = Flag(n, "center", 1);
+            const double x0 = centre ? -s.x / 2 : 0, y0 = centre ? -s.y / 2 : 0;
+            rings.push_back(
+                {at(x0, y0), at(x0 + s.x, y0), at(x0 + s.x, y0 + s.y), at(x0, y0 + s.y)});
+        } else if (k == "circle") {
+            double r = Num(n, "r", 0).value_or(1);
+            if (auto d = Num(n, "d", -1)) r = *d / 2;
+            if (!(r > 0)) return -1;
+            auto sides = scad::PolygonSides(r, SpecialsOf(n));
+            if (!sides) {
+                if (e.rotate)
+                    return Refuse(n,
+                                  "rotate_extrude of a circle is a torus (a quartic surface), "
+                                  "which is not drawn yet; it is left out");
+                // The exact circle: an elliptic cylinder (or cone, with scale) in the extrusion.
+                const Vec3 c = m2.MapPoint({0, 0, 0});
+                Vec3 a = m2.MapPoint({r, 0, 0}) - c, b = m2.MapPoint({0, r, 0}) - c;
+                a.z = b.z = 0;
+                brlcad::Primitive p;
+                p.type = "tgc";
+                p.name = k;
+                p.V = {c.x, c.y, e.z0};
+                p.H = {c.x * (e.scale - 1), c.y * (e.scale - 1), e.h};
+                p.A = a, p.B = b, p.C = a * e.scale, p.D = b * e.scale;
+                return Leaf(csg, n, p, e.outer, color, box);
+            }
+            scad::Ring ring;
+            for (const scad::Pt2& q : scad::RegularPolygon(r, *sides)) ring.push_back(at(q.x, q.y));
+            rings.push_back(std::move(ring));
+        } else {
+            const Value* pts = Find(n, "points", 0);
+            const Value* paths = Find(n, "paths", 1);
+            std::vector<scad::Pt2> all;
+            bool ok = pts && pts->kind == Value::Kind::kVector;
+            for (std::size_t i = 0; ok && i < pts->items.size(); ++i) {
+                const Value& q = pts->items[i];
+                ok = q.kind == Value::Kind::kVector && q.items.size() >= 2 &&
+                     q.items[0].kind == Value::Kind::kNumber &&
+                     q.items[1].kind == Value::Kind::kNumber;
+                if (ok) all.push_back(at(q.items[0].number, q.items[1].number));
+            }
+            if (ok && paths && paths->kind == Value::Kind::kVector) {
+                for (const Value& path : paths->items) {
+                    scad::Ring ring;
+                    ok = ok && path.kind == Value::Kind::kVector;
+                    for (std::size_t i = 0; ok && i < path.items.size(); ++i) {
+                        const double x = path.items[i].number;
+                        ok = path.items[i].kind == Value::Kind::kNumber && x >= 0 &&
+                             x < static_cast<double>(all.size()) && x == std::floor(x);
+                        if (ok) ring.push_back(all[static_cast<std::size_t>(x)]);
+                    }
+                    rings.push_back(std::move(ring));
+                }
+            } else if (ok) {
+                rings.push_back(all);
+            }
+            if (!ok) {
+                Error(n.offset,
+                      "polygon: 'points' must be [[x, y], ...] and 'paths' lists of "
+                      "point indices");
+                return -1;
+            }
+        }
+        if (e.rotate) {
+            std::string problem;
+            auto shape = scad::RotateExtrude(rings, &problem);
+            if (!shape)
+                return Refuse(n, fmt::format("rotate_extrude: {}; it is left out", problem));
+            return LeafShape(csg, n, *shape, e.outer, color, box);
+        }
+        return LeafShape(csg, n, scad::LinearExtrude(rings, e.z0, e.h, e.scale), e.outer, color,
+                         box);
+    }
+
     const brlcad::TextMap& map_;
     const ImportOptions& options_;
     scene::Scene& scene_;
     Diagnostics& diags_;
     ImportReport& report_;
     bool failed_ = false;
+    std::vector<scad::Specials> specials_{scad::Specials{}};
+    // Inside linear_extrude/rotate_extrude: the extrusion and the matrix that places its frame.
+    struct Extrusion {
+        bool rotate = false;
+        double z0 = 0, h = 1, scale = 1;
+        const Node* node = nullptr;
+        Mat4 outer = Mat4::Identity();
+    };
+    std::optional<Extrusion> extrusion_;
 };
 
 }  // namespace

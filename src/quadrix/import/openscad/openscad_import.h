@@ -2,8 +2,8 @@
 // exactly: sphere, cylinder (cones with r1/r2), cube, multmatrix/translate/rotate/scale/mirror,
 // union/difference/intersection/group and color become quadrics, planes and CSG solids.
 // $fn/$fa/$fs are accepted and ignored (the curves are exact). Anything else (polyhedron,
-// extrusions, hull, minkowski, text, ...) is reported by name and line and left out; with
-// --strict that is an error (docs/import.md).
+// extrusions, hull, minkowski, text, ...) is an error naming it and its line; with
+// --allow-missing it is left out with a warning (docs/import.md).
 //
 // Coordinates: OpenSCAD is right-handed with Z up; the model is mapped into Quadrix space with
 // QuadrixFromZUp, as BRL-CAD models are.
