@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quadrix/engines/registry.h"
@@ -78,6 +79,45 @@ const std::vector<CorpusScene>& Corpus() {
          "solid box right =from 0 0 0 =to 2 1 1;\n"
          "solid box mid =from -1 0 0 =to 1 1.5 .5;\n"
          "csg joined (left | right | mid); view front dop .3 .4 -1;"},
+        // Issue 23's coincident cases. A − A: two bodies on one sphere, and two spheres with the
+        // same coefficients; nothing is left (the box beside keeps the scene visible).
+        {"a_minus_a",
+         "quadric unit <1 1 1 0 0 0 0 0 0 -1>; body one (unit); body two (unit);\n"
+         "csg none (one - two);\n"
+         "solid sphere ball1 =at 0 0 0 =r 1; solid sphere ball2 =at 0 0 0 =r 1;\n"
+         "csg gone (ball1 - ball2);\n"
+         "solid box side =from 1.5 -1 -1 =to 3 1 1; view front dop .3 .4 -1;"},
+        // A body holding p and !p is the plane z = 0 only: empty as a regular set.
+        {"body_s_p_not_p",
+         "quadric unit <1 1 1 0 0 0 0 0 0 -1>; plane zero <0 0 1 0>;\n"
+         "body thin (unit zero !zero);\n"
+         "solid box side =from 1.5 -1 -1 =to 3 1 1; view front dop .3 .4 -1;"},
+        // Pockets sharing the block's front and back faces (z = 0 and z = 1): the pockets' far
+        // (near) faces show through.
+        {"pockets_shared_faces",
+         "solid box block =from -2 -1 0 =to 2 1 1;\n"
+         "solid box front =from -1.5 -.5 0 =to -.2 .5 .5;\n"
+         "solid box back =from .2 -.5 .5 =to 1.5 .5 1;\n"
+         "csg pocketed (block - front - back); view front dop .3 .4 -1;"},
+        // An intersection and a difference of boxes sharing faces (x = .5, y = -.5, z = 0).
+        {"shared_faces_intersection",
+         "solid box block =from -1 -1 0 =to 1 1 1;\n"
+         "solid box slab =from -2 -.5 0 =to .5 .5 .6;\n"
+         "solid box notch =from 0 -.5 0 =to .5 0 .6;\n"
+         "csg part ((block & slab) - notch); view front dop .3 .4 -1;"},
+        // The coplanar union minus a hole, cut by a front clipping plane: rays start inside, so
+        // the picture shows exits, whose ties go to a union's right operand (interval_list.h).
+        {"coplanar_union_clipped",
+         "solid box left =from -2 0 0 =to 0 1 1;\n"
+         "solid box right =from 0 0 0 =to 2 1 1;\n"
+         "solid box mid =from -1 0 0 =to 1 1.5 .5;\n"
+         "solid box hole =from -.5 .2 0 =to .5 .8 1;\n"
+         "csg joined ((left | right | mid) - hole); view front dop .3 .4 -1 fbp .25 .75;"},
+        // A union of two identical boxes, cut by a front clipping plane: every visible point is
+        // an exact tie, of entries (left operand wins) or, behind the cut, of exits (right wins).
+        {"identical_union_clipped",
+         "solid box one =from -1 -1 -1 =to 1 1 1; solid box two =from -1 -1 -1 =to 1 1 1;\n"
+         "csg twice (one | two); view front dop -.35 .25 -1 fbp -.2 .6;"},
         {"intersection_difference",
          "solid sphere ball =at 0 0 0 =r 1.2;\n"
          "solid box cube =from -1 -1 -1 =to 1 1 1;\n"
@@ -172,13 +212,49 @@ TEST_P(AllEngines, MatchesRaycastThroughTheRenderContext) {
 
 INSTANTIATE_TEST_SUITE_P(Corpus, AllEngines, ::testing::ValuesIn(Cases()), CaseName);
 
+// pixelpowers' paper machine (mode=approx) and its fixed-point depth words (depth-bits=24) on the
+// coincident-face rows: depths are approximate or rounded, but a plane's sheet and its inside test
+// use one formula, a quadric's strips are the same in the sheet and in the inside test, and roots
+// are rounded as ZTEMP is, so coverage and surface ids agree off-edge as in exact mode (depths
+// are not compared: they err by up to the tolerance or half a step).
+TEST(AllEnginesCoincident, PixelPowersApproxAndDepthWordsExactOnCoincidentFaces) {
+    for (const auto& [key, value] :
+         std::vector<std::pair<std::string, std::string>>{{"mode", "approx"}, {"depth-bits", "24"}})
+        for (const char* name :
+             {"doorway_coincident", "a_minus_a", "body_s_p_not_p", "pockets_shared_faces",
+              "shared_faces_intersection", "coplanar_union", "coplanar_union_clipped",
+              "identical_union_clipped"}) {
+            const CorpusScene* scene = nullptr;
+            for (const CorpusScene& s : Corpus())
+                if (s.name == name) scene = &s;
+            ASSERT_NE(scene, nullptr) << name;
+            RenderContext ctx;
+            Diagnostics diags;
+            InputRequest in;
+            in.text = scene->text;
+            in.textName = std::string(name) + ".uq";
+            ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(Size(160, 120), diags)) << name;
+            Frame reference, got;
+            RenderReport refReport, report;
+            ASSERT_TRUE(ctx.Render(Request("raycast"), reference, refReport, diags));
+            EngineRequest approx = Request("pixelpowers");
+            approx.options[key] = value;
+            ASSERT_TRUE(ctx.Render(approx, got, report, diags)) << name;
+            const FrameComparison cmp = CompareFrames(got, reference, {});
+            EXPECT_EQ(cmp.offEdgeDifferences, 0u)
+                << name << " with " << key << "=" << value << ": " << cmp.firstDifference << "\n"
+                << cmp.Summary();
+        }
+}
+
 // With strict, an engine that cannot draw a solid refuses instead of composing.
 TEST(RenderContextComposition, StrictRefusesWhatTheEngineCannotDraw) {
     RenderContext ctx;
     Diagnostics diags;
     InputRequest in;
-    in.text = "solid box cube =from -1 -1 -1 =to 1 1 1; solid sphere ball =at 0 0 0 =r 1.3;"
-              "csg part (cube - ball);";
+    in.text =
+        "solid box cube =from -1 -1 -1 =to 1 1 1; solid sphere ball =at 0 0 0 =r 1.3;"
+        "csg part (cube - ball);";
     ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(Size(64, 64), diags));
     Frame frame;
     RenderReport report;

@@ -11,6 +11,15 @@ namespace quadrix {
 
 using namespace bounds_detail;
 
+namespace {
+double FrobeniusNorm(const double a[3][3]) {
+    double s = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) s += a[i][j] * a[i][j];
+    return std::sqrt(s);
+}
+}  // namespace
+
 Box3 LiteralBox(const FlatHalfSpace& halfSpace, bool complemented) {
     Vec3 centre;
     bool hasCentre;
@@ -200,8 +209,10 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     std::vector<bool> isNappe;
     bool hasOther = false;
     for (const InsideFn& f : shaping) {
-        // Positive semidefinite up to rounding (normalised coefficients, ‖A‖ <= 3).
-        if (f.isPlane || f.lamMin >= -1e-12) {
+        // Positive semidefinite up to rounding, relative to ‖A‖: the coefficients are normalised
+        // by the largest of all ten, so a quadric far from the origin has a tiny A, and a cone
+        // with a distant apex a small but genuine negative eigenvalue.
+        if (f.isPlane || f.lamMin >= -1e-12 * FrobeniusNorm(f.a)) {
             relaxed.push_back(&f);
             nappes.push_back(Nappe{});
             continue;

@@ -28,7 +28,12 @@
 //      for any λ >= 0, any x̂ (r = ∇L(x̂), M = Σλ_i A_i + μ I/R²), evaluated with rounding
 //      allowances; a nappe enters as its supporting plane through the apex. Exact (to ~1e-9 of the
 //      size) for convex bodies: capped and mitered cylinders, capped cones, tubes (whose
-//      complemented inner literal is left out and checked at the extreme point). Measured
+//      complemented inner literal is left out and checked at the extreme point). A quadric counts
+//      as positive semidefinite when λmin(A) >= -1e-12 ‖A‖ (relative to A, not to the largest of
+//      the ten coefficients: a cone far from the origin, whose normalised A is tiny, is not
+//      convex). The relaxation's interior point must stay inside the certified box; when it does
+//      not (rounding allowances overrun by a nearly singular A), the relaxation is discarded and
+//      (b2) bounds every side. Measured
 //      (bounds_test.cpp, -O3, one core of a loaded 2-core machine): ~150-250 µs per mitered pipe
 //      or cone frustum.
 //  (b2) Where (b1) cannot settle a side (a non-convex literal cuts off the relaxation's extreme
@@ -41,7 +46,10 @@
 //      (eigenvalue) bounds, plus a rounding margin; a box is discarded only when some literal (or
 //      a non-negative combination of the undecided ones, with weights making its gradient point
 //      along the searched direction as KKT multipliers do) is certainly > 0. NaN or inf means
-//      "unknown", never "outside". Boxes pop in order of their extreme coordinate, so the popped
+//      "unknown", never "outside". A box is halved across the axis of largest smear
+//      (max |∂f/∂x_i| over the box × h_i, summed over the undecided literals, plus a bonus for the
+//      searched axis): at a box centred on a hyperboloid's axis the gradient vanishes but the
+//      smear does not. Boxes pop in order of their extreme coordinate, so the popped
 //      face is always a valid bound; the search stops when the popped box lies inside the set
 //      (exact), within relTolerance × (size of the certified inner box) of a point of the set,
 //      or when the box budget is spent (still conservative). A capped one-sheet hyperboloid

@@ -45,8 +45,8 @@ Local EvaluateLocal(const InsideFn& f, const double c[3]);
 struct Range {
     double lo, hi, margin;
 };
-// The centred form over |d_i| <= h_i (bounds.h). `slack` (optional) receives each axis' share
-// of what lowers the lower bound.
+// The centred form over |d_i| <= h_i (bounds.h). `slack` (optional) receives each axis' smear
+// (max |∂f/∂x_i| over the box times h_i), which says where to split.
 Range RangeFromLocal(const Local& l, const double a[3][3], double lamMin, double lamMax,
                      const double h[3], double* slack);
 

@@ -149,8 +149,10 @@ Local EvaluateLocal(const InsideFn& f, const double c[3]) {
 }
 
 // The centred form over |d_i| <= h_i (bounds.h): f(c+d) = f(c) + g·d + dᵀAd with the tighter of
-// the entrywise and the Rayleigh bounds for dᵀAd. `slack` (optional) receives each axis' share
-// of what lowers the lower bound, used to choose the split axis.
+// the entrywise and the Rayleigh bounds for dᵀAd. `slack` (optional) receives each axis' smear,
+// max |∂f/∂x_i| over the box times h_i = (|g_i| + 2 Σ_j |a_ij| h_j) h_i, used to choose the split
+// axis. (Only what lowers the lower bound is not enough: at a cell centred on a saddle's or an
+// ellipse's axis, x² only raises the upper bound, yet halving x is what excludes the children.)
 Range RangeFromLocal(const Local& l, const double a[3][3], double lamMin, double lamMax,
                      const double h[3], double* slack) {
     double lini[3], lin = 0;
@@ -175,8 +177,11 @@ Range RangeFromLocal(const Local& l, const double a[3][3], double lamMin, double
     double qlo = std::fmax(qloE, std::fmin(0.0, lamMin) * hh);
     double qhi = std::fmin(qhiE, std::fmax(0.0, lamMax) * hh);
     if (slack) {
-        for (int i = 0; i < 3; ++i)
-            slack[i] = lini[i] + (hh > 0 && qlo < 0 ? -qlo * (h[i] * h[i] / hh) : 0.0);
+        for (int i = 0; i < 3; ++i) {
+            double dmax = std::fabs(l.g[i]);
+            for (int j = 0; j < 3; ++j) dmax += 2 * std::fabs(a[i][j]) * h[j];
+            slack[i] = dmax * h[i];
+        }
     }
     double mag = l.mag + lin + std::fabs(qlo) + std::fabs(qhi);
     return {l.v - lin + qlo, l.v + lin + qhi, 32 * kEps * mag};
@@ -362,10 +367,12 @@ Nappe DetectNappe(const InsideFn& f) {
     double big = std::fmax(std::fabs(vals[0]), std::fabs(vals[2]));
     // Exactly one clearly negative eigenvalue, the others clearly positive.
     if (!(big > 0) || !(vals[0] < -1e-9 * big) || !(vals[1] > 1e-9 * big)) return n;
+    // The apex -A⁻¹b does not depend on the scale of f: solve with A / big (SolveSmall's pivot
+    // threshold is absolute, and a quadric far from the origin has a tiny A).
     double m[3][3], r[3], apex[3];
     for (int i = 0; i < 3; ++i) {
-        r[i] = -f.b[i];
-        for (int j = 0; j < 3; ++j) m[i][j] = f.a[i][j];
+        r[i] = -f.b[i] / big;
+        for (int j = 0; j < 3; ++j) m[i][j] = f.a[i][j] / big;
     }
     if (!SolveSmall(3, m, r, apex)) return n;
     Local at = EvaluateLocal(f, apex);

@@ -712,6 +712,7 @@ RelaxationOutcome BoundByConvexRelaxation(const std::vector<const InsideFn*>& fn
         }
         out.solved = true;
         out.usedNappes = attempt == 0;
+        const Box3 before = work;
         // One solve per side over the region, then re-certification with balls around the box
         // found so far while it keeps shrinking (the certificate's allowances grow with the
         // ball: a cylinder's rounding-level negative eigenvalue costs ~ eps·R²).
@@ -732,6 +733,19 @@ RelaxationOutcome BoundByConvexRelaxation(const std::vector<const InsideFn*>& fn
                 else
                     work.lo[axis] = std::fmax(work.lo[axis], -bound);
             }
+        }
+        // The interior point lies in the relaxed set, so every certified side must keep it;
+        // one that does not (the certificate's rounding allowances fell short, as for a cone
+        // whose apex is 10⁹ sizes away and whose A is PSD only to within 1e-13) is not trusted:
+        // the branch-and-bound decides instead.
+        bool keepsInterior = true;
+        for (int i = 0; i < 3; ++i) {
+            double tol = 1e-9 * (std::fabs(interior[i]) + region.hi[i] - region.lo[i]);
+            keepsInterior &= work.lo[i] <= interior[i] + tol && interior[i] - tol <= work.hi[i];
+        }
+        if (!keepsInterior) {
+            work = before;
+            return RelaxationOutcome{};
         }
         if (work.Empty()) {
             out.empty = true;

@@ -6,12 +6,12 @@
 // bound, fit the window (auto-fit where whh/whw are missing), map to device space with a
 // uniform scale and a translation, cull solids that cannot reach the image.
 //
-// Window fit. In provisional space x and y are view-plane coordinates centred on vrp (y down).
-// An axis with a window half-size w (whw for x, whh for y) asks for scale W/(2w) (or H/(2w))
-// centred on vrp; an axis without one asks for the scene's extent on that axis, E, to fill the
-// image less autoFitMargin per side: scale W(1 - 2m)/E, centred on the extent's middle. Pixels
-// are square, so the scale k is the smallest asked for, and each axis is centred in the image.
-// The extent ignores fbp (seed 001 §2.1.6: "It has no effect on auto-scaling").
+// Window fit (window_fit.h). In provisional space x and y are view-plane coordinates centred on
+// vrp (y down). whh or whw, alone or together, give the scale and centre the window on vrp; with
+// neither, the bounded part of the scene's extent fills the image less autoFitMargin per side,
+// and unbounded solids are drawn clipped to that window. Pixels are square. The extent ignores
+// fbp (seed 001 §2.1.6: "It has no effect on auto-scaling"). Where a box came from the search,
+// the fit takes a second look in its own device space (RefineFit), where the bounds are tightest.
 //
 // Device map: x_dev = k x + ox, y_dev = k y + oy, z_dev = k z (the same k for depth, so for
 // parallel views device space is a similarity of view space up to the reflection of y, and for
@@ -25,16 +25,16 @@
 // are dropped: they cannot cover a pixel.
 #include "quadrix/flatten/flattener.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-
-#include <fmt/format.h>
 
 #include <cmath>
 
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/hierarchy.h"
 #include "quadrix/flatten/view_setup.h"
+#include "quadrix/flatten/window_fit.h"
 
 namespace quadrix {
 
@@ -54,10 +54,6 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view) {
     s = std::fmax(s, view.d);
     return s > 0 && std::isfinite(s) ? s : 1.0;
 }
-
-struct Fit {
-    double k = 1, ox = 0, oy = 0;
-};
 
 class FlattenerImpl {
   public:
@@ -108,16 +104,11 @@ class FlattenerImpl {
 
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_);
-        std::vector<Box3> bodyBoxes(flat.bodies.size());
-        // Bodies in parallel: each box depends only on its body (BodyBounds is a pure function),
-        // so the result is the same for any thread count. Mitered pipes and other bodies of
-        // oblique planes cost milliseconds each (branch and bound, bounds.h).
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flat.bodies.size(), 8),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i < r.end(); ++i)
-                                  bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo);
-                          });
-        std::vector<Box3> fitBoxes = FitSolidBoxes(bodyBoxes, bo);
+        bool anySearched = false;
+        std::vector<Box3> bodyBoxes = AllBodyBounds(flat, bo, &anySearched);
+        std::vector<Box3> fitBoxes =
+            FitSolidBoxes(flat, view_.fitClips, view_.finalClips, view_.perspective ? view_.d : 0.0,
+                          bodyBoxes, bo);
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).
         for (const FlatFreeform& f : flat.freeforms) {
@@ -128,8 +119,9 @@ class FlattenerImpl {
             freeformNames_.push_back(f.name);
         }
 
-        std::optional<Fit> fit = FitWindow(fitBoxes);
+        std::optional<WindowFit> fit = Fit(fitBoxes);
         if (!fit) return std::nullopt;
+        if (!view_.whw && !view_.whh && anySearched) RefineFit(*fit, fitBoxes);
         ToDevice(*fit, bodyBoxes);
         Cull();
         SetDepthTolerance(*fit);
@@ -155,24 +147,48 @@ class FlattenerImpl {
         return ok;
     }
 
+    // Every body's box. Bodies in parallel: each box depends only on its body (BodyBounds is a
+    // pure function), so the result is the same for any thread count. Mitered pipes and other
+    // bodies of oblique planes cost milliseconds each (branch and bound, bounds.h).
+    // `anySearched` is set when some box was not exact from the analytic stage.
+    static std::vector<Box3> AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
+                                           bool* anySearched) {
+        std::vector<Box3> bodyBoxes(flat.bodies.size());
+        std::vector<char> searched(flat.bodies.size(), 0);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flat.bodies.size(), 8),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                                  BoundsStats st;
+                                  bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
+                                  searched[i] = st.analyticOnly == 0;
+                              }
+                          });
+        if (anySearched)
+            for (char c : searched) *anySearched |= c != 0;
+        return bodyBoxes;
+    }
+
     // Solid boxes for the window fit: like the final ones, except that the fit ignores fbp, so
     // where the view's fit clip planes differ from the final ones the bodies are bounded again
-    // with their own literals and the fit planes.
-    std::vector<Box3> FitSolidBoxes(const std::vector<Box3>& finalBodyBoxes,
-                                    const BoundsOptions& bo) {
-        const FlatScene& flat = flat_;
-        bool same = view_.fitClips.size() == view_.finalClips.size();
-        for (std::size_t i = 0; same && i < view_.fitClips.size(); ++i)
-            same = view_.fitClips[i] == view_.finalClips[i];
+    // with their own literals and the fit planes. `flat` and the planes are in one space (the
+    // provisional one, or the device space of RefineFit); farDepth as in FitTreeBounds.
+    static std::vector<Box3> FitSolidBoxes(const FlatScene& flat,
+                                           const std::vector<Plane>& fitClips,
+                                           const std::vector<Plane>& finalClips, double farDepth,
+                                           const std::vector<Box3>& finalBodyBoxes,
+                                           const BoundsOptions& bo) {
+        bool same = fitClips.size() == finalClips.size();
+        for (std::size_t i = 0; same && i < fitClips.size(); ++i)
+            same = fitClips[i] == finalClips[i];
         std::vector<Box3> bodyBoxes = finalBodyBoxes;
         if (!same) {
             std::vector<FlatHalfSpace> fitPlanes;
-            for (const Plane& p : view_.fitClips) {
+            for (const Plane& p : fitClips) {
                 FlatHalfSpace h;
                 h.plane = p;
                 fitPlanes.push_back(h);
             }
-            const std::size_t nClip = view_.finalClips.size();
+            const std::size_t nClip = finalClips.size();
             std::vector<BoundLiteral> lits;
             for (std::size_t i = 0; i < flat.bodies.size(); ++i) {
                 const FlatBody& b = flat.bodies[i];
@@ -185,79 +201,140 @@ class FlattenerImpl {
             }
         }
         std::vector<Box3> nodeBoxes = TreeBounds(flat, bodyBoxes);
+        std::vector<Box3> fitBoxes = FitTreeBounds(flat, bodyBoxes, nodeBoxes, farDepth);
         std::vector<Box3> solidBoxes(flat.solids.size());
         for (std::size_t i = 0; i < flat.solids.size(); ++i)
-            solidBoxes[i] = nodeBoxes[flat.solids[i].root];
+            solidBoxes[i] = fitBoxes[flat.solids[i].root];
         return solidBoxes;
     }
 
-    std::optional<Fit> FitWindow(const std::vector<Box3>& solidBoxes) {
-        const double w = options_.width, h = options_.height, m = options_.autoFitMargin;
-        const bool needX = !view_.whw, needY = !view_.whh;
-        Box3 extent;
-        if (needX || needY) {
-            for (std::size_t i = 0; i < solidBoxes.size(); ++i) {
-                const Box3& b = solidBoxes[i];
-                if (b.Empty()) continue;
-                bool unboundedX = needX && !(std::isfinite(b.lo.x) && std::isfinite(b.hi.x));
-                bool unboundedY = needY && !(std::isfinite(b.lo.y) && std::isfinite(b.hi.y));
-                if (unboundedX || unboundedY) {
-                    if (i >= flat_.solids.size()) {
-                        diags_.Error({}, fmt::format("freeform surface '{}' reaches infinity in "
-                                                     "the view (a weight vanishes); give the view "
-                                                     "a window with whh and whw",
-                                                     freeformNames_[i - flat_.solids.size()]));
-                        return std::nullopt;
+    // Auto-fit, second look. The bounds are tightest where the scene is centred and about as
+    // large as the search expects, which provisional space is not for a model far from vrp or
+    // much smaller than its distance (a cone frustum 1 km from the origin is bounded 1.5 to 50
+    // times too loosely there). So when some box came from the search, the bodies are bounded
+    // again in the device space of the fit just made, where the scene fills the image; both
+    // boxes are conservative, so the fit uses their intersection. Twice at most, and only while
+    // the fit still changes (scale up by 0.1 % or a shift of a quarter pixel).
+    void RefineFit(WindowFit& fit, std::vector<Box3>& fitBoxes) {
+        const std::size_t nSolids = flat_.solids.size();
+        for (int pass = 0; pass < 2; ++pass) {
+            const Transform dev =
+                Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
+            FlatScene probe;
+            probe.halfSpaces = flat_.halfSpaces;
+            for (FlatHalfSpace& h : probe.halfSpaces) {
+                if (h.isPlane)
+                    h.plane = h.plane.Transformed(dev);
+                else
+                    h.quadric = h.quadric.Transformed(dev);
+            }
+            probe.bodies = flat_.bodies;
+            probe.nodes = flat_.nodes;
+            probe.solids = flat_.solids;
+            std::vector<Plane> fitClips, finalClips;
+            for (const Plane& p : view_.fitClips) fitClips.push_back(p.Transformed(dev));
+            for (const Plane& p : view_.finalClips) finalClips.push_back(p.Transformed(dev));
+            BoundsOptions bo;
+            bo.searchLimit = 1e6 * std::fmax(options_.width, options_.height);
+            std::vector<Box3> bodyBoxes = AllBodyBounds(probe, bo, nullptr);
+            std::vector<Box3> boxes =
+                FitSolidBoxes(probe, fitClips, finalClips,
+                              view_.perspective ? fit.k * view_.d : 0.0, bodyBoxes, bo);
+            // Back to provisional space, x = (x_dev - ox) / k, and intersected with the first
+            // boxes where both are finite; freeform hulls stay as they are.
+            const double o[3] = {fit.ox, fit.oy, 0};
+            for (std::size_t i = 0; i < nSolids; ++i) {
+                Box3& b = boxes[i];
+                const Box3& first = fitBoxes[i];
+                if (b.Empty() || first.Empty()) {
+                    b = Box3{};
+                    continue;
+                }
+                for (int axis = 0; axis < 3; ++axis) {
+                    double lo = (b.lo[axis] - o[axis]) / fit.k, hi = (b.hi[axis] - o[axis]) / fit.k;
+                    if (!(std::isfinite(lo) && std::isfinite(hi))) lo = -kInf, hi = kInf;
+                    if (std::isfinite(first.lo[axis]) && std::isfinite(first.hi[axis])) {
+                        lo = std::fmax(lo, first.lo[axis]);
+                        hi = std::fmin(hi, first.hi[axis]);
+                        if (!(lo <= hi)) lo = first.lo[axis], hi = first.hi[axis];
                     }
-                    const SourceLoc& loc = hierarchy_.solidLocs[i];
-                    bool isBody = !hierarchy_.solidIsCsg[i];
-                    diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view; give "
-                                                  "the view a window with whh and whw",
-                                                  isBody ? "body" : "csg solid",
-                                                  flat_.solids[i].name, loc.ToString()));
+                    b.lo[axis] = lo;
+                    b.hi[axis] = hi;
+                }
+            }
+            for (std::size_t i = nSolids; i < fitBoxes.size(); ++i) boxes.push_back(fitBoxes[i]);
+            WindowRequest request;
+            request.width = options_.width;
+            request.height = options_.height;
+            request.margin = options_.autoFitMargin;
+            WindowFit next;
+            if (FitWindow(request, boxes, next) != WindowFitStatus::kOk) return;
+            bool changed = next.k > 1.001 * fit.k || std::fabs(next.ox - fit.ox) > 0.25 ||
+                           std::fabs(next.oy - fit.oy) > 0.25;
+            if (!changed) return;
+            fit = next;
+            fitBoxes = std::move(boxes);
+        }
+    }
+
+    // The window fit (window_fit.h); freeform surfaces reaching infinity, and a scene with
+    // nothing bounded and no window, are errors.
+    std::optional<WindowFit> Fit(const std::vector<Box3>& fitBoxes) {
+        const bool autoFit = !view_.whw && !view_.whh;
+        if (autoFit)
+            for (std::size_t i = flat_.solids.size(); i < fitBoxes.size(); ++i)
+                if (!fitBoxes[i].Empty() && !fitBoxes[i].Finite()) {
+                    diags_.Error({}, fmt::format("freeform surface '{}' reaches infinity in the "
+                                                 "view (a weight vanishes); give the view a "
+                                                 "window with whh or whw",
+                                                 freeformNames_[i - flat_.solids.size()]));
                     return std::nullopt;
                 }
-                extent.Extend(b);
-            }
-            if (extent.Empty()) {
-                diags_.Error(view_.loc,
-                             fmt::format("nothing to draw in view '{}': every solid is empty or "
-                                         "behind the eye",
-                                         view_.id));
+        WindowRequest request;
+        request.width = options_.width;
+        request.height = options_.height;
+        request.margin = options_.autoFitMargin;
+        request.whh = view_.whh;
+        request.whw = view_.whw;
+        WindowFit fit;
+        switch (FitWindow(request, fitBoxes, fit)) {
+            case WindowFitStatus::kOk:
+                return fit;
+            case WindowFitStatus::kNothingBounded: {
+                bool any = false;
+                for (const Box3& b : fitBoxes) any |= !b.Empty();
+                if (!any) {
+                    diags_.Error(view_.loc,
+                                 fmt::format("nothing to draw in view '{}': every solid is empty "
+                                             "or behind the eye",
+                                             view_.id));
+                    return std::nullopt;
+                }
+                // Name the first solid: every one of them is unbounded.
+                std::size_t i = 0;
+                while (fitBoxes[i].Empty()) ++i;
+                if (i >= flat_.solids.size()) return std::nullopt;  // (freeforms are finite)
+                const SourceLoc& loc = hierarchy_.solidLocs[i];
+                bool isBody = !hierarchy_.solidIsCsg[i];
+                diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view and "
+                                              "nothing bounded is there to fit the window to; "
+                                              "give the view a window with whh or whw",
+                                              isBody ? "body" : "csg solid", flat_.solids[i].name,
+                                              loc.ToString()));
                 return std::nullopt;
             }
+            case WindowFitStatus::kNoExtent:
+                diags_.Error(view_.loc, fmt::format("the scene has no extent in view '{}' (it is "
+                                                    "flat or a point seen edge-on); give the "
+                                                    "view a window with whh or whw",
+                                                    view_.id));
+                return std::nullopt;
         }
-        double scaleX = kInf, scaleY = kInf, cx = 0, cy = 0;
-        if (view_.whw) {
-            scaleX = 0.5 * w / *view_.whw;
-        } else {
-            double span = extent.hi.x - extent.lo.x;
-            cx = 0.5 * (extent.lo.x + extent.hi.x);
-            if (span > 0) scaleX = w * (1 - 2 * m) / span;
-        }
-        if (view_.whh) {
-            scaleY = 0.5 * h / *view_.whh;
-        } else {
-            double span = extent.hi.y - extent.lo.y;
-            cy = 0.5 * (extent.lo.y + extent.hi.y);
-            if (span > 0) scaleY = h * (1 - 2 * m) / span;
-        }
-        Fit fit;
-        fit.k = std::fmin(scaleX, scaleY);
-        if (!(fit.k < kInf) || !(fit.k > 0)) {
-            diags_.Error(view_.loc, fmt::format("the scene has no extent in view '{}' (it is "
-                                                "flat or a point seen edge-on); give the view a "
-                                                "window with whh and whw",
-                                                view_.id));
-            return std::nullopt;
-        }
-        fit.ox = 0.5 * w - fit.k * cx;
-        fit.oy = 0.5 * h - fit.k * cy;
-        return fit;
+        return std::nullopt;
     }
 
     // Maps everything from provisional to device space: D = T(ox, oy, 0) · S(k, k, k).
-    void ToDevice(const Fit& fit, const std::vector<Box3>& bodyBoxes) {
+    void ToDevice(const WindowFit& fit, const std::vector<Box3>& bodyBoxes) {
         FlatScene& flat = flat_;
         Transform dev =
             Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
@@ -367,7 +444,7 @@ class FlattenerImpl {
         return nodeMap[root];
     }
 
-    void SetDepthTolerance(const Fit& fit) {
+    void SetDepthTolerance(const WindowFit& fit) {
         double extent = std::fmax(options_.width, options_.height);
         Box3 all;
         for (const FlatSolid& s : flat_.solids) all.Extend(s.bounds);

@@ -8,13 +8,15 @@
 //     perspective a projective map with the eye at the origin of a left-handed (u, v, n) frame.
 //  3. Clipping: fbp adds a front and a back transparent plane to every body; perspective adds a
 //     near plane (and the plane at infinity's image) so nothing behind the eye survives.
-//  4. Window: whh/whw give the window on the view plane, centred on vrp; a missing one is taken
-//     from the scene's extent (conservative device-space bounds of every body). Pixels stay
-//     square: the window is fitted inside the image and centred.
+//  4. Window: whh and/or whw give the window on the view plane, centred on vrp (one alone sets
+//     the scale, the other follows from the image's aspect); with neither, the window is fitted
+//     to the extent of the bounded solids (conservative device-space bounds), and unbounded ones
+//     (a ground plane) are drawn clipped to it (window_fit.h). Pixels stay square: the window is
+//     fitted inside the image and centred.
 //  5. Device: x = column, y = row (row 0 at the top), z grows away from the viewer.
 //  6. Bounds: every body, CSG node and solid gets conservative device-space bounds.
 //
-// Errors (user tier): unknown view, unbounded geometry with no window, a view whose vectors are
+// Errors (user tier): unknown view, nothing bounded and no window, a view whose vectors are
 // degenerate (vup parallel to vpn, zero vectors, cop on the view plane), an empty scene.
 #pragma once
 

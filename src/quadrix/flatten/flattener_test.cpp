@@ -328,10 +328,12 @@ TEST(FlattenErrors, UnboundedBodyWithoutWindowNamesTheBody) {
 }
 
 TEST(FlattenErrors, UnboundedCsgSolidIsNamedAsSuch) {
-    // A union with a half-space is unbounded; a difference with one is not (the minuend rules).
-    scene::Scene s = OneSphere();
+    // A union of half-spaces is unbounded and nothing else is there to fit: an error naming it.
+    scene::Scene s;
     int p = AddPlane(s.top, "p", {0, 1, 0, 0});
+    int q = AddPlane(s.top, "q", {1, 0, 0, 0});
     AddBody(s.top, "half", {p});
+    AddBody(s.top, "other", {q});
     CsgBuilder b;
     int n = b.Op(scene::CsgOp::kUnion, b.Body(0), b.Body(1));
     AddCsg(s.top, "u", b, n);
@@ -340,6 +342,28 @@ TEST(FlattenErrors, UnboundedCsgSolidIsNamedAsSuch) {
     EXPECT_FALSE(r.flat);
     EXPECT_NE(r.Messages().find("csg solid 'u' at test.uq:4:2 is unbounded"), std::string::npos)
         << r.Messages();
+}
+
+TEST(FlattenFit, UnionWithAHalfSpaceIsFittedToItsBoundedMember) {
+    // window_fit.h: a union's fit box is the hull of its bounded members, so the sphere of
+    // sphere ∪ half-space is framed as if alone (384 px wide: 2 % margins of 400) and the
+    // half-space is clipped to that window; a difference with a half-space is bounded anyway.
+    scene::Scene s = OneSphere();
+    int p = AddPlane(s.top, "p", {0, 1, 0, 0});
+    AddBody(s.top, "half", {p});
+    CsgBuilder b;
+    int n = b.Op(scene::CsgOp::kUnion, b.Body(0), b.Body(1));
+    AddCsg(s.top, "u", b, n);
+    Result r = RunFlatten(s);
+    ASSERT_TRUE(r.flat) << r.Messages();
+    Result alone = RunFlatten(OneSphere());
+    ASSERT_TRUE(alone.flat) << alone.Messages();
+    for (const Vec3& w : {Vec3{0, 0, 0}, Vec3{1, -2, 3}})
+        EXPECT_NEAR(Length(r.flat->projection.deviceFromWorld.MapPoint(w) -
+                           alone.flat->projection.deviceFromWorld.MapPoint(w)),
+                    0, 1e-9);
+    EXPECT_EQ(r.flat->solids[0].bounds.lo.x, 0);  // the union reaches past the window
+    EXPECT_EQ(r.flat->solids[0].bounds.hi.x, 400);
     s.top.csgs.back().nodes.back().op = scene::CsgOp::kDifference;
     Result ok = RunFlatten(s);
     ASSERT_TRUE(ok.flat) << ok.Messages();

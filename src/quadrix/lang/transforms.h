@@ -2,7 +2,8 @@
 //
 //   =tx =ty =tz =ta d   translate by d along x, y, z, or all three axes
 //   =sx =sy =sz =sa s   scale by s on x, y, z, or all three axes (s != 0)
-//   =rx =ry =rz a       rotate by a degrees about x, y or z (right-hand rule; exact for 90° steps)
+//   =rx =ry =rz a       rotate by a degrees about x, y or z (about z +x turns toward +y; exact
+//                       for 90° steps; docs/language.md §2 on handedness)
 //   =vAB s              shear: s along the second axis B for each unit along the first axis A,
 //                       i.e. B += s·A (=vxy 0.5 maps (1,0,0) to (1,0.5,0))
 //

@@ -157,7 +157,7 @@ void SinCosDegrees(double degrees, double& s, double& c) {
 Transform Transform::Rotate(int axis, double degrees) {
     double s, c;
     SinCosDegrees(degrees, s, c);
-    int i = (axis + 1) % 3, j = (axis + 2) % 3;  // the rotated plane, right-handed order
+    int i = (axis + 1) % 3, j = (axis + 2) % 3;  // the rotated plane, cyclic order
     Mat4 m = Mat4::Identity();
     m.m[i][i] = c;
     m.m[i][j] = -s;

@@ -51,8 +51,10 @@ public:
     static Transform Translate(const Vec3& t);
     // Scale factors must be non-zero (the caller validates).
     static Transform Scale(const Vec3& s);
-    // Rotation by `degrees` about axis 0 (x), 1 (y) or 2 (z), right-hand rule. Multiples of 90
-    // degrees are exact (sines and cosines of 0, ±1).
+    // Rotation by `degrees` about axis 0 (x), 1 (y) or 2 (z), the usual matrix: +90° about z takes
+    // +x to +y (cyclically: about x, +y to +z; about y, +z to +x). In Quadrix's left-handed
+    // pictures that is the left-hand rule (docs/language.md §2). Multiples of 90 degrees are exact
+    // (sines and cosines of 0, ±1).
     static Transform Rotate(int axis, double degrees);
     // Shear: coordinate `to` += factor * coordinate `from` (=vxy: x += factor*y... see
     // docs/language.md for the language's naming).

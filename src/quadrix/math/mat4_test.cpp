@@ -128,7 +128,7 @@ TEST(MathMat4, SinCosDegreesSymmetricAndAccurate) {
     EXPECT_TRUE(std::isnan(s) && std::isnan(c));
 }
 
-TEST(MathMat4, RotationsByQuarterTurnsAreExactAndRightHanded) {
+TEST(MathMat4, RotationsByQuarterTurnsAreExactAndCyclic) {
     for (int axis = 0; axis < 3; ++axis) {
         for (int k = -8; k <= 8; ++k) {
             Transform r = Transform::Rotate(axis, 90.0 * k);
@@ -137,7 +137,8 @@ TEST(MathMat4, RotationsByQuarterTurnsAreExactAndRightHanded) {
                 for (double v : row) EXPECT_TRUE(v == 0 || v == 1 || v == -1);
         }
     }
-    // Right-hand rule: +90° about z takes x to y, about x takes y to z, about y takes z to x.
+    // Cyclic: +90° about z takes x to y, about x takes y to z, about y takes z to x (the left-hand
+    // rule in the left-handed pictures, docs/language.md §2).
     EXPECT_EQ(Transform::Rotate(2, 90).MapVector({1, 0, 0}), Vec3(0, 1, 0));
     EXPECT_EQ(Transform::Rotate(0, 90).MapVector({0, 1, 0}), Vec3(0, 0, 1));
     EXPECT_EQ(Transform::Rotate(1, 90).MapVector({0, 0, 1}), Vec3(1, 0, 0));

@@ -45,9 +45,9 @@ struct SolidShape {
     bool Contains(const Vec3& p) const;
 };
 
-// An orthonormal right-handed frame along the segment from → to: w is the unit axis, u a unit
-// vector across it, v = w × u. Local coordinates (x, y, z) are measured along u, v, w from
-// `from`, so the solid's axis is the local z axis and `to` is at z = length.
+// An orthonormal, positively oriented frame (u × v = w) along the segment from → to: w is the
+// unit axis, u a unit vector across it, v = w × u. Local coordinates (x, y, z) are measured along
+// u, v, w from `from`, so the solid's axis is the local z axis and `to` is at z = length.
 struct AxisFrame {
     Vec3 origin, u, v, w;
     double length = 0;

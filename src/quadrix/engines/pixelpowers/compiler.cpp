@@ -141,6 +141,10 @@ class Compiler {
                 }
                 CompileProduct(p, static_cast<std::int32_t>(s), sb);
             }
+            for (std::size_t g = exitGroups_.size(); g-- > 0;)
+                program_.blocks.insert(program_.blocks.end(), exitGroups_[g].begin(),
+                                       exitGroups_[g].end());
+            exitGroups_.clear();
             if (tooBig || program_.code.size() > options_.maxInstructions) {
                 program_.code.resize(codeMark);
                 program_.blocks.resize(blockMark);
@@ -299,6 +303,13 @@ class Compiler {
             if (ValidBody(f.primitive))
                 for (const FlatLiteral& l : Body(f.primitive).literals)
                     exits = exits || (!Opaque(l) && !HoldsOver(l, productBox));
+        struct Term {
+            std::size_t i;
+            Box3 box;
+            PixelRect rect;
+            std::vector<csg::Factor> paring;
+        };
+        std::vector<Term> terms;
         for (std::size_t i = 0; i < p.size(); ++i) {
             const csg::Factor& xi = p[i];
             if (!ValidBody(xi.primitive)) continue;  // an empty − factor draws nothing
@@ -320,25 +331,51 @@ class Compiler {
                 }
                 paring.push_back(y);
             }
-            // Display theorem: front (entry) face for ∩ factors, back (exit) face for − ones;
-            // with `exits`, also the opposite faces (raycast draws the first opaque endpoint).
-            const FlatBody& body = Body(xi.primitive);
-            for (int face = 0; face < (exits ? 2 : 1); ++face) {
-                bool exitFace = xi.subtracted != (face == 1);
-                for (std::size_t k = 0; k < body.literals.size(); ++k) {
-                    const FlatLiteral& lit = body.literals[k];
-                    if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
-                    PixelRect patchRect = PlaneFaceRect(body, k, termBox, rect);
-                    if (patchRect.Empty()) {
-                        ++stats_.prunedPatches;
-                        continue;
-                    }
-                    EmitPatch(xi.primitive, k, exitFace, paring,
-                              exits ? Others(p, termBox) : std::vector<const csg::Product*>{},
-                              patchRect, solid);
-                }
-            }
+            terms.push_back({i, termBox, rect, std::move(paring)});
         }
+        // Display theorem: front (entry) face for ∩ factors, back (exit) face for − ones;
+        // with `exits`, also the opposite faces (raycast draws the first opaque endpoint).
+        auto emitTerm = [&](const Term& t, int face) {
+            const csg::Factor& xi = p[t.i];
+            const FlatBody& body = Body(xi.primitive);
+            bool exitFace = xi.subtracted != (face == 1);
+            for (std::size_t k = 0; k < body.literals.size(); ++k) {
+                const FlatLiteral& lit = body.literals[k];
+                if (!Opaque(lit)) continue;  // never drawn (raycast: not opaque)
+                PixelRect patchRect = PlaneFaceRect(body, k, t.box, t.rect);
+                if (patchRect.Empty()) {
+                    ++stats_.prunedPatches;
+                    continue;
+                }
+                EmitPatch(xi.primitive, k, exitFace, face == 1, t.paring,
+                          exits ? Others(p, t.box) : std::vector<const csg::Product*>{}, patchRect,
+                          solid);
+            }
+        };
+        // Exact ties, as raycast's left fold ((X0 ∩ X1) − X2 …, math/interval_list.h) breaks
+        // them. A tie of the product's entries goes to the later factor (an intersection is
+        // opened by its right operand's start on a tie, a difference reopened at the
+        // subtrahend's exit; within a body the later literal's start opens it): entry terms in
+        // factor order, whose ZTESTs let a patch win a tie against the patches of this product
+        // drawn before it (tieFrom_) and against no other (a union is opened by its left
+        // operand, and the lower solid wins). A tie of exits goes to the later − factor (a
+        // difference closed at the subtrahend's start) and else to the earlier ∩ factor (an
+        // intersection closed by its left operand's end): exit terms − factors last first, then
+        // ∩ factors first first, with strict ZTESTs; they are set aside and appended after the
+        // solid's entries in reverse product order (a union is closed by its right operand's end
+        // on a tie; Run).
+        tieFrom_ = static_cast<std::int32_t>(program_.patches.size());
+        for (const Term& t : terms) emitTerm(t, 0);
+        tieFrom_ = -1;
+        if (!exits) return;
+        const std::size_t exitMark = program_.blocks.size();
+        for (std::size_t n = terms.size(); n-- > 0;)
+            if (p[terms[n].i].subtracted) emitTerm(terms[n], 1);
+        for (const Term& t : terms)
+            if (!p[t.i].subtracted) emitTerm(t, 1);
+        exitGroups_.emplace_back(program_.blocks.begin() + static_cast<std::ptrdiff_t>(exitMark),
+                                 program_.blocks.end());
+        program_.blocks.resize(exitMark);
     }
 
     Instruction& Emit(Opcode op, std::uint8_t a, std::uint8_t b = 0, std::int32_t arg = -1) {
@@ -432,7 +469,9 @@ class Compiler {
         return RectOf(b).Intersected(rect);
     }
 
-    void EmitPatch(int bodyIndex, std::size_t k, bool exitFace,
+    // `productExit`: the patch's points are exits of the product (face 1), else entries; for a −
+    // factor that is the opposite of `exitFace`, the sheet of the factor's own literal.
+    void EmitPatch(int bodyIndex, std::size_t k, bool exitFace, bool productExit,
                    const std::vector<csg::Factor>& paring,
                    const std::vector<const csg::Product*>& others, const PixelRect& rect,
                    std::int32_t solid) {
@@ -449,43 +488,55 @@ class Compiler {
         }
         // Early depth test: ZMIN does not change within a block, so dropping hidden pixels now
         // gives the same result as the final test and spares them the paring.
-        Emit(Opcode::kZTest, kF1);
-        // The patch is the part of the sheet inside the primitive's other literals.
+        Emit(Opcode::kZTest, kF1, 0, tieFrom_);
+        // The patch is the part of the sheet inside the primitive's other literals. The tests
+        // are one-sided (InsideMode): a point at depth z is an entry (exit) of the product iff
+        // every other factor holds, or for a − factor does not hold, just beyond (before) z, which
+        // is what the regularised interval sets of raycast give on coincident surfaces (a door
+        // exactly as thick as its wall leaves nothing; `body (s p !p)` is empty). The sheet is an
+        // entry (exit) of the primitive itself where its other literals hold beyond (before) it.
+        const std::uint8_t ownSide = exitFace ? kInsideBefore : kInsideAfter;
         for (std::size_t m = 0; m < body.literals.size(); ++m)
-            if (m != k) EmitInside(body.literals[m], kF1);
+            if (m != k) EmitInside(body.literals[m], kF1, ownSide);
+        const std::uint8_t side = productExit ? kInsideBefore : kInsideAfter;
         // CSG operation: pare with the other factors of the product.
         for (const csg::Factor& y : paring) {
             const FlatBody& other = Body(y.primitive);
             if (!y.subtracted) {
-                for (const FlatLiteral& l : other.literals) EmitInside(l, kF1);
+                for (const FlatLiteral& l : other.literals) EmitInside(l, kF1, side);
             } else {
                 Emit(Opcode::kFlagCopy, kF2, kF1);
-                for (const FlatLiteral& l : other.literals) EmitInside(l, kF2);
+                for (const FlatLiteral& l : other.literals) EmitInside(l, kF2, side);
                 Emit(Opcode::kFlagAndNot, kF1, kF2);
             }
         }
         // With exit terms: keep only points outside the solid's other products (F2 = inside Q,
-        // F3 = inside a − factor of Q). "Inside Q" is its interior along the ray, so that a
-        // boundary point shared by two products (the same literal's root, the same double) is
-        // kept. The root unit does these tests in both modes: approximate depths err outward
-        // (near sheets nearer, far sheets farther), so shared boundaries stay outside.
+        // F3 = inside a − factor of Q). An entry (exit) of this product is one of the union iff
+        // Q does not hold just before (beyond) it, so Q is tested on the other side; a boundary
+        // point shared by two products (the same literal's root, the same double) is kept where
+        // the union changes there. The root unit does these tests for quadrics in both modes:
+        // approximate depths err outward (near sheets nearer, far sheets farther), so shared
+        // boundaries stay outside; planes in approx mode by the QEE (EmitRootUnitInside).
+        const std::uint8_t otherSide = productExit ? kInsideAfter : kInsideBefore;
         for (const csg::Product* q : others) {
             Emit(Opcode::kFlagCopy, kF2, kF1);
             for (const csg::Factor& y : *q) {
                 if (!ValidBody(y.primitive)) continue;
                 const FlatBody& other = Body(y.primitive);
                 if (!y.subtracted) {
-                    for (const FlatLiteral& l : other.literals) EmitRootUnitInside(l, kF2, true);
+                    for (const FlatLiteral& l : other.literals)
+                        EmitRootUnitInside(l, kF2, otherSide);
                 } else {
                     Emit(Opcode::kFlagCopy, kF3, kF2);
-                    for (const FlatLiteral& l : other.literals) EmitRootUnitInside(l, kF3, false);
+                    for (const FlatLiteral& l : other.literals)
+                        EmitRootUnitInside(l, kF3, otherSide);
                     Emit(Opcode::kFlagAndNot, kF2, kF3);
                 }
             }
             Emit(Opcode::kFlagAndNot, kF1, kF2);
         }
         // Z-buffer merge (the union of terms, seed 004 §II.a) and COLOR.
-        Emit(Opcode::kZTest, kF1);
+        Emit(Opcode::kZTest, kF1, 0, tieFrom_);
         // Shading (seed 004 §III step 4) on the pixels about to be written.
         bool machineNormal = options_.paperShading && EmitShading(lit, exitFace, rect);
         stats_.shadedPatches += machineNormal;
@@ -689,23 +740,36 @@ class Compiler {
         for (int i = 0; i < 6; ++i) in.q[i] = q[static_cast<std::size_t>(i)];
     }
 
-    void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, bool open) {
-        if (options_.mode != DepthMode::kExact) ++stats_.extendedFallbacks;
-        Emit(Opcode::kInside, f, open ? 1 : 0, LiteralIndex(lit));
+    // Approx mode: planes are tested by the QEE as in EmitInside (the same formula as a plane
+    // sheet's ZLOAD, so a plane shared by two products compares equal to itself), quadrics by
+    // the root unit.
+    void EmitRootUnitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
+        if (options_.mode != DepthMode::kExact) {
+            const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
+            if (hs.isPlane && hs.plane.AllFinite()) {
+                EmitInside(lit, f, mode);
+                return;
+            }
+            ++stats_.extendedFallbacks;
+        }
+        Emit(Opcode::kInside, f, mode, LiteralIndex(lit));
     }
 
-    // F[f] ∧= (ZTEMP inside literal `lit`), on pixels where F[f] is set.
-    void EmitInside(const FlatLiteral& lit, std::uint8_t f) {
+    // F[f] ∧= (ZTEMP inside literal `lit` in the sense of `mode`, an InsideMode), on pixels where
+    // F[f] is set. f is F1 or F2 (F3 is scratch here). The approximate machine tests planes
+    // one-sidedly too (ZLT/ZGT; its plane depths are those of the plane's own ZLOAD), and its
+    // quadric strip tests at the strict end.
+    void EmitInside(const FlatLiteral& lit, std::uint8_t f, std::uint8_t mode) {
         std::int32_t li = LiteralIndex(lit);
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];
         if (options_.mode == DepthMode::kExact) {
-            Emit(Opcode::kInside, f, 0, li);
+            Emit(Opcode::kInside, f, mode, li);
             return;
         }
         if (hs.isPlane) {
             const Plane& pl = hs.plane;
             if (!pl.AllFinite()) {
-                Emit(Opcode::kInside, f, 0, li);
+                Emit(Opcode::kInside, f, mode, li);
                 return;
             }
             if (pl.c == 0) {  // inside iff A x + B y + D <= 0 along the whole ray
@@ -715,24 +779,36 @@ class Compiler {
             }
             Coeffs r{0, 0, 0, -pl.a / pl.c, -pl.b / pl.c, -pl.d / pl.c};
             bool below = (pl.c > 0) != lit.complemented;  // inside is z <= r
-            EmitQ(below ? Opcode::kZKeepLE : Opcode::kZKeepGE, f, r);
+            // The endpoint is excluded when the tested side lies beyond it (InsideMode).
+            bool strict = below ? mode == kInsideAfter || mode == kInsideOpen
+                                : mode == kInsideBefore || mode == kInsideOpen;
+            Opcode op = below ? (strict ? Opcode::kZKeepLT : Opcode::kZKeepLE)
+                              : (strict ? Opcode::kZKeepGT : Opcode::kZKeepGE);
+            EmitQ(op, f, r);
             return;
         }
         RayForm r = RayFormOf(hs.quadric);
         if (r.c == 0 || !hs.quadric.AllFinite()) {
             ++stats_.extendedFallbacks;
-            Emit(Opcode::kInside, f, 0, li);
+            Emit(Opcode::kInside, f, mode, li);
             return;
         }
         // F3 = between the sheets (Δ > 0, z >= near envelope, z <= far envelope), then inside is
-        // F3 when c > 0, ¬F3 when c < 0, flipped by a complement.
+        // F3 when c > 0, ¬F3 when c < 0, flipped by a complement. One-sided: the set [n, f] holds
+        // after z iff n <= z < f and before z iff n < z <= f, and the closure of its complement
+        // holds after (before) z iff [n, f] does not, so the same strict end serves both; against
+        // envelopes, z < min fᵢ is z < fᵢ for every strip (ZLT), z > max nᵢ is ZGT for every one.
+        // The strips are those of the sheet's own ZLOAD/ZMAX when the patch is on the same
+        // quadric (same coefficients, same rectangle), so `A − A` is exact here too.
         Coeffs disc = Discriminant(r);
         std::vector<Coeffs> nearS = Strips(r, disc, true, currentRect_);
         std::vector<Coeffs> farS = Strips(r, disc, false, currentRect_);
+        const bool nearStrict = mode == kInsideBefore, farStrict = mode == kInsideAfter;
         Emit(Opcode::kFlagCopy, kF3, f);
         EmitQ(Opcode::kQeeKeepPositive, kF3, disc);
-        for (const Coeffs& z : nearS) EmitQ(Opcode::kZKeepGE, kF3, z);
-        for (const Coeffs& z : farS) EmitQ(Opcode::kZKeepLE, kF3, z);
+        for (const Coeffs& z : nearS)
+            EmitQ(nearStrict ? Opcode::kZKeepGT : Opcode::kZKeepGE, kF3, z);
+        for (const Coeffs& z : farS) EmitQ(farStrict ? Opcode::kZKeepLT : Opcode::kZKeepLE, kF3, z);
         bool insideIsBetween = (r.c > 0) != lit.complemented;
         Emit(insideIsBetween ? Opcode::kFlagAnd : Opcode::kFlagAndNot, f, kF3);
     }
@@ -745,6 +821,10 @@ class Compiler {
     std::map<std::pair<int, bool>, std::int32_t> literalIndex_;
     PixelRect currentRect_;
     const std::vector<csg::Product>* products_ = nullptr;
+    // The current solid's exit blocks, one group per product (CompileProduct).
+    std::vector<std::vector<Block>> exitGroups_;
+    // ZTEST's tie threshold for the blocks being emitted (−1: strict; CompileProduct).
+    std::int32_t tieFrom_ = -1;
 };
 
 }  // namespace

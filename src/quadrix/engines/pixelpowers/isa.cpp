@@ -33,6 +33,10 @@ const char* OpcodeName(Opcode op) {
             return "ZGE";
         case Opcode::kZKeepLE:
             return "ZLE";
+        case Opcode::kZKeepGT:
+            return "ZGT";
+        case Opcode::kZKeepLT:
+            return "ZLT";
         case Opcode::kRoot:
             return "ROOT";
         case Opcode::kInside:
@@ -60,6 +64,8 @@ int Instruction::Equations(bool literalIsPlane) const {
         case Opcode::kZMin:
         case Opcode::kZKeepGE:
         case Opcode::kZKeepLE:
+        case Opcode::kZKeepGT:
+        case Opcode::kZKeepLT:
         case Opcode::kNLoad:
             return 1;
         case Opcode::kRoot:

@@ -44,16 +44,32 @@ enum class Opcode : std::uint8_t {
     kZMin,     // QEE: where F[a]: ZTEMP ← min(ZTEMP, Q)    (envelope of a back sheet)
     kZKeepGE,  // QEE: where F[a]: F[a] ← (ZTEMP >= Q)      (seed 004 §III step 3 b)
     kZKeepLE,  // QEE: where F[a]: F[a] ← (ZTEMP <= Q)
+    kZKeepGT,  // QEE: where F[a]: F[a] ← (ZTEMP > Q)   (one-sided inside tests, InsideMode)
+    kZKeepLT,  // QEE: where F[a]: F[a] ← (ZTEMP < Q)
     kRoot,     // extended, every pixel of the rectangle: ZTEMP ← entry (b = 0) or exit
                // (b = 1) point of literal `arg` on the pixel's ray, F[a] ← it exists
-    kInside,   // extended: where F[a]: F[a] ← ZTEMP inside literal `arg` (closed set;
-               // b = 1: its interior along the ray, endpoints excluded)
-    kZTest,    // where F[a]: F[a] ← (ZTEMP < ZMIN)   (strict: ties keep the earlier patch)
+    kInside,   // extended: where F[a]: F[a] ← ZTEMP inside literal `arg`, in the sense
+               // b = InsideMode (closed set, interior, or one side of ZTEMP)
+    kZTest,    // where F[a]: F[a] ← (ZTEMP < ZMIN), or with arg >= 0 also ZTEMP == ZMIN where
+               // COLOR >= arg (a tie won against the patches from arg on); arg < 0: strict, ties
+               // keep the earlier patch
     kZWrite,   // where F[a]: ZMIN ← ZTEMP, COLOR ← arg (a patch id)
     kNLoad,    // QEE: where F[a]: N[b] ← Q(x,y), b = world axis 0..2 — the paper's approximate
                // shading (seed 004 §III step 4): the numerator "L + sqrt Q" of the diffuse shade
                // with sqrt Q → s + tQ (one parabolic cylinder) over a constant denominator, kept
                // per world axis so that n·l is the paper's shade for every parallel light l
+};
+
+// kInside's b: which membership of ZTEMP in the literal's ray set S (a regular closed set, pieces
+// [lo, hi]) is tested. The one-sided tests make coincident surfaces exact (docs/pixelpowers.md
+// "Coincident surfaces"): a point at depth z is an entry of a regularised set iff the set holds on
+// (z, z + ε) and not on (z − ε, z), for some ε > 0, and the sides of an intersection or a
+// difference are those of its operands.
+enum InsideMode : std::uint8_t {
+    kInsideClosed = 0,  // z ∈ S:                 some lo <= z <= hi
+    kInsideOpen = 1,    // z in S's interior:     some lo <  z <  hi
+    kInsideAfter = 2,   // S holds on (z, z + ε): some lo <= z <  hi
+    kInsideBefore = 3,  // S holds on (z − ε, z): some lo <  z <= hi
 };
 
 const char* OpcodeName(Opcode op);

@@ -40,17 +40,39 @@ double Qee(const double* q, double x, double y) {
 // e = A x + B y + D, r = −e/C, the set (−∞, r] for C > 0, [r, ∞) for C < 0, all or nothing for
 // C = 0, empty both ways for non-finite values, closure of the complement when complemented), so
 // results stay bit-identical to the oracle; this only skips the call and the interval bookkeeping.
+// `word` rounds the finite root as ZTEMP's words do (depth-bits; the identity otherwise), so that
+// coincident surfaces compare equal in the rounded domain too.
+template <class Word>
 bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y, double z,
-                 bool open) {
+                 std::uint8_t mode, const Word& word) {
     double e = h.px * x + h.py * y + h.pd;
     if (!std::isfinite(e) || !std::isfinite(h.c)) return false;
-    if (h.c == 0) return (e <= 0) != complemented;
+    if (h.c == 0) return (e <= 0) != complemented;  // all of the ray or nothing: every mode
     double r = -e / h.c;
+    if (std::isfinite(r)) r = word(r);
     bool below = (h.c > 0) != complemented;  // the set is (−∞, r] (else [r, ∞))
     // A piece with lo == hi is dropped (regularised), which only happens for r = ±∞.
-    // `open`: the interior along the ray (the endpoint itself excluded).
-    if (below) return r > -HUGE_VAL && (open ? z < r : z <= r);
-    return r < HUGE_VAL && (open ? z > r : z >= r);
+    // The mode (InsideMode) decides whether the endpoint r itself counts.
+    if (below) {
+        bool closedEnd = mode == kInsideClosed || mode == kInsideBefore;
+        return r > -HUGE_VAL && (closedEnd ? z <= r : z < r);
+    }
+    bool closedEnd = mode == kInsideClosed || mode == kInsideAfter;
+    return r < HUGE_VAL && (closedEnd ? z >= r : z > r);
+}
+
+// z in the piece v in the sense of `mode` (InsideMode).
+bool InPiece(const Interval& v, double z, std::uint8_t mode) {
+    switch (mode) {
+        case kInsideOpen:
+            return v.lo < z && z < v.hi;
+        case kInsideAfter:
+            return v.lo <= z && z < v.hi;
+        case kInsideBefore:
+            return v.lo < z && z <= v.hi;
+        default:
+            return v.lo <= z && z <= v.hi;
+    }
 }
 
 // The plane's finite entry (exit) point, if any.
@@ -75,6 +97,8 @@ bool ClearsF1(const Instruction& in) {
         case Opcode::kQeeKeepNonPositive:
         case Opcode::kZKeepGE:
         case Opcode::kZKeepLE:
+        case Opcode::kZKeepGT:
+        case Opcode::kZKeepLT:
         case Opcode::kFlagAnd:
         case Opcode::kFlagAndNot:
         case Opcode::kFlagClear:
@@ -207,6 +231,16 @@ class TileRunner {
                     if (fa[k]) fa[k] = r_.ztemp[k] <= Word(Qee(in.q, x, y)), ++ops;
                 });
                 break;
+            case Opcode::kZKeepGT:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] > Word(Qee(in.q, x, y)), ++ops;
+                });
+                break;
+            case Opcode::kZKeepLT:
+                ForEach(rect, [&](std::size_t k, double x, double y) {
+                    if (fa[k]) fa[k] = r_.ztemp[k] < Word(Qee(in.q, x, y)), ++ops;
+                });
+                break;
             case Opcode::kNLoad: {
                 auto& n = r_.normal[in.b < 3 ? in.b : 0];
                 ForEach(rect, [&](std::size_t k, double x, double y) {
@@ -247,11 +281,12 @@ class TileRunner {
             }
             case Opcode::kInside: {
                 const MachineLiteral& lit = Literal(in.arg);
-                bool open = in.b != 0;
+                const std::uint8_t mode = in.b;
                 if (lit.isPlane) {
                     ForEach(rect, [&](std::size_t k, double x, double y) {
                         if (!fa[k]) return;
-                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], open);
+                        fa[k] = PlaneInside(lit.ray, lit.complemented, x, y, r_.ztemp[k], mode,
+                                            [this](double t) { return Word(t); });
                         ++ops;
                     });
                     break;
@@ -264,8 +299,13 @@ class TileRunner {
                     double z = r_.ztemp[k];
                     bool in = false;
                     for (int p = 0; p < s.count; ++p) {
-                        const Interval& v = s.piece[p];
-                        in = in || (open ? v.lo < z && z < v.hi : v.lo <= z && z <= v.hi);
+                        Interval v = s.piece[p];
+                        // Roots as depth words, like ZTEMP's (identity without depth-bits).
+                        if (step_ != 0) {
+                            if (std::isfinite(v.lo)) v.lo = Word(v.lo);
+                            if (std::isfinite(v.hi)) v.hi = Word(v.hi);
+                        }
+                        in = in || InPiece(v, z, mode);
                     }
                     fa[k] = in;
                 });
@@ -273,8 +313,17 @@ class TileRunner {
                 break;
             }
             case Opcode::kZTest:
+                if (in.arg < 0) {
+                    ForEach(rect, [&](std::size_t k, double, double) {
+                        if (fa[k]) fa[k] = r_.ztemp[k] < r_.zmin[k], ++ops;
+                    });
+                    break;
+                }
                 ForEach(rect, [&](std::size_t k, double, double) {
-                    if (fa[k]) fa[k] = r_.ztemp[k] < r_.zmin[k], ++ops;
+                    if (fa[k])
+                        fa[k] = r_.ztemp[k] < r_.zmin[k] ||
+                                (r_.ztemp[k] == r_.zmin[k] && r_.color[k] >= in.arg),
+                        ++ops;
                 });
                 break;
             case Opcode::kZWrite:

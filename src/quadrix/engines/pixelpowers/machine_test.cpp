@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace quadrix::pixelpowers {
 namespace {
@@ -185,6 +186,95 @@ TEST(PixelPowersMachine, NormalRegistersAndScanOut) {
         EXPECT_GT(n.x, 0);  // the rest of a's direction
     }
     EXPECT_GT(c.pixelOps, 0u);
+}
+
+// The sides of INSIDE (isa.h InsideMode) and the strict ZGT/ZLT, on ZTEMP = z = i − 10 at pixel i
+// of a row: against the plane literal z <= 0 (set (−∞, 0]), its complement ([0, ∞)) and the
+// quadric literal z² − 25 <= 0 (set [−5, 5]), every endpoint landing exactly on a pixel.
+TEST(PixelPowersMachine, InsideModesAndStrictDepthTests) {
+    FlatHalfSpace plane;
+    plane.isPlane = true;
+    plane.plane = {0, 0, 1, 0};
+    FlatHalfSpace slab;
+    slab.isPlane = false;
+    slab.quadric = Quadric::FromCoefficients({0, 0, 1, 0, 0, 0, 0, 0, 0, -25});
+    // Runs ZLOAD z = x − 10.5, then `op`, and returns which of the 20 pixels were written.
+    auto run = [](const Program& base, Opcode op, std::uint8_t b, std::int32_t arg) {
+        Assembler as;
+        as.program.literals = base.literals;
+        std::int32_t p = as.Patch(0);
+        as.Begin({0, 0, 20, 1});
+        as.Op(Opcode::kFlagSet, kF1);
+        as.Op(Opcode::kZLoad, kF1, 0, -1, {0, 0, 0, 1, 0, -10.5});
+        as.Op(op, kF1, b, arg);
+        as.Op(Opcode::kZTest, kF1);
+        as.Op(Opcode::kZWrite, kF1, 0, p);
+        as.End();
+        FlatScene scene = PlaneScene(20, 1);
+        Frame f;
+        Execute(as.program, scene, f);
+        std::vector<int> drawn;
+        for (int i = 0; i < 20; ++i)
+            if (f.surface[static_cast<std::size_t>(i)] != Frame::kNone) drawn.push_back(i);
+        return drawn;
+    };
+    auto range = [](int lo, int hi) {
+        std::vector<int> v;
+        for (int i = lo; i <= hi; ++i) v.push_back(i);
+        return v;
+    };
+    Program lits;
+    lits.literals.push_back({raycast::RayHalfSpace::From(plane), false, true});
+    lits.literals.push_back({raycast::RayHalfSpace::From(plane), true, true});
+    lits.literals.push_back({raycast::RayHalfSpace::From(slab), false, false});
+    // z <= 0: the endpoint 0 (pixel 10) belongs to the closed set and to the side before it.
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideClosed, 0), range(0, 10));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideOpen, 0), range(0, 9));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideAfter, 0), range(0, 9));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideBefore, 0), range(0, 10));
+    // z >= 0 (the closure of the complement): the endpoint holds after, not before.
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideClosed, 1), range(10, 19));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideOpen, 1), range(11, 19));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideAfter, 1), range(10, 19));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideBefore, 1), range(11, 19));
+    // [−5, 5]: pixels 5 and 15 are its endpoints.
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideClosed, 2), range(5, 15));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideOpen, 2), range(6, 14));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideAfter, 2), range(5, 14));
+    EXPECT_EQ(run(lits, Opcode::kInside, kInsideBefore, 2), range(6, 15));
+    // ZGT / ZLT against the constant 0 (q = 0): strict, unlike ZGE / ZLE.
+    EXPECT_EQ(run(lits, Opcode::kZKeepGT, 0, -1), range(11, 19));
+    EXPECT_EQ(run(lits, Opcode::kZKeepLT, 0, -1), range(0, 9));
+    EXPECT_EQ(run(lits, Opcode::kZKeepGE, 0, -1), range(10, 19));
+    EXPECT_EQ(run(lits, Opcode::kZKeepLE, 0, -1), range(0, 10));
+}
+
+// ZTEST's tie threshold: three patches at one depth on pixels 0..9. Patch 1's ZTEST (from 0)
+// wins the tie against patch 0; patch 2's (from 2) loses it to patch 1, and so does a strict one.
+TEST(PixelPowersMachine, ZTestTieThreshold) {
+    Assembler as;
+    auto block = [&](std::int32_t from) {
+        std::int32_t p = as.Patch(0);
+        as.Begin({0, 0, 10, 1});
+        as.Op(Opcode::kFlagSet, kF1);
+        as.Op(Opcode::kZLoad, kF1, 0, -1, {0, 0, 0, 0, 0, 4});
+        as.Op(Opcode::kZTest, kF1, 0, from);
+        as.Op(Opcode::kZWrite, kF1, 0, p);
+        as.End();
+    };
+    FlatScene scene = PlaneScene(10, 1);
+    scene.halfSpaces.push_back(scene.halfSpaces[0]);  // a second plane names patch 1
+    block(-1);
+    block(0);
+    block(2);
+    block(-1);
+    as.program.patches[1].halfSpace = 1;
+    Frame f;
+    Execute(as.program, scene, f);
+    for (int i = 0; i < 10; ++i) {
+        EXPECT_EQ(f.surface[static_cast<std::size_t>(i)], 1) << i;
+        EXPECT_EQ(f.depth[static_cast<std::size_t>(i)], 4);
+    }
 }
 
 }  // namespace

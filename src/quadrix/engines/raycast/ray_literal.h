@@ -113,7 +113,7 @@ enum : std::uint8_t { kBatchLive = 0, kBatchDead = 1, kBatchScalar = 2 };
 // Both empty is kBatchDead only while cut[p] is +inf (with a cut, the set beyond it may remain:
 // lo >= hi then means "∅ below the cut"). Set operations are pointwise in t and the pieces of a
 // body's list are separated, so the first interval and everything below the cut are those of the
-// scalar body evaluation (raycast.cpp, EvaluateBodyLists), bit for bit.
+// scalar body evaluation (trace.cpp, Tracer::EvaluateBodyLists), bit for bit.
 void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int n,
                   const double* xs, const double* ys, double* lo, std::int64_t* loId, double* hi,
                   std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters,

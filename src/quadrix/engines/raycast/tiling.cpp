@@ -1,0 +1,120 @@
+#include "quadrix/engines/raycast/tiling.h"
+
+#include <algorithm>
+
+#include "quadrix/engines/raycast/pixel_rows.h"
+#include "quadrix/engines/raycast/worker.h"
+
+namespace quadrix::raycast {
+namespace {
+
+// The pixel (i, j) with centre (x, y) from its visible point (background when there is none).
+void WriteHit(const FlatScene& scene, const SceneTables& tables, const Hit& hit, int i, int j,
+              double x, double y, const PixelRows& out, Counters& counters) {
+    const std::size_t k = out.Index(i, j);
+    if (hit.tag < 0) {
+        out.SetBackground(k);
+        return;
+    }
+    ++counters.covered;
+    const Tag& tag = tables.TagOf(hit.tag);
+    out.depth[k] = hit.t;
+    const auto hsIndex = static_cast<std::size_t>(tag.halfSpace);
+    out.normal[k] = tables.constantNormal[hsIndex]
+                        ? tables.planeNormal[hsIndex]
+                        : scene.WorldNormal(tag.halfSpace, {x, y, hit.t});
+    out.surface[k] = tag.halfSpace;
+    out.body[k] = tag.body;
+    out.solid[k] = hit.solid;
+}
+
+// The pixels of a sub-tile [sx, ex) × [sy, ey) whose program is w.subTileProgram, after the
+// reductions and proofs: each by the first of these that applies — the sub-tile's single body
+// (its batch), the sub-tile's kernel, Trace.
+void DrawSubTilePixels(const FlatScene& scene, const SceneTables& tables, int sx, int sy, int ex,
+                       int ey, Worker& w, const PixelRows& out) {
+    const Rect r = Centres(sx, sy, ex, ey);
+    w.batches.Start(w.subTileProgram, sx, sy, ex, ey);
+    // A sub-tile that is one body (SingleBody) is read straight from the body's batch; only its
+    // kScalar pixels, and kCut pixels with nothing visible below the cut, are traced.
+    const BodyBatch* single = w.batches.SingleBodyBatch(w.subTileProgram, r);
+    if (single) ++w.counters.bodyFillTiles;
+    const bool kernel = !single && w.kernel.Compile(w.subTileProgram, r);
+    Hit kernelHits[kLanePixels];
+    if (kernel) w.kernel.RunTile(kernelHits);
+    for (int j = sy; j < ey; ++j) {
+        for (int i = sx; i < ex; ++i) {
+            double x = i + 0.5, y = j + 0.5;
+            w.batches.SetPixel(i, j);
+            const std::size_t p = w.batches.Pixel();
+            Hit hit;
+            const std::uint8_t state = single ? single->state[p] : BodyBatch::kScalar;
+            if (state == BodyBatch::kEmpty) {
+                // background
+            } else if (state == BodyBatch::kOne) {
+                hit = w.batches.FirstVisibleOfOne(*single, p);
+            } else if (state == BodyBatch::kCut) {
+                // The first interval is exact below the cut; beyond it, trace.
+                if (single->lo[p] < single->hi[p]) hit = w.batches.FirstVisibleOfOne(*single, p);
+                if (!(hit.t < single->cut[p])) hit = w.tracer.Trace(w.subTileProgram, x, y);
+            } else if (kernel) {
+                hit = kernelHits[p];
+            } else {
+                hit = w.tracer.Trace(w.subTileProgram, x, y);
+            }
+            WriteHit(scene, tables, hit, i, j, x, y, out, w.counters);
+        }
+    }
+}
+
+// One sub-tile [sx, ex) × [sy, ey) of the tile program: pruned, reduced, then filled as
+// background, as one plane, or pixel by pixel.
+void RenderSubTile(const FlatScene& scene, const SceneTables& tables, int sx, int sy, int ex,
+                   int ey, Worker& w, const PixelRows& out) {
+    ++w.counters.tiles;
+    const Rect r = Centres(sx, sy, ex, ey);
+    PruneProgram(w.tileProgram, r, w.subTileProgram, w.stack);
+    w.counters.tileSolids += w.subTileProgram.solids.size();
+    w.counters.pixels += static_cast<std::uint64_t>((ex - sx) * (ey - sy));
+    if (w.subTileProgram.solids.empty()) {
+        out.FillBackground(sx, sy, ex, ey);
+        return;
+    }
+    w.tracer.SetCuts(w.subTileProgram);
+    w.reduction.PrepareTile(w.subTileProgram, r);
+    if (w.reduction.AllEmpty(w.subTileProgram, r)) {
+        ++w.counters.emptyTiles;
+        out.FillBackground(sx, sy, ex, ey);
+        return;
+    }
+    if (w.reduction.TryFlatFill(w.subTileProgram, r, sx, sy, ex, ey, out)) return;
+    DrawSubTilePixels(scene, tables, sx, sy, ex, ey, w, out);
+}
+
+}  // namespace
+
+void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
+    PixelRows::Of(frame).FillBackground(x0, y0, x1, y1);
+}
+
+void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block, int x0,
+                int y0, int x1, int y1, Worker& w, Frame& frame) {
+    ++w.counters.coarseTiles;
+    PruneProgram(block, Centres(x0, y0, x1, y1), w.tileProgram, w.stack);
+    if (w.tileProgram.solids.empty()) {
+        w.counters.pixels += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
+        FillBackground(frame, x0, y0, x1, y1);
+        return;
+    }
+    w.reduction.PrepareStrip(w.tileProgram, Centres(x0, y0, x1, y1));
+    const PixelRows out = w.tile.Rows(x0, y0);
+    for (int sy = y0; sy < y1; sy += kSubTile) {
+        for (int sx = x0; sx < x1; sx += kSubTile) {
+            int ex = std::min(sx + kSubTile, x1), ey = std::min(sy + kSubTile, y1);
+            RenderSubTile(scene, tables, sx, sy, ex, ey, w, out);
+        }
+    }
+    w.tile.CopyTile(x0, y0, x1, y1, frame);
+}
+
+}  // namespace quadrix::raycast

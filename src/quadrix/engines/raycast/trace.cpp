@@ -1,0 +1,213 @@
+#include "quadrix/engines/raycast/trace.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace quadrix::raycast {
+
+Tracer::Tracer(const SceneTables& tables, int maxDepth, const TileReduction& reduction,
+               BodyBatches& batches, Counters& counters)
+    : tables_(tables), reduction_(reduction), batches_(batches), counters_(counters) {
+    lists_.resize(static_cast<std::size_t>(maxDepth) + 3);
+    for (IntervalList& l : lists_) slots_.push_back(&l);
+}
+
+Hit Tracer::Trace(const CsgProgram& program, double x, double y) {
+    Hit best;
+    for (const ProgSolid& s : program.solids) {
+        if (best.t < s.zlo) {  // strictly: a tie at s.zlo may still go to a lower index
+            ++counters_.zStops;
+            break;
+        }
+        if (x < s.xy.x0 || x > s.xy.x1 || y < s.xy.y0 || y > s.xy.y1) continue;
+        ++counters_.pixelSolids;
+        for (double cut : cuts_) {
+            if (cut <= s.zlo) continue;  // the whole solid is cut away
+            Evaluate(program, s.root, x, y, 0, cut);
+            double t;
+            std::int32_t tag;
+            if (FirstVisible(*slots_[0], t, tag) && t < cut) {
+                if (t < best.t || (t == best.t && s.solid < best.solid)) best = {t, tag, s.solid};
+                break;
+            }
+            // Nothing visible before the cut: this solid cannot beat a best nearer than it.
+            if (best.t < cut) break;
+            if (cut != HUGE_VAL) ++counters_.cutRetries;
+        }
+    }
+    return best;
+}
+
+inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, double y,
+                             std::size_t slot, double cut) {
+    const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
+    if (node.MissesPoint(x, y) || node.zlo >= cut ||
+        reduction_.NodeEmpty(static_cast<std::size_t>(n))) {
+        slots_[slot]->clear();
+        return;
+    }
+    if (node.kind == NodeKind::kBody) {
+        EvaluateBody(node.first, n, x, y, slot);
+        return;
+    }
+    const std::int32_t* child = p.children.data() + node.first;
+    Evaluate(p, child[0], x, y, slot, cut);
+    for (std::int32_t i = 1; i < node.count; ++i) {
+        IntervalList& out = *slots_[slot];
+        if (out.empty() && node.kind != NodeKind::kUnion) return;  // ∅ ∩ B = ∅ − B = ∅
+        // The operand's bounds are tested here as well as in the call, to skip the call for the
+        // many operands of a big union that miss this pixel.
+        const ProgNode& c = p.nodes[static_cast<std::size_t>(child[i])];
+        if (c.MissesPoint(x, y) || c.zlo >= cut ||
+            reduction_.NodeEmpty(static_cast<std::size_t>(child[i]))) {
+            slots_[slot + 1]->clear();
+        } else {
+            Evaluate(p, child[i], x, y, slot + 1, cut);
+        }
+        IntervalList& operand = *slots_[slot + 1];
+        if (operand.empty()) {
+            if (node.kind == NodeKind::kIntersection) {
+                out.clear();
+                return;
+            }
+            continue;  // A ∪ ∅ = A − ∅ = A
+        }
+        if (out.empty()) {  // union: ∅ ∪ B = B
+            std::swap(slots_[slot], slots_[slot + 1]);
+            continue;
+        }
+        ++counters_.csgOps;
+        IntervalList& scratch = *slots_[slot + 2];
+        switch (node.kind) {
+            case NodeKind::kUnion:
+                Union(out, operand, scratch);
+                break;
+            case NodeKind::kIntersection:
+                Intersection(out, operand, scratch);
+                break;
+            default:
+                Difference(out, operand, scratch);
+                break;
+        }
+        std::swap(slots_[slot], slots_[slot + 2]);
+    }
+}
+
+// A body is the intersection of its literals, taken in the body's order: each literal's set clips
+// the running set. While that set is one interval (always, for bodies of planes and of quadrics
+// cut by planes, the common case) it is kept in registers and planes are evaluated inline; the
+// first literal whose set has two pieces switches to interval lists. The tie rules are ClipTo's
+// in both paths (a later literal wins a tie at the near end, an earlier one at the far end), so
+// the result does not depend on the path taken.
+//
+// `node` is the body's node in the sub-tile program: its literals are the ones TileReduction
+// kept (planes that cannot bound the body anywhere in the sub-tile are dropped).
+void Tracer::EvaluateBody(std::int32_t body, std::int32_t node, double x, double y,
+                          std::size_t slot) {
+    ++counters_.bodies;
+    IntervalList& result = *slots_[slot];
+    result.clear();  // a body without literals is empty
+    if (!tables_.bodyValid[static_cast<std::size_t>(body)]) return;
+    if (tables_.bodyFirstTag[static_cast<std::size_t>(body)] ==
+        tables_.bodyFirstTag[static_cast<std::size_t>(body) + 1])
+        return;
+    if (batches_.On()) {
+        if (const BodyBatch* batch = batches_.Find(node)) {
+            const std::size_t p = batches_.Pixel();
+            if (batch->state[p] == BodyBatch::kEmpty) return;
+            if (batch->state[p] == BodyBatch::kOne) {
+                result.Append(batch->lo[p], static_cast<std::int32_t>(batch->loId[p]), batch->hi[p],
+                              static_cast<std::int32_t>(batch->hiId[p]));
+                return;
+            }
+            // kScalar, kCut: evaluated below, literal by literal, exactly as without batches.
+        }
+    }
+    const auto [begin, end] = reduction_.NodeTags(static_cast<std::size_t>(node));
+    const std::int32_t* const tileTags = reduction_.TileTags();
+    const std::int32_t* const tagsEnd = tileTags + end;
+    Interval run{-HUGE_VAL, HUGE_VAL, Interval::kNoId, Interval::kNoId};
+    for (const std::int32_t* it = tileTags + begin; it != tagsEnd; ++it) {
+        const std::int32_t tag = *it;
+        const Tag& t = tables_.TagOf(tag);
+        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        Interval w;
+        if (hs.isPlane) {
+            // LiteralOnRay's plane case, inline: c t + e <= 0 (or its closed complement).
+            ++counters_.literals.planes;
+            const double e = hs.px * x + hs.py * y + hs.pd;
+            if (!std::isfinite(e) || !std::isfinite(hs.c)) return;  // empty both ways
+            if (hs.c == 0) {
+                if ((e <= 0) == t.complemented) return;  // holds nowhere on this ray
+                continue;                                // holds everywhere
+            }
+            const double r = -e / hs.c;
+            const bool below = (hs.c > 0) != t.complemented;  // the set is t <= r
+            w = below ? Interval{-HUGE_VAL, r, Interval::kNoId, tag}
+                      : Interval{r, HUGE_VAL, tag, Interval::kNoId};
+            if (std::isinf(r)) {
+                if (!(w.lo < w.hi)) return;  // r overflowed to the empty side
+                continue;                    // r overflowed to the full side
+            }
+        } else {
+            RaySet set = LiteralOnRay(hs, t.complemented, x, y, tag, counters_.literals);
+            if (set.count == 0) return;
+            if (set.count == 2) {
+                EvaluateBodyLists(run, set, it + 1, tagsEnd, x, y, slot);
+                return;
+            }
+            w = set.piece[0];
+        }
+        // ClipTo's rules for one piece.
+        if (!(run.lo > w.lo)) {
+            run.lo = w.lo;
+            run.loId = w.loId;
+        }
+        if (!(run.hi <= w.hi)) {
+            run.hi = w.hi;
+            run.hiId = w.hiId;
+        }
+        if (!(run.lo < run.hi)) return;
+    }
+    AppendPiece(result, run);
+}
+
+inline void Tracer::EvaluateBodyLists(const Interval& run, const RaySet& set,
+                                      const std::int32_t* next, const std::int32_t* last, double x,
+                                      double y, std::size_t slot) {
+    {
+        IntervalList& out = *slots_[slot];
+        out.clear();
+        for (int i = 0; i < set.count; ++i) AppendPiece(out, set.piece[i]);
+        // run ∩ set, the running set first (the earlier operand), as in the loop below.
+        IntervalList& runList = *slots_[slot + 1];
+        runList.clear();
+        AppendPiece(runList, run);
+        Intersection(runList, out, *slots_[slot + 2]);
+        std::swap(slots_[slot], slots_[slot + 2]);
+        if (slots_[slot]->empty()) return;
+    }
+    for (const std::int32_t* it = next; it != last; ++it) {
+        const std::int32_t tag = *it;
+        const Tag& t = tables_.TagOf(tag);
+        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        RaySet s = LiteralOnRay(hs, t.complemented, x, y, tag, counters_.literals);
+        IntervalList& out = *slots_[slot];
+        if (s.count == 0) {
+            out.clear();
+            return;
+        }
+        if (s.count == 1) {
+            ClipTo(out, s.piece[0]);
+        } else {
+            IntervalList& literal = *slots_[slot + 1];
+            literal.clear();
+            for (int i = 0; i < s.count; ++i) AppendPiece(literal, s.piece[i]);
+            Intersection(out, literal, *slots_[slot + 2]);
+            std::swap(slots_[slot], slots_[slot + 2]);
+        }
+        if (slots_[slot]->empty()) return;
+    }
+}
+
+}  // namespace quadrix::raycast

@@ -1,0 +1,45 @@
+// Everything one thread of engine `raycast` needs, reused across tiles and pixels: the pruned
+// programs of the current tile and sub-tile, the counters, and the phases of a sub-tile, each
+// owning its own state — tile reduction (tile_reduction.h), body batches (body_batch.h), the
+// scalar path (trace.h) and kernels (kernel.h) — plus the tile's staging copy (pixel_rows.h).
+// A Worker is made in place per thread (tbb::enumerable_thread_specific) and never copied: its
+// phases refer to each other and to its counters.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "quadrix/engines/raycast/body_batch.h"
+#include "quadrix/engines/raycast/counters.h"
+#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/engines/raycast/kernel.h"
+#include "quadrix/engines/raycast/pixel_rows.h"
+#include "quadrix/engines/raycast/scene_tables.h"
+#include "quadrix/engines/raycast/settings.h"
+#include "quadrix/engines/raycast/tile_reduction.h"
+#include "quadrix/engines/raycast/trace.h"
+
+namespace quadrix::raycast {
+
+class Worker {
+  public:
+    // `maxDepth`: the full program's deepest node (pruned programs are no deeper).
+    Worker(const SceneTables* tables, int maxDepth, Settings settings)
+        : reduction(*tables, settings, counters),
+          batches(*tables, settings, reduction, counters),
+          tracer(*tables, maxDepth, reduction, batches, counters),
+          kernel(*tables, settings, reduction, batches, tracer, counters) {}
+    Worker(const Worker&) = delete;
+    Worker& operator=(const Worker&) = delete;
+
+    CsgProgram tileProgram, subTileProgram;
+    std::vector<std::int32_t> stack;  // PruneProgram's scratch
+    Counters counters;
+    TileReduction reduction;
+    BodyBatches batches;
+    Tracer tracer;
+    Kernel kernel;
+    TileBuffer tile;
+};
+
+}  // namespace quadrix::raycast
