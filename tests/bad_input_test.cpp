@@ -3,6 +3,8 @@
 // signals). The first line of standard error is the error; source and caret lines may follow.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -18,6 +20,11 @@ struct BadInput {
     std::map<std::string, std::string> files;  // written into a temp dir; "main.uq" is rendered
     std::string extraArgs;                     // appended to the command line ({dir} = temp dir)
     std::string expectFirstLine;               // regex searched in the first line of stderr
+    // Shell commands run in the temp dir before quadrix (mkfifo, ln, ulimit: the same shell).
+    std::string setup = {};
+    // Rows that must give a correct picture instead of an error (exit 0, out.ppm written, lit:
+    // some pixel at least this bright); 0 = an error row.
+    int expectLitPixel = 0;
 };
 
 void PrintTo(const BadInput& b, std::ostream* os) { *os << b.name; }
@@ -30,6 +37,206 @@ std::string IncludeChain(int depth, std::map<std::string, std::string>& files) {
         files["f" + std::to_string(i) + ".uq"] = next;
     }
     return "read \"f1.uq\";\n";
+}
+
+// A v5 combination tree nested `depth` levels: {u {u … {l s} {l s}} {l s}}.
+std::string DeepV5Tree(int depth) {
+    std::string tree = "{l s}";
+    for (int i = 0; i < depth; ++i) tree = "{u " + tree + " {l s}}";
+    return "title {t}\nput {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n"
+           "put {r} comb region yes tree " +
+           tree + "\n";
+}
+
+// Issue 23 (hardening): the output writer, bounded inputs, memory, importer ranges, degenerate
+// directions, misleading messages. Each reproduces a defect found on the old main.
+std::vector<BadInput> HardeningRows() {
+    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
+    const std::string rtView = "viewsize 4;\neye_pt 0 0 10;\n";
+    const std::string v5Sphere = "title {t}\nput {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n";
+    return {
+        // ---- The one output writer: never replace a non-regular file or an input.
+        {"OutputIsFifo", {{"main.uq", sphere}}, "-o {dir}/fifo.png", R"(cannot write.*FIFO)",
+         "mkfifo fifo.png"},
+        {"OutputIsDirectory", {{"main.uq", sphere}}, "-o {dir}/d.png",
+         R"(cannot write.*directory)", "mkdir d.png"},
+        {"OutputIsDanglingLink", {{"main.uq", sphere}}, "-o {dir}/link.png",
+         R"(cannot write.*symbolic link)", "ln -s nowhere.png link.png"},
+        // A character device made in the temp dir (root only; else a FIFO stands in).
+        {"OutputIsDeviceNode", {{"main.uq", sphere}}, "-o {dir}/node.png",
+         R"(cannot write.*(character device|FIFO))",
+         "mknod node.png c 1 3 2>/dev/null || mkfifo node.png"},
+        {"OutputIsTheScene", {{"main.uq", sphere}}, "-o {dir}/main.uq.png",
+         R"(cannot write.*input)", "ln main.uq main.uq.png"},
+        {"OutputIsAFileTheSceneReads", {{"main.uq", "read \"part.uq\";\n"}, {"part.uq", sphere}},
+         "-o {dir}/part.png", R"(cannot write.*input)", "ln part.uq part.png"},
+        // The issue's `--dump-frame scene.uq` is now refused by its extension (not .qxf); the same
+        // file under a .qxf name (a hard link) is refused as the input.
+        {"DumpFrameIsTheScene", {{"main.uq", sphere}}, "--dump-frame {dir}/main.uq",
+         R"(error.*main\.uq)"},
+        {"DumpFrameIsALinkToTheScene", {{"main.uq", sphere}}, "--dump-frame {dir}/main.qxf",
+         R"(cannot write.*main\.qxf.*input)", "ln main.uq main.qxf"},
+        {"DumpFrameIsADirectory", {{"main.uq", sphere}}, "--dump-frame {dir}/d.qxf",
+         R"(cannot write.*d\.qxf.*directory)", "mkdir d.qxf"},
+        {"DumpFrameIsTheOutput", {{"main.uq", sphere}}, "-o {dir}/a.qxf --dump-frame ./a.qxf",
+         R"(cannot write.*same file)"},
+        // A directory nobody may create files in, root included (output_safety_test.cpp has the
+        // chmod 555 case, run as nobody).
+        {"OutputInReadOnlyDirectory", {{"main.uq", sphere}}, "-o /proc/self/quadrix-x.png",
+         R"(cannot write.*quadrix-x\.png)"},
+        // ---- Bounded inputs: one reader, 256 MiB, for every path.
+        {"SceneIsDevZero", {}, "/dev/zero", R"(/dev/zero.*larger than 256 MiB)"},
+        {"StdinIsDevZero", {}, "- < /dev/zero", R"(standard input.*larger than 256 MiB)"},
+        {"StdinIsClosed", {}, "- <&-", R"(cannot read standard input)"},
+        {"RtViewIsDevZero", {{"main.uq", sphere}}, "--rt-view /dev/zero",
+         R"(rt-view.*larger than 256 MiB)"},
+        {"ReadDevZero", {{"main.uq", "read \"/dev/zero\";\n"}}, "",
+         R"(main\.uq:1:\d+: error.*larger than 256 MiB)"},
+        {"HugeAscFile", {}, "{dir}/big.asc", R"(big\.asc.*larger than 256 MiB)",
+         "truncate -s 300M big.asc"},
+        {"HugeScadFile", {}, "{dir}/big.scad", R"(big\.scad.*larger than 256 MiB)",
+         "truncate -s 257M big.scad"},
+        {"SceneIsADirectory", {}, "{dir}/sub.uq", R"(sub\.uq.*directory)", "mkdir sub.uq"},
+        {"RtViewIsADirectory", {{"main.uq", sphere}}, "--rt-view {dir}", R"(rt-view.*directory)"},
+        // ---- Memory and time: a size the budget cannot hold is a clear error, not SIGABRT.
+        {"ImageLargerThanMaxMemory", {{"main.uq", sphere}}, "--size 4096x4096 --max-memory 100M",
+         R"(4096x4096.*memory budget is 100 MiB \(--max-memory\))"},
+        {"MaxMemoryMalformed", {{"main.uq", sphere}}, "--max-memory lots",
+         R"(error: --max-memory.*lots)"},
+        {"TimeLimitOnStalledInput", {}, "- --time-limit 0.3", R"(error: time limit of 0\.3 s)",
+         "sleep 2 |"},
+        {"TimeLimitMalformed", {{"main.uq", sphere}}, "--time-limit -1", R"(error: --time-limit)"},
+        // ---- BRL-CAD: numbers beyond int are positioned errors (were UBSan float-cast overflow).
+        {"V4ColorTableHugeId", {{"m.asc", "I 1 v4\nt\nm 4 2.5e12 3 0 0 0\n"}}, "{dir}/m.asc",
+         R"(m\.asc:3:\d+: error.*low region id)"},
+        {"V4ColorTableBadRgb", {{"m.asc", "I 1 v4\nt\nm 4 1 3 0 1e12 0\n"}}, "{dir}/m.asc",
+         R"(m\.asc:3:\d+: error.*green)"},
+        {"V5ColorHuge", {{"m.asc", v5Sphere + "color 1 2 1e12 0 0\n"}}, "{dir}/m.asc",
+         R"(m\.asc:3:\d+: error.*red)"},
+        {"V5RegionIdHuge",
+         {{"m.asc", v5Sphere + "put {r} comb region yes tree {l s}\n"
+                               "attr set {r} {region} {R} {region_id} {1e12}\n"}},
+         "{dir}/m.asc", R"(m\.asc:4:\d+: error.*region_id)"},
+        {"V5ArbnHugeCount",
+         {{"m.asc", "title {t}\nput {a} arbn N 1e12 P0 {1 0 0 1}\n"}}, "{dir}/m.asc",
+         R"(m\.asc:2:\d+: error.*N)"},
+        {"V5TreeTooDeep", {{"m.asc", DeepV5Tree(2001)}}, "{dir}/m.asc",
+         R"(m\.asc:3:\d+: error.*deeper than 2000)"},
+        // ---- OpenSCAD: non-positive sizes are errors (OpenSCAD draws nothing).
+        {"ScadNegativeSphere", {{"m.scad", "sphere(r=-1);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*positive)"},
+        {"ScadNegativeCube", {{"m.scad", "cube([-1,-1,-1]);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*positive)"},
+        {"ScadZeroCylinder", {{"m.scad", "cylinder(h=0, r=1);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*positive)"},
+        {"ScadNegativeRadius", {{"m.scad", "cylinder(h=2, r1=-1, r2=1);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*negative)"},
+        // ---- rt views: the zero quaternion is no rotation.
+        {"RtViewZeroQuaternion",
+         {{"main.uq", sphere}, {"v.rt", rtView + "orientation 0 0 0 0;\n"}},
+         "--rt-view {dir}/v.rt", R"(v\.rt:3:1: error.*zero quaternion)"},
+        // ---- Messages: control bytes are shown, not printed raw.
+        {"NulByteInReadPath", {{"main.uq", std::string("read \"a\0b\";\n", 12)}}, "",
+         R"(main\.uq:1:1: error: cannot read .*a\\x00b)"},
+        {"NulByteInV5Name",
+         {{"m.asc", std::string("title {t}\nput {a\0b} ell V {0 0 0} A {1 0 0} B {0 1 0}\n", 54)}},
+         "{dir}/m.asc", R"(m\.asc:2:1: error: primitive 'a\\x00b')"},
+        {"NulByteInScad", {{"m.scad", std::string("sph\0ere(r=1);\n", 14)}}, "{dir}/m.scad",
+         R"(m\.scad:1:4: error: .*'\\x00')"},
+        // ---- More of the same families.
+        {"OutputIsASocket", {{"main.uq", sphere}}, "-o {dir}/sock.png",
+         R"(cannot write.*socket)",
+         "python3 -c 'import socket; socket.socket(socket.AF_UNIX).bind(\"sock.png\")'"},
+        {"OutputLinksToADirectory", {{"main.uq", sphere}}, "-o {dir}/l.png",
+         R"(cannot write.*directory)", "mkdir d && ln -s d l.png"},
+        {"OutputLinksToAFifo", {{"main.uq", sphere}}, "-o {dir}/l.png", R"(cannot write.*FIFO)",
+         "mkfifo f && ln -s f l.png"},
+        {"OutputLinksToTheScene", {{"main.uq", sphere}}, "-o {dir}/l.png",
+         R"(cannot write.*input)", "ln -s main.uq l.png"},
+        {"DumpFrameIsADanglingLink", {{"main.uq", sphere}}, "--dump-frame {dir}/l.qxf",
+         R"(cannot write.*symbolic link)", "ln -s nowhere l.qxf"},
+        // A link to a device: only lstat/stat/realpath touch /dev/null, it is never opened.
+        {"OutputLinksToDevNull", {{"main.uq", sphere}}, "-o {dir}/null.png",
+         R"(cannot write.*null\.png.*character device)", "ln -s /dev/null null.png"},
+        {"ReadADirectory", {{"main.uq", "read \"sub\";\n"}}, "",
+         R"(main\.uq:1:\d+: error.*directory)", "mkdir sub"},
+        {"RtViewMissing", {{"main.uq", sphere}}, "--rt-view {dir}/none.rt",
+         R"(rt-view.*none\.rt.*No such file)"},
+        {"RtViewNanQuaternion",
+         {{"main.uq", sphere}, {"v.rt", rtView + "orientation nan 0 0 1;\n"}},
+         "--rt-view {dir}/v.rt", R"(v\.rt:3:\d+: error.*finite)"},
+        {"ScadNegativeDiameter", {{"m.scad", "sphere(d=-2);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*positive)"},
+        {"ScadZeroCube", {{"m.scad", "cube(0);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*positive)"},
+        {"ScadFlatCube", {{"m.scad", "cube([1, 0, 1]);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*size\[1\].*positive)"},
+        {"ScadNegativeHeight", {{"m.scad", "cylinder(h=-1, r=1);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*h = -1.*positive)"},
+        {"ScadBothRadiiZero", {{"m.scad", "cylinder(h=1, r1=0, r2=0);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:1: error.*both zero)"},
+        {"ScadNestedNegativeSphere",
+         {{"m.scad", "translate([1, 0, 0]) {\n  union() {\n    sphere(r=-3);\n  }\n}\n"}},
+         "{dir}/m.scad", R"(m\.scad:3:5: error.*positive)"},
+        {"ScadHugeScale", {{"m.scad", "scale([1e308, 1, 1]) sphere(1);\n"}}, "{dir}/m.scad",
+         R"(m\.scad:1:\d+: error.*cannot be inverted)"},
+        {"V4ColorTableNegativeId", {{"m.asc", "I 1 v4\nt\nm 4 -5 3 0 0 0\n"}}, "{dir}/m.asc",
+         R"(m\.asc:3:5: error.*low region id)"},
+        {"V5ColorFraction", {{"m.asc", v5Sphere + "color 1 2 0.5 0 0\n"}}, "{dir}/m.asc",
+         R"(m\.asc:3:\d+: error.*red: '0\.5')"},
+        {"V5AircodeHuge",
+         {{"m.asc", v5Sphere + "put {r} comb region yes tree {l s}\n"
+                               "attr set {r} {region} {R} {aircode} {-1e300}\n"}},
+         "{dir}/m.asc", R"(m\.asc:4:\d+: error.*aircode)"},
+        {"V5ArbnNegativeCount", {{"m.asc", "title {t}\nput {a} arbn N -2 P0 {1 0 0 1}\n"}},
+         "{dir}/m.asc", R"(m\.asc:2:\d+: error.*N)"},
+        {"V5TreeVeryDeep", {{"m.asc", DeepV5Tree(50000)}}, "{dir}/m.asc",
+         R"(m\.asc:3:\d+: error.*deeper than 2000)"},
+        // ---- Correct pictures where wrong ones (or misleading errors) came before.
+        {"SceneIsAFifo", {}, "{dir}/p.uq", "",
+         "mkfifo p.uq; (printf 'quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);' > p.uq &)", 100},
+        {"SubnormalLightDirection", {{"main.uq", sphere + "light l1 1 0 0 -5e-324;\n"}}, "", "",
+         "", 200},
+        {"HugeDiagonalLight", {{"main.uq", sphere + "light l1 1 -1e300 -1e300 -1e300;\n"}}, "",
+         "", "", 200},
+        {"HugeDiagonalVpn", {{"main.uq", sphere + "view v vpn 1e300 1e300 1e300;\n"}}, "", "",
+         "", 100},
+        {"TinyQuaternion",
+         {{"main.uq", sphere}, {"v.rt", rtView + "orientation 0 0 1e-300 1e-300;\n"}},
+         "--rt-view {dir}/v.rt", "", "", 100},
+        {"ScadConeWithZeroTop", {{"m.scad", "cylinder(h=2, r1=1, r2=0);\n"}}, "{dir}/m.scad", "",
+         "", 100},
+
+        {"HugeLightDirection", {{"main.uq", sphere + "light l1 1 0 0 -1e200;\n"}}, "", "", "", 200},
+        {"TinyLightDirection", {{"main.uq", sphere + "light l1 1 0 0 -1e-200;\n"}}, "", "", "", 200},
+        {"TinyVpn", {{"main.uq", sphere + "view v vpn 0 0 1e-200;\n"}}, "", "", "", 100},
+        {"HugeVpnAndVup", {{"main.uq", sphere + "view v vpn 0 0 1e200 vup 0 1e300 0;\n"}}, "", "",
+         "", 100},
+        {"ScadWithByteOrderMark", {{"m.scad", "\xEF\xBB\xBFsphere(r=1);\n"}}, "{dir}/m.scad", "",
+         "", 100},
+        {"RtViewUnnormalisedQuaternion",
+         {{"main.uq", sphere}, {"v.rt", rtView + "orientation 0 0 0 2;\n"}},
+         "--rt-view {dir}/v.rt", "", "", 100},
+        {"V5TreeAtTheDepthLimit", {{"m.asc", DeepV5Tree(2000)}}, "{dir}/m.asc", "", "", 100},
+    };
+}
+
+// Rows that need `ulimit -v`: AddressSanitizer reserves terabytes of address space and cannot
+// even start under it, so the sanitizer build leaves them out.
+std::vector<BadInput> AddressLimitRows() {
+#ifdef __SANITIZE_ADDRESS__
+    return {};
+#else
+    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
+    return {
+        {"ImageLargerThanUlimit", {{"main.uq", sphere}}, "--size 8192x8192",
+         R"(8192x8192.*memory budget.*ulimit -v)", "ulimit -v 2097152"},
+        // 200 MB of blanks (under the input limit) in 300 MB of address space: the reader's
+        // copies fail to allocate, and std::bad_alloc is caught in main.
+        {"AllocationFailureIsAnError", {}, "{dir}/big.uq", R"(error: out of memory)",
+         "head -c 200000000 /dev/zero | tr '\\0' ' ' > big.uq; ulimit -v 300000"},
+    };
+#endif
 }
 
 std::vector<BadInput> Table() {
@@ -100,6 +307,8 @@ std::vector<BadInput> Table() {
     };
     for (BadInput& b : t)
         if (std::string(b.name) == "IncludeDepth17") b.files["main.uq"] = IncludeChain(17, b.files);
+    for (BadInput& b : HardeningRows()) t.push_back(std::move(b));
+    for (BadInput& b : AddressLimitRows()) t.push_back(std::move(b));
     return t;
 }
 
@@ -114,14 +323,31 @@ TEST_P(BadInputTest, OneLineErrorNonZeroExitNoOutput) {
     const BadInput& b = GetParam();
     TempDir dir;
     for (const auto& [name, text] : b.files) dir.Write(name, text);
-    std::string out = dir.File("out.png");
+    const bool picture = b.expectLitPixel > 0;
+    std::string out = dir.File(picture ? "out.ppm" : "out.png");
     std::string args = Substitute(b.extraArgs, dir.path());
     std::string scene = b.files.count("main.uq") ? dir.File("main.uq") : "";
     // An explicit -o in extraArgs replaces the default output.
     bool ownOutput = args.find("-o ") != std::string::npos;
-    std::string cmd = "cd '" + dir.path() + "' && " + QuadrixBinary() + " render " + scene + " " +
-                      args + (ownOutput ? "" : " -o '" + out + "'");
+    std::string cmd = "cd '" + dir.path() + "' && " + (b.setup.empty()             ? ""
+                                           : b.setup.back() == '|' ? b.setup + " "
+                                                                   : b.setup + "; ") +
+                      QuadrixBinary() + " render " + scene + " " + args +
+                      (ownOutput ? "" : std::string(picture ? " --size 64x64" : "") + " -o '" + out + "'");
     CommandResult r = RunShell(cmd);
+    if (picture) {
+        // A correct picture: written, and lit (the sphere faces a light; a black surface or an
+        // empty frame fails).
+        ASSERT_EQ(r.exitCode, 0) << cmd << "\n" << r.err;
+        Image image;
+        ASSERT_TRUE(ReadPnm(out, image)) << cmd;
+        int brightest = 0;
+        for (std::uint8_t v : image.pixels) brightest = std::max(brightest, int(v));
+        EXPECT_GE(brightest, b.expectLitPixel) << cmd << "\n" << r.err;
+        for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+            EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+        return;
+    }
     EXPECT_NE(r.exitCode, 0) << cmd << "\n" << r.err;
     EXPECT_LT(r.exitCode, 128) << "killed by a signal: " << r.err;
     // The first line that is an error (warnings, e.g. about generated ids, may come before it).
@@ -150,6 +376,8 @@ INSTANTIATE_TEST_SUITE_P(Table, BadInputTest, ::testing::ValuesIn(Table()),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(BadInputTable, HasAtLeast25Entries) { EXPECT_GE(Table().size(), 25u); }
+
+TEST(BadInputTable, HasTheHardeningRows) { EXPECT_GE(HardeningRows().size(), 70u); }
 
 }  // namespace
 }  // namespace quadrix::testing

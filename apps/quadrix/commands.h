@@ -29,6 +29,9 @@ struct RenderArgs {
     bool allowMissing = false;
     std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
     std::string rtView;                                     // file of rt view commands
+    // Limits for servers and batch runs (docs/output.md).
+    std::string maxMemory;  // e.g. "2G"; empty = the machine's budget only
+    double timeLimit = 0;   // seconds of wall-clock time; 0 = none
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 int RunRender(const RenderArgs& args);

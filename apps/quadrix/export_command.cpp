@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "quadrix/io/output_file.h"
 #include "quadrix/io/pov_export.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/render_context.h"
@@ -32,6 +33,10 @@ int RunExport(const ExportArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
+    if (auto e = CheckOutputPaths({args.output}, args.scenes); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 1;
+    }
     Diagnostics diags;
     InputRequest input;
     input.paths = args.scenes;
@@ -59,7 +64,7 @@ int RunExport(const ExportArgs& args) {
     PovExportOptions po;
     po.mask = args.mask;
     po.shadows = args.shadows;
-    if (auto e = WriteFileAtomically(args.output, ExportPov(*flat, po)); !e.empty()) {
+    if (auto e = WriteOutputFile(args.output, ExportPov(*flat, po)); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }

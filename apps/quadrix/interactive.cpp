@@ -18,6 +18,7 @@
 
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flattener.h"
+#include "quadrix/io/bounded_read.h"
 #include "quadrix/lang/input_files.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/source.h"
@@ -48,6 +49,12 @@ class PlainLineInput : public LineInput {
         while ((c = std::fgetc(in_)) != EOF) {
             any = true;
             if (c == '\n') break;
+            // One line is bounded like every input (io/bounded_read.h): `quadrix -i < /dev/zero`.
+            if (line.size() >= kMaxInputBytes) {
+                std::fprintf(stderr, "quadrix: error: cannot read standard input: a line is "
+                                     "longer than %s\n", ByteSizeText(kMaxInputBytes).c_str());
+                return false;
+            }
             line += static_cast<char>(c);
         }
         if (!any) {

@@ -3,10 +3,14 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <new>
+#include <stdexcept>
 
 #include "commands.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(int argc, char** argv) {
     CLI::App app{
         "Quadrix draws solids made of quadric surfaces and planes, and CSG combinations of them,\n"
         "exactly: no tessellation.\n\n"
@@ -57,4 +61,23 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
     if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
     return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // Allocation failure anywhere is a clear error with a non-zero exit, not SIGABRT
+    // (docs/output.md "Limits"). Output files in the making are removed by their destructors
+    // while the exception unwinds.
+    try {
+        return Run(argc, argv);
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr,
+                     "quadrix: error: out of memory (the input or image is too large for the "
+                     "memory available; see docs/output.md)\n");
+        return 1;
+    } catch (const std::length_error& e) {
+        std::fprintf(stderr, "quadrix: error: out of memory (%s)\n", e.what());
+        return 1;
+    }
 }

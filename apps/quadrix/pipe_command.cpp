@@ -4,38 +4,16 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <sstream>
 #include <string>
 
 #include "commands.h"
+#include "quadrix/io/bounded_read.h"
+#include "quadrix/io/output_file.h"
 #include "quadrix/model/pipe.h"
 
 namespace quadrix::cli {
 
 namespace {
-
-// Writes atomically: a temporary file next to the target, then rename (DESIGN.md reliability).
-std::string WriteTextFile(const std::string& path, const std::string& text) {
-    if (path == "-") {
-        std::fwrite(text.data(), 1, text.size(), stdout);
-        return {};
-    }
-    std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out) return fmt::format("cannot write '{}'", path);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        return fmt::format("cannot write '{}'", path);
-    }
-    return {};
-}
 
 std::string Point(const Vec3& p) { return fmt::format("{} {} {}", p.x, p.y, p.z); }
 
@@ -136,7 +114,7 @@ int RunPipe(const PipeArgs& args) {
         }
         std::string error;
         std::string text = Generate(args, error);
-        if (error.empty()) error = WriteTextFile(args.output, text);
+        if (error.empty()) error = WriteOutputFile(args.output, text);
         if (!error.empty()) {
             std::fprintf(stderr, "quadrix: error: %s\n", error.c_str());
             return error.rfind("cannot write", 0) == 0 ? 1 : 2;
@@ -155,20 +133,16 @@ int RunPipe(const PipeArgs& args) {
         std::fprintf(stderr, "quadrix: error: pipe: an input file (or --generate) is required\n");
         return 2;
     }
+    // Checked before anything is read or built: the output may not be the input (io/output_file.h).
+    if (std::string e = CheckOutputPaths({args.output}, {args.input}); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 1;
+    }
     std::string text;
-    if (args.input == "-") {
-        std::ostringstream ss;
-        ss << std::cin.rdbuf();
-        text = ss.str();
-    } else {
-        std::ifstream in(args.input, std::ios::binary);
-        if (!in) {
-            std::fprintf(stderr, "quadrix: error: cannot read '%s'\n", args.input.c_str());
-            return 1;
-        }
-        std::ostringstream ss;
-        ss << in.rdbuf();
-        text = ss.str();
+    if (std::string why = ReadBoundedFile(args.input, text); !why.empty()) {
+        std::fprintf(stderr, "quadrix: error: cannot read '%s': %s\n",
+                     args.input == "-" ? "standard input" : args.input.c_str(), why.c_str());
+        return 1;
     }
     Diagnostics diags;
     model::PipeSpec spec;
@@ -186,7 +160,7 @@ int RunPipe(const PipeArgs& args) {
                                   : std::filesystem::path(args.input).filename().string();
     wo.definition = args.definition;
     wo.prefix = args.prefix;
-    if (std::string e = WriteTextFile(args.output, model::WriteUniQuadrix(pipes, wo)); !e.empty()) {
+    if (std::string e = WriteOutputFile(args.output, model::WriteUniQuadrix(pipes, wo)); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }

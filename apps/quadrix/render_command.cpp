@@ -8,6 +8,11 @@
 #include "commands.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/engines/registry.h"
+#include "quadrix/frame/memory_budget.h"
+#include "quadrix/io/bounded_read.h"
+#include "quadrix/io/output_file.h"
+#include "quadrix/io/time_limit.h"
+#include "quadrix/io/writers.h"
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/pipeline/render_context.h"
@@ -84,6 +89,10 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->expected(16);
     cmd->add_option("--rt-view", args.rtView,
                     "File of rt view commands (viewsize; eye_pt; viewrot or orientation)");
+    cmd->add_option("--max-memory", args.maxMemory,
+                    "Memory budget, e.g. 2G or 512M: larger images are refused (docs/output.md)");
+    cmd->add_option("--time-limit", args.timeLimit,
+                    "Give up after this many seconds (exit 124, no output left)");
 }
 
 namespace {
@@ -106,13 +115,9 @@ std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnosti
         po.rtView = rt;
     }
     if (!args.rtView.empty()) {
-        std::FILE* f = std::fopen(args.rtView.c_str(), "rb");
-        if (!f) return fmt::format("--rt-view: cannot open '{}'", args.rtView);
         std::string text;
-        char buf[4096];
-        std::size_t n = 0;
-        while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
-        std::fclose(f);
+        if (auto why = ReadBoundedFile(args.rtView, text); !why.empty())
+            return fmt::format("--rt-view: cannot read '{}': {}", args.rtView, why);
         auto rt = import::ParseRtViewScript(text, args.rtView, diags);
         if (!rt) return "--rt-view: the view file has errors";
         po.rtView = *rt;
@@ -124,6 +129,22 @@ std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnosti
 }  // namespace
 
 int RunRender(const RenderArgs& args) {
+    if (!args.maxMemory.empty()) {
+        std::size_t bytes = 0;
+        if (!ParseByteSize(args.maxMemory, bytes)) {
+            std::fprintf(stderr,
+                         "quadrix: error: --max-memory: expected a size of at least 1M such as "
+                         "512M or 2G, found '%s'\n",
+                         args.maxMemory.c_str());
+            return 2;
+        }
+        SetMemoryBudget(bytes);
+    }
+    if (args.timeLimit != 0 && !SetTimeLimit(args.timeLimit)) {
+        std::fprintf(stderr, "quadrix: error: --time-limit: expected a positive number of "
+                             "seconds\n");
+        return 2;
+    }
     Diagnostics diags;
     PipelineOptions po;
     if (auto e = ParseSize(args.size, po.width, po.height); !e.empty()) {
@@ -162,6 +183,17 @@ int RunRender(const RenderArgs& args) {
     if (auto e = RenderContext::CheckEngine(engine); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
+    }
+
+    // The outputs against the inputs named on the command line (io/output_file.h); files read
+    // later (`read`) are refused when the output is opened.
+    std::vector<std::string> inputs = args.scenes;
+    if (!args.rtView.empty()) inputs.push_back(args.rtView);
+    if (auto e = CheckOutputPaths({args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
+                                  inputs);
+        !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 1;
     }
 
     RenderContext ctx(args.threads);

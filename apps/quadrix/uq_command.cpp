@@ -25,6 +25,7 @@
 #include "interactive.h"
 #include "quadrix/device/device.h"
 #include "quadrix/engines/engine.h"
+#include "quadrix/io/output_file.h"
 
 namespace quadrix::cli {
 
@@ -232,7 +233,22 @@ std::string CheckDevices(const Plan& plan, const std::string& initial, const cha
     std::string spec = initial;
     device::DeviceSettings ds;
     std::string error;
-    if (!device::MakeDevice(spec, ds, error))
+    // No output (a device's file, -e, -t) may be one of the scene files (io/output_file.h).
+    std::vector<std::string> inputs;
+    for (const Action& a : plan.actions)
+        if (a.kind == Kind::kFile) inputs.push_back(a.text);
+    for (const Action& a : plan.actions)
+        if ((a.kind == Kind::kErrors || a.kind == Kind::kTrace) && !a.text.empty())
+            for (const std::string& in : inputs)
+                if (IsSameFile(a.text, in))
+                    return fmt::format("cannot write '{}': it is the input file '{}'", a.text, in);
+    auto checkOutput = [&](const std::unique_ptr<device::Device>& d) {
+        if (!d) return false;
+        if (d->Info().path.empty()) return true;  // a window
+        if (auto e = CheckOutputPaths({d->Info().path}, inputs); !e.empty()) error = e;
+        return error.empty();
+    };
+    if (!checkOutput(device::MakeDevice(spec, ds, error)))
         return fmt::format("{} (device from {})", error, source);
     for (const Action& a : plan.actions) {
         if (a.kind == Kind::kDevice)
@@ -245,7 +261,7 @@ std::string CheckDevices(const Plan& plan, const std::string& initial, const cha
             ds.deltaMax = static_cast<int>(a.number);
         else
             continue;
-        if (!device::MakeDevice(spec, ds, error)) return error;
+        if (!checkOutput(device::MakeDevice(spec, ds, error))) return error;
     }
     return {};
 }

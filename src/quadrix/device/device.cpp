@@ -14,6 +14,7 @@
 
 #include "quadrix/device/device_internal.h"
 #include "quadrix/frame/image_limits.h"
+#include "quadrix/io/output_file.h"
 
 namespace quadrix::device {
 
@@ -140,6 +141,14 @@ std::unique_ptr<Device> MakeDevice(std::string_view spec, const DeviceSettings& 
         info.path = std::string(pathText);
     else if (!settings.path.empty())
         info.path = settings.path;
+    // The output is checked before anything is drawn (io/output_file.h): never a device node,
+    // FIFO, directory or input file, even though the write itself checks again.
+    if (!info.path.empty() && info.path != "-") {
+        if (auto e = CheckOutputPath(info.path); !e.empty()) {
+            error = e;
+            return nullptr;
+        }
+    }
 
     // Sizes in inches, as the paper's -sx/-sy and xsize/ysize.
     auto pixels = [&](double inches) { return std::llround(inches * info.dotsPerInch); };

@@ -100,7 +100,7 @@ class HalftoneDevice : public BufferedDevice {
                     row[static_cast<std::size_t>(x / 8)] |= static_cast<char>(0x80 >> (x % 8));
             out += row;
         }
-        return WriteFileAtomically(info_.path, out);
+        return WriteOutputFile(info_.path, out);
     }
 
   private:

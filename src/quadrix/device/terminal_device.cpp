@@ -54,7 +54,7 @@ class TerminalDevice : public BufferedDevice {
   protected:
     std::string Write(const Image& image) override {
         std::string text = Render(image);
-        if (info_.path != "-") return WriteFileAtomically(info_.path, text);
+        if (info_.path != "-") return WriteOutputFile(info_.path, text);
         std::fwrite(text.data(), 1, text.size(), screen_);
         std::fflush(screen_);
         return {};

@@ -64,8 +64,13 @@ class ViewResolver {
         }
         s.n = Normalize(vpn);
         Vec3 vup = view_.vup.value_or(Vec3{0, 1, 0});
-        Vec3 right = Cross(vup, s.n);
-        if (Length(right) <= 1e-9 * Length(vup))
+        // Both unit vectors first: a vup or vpn of any magnitude (1e-200, 1e200) gives the same
+        // screen (issue 23), where the raw cross product under- or overflowed.
+        // The raw vup where its products are safe, so ordinary views keep their exact bits.
+        const double vupLength = Length(vup);
+        const Vec3 up = vupLength > 1e-100 && vupLength < 1e100 ? vup : vup / vupLength;
+        Vec3 right = Cross(up, s.n);
+        if (!(Length(right) > 1e-9 * Length(up)))
             return Fail(
                 fmt::format("view '{}': vup {} is parallel to the view plane normal {}; "
                             "the screen's up direction is undefined",

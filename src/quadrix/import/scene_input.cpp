@@ -8,13 +8,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 
 #include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/freeform/freeform_reader.h"
 #include "quadrix/import/openscad/openscad_import.h"
+#include "quadrix/io/bounded_read.h"
 #include "quadrix/lang/reader.h"
 
 namespace quadrix::import {
@@ -76,17 +75,16 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
             uqReader().ReadFile(path);
             continue;
         }
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            diags.Error(FileLoc(path), fmt::format("cannot open '{}'", path), {}, "input");
+        // Every format through the bounded reader (io/bounded_read.h), read once: a FIFO or
+        // process substitution cannot be read twice.
+        std::string text;
+        if (std::string why = ReadBoundedFile(path, text); !why.empty()) {
+            diags.Error(FileLoc(path), fmt::format("cannot read '{}': {}", path, why), {}, "input");
             continue;
         }
-        std::stringstream ss;
-        ss << in.rdbuf();
-        std::string text = ss.str();
         switch (DetectInputFormat(path, text)) {
             case InputFormat::kUniQuadrix:
-                uqReader().ReadFile(path);
+                uqReader().ReadText(text, path);
                 break;
             case InputFormat::kBrlcad: {
                 ImportReport r;
@@ -275,6 +273,28 @@ std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string
         } else if (cmd == "orientation") {
             if ((ok = numbers(4, v) && ok)) {
                 // Unit quaternion (x y z w) → rotation matrix (the usual right-handed form).
+                // A zero quaternion is no rotation at all (it gave the identity, issue 23); any
+                // other is normalised first (scaled by its largest component so that no square
+                // overflows), with a warning when it was not a unit quaternion to begin with.
+                double big = 0;
+                for (int k = 0; k < 4; ++k) big = std::max(big, std::fabs(v[k]));
+                if (!(big > 0)) {
+                    diags.Error(map.At(words[0].second),
+                                "orientation 0 0 0 0 is not a rotation (the zero quaternion)",
+                                map.LineText(words[0].second));
+                    ok = false;
+                    continue;
+                }
+                double sum = 0;
+                for (int k = 0; k < 4; ++k) sum += (v[k] / big) * (v[k] / big);
+                const double norm = big * std::sqrt(sum);
+                if (std::fabs(norm - 1) > 1e-4)
+                    diags.Warning(map.At(words[0].second),
+                                  fmt::format("orientation: the quaternion has length {} (not "
+                                              "1); it is normalised",
+                                              norm),
+                                  map.LineText(words[0].second));
+                for (int k = 0; k < 4; ++k) v[k] = (v[k] / big) / std::sqrt(sum);
                 double qx = v[0], qy = v[1], qz = v[2], qw = v[3];
                 Mat4& m = rt.viewrot;
                 m = Mat4::Identity();

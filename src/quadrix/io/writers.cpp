@@ -1,7 +1,6 @@
 #include "quadrix/io/writers.h"
 
 #include <png.h>
-#include <unistd.h>
 
 #include <array>
 #include <cerrno>
@@ -11,7 +10,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -26,41 +24,6 @@ std::string Lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return s;
 }
-
-// A temporary file next to `path` that is removed unless Commit() renames it into place.
-class AtomicFile {
-public:
-    explicit AtomicFile(const std::string& path) : path_(path) {
-        std::random_device rd;
-        tmp_ = fmt::format("{}.tmp{}", path, rd() % 1000000);
-        file_ = std::fopen(tmp_.c_str(), "wb");
-        if (!file_) error_ = fmt::format("cannot write '{}': {}", path, std::strerror(errno));
-    }
-    ~AtomicFile() {
-        if (file_) std::fclose(file_);
-        if (!committed_ && !tmp_.empty()) std::remove(tmp_.c_str());
-    }
-    std::FILE* get() { return file_; }
-    const std::string& error() const { return error_; }
-    std::string Commit() {
-        if (!file_) return error_;
-        bool bad = std::ferror(file_) != 0;
-        bad |= std::fflush(file_) != 0;
-        int closeResult = std::fclose(file_);
-        file_ = nullptr;
-        if (bad || closeResult != 0)
-            return fmt::format("cannot write '{}': {}", path_, std::strerror(errno ? errno : EIO));
-        if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
-            return fmt::format("cannot write '{}': {}", path_, std::strerror(errno));
-        committed_ = true;
-        return {};
-    }
-
-private:
-    std::string path_, tmp_, error_;
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
-};
 
 std::string CheckImage(const Image& image) {
     if (image.width <= 0 || image.height <= 0 || (image.channels != 1 && image.channels != 3) ||
@@ -155,13 +118,10 @@ bool ImageFormatFromPath(const std::string& path, ImageFormat& format) {
 }
 
 std::string WriteFileAtomically(const std::string& path, const std::string& contents) {
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
-    std::fwrite(contents.data(), 1, contents.size(), f.get());
-    return f.Commit();
+    return WriteOutputFile(path, contents);
 }
 
-std::string WritePng(const std::string& path, const Image& image, const PngOptions& options) {
+std::string WritePng(OutputFile& f, const Image& image, const PngOptions& options) {
     if (auto e = CheckImage(image); !e.empty()) return e;
     if (options.bitDepth != 8 && options.bitDepth != 16)
         return fmt::format("internal error: PNG bit depth {} (8 or 16)", options.bitDepth);
@@ -171,8 +131,7 @@ std::string WritePng(const std::string& path, const Image& image, const PngOptio
     if (options.srgb && !sixteen) encoded = EncodeSrgb8(image);
     std::vector<png_byte> row;
     static const std::string software = std::string("Quadrix ") + QUADRIX_VERSION;
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
+    if (!f.ok()) return f.error();
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     if (!png) return "cannot initialise libpng";
     png_infop info = png_create_info_struct(png);
@@ -184,9 +143,9 @@ std::string WritePng(const std::string& path, const Image& image, const PngOptio
     // the end of the block.
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        return fmt::format("cannot write '{}': PNG encoding failed", path);
+        return fmt::format("cannot write '{}': PNG encoding failed", f.path());
     }
-    png_init_io(png, f.get());
+    png_init_io(png, f.stream());
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                  static_cast<png_uint_32>(image.height), sixteen ? 16 : 8,
                  image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
@@ -217,32 +176,51 @@ std::string WritePng(const std::string& path, const Image& image, const PngOptio
     }
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    return f.Commit();
+    return {};
 }
 
-std::string WritePnm(const std::string& path, const Image& image) {
+std::string WritePnm(OutputFile& f, const Image& image) {
     if (auto e = CheckImage(image); !e.empty()) return e;
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
-    std::fprintf(f.get(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
+    if (!f.ok()) return f.error();
+    std::fprintf(f.stream(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
                  image.height);
     const std::vector<std::uint8_t> encoded = EncodeSrgb8(image);
-    std::fwrite(encoded.data(), 1, encoded.size(), f.get());
-    return f.Commit();
+    std::fwrite(encoded.data(), 1, encoded.size(), f.stream());
+    return {};
 }
 
-std::string WriteFrameDump(const std::string& path, const Frame& frame) {
-    AtomicFile f(path);
-    if (!f.get()) return f.error();
-    std::fprintf(f.get(), "QXF1 %d %d\n", frame.width, frame.height);
+std::string WriteFrameDump(OutputFile& f, const Frame& frame) {
+    if (!f.ok()) return f.error();
+    std::fprintf(f.stream(), "QXF1 %d %d\n", frame.width, frame.height);
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width; ++x) {
             std::size_t i = frame.Index(x, y);
             if (frame.surface[i] == Frame::kNone) continue;
             const Vec3& n = frame.normal[i];
-            std::fprintf(f.get(), "%d %d %.17g %.17g %.17g %.17g %d %d %d\n", x, y, frame.depth[i],
-                         n.x, n.y, n.z, frame.surface[i], frame.body[i], frame.solid[i]);
+            std::fprintf(f.stream(), "%d %d %.17g %.17g %.17g %.17g %d %d %d\n", x, y,
+                         frame.depth[i], n.x, n.y, n.z, frame.surface[i], frame.body[i],
+                         frame.solid[i]);
         }
+    return {};
+}
+
+std::string WritePng(const std::string& path, const Image& image, const PngOptions& options) {
+    if (auto e = CheckImage(image); !e.empty()) return e;
+    OutputFile f(path);
+    if (auto e = WritePng(f, image, options); !e.empty()) return e;
+    return f.Commit();
+}
+
+std::string WritePnm(const std::string& path, const Image& image) {
+    if (auto e = CheckImage(image); !e.empty()) return e;
+    OutputFile f(path);
+    if (auto e = WritePnm(f, image); !e.empty()) return e;
+    return f.Commit();
+}
+
+std::string WriteFrameDump(const std::string& path, const Frame& frame) {
+    OutputFile f(path);
+    if (auto e = WriteFrameDump(f, frame); !e.empty()) return e;
     return f.Commit();
 }
 

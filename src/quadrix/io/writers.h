@@ -1,6 +1,7 @@
-// Output files. Every writer is atomic: it writes a temporary file next to the target and renames
-// it into place only when everything succeeded, so a failed or interrupted render never leaves a
-// truncated file (DESIGN.md "Reliability rules").
+// Output files. Every writer goes through the one output writer (io/output_file.h, docs/output.md):
+// a temporary file next to the target, renamed into place only when everything succeeded, so a
+// failed or interrupted render never leaves a truncated file (DESIGN.md "Reliability rules"), and
+// never in place of a device, FIFO, directory or input file.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/io/image.h"
+#include "quadrix/io/output_file.h"
 
 namespace quadrix {
 
@@ -47,7 +49,13 @@ std::string WriteFrameDump(const std::string& path, const Frame& frame);
 // Reads a dump back (for tests); returns an error message or empty.
 std::string ReadFrameDump(const std::string& path, Frame& frame);
 
-// Writes `contents` atomically (temporary file + rename). Empty string on success.
+// Writes `contents` atomically (WriteOutputFile: temporary file + rename). Empty string on success.
 std::string WriteFileAtomically(const std::string& path, const std::string& contents);
+
+// The same encoders into an OutputFile that the caller commits (CommitAll for a command with
+// several outputs). Empty string on success.
+std::string WritePng(OutputFile& file, const Image& image, const PngOptions& options = {});
+std::string WritePnm(OutputFile& file, const Image& image);
+std::string WriteFrameDump(OutputFile& file, const Frame& frame);
 
 }  // namespace quadrix

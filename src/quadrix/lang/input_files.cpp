@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <iostream>
 
+#include "quadrix/io/bounded_read.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/source.h"
 
@@ -30,47 +30,14 @@ std::string CanonicalKey(const std::string& path) {
     return p.string();
 }
 
-// Loads a whole file; returns false with a reason.
+// Loads a whole file through the bounded reader (io/bounded_read.h: at most 256 MiB, so `read
+// "/dev/zero";` or an endless pipe ends in an error, issue 7 fuzzing); false with a reason.
 bool LoadFile(const std::string& path, std::string& text, std::string& reason) {
-    std::error_code ec;
-    if (fs::is_directory(fs::path(path), ec)) {
-        reason = "it is a directory";
-        return false;
-    }
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        reason = std::strerror(errno);
-        return false;
-    }
-    // A scene file larger than this is refused rather than read until memory runs out: `read
-    // "/dev/zero";` (or any endless device or pipe) would otherwise never end (issue 7 fuzzing).
-    constexpr std::size_t kMaxFileBytes = std::size_t{256} << 20;
-    char buffer[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
-        text.append(buffer, n);
-        if (text.size() > kMaxFileBytes) {
-            std::fclose(f);
-            reason = "it is larger than 256 MiB";
-            return false;
-        }
-    }
-    bool failed = std::ferror(f) != 0;
-    std::fclose(f);
-    if (failed) {
-        reason = "read error";
-        return false;
-    }
-    return true;
+    reason = ReadBoundedFile(path, text);
+    return reason.empty();
 }
 
-bool ReadStdinLine(std::string& text) {
-    std::string line;
-    if (!std::getline(std::cin, line)) return false;
-    text += line;
-    if (!std::cin.eof()) text += '\n';
-    return true;
-}
+bool ReadStdinLine(std::string& text) { return ReadBoundedStdinLine(text); }
 
 // Why `frame` may not be read now (a cycle, or nesting too deep), or empty when it may.
 std::string CheckCanRead(const ReaderState& state, const IncludeFrame& frame) {
@@ -112,6 +79,8 @@ void ReadTopLevelFile(ReaderState& state, const std::string& path) {
         Source source(kStdinName, Source::LineReader(ReadStdinLine));
         std::string error = RunSource(state, source, {kStdinKey, kStdinName});
         if (!error.empty()) TopLevelError(state, kStdinName, error);
+        if (std::string e = StdinError(); error.empty() && !e.empty())
+            TopLevelError(state, kStdinName, "cannot read standard input: " + e);
         return;
     }
     std::string text, reason;
@@ -150,6 +119,8 @@ void ReadIncluded(ReaderState& state, Parser& includer, const std::string& path,
         Source source(kStdinName, Source::LineReader(ReadStdinLine));
         std::string error = RunSource(state, source, {kStdinKey, kStdinName});
         if (!error.empty()) includer.Error(at, error, kParser);
+        if (std::string e = StdinError(); error.empty() && !e.empty())
+            includer.Error(at, "cannot read standard input: " + e, kParser);
         return;
     }
     std::string shown = ResolveAgainstIncluder(includer, path);

@@ -37,11 +37,38 @@ constexpr double Dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.
 constexpr Vec3 Cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double Length(const Vec3& v) { return std::sqrt(Dot(v, v)); }
+// Length and normalisation that are safe at every scale (issue 23): |v|² overflows to +inf for
+// components beyond about 1e154 and underflows to 0 below about 1e-154, which made a light
+// direction of length 1e200 a zero vector (a black picture) and a tiny vpn "the zero vector".
+// Where |v|² is comfortably inside the normal range the plain formula is used (bit-identical to
+// before); otherwise v is first divided by its largest component magnitude m, so that the sum of
+// squares lies in [1, 3], and |v| = m · |v / m|.
+namespace vec_detail {
+inline constexpr double kSafeLo = 1e-280, kSafeHi = 1e280;
+inline double MaxAbs(const Vec3& v) {
+    return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z)));
+}
+}  // namespace vec_detail
+
+inline double Length(const Vec3& v) {
+    const double d = Dot(v, v);
+    if (d > vec_detail::kSafeLo && d < vec_detail::kSafeHi) return std::sqrt(d);
+    const double m = vec_detail::MaxAbs(v);
+    if (!(m > 0) || !std::isfinite(m)) return std::sqrt(d);  // zero, inf or NaN as before
+    const Vec3 u = v / m;
+    return m * std::sqrt(Dot(u, u));
+}
 // Returns v / |v|; the zero vector stays zero (callers check Length first where it matters).
 inline Vec3 Normalize(const Vec3& v) {
-    double len = Length(v);
-    return len > 0 ? v / len : v;
+    const double d = Dot(v, v);
+    if (d > vec_detail::kSafeLo && d < vec_detail::kSafeHi) return v / std::sqrt(d);
+    const double m = vec_detail::MaxAbs(v);
+    if (!(m > 0) || !std::isfinite(m)) {
+        const double len = std::sqrt(d);
+        return len > 0 ? v / len : v;
+    }
+    const Vec3 u = v / m;
+    return u / std::sqrt(Dot(u, u));
 }
 inline bool IsFinite(const Vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <optional>
+
+#include "quadrix/io/output_file.h"
 
 namespace quadrix {
 
@@ -12,6 +15,11 @@ std::string CheckOutputs(const OutputRequest& request) {
         return fmt::format(
             "cannot tell the image format of '{}' (use .png, .pgm, .ppm, .pnm or .qxf)",
             request.image);
+    // Never a device, FIFO, directory or file already read (io/output_file.h).
+    if (auto e =
+            CheckOutputPaths({request.image, request.dumpFrame.empty() ? "-" : request.dumpFrame});
+        !e.empty())
+        return e;
     if (!request.dumpFrame.empty()) {
         ImageFormat dump;
         if (!ImageFormatFromPath(request.dumpFrame, dump) || dump != ImageFormat::kFrameDump)
@@ -34,16 +42,22 @@ std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const
     if (auto e = CheckOutputs(request); !e.empty()) return e;
     ImageFormat format;
     ImageFormatFromPath(request.image, format);
+    // Both outputs go to temporary files first and are renamed together (io/output_file.h), so a
+    // failed dump never follows a written image.
+    OutputFile main(request.image);
+    std::optional<OutputFile> dump;
+    if (!request.dumpFrame.empty()) dump.emplace(request.dumpFrame);
     std::string error;
     if (format == ImageFormat::kFrameDump)
-        error = WriteFrameDump(request.image, frame);
+        error = WriteFrameDump(main, frame);
     else if (!image)
         error = "internal error: no image to write";
     else if (format == ImageFormat::kPng)
-        error = WritePng(request.image, *image, request.png);
+        error = WritePng(main, *image, request.png);
     else
-        error = WritePnm(request.image, *image);
-    if (error.empty() && !request.dumpFrame.empty()) error = WriteFrameDump(request.dumpFrame, frame);
+        error = WritePnm(main, *image);
+    if (error.empty() && dump) error = WriteFrameDump(*dump, frame);
+    if (error.empty()) error = dump ? CommitAll({&main, &*dump}) : CommitAll({&main});
     return error;
 }
 

@@ -4,21 +4,44 @@
 
 namespace quadrix {
 
+namespace {
+
+// Control bytes (a NUL, an escape sequence) in a message or source line would cut the message
+// short or act on the terminal; they are shown as \xHH instead (issue 23). Tabs stay.
+bool IsControl(char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return (u < 0x20 && c != '\t') || u == 0x7f;
+}
+
+std::string Visible(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text)
+        if (IsControl(c))
+            out += fmt::format("\\x{:02X}", static_cast<unsigned char>(c));
+        else
+            out += c;
+    return out;
+}
+
+}  // namespace
+
 std::string Diagnostic::Format(bool withSource) const {
     const char* sev = severity == Severity::kError     ? "error"
                       : severity == Severity::kWarning ? "warning"
                                                        : "note";
     std::string s;
     if (loc.file || loc.line > 0)
-        s = fmt::format("{}: {}: {}", loc.ToString(), sev, message);
+        s = fmt::format("{}: {}: {}", Visible(loc.ToString()), sev, Visible(message));
     else
-        s = fmt::format("quadrix: {}: {}", sev, message);
+        s = fmt::format("quadrix: {}: {}", sev, Visible(message));
     if (withSource && !sourceLine.empty() && loc.column > 0) {
-        // Tabs are kept in the caret line so the caret lines up with the source in a terminal.
+        // Tabs are kept in the caret line so the caret lines up with the source in a terminal;
+        // an escaped control byte is four columns wide.
         std::string caret;
         for (int i = 0; i + 1 < loc.column && i < static_cast<int>(sourceLine.size()); ++i)
-            caret += sourceLine[i] == '\t' ? '\t' : ' ';
-        s += fmt::format("\n    {}\n    {}^", sourceLine, caret);
+            caret += sourceLine[i] == '\t' ? "\t" : IsControl(sourceLine[i]) ? "    " : " ";
+        s += fmt::format("\n    {}\n    {}^", Visible(sourceLine), caret);
     }
     return s;
 }

@@ -305,7 +305,9 @@ class Converter {
         auto t = Transform::FromMatrix(total);
         if (!t) {
             diags_.Error(refLoc,
-                         fmt::format("the matrices on the path to '{}' are singular", p.name));
+                         fmt::format("the matrices on the path to '{}' cannot be inverted: "
+                                     "singular, not finite, or scales more than 1e14 apart",
+                                     p.name));
             aborted_ = true;
             return -1;
         }

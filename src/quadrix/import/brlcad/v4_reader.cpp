@@ -290,6 +290,20 @@ class V4Reader {
     void ColorEntry(const std::vector<Token>& toks) {
         double v[6];
         if (!Numbers(toks, 1, 6, v, "colour table record 'm'")) return;
+        // Range checks before any conversion to int (a double beyond int is undefined behaviour,
+        // UBSan float-cast-overflow; issue 23): region ids are whole numbers from 0 to 2^31 - 1,
+        // colour components whole numbers from 0 to 255.
+        static const char* kField[] = {"", "low region id", "high region id", "red", "green",
+                                       "blue"};
+        for (int k = 1; k < 6; ++k) {
+            const double hi = k <= 2 ? 2147483647.0 : 255.0;
+            if (v[k] != std::floor(v[k]) || v[k] < 0 || v[k] > hi) {
+                Error(toks[1 + k], fmt::format("colour table record 'm': {} '{}' is not a whole "
+                                               "number from 0 to {}",
+                                               kField[k], toks[1 + k].text, hi));
+                return;
+            }
+        }
         ColorTableEntry e;
         e.low = static_cast<int>(v[1]);
         e.high = static_cast<int>(v[2]);

@@ -140,6 +140,15 @@ class V5Reader {
         return true;
     }
 
+    // `v` (already a finite number read from `w`) is a whole number in [lo, hi]; else an error at
+    // `w`. Checked before a conversion to int, which is undefined beyond int's range.
+    bool WholeNumberIn(const Word& w, double v, double lo, double hi, const std::string& what) {
+        if (v == std::floor(v) && v >= lo && v <= hi) return true;
+        Error(w.offset, fmt::format("{}: '{}' is not a whole number from {} to {}", what, w.text,
+                                    lo, hi));
+        return false;
+    }
+
     bool Vector(const Word& w, Vec3& v, const std::string& what) {
         auto l = List(w);
         if (!l) return false;
@@ -180,6 +189,12 @@ class V5Reader {
         double v[5];
         for (int k = 0; k < 5; ++k)
             if (!Number(w[k + 1], v[k], "color")) return;
+        // Range checks before any conversion to int (UBSan float-cast-overflow; issue 23).
+        static const char* kField[] = {"low region id", "high region id", "red", "green", "blue"};
+        for (int k = 0; k < 5; ++k)
+            if (!WholeNumberIn(w[k + 1], v[k], 0, k < 2 ? 2147483647.0 : 255.0,
+                               fmt::format("color: {}", kField[k])))
+                return;
         db_.colorTable.push_back(
             {static_cast<int>(v[0]),
              static_cast<int>(v[1]),
@@ -274,6 +289,13 @@ class V5Reader {
         } else if (type == "arbn") {
             double n = 0;
             num("N", n);
+            // Every plane is a key P0 … P(N-1) of this command, so N cannot exceed their count.
+            if (ok) {
+                auto nWord = kv.find("N");
+                if (nWord != kv.end())
+                    ok = WholeNumberIn(nWord->second, n, 0, static_cast<double>(kv.size()),
+                                       what + " N");
+            }
             for (int k = 0; ok && k < static_cast<int>(n); ++k) {
                 std::string key = fmt::format("P{}", k);
                 auto it = kv.find(key);
@@ -396,12 +418,69 @@ class V5Reader {
         return true;
     }
 
-    // Parses a tree list into comb.nodes; returns the node index or -1 on error.
-    int Tree(const Word& w, Combination& comb, int depth) {
-        if (depth > 2000) {
-            Error(w.offset, "combination tree nested too deeply");
-            return -1;
+    // Deepest combination tree accepted. The parser below keeps its own stack (no recursion,
+    // so no stack overflow at any depth, issue 23); the limit protects the importer, which walks
+    // trees recursively (brlcad_import.cpp, kMaxTreeDepth over all combinations together).
+    static constexpr int kMaxTreeDepth = 2000;
+
+    // Parses a tree list into comb.nodes (children before their parent); returns the root's node
+    // index or -1 on error. Iterative: an operator waiting for its operands sits on `pending`.
+    int Tree(const Word& root, Combination& comb) {
+        struct Pending {
+            TreeNode node;
+            Word left, right;
+            int depth;
+            bool leftDone = false;
+        };
+        std::vector<Pending> pending;
+        // Starts the subtree at `w`: a leaf's node index, kOperator when an operator was pushed
+        // on `pending`, or -1 on error.
+        constexpr int kOperator = -2;
+        auto start = [&](const Word& w, int depth) -> int {
+            if (depth > kMaxTreeDepth) {
+                Error(w.offset, fmt::format("combination '{}': tree nested deeper than {} levels",
+                                            comb.name, kMaxTreeDepth));
+                return -1;
+            }
+            TreeNode n;
+            n.loc = map_.At(w.offset);
+            Word left, right;
+            const int r = TreeNodeOf(w, comb, n, left, right);
+            if (r < 0) return -1;
+            if (r == 1) {
+                pending.push_back({std::move(n), left, right, depth});
+                return kOperator;
+            }
+            comb.nodes.push_back(std::move(n));
+            return static_cast<int>(comb.nodes.size()) - 1;
+        };
+        int r = start(root, 0);
+        while (r != -1) {
+            if (r == kOperator) {  // descend into the new operator's left operand
+                const Word w = pending.back().left;
+                r = start(w, pending.back().depth + 1);
+                continue;
+            }
+            if (pending.empty()) return r;  // the root is complete
+            Pending& p = pending.back();
+            if (!p.leftDone) {
+                p.node.left = r;
+                p.leftDone = true;
+                const Word w = p.right;
+                r = start(w, p.depth + 1);
+                continue;
+            }
+            p.node.right = r;
+            comb.nodes.push_back(std::move(p.node));
+            pending.pop_back();
+            r = static_cast<int>(comb.nodes.size()) - 1;
         }
+        return -1;
+    }
+
+    // One node of a tree list: fills `n` and returns 0 for a leaf; sets n.op and the two operand
+    // words and returns 1 for an operator; -1 after reporting an error.
+    int TreeNodeOf(const Word& w, Combination& comb, TreeNode& n, Word& left, Word& right) {
         auto l = List(w);
         if (!l) return -1;
         if (l->empty()) {
@@ -410,8 +489,6 @@ class V5Reader {
         }
         const std::vector<Word>& e = *l;
         std::string_view op = e[0].text;
-        TreeNode n;
-        n.loc = map_.At(w.offset);
         if (op == "l") {
             if (e.size() < 2 || e.size() > 3) {
                 Error(w.offset,
@@ -432,7 +509,9 @@ class V5Reader {
                 for (int k = 0; k < 16; ++k)
                     if (!Number((*m)[k], n.matrix.m[k / 4][k % 4], "matrix")) return -1;
             }
-        } else if (op == "u" || op == "n" || op == "+" || op == "-") {
+            return 0;
+        }
+        if (op == "u" || op == "n" || op == "+" || op == "-") {
             if (e.size() != 3) {
                 Error(w.offset, fmt::format("combination '{}': operator '{}' needs two operands, "
                                             "found {}",
@@ -442,18 +521,14 @@ class V5Reader {
             n.op = op == "u"   ? TreeNode::Op::kUnion
                    : op == "-" ? TreeNode::Op::kDifference
                                : TreeNode::Op::kIntersection;
-            n.left = Tree(e[1], comb, depth + 1);
-            if (n.left < 0) return -1;
-            n.right = Tree(e[2], comb, depth + 1);
-            if (n.right < 0) return -1;
-        } else {
-            Error(e[0].offset, fmt::format("combination '{}': unsupported tree operator '{}' "
-                                           "(supported: l u n - ; xor and not are not)",
-                                           comb.name, op));
-            return -1;
+            left = e[1];
+            right = e[2];
+            return 1;
         }
-        comb.nodes.push_back(std::move(n));
-        return static_cast<int>(comb.nodes.size()) - 1;
+        Error(e[0].offset, fmt::format("combination '{}': unsupported tree operator '{}' "
+                                       "(supported: l u n - ; xor and not are not)",
+                                       comb.name, op));
+        return -1;
     }
 
     static std::optional<std::array<int, 3>> ParseRgb(std::string_view s) {
@@ -482,7 +557,7 @@ class V5Reader {
         auto trimmed = tree->second.text;
         while (!trimmed.empty() && IsSpace(trimmed.front())) trimmed.remove_prefix(1);
         if (!trimmed.empty()) {
-            c.root = Tree(tree->second, c, 0);
+            c.root = Tree(tree->second, c);
             if (c.root < 0) return;
         }
         for (const auto& [k, v] : kv) SetCombAttr(c, k, v);
@@ -494,10 +569,12 @@ class V5Reader {
         if (key == "region") {
             c.region = c.region || v.text == "R" || v.text == "yes" || v.text == "1";
         } else if (key == "region_id" || key == "id") {
-            if (Number(v, num, fmt::format("combination '{}' {}", c.name, key)))
+            const std::string what = fmt::format("combination '{}' {}", c.name, key);
+            if (Number(v, num, what) && WholeNumberIn(v, num, -2147483647.0, 2147483647.0, what))
                 c.regionId = static_cast<int>(num);
         } else if (key == "aircode" || key == "air") {
-            if (Number(v, num, fmt::format("combination '{}' {}", c.name, key)))
+            const std::string what = fmt::format("combination '{}' {}", c.name, key);
+            if (Number(v, num, what) && WholeNumberIn(v, num, -2147483647.0, 2147483647.0, what))
                 c.aircode = static_cast<int>(num);
         } else if (key == "rgb" || key == "color") {
             auto rgb = ParseRgb(v.text);

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "quadrix/import/freeform/readers_internal.h"
+#include "quadrix/io/bounded_read.h"
 
 namespace quadrix::import {
 
@@ -120,20 +120,12 @@ std::optional<FreeformModel> ReadFreeformText(std::string_view text, const std::
 
 std::optional<FreeformModel> ReadFreeformFile(const std::string& path, Diagnostics& diagnostics,
                                               FreeformFormat format) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::string text;
+    if (std::string why = ReadBoundedFile(path, text); !why.empty()) {
         diagnostics.Error(SourceLoc{std::make_shared<const std::string>(path), 0, 0},
-                          "cannot open freeform model file");
+                          "cannot read freeform model file: " + why);
         return std::nullopt;
     }
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) {
-        diagnostics.Error(SourceLoc{std::make_shared<const std::string>(path), 0, 0},
-                          "cannot read freeform model file");
-        return std::nullopt;
-    }
-    std::string text = buffer.str();
     return ReadFreeformText(text, path, format, diagnostics);
 }
 

@@ -70,6 +70,8 @@ class Parser {
         : map_(map), t_(map.text()), diags_(diags) {}
 
     bool Run(std::vector<Node>& out) {
+        // A UTF-8 byte order mark (editors on Windows write one) is not text; OpenSCAD skips it.
+        if (t_.substr(0, 3) == "\xEF\xBB\xBF") i_ = 3;
         while (Skip(), i_ < t_.size()) {
             Node n;
             if (!Statement(n, 0)) return false;
@@ -381,6 +383,15 @@ class Builder {
         }
         return v->number;
     }
+    // Sizes must be positive: OpenSCAD draws nothing for a zero or negative size (and warns
+    // with --check-parameter-ranges), where the quadric of a negative radius is the same as
+    // the positive one's; both are errors here rather than a silently different picture.
+    bool Positive(const Node& n, const char* name, double v) {
+        if (v > 0) return true;
+        Error(n.offset, fmt::format("{}: {} = {} must be positive (OpenSCAD draws nothing)",
+                                    n.name, name, v));
+        return false;
+    }
     bool Flag(const Node& n, const char* name, int position) {
         const Value* v = Find(n, name, position);
         return v && v->kind == Value::Kind::kBool && v->boolean;
@@ -549,7 +560,9 @@ class Builder {
         auto t = Transform::FromMatrix(total);
         if (!t) {
             Error(n.offset,
-                  fmt::format("{}: the transformation is singular (a zero scale?)", n.name));
+                  fmt::format("{}: the transformation cannot be inverted: singular (a zero "
+                              "scale?), not finite, or scales more than 1e14 apart",
+                              n.name));
             return -1;
         }
         int root = -1;
@@ -598,6 +611,7 @@ class Builder {
             ++report_.census[k];
             double r = Num(n, "r", 0).value_or(1);
             if (auto d = Num(n, "d", -1)) r = *d / 2;
+            if (!Positive(n, "r", r)) return -1;
             p.type = "ell";
             p.A = {r, 0, 0}, p.B = {0, r, 0}, p.C = {0, 0, r};
             if (auto sides = scad::PolygonSides(r, SpecialsOf(n)); sides && r > 0)
@@ -608,6 +622,9 @@ class Builder {
         if (k == "cube") {
             ++report_.census[k];
             Vec3 s = Vec(n, "size", 0, true).value_or(Vec3{1, 1, 1});
+            if (!Positive(n, "size[0]", s.x) || !Positive(n, "size[1]", s.y) ||
+                !Positive(n, "size[2]", s.z))
+                return -1;
             Vec3 lo = Flag(n, "center", 1) ? s * -0.5 : Vec3{};
             Vec3 hi = lo + s;
             p.type = "arb8";
@@ -624,6 +641,14 @@ class Builder {
             double r1 = Num(n, "r1", 1).value_or(r), r2 = Num(n, "r2", 2).value_or(r);
             if (auto d = Num(n, "d1", -1)) r1 = *d / 2;
             if (auto d = Num(n, "d2", -1)) r2 = *d / 2;
+            if (!Positive(n, "h", h)) return -1;
+            // One radius may be 0 (a cone), not both; none may be negative.
+            if (r1 < 0 || r2 < 0 || (r1 == 0 && r2 == 0)) {
+                Error(n.offset, fmt::format("cylinder: radii r1 = {} and r2 = {} must not be "
+                                            "negative nor both zero (OpenSCAD draws nothing)",
+                                            r1, r2));
+                return -1;
+            }
             double z0 = Flag(n, "center", 3) ? -h / 2 : 0;
             p.type = "tgc";
             p.V = {0, 0, z0}, p.H = {0, 0, h};
