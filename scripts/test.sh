@@ -15,7 +15,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DQUADRIX_WERROR=ON \
       -DQUADRIX_SANITIZE=ON -DQUADRIX_BUILD_BENCH=OFF
 cmake --build build-asan -j "$JOBS"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan --output-on-failure -j "$JOBS"
+  LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" ctest --test-dir build-asan --output-on-failure -j "$JOBS"
 echo "== Reader fuzzing (libFuzzer, 60 s; tests/fuzz_reader/README.md)"
 bash tests/fuzz_reader/run.sh "${FUZZ_SECONDS:-60}"
 echo "== all tests passed"
