@@ -397,7 +397,7 @@ TEST(ImportBrlcadG, WriterRefusesWhatItCannotWrite) {
 }
 
 TEST(ImportBrlcadG, V4BinaryIsRefusedClearly) {
-    std::string v4("I\x01v4\0\0\0\0\0\0\0\0", 14);
+    std::string v4("I\x01v4\0\0\0\0\0\0\0\0\0\0", 14);  // 14 bytes: 4 of magic, 10 NULs
     scene::Scene s;
     Diagnostics d;
     ImportReport r;

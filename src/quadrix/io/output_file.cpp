@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <random>
 #include <cerrno>
 #include <climits>
 #include <csignal>
@@ -238,18 +239,28 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
     std::string pattern = DirectoryOf(target_) + "/" + name + ".tmpXXXXXX";
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
-    // Block the cleanup signals while the file is created and registered, so that none arrives
-    // between mkstemp and the table entry.
-    sigset_t block, old;
-    sigemptyset(&block);
-    for (int sig : kSignals) sigaddset(&block, sig);
-    pthread_sigmask(SIG_BLOCK, &block, &old);
-    int fd = mkostemp(buffer.data(), O_CLOEXEC);  // O_CREAT | O_EXCL, mode 0600
-    if (fd >= 0) {
+    // The name is entered in the signal table BEFORE the file exists, then the file is created
+    // with O_EXCL (as mkstemp does): a signal may be handled by any thread (oneTBB's workers do
+    // not block it), so no moment may pass with the file on disk and not in the table. Unlinking
+    // a name whose file was not created yet is harmless.
+    int fd = -1;
+    std::random_device entropy;
+    static constexpr char kChars[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+    for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+        const std::size_t n = buffer.size() - 1;  // the six X before the NUL
+        for (std::size_t k = n - 6; k < n; ++k) buffer[k] = kChars[entropy() % (sizeof kChars - 1)];
         tmp_ = buffer.data();
         slot_ = RegisterTemporary(tmp_);
+        fd = open(buffer.data(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);
+        if (fd < 0) {
+            const int savedErrno = errno;
+            UnregisterTemporary(slot_);
+            tmp_.clear();
+            errno = savedErrno;
+            if (errno != EEXIST) break;
+        }
     }
-    pthread_sigmask(SIG_SETMASK, &old, nullptr);
     if (fd < 0) {
         error_ = Refuse(path, std::strerror(errno));
         return;
