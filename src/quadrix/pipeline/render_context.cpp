@@ -46,18 +46,9 @@ bool SameRtView(const std::optional<import::RtView>& a, const std::optional<impo
 // The flat scene with only `solids` (in order) left to draw and no freeform surfaces; half-space
 // and body indices are unchanged, so Frame surface and body ids mean the same in both.
 FlatScene SubsetOfSolids(const FlatScene& flat, const std::vector<int>& solids) {
-    FlatScene sub;
-    sub.width = flat.width;
-    sub.height = flat.height;
-    sub.halfSpaces = flat.halfSpaces;
-    sub.bodies = flat.bodies;
-    sub.nodes = flat.nodes;
-    sub.lights = flat.lights;
-    sub.background = flat.background;
-    sub.backgroundBottom = flat.backgroundBottom;
-    sub.projection = flat.projection;
-    sub.viewName = flat.viewName;
-    sub.depthTolerance = flat.depthTolerance;
+    FlatScene sub = flat;  // every field, so none is forgotten when FlatScene grows
+    sub.freeforms.clear();
+    sub.solids.clear();
     for (int s : solids) sub.solids.push_back(flat.solids[static_cast<std::size_t>(s)]);
     return sub;
 }

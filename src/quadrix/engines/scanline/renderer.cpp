@@ -7,7 +7,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -241,9 +240,9 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
                 ++ctx_.c.perPixelUnitPixels;
                 RayEvaluator::Hit hit;
                 if (EvaluateUnit(u, i + 0.5, y, hit) &&
-                    (hit.t < ph.t || (hit.t == ph.t && ctx_.UnitWinsTie(u, hit.halfSpace, phUnit,
-                                                                        ph.halfSpace, i + 0.5, y,
-                                                                        hit.t)))) {
+                    (hit.t < ph.t ||
+                     (hit.t == ph.t && ctx_.UnitWinsTie(u, hit.halfSpace, phUnit, ph.halfSpace,
+                                                        i + 0.5, y, hit.t)))) {
                     ph = hit;
                     phSolid = unit.solid;
                     phUnit = u;
@@ -370,25 +369,17 @@ void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
     constexpr int kBand = 32;  // rows per task; fixed, so results never depend on threads
     const int bands = (h + kBand - 1) / kBand;
     std::mutex mutex;
-    auto run = [&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1),
-                          [&](const tbb::blocked_range<int>& r) {
-                              for (int b = r.begin(); b < r.end(); ++b) {
-                                  RendererCounters local;
-                                  ScanRenderer(scene, edges, faces, units, pixelBody, stackBody, vt,
-                                               settings, frame, local)
-                                      .Run(esl, b * kBand, std::min(h, (b + 1) * kBand));
-                                  std::lock_guard<std::mutex> lock(mutex);
-                                  counters.Add(local);
-                              }
-                          });
-    };
-    if (settings.threads > 0) {
-        tbb::task_arena arena(settings.threads);
-        arena.execute(run);
-    } else {
-        run();
-    }
+    // Bands run in the caller's arena (Engine::Render, the render context).
+    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
+        for (int b = r.begin(); b < r.end(); ++b) {
+            RendererCounters local;
+            ScanRenderer(scene, edges, faces, units, pixelBody, stackBody, vt, settings, frame,
+                         local)
+                .Run(esl, b * kBand, std::min(h, (b + 1) * kBand));
+            std::lock_guard<std::mutex> lock(mutex);
+            counters.Add(local);
+        }
+    });
 }
 
 }  // namespace quadrix::scanline

@@ -69,7 +69,6 @@ struct RenderSettings {
     // CSG solids: true = per-span body templates combined by interval CSG per pixel; false =
     // exact evaluation of the whole tree at every pixel (for comparison).
     bool csgTemplates = true;
-    int threads = 0;  // 0 = all hardware threads; rows are cut in bands of 32 run in parallel
     // Bodies marked in `stackBody` (RenderScanlines) get their visible face from the FACE STACK
     // of §5.2–5.4 (default); false = every body evaluated exactly once per span (render=exact).
     bool faceStacks = true;

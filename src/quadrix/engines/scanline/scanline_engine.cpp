@@ -60,7 +60,6 @@ class ScanlineEngine final : public Engine {
                      Frame& frame) override {
         const auto t0 = Clock::now();
         RenderSettings settings;
-        settings.threads = 0;  // the caller's arena (Engine::Render)
         settings.shadeInterval = options.Int("sd");
         settings.fastShading = options.Choice("shade") == "fast";
         settings.csgTemplates = options.Choice("csg") == "spans";
