@@ -290,5 +290,41 @@ TEST(RenderContextComposition, SameViewIsNotFlattenedTwice) {
     EXPECT_FALSE(ctx.LastFlattenReused());
 }
 
+// A view given directly (the viewer's camera) draws the same frame as the same view written in the
+// scene, and a changed camera flattens again.
+TEST(RenderContextComposition, DirectViewMatchesTheSceneView) {
+    RenderContext ctx;
+    Diagnostics diags;
+    InputRequest in;
+    in.text =
+        "solid box cube =from -1 -1 -1 =to 1 1 1; solid sphere ball =at 0 0 0 =r 1.3;"
+        "csg part (cube - ball); view side dop 1 -0.5 -1 vup 0 1 0;";
+    ASSERT_TRUE(ctx.Read(in, diags));
+    Frame written, direct;
+    RenderReport report;
+    ASSERT_TRUE(ctx.Flatten(Size(48, 40, "side"), diags));
+    ASSERT_TRUE(ctx.Render(Request("raycast"), written, report, diags));
+    scene::View camera = *ctx.Scene().ViewToUse("side");
+    camera.id = "camera";
+    ViewRequest v = Size(48, 40);
+    v.view = camera;
+    ASSERT_TRUE(ctx.Flatten(v, diags));
+    EXPECT_FALSE(ctx.LastFlattenReused());
+    EXPECT_EQ(ctx.Flat().viewName, "camera");
+    ASSERT_TRUE(ctx.Render(Request("raycast"), direct, report, diags));
+    EXPECT_GT(written.CoveredCount(), 200u);
+    const FrameComparison same = CompareFrames(direct, written);
+    EXPECT_EQ(same.onlyA + same.onlyReference + same.surfaceDiffers, 0u);
+    EXPECT_EQ(same.maxDepthError, 0.0);
+    ASSERT_TRUE(ctx.Flatten(v, diags));
+    EXPECT_TRUE(ctx.LastFlattenReused());
+    v.view->dop = Vec3{0.2, 0.1, -1};
+    ASSERT_TRUE(ctx.Flatten(v, diags));
+    EXPECT_FALSE(ctx.LastFlattenReused());
+    ASSERT_TRUE(ctx.Render(Request("raycast"), direct, report, diags));
+    const FrameComparison moved = CompareFrames(direct, written);
+    EXPECT_GT(moved.onlyA + moved.onlyReference, 50u);
+}
+
 }  // namespace
 }  // namespace quadrix

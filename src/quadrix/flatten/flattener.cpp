@@ -63,7 +63,8 @@ class FlattenerImpl {
 
     std::optional<FlatScene> Run() {
         if (!CheckOptions()) return std::nullopt;
-        std::optional<scene::View> view = scene_.ViewToUse(options_.viewName);
+        std::optional<scene::View> view =
+            options_.view ? options_.view : scene_.ViewToUse(options_.viewName);
         if (!view) {
             diags_.Error({}, fmt::format("unknown view '{}'", options_.viewName), {},
                          "command line");

@@ -34,6 +34,9 @@ struct FlattenOptions {
     int width = 512;
     int height = 512;
     std::string viewName;  // empty = the last view defined (or the default view)
+    // A view given directly (the viewer's camera, a turntable frame, --camera): replaces
+    // viewName. Its id names it in the flat scene (FlatScene::viewName).
+    std::optional<scene::View> view;
     // Fraction of the image left free around an auto-fitted scene, per side.
     double autoFitMargin = 0.02;
     // Lights to shade with instead of the scene's (uq's current light); the default parallel

@@ -33,6 +33,14 @@ bool SameLights(const std::optional<std::vector<scene::Light>>& a,
     return true;
 }
 
+bool SameSceneView(const std::optional<scene::View>& a, const std::optional<scene::View>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    if (!a) return true;
+    return a->id == b->id && a->vrp == b->vrp && a->vpn == b->vpn && a->vup == b->vup &&
+           a->dop == b->dop && a->cop == b->cop && a->whh == b->whh && a->whw == b->whw &&
+           a->front == b->front && a->back == b->back && a->isDefault == b->isDefault;
+}
+
 bool SameRtView(const std::optional<import::RtView>& a, const std::optional<import::RtView>& b) {
     if (a.has_value() != b.has_value()) return false;
     if (!a) return true;
@@ -58,7 +66,7 @@ FlatScene SubsetOfSolids(const FlatScene& flat, const std::vector<int>& solids) 
 bool SameView(const ViewRequest& a, const ViewRequest& b) {
     return a.width == b.width && a.height == b.height && a.viewName == b.viewName &&
            a.azimuth == b.azimuth && a.elevation == b.elevation && a.viewsize == b.viewsize &&
-           SameRtView(a.rtView, b.rtView) && SameLights(a.lights, b.lights);
+           SameSceneView(a.view, b.view) && SameRtView(a.rtView, b.rtView) && SameLights(a.lights, b.lights);
 }
 
 std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
@@ -112,7 +120,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     flatValid_ = false;
     const auto t0 = std::chrono::steady_clock::now();
     std::string viewName = view.viewName;
-    if (view.rtView || view.azimuth || view.elevation) {
+    if (!view.view && (view.rtView || view.azimuth || view.elevation)) {
         // An rt-style view is made once per request and added to the scene like a view statement
         // (with rt's lights when the scene has none); asking again replaces it.
         std::erase_if(scene_.views, [](const scene::View& v) { return v.id == "rt"; });
@@ -129,6 +137,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     fo.width = view.width;
     fo.height = view.height;
     fo.viewName = viewName;
+    fo.view = view.view;
     fo.lights = view.lights;
     const int errorsBefore = diags.ErrorCount();
     auto flat = quadrix::Flatten(scene_, fo, diags);

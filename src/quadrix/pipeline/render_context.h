@@ -59,6 +59,9 @@ struct InputRequest {
 struct ViewRequest {
     int width = 512, height = 512;
     std::string viewName;  // empty = the last view defined (or the default view)
+    // A view given directly (viewer camera, turntable frame, --camera): replaces viewName and the
+    // rt-style views below. Compared field by field for reuse (SameView).
+    std::optional<scene::View> view;
     // rt-style views (FORMAT.md §9.4) in the imported model's coordinates; they replace viewName.
     // Azimuth/elevation in degrees, fitted to the imported model's bounding box.
     std::optional<double> azimuth, elevation, viewsize;
