@@ -15,6 +15,14 @@ PACKAGES=(
   libcairo2-dev                      # PDF/EPS output of `quadrix draw` (vector drawings)
   povray                             # the independent exact renderer the tests compare against
   clang libclang-rt-14-dev           # libFuzzer: the reader's fuzz target (tests/fuzz_reader)
+  libsdl2-dev xvfb xauth             # quadrix view: the window (SDL2); its tests run under Xvfb
+  pybind11-dev python3-dev           # the Python module (import quadrix)
+  python3-numpy python3-pytest       # its arrays and its tests
+  libopenexr-dev                     # float images with depth/normal/id layers (.exr)
+  libopenmpi-dev openmpi-bin         # distributed batch and tiled rendering (mpirun)
+  libdeflate-dev                     # fast DEFLATE for PNG output
+  libxsimd-dev                       # portable SIMD where auto-vectorisation fails
+  openscad                           # .scad files with variables/modules, and the PNG comparison
 )
 
 missing=()
