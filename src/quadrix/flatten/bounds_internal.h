@@ -27,11 +27,6 @@ struct InsideFn {
 
 InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented);
 
-// Eigenvalues (ascending) and unit eigenvectors (columns of vecs) of a symmetric 3×3 matrix by
-// cyclic Jacobi rotations; `offDiagonal` receives the Gershgorin radius left (a bound on the
-// distance of each returned value from the spectrum, before rounding).
-void SymmetricEigen(const double a[3][3], double vals[3], double vecs[3][3], double& offDiagonal);
-
 double EvaluateAt(const InsideFn& f, const double p[3]);
 
 // Value, gradient and the magnitude of the summed terms (for rounding allowances) at a point.

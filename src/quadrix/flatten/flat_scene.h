@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/freeform/surface.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/quadric.h"
@@ -21,21 +22,12 @@
 
 namespace quadrix {
 
-struct FlatHalfSpace {
-    bool isPlane = true;
-    Plane plane;        // device space, when isPlane
-    Quadric quadric;    // device space, when !isPlane
+// The surface (PlaneOrQuadric: isPlane, plane, quadric) is in device space.
+struct FlatHalfSpace : PlaneOrQuadric {
     bool transparent = false;
     bool isClip = false;  // a clipping plane added by the Flattener (front/back/near/far)
     std::string name;     // path for diagnostics, e.g. "stack_of_bundles[1]/bundle_of_tubes[3]/outer_tube"
 
-    double Evaluate(const Vec3& p) const {
-        return isPlane ? plane.Evaluate(p) : quadric.Evaluate(p);
-    }
-    // Homogeneous gradient (covector) at a device point; its xyz is the device normal direction.
-    Vec4 HomogeneousGradient(const Vec3& p) const {
-        return isPlane ? plane.AsVec4() : quadric.HomogeneousGradient(p);
-    }
 };
 
 struct FlatLiteral {

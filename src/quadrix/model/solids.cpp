@@ -36,15 +36,8 @@ SolidShape InFrame(const AxisFrame& frame, SolidShape local) {
 
 SolidSurface SolidSurface::Transformed(const Transform& t) const {
     SolidSurface r = *this;
-    if (isPlane)
-        r.plane = plane.Transformed(t);
-    else
-        r.quadric = quadric.Transformed(t);
+    r.TransformBy(t);
     return r;
-}
-
-double SolidSurface::Evaluate(const Vec3& p) const {
-    return isPlane ? plane.Evaluate(p) : quadric.Evaluate(p);
 }
 
 SolidShape SolidShape::Transformed(const Transform& t) const {

@@ -22,20 +22,16 @@
 #include <vector>
 
 #include "quadrix/math/mat4.h"
+#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/math/quadric.h"
 
 namespace quadrix::model {
 
-struct SolidSurface {
+struct SolidSurface : PlaneOrQuadric {
     std::string suffix;  // appended to the solid's id
-    bool isPlane = true;
-    Plane plane;         // when isPlane
-    Quadric quadric;     // otherwise
     bool isCap = false;  // an end plane of an axial solid (made transparent by =open)
 
     SolidSurface Transformed(const Transform& t) const;
-    // Inside test at p (<= 0 is inside), for tests and the pipe generator.
-    double Evaluate(const Vec3& p) const;
 };
 
 struct SolidShape {

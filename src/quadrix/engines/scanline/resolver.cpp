@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "quadrix/math/symmetric_eigen.h"
+
 namespace quadrix::scanline {
 
 const char* ToString(ILineType t) {
@@ -95,42 +97,6 @@ int QuadricZ(const Quadric& q, double x, double y, double z[2]) {
     return 2;
 }
 
-// Eigenvalues and eigenvectors (columns of v) of a symmetric 3×3 matrix, cyclic Jacobi.
-void SymmetricEigen3(double a[3][3], double e[3], double v[3][3]) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) v[i][j] = i == j;
-    for (int sweep = 0; sweep < 50; ++sweep) {
-        double off = std::fabs(a[0][1]) + std::fabs(a[0][2]) + std::fabs(a[1][2]);
-        double diag = std::fabs(a[0][0]) + std::fabs(a[1][1]) + std::fabs(a[2][2]);
-        if (off <= 1e-18 * diag || off == 0) break;  // converged (quadratic convergence)
-        for (int p = 0; p < 2; ++p) {
-            for (int q = p + 1; q < 3; ++q) {
-                if (a[p][q] == 0) continue;
-                double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-                double t =
-                    (theta >= 0 ? 1 : -1) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-                double c = 1 / std::sqrt(t * t + 1), s = t * c;
-                for (int k = 0; k < 3; ++k) {  // A ← Jᵀ A J
-                    double akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    double apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    double vkp = v[k][p], vkq = v[k][q];
-                    v[k][p] = c * vkp - s * vkq;
-                    v[k][q] = s * vkp + c * vkq;
-                }
-            }
-        }
-    }
-    for (int i = 0; i < 3; ++i) e[i] = a[i][i];
-}
-
 // True when f(x) = xᵀAx + 2bᵀx + k has one strict sign for every finite x (with a margin).
 bool AffineDefinite(const std::array<double, 10>& m) {
     double a[3][3] = {{m[0], m[3], m[5]}, {m[3], m[1], m[4]}, {m[5], m[4], m[2]}};
@@ -139,7 +105,8 @@ bool AffineDefinite(const std::array<double, 10>& m) {
     for (double v : m) scale = std::max(scale, std::fabs(v));
     if (scale == 0 || !std::isfinite(scale)) return false;
     double e[3], v[3][3];
-    SymmetricEigen3(a, e, v);
+    double offDiagonal = 0;
+    SymmetricEigen(a, e, v, offDiagonal);
     const double tol = 1e-9 * scale;
     for (int sign : {-1, 1}) {  // −1: f < 0 everywhere, +1: f > 0 everywhere
         bool ok = true;

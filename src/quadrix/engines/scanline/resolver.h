@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/engines/scanline/coefficients.h"
 #include "quadrix/flatten/flat_scene.h"
 
@@ -52,19 +53,14 @@ enum class Sheet : std::uint8_t { kPlane, kFront, kBack };
 const char* ToString(ILineType t);
 const char* ToString(IVertexType t);
 
-struct Hsb {
+// The surface (PlaneOrQuadric) is oriented: the complement is applied.
+struct Hsb : PlaneOrQuadric {
     int halfSpace = -1;
-    bool isPlane = true;
-    Plane plane;      // oriented (complement applied), when isPlane
-    Quadric quadric;  // oriented, when !isPlane
     bool opaque = true;
     bool edgeOn = false;        // plane perpendicular to the view plane (zero test (1))
     bool viewCylinder = false;  // quadric independent of z (zero test (2))
     int face[2] = {-1, -1};     // show-faces: plane → face[0]; quadric → front, back
 
-    double Evaluate(const Vec3& p) const {
-        return isPlane ? plane.Evaluate(p) : quadric.Evaluate(p);
-    }
     bool Satisfied(const Vec3& p, double pointError) const {
         return isPlane ? SatisfiesPlane(plane, p, pointError)
                        : SatisfiesQuadric(quadric, p, pointError);

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/engines/scanline/edge_list.h"
 #include "quadrix/engines/scanline/scan_context.h"
 
@@ -43,12 +44,9 @@ class StackVerifier {
                     const std::vector<StackFace>& spanFaces, int sample, double y);
 
   private:
-    struct OrientedLiteral {
+    struct OrientedLiteral : PlaneOrQuadric {  // oriented: the complement applied
         int halfSpace = -1;
-        bool isPlane = true;
         bool zFree = false;  // contains the view direction (zero tests (1), (2))
-        Plane plane;
-        Quadric quadric;
     };
 
     // The depth of show-face f's sheet at (x, y); false when it has no point there.

@@ -18,14 +18,12 @@
 
 #include "quadrix/import/brlcad/database.h"
 #include "quadrix/math/mat4.h"
+#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/math/quadric.h"
 
 namespace quadrix::import::brlcad {
 
-struct ShapeHalfSpace {
-    bool isPlane = true;
-    Plane plane;
-    Quadric quadric;
+struct ShapeHalfSpace : PlaneOrQuadric {
     bool transparent = false;  // a helper plane that never touches the solid's boundary
 };
 using ShapeBody = std::vector<ShapeHalfSpace>;
