@@ -326,7 +326,7 @@ class Scene {
     }
 
     py::list Solids() {
-        std::lock_guard lock(mutex_);
+        auto lock = LockWithoutGil();
         const scene::Scope& top = ctx_->Scene().top;
         py::list out;
         auto row = [&](const std::string& id, const char* kind, bool operand, const SourceLoc& at) {
@@ -346,13 +346,13 @@ class Scene {
         return out;
     }
     std::vector<std::string> Views() {
-        std::lock_guard lock(mutex_);
+        auto lock = LockWithoutGil();
         std::vector<std::string> out;
         for (const scene::View& v : ctx_->Scene().views) out.push_back(v.id);
         return out;
     }
     py::list Lights() {
-        std::lock_guard lock(mutex_);
+        auto lock = LockWithoutGil();
         py::list out;
         for (const scene::Light& l : ctx_->Scene().lights) {
             using K = scene::Light::Kind;
@@ -367,7 +367,10 @@ class Scene {
         }
         return out;
     }
-    std::vector<std::string> TakeWarnings() { return warnings_; }
+    std::vector<std::string> WarningsSoFar() {
+        auto lock = LockWithoutGil();
+        return warnings_;
+    }
 
     // Stages 2-4 and the products copied out of nothing: the Frame is rendered in place.
     std::shared_ptr<Rendered> Render(const RenderArgs& args) {
@@ -420,6 +423,16 @@ class Scene {
     }
 
   private:
+    // The scene's lock for a caller holding the GIL: waited for with the GIL released, so that a
+    // render of this scene in another thread (which holds the lock, not the GIL) never waits
+    // for this thread, and other Python threads run meanwhile.
+    std::unique_lock<std::mutex> LockWithoutGil() {
+        std::unique_lock lock(mutex_, std::defer_lock);
+        py::gil_scoped_release release;
+        lock.lock();
+        return lock;
+    }
+
     std::mutex mutex_;
     int threads_ = 0;
     std::unique_ptr<RenderContext> ctx_;
@@ -670,7 +683,7 @@ PYBIND11_MODULE(quadrix, m) {
              "The solids of the top level: dicts with id, kind, drawn, file, line.")
         .def("views", &Scene::Views)
         .def("lights", &Scene::Lights)
-        .def_property_readonly("warnings", &Scene::TakeWarnings)
+        .def_property_readonly("warnings", &Scene::WarningsSoFar)
         .def(
             "render",
             [](Scene& s, const py::object& size, const std::string& engine, const py::object& view,

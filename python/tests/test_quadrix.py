@@ -9,6 +9,8 @@ x = (i + 1/2 - N/2) / k and y = -(j + 1/2 - N/2) / k; the visible point is z = -
 so depth = k z, and the world normal facing the viewer is (x, y, z) / R.
 """
 import os
+import subprocess
+import sys
 import threading
 import time
 
@@ -192,3 +194,37 @@ def test_save_writes_files(tmp_path):
     assert (tmp_path / "mask.png").stat().st_size > 0
     with pytest.raises(ValueError):
         f.save(str(tmp_path / "ball.xyz"))
+
+
+def test_views_and_cameras_that_fail_raise_scene_error():
+    s = quadrix.read(text=SPHERE, name="ball.uq")
+    with pytest.raises(quadrix.SceneError, match="unknown view 'nosuch'"):
+        s.render(size=(8, 8), view="nosuch")
+    with pytest.raises(quadrix.SceneError, match="zero vector"):
+        s.render(size=(8, 8), camera=dict(dop=(0, 0, 0)))
+    with pytest.raises(quadrix.SceneError) as info:
+        s.add("view bad dop 0 0 0;", name="views.uq")
+    assert (info.value.file, info.value.line, info.value.column) == ("views.uq", 1, 10)
+    with pytest.raises(TypeError):
+        s.render(size=(8, 8), camera=dict(eye=(0, 0, 1)))
+
+
+def test_without_numpy_the_arrays_are_buffers():
+    # An interpreter without NumPy gets quadrix.ArrayView objects over the same memory.
+    code = f"""
+import sys
+sys.modules["numpy"] = None  # import numpy fails
+import quadrix
+f = quadrix.render(text={SPHERE!r}, size=({N}, {N}))
+d = f.depth
+m = memoryview(d)
+c = {N} // 2
+assert (d.shape, d.dtype, f.image.dtype) == (({N}, {N}), "float64", "uint8"), d
+assert m.format == "d" and m.shape == ({N}, {N})
+assert abs(m[c, c] + {K * R}) < 1e-9, m[c, c]
+assert memoryview(f.normals)[c, c, 2] == -1.0
+assert memoryview(f.solid)[0, 0] == -1
+print("ok")
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
