@@ -84,6 +84,8 @@ int Run(int argc, char** argv) {
         "  quadrix render examples/machined_part.uq -o part.png\n"
         "  quadrix render examples/stack_of_bundles.uq -o stack.png --size 800x600 --fast\n"
         "  quadrix render - -o out.ppm < scene.uq\n"
+        "  quadrix render examples/machined_part.uq -o part.exr   (image + depth, normal, ids)\n"
+        "  quadrix render examples/machined_part.uq --format ppm -o - | display\n"
         "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
         "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n"
         "  quadrix compare --engines scanline,raycast examples/machined_part.uq\n"

@@ -139,8 +139,8 @@ std::string UqHelpText(const std::string& topic, const scene::Scene& scene,
         out += "  help [WORD]   this text (at the prompt; the ';' may be left out)\n";
         out += fmt::format(
             "Current view: {}   light: {}   device: {}   engine: {}\n",
-            state.view.empty() ? "(the last defined, else the default)" : state.view,
-            state.light.empty() ? "(the last parallel light, else the default)" : state.light,
+            state.view.empty() ? "(the last defined)" : state.view,
+            state.light.empty() ? "(the last parallel light)" : state.light,
             state.device, state.engine);
         out += "Ids in the scene:\n";
         out += IdLine("half-spaces", ids.halfSpaces) + IdLine("solids", ids.solids) +
