@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #ifdef QUADRIX_HAVE_OPENEXR
