@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@ namespace quadrix::cli {
 struct RenderArgs {
     std::vector<std::string> scenes;
     std::string output;
+    std::string format;  // --format: overrides the extension (and the PNG of -o -)
     std::string size = "512x512";
     std::string view;
     std::string engine = "raycast";
@@ -52,6 +54,8 @@ int RunExport(const ExportArgs& args);
 // `quadrix uq [options] [files]` and `quadrix -i`: UniQuadrix batch and interactive modes with the
 // paper's option syntax (uq_command.cpp, interactive.h).
 void AddUqCommand(CLI::App& app);
+// The usage text of `quadrix uq` (also `quadrix help uq`).
+void PrintUqUsage(std::FILE* out);
 int RunUq(const std::vector<std::string>& args);
 // Runs uq when argv[1] is "uq" or "-i" (before CLI11, which cannot parse glued values such as
 // -dpng); returns false otherwise.

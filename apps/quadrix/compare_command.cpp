@@ -40,7 +40,8 @@ void AddCompareCommand(CLI::App& app, CompareArgs& args) {
 
 namespace {
 
-bool RenderWithEngines(const CompareArgs& args, Frame& a, Frame& b, std::string& names) {
+// Exit status: 0 rendered, 1 scene error, 2 usage error (bad size, unknown engine; docs/cli.md).
+int RenderWithEngines(const CompareArgs& args, Frame& a, Frame& b, std::string& names) {
     std::string first = args.engines, second = "raycast";
     if (auto comma = args.engines.find(','); comma != std::string::npos) {
         first = args.engines.substr(0, comma);
@@ -50,7 +51,7 @@ bool RenderWithEngines(const CompareArgs& args, Frame& a, Frame& b, std::string&
     ViewRequest view;
     if (auto e = ParseSize(args.size, view.width, view.height); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
-        return false;
+        return 2;
     }
     view.viewName = args.view;
     EngineRequest ra, rb;
@@ -59,7 +60,7 @@ bool RenderWithEngines(const CompareArgs& args, Frame& a, Frame& b, std::string&
     for (const EngineRequest* r : {&ra, &rb})
         if (auto e = RenderContext::CheckEngine(*r); !e.empty()) {
             std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
-            return false;
+            return 2;
         }
     RenderContext ctx;
     Diagnostics diags;
@@ -69,7 +70,7 @@ bool RenderWithEngines(const CompareArgs& args, Frame& a, Frame& b, std::string&
     const bool ok = ctx.Read(in, diags) && ctx.Flatten(view, diags) &&
                     ctx.Render(ra, a, report, diags) && ctx.Render(rb, b, report, diags);
     diags.Print(stderr);
-    return ok && !diags.HasErrors();
+    return ok && !diags.HasErrors() ? 0 : 1;
 }
 
 }  // namespace
@@ -78,7 +79,7 @@ int RunCompare(const CompareArgs& args) {
     Frame a, b;
     std::string names;
     if (!args.engines.empty()) {
-        if (!RenderWithEngines(args, a, b, names)) return 1;
+        if (int code = RenderWithEngines(args, a, b, names); code != 0) return code;
     } else {
         if (args.inputs.size() != 2) {
             std::fprintf(stderr, "quadrix: error: compare takes two .qxf files (or --engines)\n");
@@ -99,7 +100,8 @@ int RunCompare(const CompareArgs& args) {
         const Image diff = FrameDiffImage(a, b, options);
         ImageFormat format;
         std::string e;
-        if (!ImageFormatFromPath(args.diff, format) || format == ImageFormat::kFrameDump)
+        if (!ImageFormatFromPath(args.diff, format) || format == ImageFormat::kFrameDump ||
+            format == ImageFormat::kExr)
             e = fmt::format("--diff: '{}' is not a .png or .ppm file", args.diff);
         else
             e = format == ImageFormat::kPng ? WritePng(args.diff, diff) : WritePnm(args.diff, diff);

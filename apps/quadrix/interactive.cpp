@@ -8,6 +8,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <utility>
@@ -16,13 +17,19 @@
 #include <editline/readline.h>
 #endif
 
+#include "quadrix/draw/cairo_writer.h"
+#include "quadrix/draw/drawing.h"
+#include "quadrix/draw/page.h"
+#include "quadrix/draw/svg_writer.h"
 #include "quadrix/engines/engine.h"
+#include "quadrix/io/output_file.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/lang/input_files.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/source.h"
 #include "quadrix/shade/shader.h"
+#include "uq_help.h"
 
 namespace quadrix::cli {
 
@@ -77,10 +84,38 @@ class PlainLineInput : public LineInput {
 };
 
 #ifdef QUADRIX_HAVE_LIBEDIT
+// Tab completion through libedit's readline interface: C callbacks, so the completer of the one
+// line editor of the process lives here.
+LineInput::Completer gCompleter;
+std::vector<std::string> gMatches;
+
+char* NextMatch(const char*, int state) {
+    static std::size_t next = 0;
+    if (state == 0) next = 0;
+    if (next >= gMatches.size()) return nullptr;
+    return strdup(gMatches[next++].c_str());
+}
+
+char** Complete(const char* text, int start, int) {
+    rl_attempted_completion_over = 1;  // no file-name completion instead
+    gMatches.clear();
+    if (gCompleter) {
+        const std::string before(rl_line_buffer ? rl_line_buffer : "",
+                                 static_cast<std::size_t>(std::max(start, 0)));
+        gMatches = gCompleter(text, before);
+    }
+    return rl_completion_matches(text, NextMatch);
+}
+
 // Line editing and history with libedit's readline interface (BSD license). The history is kept
 // across sessions in ~/.quadrix_history.
 class EditLineInput : public LineInput {
   public:
+    void SetCompleter(Completer completer) override {
+        gCompleter = std::move(completer);
+        rl_attempted_completion_function = Complete;
+        rl_basic_word_break_characters = " \t\n;()<>!|&-=\"";
+    }
     EditLineInput() {
         using_history();
         if (const char* home = std::getenv("HOME"); home && *home) {
@@ -134,39 +169,89 @@ std::unique_ptr<LineInput> MakeLineInput(std::FILE* in, std::FILE* promptOut) {
     return std::make_unique<PlainLineInput>(in, promptOut, !terminal);
 }
 
-// Follows the statements typed so far just enough to tell whether input stops between two
-// statements (then the prompt is shown) or inside one: nested { } comments and "strings" are
-// skipped, ';' ends a statement.
-struct UqSession::Tracker {
-    int commentDepth = 0;
-    bool inString = false;
-    std::string pending;                 // the statement being typed
-    std::vector<std::string> completed;  // statements completed since the last prompt
-    int errorsAtBoundary = 0;            // error count when the last statement ended
-    int errorsAtPrompt = 0;
+// One interactive input (the prompt, or a nested `read;`): a source that grows by the statements
+// typed, its parser (kept across lines, so definitions span statements and positions count
+// lines), and the text typed but not yet given to the parser.
+struct UqSession::FeedLevel {
+    lang::Source source{kInteractiveName, std::string()};
+    std::unique_ptr<lang::Parser> parser;
+    std::string held;       // an unfinished statement
+    bool skipping = false;  // after an error, up to the next ';'
+    bool quit = false;
+    bool dead = false;  // nested too deep: reads nothing
+};
 
-    bool AtBoundary() const { return commentDepth == 0 && !inString && Blank(pending); }
-    void Feed(const std::string& text) {
-        for (char c : text) {
-            if (inString) {
-                if (c == '"' || c == '\n') inString = false;
-                pending += c;
-            } else if (commentDepth > 0) {
-                if (c == '{') ++commentDepth;
-                if (c == '}') --commentDepth;
-            } else if (c == '{') {
-                ++commentDepth;
-                pending += ' ';
-            } else if (c == ';') {
-                completed.push_back(pending);
-                pending.clear();
-            } else {
-                if (c == '"') inString = true;
-                pending += c;
-            }
+namespace {
+
+// Where the text from `from` stops: the first word (outside comments), the end of the first
+// statement (after its ';', outside comments and "strings"; npos if none), and whether the text
+// ends inside a comment.
+struct Scan {
+    std::string firstWord;
+    std::size_t wordEnd = std::string::npos;
+    std::size_t end = std::string::npos;
+    bool openComment = false;
+};
+Scan ScanStatement(const std::string& text) {
+    Scan scan;
+    int depth = 0;
+    bool inString = false, wordDone = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '"' || c == '\n') inString = false;
+            continue;
+        }
+        if (depth > 0) {
+            depth += c == '{' ? 1 : c == '}' ? -1 : 0;
+            continue;
+        }
+        if (c == '{') {
+            ++depth;
+            wordDone = wordDone || !scan.firstWord.empty();
+            continue;
+        }
+        if (c == ';') {
+            scan.end = i + 1;
+            if (!scan.firstWord.empty() && scan.wordEnd == std::string::npos) scan.wordEnd = i;
+            return scan;
+        }
+        if (c == '"') inString = true;
+        const bool wordChar = std::isalnum(static_cast<unsigned char>(c)) || c == '_' ||
+                              c == '#' || c == '?' || c == '.';
+        if (!wordDone && wordChar) {
+            scan.firstWord += c;
+        } else if (!scan.firstWord.empty() && !wordDone) {
+            wordDone = true;
+            scan.wordEnd = i;
+        } else if (!wordDone && !std::isspace(static_cast<unsigned char>(c))) {
+            wordDone = true;  // the statement starts with punctuation
+            scan.firstWord = std::string(1, c);
+            scan.wordEnd = i + 1;
         }
     }
-};
+    scan.openComment = depth > 0;
+    if (!scan.firstWord.empty() && scan.wordEnd == std::string::npos) scan.wordEnd = text.size();
+    return scan;
+}
+
+}  // namespace
+
+bool IsVectorDeviceSpec(const std::string& spec, std::string& path, std::string& format,
+                        std::string& error) {
+    const std::size_t colon = spec.find(':');
+    const std::string name = Lower(spec.substr(0, colon));
+    if (name != "svg" && name != "pdf" && name != "eps") return false;
+    format = name;
+    path = colon == std::string::npos || colon + 1 == spec.size() ? "uq." + name
+                                                                  : spec.substr(colon + 1);
+    const std::string ext = Lower(std::filesystem::path(path).extension().string());
+    error.clear();
+    if (ext != "." + name)
+        error = fmt::format("device {} writes .{} files; '{}' has another extension", name, name,
+                            path);
+    return true;
+}
 
 UqSession::UqSession() {
     lang::ReadOptions options;
@@ -182,9 +267,11 @@ void UqSession::PinView(const std::string& id) {
 }
 
 void UqSession::Message(const std::string& line) {
-    std::fputs(line.c_str(), stdout);
-    std::fputc('\n', stdout);
-    std::fflush(stdout);
+    if (collecting_) collecting_->messages.push_back(line);
+    if (!out_) return;
+    std::fputs(line.c_str(), out_);
+    std::fputc('\n', out_);
+    std::fflush(out_);
 }
 
 void UqSession::Trace(const std::string& line) {
@@ -230,8 +317,11 @@ void UqSession::FlushDiagnostics(bool boundary) {
             std::string prefix = d.loc.ToString() + ": ";
             if (text.rfind(prefix, 0) == 0) text.erase(0, prefix.size());
         }
-        std::fputs(text.c_str(), err_);
-        std::fputc('\n', err_);
+        if (collecting_) collecting_->diagnostics.push_back(d);
+        if (err_) {
+            std::fputs(text.c_str(), err_);
+            std::fputc('\n', err_);
+        }
     }
     printed_ = items.size();
     // Diagnostics beyond Diagnostics::kMaxStored are counted but not kept: count them too.
@@ -247,7 +337,7 @@ void UqSession::FlushDiagnostics(bool boundary) {
         totalWarnings_ += unstoredWarnings;
         unstoredWarningsSeen_ += unstoredWarnings;
     }
-    std::fflush(err_);
+    if (err_) std::fflush(err_);
     if (boundary) {
         diags_.Clear();
         printed_ = 0;
@@ -283,60 +373,167 @@ void UqSession::ReadStatements(const std::string& text) {
     TraceRead("-c statements", SecondsSince(t0));
 }
 
-bool UqSession::NextLine(Tracker& tracker, std::string& text) {
-    const bool boundary = tracker.AtBoundary();
-    FlushDiagnostics(boundary);
-    SyncCurrent();
-    // The reply to a read statement (§2.3 session: "uq> read scenefile;" → "no user errors").
-    int newErrors = totalErrors_ - tracker.errorsAtPrompt;
-    for (const std::string& s : tracker.completed) {
-        std::string rest;
-        std::string word = FirstWord(s, &rest);
-        if ((word == "read" || word == "include") && !Blank(rest))
-            Message(newErrors == 0 ? "no user errors" : fmt::format("user errors: {}", newErrors));
-    }
-    tracker.completed.clear();
-    std::string prompt;
-    if (boundary) {
-        prompt = "uq> ";
-        tracker.errorsAtBoundary = totalErrors_;
-    } else if (totalErrors_ == tracker.errorsAtBoundary) {
-        prompt = "...> ";  // a statement continues on the next line
-    }                      // else: skipping to the next ';' after an error, no prompt (§2.3)
-    tracker.errorsAtPrompt = totalErrors_;
-    std::string line;
-    if (!input_->ReadLine(prompt, line)) return false;
-    line += '\n';
-    tracker.Feed(line);
-    text += line;
-    return true;
-}
-
-void UqSession::Interactive() {
-    if (!input_) input_ = MakeLineInput(stdin, stdout);
+void UqSession::BeginFeed() {
     FlushDiagnostics(false);
     SyncCurrent();
     ++interactiveDepth_;
     wasInteractive_ = true;
     state_->aborted = false;
-    Tracker tracker;
-    tracker.errorsAtBoundary = tracker.errorsAtPrompt = totalErrors_;
-    lang::Source source(kInteractiveName,
-                        [this, &tracker](std::string& text) { return NextLine(tracker, text); });
+    auto level = std::make_unique<FeedLevel>();
     if (static_cast<int>(state_->includeStack.size()) > state_->options.maxIncludeDepth) {
         diags_.Error({}, "interactive mode nested too deep", {}, "parser");
+        level->dead = true;
     } else {
         state_->includeStack.push_back(
             {fmt::format("<interactive {}>", interactiveDepth_), kInteractiveName});
-        {
-            lang::Parser parser(*state_, source);
-            parser.Run();
-        }
+        level->parser = std::make_unique<lang::Parser>(*state_, level->source);
+    }
+    levels_.push_back(std::move(level));
+    FlushDiagnostics(false);
+}
+
+void UqSession::EndFeed() {
+    if (levels_.empty()) return;
+    FeedLevel& level = *levels_.back();
+    if (!level.dead) {
+        // An unfinished statement at the end of input is read as it is (its error reported).
+        if (!level.quit && !level.skipping && !Blank(level.held)) RunText(level, level.held);
+        level.parser->Finish();
         state_->includeStack.pop_back();
+        FlushDiagnostics(false);
+    }
+    levels_.pop_back();
+    SyncCurrent();
+    --interactiveDepth_;
+}
+
+std::string UqSession::Prompt() const {
+    if (levels_.empty()) return "uq> ";
+    const FeedLevel& level = *levels_.back();
+    if (level.skipping) return {};  // skipping to the next ';' after an error (§2.3)
+    return Blank(level.held) ? "uq> " : "...> ";
+}
+
+bool UqSession::RunText(FeedLevel& level, const std::string& text) {
+    const int errorsBefore = totalErrors_;
+    level.source.Append(text);
+    const bool more = level.parser->RunAvailable();
+    FlushDiagnostics(levels_.size() == 1);
+    SyncCurrent();
+    // The reply to a read statement (§2.3 session: "uq> read scenefile;" → "no user errors").
+    std::string rest;
+    const std::string word = FirstWord(text, &rest);
+    if ((word == "read" || word == "include") && !Blank(rest.substr(0, rest.find(';')))) {
+        const int newErrors = totalErrors_ - errorsBefore;
+        Message(newErrors == 0 ? "no user errors" : fmt::format("user errors: {}", newErrors));
+    }
+    if (!more) level.quit = true;
+    return more;
+}
+
+void UqSession::ProcessHeld(FeedLevel& level, FeedResult& result) {
+    while (!level.quit) {
+        const Scan scan = ScanStatement(level.held);
+        if (scan.firstWord.empty() && scan.end == std::string::npos) {
+            // Only blanks and whole comments: handed over so that positions keep counting.
+            if (!scan.openComment) {
+                level.source.Append(level.held);
+                level.parser->SkipInput(level.source.Size());
+                level.held.clear();
+            }
+            return;
+        }
+        if (IsHelpWord(Lower(scan.firstWord))) {
+            // The session's own statement; its ';' may be left out at the end of the line.
+            const std::size_t end = scan.end == std::string::npos ? level.held.size() : scan.end;
+            const std::string statement = level.held.substr(0, end);
+            std::string topic = statement.substr(scan.wordEnd);
+            if (auto semi = topic.find(';'); semi != std::string::npos) topic.erase(semi);
+            topic = FirstWord(topic);
+            level.source.Append(statement);
+            level.parser->SkipInput(level.source.Size());
+            level.held.erase(0, end);
+            result.statements.push_back(statement);
+            Message(HelpText(topic));
+            continue;
+        }
+        if (scan.end != std::string::npos) {
+            const std::string statement = level.held.substr(0, scan.end);
+            level.held.erase(0, scan.end);
+            result.statements.push_back(statement);
+            if (!RunText(level, statement)) return;
+            continue;
+        }
+        if (scan.openComment || IsStatementWord(scan.firstWord)) return;  // continues
+        // Not a statement: the parser reports it now (not at some later ';'), and the rest of it
+        // is skipped up to the next ';' or the next line that starts a statement.
+        RunText(level, level.held);
+        level.held.clear();
+        level.skipping = true;
+        return;
+    }
+}
+
+UqSession::FeedResult UqSession::Feed(const std::string& line) {
+    FeedResult result;
+    if (levels_.empty()) BeginFeed();
+    FeedLevel& level = *levels_.back();
+    if (level.dead || level.quit) {
+        result.quit = true;
+        return result;
+    }
+    FeedResult* outer = collecting_;
+    collecting_ = &result;
+    std::string text = line + "\n";
+    if (level.skipping) {
+        const Scan scan = ScanStatement(text);
+        if (!IsStatementWord(scan.firstWord) && !IsHelpWord(Lower(scan.firstWord))) {
+            const std::size_t end = scan.end == std::string::npos ? text.size() : scan.end;
+            level.source.Append(text.substr(0, end));
+            level.parser->SkipInput(level.source.Size());
+            text.erase(0, end);
+            level.skipping = scan.end == std::string::npos;
+        } else {
+            level.skipping = false;
+        }
+    }
+    if (!level.skipping) {
+        level.held += text;
+        ProcessHeld(level, result);
     }
     FlushDiagnostics(false);
     SyncCurrent();
-    --interactiveDepth_;
+    result.quit = level.quit;
+    collecting_ = outer;
+    return result;
+}
+
+std::vector<std::string> UqSession::Completions(const std::string& word,
+                                                const std::string& before) const {
+    return UqCompletions(word, before, scene_);
+}
+
+std::string UqSession::HelpText(const std::string& topic) const {
+    UqHelpState state{currentView_, currentLight_, settings.device, settings.engine};
+    std::string text = UqHelpText(topic, scene_, state);
+    if (!text.empty() && text.back() == '\n') text.pop_back();
+    return text;
+}
+
+void UqSession::Interactive() {
+    if (!input_) {
+        input_ = MakeLineInput(stdin, stdout);
+        input_->SetCompleter([this](const std::string& word, const std::string& before) {
+            return Completions(word, before);
+        });
+    }
+    BeginFeed();
+    for (;;) {
+        std::string line;
+        if (!input_->ReadLine(Prompt(), line)) break;
+        if (Feed(line).quit) break;
+    }
+    EndFeed();
 }
 
 bool UqSession::OnCommand(const lang::Command& command, scene::Scene& scene, Diagnostics& diags) {
@@ -361,8 +558,14 @@ bool UqSession::OnCommand(const lang::Command& command, scene::Scene& scene, Dia
             ds.xInches = command.xsizeInches ? command.xsizeInches : settings.xInches;
             ds.yInches = command.ysizeInches ? command.ysizeInches : settings.yInches;
             ds.deltaMax = settings.deltaMax;
-            std::string error;
-            if (!device::MakeDevice(command.device, ds, error)) {
+            std::string error, vectorPath, vectorFormat;
+            if (IsVectorDeviceSpec(command.device, vectorPath, vectorFormat, error)) {
+                if (error.empty()) error = CheckOutputPath(vectorPath);
+                if (!error.empty()) {
+                    diags.Error(command.loc, error, {}, "input");
+                    return true;
+                }
+            } else if (!device::MakeDevice(command.device, ds, error)) {
                 diags.Error(command.loc, error, {}, "input");
                 return true;
             }
@@ -476,7 +679,11 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
         FlushDiagnostics(false);
         return false;
     };
-    std::string error;
+    std::string error, vectorPath, vectorFormat;
+    if (IsVectorDeviceSpec(settings.device, vectorPath, vectorFormat, error)) {
+        if (!error.empty()) return fail(error, "device");
+        return ShowDrawing(viewId.empty() ? currentView_ : viewId, vectorPath, vectorFormat, loc);
+    }
     auto dev = CurrentDevice(error);
     if (!dev) return fail(error, "device");
     const device::DeviceInfo& info = dev->Info();
@@ -491,6 +698,7 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
 
     EngineRequest request;
     request.engine = settings.engine;
+    request.options = settings.engineOptions;
     auto t0 = std::chrono::steady_clock::now();
     Frame frame;
     RenderReport report;
@@ -522,6 +730,44 @@ bool UqSession::Show(const std::string& viewId, bool fast, const SourceLoc& loc)
                       info.hard ? "wrote " + info.path : std::string("drawn on the screen"),
                       SecondsSince(t0)));
     if (settings.keep && info.hard) Message("raster file: " + info.path);
+    return true;
+}
+
+bool UqSession::ShowDrawing(const std::string& view, const std::string& path,
+                            const std::string& format, const SourceLoc& loc) {
+    // The size of the png device under the current -sx/-sy: the drawing's view fits as a
+    // picture on it would.
+    device::DeviceSettings ds;
+    ds.xInches = settings.xInches;
+    ds.yInches = settings.yInches;
+    std::string error;
+    auto raster = device::MakeDevice("png:uq.png", ds, error);
+    if (!raster) {
+        diags_.Error(loc, error, {}, "device");
+        FlushDiagnostics(false);
+        return false;
+    }
+    const std::string target = settings.keep ? NextKeptPath(path) : path;
+    auto t0 = std::chrono::steady_clock::now();
+    if (!FlattenCurrent(view, raster->Info())) {
+        FlushDiagnostics(false);
+        return false;
+    }
+    draw::DrawOptions options;
+    const draw::Drawing drawing = draw::MakeDrawing(ctx_.Flat(), options);
+    const draw::Page page = draw::SingleViewPage(drawing, ctx_.Flat().viewName);
+    error = format == "svg" ? draw::WriteSvg(target, page)
+                            : draw::WriteCairo(target, page,
+                                               format == "pdf" ? draw::CairoFormat::kPdf
+                                                               : draw::CairoFormat::kEps);
+    if (!error.empty()) {
+        diags_.Error(loc, error, {}, "device");
+        FlushDiagnostics(false);
+        return false;
+    }
+    Trace(fmt::format("device {}: hidden-line drawing, {} strokes; wrote {}; {:.4f} s", format,
+                      page.strokes.size(), target, SecondsSince(t0)));
+    if (settings.keep) Message("drawing file: " + target);
     return true;
 }
 

@@ -3,9 +3,16 @@
 // device; `show` drawing the scene on the current device; the end-of-session summary.
 //
 // Interactive mode: statements are read a line at a time after the prompt "uq> " and run as soon
-// as their ';' is typed. After an error the reader skips input to the next ';' and no prompt is
-// given until then (§2.3). Diagnostics for what was just typed are printed before the next
-// prompt. With a terminal on standard input, lines are edited with libedit (history included);
+// as their ';' is typed. Lines go through Feed(line), the one entry point the prompt, the tests
+// and the viewer share: it runs the statements the line completes and returns their diagnostics.
+// The parser only ever sees complete statements, so an error inside one never reaches past its
+// ';'. A line that does not start a statement (a misspelt keyword) is reported at once; the input
+// after it is skipped to the next ';' with no prompt (§2.3), except that a line starting with a
+// statement keyword ends the skip, so the next valid statement is never lost (issue 21: `help`
+// then `solid sphere s =r 1;` used to lose the sphere). `help [WORD]` (with or without ';') is
+// the session's own statement: keywords, syntax, the current view/light/device, the ids.
+// Diagnostics for what was just typed are printed before the next prompt. With a terminal on
+// standard input, lines are edited with libedit (history, tab completion of keywords and ids);
 // otherwise they are read plainly, so scripts can drive a session through a pipe.
 //
 // Current objects (§2.3: "those that were last defined or redefed"):
@@ -19,6 +26,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -44,6 +52,7 @@ struct UqSettings {
     double xInches = 0, yInches = 0;  // -sx / -sy, xsize / ysize; 0 = device default
     int deltaMax = 0;                 // -sd; 0 = device default
     std::string engine = "raycast";
+    std::map<std::string, std::string> engineOptions;  // --engine-opt KEY=VALUE
 };
 
 // A source of input lines for the interactive mode.
@@ -52,9 +61,20 @@ class LineInput {
     virtual ~LineInput() = default;
     // Shows `prompt` and reads one line (without its newline). False at end of input.
     virtual bool ReadLine(const std::string& prompt, std::string& line) = 0;
+    // Completions of `word` after `before` (the line's text before it), for tab completion.
+    using Completer =
+        std::function<std::vector<std::string>(const std::string& word, const std::string& before)>;
+    virtual void SetCompleter(Completer) {}
 };
 // libedit when `in` is a terminal (and libedit was found at build time), plain reading otherwise.
 std::unique_ptr<LineInput> MakeLineInput(std::FILE* in, std::FILE* promptOut);
+
+// `device svg:FILE`, `pdf:FILE`, `eps:FILE` (issue 19): a show writes the exact hidden-line
+// drawing of the current view, as `quadrix draw` does (src/quadrix/draw/), instead of a raster.
+// True when `spec` names one of them; then `path` (default uq.svg, uq.pdf, uq.eps) and `format`
+// are set, and `error` when the path has another extension.
+bool IsVectorDeviceSpec(const std::string& spec, std::string& path, std::string& format,
+                        std::string& error);
 
 class UqSession : public lang::CommandHandler {
   public:
@@ -65,6 +85,8 @@ class UqSession : public lang::CommandHandler {
 
     // Where diagnostics and the summary go (-e); the session does not own the stream.
     void SetErrorStream(std::FILE* out) { err_ = out; }
+    // Where replies (help, "no user errors", "raster file: ...") go; nullptr = only FeedResult.
+    void SetMessageStream(std::FILE* out) { out_ = out; }
     // Trace stream (-t), nullptr = off.
     void SetTrace(std::FILE* trace) { trace_ = trace; }
     // -v: use this view instead of the last defined one.
@@ -75,6 +97,26 @@ class UqSession : public lang::CommandHandler {
     void ReadStatements(const std::string& text);
     // The interactive mode, until quit or end of input.
     void Interactive();
+
+    // One line of interactive input (without its newline) and what it did.
+    struct FeedResult {
+        std::vector<std::string> statements;  // statements the line completed, as typed, run
+        std::vector<Diagnostic> diagnostics;  // reported while reading and running them
+        std::vector<std::string> messages;    // replies: "no user errors", help text, ...
+        bool quit = false;                    // `quit;` ended the interactive input
+    };
+    // Feeds a line to the interactive input (starting it on the first call). Diagnostics and
+    // replies are also printed (error stream, standard output) as at the prompt.
+    FeedResult Feed(const std::string& line);
+    // The prompt for the next line: "uq> " between statements, "...> " inside one, "" while
+    // input is skipped after an error.
+    std::string Prompt() const;
+    // Ends the fed input (end of file): an unfinished statement or definition is reported.
+    void EndFeed();
+    // Tab completion at the prompt (uq_help.h).
+    std::vector<std::string> Completions(const std::string& word, const std::string& before) const;
+    // The text of `help [topic]`.
+    std::string HelpText(const std::string& topic) const;
     // The picture at the end of a batch command line: drawn unless an input error was noted.
     bool FinalShow();
 
@@ -86,13 +128,20 @@ class UqSession : public lang::CommandHandler {
     bool OnCommand(const lang::Command& command, scene::Scene& scene, Diagnostics& diags) override;
 
   private:
-    struct Tracker;
-    bool NextLine(Tracker& tracker, std::string& text);
+    struct FeedLevel;
+    void BeginFeed();
+    // Gives complete statements (and skipped text) of the level's held text to its parser.
+    void ProcessHeld(FeedLevel& level, FeedResult& result);
+    // Appends `text` to the level's source and runs the statements in it; false after quit.
+    bool RunText(FeedLevel& level, const std::string& text);
     // Prints diagnostics added since the last flush and counts them; clears the list when
     // `boundary` (no statement is half read, so no parser holds an error count).
     void FlushDiagnostics(bool boundary);
     void SyncCurrent();
     bool Show(const std::string& viewId, bool fast, const SourceLoc& loc);
+    // Show on a vector device: the hidden-line drawing of the current view to `path`.
+    bool ShowDrawing(const std::string& view, const std::string& path, const std::string& format,
+                     const SourceLoc& loc);
     // The current device, with a fresh file name when keep is on; nullptr with `error`.
     std::unique_ptr<device::Device> CurrentDevice(std::string& error);
     std::vector<scene::Light> CurrentLights() const;
@@ -110,7 +159,10 @@ class UqSession : public lang::CommandHandler {
     Diagnostics diags_;
     std::unique_ptr<lang::ReaderState> state_;
     std::unique_ptr<LineInput> input_;
+    std::vector<std::unique_ptr<FeedLevel>> levels_;  // interactive inputs, innermost last
+    FeedResult* collecting_ = nullptr;                // the Feed in progress
     std::FILE* err_ = stderr;
+    std::FILE* out_ = stdout;
     std::FILE* trace_ = nullptr;
 
     std::size_t printed_ = 0;  // diagnostics of diags_ already printed

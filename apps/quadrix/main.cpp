@@ -2,13 +2,79 @@
 // this file only wires them into one CLI11 application.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <new>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 
 namespace {
+
+// Levenshtein distance, for "did you mean" (short words: the quadratic table is nothing).
+std::size_t EditDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+std::vector<std::string> SubcommandNames(CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        names.push_back(sub->get_name());
+    return names;
+}
+
+// `quadrix WORD` where WORD is no subcommand: the closest names, and where to look.
+int UnknownSubcommand(CLI::App& app, const std::string& word) {
+    std::string best;
+    std::size_t bestDistance = 3;  // at most two edits away (or a prefix)
+    for (const std::string& name : SubcommandNames(app)) {
+        std::size_t d = name.rfind(word, 0) == 0 ? 1 : EditDistance(word, name);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = name;
+        }
+    }
+    std::string names;
+    for (const std::string& name : SubcommandNames(app)) names += " " + name;
+    std::fprintf(stderr, "quadrix: error: unknown subcommand '%s'", word.c_str());
+    if (!best.empty()) std::fprintf(stderr, "; did you mean '%s'?", best.c_str());
+    std::fprintf(stderr, "\nsubcommands:%s\n(run 'quadrix help' or 'quadrix help SUBCOMMAND')\n",
+                 names.c_str());
+    return 2;
+}
+
+// `quadrix help [SUBCOMMAND]`: the same text as --help.
+int RunHelp(CLI::App& app, const std::string& topic) {
+    if (topic.empty()) {
+        // Not app.help(): after parsing it describes the selected subcommand (help itself).
+        std::fputs(app.get_formatter()->make_help(&app, "quadrix", CLI::AppFormatMode::Normal).c_str(),
+                   stdout);
+        return 0;
+    }
+    if (topic == "uq" || topic == "-i") {
+        quadrix::cli::PrintUqUsage(stdout);
+        return 0;
+    }
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        if (sub->get_name() == topic) {
+            std::fputs(sub->help().c_str(), stdout);
+            return 0;
+        }
+    return UnknownSubcommand(app, topic);
+}
 
 int Run(int argc, char** argv) {
     CLI::App app{
@@ -18,6 +84,8 @@ int Run(int argc, char** argv) {
         "  quadrix render examples/machined_part.uq -o part.png\n"
         "  quadrix render examples/stack_of_bundles.uq -o stack.png --size 800x600 --fast\n"
         "  quadrix render - -o out.ppm < scene.uq\n"
+        "  quadrix render examples/machined_part.uq -o part.exr   (image + depth, normal, ids)\n"
+        "  quadrix render examples/machined_part.uq --format ppm -o - | display\n"
         "  quadrix export --to pov examples/machined_part.uq -o part.pov\n"
         "  quadrix pipe examples/gallery/hilbert3.pipe -o hilbert3_tubes.uq\n"
         "  quadrix compare --engines scanline,raycast examples/machined_part.uq\n"
@@ -40,8 +108,23 @@ int Run(int argc, char** argv) {
     quadrix::cli::AddEnginesCommand(app, enginesMarkdown);
     quadrix::cli::DrawArgs drawArgs;
     quadrix::cli::AddDrawCommand(app, drawArgs);
+    std::string helpTopic;
+    app.add_subcommand("help", "Print this text, or the options of one subcommand")
+        ->add_option("subcommand", helpTopic, "The subcommand to describe");
+    // Every subcommand answers --version (docs/cli.md), and exit codes follow docs/cli.md.
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        sub->set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
+    app.footer(
+        "Exit status: 0 success, 1 an error in the scene or input (or a failed output), 2 a "
+        "usage error (unknown subcommand, option, engine or bad option value); see docs/cli.md.");
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
+    if (argc >= 2 && argv[1][0] != '-') {
+        const std::string first = argv[1];
+        const std::vector<std::string> names = SubcommandNames(app);
+        if (std::find(names.begin(), names.end(), first) == names.end())
+            return UnknownSubcommand(app, first);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -60,6 +143,7 @@ int Run(int argc, char** argv) {
     if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);
     if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
     if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
+    if (app.got_subcommand("help")) return RunHelp(app, helpTopic);
     return 2;
 }
 

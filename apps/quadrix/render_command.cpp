@@ -35,11 +35,18 @@ std::string ParseSize(const std::string& text, int& width, int& height) {
 
 void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     CLI::App* cmd = app.add_subcommand(
-        "render", "Render scene files to an image (.png, .pgm/.ppm, or .qxf frame dump)");
+        "render",
+        "Render scene files to an image (.png, .ppm colour, .pgm gray, .exr with depth/normal/id "
+        "layers, or .qxf frame dump)");
     cmd->add_option("scenes", args.scenes, "Scene files, read in order ('-' = standard input)")
         ->required();
-    cmd->add_option("-o,--output", args.output, "Output file; the format follows the extension")
+    cmd->add_option("-o,--output", args.output,
+                    "Output file; the format follows the extension ('-' = standard output, PNG "
+                    "unless --format says otherwise)")
         ->required();
+    cmd->add_option("--format", args.format,
+                    "Output format, overriding the extension: png, ppm, pgm, pnm, exr or qxf")
+        ->check(CLI::IsMember({"png", "ppm", "pgm", "pnm", "exr", "qxf"}));
     cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT in pixels")
         ->capture_default_str();
     cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
@@ -151,8 +158,13 @@ int RunRender(const RenderArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
-    OutputRequest outputs{args.output, args.dumpFrame, {}};
+    OutputRequest outputs{args.output, args.dumpFrame, {}, args.format};
     outputs.png.bitDepth = args.png16 ? 16 : 8;
+    if (args.output == "-" && args.stats && args.json) {
+        std::fprintf(stderr, "quadrix: error: --stats --json and -o - both write to standard "
+                             "output; write the image to a file\n");
+        return 2;
+    }
     if (auto e = CheckOutputs(outputs); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;

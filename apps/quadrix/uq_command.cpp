@@ -26,6 +26,7 @@
 #include "quadrix/device/device.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/io/output_file.h"
+#include "quadrix/pipeline/render_context.h"
 
 namespace quadrix::cli {
 
@@ -39,7 +40,8 @@ constexpr const char* kUsage =
     "  -c STMTS    execute the statements STMTS; a bare -c enters interactive mode, and on quit\n"
     "              the rest of the command line is processed\n"
     "  -d DEVICE   draw on DEVICE or DEVICE:PATH (default $UQDEV, else the terminal when\n"
-    "              standard output is one, else png); devices: {devices}\n"
+    "              standard output is one, else png); devices: {devices}; svg, pdf, eps\n"
+    "              (svg:FILE ...) write the hidden-line drawing of quadrix draw\n"
     "  -e PATH     write error messages to PATH\n"
     "  -f / -F     fast constant shading on / off\n"
     "  -i          interactive mode (uq> prompt) after the options and files\n"
@@ -50,16 +52,13 @@ constexpr const char* kUsage =
     "  -t[PATH]    trace each stage to PATH (glued; standard error if missing); -T: trace off\n"
     "  -v VIEW     use view VIEW instead of the last defined\n"
     "  -x          do not draw a picture after the last file\n"
-    "  --engine=NAME  rendering engine (default raycast)\n"
+    "  --engine NAME       rendering engine (default raycast), as quadrix render's\n"
+    "  --engine-opt K=V    engine-specific setting (repeatable), as quadrix render's\n"
+    "  --version   print the version\n"
     "  -h, --help  this text\n"
     "See docs/uq-compat.md for the matching quadrix render options.\n";
 
-void PrintUsage(std::FILE* out) {
-    std::string usage = kUsage;
-    std::string::size_type at = usage.find("{devices}");
-    usage.replace(at, 9, device::KnownDevicesText());
-    std::fputs(usage.c_str(), out);
-}
+void PrintUsage(std::FILE* out) { PrintUqUsage(out); }
 
 struct Action {
     enum class Kind {
@@ -80,7 +79,8 @@ struct Action {
         kTrace,
         kNoTrace,
         kView,
-        kEngine
+        kEngine,
+        kEngineOpt
     };
     Kind kind;
     std::string text;
@@ -92,6 +92,8 @@ struct Plan {
     bool interactiveAtEnd = false;  // -i
     bool noRender = false;          // -x
     bool help = false;
+    bool version = false;
+    EngineRequest engine;  // the last --engine and every --engine-opt, checked before any work
 };
 
 // Parses the arguments into a plan; returns an error message or empty.
@@ -114,14 +116,34 @@ std::string ParseArgs(const std::vector<std::string>& args, Plan& plan) {
             plan.help = true;
             continue;
         }
-        if (a.rfind("--engine=", 0) == 0) {
-            std::string name = a.substr(9);
-            if (!MakeEngine(name)) {
-                std::string names;
-                for (const auto& n : EngineNames()) names += (names.empty() ? "" : ", ") + n;
-                return fmt::format("unknown engine '{}' (known: {})", name, names);
+        if (a == "--version") {
+            plan.version = true;
+            continue;
+        }
+        // --engine NAME / --engine=NAME and --engine-opt KEY=VALUE, as quadrix render's.
+        if (a == "--engine" || a.rfind("--engine=", 0) == 0 || a == "--engine-opt" ||
+            a.rfind("--engine-opt=", 0) == 0) {
+            const bool isOpt = a.rfind("--engine-opt", 0) == 0;
+            const std::string option = isOpt ? "--engine-opt" : "--engine";
+            std::string v;
+            if (a.size() > option.size()) {
+                v = a.substr(option.size() + 1);
+            } else if (i + 1 < args.size()) {
+                v = args[++i];
+            } else {
+                return fmt::format("option {} needs {}", option,
+                                   isOpt ? "KEY=VALUE" : "an engine name");
             }
-            add(Kind::kEngine, name);
+            if (isOpt) {
+                auto eq = v.find('=');
+                if (eq == std::string::npos || eq == 0)
+                    return fmt::format("--engine-opt: expected KEY=VALUE, found '{}'", v);
+                add(Kind::kEngineOpt, v);
+                plan.engine.options[v.substr(0, eq)] = v.substr(eq + 1);
+            } else {
+                add(Kind::kEngine, v);
+                plan.engine.engine = v;
+            }
             continue;
         }
         // The option letter(s) and a glued value.
@@ -248,8 +270,16 @@ std::string CheckDevices(const Plan& plan, const std::string& initial, const cha
         if (auto e = CheckOutputPaths({d->Info().path}, inputs); !e.empty()) error = e;
         return error.empty();
     };
-    if (!checkOutput(device::MakeDevice(spec, ds, error)))
-        return fmt::format("{} (device from {})", error, source);
+    // svg:FILE, pdf:FILE, eps:FILE: the hidden-line drawing (interactive.h).
+    auto check = [&]() {
+        std::string path, format;
+        if (!IsVectorDeviceSpec(spec, path, format, error))
+            return checkOutput(device::MakeDevice(spec, ds, error));
+        if (!error.empty()) return false;
+        if (auto e = CheckOutputPaths({path}, inputs); !e.empty()) error = e;
+        return error.empty();
+    };
+    if (!check()) return fmt::format("{} (device from {})", error, source);
     for (const Action& a : plan.actions) {
         if (a.kind == Kind::kDevice)
             spec = a.text;
@@ -261,7 +291,7 @@ std::string CheckDevices(const Plan& plan, const std::string& initial, const cha
             ds.deltaMax = static_cast<int>(a.number);
         else
             continue;
-        if (!checkOutput(device::MakeDevice(spec, ds, error))) return error;
+        if (!check()) return error;
     }
     return {};
 }
@@ -274,6 +304,13 @@ int UsageError(const std::string& message) {
 
 }  // namespace
 
+void PrintUqUsage(std::FILE* out) {
+    std::string usage = kUsage;
+    std::string::size_type at = usage.find("{devices}");
+    usage.replace(at, 9, device::KnownDevicesText());
+    std::fputs(usage.c_str(), out);
+}
+
 int RunUq(const std::vector<std::string>& args) {
     Plan plan;
     if (auto e = ParseArgs(args, plan); !e.empty()) return UsageError(e);
@@ -281,6 +318,12 @@ int RunUq(const std::vector<std::string>& args) {
         PrintUsage(stdout);
         return 0;
     }
+    if (plan.version) {
+        std::printf("quadrix %s\n", QUADRIX_VERSION);
+        return 0;
+    }
+    // An unknown engine or a bad engine option is a usage error (docs/cli.md), as in render.
+    if (auto e = RenderContext::CheckEngine(plan.engine); !e.empty()) return UsageError(e);
     // "If no -d option is given, UniQuadrix checks for device names in environment variable
     // UQDEV": with a -d anywhere on the line, its first device is the device from the start.
     std::string initialDevice;
@@ -386,6 +429,11 @@ int RunUq(const std::vector<std::string>& args) {
             case Kind::kEngine:
                 session.settings.engine = a.text;
                 break;
+            case Kind::kEngineOpt: {
+                const auto eq = a.text.find('=');
+                session.settings.engineOptions[a.text.substr(0, eq)] = a.text.substr(eq + 1);
+                break;
+            }
         }
     }
     if (!anyInput && !plan.interactiveAtEnd) session.ReadFile("-");

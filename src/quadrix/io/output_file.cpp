@@ -229,6 +229,15 @@ std::string CheckOutputPaths(const std::vector<std::string>& outputs,
 }
 
 OutputFile::OutputFile(const std::string& path) : path_(path) {
+    if (path == "-") {
+        // Standard output: the bytes are collected in an anonymous temporary file and copied out
+        // at Commit, so a failed encoder writes nothing at all (nothing half-written, as for a
+        // file). tmpfile() is unlinked already: nothing to clean up at a signal.
+        toStdout_ = true;
+        file_ = std::tmpfile();
+        if (!file_) error_ = fmt::format("cannot write to standard output: {}", std::strerror(errno));
+        return;
+    }
     bool exists = false;
     struct stat st {};
     error_ = ResolveTarget(path, target_, exists, st);
@@ -288,6 +297,13 @@ void OutputFile::Write(std::string_view bytes) {
 std::string OutputFile::Finish() {
     if (finished_) return {};
     if (!file_) return error_.empty() ? Refuse(path_, "not open") : error_;
+    if (toStdout_) {
+        if (std::ferror(file_) != 0 || std::fflush(file_) != 0)
+            return error_ = fmt::format("cannot write to standard output: {}",
+                                        std::strerror(errno ? errno : EIO));
+        finished_ = true;
+        return {};
+    }
     errno = 0;
     bool bad = std::ferror(file_) != 0;
     bad = bad || std::fflush(file_) != 0;
@@ -305,7 +321,23 @@ std::string OutputFile::Finish() {
     return {};
 }
 
+std::string OutputFile::CopyToStdout() {
+    std::rewind(file_);
+    char buffer[1 << 16];
+    std::size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, file_)) > 0)
+        if (std::fwrite(buffer, 1, n, stdout) != n) break;
+    const bool bad = std::ferror(file_) != 0 || std::fflush(stdout) != 0 || std::ferror(stdout);
+    std::fclose(file_);
+    file_ = nullptr;
+    if (bad) return error_ = fmt::format("cannot write to standard output: {}",
+                                         std::strerror(errno ? errno : EIO));
+    committed_ = true;
+    return {};
+}
+
 std::string OutputFile::Rename() {
+    if (toStdout_) return CopyToStdout();
     // The target may have changed since the constructor looked (a FIFO planted meanwhile).
     std::string target;
     bool exists = false;

@@ -44,7 +44,8 @@ bool IsSameFile(const std::string& a, const std::string& b);
 // replaced by an output. The bounded reader (io/bounded_read.h) calls it for every file it reads.
 void NoteInputFile(int fd);
 
-// One output file in the making. Not copyable; the destructor removes the temporary file unless
+// One output file in the making; "-" is standard output (the bytes are kept in an anonymous
+// temporary file and copied to stdout at Commit, so a failed write sends nothing). Not copyable; the destructor removes the temporary file unless
 // Commit() succeeded.
 class OutputFile {
   public:
@@ -70,6 +71,7 @@ class OutputFile {
 
   private:
     std::string Rename();
+    std::string CopyToStdout();
 
     std::string path_;    // as given (messages)
     std::string target_;  // after following symbolic links
@@ -80,6 +82,7 @@ class OutputFile {
     unsigned mode_ = 0;
     bool finished_ = false;
     bool committed_ = false;
+    bool toStdout_ = false;
 };
 
 // Finishes every file, then renames them all; stops at the first failure (the files not yet

@@ -2,6 +2,7 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -112,6 +113,8 @@ bool ImageFormatFromPath(const std::string& path, ImageFormat& format) {
         format = ImageFormat::kPnm;
     else if (ext == ".qxf")
         format = ImageFormat::kFrameDump;
+    else if (ext == ".exr")
+        format = ImageFormat::kExr;
     else
         return false;
     return true;
@@ -179,12 +182,53 @@ std::string WritePng(OutputFile& f, const Image& image, const PngOptions& option
     return {};
 }
 
-std::string WritePnm(OutputFile& f, const Image& image) {
+PnmKind PnmKindFromPath(const std::string& path) {
+    const std::string ext = Lower(std::filesystem::path(path).extension().string());
+    if (ext == ".ppm") return PnmKind::kColor;
+    if (ext == ".pgm") return PnmKind::kGray;
+    return PnmKind::kAsImage;
+}
+
+Image ConvertChannels(const Image& image, int channels) {
+    if (image.channels == channels) return image;
+    Image out(image.width, image.height, channels);
+    const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
+    const bool linear = HasLinear(image);
+    if (linear) out.linear.resize(n * channels);
+    if (channels == 3) {  // gray -> RGB: the same value in each channel
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) {
+                out.pixels[3 * i + c] = image.pixels[i];
+                if (linear) out.linear[3 * i + c] = image.linear[i];
+            }
+        return out;
+    }
+    // RGB -> gray: the luminance Y of the linear BT.709/sRGB primaries (IEC 61966-2-1), computed
+    // in linear light (Image holds linear intensities), so a gray RGB pixel keeps its value.
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint8_t* p = &image.pixels[3 * i];
+        const double y = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        out.pixels[i] = static_cast<std::uint8_t>(std::clamp(std::lround(y), 0L, 255L));
+        if (linear) {
+            const float* l = &image.linear[3 * i];
+            out.linear[i] = 0.2126f * l[0] + 0.7152f * l[1] + 0.0722f * l[2];
+        }
+    }
+    return out;
+}
+
+std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
     if (auto e = CheckImage(image); !e.empty()) return e;
     if (!f.ok()) return f.error();
-    std::fprintf(f.stream(), "P%c\n%d %d\n255\n", image.channels == 3 ? '6' : '5', image.width,
+    if (kind == PnmKind::kFromPath) kind = PnmKindFromPath(f.path());
+    const int channels =
+        kind == PnmKind::kColor ? 3 : kind == PnmKind::kGray ? 1 : image.channels;
+    Image converted;
+    if (channels != image.channels) converted = ConvertChannels(image, channels);
+    const Image& source = channels != image.channels ? converted : image;
+    std::fprintf(f.stream(), "P%c\n%d %d\n255\n", channels == 3 ? '6' : '5', image.width,
                  image.height);
-    const std::vector<std::uint8_t> encoded = EncodeSrgb8(image);
+    const std::vector<std::uint8_t> encoded = EncodeSrgb8(source);
     std::fwrite(encoded.data(), 1, encoded.size(), f.stream());
     return {};
 }
@@ -211,10 +255,10 @@ std::string WritePng(const std::string& path, const Image& image, const PngOptio
     return f.Commit();
 }
 
-std::string WritePnm(const std::string& path, const Image& image) {
+std::string WritePnm(const std::string& path, const Image& image, PnmKind kind) {
     if (auto e = CheckImage(image); !e.empty()) return e;
     OutputFile f(path);
-    if (auto e = WritePnm(f, image); !e.empty()) return e;
+    if (auto e = WritePnm(f, image, kind); !e.empty()) return e;
     return f.Commit();
 }
 

@@ -15,9 +15,10 @@
 
 namespace quadrix {
 
-enum class ImageFormat { kPng, kPnm, kFrameDump };
+enum class ImageFormat { kPng, kPnm, kFrameDump, kExr };
 
-// From the file extension: .png, .pgm/.ppm/.pnm, .qxf (frame dump). Unknown → false.
+// From the file extension: .png, .pgm/.ppm/.pnm, .qxf (frame dump), .exr (OpenEXR, io/exr.h).
+// Unknown → false.
 bool ImageFormatFromPath(const std::string& path, ImageFormat& format);
 
 // Colour encoding (issue 17): images are shaded in linear light (io/image.h); PNG and PNM files
@@ -34,8 +35,18 @@ struct PngOptions {
 
 // Returns an empty string on success, else a one-line error message (no file left behind).
 std::string WritePng(const std::string& path, const Image& image, const PngOptions& options = {});
-// PGM (gray) or PPM (RGB), binary, 8-bit sRGB-encoded (Netpbm's samples are gamma-encoded).
-std::string WritePnm(const std::string& path, const Image& image);
+// Which Netpbm file: by the path's extension (.ppm colour P6, .pgm gray P5, anything else -
+// .pnm, standard output - as the image is), or forced. A gray image written as .ppm repeats its
+// value in the three channels; a colour image written as .pgm is reduced to its luminance
+// (BT.709 weights in linear light).
+enum class PnmKind { kFromPath, kAsImage, kGray, kColor };
+PnmKind PnmKindFromPath(const std::string& path);
+// The image with 1 or 3 channels, converted as above.
+Image ConvertChannels(const Image& image, int channels);
+// PGM (gray, P5) or PPM (RGB, P6), binary, 8-bit sRGB-encoded (Netpbm's samples are
+// gamma-encoded).
+std::string WritePnm(const std::string& path, const Image& image,
+                     PnmKind kind = PnmKind::kFromPath);
 
 // The sRGB-encoded samples of an image, 8 bits: from the 8-bit pixels (what the writers use), or
 // from Image::linear when present (for viewers that want the smoother darks).
@@ -55,7 +66,7 @@ std::string WriteFileAtomically(const std::string& path, const std::string& cont
 // The same encoders into an OutputFile that the caller commits (CommitAll for a command with
 // several outputs). Empty string on success.
 std::string WritePng(OutputFile& file, const Image& image, const PngOptions& options = {});
-std::string WritePnm(OutputFile& file, const Image& image);
+std::string WritePnm(OutputFile& file, const Image& image, PnmKind kind = PnmKind::kFromPath);
 std::string WriteFrameDump(OutputFile& file, const Frame& frame);
 
 }  // namespace quadrix

@@ -34,6 +34,10 @@ public:
     Token Next();
 
     void SetQuiet(bool quiet) { quiet_ = quiet; }
+    // Skips the text up to byte `end` unread (line and column still counted).
+    void SkipTo(std::size_t end) {
+        while (pos_ < end && source_.Has(pos_)) Advance();
+    }
     Source& GetSource() { return source_; }
 
     // The source line of `loc` for a diagnostic (see Source::LineForDiagnostic).

@@ -208,6 +208,35 @@ void Parser::CheckUnclosedDefinition() {
     state_.CloseDefinition();
 }
 
+bool Parser::RunAvailable() {
+    // The statement loop of Run(), minus the end-of-input checks: the kEnd token seen now only
+    // means "nothing more yet", so it is dropped for the lexer to look again next time.
+    while (!stopped_ && !state_.aborted) {
+        if (PeekIs(TokenKind::kEnd)) break;
+        if (++state_.statementCount > ReaderState::kMaxStatements) {
+            Error(Peek().loc,
+                  fmt::format("more than {} statements; reading stopped",
+                              ReaderState::kMaxStatements),
+                  kParser);
+            state_.aborted = true;
+            break;
+        }
+        if (!RunStatement()) SkipToSemicolon();
+        CheckErrorLimit();
+    }
+    if (next_ && next_->kind == TokenKind::kEnd) next_.reset();
+    return !Stopped();
+}
+
+void Parser::Finish() {
+    if (!state_.aborted) CheckUnclosedDefinition();
+}
+
+void Parser::SkipInput(std::size_t end) {
+    next_.reset();
+    lexer_.SkipTo(end);
+}
+
 void Parser::Run() {
     while (!stopped_ && !state_.aborted) {
         if (PeekIs(TokenKind::kEnd)) break;

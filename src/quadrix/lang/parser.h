@@ -38,6 +38,15 @@ public:
 
     // Reads statements to the end of the source, a `quit`, or until reading is aborted.
     void Run();
+    // For a source that grows by Source::Append (an interactive session's Feed): reads the
+    // statements available now, and leaves the parser ready to go on when more text is appended;
+    // false after `quit` or an abort. Finish() ends the input (an open definition is reported).
+    bool RunAvailable();
+    void Finish();
+    // Skips the source's text up to byte `end` without reading it (input skipped after an
+    // error, a statement the session handled itself).
+    void SkipInput(std::size_t end);
+    bool Stopped() const { return stopped_ || state_.aborted; }
 
     ReaderState& State() { return state_; }
     Source& GetSource() { return source_; }

@@ -12,6 +12,12 @@ Source::Source(std::string name, std::string text)
 Source::Source(std::string name, LineReader readLine)
     : name_(std::make_shared<const std::string>(std::move(name))), readLine_(std::move(readLine)) {}
 
+void Source::Append(std::string_view more) {
+    const std::size_t before = text_.size();
+    text_ += more;
+    IndexLines(before);
+}
+
 bool Source::Has(std::size_t pos) {
     while (pos >= text_.size() && readLine_) {
         std::size_t before = text_.size();

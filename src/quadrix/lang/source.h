@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace quadrix::lang {
@@ -22,6 +23,12 @@ public:
 
     Source(std::string name, std::string text);
     Source(std::string name, LineReader readLine);
+
+    // Pushed text (an interactive session's Feed): appends to a source built from text. A
+    // parser that reached the end of the text may go on once more is appended
+    // (Parser::RunAvailable).
+    void Append(std::string_view more);
+    std::size_t Size() const { return text_.size(); }
 
     // The name used in diagnostics; shared by every SourceLoc of this source.
     const std::shared_ptr<const std::string>& Name() const { return name_; }

@@ -5,16 +5,45 @@
 #include <filesystem>
 #include <optional>
 
+#include "quadrix/io/exr.h"
 #include "quadrix/io/output_file.h"
 
 namespace quadrix {
 
+bool OutputFormat(const OutputRequest& request, ImageFormat& format, PnmKind& pnm) {
+    pnm = PnmKind::kFromPath;
+    if (request.format.empty()) {
+        if (request.image == "-") {
+            format = ImageFormat::kPng;
+            return true;
+        }
+        return ImageFormatFromPath(request.image, format);
+    }
+    if (request.format == "pnm") {
+        format = ImageFormat::kPnm;
+        pnm = PnmKind::kAsImage;
+        return true;
+    }
+    if (!ImageFormatFromPath("x." + request.format, format)) return false;
+    if (request.format == "ppm") pnm = PnmKind::kColor;
+    if (request.format == "pgm") pnm = PnmKind::kGray;
+    return true;
+}
+
 std::string CheckOutputs(const OutputRequest& request) {
     ImageFormat format;
-    if (!ImageFormatFromPath(request.image, format))
+    PnmKind pnm;
+    if (!request.format.empty() && !OutputFormat(request, format, pnm))
+        return fmt::format("--format: unknown format '{}' (png, ppm, pgm, pnm, exr or qxf)",
+                           request.format);
+    if (!OutputFormat(request, format, pnm))
         return fmt::format(
-            "cannot tell the image format of '{}' (use .png, .pgm, .ppm, .pnm or .qxf)",
+            "cannot tell the image format of '{}' (use .png, .pgm, .ppm, .pnm, .exr or .qxf, or "
+            "--format)",
             request.image);
+    if (format == ImageFormat::kExr && !HaveOpenExr())
+        return "this quadrix was built without OpenEXR: .exr output is not available (install "
+               "libopenexr-dev and rebuild; see docs/dependencies.md)";
     // Never a device, FIFO, directory or file already read (io/output_file.h).
     if (auto e =
             CheckOutputPaths({request.image, request.dumpFrame.empty() ? "-" : request.dumpFrame});
@@ -35,13 +64,15 @@ std::string CheckOutputs(const OutputRequest& request) {
 
 bool NeedsImage(const OutputRequest& request) {
     ImageFormat format;
-    return ImageFormatFromPath(request.image, format) && format != ImageFormat::kFrameDump;
+    PnmKind pnm;
+    return OutputFormat(request, format, pnm) && format != ImageFormat::kFrameDump;
 }
 
 std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const Image* image) {
     if (auto e = CheckOutputs(request); !e.empty()) return e;
     ImageFormat format;
-    ImageFormatFromPath(request.image, format);
+    PnmKind pnm;
+    OutputFormat(request, format, pnm);
     // Both outputs go to temporary files first and are renamed together (io/output_file.h), so a
     // failed dump never follows a written image.
     OutputFile main(request.image);
@@ -50,12 +81,14 @@ std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const
     std::string error;
     if (format == ImageFormat::kFrameDump)
         error = WriteFrameDump(main, frame);
+    else if (format == ImageFormat::kExr)
+        error = WriteExr(main, frame, image);
     else if (!image)
         error = "internal error: no image to write";
     else if (format == ImageFormat::kPng)
         error = WritePng(main, *image, request.png);
     else
-        error = WritePnm(main, *image);
+        error = WritePnm(main, *image, pnm);
     if (error.empty() && dump) error = WriteFrameDump(*dump, frame);
     if (error.empty()) error = dump ? CommitAll({&main, &*dump}) : CommitAll({&main});
     return error;

@@ -12,10 +12,17 @@
 namespace quadrix {
 
 struct OutputRequest {
-    std::string image;      // the main output; its extension picks the format
+    std::string image;      // the main output; its extension picks the format; "-" = stdout
     std::string dumpFrame;  // optional .qxf dump of the Frame (--dump-frame)
     PngOptions png;         // bit depth of a PNG main output (--png16)
+    // --format: png, ppm, pgm, exr or qxf; overrides the extension. Empty: the extension, and
+    // png for standard output.
+    std::string format;
 };
+
+// The format of the main output (the request's format, else the extension, else png for "-"),
+// with the Netpbm kind for ppm/pgm. False when it cannot be told.
+bool OutputFormat(const OutputRequest& request, ImageFormat& format, PnmKind& pnm);
 
 // Checks the request before any work: a known format, two different paths. Error or empty.
 std::string CheckOutputs(const OutputRequest& request);
