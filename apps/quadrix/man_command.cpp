@@ -41,7 +41,8 @@ std::string OptionHeading(const CLI::Option& opt) {
         return s;
     }
     std::string names;
-    for (const std::string& s : opt.get_snames()) names += (names.empty() ? "" : ", ") + ("\\-" + s);
+    for (const std::string& s : opt.get_snames())
+        names += (names.empty() ? "" : ", ") + ("\\-" + s);
     for (const std::string& l : opt.get_lnames())
         names += (names.empty() ? "" : ", ") + ("\\-\\-" + Roff(l));
     std::string s = "\\fB" + names + "\\fR";
@@ -77,13 +78,13 @@ std::string ManPage(const CLI::App& app) {
         s += ".PP\nExamples:\n.nf\n" + Roff(description.substr(examples + 9)) + "\n.fi\n";
     s += ".SH COMMANDS\n";
     for (const CLI::App* sub : VisibleSubcommands(app)) {
-        s += ".SS \"quadrix " + Roff(sub->get_name()) + "\"\n" + Roff(sub->get_description()) +
-             "\n";
+        s +=
+            ".SS \"quadrix " + Roff(sub->get_name()) + "\"\n" + Roff(sub->get_description()) + "\n";
         for (const CLI::Option* opt : OptionsOf(*sub)) {
             s += ".TP\n" + OptionHeading(*opt) + "\n" + Roff(opt->get_description());
             if (!opt->get_default_str().empty())
                 s += " (default: " + Roff(opt->get_default_str()) + ")";
-            if (opt->get_required()) s += " Required.";
+            if (opt->get_required()) s += " (required)";
             s += "\n";
         }
         if (sub->get_name() == "uq")
@@ -156,7 +157,8 @@ std::string BashCompletion(const CLI::App& app) {
 
 void AddManCommand(CLI::App& app, ManArgs& args) {
     // An empty group hides it from --help: it is for the build, not for users.
-    CLI::App* cmd = app.add_subcommand("man", "Print the manual page quadrix(1) in roff")->group("");
+    CLI::App* cmd =
+        app.add_subcommand("man", "Print the manual page quadrix(1) in roff")->group("");
     cmd->add_flag("--bash-completion", args.bashCompletion,
                   "Print the bash completion script instead");
     cmd->add_option("-o,--output", args.output, "Write to this file instead of standard output");

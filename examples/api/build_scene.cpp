@@ -45,16 +45,18 @@ int main(int argc, char** argv) {
         quadrix::Scene floor;
         floor.AddBox("slab", {-4, -1.5, -3}, {4, -1, 3}, quadrix::Color{0.3, 0.5, 0.3});
         options.engine = "raycast";
-        const quadrix::Rendering withFloor = quadrix::Compose(exact, renderer.Render(floor, options));
+        const quadrix::Rendering withFloor =
+            quadrix::Compose(exact, renderer.Render(floor, options));
 
         exact.image.Write(dir + "/build_scene.png");
         withFloor.image.Write(dir + "/build_scene_floor.png");
         const std::size_t c = exact.Index(exact.width / 2, exact.height / 2);
-        std::printf("centre pixel: %s, depth %.6f\n",
-                    exact.surface[c] == quadrix::Rendering::kNone
-                        ? "background"
-                        : exact.surfaceNames[exact.surface[c]].c_str(),
-                    exact.depth[c]);
+        if (exact.surface[c] == quadrix::Rendering::kNone)
+            std::printf("centre pixel: background\n");
+        else
+            std::printf("centre pixel: surface %s of solid %s, depth %.6f\n",
+                        exact.surfaceNames[exact.surface[c]].c_str(),
+                        exact.solidNames[exact.solid[c]].c_str(), exact.depth[c]);
         std::printf("covered: %zu alone, %zu with the floor\n", exact.CoveredCount(),
                     withFloor.CoveredCount());
         return 0;

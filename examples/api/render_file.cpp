@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s\n", w.Format().c_str());
         quadrix::Renderer renderer;
         const quadrix::Rendering result = renderer.Render(scene, options);
-        for (const std::string& note : result.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+        for (const std::string& note : result.notes)
+            std::fprintf(stderr, "note: %s\n", note.c_str());
         result.image.Write(argv[2]);
         std::printf("%s: %zu of %d pixels covered by %zu solids (engine %s, %.3f s)\n", argv[2],
                     result.CoveredCount(), result.width * result.height, result.solidNames.size(),

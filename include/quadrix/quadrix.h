@@ -43,7 +43,7 @@ const char* VersionString();
 struct Message {
     enum class Severity { kNote, kWarning, kError };
     Severity severity = Severity::kError;
-    std::string file;        // the file (or text name) it is about; empty when none
+    std::string file;  // the file (or text name) it is about; empty when none
     int line = 0, column = 0;
     std::string text;        // the message itself
     std::string sourceLine;  // the offending line of the input, empty when unknown
@@ -144,8 +144,8 @@ class Scene {
                      std::optional<Color> color = {});
     Scene& AddBox(const std::string& id, const Vector3& corner0, const Vector3& corner1,
                   std::optional<Color> color = {});
-    Scene& AddCylinder(const std::string& id, const Vector3& from, const Vector3& to,
-                       double radius, std::optional<Color> color = {});
+    Scene& AddCylinder(const std::string& id, const Vector3& from, const Vector3& to, double radius,
+                       std::optional<Color> color = {});
     Scene& AddCone(const std::string& id, const Vector3& from, const Vector3& to, double radius0,
                    double radius1, std::optional<Color> color = {});
     // Lights (docs/language.md §3.7), world space. A scene without any light is lit by the
@@ -198,8 +198,9 @@ struct Rendering {
     static constexpr std::int32_t kNone = -1;  // an id of a background pixel
 
     int width = 0, height = 0;
-    std::vector<double> depth;          // device z (increases away from the viewer); +inf = background
-    std::vector<double> normal;         // world-space unit normal toward the viewer, 3 per pixel; 0 = background
+    std::vector<double> depth;  // device z (increases away from the viewer); +inf = background
+    std::vector<double>
+        normal;  // world-space unit normal toward the viewer, 3 per pixel; 0 = background
     std::vector<std::int32_t> surface;  // index into surfaceNames, kNone = background
     std::vector<std::int32_t> body;     // index into bodyNames
     std::vector<std::int32_t> solid;    // index into solidNames
@@ -233,16 +234,16 @@ class Renderer {
 
     struct Options {
         int width = 512, height = 512;
-        std::string engine = "raycast";                   // Renderer::Engines()
+        std::string engine = "raycast";                    // Renderer::Engines()
         std::map<std::string, std::string> engineOptions;  // docs/engines.md
         // Refuse (Error) what the engine cannot draw instead of drawing it with raycast.
         bool strict = false;
         Shading shading = Shading::kLambert;
-        bool shadows = false;              // shadow rays (parallel views)
-        std::optional<Color> background;   // instead of the scene's
-        std::string view;                  // a view of the scene by id (empty: the last one)
-        std::optional<View> camera;        // a view given here instead
-        bool image = true;                 // false: the Frame only, no shading
+        bool shadows = false;             // shadow rays (parallel views)
+        std::optional<Color> background;  // instead of the scene's
+        std::string view;                 // a view of the scene by id (empty: the last one)
+        std::optional<View> camera;       // a view given here instead
+        bool image = true;                // false: the Frame only, no shading
     };
 
     // threads: worker threads, 0 = every hardware thread.

@@ -35,7 +35,9 @@ std::string JoinErrors(const std::vector<Message>& messages) {
 
 }  // namespace
 
-std::string Message::Format(bool withSource) const { return ToDiagnostic(*this).Format(withSource); }
+std::string Message::Format(bool withSource) const {
+    return ToDiagnostic(*this).Format(withSource);
+}
 
 Error::Error(std::vector<Message> messages)
     : std::runtime_error(JoinErrors(messages)), messages_(std::move(messages)) {

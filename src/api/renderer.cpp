@@ -4,9 +4,10 @@
 //
 // The Frame's buffers are copied out into plain arrays (the public type holds no internal one);
 // the image is shaded in RGB (ShadeOptions::forceColor), so a gray scene gives r = g = b.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
-#include <fmt/format.h>
 #include <utility>
 
 #include "api_internal.h"
@@ -42,10 +43,14 @@ namespace {
 
 ShadingModel ToModel(Renderer::Shading s) {
     switch (s) {
-        case Renderer::Shading::kFlat: return ShadingModel::kFast;
-        case Renderer::Shading::kPhong: return ShadingModel::kPhong;
-        case Renderer::Shading::kBlinnPhong: return ShadingModel::kBlinnPhong;
-        case Renderer::Shading::kLambert: break;
+        case Renderer::Shading::kFlat:
+            return ShadingModel::kFast;
+        case Renderer::Shading::kPhong:
+            return ShadingModel::kPhong;
+        case Renderer::Shading::kBlinnPhong:
+            return ShadingModel::kBlinnPhong;
+        case Renderer::Shading::kLambert:
+            break;
     }
     return ShadingModel::kLambert;
 }
@@ -142,8 +147,8 @@ Rendering Renderer::Render(const Scene& scene, const Options& options) {
         so.shadows = options.shadows;
         so.forceColor = true;
         if (options.background)
-            so.background = scene::Color{options.background->r, options.background->g,
-                                         options.background->b};
+            so.background =
+                scene::Color{options.background->r, options.background->g, options.background->b};
         r.image = ToRgbImage(ctx.Shade(frame, so));
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -158,8 +163,8 @@ std::size_t Rendering::CoveredCount() const {
 void RgbImage::Write(const std::string& path, bool sixteenBit) const {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (width <= 0 || height <= 0 || rgb.size() != n * 3)
-        throw Error(fmt::format("RgbImage::Write: '{}': the image is empty or its size is wrong",
-                                path));
+        throw Error(
+            fmt::format("RgbImage::Write: '{}': the image is empty or its size is wrong", path));
     ImageFormat format;
     if (!ImageFormatFromPath(path, format) || format == ImageFormat::kFrameDump ||
         (path.size() >= 4 && path.compare(path.size() - 4, 4, ".pgm") == 0))
@@ -205,8 +210,7 @@ Rendering Compose(const Rendering& a, const Rendering& b) {
     auto shift = [](std::int32_t id, std::size_t by) {
         return id == Rendering::kNone ? id : static_cast<std::int32_t>(id + by);
     };
-    const std::size_t ds = a.surfaceNames.size(), db = a.bodyNames.size(),
-                      dl = a.solidNames.size();
+    const std::size_t ds = a.surfaceNames.size(), db = a.bodyNames.size(), dl = a.solidNames.size();
     r.surfaceNames.insert(r.surfaceNames.end(), b.surfaceNames.begin(), b.surfaceNames.end());
     r.bodyNames.insert(r.bodyNames.end(), b.bodyNames.begin(), b.bodyNames.end());
     r.solidNames.insert(r.solidNames.end(), b.solidNames.begin(), b.solidNames.end());

@@ -7,9 +7,10 @@
 // An edit that fails leaves the scene as it was: the reader only appends to the scene's lists
 // (and marks operands), so the lists are cut back to their old lengths and the operand marks
 // restored (Snapshot), without copying the scene.
+#include <fmt/format.h>
+
 #include <atomic>
 #include <cmath>
-#include <fmt/format.h>
 #include <utility>
 
 #include "api_internal.h"
@@ -32,10 +33,15 @@ struct Snapshot {
     std::vector<bool> operands;  // usedAsOperand of bodies, instances, csgs in that order
 
     explicit Snapshot(const scene::Scene& s)
-        : halfSpaces(s.top.halfSpaces.size()), bodies(s.top.bodies.size()),
-          instances(s.top.instances.size()), csgs(s.top.csgs.size()),
-          freeforms(s.top.freeforms.size()), definitions(s.definitions.size()),
-          lights(s.lights.size()), views(s.views.size()), background(s.background),
+        : halfSpaces(s.top.halfSpaces.size()),
+          bodies(s.top.bodies.size()),
+          instances(s.top.instances.size()),
+          csgs(s.top.csgs.size()),
+          freeforms(s.top.freeforms.size()),
+          definitions(s.definitions.size()),
+          lights(s.lights.size()),
+          views(s.views.size()),
+          background(s.background),
           backgroundBottom(s.backgroundBottom) {
         for (const auto& b : s.top.bodies) operands.push_back(b.usedAsOperand);
         for (const auto& i : s.top.instances) operands.push_back(i.usedAsOperand);
@@ -71,9 +77,10 @@ void CheckId(const std::string& id, const char* what, bool optional = false) {
         ok = ok && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                     c == '_' || c == '#');
     if (!ok)
-        throw Error(fmt::format("{}: '{}' is not an id (letters, digits, '#' and '_', not "
-                                "starting with a digit)",
-                                what, id));
+        throw Error(
+            fmt::format("{}: '{}' is not an id (letters, digits, '#' and '_', not "
+                        "starting with a digit)",
+                        what, id));
 }
 
 // Shortest text that reads back as the same double ({} of fmt round-trips).
@@ -158,8 +165,7 @@ Scene& Scene::Append(std::string_view text, const std::string& name) {
     return *this;
 }
 
-Scene& Scene::AddPlane(const std::string& id, const std::array<double, 4>& abcd,
-                       bool transparent) {
+Scene& Scene::AddPlane(const std::string& id, const std::array<double, 4>& abcd, bool transparent) {
     CheckId(id, "AddPlane");
     std::string s = "plane " + id + " <";
     for (double v : abcd) s += " " + Num(v, "AddPlane");
@@ -239,8 +245,8 @@ Scene& Scene::AddCylinder(const std::string& id, const Vector3& from, const Vect
                   "<Scene::AddCylinder>");
 }
 
-Scene& Scene::AddCone(const std::string& id, const Vector3& from, const Vector3& to,
-                      double radius0, double radius1, std::optional<Color> color) {
+Scene& Scene::AddCone(const std::string& id, const Vector3& from, const Vector3& to, double radius0,
+                      double radius1, std::optional<Color> color) {
     CheckId(id, "AddCone");
     return Append("solid cone " + id + " =from " + Nums(from, "AddCone") + " =to " +
                       Nums(to, "AddCone") + " =r0 " + Num(radius0, "AddCone") + " =r1 " +
@@ -254,12 +260,12 @@ Scene& Scene::AddAmbientLight(const std::string& id, double intensity) {
                   "<Scene::AddAmbientLight>");
 }
 
-Scene& Scene::AddParallelLight(const std::string& id, double intensity,
-                               const Vector3& towardLight, std::optional<Color> color) {
+Scene& Scene::AddParallelLight(const std::string& id, double intensity, const Vector3& towardLight,
+                               std::optional<Color> color) {
     CheckId(id, "AddParallelLight", true);
     return Append("light " + id + " " + Num(intensity, "AddParallelLight") + " " +
-                      Nums(towardLight, "AddParallelLight") +
-                      ColorText(color, "AddParallelLight") + ";",
+                      Nums(towardLight, "AddParallelLight") + ColorText(color, "AddParallelLight") +
+                      ";",
                   "<Scene::AddParallelLight>");
 }
 

@@ -131,8 +131,7 @@ TEST(Api, TextDiagnosticsCarryFileLineAndColumn) {
         EXPECT_EQ(e.File(), "bad.uq");
         EXPECT_EQ(e.Line(), 2);
         EXPECT_EQ(e.Column(), 16);
-        EXPECT_NE(std::string(e.what()).find("bad.uq:2:16: error:"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("bad.uq:2:16: error:"), std::string::npos) << e.what();
         ASSERT_FALSE(e.Messages().empty());
         EXPECT_EQ(e.Messages()[0].sourceLine, "body blob <top hole>;");
         EXPECT_NE(e.Messages()[0].Format(true).find("^"), std::string::npos);

@@ -19,13 +19,15 @@ cpack --config "$build/CPackConfig.cmake" -G DEB -B "$work" > "$work/cpack.log" 
 deb="$(ls "$work"/quadrix_*.deb)"
 echo "built $(basename "$deb") ($(stat -c %s "$deb") bytes)"
 dpkg-deb -c "$deb" > "$work/contents"
-for pattern in '/usr/bin/quadrix$' '/usr/lib/.*libquadrix\.so\.0$' '/usr/lib/.*libquadrix\.so$' \
-               '/usr/include/quadrix/quadrix\.h$' '/usr/lib/.*cmake/Quadrix/QuadrixConfig\.cmake$' \
-               '/usr/lib/.*cmake/Quadrix/QuadrixConfigVersion\.cmake$' \
-               '/usr/lib/.*cmake/Quadrix/QuadrixTargets\.cmake$' \
-               '/usr/lib/.*pkgconfig/quadrix\.pc$' '/usr/share/man/man1/quadrix\.1' \
-               '/usr/share/bash-completion/completions/quadrix$' \
-               '/usr/share/doc/quadrix/api\.md$'; do
+lib=' \./usr/lib/([^ ]+/)?'
+for pattern in ' \./usr/bin/quadrix$' "${lib}libquadrix\.so\.0\.[0-9.]+$" "${lib}libquadrix\.so\.0 -> " \
+               "${lib}libquadrix\.so -> " ' \./usr/include/quadrix/quadrix\.h$' \
+               "${lib}cmake/Quadrix/QuadrixConfig\.cmake$" \
+               "${lib}cmake/Quadrix/QuadrixConfigVersion\.cmake$" \
+               "${lib}cmake/Quadrix/QuadrixTargets\.cmake$" "${lib}pkgconfig/quadrix\.pc$" \
+               ' \./usr/share/man/man1/quadrix\.1(\.gz)?$' \
+               ' \./usr/share/bash-completion/completions/quadrix$' \
+               ' \./usr/share/doc/quadrix/api\.md$'; do
   grep -Eq -- "$pattern" "$work/contents" || { echo "missing in the package: $pattern"; exit 1; }
 done
 if grep -E -- '/usr/include/quadrix/.+/' "$work/contents"; then
