@@ -105,6 +105,15 @@ struct DrawArgs {
 void AddDrawCommand(CLI::App& app, DrawArgs& args);
 int RunDraw(const DrawArgs& args);
 
+// `quadrix man` (hidden): quadrix(1) or the bash completion, generated from `app`'s own option
+// tables (man_command.cpp).
+struct ManArgs {
+    bool bashCompletion = false;
+    std::string output;
+};
+void AddManCommand(CLI::App& app, ManArgs& args);
+int RunMan(const CLI::App& app, const ManArgs& args);
+
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);
 

@@ -117,6 +117,8 @@ int Run(int argc, char** argv) {
     app.footer(
         "Exit status: 0 success, 1 an error in the scene or input (or a failed output), 2 a "
         "usage error (unknown subcommand, option, engine or bad option value); see docs/cli.md.");
+    quadrix::cli::ManArgs manArgs;
+    quadrix::cli::AddManCommand(app, manArgs);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     if (argc >= 2 && argv[1][0] != '-') {
@@ -144,6 +146,7 @@ int Run(int argc, char** argv) {
     if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
     if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
     if (app.got_subcommand("help")) return RunHelp(app, helpTopic);
+    if (app.got_subcommand("man")) return quadrix::cli::RunMan(app, manArgs);
     return 2;
 }
 

@@ -1,0 +1,17 @@
+# Runs PROGRAM on a bad SCENE: it must exit 1, print the error as SCENE:2:16 with the source line,
+# and leave no OUT file.
+execute_process(COMMAND ${PROGRAM} ${SCENE} ${OUT} RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 1)
+  message(FATAL_ERROR "exit status ${rc}, expected 1:\n${err}")
+endif()
+string(FIND "${err}" "${SCENE}:2:16: error:" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "no '${SCENE}:2:16: error:' in:\n${err}")
+endif()
+string(FIND "${err}" "body slab <top nowhere>;" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "no source line in:\n${err}")
+endif()
+if(EXISTS ${OUT})
+  message(FATAL_ERROR "${OUT} was written")
+endif()
