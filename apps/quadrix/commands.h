@@ -45,7 +45,9 @@ struct RenderArgs {
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 // --aa's default: samples per edge pixel (docs/shading.md, measured on the machined part).
-constexpr int kDefaultAaSamples = 16;
+constexpr int kDefaultAaSamples = 4;
+// Scenes with more bodies get neither default shadows nor default anti-aliasing (their cost).
+constexpr std::size_t kPictureDefaultBodies = 256;
 // --aa's value → samples (0 = off); an error message or empty.
 std::string ParseAaSamples(const std::string& text, int& samples);
 int RunRender(const RenderArgs& args);
