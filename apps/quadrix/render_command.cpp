@@ -1,11 +1,12 @@
-#include <fmt/format.h>
-
 #include <chrono>
 #include <cstdio>
 #include <optional>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "commands.h"
+#include "quadrix/io/writers.h"
 #include "quadrix/engines/registry.h"
 #include "quadrix/frame/memory_budget.h"
 #include "quadrix/io/bounded_read.h"
@@ -71,7 +72,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     cmd->add_option("--camera", args.camera,
                     "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
                     "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
-    cmd->add_option("--projection", args.projection, "With --camera: ortho|persp (default persp)");
+    cmd->add_option("--projection", args.projection,
+                    "With --camera: ortho|persp (default persp)");
     cmd->add_option("--fov", args.fov, "With --camera: vertical field of view in degrees (22.5)")
         ->expected(1);
     cmd->add_flag("--viewall", args.viewAll, "Fit the window to the whole scene");
@@ -222,9 +224,8 @@ int RunRender(const RenderArgs& args) {
         SetMemoryBudget(bytes);
     }
     if (args.timeLimit != 0 && !SetTimeLimit(args.timeLimit)) {
-        std::fprintf(stderr,
-                     "quadrix: error: --time-limit: expected a positive number of "
-                     "seconds\n");
+        std::fprintf(stderr, "quadrix: error: --time-limit: expected a positive number of "
+                             "seconds\n");
         return 2;
     }
     int aaSamples = kDefaultAaSamples;
@@ -276,8 +277,8 @@ int RunRender(const RenderArgs& args) {
     // later (`read`) are refused when the output is opened.
     std::vector<std::string> inputs = args.scenes;
     if (!args.rtView.empty()) inputs.push_back(args.rtView);
-    if (auto e =
-            CheckOutputPaths({args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame}, inputs);
+    if (auto e = CheckOutputPaths({args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
+                                  inputs);
         !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
@@ -289,9 +290,8 @@ int RunRender(const RenderArgs& args) {
         return 2;
     }
     if (camera.Any() && (po.rtView || po.azimuth || po.elevation)) {
-        std::fprintf(stderr,
-                     "quadrix: error: the camera options cannot be combined with "
-                     "--az/--el or an rt view\n");
+        std::fprintf(stderr, "quadrix: error: the camera options cannot be combined with "
+                             "--az/--el or an rt view\n");
         return 2;
     }
 
@@ -310,8 +310,7 @@ int RunRender(const RenderArgs& args) {
     }
     for (const std::string& w : report.stats.warnings)
         std::fprintf(stderr, "quadrix: warning: engine %s: %s\n", args.engine.c_str(), w.c_str());
-    for (const std::string& n : report.notes)
-        std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
+    for (const std::string& n : report.notes) std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
 
     auto t0 = std::chrono::steady_clock::now();
     std::optional<Image> image;
@@ -326,12 +325,12 @@ int RunRender(const RenderArgs& args) {
         const bool defaultShadows = !args.shadows && !args.noShadows && DeclaresLights(ctx.Flat());
         const bool defaultAa = args.aa == "default" && aaSamples > 1;
         if (!small && (defaultShadows || defaultAa))
-            std::fprintf(
-                stderr,
-                "quadrix: note: %zu bodies: no default%s%s (--shadows, --aa N ask for "
-                "them)\n",
-                ctx.Flat().bodies.size(), defaultShadows ? " shadows" : "",
-                defaultAa ? (defaultShadows ? " or anti-aliasing" : " anti-aliasing") : "");
+            std::fprintf(stderr,
+                         "quadrix: note: %zu bodies: no default%s%s (--shadows, --aa N ask for "
+                         "them)\n",
+                         ctx.Flat().bodies.size(), defaultShadows ? " shadows" : "",
+                         defaultAa ? (defaultShadows ? " or anti-aliasing" : " anti-aliasing")
+                                   : "");
         so.shadows = args.shadows || (defaultShadows && small);
         so.aaSamples = defaultAa && !small ? 0 : aaSamples;
         so.aaMitchell = args.aaFilter == "mitchell";
