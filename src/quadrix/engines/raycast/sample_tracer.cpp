@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/engines/raycast/eval_names.h"
 
 namespace quadrix::raycast {
 

@@ -4,7 +4,7 @@
 // edge, and for tests that compare a sample with the engine's pixel.
 //
 // Same definitions as the engine (raycast.h, trace.h), evaluated the simplest way: the ray
-// x(t) = (x, y, t) meets each literal in the set LiteralOnRay gives (ray_literal.h, from the
+// x(t) = (x, y, t) meets each literal in the set LiteralOnRay gives (eval/ray_literal.h, from the
 // engine's own SceneTables, so the same re-centred coefficients and tags); bodies intersect their
 // literals' sets, CSG nodes fold their children's lists left to right (math/interval_list.h); a
 // solid's visible point is its first finite endpoint on an opaque surface (SceneTables::
