@@ -36,6 +36,7 @@
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/engines/isocurve/render.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/shade/antialias.h"
 #include "scenes.h"
 
 extern char** environ;
@@ -165,6 +166,54 @@ std::string IsocurveTable(const std::string& sourceDir, int reps) {
                                Median(dr), st.raster.pixelsDrawn, st.raster.Redundancy());
         }
         std::fprintf(stderr, "isocurve %s done\n", model);
+    }
+    return out;
+}
+
+// Issue 17: the cost of anti-aliasing (shade/antialias.h) per scene at 1280×720: the in-process
+// raycast frame plus plain shading, against the same plus the edge pixels' sub-pixel samples at
+// 4, 16 and 64 (median of `reps`). Scenes of more than 256 bodies are left out, as quadrix render
+// leaves out its default anti-aliasing there (the sample rays have no spatial index).
+std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::string& outDir,
+                           const std::string& only, int reps) {
+    std::string out = "\n## Anti-aliasing cost (1280×720, raycast frame + shading, median)\n\n"
+                      "| scene | edge pixels | plain ms | --aa 4 | --aa 16 | --aa 64 |\n"
+                      "|---|---|---|---|---|---|\n";
+    for (const BenchScene& scene : scenes) {
+        if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
+        PipelineOptions po;
+        po.scenePaths = {outDir + "/scenes/" + scene.name + ".uq"};
+        po.width = 1280;
+        po.height = 720;
+        PipelineResult pr;
+        Diagnostics diags;
+        if (!RunPipeline(po, pr, diags) || pr.flat.bodies.size() > 256) continue;
+        auto engine = MakeEngine("raycast");
+        auto timed = [&](int samples, std::size_t* edges) {
+            std::vector<double> ms;
+            for (int i = 0; i < reps; ++i) {
+                const auto t0 = std::chrono::steady_clock::now();
+                Frame frame;
+                engine->Render(pr.flat, RenderOptions{}, frame);
+                ShadeOptions so;
+                so.aaSamples = samples;
+                Image img = Shade(frame, pr.flat, so);
+                const AntialiasStats st = Antialias(frame, pr.flat, so, img);
+                if (edges) *edges = st.edgePixels;
+                ms.push_back(std::chrono::duration<double, std::milli>(
+                                 std::chrono::steady_clock::now() - t0)
+                                 .count());
+            }
+            return Median(ms);
+        };
+        std::size_t edges = 0;
+        const double plain = timed(0, nullptr);
+        const double a4 = timed(4, &edges), a16 = timed(16, nullptr), a64 = timed(64, nullptr);
+        out += fmt::format("| {} | {} | {:.1f} | {:.1f} ms ({:.2f}×) | {:.1f} ms ({:.2f}×) | "
+                           "{:.1f} ms ({:.2f}×) |\n",
+                           scene.name, edges, plain, a4, a4 / plain, a16, a16 / plain, a64,
+                           a64 / plain);
+        std::fprintf(stderr, "antialias %s done\n", scene.name.c_str());
     }
     return out;
 }
@@ -524,6 +573,7 @@ int main(int argc, char** argv) {
                            r.quadrixPeakMiB, r.povPeakMiB);
     }
     md += Scaling(rows);
+    md += AntialiasTable(scenes, outDir, only, quick ? 1 : 3);
     if (only.empty() || std::string("isocurve").find(only) != std::string::npos)
         md += IsocurveTable(sourceDir, quick ? 1 : 3);
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".md") << md;

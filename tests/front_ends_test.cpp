@@ -49,8 +49,11 @@ TEST(FrontEnds, RenderUqAndThePromptGiveByteIdenticalImages) {
         TempDir dir;
         const std::string a = dir.File("render.png"), b = dir.File("uq.png"),
                           c = dir.File("prompt.png");
-        // uq's png device is 512x512 (docs/devices.md), render's default size too.
-        auto r1 = RunShell(QuadrixBinary() + " render '" + scene + "' -o '" + a + "'");
+        // uq's png device is 512x512 (docs/devices.md), render's default size too. render's own
+        // picture defaults (anti-aliasing, shadows from declared lights: docs/shading.md) are
+        // switched off: uq and the prompt keep UniQuadrix's one-sample, shadowless picture.
+        auto r1 = RunShell(QuadrixBinary() + " render '" + scene + "' -o '" + a +
+                           "' --aa off --no-shadows");
         auto r2 = RunShell(QuadrixBinary() + " uq -d 'png:" + b + "' '" + scene + "'");
         auto r3 = RunShell("echo 'show;' | " + QuadrixBinary() + " -i -d 'png:" + c + "' '" +
                            scene + "'");

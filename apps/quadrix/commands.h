@@ -20,6 +20,16 @@ struct RenderArgs {
     bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
     bool png16 = false;  // 16-bit PNG output
     bool shadows = false;
+    // Picture quality (docs/shading.md): --no-shadows, --aa N, --aa-filter, --edges.
+    bool noShadows = false;
+    std::string aa = "default";  // off | 4 | 16 | 64 | default (kDefaultAaSamples)
+    std::string aaFilter = "box";
+    bool edges = false;
+    // OpenSCAD-style camera (pipeline/camera.h): --camera, --projection, --fov, --viewall,
+    // --autocenter.
+    std::string camera, projection;
+    std::vector<double> fov;  // empty = not given
+    bool viewAll = false, autoCenter = false;
     bool stats = false;
     bool json = false;  // --stats --json
     int threads = 0;
@@ -36,6 +46,12 @@ struct RenderArgs {
     double timeLimit = 0;   // seconds of wall-clock time; 0 = none
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
+// --aa's default: samples per edge pixel (docs/shading.md, measured on the machined part).
+constexpr int kDefaultAaSamples = 4;
+// Scenes with more bodies get neither default shadows nor default anti-aliasing (their cost).
+constexpr std::size_t kPictureDefaultBodies = 256;
+// --aa's value → samples (0 = off); an error message or empty.
+std::string ParseAaSamples(const std::string& text, int& samples);
 int RunRender(const RenderArgs& args);
 
 struct ExportArgs {

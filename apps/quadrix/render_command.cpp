@@ -13,6 +13,7 @@
 #include "quadrix/io/output_file.h"
 #include "quadrix/io/time_limit.h"
 #include "quadrix/io/writers.h"
+#include "quadrix/pipeline/camera.h"
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/pipeline/render_context.h"
@@ -61,8 +62,29 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                   "unit) instead of Lambert")
         ->excludes(fast);
     cmd->add_flag("--png16", args.png16, "16 bits per channel in PNG output (sRGB-encoded)");
-    cmd->add_flag("--shadows", args.shadows,
-                  "Shadows from every light, by shadow rays through the CSG (parallel views)");
+    auto* shadows = cmd->add_flag(
+        "--shadows", args.shadows,
+        "Shadows from every light, by shadow rays through the CSG (parallel views; the default "
+        "when the scene declares lights)");
+    // Picture quality (docs/shading.md).
+    cmd->add_flag("--no-shadows", args.noShadows, "No shadows, even when the scene has lights")
+        ->excludes(shadows);
+    cmd->add_option("--aa", args.aa,
+                    "Anti-aliasing: samples per edge pixel, off|4|16|64 (default " +
+                        std::to_string(kDefaultAaSamples) + "; interior pixels are not resampled)");
+    cmd->add_option("--aa-filter", args.aaFilter, "Anti-aliasing filter: box|mitchell")
+        ->check(CLI::IsMember({"box", "mitchell"}));
+    cmd->add_flag("--edges", args.edges,
+                  "Draw exact silhouette, intersection and crease lines, one pixel wide");
+    cmd->add_option("--camera", args.camera,
+                    "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
+                    "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
+    cmd->add_option("--projection", args.projection,
+                    "With --camera: ortho|persp (default persp)");
+    cmd->add_option("--fov", args.fov, "With --camera: vertical field of view in degrees (22.5)")
+        ->expected(1);
+    cmd->add_flag("--viewall", args.viewAll, "Fit the window to the whole scene");
+    cmd->add_flag("--autocenter", args.autoCenter, "Centre the scene in the picture");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_flag("--json", args.json,
                   "With --stats: the statistics as one JSON object on standard output");
@@ -102,7 +124,68 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Give up after this many seconds (exit 124, no output left)");
 }
 
+std::string ParseAaSamples(const std::string& text, int& samples) {
+    if (text == "default") {
+        samples = kDefaultAaSamples;
+        return {};
+    }
+    if (text == "off" || text == "0" || text == "1") {
+        samples = 0;
+        return {};
+    }
+    for (int n : {4, 16, 64})
+        if (text == std::to_string(n)) {
+            samples = n;
+            return {};
+        }
+    return fmt::format("--aa: expected off, 4, 16 or 64, found '{}'", text);
+}
+
 namespace {
+// Whether the scene declares a light that can cast a shadow (not the default rig: docs/shading.md).
+bool DeclaresLights(const FlatScene& flat) {
+    for (const scene::Light& l : flat.lights)
+        if (!l.isRig && l.kind != scene::Light::Kind::kAmbient) return true;
+    return false;
+}
+
+// The camera options → CameraRequest; an error message or empty.
+std::string CameraOptions(const RenderArgs& args, CameraRequest& camera) {
+    if (!args.camera.empty())
+        if (auto e = ParseCamera(args.camera, camera); !e.empty()) return e;
+    if (!args.projection.empty()) {
+        if (args.camera.empty()) return "--projection needs --camera";
+        if (auto e = ParseProjection(args.projection, camera); !e.empty()) return e;
+    }
+    if (!args.fov.empty()) camera.fovDegrees = args.fov[0];
+    camera.viewAll = args.viewAll;
+    camera.autoCenter = args.autoCenter;
+    return {};
+}
+
+// The camera's view into `view` (after Read: the input format says which axis is up).
+bool ApplyCamera(RenderContext& ctx, CameraRequest camera, ViewRequest& view, Diagnostics& diags) {
+    camera.zUp = !ctx.Inputs().imports.empty();
+    const std::optional<scene::View> own = ctx.Scene().ViewToUse(view.viewName);
+    if (!own) return true;  // Flatten reports the unknown view
+    std::string error;
+    std::optional<scene::View> v = CameraView(camera, *own, error);
+    if (!v) {
+        diags.Error({}, error, {}, "command line");
+        return false;
+    }
+    if (camera.autoCenter) {
+        ViewRequest fit = view;
+        fit.view = *v;
+        fit.view->whh = fit.view->whw = std::nullopt;
+        if (!ctx.Flatten(fit, diags)) return false;
+        v = CentreOnScene(*v, ctx.Flat());
+    }
+    view.view = v;
+    view.viewName.clear();
+    return true;
+}
+
 // The rt-style view options → PipelineOptions; returns an error message or empty.
 std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnostics& diags) {
     if (!args.az.empty()) po.azimuth = args.az[0];
@@ -150,6 +233,11 @@ int RunRender(const RenderArgs& args) {
     if (args.timeLimit != 0 && !SetTimeLimit(args.timeLimit)) {
         std::fprintf(stderr, "quadrix: error: --time-limit: expected a positive number of "
                              "seconds\n");
+        return 2;
+    }
+    int aaSamples = kDefaultAaSamples;
+    if (auto e = ParseAaSamples(args.aa, aaSamples); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
     Diagnostics diags;
@@ -208,11 +296,24 @@ int RunRender(const RenderArgs& args) {
         return 1;
     }
 
+    CameraRequest camera;
+    if (auto e = CameraOptions(args, camera); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
+    if (camera.Any() && (po.rtView || po.azimuth || po.elevation)) {
+        std::fprintf(stderr, "quadrix: error: the camera options cannot be combined with "
+                             "--az/--el or an rt view\n");
+        return 2;
+    }
+
     RenderContext ctx(args.threads);
     Frame frame;
     RenderReport report;
-    bool ok = ctx.Read(po.Input(), diags) && ctx.Flatten(po.View(), diags) &&
-              ctx.Render(engine, frame, report, diags);
+    ViewRequest view = po.View();
+    bool ok = ctx.Read(po.Input(), diags);
+    if (ok && camera.Any()) ok = ApplyCamera(ctx, camera, view, diags);
+    ok = ok && ctx.Flatten(view, diags) && ctx.Render(engine, frame, report, diags);
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; no image written\n", diags.ErrorCount(),
@@ -228,7 +329,24 @@ int RunRender(const RenderArgs& args) {
     if (NeedsImage(outputs)) {
         ShadeOptions so;
         so.fast = args.fast;
-        so.shadows = args.shadows;
+        // The picture defaults (docs/shading.md): shadows where the scene declares lights, and
+        // anti-aliasing, both only for scenes of at most kPictureDefaultBodies bodies: their
+        // rays visit the CSG trees without the engine's spatial pruning, which makes a union of
+        // thousands of spheres take minutes (asked for explicitly, they are still done).
+        const bool small = ctx.Flat().bodies.size() <= kPictureDefaultBodies;
+        const bool defaultShadows = !args.shadows && !args.noShadows && DeclaresLights(ctx.Flat());
+        const bool defaultAa = args.aa == "default" && aaSamples > 1;
+        if (!small && (defaultShadows || defaultAa))
+            std::fprintf(stderr,
+                         "quadrix: note: %zu bodies: no default%s%s (--shadows, --aa N ask for "
+                         "them)\n",
+                         ctx.Flat().bodies.size(), defaultShadows ? " shadows" : "",
+                         defaultAa ? (defaultShadows ? " or anti-aliasing" : " anti-aliasing")
+                                   : "");
+        so.shadows = args.shadows || (defaultShadows && small);
+        so.aaSamples = defaultAa && !small ? 0 : aaSamples;
+        so.aaMitchell = args.aaFilter == "mitchell";
+        so.edges = args.edges;
         if (args.phong) so.model = ShadingModel::kPhong;
         image = ctx.Shade(frame, so);
     }

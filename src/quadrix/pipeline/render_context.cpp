@@ -9,6 +9,7 @@
 #include "quadrix/engines/registry.h"
 #include "quadrix/frame/image_limits.h"
 #include "quadrix/lang/reader.h"
+#include "quadrix/shade/antialias.h"
 #include "quadrix/util/check.h"
 
 namespace quadrix {
@@ -273,7 +274,11 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
 }
 
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
-    return quadrix::Shade(frame, flat_, options);
+    Image image = quadrix::Shade(frame, flat_, options);
+    // Edge pixels re-rendered by sub-pixel samples, then the edge lines (shade/antialias.h).
+    if (options.aaSamples > 1) Antialias(frame, flat_, options, image);
+    if (options.edges) DrawEdgeLines(frame, options, image);
+    return image;
 }
 
 }  // namespace quadrix

@@ -94,84 +94,101 @@ Reflectance ReflectanceOf(const scene::Finish& f, const ShadeOptions& o, Shading
 
 }  // namespace
 
-Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
-    const ShadingModel model = options.fast ? ShadingModel::kFast : options.model;
-    const bool color = AnyColor(scene, options);
-    Image image(frame.width, frame.height, color ? 3 : 1);
-    image.linear.assign(image.pixels.size(), 0.0f);
-    const ViewerGeometry viewer(scene.projection);
-    const bool needPoint = NeedsPoint(scene, model);
-    const bool shadows = options.shadows && !scene.projection.perspective;
-    const ShadowTester shadowTester(scene);
-    std::vector<Incident> fixedLight;
-    for (const scene::Light& l : scene.lights) fixedLight.push_back(IncidentLight(l, {}));
-    const Mat4& deviceFromWorld = scene.projection.deviceFromWorld.Matrix();
-
+PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options)
+    : scene_(scene),
+      options_(options),
+      model_(options.fast ? ShadingModel::kFast : options.model),
+      reflection_(model_ == ShadingModel::kFast ? ShadingModel::kLambert : model_),
+      viewer_(scene.projection),
+      needPoint_(NeedsPoint(scene, model_)),
+      shadows_(options.shadows && !scene.projection.perspective),
+      shadowTester_(scene),
+      deviceFromWorld_(scene.projection.deviceFromWorld.Matrix()),
+      color_(AnyColor(scene, options)) {
+    for (const scene::Light& l : scene.lights) fixedLight_.push_back(IncidentLight(l, {}));
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
-    std::map<std::pair<int, int>, Vec3> meanNormal;
-    if (model == ShadingModel::kFast) {
+    if (model_ == ShadingModel::kFast) {
         for (std::size_t i = 0; i < frame.surface.size(); ++i)
             if (frame.surface[i] != Frame::kNone)
-                meanNormal[{frame.surface[i], frame.body[i]}] += frame.normal[i];
-        for (auto& [key, n] : meanNormal) n = Normalize(n);
+                meanNormal_[{frame.surface[i], frame.body[i]}] += frame.normal[i];
+        for (auto& [key, n] : meanNormal_) n = Normalize(n);
     }
-    const ShadingModel reflection = model == ShadingModel::kFast ? ShadingModel::kLambert : model;
+}
 
+scene::Color PixelShader::Background(int y, int height) const {
+    return BackgroundAt(scene_, options_, y, height);
+}
+
+scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int32_t body,
+                             double depth, const Vec3& normal,
+                             const scene::Color& background) const {
+    if (surface == Frame::kNone) return background;
+    Vec3 n = normal;
+    if (model_ == ShadingModel::kFast) {
+        // A sample may see a (surface, body) pair no pixel centre saw: its own normal then.
+        auto it = meanNormal_.find({surface, body});
+        if (it != meanNormal_.end()) n = it->second;
+    }
+    const scene::Finish finish = scene_.SurfaceFinish(surface, body);
+    const Reflectance m = ReflectanceOf(finish, options_, reflection_);
+    Vec3 point{0, 0, 0};
+    if (needPoint_) point = viewer_.WorldPoint({x, y, depth});
+    ShadowTest inShadow;
+    if (shadows_) {
+        const Vec3 p{x, y, depth};
+        inShadow = [&, p](std::size_t k, const Incident& in) {
+            const scene::Light& l = scene_.lights[k];
+            if (l.kind == scene::Light::Kind::kParallel)
+                return shadowTester_.Blocked(p, deviceFromWorld_.MapVector(in.toLight), HUGE_VAL);
+            return shadowTester_.Blocked(p, deviceFromWorld_.MapPoint(l.position) - p, 1.0);
+        };
+    }
+    const PhongTerms t =
+        PhongAt(scene_.lights, point, n, viewer_.TowardViewer(point), m, inShadow, &fixedLight_);
+    const scene::Color base = scene_.SurfaceColor(surface, body);
+    // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
+    scene::Color c{base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
+                   base.g * std::min(t.diffuse.g, 1.0) + t.specular.g,
+                   base.b * std::min(t.diffuse.b, 1.0) + t.specular.b};
+    if (finish.opacity && *finish.opacity < 1) {
+        const double a = *finish.opacity;
+        c = {a * c.r + (1 - a) * background.r, a * c.g + (1 - a) * background.g,
+             a * c.b + (1 - a) * background.b};
+    }
+    return c;
+}
+
+void StorePixel(Image& image, int x, int y, const scene::Color& c) {
+    std::uint8_t* p = image.At(x, y);
+    if (image.linear.size() != image.pixels.size()) image.linear.assign(image.pixels.size(), 0.0f);
+    float* f = &image.linear[static_cast<std::size_t>(p - image.pixels.data())];
+    if (image.channels == 3) {
+        p[0] = ToByte(c.r);
+        p[1] = ToByte(c.g);
+        p[2] = ToByte(c.b);
+        f[0] = ToUnit(c.r);
+        f[1] = ToUnit(c.g);
+        f[2] = ToUnit(c.b);
+    } else {
+        p[0] = ToByte(c.r);
+        f[0] = ToUnit(c.r);
+    }
+}
+
+Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
+    const PixelShader shader(frame, scene, options);
+    Image image(frame.width, frame.height, shader.Color() ? 3 : 1);
+    image.linear.assign(image.pixels.size(), 0.0f);
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
     // is the same for any thread count.
     auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
-            const scene::Color background = BackgroundAt(scene, options, y, frame.height);
+            const scene::Color background = shader.Background(y, frame.height);
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);
-                scene::Color c = background;
-                if (frame.surface[i] != Frame::kNone) {
-                    const Vec3 n = model == ShadingModel::kFast
-                                       ? meanNormal.find({frame.surface[i], frame.body[i]})->second
-                                       : frame.normal[i];
-                    const scene::Finish finish =
-                        scene.SurfaceFinish(frame.surface[i], frame.body[i]);
-                    const Reflectance m = ReflectanceOf(finish, options, reflection);
-                    Vec3 point{0, 0, 0};
-                    if (needPoint) point = viewer.WorldPoint({x + 0.5, y + 0.5, frame.depth[i]});
-                    ShadowTest inShadow;
-                    if (shadows) {
-                        const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
-                        inShadow = [&, p](std::size_t k, const Incident& in) {
-                            const scene::Light& l = scene.lights[k];
-                            if (l.kind == scene::Light::Kind::kParallel)
-                                return shadowTester.Blocked(
-                                    p, deviceFromWorld.MapVector(in.toLight), HUGE_VAL);
-                            return shadowTester.Blocked(p, deviceFromWorld.MapPoint(l.position) - p,
-                                                        1.0);
-                        };
-                    }
-                    const PhongTerms t = PhongAt(scene.lights, point, n, viewer.TowardViewer(point),
-                                                 m, inShadow, &fixedLight);
-                    const scene::Color base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
-                    // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
-                    c = {base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
-                         base.g * std::min(t.diffuse.g, 1.0) + t.specular.g,
-                         base.b * std::min(t.diffuse.b, 1.0) + t.specular.b};
-                    if (finish.opacity && *finish.opacity < 1) {
-                        const double a = *finish.opacity;
-                        c = {a * c.r + (1 - a) * background.r, a * c.g + (1 - a) * background.g,
-                             a * c.b + (1 - a) * background.b};
-                    }
-                }
-                std::uint8_t* p = image.At(x, y);
-                float* f = &image.linear[static_cast<std::size_t>(p - image.pixels.data())];
-                if (color) {
-                    p[0] = ToByte(c.r);
-                    p[1] = ToByte(c.g);
-                    p[2] = ToByte(c.b);
-                    f[0] = ToUnit(c.r);
-                    f[1] = ToUnit(c.g);
-                    f[2] = ToUnit(c.b);
-                } else {
-                    p[0] = ToByte(c.r);
-                    f[0] = ToUnit(c.r);
-                }
+                StorePixel(image, x, y,
+                           shader.At(x + 0.5, y + 0.5, frame.surface[i], frame.body[i],
+                                     frame.depth[i], frame.normal[i], background));
             }
         }
     };

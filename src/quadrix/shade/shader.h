@@ -28,11 +28,17 @@
 // unquantised values for the writers' sRGB encoding (io/writers.h).
 #pragma once
 
+#include <cstdint>
+#include <map>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/io/image.h"
+#include "quadrix/shade/phong.h"
+#include "quadrix/shade/shadows.h"
 
 namespace quadrix {
 
@@ -50,7 +56,45 @@ struct ShadeOptions {
     bool shadows = false;
     // Finish defaults of kPhong and kBlinnPhong (seed 000's post-shading unit).
     double phongDiffuse = 0.8, phongSpecular = 0.4, phongShininess = 24;
+    // Anti-aliasing (antialias.h), applied by RenderContext::Shade after Shade(): samples per
+    // edge pixel (0 or 1 = off; 4, 16, 64), and the reconstruction filter.
+    int aaSamples = 0;
+    bool aaMitchell = false;  // false: box filter over the pixel; true: Mitchell–Netravali
+    // Silhouette and crease lines from the Frame (antialias.h DrawEdgeLines), over the shading.
+    bool edges = false;
+    scene::Color edgeColor{0, 0, 0};
 };
+
+// The shading of one visible point, as Shade() computes it for a pixel centre: used by Shade()
+// for every pixel and by the anti-aliasing pass for sub-pixel samples. (x, y) is the device
+// position (a pixel centre is (i + ½, j + ½)), the rest what a Frame pixel holds. Built once
+// per frame (the fast model's mean normals are taken from `frame`); At() is thread-safe.
+class PixelShader {
+  public:
+    PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options);
+    scene::Color At(double x, double y, std::int32_t surface, std::int32_t body, double depth,
+                    const Vec3& normal, const scene::Color& background) const;
+    // The background of row y of `height` (a vertical gradient, or one color).
+    scene::Color Background(int y, int height) const;
+    // Whether the image is RGB (some color involved) rather than gray.
+    bool Color() const { return color_; }
+
+  private:
+    const FlatScene& scene_;
+    ShadeOptions options_;
+    ShadingModel model_, reflection_;
+    ViewerGeometry viewer_;
+    bool needPoint_, shadows_;
+    ShadowTester shadowTester_;
+    Mat4 deviceFromWorld_;
+    bool color_;
+    std::vector<Incident> fixedLight_;
+    std::map<std::pair<int, int>, Vec3> meanNormal_;
+};
+
+// Writes a linear color into pixel (x, y) of an image: its bytes (value·255, rounded) and its
+// unquantised `linear` entry, RGB or gray by image.channels.
+void StorePixel(Image& image, int x, int y, const scene::Color& c);
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options = {});
 

@@ -79,7 +79,7 @@ IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complement
     return out;
 }
 
-IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d) const {
+IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
         IntervalList acc = IntervalList::All(), tmp;
@@ -96,12 +96,21 @@ IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d) const {
     IntervalList acc, tmp;
     bool first = true;
     for (int c : node.children) {
-        IntervalList child = Node(c, p, d);
+        // A child whose box the segment misses is ∅ on it (boxes are conservative), which is all
+        // that matters here: the answer only looks at (s0, s1).
+        const bool misses =
+            !HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1);
         if (first) {
-            acc = std::move(child);
             first = false;
+            if (!misses) acc = Node(c, p, d, s0, s1);
+            if (acc.empty() && node.op != scene::CsgOp::kUnion) return acc;
             continue;
         }
+        if (misses) {
+            if (node.op == scene::CsgOp::kIntersection) return {};
+            continue;  // A ∪ ∅ = A − ∅ = A
+        }
+        const IntervalList child = Node(c, p, d, s0, s1);
         switch (node.op) {
             case scene::CsgOp::kUnion:
                 Union(acc, child, tmp);
@@ -114,6 +123,7 @@ IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d) const {
                 break;
         }
         std::swap(acc, tmp);
+        if (acc.empty() && node.op != scene::CsgOp::kUnion) return acc;
     }
     return acc;
 }
@@ -125,7 +135,7 @@ bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     for (const FlatSolid& solid : scene_.solids) {
         const FlatCsgNode& root = scene_.nodes[static_cast<std::size_t>(solid.root)];
         if (!HitsBox(root.bounds, p, d, s0, sMax)) continue;
-        for (const Interval& i : Node(solid.root, p, d))
+        for (const Interval& i : Node(solid.root, p, d, s0, sMax))
             if (i.hi > s0 && i.lo < sMax) return true;
     }
     return false;

@@ -17,8 +17,8 @@
 // Limits: parallel projections only (the device map of a perspective view is projective, so a
 // world segment toward a light at infinity is not a device segment; Shade() skips shadows there);
 // only solids the Flattener kept (those whose bounds meet the image) cast shadows; every solid is
-// tested per shadow ray behind a bounding-box test (no spatial index), so the cost grows with the
-// number of solids.
+// tested per shadow ray behind a bounding-box test, and so is every CSG node (no spatial index),
+// so the cost grows with the number of solids.
 #pragma once
 
 #include <vector>
@@ -40,7 +40,9 @@ class ShadowTester {
                                       const Vec3& d);
 
   private:
-    IntervalList Node(int node, const Vec3& p, const Vec3& d) const;
+    // The node's set on the line; exact on (s0, s1), where children whose boxes the segment
+    // misses are taken as ∅.
+    IntervalList Node(int node, const Vec3& p, const Vec3& d, double s0, double s1) const;
     const FlatScene& scene_;
 };
 

@@ -1,0 +1,142 @@
+#include "quadrix/engines/raycast/sample_tracer.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "quadrix/engines/raycast/eval_names.h"
+
+namespace quadrix::raycast {
+
+SampleTracer::SampleTracer(const FlatScene& scene) : scene_(scene), tables_(scene) {
+    byDepth_.resize(scene.solids.size());
+    for (std::size_t s = 0; s < byDepth_.size(); ++s) byDepth_[s] = static_cast<std::int32_t>(s);
+    std::stable_sort(byDepth_.begin(), byDepth_.end(), [&](std::int32_t a, std::int32_t b) {
+        return scene.solids[static_cast<std::size_t>(a)].bounds.lo.z <
+               scene.solids[static_cast<std::size_t>(b)].bounds.lo.z;
+    });
+    for (const FlatSolid& solid : scene.solids) maxDepth_ = std::max(maxDepth_, Depth(solid.root));
+}
+
+int SampleTracer::Depth(std::int32_t n) const {
+    const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
+    int d = 0;
+    if (!node.isLeaf)
+        for (int c : node.children) d = std::max(d, 1 + Depth(c));
+    return d;
+}
+
+SampleScratch::SampleScratch(const SampleTracer& tracer) {
+    lists.resize(static_cast<std::size_t>(tracer.MaxDepth()) + 3);
+    for (IntervalList& l : lists) slots.push_back(&l);
+}
+
+void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
+                        std::size_t slot) const {
+    const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
+    IntervalList& out = *s.slots[slot];
+    out.clear();
+    if (node.isLeaf) {
+        const auto b = static_cast<std::size_t>(node.body);
+        if (tables_.BodyVoid(b)) return;
+        out.Append(-HUGE_VAL, Interval::kNoId, HUGE_VAL, Interval::kNoId);
+        LiteralCounters unused;
+        const std::int32_t* tag = tables_.BodyTags(b);
+        for (std::size_t k = 0; k < tables_.BodyTagCount(b); ++k) {
+            const Tag& t = tables_.TagOf(tag[k]);
+            const RaySet set =
+                LiteralOnRay(tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)],
+                             t.complemented, x, y, tag[k], unused);
+            if (set.count == 0) {
+                s.slots[slot]->clear();
+                return;
+            }
+            IntervalList& acc = *s.slots[slot];
+            if (set.count == 1) {  // in place, the same result as Intersection (interval_list.h)
+                ClipTo(acc, set.piece[0]);
+            } else {
+                IntervalList& lit = *s.slots[slot + 1];
+                lit.clear();
+                for (int p = 0; p < set.count; ++p)
+                    lit.Append(set.piece[p].lo, set.piece[p].loId, set.piece[p].hi,
+                               set.piece[p].hiId);
+                Intersection(acc, lit, *s.slots[slot + 2]);
+                std::swap(s.slots[slot], s.slots[slot + 2]);
+            }
+            if (s.slots[slot]->empty()) return;
+        }
+        return;
+    }
+    bool first = true;
+    for (int c : node.children) {
+        const Box3& cb = scene_.nodes[static_cast<std::size_t>(c)].bounds;
+        // A child whose bounds miss the ray is ∅ there (bounds are conservative).
+        const bool misses = x < cb.lo.x || x > cb.hi.x || y < cb.lo.y || y > cb.hi.y;
+        if (first) {
+            first = false;
+            if (!misses) Node(c, x, y, s, slot);
+            if (s.slots[slot]->empty() && node.op != scene::CsgOp::kUnion) return;
+            continue;
+        }
+        if (misses) {
+            if (node.op == scene::CsgOp::kIntersection) {
+                s.slots[slot]->clear();
+                return;
+            }
+            continue;  // A ∪ ∅ = A − ∅ = A
+        }
+        Node(c, x, y, s, slot + 1);
+        IntervalList& acc = *s.slots[slot];
+        const IntervalList& operand = *s.slots[slot + 1];
+        IntervalList& result = *s.slots[slot + 2];
+        switch (node.op) {
+            case scene::CsgOp::kUnion:
+                Union(acc, operand, result);
+                break;
+            case scene::CsgOp::kIntersection:
+                Intersection(acc, operand, result);
+                break;
+            case scene::CsgOp::kDifference:
+                Difference(acc, operand, result);
+                break;
+        }
+        std::swap(s.slots[slot], s.slots[slot + 2]);
+        if (s.slots[slot]->empty() && node.op != scene::CsgOp::kUnion) return;
+    }
+}
+
+Sample SampleTracer::Trace(double x, double y, SampleScratch& scratch) const {
+    double bestT = HUGE_VAL;
+    std::int32_t bestTag = -1, bestSolid = -1;
+    for (std::int32_t s : byDepth_) {
+        const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(s)];
+        if (bestT < solid.bounds.lo.z) break;  // strictly: a tie may go to a lower index
+        if (x < solid.bounds.lo.x || x > solid.bounds.hi.x || y < solid.bounds.lo.y ||
+            y > solid.bounds.hi.y)
+            continue;
+        Node(solid.root, x, y, scratch, 0);
+        for (const Interval& v : *scratch.slots[0]) {
+            double t;
+            std::int32_t tag;
+            if (!tables_.VisibleEnd(v.lo, v.loId, v.hi, v.hiId, t, tag)) continue;
+            if (t < bestT || (t == bestT && s < bestSolid)) {
+                bestT = t;
+                bestTag = tag;
+                bestSolid = s;
+            }
+            break;
+        }
+    }
+    Sample out;
+    if (bestTag < 0) return out;
+    const Tag& tag = tables_.TagOf(bestTag);
+    const auto h = static_cast<std::size_t>(tag.halfSpace);
+    out.depth = bestT;
+    out.normal = tables_.constantNormal[h] ? tables_.planeNormal[h]
+                                           : scene_.WorldNormal(tag.halfSpace, {x, y, bestT});
+    out.surface = tag.halfSpace;
+    out.body = tag.body;
+    out.solid = bestSolid;
+    return out;
+}
+
+}  // namespace quadrix::raycast

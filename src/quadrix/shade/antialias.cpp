@@ -1,0 +1,204 @@
+#include "quadrix/shade/antialias.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "quadrix/engines/raycast/sample_tracer.h"
+
+namespace quadrix {
+
+namespace {
+
+bool Covered(const Frame& f, std::size_t k) { return f.surface[k] != Frame::kNone; }
+
+// Whether an edge separates pixels a and b (4-neighbours); a2 is the pixel beyond a and b2 the
+// one beyond b on the same line (or a and b themselves at the image border).
+bool Separated(const Frame& f, std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
+    if (f.surface[a] != f.surface[b] || f.body[a] != f.body[b] || f.solid[a] != f.solid[b])
+        return true;
+    if (!Covered(f, a)) return false;  // both background
+    static const double kCos = std::cos(kCreaseDegrees * std::numbers::pi / 180);
+    if (Dot(f.normal[a], f.normal[b]) < kCos) return true;
+    const double za = f.depth[a], zb = f.depth[b];
+    double slope = 0;
+    if (a2 != a && f.surface[a2] == f.surface[a])
+        slope = std::max(slope, std::fabs(za - f.depth[a2]));
+    if (b2 != b && f.surface[b2] == f.surface[b])
+        slope = std::max(slope, std::fabs(f.depth[b2] - zb));
+    return std::fabs(zb - za) > 4 * slope + 1e-9 * (1 + std::fabs(za));
+}
+
+void Mark(const Frame& f, std::vector<std::uint8_t>& e, std::size_t a, std::size_t b) {
+    e[a] |= kEdgePixel;
+    e[b] |= kEdgePixel;
+    // The nearer pixel carries the line; an exact tie (same depth, other ids) the first one.
+    e[f.depth[b] < f.depth[a] ? b : a] |= kEdgeLine;
+}
+
+std::uint64_t Mix(std::uint64_t z) {  // splitmix64's finaliser
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+// A permutation of 0..k-1 drawn from `seed` (Fisher–Yates).
+void Permutation(int k, std::uint64_t seed, int* out) {
+    for (int i = 0; i < k; ++i) out[i] = i;
+    for (int i = k - 1; i > 0; --i) {
+        seed = Mix(seed + 0x9e3779b97f4a7c15ULL);
+        const int j = static_cast<int>(seed % static_cast<std::uint64_t>(i + 1));
+        std::swap(out[i], out[j]);
+    }
+}
+
+// Mitchell–Netravali cubic, B = C = 1/3, at |x| (support 2).
+double Mitchell1(double x) {
+    x = std::fabs(x);
+    constexpr double B = 1.0 / 3, C = 1.0 / 3;
+    if (x < 1)
+        return ((12 - 9 * B - 6 * C) * x * x * x + (-18 + 12 * B + 6 * C) * x * x + (6 - 2 * B)) /
+               6;
+    if (x < 2)
+        return ((-B - 6 * C) * x * x * x + (6 * B + 30 * C) * x * x + (-12 * B - 48 * C) * x +
+                (8 * B + 24 * C)) /
+               6;
+    return 0;
+}
+
+double Clamp01(double v) { return v > 0 ? (v < 1 ? v : 1.0) : 0.0; }
+
+}  // namespace
+
+std::vector<std::uint8_t> FindEdges(const Frame& f) {
+    const int w = f.width, h = f.height;
+    std::vector<std::uint8_t> e(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x + 1 < w; ++x) {
+            const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
+            const std::size_t a2 = x > 0 ? f.Index(x - 1, y) : a;
+            const std::size_t b2 = x + 2 < w ? f.Index(x + 2, y) : b;
+            if (Separated(f, a, b, a2, b2)) Mark(f, e, a, b);
+        }
+    }
+    for (int y = 0; y + 1 < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
+            const std::size_t a2 = y > 0 ? f.Index(x, y - 1) : a;
+            const std::size_t b2 = y + 2 < h ? f.Index(x, y + 2) : b;
+            if (Separated(f, a, b, a2, b2)) Mark(f, e, a, b);
+        }
+    }
+    return e;
+}
+
+bool ValidAaSamples(int samples) {
+    return samples == 0 || samples == 1 || samples == 4 || samples == 16 || samples == 64;
+}
+
+std::vector<SubPixel> SamplePositions(int samples, int i, int j) {
+    int k = 1;
+    while (k * k < samples) ++k;
+    const int n = k * k;
+    std::vector<SubPixel> out;
+    out.reserve(static_cast<std::size_t>(n));
+    const std::uint64_t seed =
+        Mix((static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) ^
+            static_cast<std::uint32_t>(j));
+    int col[8][8], row[8][8];  // k <= 8
+    for (int a = 0; a < k; ++a) {
+        Permutation(k, seed ^ Mix(2 * static_cast<std::uint64_t>(a) + 1), col[a]);
+        Permutation(k, seed ^ Mix(2 * static_cast<std::uint64_t>(a) + 2), row[a]);
+    }
+    // Cell (a, b) (column a, row b): fine column a·k + col[a][b], fine row b·k + row[b][a]. For a
+    // fixed a, col[a][·] is a permutation, so coarse column a uses each of its k fine columns
+    // once; likewise for rows: a Latin square on the n × n fine grid.
+    for (int b = 0; b < k; ++b)
+        for (int a = 0; a < k; ++a)
+            out.push_back({(a * k + col[a][b] + 0.5) / n, (b * k + row[b][a] + 0.5) / n});
+    return out;
+}
+
+AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
+                         Image& image) {
+    AntialiasStats stats;
+    if (options.aaSamples < 2 || frame.width == 0 || frame.height == 0) return stats;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<std::uint8_t> edges = FindEdges(frame);
+    // Keep away from freeform surfaces: no point tracer for them.
+    const auto firstFreeform = static_cast<std::int32_t>(scene.halfSpaces.size());
+    if (!scene.freeforms.empty()) {
+        std::vector<std::uint8_t> near(edges.size(), 0);
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x)
+                if (frame.surface[frame.Index(x, y)] >= firstFreeform)
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            const int u = x + dx, v = y + dy;
+                            if (u >= 0 && v >= 0 && u < frame.width && v < frame.height)
+                                near[frame.Index(u, v)] = 1;
+                        }
+        for (std::size_t k = 0; k < edges.size(); ++k)
+            if (near[k]) edges[k] &= static_cast<std::uint8_t>(~kEdgePixel);
+    }
+    const PixelShader shader(frame, scene, options);
+    const raycast::SampleTracer tracer(scene);
+    if (image.linear.size() != image.pixels.size()) {
+        image.linear.resize(image.pixels.size());
+        for (std::size_t k = 0; k < image.pixels.size(); ++k)
+            image.linear[k] = static_cast<float>(image.pixels[k] / 255.0);
+    }
+    std::atomic<std::size_t> count{0};
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, frame.height, 4), [&](const tbb::blocked_range<int>& rows) {
+            std::size_t local = 0;
+            raycast::SampleScratch scratch(tracer);
+            for (int y = rows.begin(); y < rows.end(); ++y) {
+                const scene::Color background = shader.Background(y, frame.height);
+                for (int x = 0; x < frame.width; ++x) {
+                    if (!(edges[frame.Index(x, y)] & kEdgePixel)) continue;
+                    ++local;
+                    double r = 0, g = 0, b = 0, wsum = 0;
+                    for (const SubPixel& s : SamplePositions(options.aaSamples, x, y)) {
+                        const double px = x + s.u, py = y + s.v;
+                        const raycast::Sample hit = tracer.Trace(px, py, scratch);
+                        const scene::Color c = shader.At(px, py, hit.surface, hit.body, hit.depth,
+                                                         hit.normal, background);
+                        const double wgt =
+                            options.aaMitchell ? Mitchell1(s.u - 0.5) * Mitchell1(s.v - 0.5) : 1.0;
+                        r += wgt * Clamp01(c.r);
+                        g += wgt * Clamp01(c.g);
+                        b += wgt * Clamp01(c.b);
+                        wsum += wgt;
+                    }
+                    StorePixel(image, x, y, {r / wsum, g / wsum, b / wsum});
+                }
+            }
+            count += local;
+        });
+    stats.edgePixels = count.load();
+    int k = 1;
+    while (k * k < options.aaSamples) ++k;
+    stats.samples = stats.edgePixels * static_cast<std::size_t>(k * k);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return stats;
+}
+
+std::size_t DrawEdgeLines(const Frame& frame, const ShadeOptions& options, Image& image) {
+    const std::vector<std::uint8_t> edges = FindEdges(frame);
+    std::size_t n = 0;
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x)
+            if (edges[frame.Index(x, y)] & kEdgeLine) {
+                StorePixel(image, x, y, options.edgeColor);
+                ++n;
+            }
+    return n;
+}
+
+}  // namespace quadrix

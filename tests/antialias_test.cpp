@@ -1,0 +1,275 @@
+// Anti-aliasing and edge lines (shade/antialias.h) and the sub-pixel tracer under them
+// (engines/raycast/sample_tracer.h), against the raycast engine and analytic coverage.
+//
+// The disc: a sphere under ambient light 1 shades to exactly 1 wherever it is seen, on a black
+// background, so a pixel's linear value is the share of its samples that see the sphere, and the
+// box filter's result is the pixel's coverage estimate. The sphere's outline in device space is
+// the circle where the ray's discriminant h² − c·k vanishes (ray_literal.h), whose centre and
+// radius are read off the device quadric; the coverage of a pixel's square by that disc is
+// integrated numerically (20,000 midpoints across the square: error < 1e-4, far below the 1/16
+// bound).
+#include "quadrix/shade/antialias.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "quadrix/engines/raycast/sample_tracer.h"
+#include "quadrix/pipeline/pipeline.h"
+#include "quadrix/pipeline/render_context.h"
+#include "quadrix/shade/shader.h"
+#include "test_util.h"
+
+namespace quadrix::testing {
+namespace {
+
+PipelineResult Render(const std::string& text, int w, int h) {
+    PipelineOptions o;
+    o.sceneText = text;
+    o.width = w;
+    o.height = h;
+    PipelineResult r;
+    Diagnostics d;
+    EXPECT_TRUE(RunPipeline(o, r, d)) << text;
+    return r;
+}
+
+PipelineResult RenderFile(const std::string& path, int w, int h) {
+    PipelineOptions o;
+    o.scenePaths = {SourcePath(path)};
+    o.width = w;
+    o.height = h;
+    PipelineResult r;
+    Diagnostics d;
+    EXPECT_TRUE(RunPipeline(o, r, d)) << path;
+    return r;
+}
+
+// The device-space outline of a sphere seen along z: centre (cx, cy) and radius.
+struct Circle {
+    double cx, cy, r;
+};
+Circle Outline(const Quadric& q) {
+    // Along the ray: c = C, h = F x + E y + J, k = A x² + B y² + 2D xy + 2G x + 2H y + K.
+    // disc(x, y) = h² − c k = qxx x² + qxy xy + qyy y² + lx x + ly y + d0.
+    const double c = q.C();
+    const double qxx = q.F() * q.F() - c * q.A(), qyy = q.E() * q.E() - c * q.B();
+    const double qxy = 2 * q.E() * q.F() - 2 * c * q.D();
+    const double lx = 2 * q.F() * q.J() - 2 * c * q.G(), ly = 2 * q.E() * q.J() - 2 * c * q.H();
+    const double d0 = q.J() * q.J() - c * q.K();
+    EXPECT_NEAR(qxy, 0, 1e-9 * std::fabs(qxx));
+    EXPECT_NEAR(qxx, qyy, 1e-9 * std::fabs(qxx));
+    const double cx = -lx / (2 * qxx), cy = -ly / (2 * qxx);
+    const double dc = d0 - qxx * (cx * cx + cy * cy);
+    return {cx, cy, std::sqrt(dc / -qxx)};
+}
+
+double Coverage(const Circle& d, int i, int j) {
+    constexpr int kSteps = 20000;
+    double sum = 0;
+    for (int s = 0; s < kSteps; ++s) {
+        const double u = i + (s + 0.5) / kSteps - d.cx;
+        const double half = d.r * d.r - u * u;
+        if (half <= 0) continue;
+        const double root = std::sqrt(half);
+        const double lo = std::max<double>(j, d.cy - root),
+                     hi = std::min<double>(j + 1, d.cy + root);
+        if (hi > lo) sum += hi - lo;
+    }
+    return sum / kSteps;
+}
+
+const char* kDisc =
+    "quadric ball <1 1 1 0 0 0 0 0 0 -1>; body disc <ball>; light 1;\n"
+    "view v vrp .0123 .0456 0 whh 1.37;\n";
+
+struct EdgeError {
+    double mean = 0, max = 0;
+    int pixels = 0;
+};
+
+// The coverage error of the shaded disc, over the pixels the disc's outline crosses.
+EdgeError DiscError(int samples, bool mitchell = false) {
+    PipelineResult r = Render(kDisc, 64, 64);
+    const Circle c = Outline(r.flat.halfSpaces.at(0).quadric);
+    EXPECT_GT(c.r, 20);  // the disc fills most of the picture
+    ShadeOptions so;
+    so.aaSamples = samples;
+    so.aaMitchell = mitchell;
+    Image img = Shade(r.frame, r.flat, so);
+    Antialias(r.frame, r.flat, so, img);
+    EXPECT_EQ(img.channels, 1);
+    EdgeError e;
+    for (int j = 0; j < 64; ++j)
+        for (int i = 0; i < 64; ++i) {
+            const double cov = Coverage(c, i, j);
+            const double v = img.linear[static_cast<std::size_t>(j) * 64 + i];
+            if (cov == 0 || cov == 1) {
+                EXPECT_EQ(v, cov) << "pixel " << i << "," << j << " away from the outline";
+                continue;
+            }
+            const double err = std::fabs(v - cov);
+            e.mean += err;
+            e.max = std::max(e.max, err);
+            ++e.pixels;
+        }
+    e.mean /= std::max(e.pixels, 1);
+    return e;
+}
+
+TEST(Antialias, DiscEdgeErrorIsBelowASixteenthOfAPixelAtSixteenSamples) {
+    const EdgeError off = DiscError(0), aa4 = DiscError(4), aa16 = DiscError(16),
+                    aa64 = DiscError(64), mitchell = DiscError(16, true);
+    RecordProperty("mean_error_off", std::to_string(off.mean));
+    RecordProperty("mean_error_16", std::to_string(aa16.mean));
+    EXPECT_GT(off.pixels, 100);
+    // Without anti-aliasing a pixel is 0 or 1: the mean error of a crossing pixel is near ¼.
+    EXPECT_GT(off.mean, 0.15);
+    EXPECT_LE(aa16.mean, 1.0 / 16) << "max " << aa16.max;
+    EXPECT_LT(aa64.mean, aa16.mean);
+    EXPECT_LT(aa16.mean, aa4.mean);
+    // Stratified: no crossing pixel is off by more than a quarter (two fine strata of 16... with
+    // margin) at 16 samples, an eighth at 64.
+    EXPECT_LE(aa16.max, 0.25);
+    EXPECT_LE(aa64.max, 0.125);
+    EXPECT_LE(mitchell.mean, 0.1);
+    std::printf(
+        "disc edge error, mean (max) over %d crossing pixels: off %.4f (%.3f), 4: %.4f "
+        "(%.3f), 16: %.4f (%.3f), 64: %.4f (%.3f), 16 mitchell %.4f\n",
+        aa16.pixels, off.mean, off.max, aa4.mean, aa4.max, aa16.mean, aa16.max, aa64.mean, aa64.max,
+        mitchell.mean);
+}
+
+TEST(Antialias, SamplePositionsAreALatinSquareOfCells) {
+    for (int n : {4, 16, 64}) {
+        const int k = static_cast<int>(std::lround(std::sqrt(n)));
+        for (int pixel = 0; pixel < 20; ++pixel) {
+            const auto s = SamplePositions(n, pixel * 7, pixel * 13 - 50);
+            ASSERT_EQ(s.size(), static_cast<std::size_t>(n));
+            std::set<int> cols, rows, cells;
+            for (const SubPixel& p : s) {
+                ASSERT_GE(p.u, 0);
+                ASSERT_LT(p.u, 1);
+                ASSERT_GE(p.v, 0);
+                ASSERT_LT(p.v, 1);
+                const int fc = static_cast<int>(p.u * n), fr = static_cast<int>(p.v * n);
+                cols.insert(fc);
+                rows.insert(fr);
+                cells.insert((fr / k) * k + fc / k);
+            }
+            EXPECT_EQ(cols.size(), static_cast<std::size_t>(n));
+            EXPECT_EQ(rows.size(), static_cast<std::size_t>(n));
+            EXPECT_EQ(cells.size(), static_cast<std::size_t>(n));
+        }
+        // Deterministic, and not the same pattern in every pixel.
+        EXPECT_EQ(SamplePositions(n, 3, 4)[1].u, SamplePositions(n, 3, 4)[1].u);
+    }
+    EXPECT_NE(SamplePositions(16, 3, 4)[0].u, SamplePositions(16, 4, 3)[0].u);
+}
+
+// At pixel centres the sample tracer is the engine: same ids, same depth, same normal.
+TEST(SampleTracer, EqualsTheRaycastEngineAtPixelCentres) {
+    for (const char* path :
+         {"examples/machined_part.uq", "examples/stack_of_bundles.uq", "examples/tube.uq"}) {
+        PipelineResult r = RenderFile(path, 96, 72);
+        const raycast::SampleTracer tracer(r.flat);
+        int covered = 0;
+        for (int j = 0; j < r.frame.height; ++j)
+            for (int i = 0; i < r.frame.width; ++i) {
+                const std::size_t k = r.frame.Index(i, j);
+                const raycast::Sample s = tracer.Trace(i + 0.5, j + 0.5);
+                ASSERT_EQ(s.surface, r.frame.surface[k]) << path << " " << i << "," << j;
+                ASSERT_EQ(s.body, r.frame.body[k]) << path << " " << i << "," << j;
+                ASSERT_EQ(s.solid, r.frame.solid[k]) << path << " " << i << "," << j;
+                if (!s.Covered()) continue;
+                ++covered;
+                ASSERT_EQ(s.depth, r.frame.depth[k]) << path << " " << i << "," << j;
+                ASSERT_EQ(s.normal, r.frame.normal[k]) << path << " " << i << "," << j;
+            }
+        EXPECT_GT(covered, 500) << path;
+    }
+}
+
+// Anti-aliasing changes edge pixels only, and only towards their samples' mean.
+TEST(Antialias, InteriorPixelsAreNotResampled) {
+    PipelineResult r = RenderFile("examples/machined_part.uq", 160, 120);
+    ShadeOptions so;
+    const Image plain = Shade(r.frame, r.flat, so);
+    so.aaSamples = 16;
+    Image aa = Shade(r.frame, r.flat, so);
+    const AntialiasStats st = Antialias(r.frame, r.flat, so, aa);
+    const std::vector<std::uint8_t> edges = FindEdges(r.frame);
+    std::size_t edgePixels = 0, changed = 0;
+    for (int j = 0; j < 120; ++j)
+        for (int i = 0; i < 160; ++i) {
+            const std::size_t k = r.frame.Index(i, j);
+            edgePixels += (edges[k] & kEdgePixel) != 0;
+            const std::size_t c = k * static_cast<std::size_t>(plain.channels);
+            bool same = true;
+            for (int ch = 0; ch < plain.channels; ++ch)
+                same &= plain.linear[c + ch] == aa.linear[c + ch];
+            if (!(edges[k] & kEdgePixel)) {
+                ASSERT_TRUE(same) << "interior pixel " << i << "," << j << " changed";
+            }
+            changed += !same;
+        }
+    EXPECT_EQ(st.edgePixels, edgePixels);
+    EXPECT_EQ(st.samples, 16 * edgePixels);
+    EXPECT_GT(changed, edgePixels / 4);  // most edge pixels are mixed
+    EXPECT_LT(edgePixels, 160u * 120u / 4);
+}
+
+// Edge lines: one pixel wide, on the covered side of a silhouette, and every silhouette pixel.
+TEST(EdgeLines, TheDiscsOutlineIsOnePixelWide) {
+    PipelineResult r = Render(kDisc, 64, 64);
+    ShadeOptions so;
+    so.edges = true;
+    so.edgeColor = {0.5, 0.5, 0.5};
+    Image img = Shade(r.frame, r.flat, so);
+    const std::size_t lines = DrawEdgeLines(r.frame, so, img);
+    const Frame& f = r.frame;
+    std::size_t outline = 0;
+    for (int j = 0; j < 64; ++j)
+        for (int i = 0; i < 64; ++i) {
+            bool bordersBackground = false;
+            for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int u = i + di, v = j + dj;
+                if (u >= 0 && v >= 0 && u < 64 && v < 64 && !f.Covered(u, v))
+                    bordersBackground = true;
+            }
+            const bool line = f.Covered(i, j) && bordersBackground;
+            outline += line;
+            const float v = img.linear[static_cast<std::size_t>(j) * 64 + i];
+            EXPECT_EQ(v == 0.5f, line) << i << "," << j;
+        }
+    EXPECT_EQ(lines, outline);
+    EXPECT_GT(outline, 100u);
+}
+
+// The render command: --aa, --aa-filter, --edges and --no-shadows are accepted, bad levels are
+// usage errors with nothing written.
+TEST(Antialias, RenderCommandOptions) {
+    const std::string out = ::testing::TempDir() + "/aa_cli.png";
+    const std::string scene = SourcePath("examples/machined_part.uq");
+    for (const char* opts : {"--aa off", "--aa 4", "--aa 64 --aa-filter mitchell", "--edges",
+                             "--no-shadows", "--shadows --aa 16"}) {
+        std::remove(out.c_str());
+        const CommandResult r =
+            RunShell(QuadrixBinary() + " render " + scene + " -o " + out + " --size 64x48 " + opts);
+        EXPECT_EQ(r.exitCode, 0) << opts << "\n" << r.err;
+        EXPECT_TRUE(FileExists(out)) << opts;
+    }
+    std::remove(out.c_str());
+    const CommandResult bad =
+        RunShell(QuadrixBinary() + " render " + scene + " -o " + out + " --aa 8");
+    EXPECT_EQ(bad.exitCode, 2) << bad.err;
+    EXPECT_NE(bad.err.find("--aa"), std::string::npos) << bad.err;
+    EXPECT_FALSE(FileExists(out));
+    const CommandResult both =
+        RunShell(QuadrixBinary() + " render " + scene + " -o " + out + " --shadows --no-shadows");
+    EXPECT_NE(both.exitCode, 0);
+}
+
+}  // namespace
+}  // namespace quadrix::testing
