@@ -3,10 +3,17 @@
 // cost is gone. Times are not asserted (the suite runs on loaded machines); the scenes are sized
 // so that the old behaviour would take minutes, the new one well under a second.
 #include <gtest/gtest.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <cmath>
+#include <new>
 #include <string>
 
+#include "quadrix/flatten/bounds.h"
+#include "quadrix/flatten/bounds_internal.h"
 #include "quadrix/pipeline/render_context.h"
+#include "test_util.h"
 
 namespace quadrix {
 namespace {
@@ -86,6 +93,66 @@ TEST(ComplexityGuard, ScanlineKeepsModestOverlap) {
     EXPECT_EQ(scan.frame.CoveredCount(), ray.frame.CoveredCount());
     Rendered low = RenderText(text, "scanline", 32, {{"max-overlap", "19"}});
     EXPECT_EQ(low.report.byReference.size(), 1u);
+}
+
+// A body of many literals is bounded over a working set grown by cutting planes
+// (bounds_working_set.cpp): the box must be the one the relaxation over every literal certifies.
+TEST(ComplexityGuard, WorkingSetBoundsEqualTheFullRelaxation) {
+    const int n = 600;
+    std::vector<FlatHalfSpace> hs(static_cast<std::size_t>(n));
+    hs[0].isPlane = false;
+    hs[0].quadric = Quadric::FromCoefficients({1, 1, 1, 0, 0, 0, 0, 0, 0, -1});
+    for (int i = 1; i < n; ++i) {
+        const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z), phi = 2.3999632 * i;
+        hs[static_cast<std::size_t>(i)].plane = {r * std::cos(phi), r * std::sin(phi), z, -0.9};
+    }
+    std::vector<BoundLiteral> lits;
+    for (const FlatHalfSpace& h : hs) lits.push_back({&h, false});
+    const Box3 box = IntersectionBounds(lits);
+    ASSERT_FALSE(box.Empty());
+    // The reference: the relaxation over all literals at once.
+    std::vector<bounds_detail::InsideFn> fns;
+    for (const FlatHalfSpace& h : hs) fns.push_back(bounds_detail::MakeInsideFn(h, false));
+    std::vector<const bounds_detail::InsideFn*> ptrs;
+    for (const auto& f : fns) ptrs.push_back(&f);
+    Box3 all{{-2, -2, -2}, {2, 2, 2}};
+    bounds_detail::BoundByConvexRelaxation(ptrs, std::vector<bounds_detail::Nappe>(fns.size()), all,
+                                           all, nullptr);
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_NEAR(box.lo[axis], all.lo[axis], 1e-6) << axis;
+        EXPECT_NEAR(box.hi[axis], all.hi[axis], 1e-6) << axis;
+        // The planes at 0.9 bound the ball: no side reaches the ball's own 1.
+        EXPECT_LT(box.hi[axis], 0.99);
+        EXPECT_GT(box.hi[axis], 0.85);
+    }
+}
+
+// oneTBB carries an exception out of a worker to the thread that called parallel_for, so a
+// std::bad_alloc in any parallel phase (bounds, engines, shading) reaches the command's top-level
+// handler (apps/quadrix/main.cpp: "error: out of memory", exit 1) like one on the main thread.
+TEST(ComplexityGuard, BadAllocInATbbWorkerReachesTheCaller) {
+    bool caught = false;
+    try {
+        tbb::parallel_for(tbb::blocked_range<int>(0, 1000, 1),
+                          [](const tbb::blocked_range<int>& r) {
+                              for (int i = r.begin(); i < r.end(); ++i)
+                                  if (i == 777) throw std::bad_alloc();
+                          });
+    } catch (const std::bad_alloc&) {
+        caught = true;
+    }
+    EXPECT_TRUE(caught);
+}
+
+// `quadrix -i < /dev/zero`: the over-long line is an error and the exit status says so.
+TEST(ComplexityGuard, InteractiveStdinDevZeroIsAnError) {
+    testing::CommandResult r =
+        testing::RunShell(testing::QuadrixBinary() + " -i < /dev/zero > /dev/null");
+    EXPECT_NE(r.exitCode, 0) << r.err;
+    EXPECT_LT(r.exitCode, 128) << r.err;
+    EXPECT_NE(r.err.find("cannot read standard input: a line is longer than 256 MiB"),
+              std::string::npos)
+        << r.err;
 }
 
 }  // namespace

@@ -51,8 +51,8 @@ class PlainLineInput : public LineInput {
             if (c == '\n') break;
             // One line is bounded like every input (io/bounded_read.h): `quadrix -i < /dev/zero`.
             if (line.size() >= kMaxInputBytes) {
-                std::fprintf(stderr, "quadrix: error: cannot read standard input: a line is "
-                                     "longer than %s\n", ByteSizeText(kMaxInputBytes).c_str());
+                error_ = "cannot read standard input: a line is longer than " +
+                         ByteSizeText(kMaxInputBytes);
                 return false;
             }
             line += static_cast<char>(c);
@@ -69,11 +69,13 @@ class PlainLineInput : public LineInput {
         }
         return true;
     }
+    std::string Error() const override { return error_; }
 
   private:
     std::FILE* in_;
     std::FILE* out_;
     bool echo_;
+    std::string error_;
 };
 
 #ifdef QUADRIX_HAVE_LIBEDIT
@@ -305,7 +307,11 @@ bool UqSession::NextLine(Tracker& tracker, std::string& text) {
     }                      // else: skipping to the next ';' after an error, no prompt (§2.3)
     tracker.errorsAtPrompt = totalErrors_;
     std::string line;
-    if (!input_->ReadLine(prompt, line)) return false;
+    if (!input_->ReadLine(prompt, line)) {
+        // `quadrix -i < /dev/zero` once exited 0 after this error (issue 23).
+        if (std::string e = input_->Error(); !e.empty()) diags_.Error({}, e, {}, "input");
+        return false;
+    }
     line += '\n';
     tracker.Feed(line);
     text += line;

@@ -52,6 +52,9 @@ class LineInput {
     virtual ~LineInput() = default;
     // Shows `prompt` and reads one line (without its newline). False at end of input.
     virtual bool ReadLine(const std::string& prompt, std::string& line) = 0;
+    // Why the last ReadLine returned false when it was not the end of input (a line beyond the
+    // input bound): an error of the session, so the exit status is not 0. Empty otherwise.
+    virtual std::string Error() const { return {}; }
 };
 // libedit when `in` is a terminal (and libedit was found at build time), plain reading otherwise.
 std::unique_ptr<LineInput> MakeLineInput(std::FILE* in, std::FILE* promptOut);

@@ -33,8 +33,8 @@ double ExitAlong(const InsideFn& f, const double c[3], int axis, int sign) {
 }  // namespace
 
 RelaxationOutcome BoundByWorkingSetRelaxation(const std::vector<const InsideFn*>& fns,
-                                              const std::vector<Nappe>& nappes,
-                                              const Box3& region, Box3& work, BoundsStats* stats) {
+                                              const std::vector<Nappe>& nappes, const Box3& region,
+                                              Box3& work, BoundsStats* stats) {
     const std::size_t n = fns.size();
     std::vector<char> inSet(n, 0);
     std::vector<std::size_t> set;

@@ -54,6 +54,9 @@ class ScanlineEngine final : public Engine {
                       "face stacks carried along the row (seed 001 ch. 5), or exact per span"),
             O::Bool("check", "on", "verify the carried face stacks (off: trust them, to measure)"),
             O::Bool("verify", "off", "count spans whose stack head differs from exact evaluation"),
+            O::Int("max-literals", "256", 1, 1e9,
+                   "literals of one body above which its solid is drawn by raycast (the Resolver "
+                   "intersects every pair and triple of a body's half-spaces; overlap_guard.h)"),
             O::Int("max-overlap", "64", 0, 1e9,
                    "bodies overlapping one 8x8-pixel cell above which their solids are drawn by "
                    "raycast (face stacks cost ~k^3; overlap_guard.h)"),
@@ -138,15 +141,31 @@ class ScanlineEngine final : public Engine {
         RenderStats stats;
         const OverlapReport overlap =
             OverloadedSolids(units, width, height, static_cast<int>(options.Int("max-overlap")));
-        if (!overlap.solids.empty()) {
-            std::vector<char> drop(scene.solids.size(), 0);
-            for (int s : overlap.solids) {
-                drop[static_cast<std::size_t>(s)] = 1;
-                stats.undrawn.push_back(
-                    {s, fmt::format("bodies overlapping up to {} deep in one 8x8-pixel cell "
-                                    "(max-overlap={}: the face stacks cost ~depth^3)",
-                                    overlap.maxDepth, options.Int("max-overlap"))});
-            }
+        const std::size_t maxLiterals = static_cast<std::size_t>(options.Int("max-literals"));
+        std::vector<char> drop(scene.solids.size(), 0);
+        for (const Unit& u : units) {
+            std::size_t most = 0;
+            if (u.kind == Unit::Kind::kBody)
+                most = scene.bodies[static_cast<std::size_t>(u.body)].literals.size();
+            else
+                for (int b : u.bodies)
+                    most = std::max(most, scene.bodies[static_cast<std::size_t>(b)].literals.size());
+            if (most <= maxLiterals || drop[static_cast<std::size_t>(u.solid)]) continue;
+            drop[static_cast<std::size_t>(u.solid)] = 1;
+            stats.undrawn.push_back(
+                {u.solid, fmt::format("a body of {} literals (max-literals={}: the Resolver's "
+                                      "i-vertices cost ~literals^3)",
+                                      most, maxLiterals)});
+        }
+        for (int s : overlap.solids) {
+            if (drop[static_cast<std::size_t>(s)]) continue;
+            drop[static_cast<std::size_t>(s)] = 1;
+            stats.undrawn.push_back(
+                {s, fmt::format("bodies overlapping up to {} deep in one 8x8-pixel cell "
+                                "(max-overlap={}: the face stacks cost ~depth^3)",
+                                overlap.maxDepth, options.Int("max-overlap"))});
+        }
+        if (!stats.undrawn.empty()) {
             std::vector<Unit> kept;
             bodiesToResolve.clear();
             for (Unit& u : units) {
@@ -259,6 +278,7 @@ class ScanlineEngine final : public Engine {
         add("interpenetration_pixels", static_cast<double>(c.interpenetrationPixels));
         add("overlap_max_depth", static_cast<double>(overlap.maxDepth));
         add("overlap_solids_to_raycast", static_cast<double>(overlap.solids.size()));
+        add("solids_to_raycast", static_cast<double>(stats.undrawn.size()));
         if (settings.verify) {
             add("verify_spans", static_cast<double>(c.verifySpans));
             add("verify_mismatch_spans", static_cast<double>(c.verifyMismatchSpans));
