@@ -344,6 +344,10 @@ std::vector<BadInput> GuardAndScaleRows() {
          "--engine scanline --engine-opt max-overlap=deep", R"(error.*max-overlap)"},
         {"MaxLiteralsZero", {{"main.uq", sphere}}, "--engine scanline --engine-opt max-literals=0",
          R"(error.*max-literals)"},
+        {"BodyOf2000LiteralsPixelpowersStrict", {{"main.uq", body}}, "--engine pixelpowers --strict",
+         R"(error.*cannot draw the whole scene)"},
+        {"PixelpowersMaxLiteralsZero", {{"main.uq", sphere}},
+         "--engine pixelpowers --engine-opt max-literals=0", R"(error.*max-literals)"},
         // ---- OpenSCAD sizes are errors as in OpenSCAD; expressions and bad numbers positioned.
         {"ScadNegativeCylinderRadius", {{"m.scad", "cylinder(h=1, r=-1);\n"}}, "{dir}/m.scad",
          R"(m\.scad:1:1: error.*negative)"},
