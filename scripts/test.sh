@@ -18,4 +18,6 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" ctest --test-dir build-asan --output-on-failure -j "$JOBS"
 echo "== Reader fuzzing (libFuzzer, 60 s; tests/fuzz_reader/README.md)"
 bash tests/fuzz_reader/run.sh "${FUZZ_SECONDS:-60}"
+echo "== Importer and pipeline fuzzing (libFuzzer, 6 targets × ${FUZZ_IMPORTER_SECONDS:-60} s; tests/fuzz_importers/README.md)"
+bash tests/fuzz_importers/run.sh "${FUZZ_IMPORTER_SECONDS:-60}"
 echo "== all tests passed"

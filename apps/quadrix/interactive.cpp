@@ -58,8 +58,8 @@ class PlainLineInput : public LineInput {
             if (c == '\n') break;
             // One line is bounded like every input (io/bounded_read.h): `quadrix -i < /dev/zero`.
             if (line.size() >= kMaxInputBytes) {
-                std::fprintf(stderr, "quadrix: error: cannot read standard input: a line is "
-                                     "longer than %s\n", ByteSizeText(kMaxInputBytes).c_str());
+                error_ = "cannot read standard input: a line is longer than " +
+                         ByteSizeText(kMaxInputBytes);
                 return false;
             }
             line += static_cast<char>(c);
@@ -77,10 +77,13 @@ class PlainLineInput : public LineInput {
         return true;
     }
 
+    std::string Error() const override { return error_; }
+
   private:
     std::FILE* in_;
     std::FILE* out_;
     bool echo_;
+    std::string error_;
 };
 
 #ifdef QUADRIX_HAVE_LIBEDIT
@@ -530,7 +533,12 @@ void UqSession::Interactive() {
     BeginFeed();
     for (;;) {
         std::string line;
-        if (!input_->ReadLine(Prompt(), line)) break;
+        if (!input_->ReadLine(Prompt(), line)) {
+            // `quadrix -i < /dev/zero` once exited 0 (issue 23): a line past the input bound is
+            // an error of the session.
+            if (std::string e = input_->Error(); !e.empty()) diags_.Error({}, e, {}, "input");
+            break;
+        }
         if (Feed(line).quit) break;
     }
     EndFeed();

@@ -65,6 +65,9 @@ class LineInput {
     using Completer =
         std::function<std::vector<std::string>(const std::string& word, const std::string& before)>;
     virtual void SetCompleter(Completer) {}
+    // Why the last ReadLine returned false when it was not the end of input (a line beyond the
+    // input bound): an error of the session, so the exit status is not 0. Empty otherwise.
+    virtual std::string Error() const { return {}; }
 };
 // libedit when `in` is a terminal (and libedit was found at build time), plain reading otherwise.
 std::unique_ptr<LineInput> MakeLineInput(std::FILE* in, std::FILE* promptOut);

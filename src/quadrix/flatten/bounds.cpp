@@ -230,7 +230,9 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     RelaxationOutcome relaxation;
     Box3 region = work.Intersected(Box3{{-limit, -limit, -limit}, {limit, limit, limit}});
     if (!relaxed.empty() && !region.Empty()) {
-        relaxation = BoundByConvexRelaxation(relaxed, nappes, region, work, stats);
+        relaxation = relaxed.size() > kWorkingSetThreshold
+                         ? BoundByWorkingSetRelaxation(relaxed, nappes, region, work, stats)
+                         : BoundByConvexRelaxation(relaxed, nappes, region, work, stats);
         if (relaxation.empty) return Box3{};
     }
     bool hasNonConvex = hasOther;

@@ -32,6 +32,7 @@
 #include <cmath>
 
 #include "quadrix/flatten/bounds.h"
+#include "quadrix/flatten/coefficient_scale.h"
 #include "quadrix/flatten/hierarchy.h"
 #include "quadrix/flatten/view_setup.h"
 #include "quadrix/flatten/window_fit.h"
@@ -348,10 +349,13 @@ class FlattenerImpl {
         Transform dev =
             Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
         for (FlatHalfSpace& h : flat.halfSpaces) {
-            if (h.isPlane)
+            if (h.isPlane) {
                 h.plane = h.plane.Transformed(dev);
-            else
+                RescaleCoefficients(h.plane);
+            } else {
                 h.quadric = h.quadric.Transformed(dev);
+                RescaleCoefficients(h.quadric);
+            }
         }
         // A box maps exactly under a positive scale and a translation, up to rounding: pad by a
         // few ulps of the coordinates.

@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 
+#include "quadrix/flatten/coefficient_scale.h"
+
 namespace quadrix {
 
 namespace {
@@ -515,11 +517,18 @@ class Walker {
         FlatHalfSpace f;
         f.isPlane = hs.kind == scene::HalfSpace::Kind::kPlane;
         bool finite;
+        // Rescaled before and after the transform (coefficient_scale.h).
         if (f.isPlane) {
-            f.plane = hs.plane.Transformed(si.t);
+            Plane source = hs.plane;
+            RescaleCoefficients(source);
+            f.plane = source.Transformed(si.t);
+            RescaleCoefficients(f.plane);
             finite = f.plane.AllFinite();
         } else {
-            f.quadric = hs.quadric.Transformed(si.t);
+            Quadric source = hs.quadric;
+            RescaleCoefficients(source);
+            f.quadric = source.Transformed(si.t);
+            RescaleCoefficients(f.quadric);
             finite = f.quadric.AllFinite();
         }
         f.transparent = hs.transparent;

@@ -130,9 +130,28 @@ void ReadIncluded(ReaderState& state, Parser& includer, const std::string& path,
         includer.Error(at, why, kParser);
         return;
     }
+    if (++state.filesRead > ReaderState::kMaxFilesRead) {
+        includer.Error(at,
+                       fmt::format("more than {} files read by read statements (a read fan-out: "
+                                   "files that read other files many times); reading stopped",
+                                   ReaderState::kMaxFilesRead),
+                       kParser);
+        state.aborted = true;
+        return;
+    }
     std::string text, reason;
     if (!LoadFile(shown, text, reason)) {
         includer.Error(at, fmt::format("cannot read {}: {}", shown, reason), kParser);
+        return;
+    }
+    state.bytesRead += static_cast<long long>(text.size());
+    if (state.bytesRead > ReaderState::kMaxBytesRead) {
+        includer.Error(at,
+                       fmt::format("read statements have read more than {} MiB in all (reading "
+                                   "{}); reading stopped",
+                                   ReaderState::kMaxBytesRead >> 20, shown),
+                       kParser);
+        state.aborted = true;
         return;
     }
     Source source(shown, std::move(text));

@@ -86,6 +86,12 @@ public:
     // with a message: an endless generated input must not grow the scene until memory runs out.
     long long statementCount = 0;
     static constexpr long long kMaxStatements = 10'000'000;
+    // The `read` fan-out budget (issue 23): files read by read statements, and their bytes, over
+    // all inputs of this reader. Eight files that each read the next ten times would read 10⁸
+    // files; past either limit reading stops with a message at the read statement.
+    long long filesRead = 0, bytesRead = 0;
+    static constexpr long long kMaxFilesRead = 10'000;
+    static constexpr long long kMaxBytesRead = 1LL << 30;  // 1 GiB (each file: 256 MiB)
 
 private:
     ScopeIndex& CurrentIndex();

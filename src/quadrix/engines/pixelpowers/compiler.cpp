@@ -123,6 +123,21 @@ class Compiler {
                 stats_.undrawnSolids.push_back(static_cast<int>(s));
                 continue;
             }
+            std::size_t most = 0;
+            for (const csg::Product& p : nf.products) {
+                std::size_t n = 0;
+                for (const csg::Factor& f : p)
+                    if (ValidBody(f.primitive)) n += Body(f.primitive).literals.size();
+                most = std::max(most, n);
+            }
+            if (most > options_.maxLiterals) {
+                stats_.errors.push_back(who + " not drawn: a product of " + std::to_string(most) +
+                                        " literals passes max-literals = " +
+                                        std::to_string(options_.maxLiterals) +
+                                        " (paring costs ~literals^2 per product)");
+                stats_.undrawnSolids.push_back(static_cast<int>(s));
+                continue;
+            }
             const std::size_t cappedMark = stats_.stripsCapped;
             products_ = &nf.products;
             const std::size_t codeMark = program_.code.size(), blockMark = program_.blocks.size(),

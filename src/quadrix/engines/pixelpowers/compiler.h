@@ -39,6 +39,10 @@ struct CompileOptions {
     // Program size guard: a solid whose instructions would pass this total is not drawn (a normal
     // form below maxProducts can still hold millions of paring tests).
     std::size_t maxInstructions = 1000000;
+    // Literals of one product (its bodies' literals summed) above which the solid goes to
+    // raycast: the paring pass costs ~literals² per product (issue 23; 2,000 literals: 0.46 s,
+    // 10⁴: 11.5 s CPU at 64×64, while the program stays under maxInstructions).
+    std::size_t maxLiterals = 1024;
     // The paper's shading (seed 004 §III step 4): each patch broadcasts its approximate normal
     // (kNLoad ×3) instead of leaving the exact normal to scan-out. Docs: "Shading".
     bool paperShading = false;

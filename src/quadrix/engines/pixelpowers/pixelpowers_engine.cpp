@@ -53,6 +53,8 @@ const OptionSchema& PixelPowersSchema() {
                "normal-form explosion guard per solid (a solid past it goes to raycast)"),
         O::Int("max-instructions", "1000000", 1, 100000000,
                "program size guard per scene (a solid past it goes to raycast)"),
+        O::Int("max-literals", "1024", 1, 100000000,
+               "literals per product guard (paring ~literals^2; a solid past it goes to raycast)"),
         O::Int("max-strips", "64", 1, 4096, "approx: strips per sheet at most"),
         O::Bool("compare", "",
                 "also render with raycast and report agreement and depth error (default: on in "
@@ -67,6 +69,7 @@ Settings ReadSettings(const EngineOptions& o) {
     st.compile.tolerance = o.Number("tolerance");
     st.compile.maxProducts = static_cast<std::size_t>(o.Int("max-products"));
     st.compile.maxInstructions = static_cast<std::size_t>(o.Int("max-instructions"));
+    st.compile.maxLiterals = static_cast<std::size_t>(o.Int("max-literals"));
     st.compile.maxStrips = o.Int("max-strips");
     if (o.Given("depth-bits")) st.compile.depthBits = o.Int("depth-bits");
     const bool approx = st.compile.mode == DepthMode::kApprox;

@@ -52,39 +52,86 @@ bool CornerBounds(const SceneTables& tables, bool tileCull, const std::int32_t* 
     return bodyEmptyByQuadric;
 }
 
+// The pair tests below compare bounds two by two. For a body of more than kExactPairs bounds
+// (a body of 10⁵ planes: 10¹⁰ pairs per sub-tile) each bound is compared only with the
+// candidates most likely to decide it, the tightest near and far bound at each corner, making
+// the tests O(n) (issue 23 item 3; docs/performance.md "Complexity guards"). Both tests only
+// ever prove: a proof missed keeps a literal that cannot decide an endpoint in the rectangle,
+// or evaluates a body that is empty, so the pictures are the same bit for bit.
+constexpr std::size_t kExactPairs = 32;
+
+bool Beyond(const PlaneBound& nearB, const PlaneBound& farB) {
+    for (int k = 0; k < 4; ++k) {
+        const double m = 1e-9 * (std::fabs(nearB.r[k]) + std::fabs(farB.r[k])) + 1e-300;
+        if (!(nearB.r[k] - farB.r[k] > m)) return false;
+    }
+    return true;
+}
+
+// Whether a is tighter than b (same side) at all four corners, by the margin. Near bounds: a is
+// tighter where r_a > r_b; far bounds where r_a < r_b.
+bool Tighter(const PlaneBound& a, const PlaneBound& b) {
+    for (int k = 0; k < 4; ++k) {
+        const double m = 1e-9 * (std::fabs(a.r[k]) + std::fabs(b.r[k])) + 1e-300;
+        if (!(b.side < 0 ? a.r[k] - b.r[k] > m : b.r[k] - a.r[k] > m)) return false;
+    }
+    return true;
+}
+
+// Indices of the tightest near (side < 0, largest r) and far (side > 0, smallest r) bound at
+// each corner; −1 where there is none.
+struct Candidates {
+    std::ptrdiff_t nearAt[4] = {-1, -1, -1, -1}, farAt[4] = {-1, -1, -1, -1};
+};
+Candidates TightestAtCorners(const std::vector<PlaneBound>& bounds) {
+    Candidates c;
+    for (std::size_t i = 0; i < bounds.size(); ++i) {
+        const PlaneBound& b = bounds[i];
+        if (b.side == 0) continue;
+        std::ptrdiff_t* at = b.side < 0 ? c.nearAt : c.farAt;
+        for (int k = 0; k < 4; ++k) {
+            const std::ptrdiff_t j = at[k];
+            if (j < 0 || (b.side < 0 ? b.r[k] > bounds[static_cast<std::size_t>(j)].r[k]
+                                     : b.r[k] < bounds[static_cast<std::size_t>(j)].r[k]))
+                at[k] = static_cast<std::ptrdiff_t>(i);
+        }
+    }
+    return c;
+}
+
 // Whether some near bound lies beyond some far bound at all four corners (by the margin).
 bool NearBeyondFar(const std::vector<PlaneBound>& bounds) {
+    if (bounds.size() > kExactPairs) {
+        const Candidates c = TightestAtCorners(bounds);
+        for (std::ptrdiff_t i : c.nearAt)
+            for (std::ptrdiff_t j : c.farAt)
+                if (i >= 0 && j >= 0 &&
+                    Beyond(bounds[static_cast<std::size_t>(i)], bounds[static_cast<std::size_t>(j)]))
+                    return true;
+        return false;
+    }
     for (std::size_t i = 0; i < bounds.size(); ++i) {
         if (bounds[i].side >= 0) continue;
-        for (std::size_t j = 0; j < bounds.size(); ++j) {
-            if (bounds[j].side <= 0) continue;
-            bool all = true;
-            for (int k = 0; k < 4 && all; ++k) {
-                const double m =
-                    1e-9 * (std::fabs(bounds[i].r[k]) + std::fabs(bounds[j].r[k])) + 1e-300;
-                all = bounds[i].r[k] - bounds[j].r[k] > m;
-            }
-            if (all) return true;
-        }
+        for (std::size_t j = 0; j < bounds.size(); ++j)
+            if (bounds[j].side > 0 && Beyond(bounds[i], bounds[j])) return true;
     }
     return false;
 }
 
-// Whether bounds[i] is dominated by another bound of the same side at all four corners.
-bool Dominated(const std::vector<PlaneBound>& bounds, std::size_t i) {
+// Whether bounds[i] is dominated by another bound of the same side at all four corners (by
+// the candidates of `c` only when the body is large).
+bool Dominated(const std::vector<PlaneBound>& bounds, std::size_t i, const Candidates& c) {
     const PlaneBound& b = bounds[i];
     if (b.side == 0) return false;
-    for (std::size_t j = 0; j < bounds.size(); ++j) {
-        const PlaneBound& a = bounds[j];
-        if (j == i || a.side != b.side) continue;
-        bool all = true;
-        for (int k = 0; k < 4 && all; ++k) {
-            const double m = 1e-9 * (std::fabs(a.r[k]) + std::fabs(b.r[k])) + 1e-300;
-            // Near bounds: a is tighter where r_a > r_b; far bounds where r_a < r_b.
-            all = b.side < 0 ? a.r[k] - b.r[k] > m : b.r[k] - a.r[k] > m;
-        }
-        if (all) return true;
+    if (bounds.size() > kExactPairs) {
+        for (std::ptrdiff_t j : b.side < 0 ? c.nearAt : c.farAt)
+            if (j >= 0 && static_cast<std::size_t>(j) != i &&
+                Tighter(bounds[static_cast<std::size_t>(j)], b))
+                return true;
+        return false;
     }
+    for (std::size_t j = 0; j < bounds.size(); ++j)
+        if (j != i && bounds[j].side == b.side && Tighter(bounds[j], b)) return true;
     return false;
 }
 
@@ -146,8 +193,10 @@ inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, c
     // an empty set, and ∅ is an exact identity of every operator).
     const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds_));
     if (empty) return true;
+    const Candidates c =
+        bounds_.size() > kExactPairs ? TightestAtCorners(bounds_) : Candidates{};
     for (std::size_t i = 0; i < bounds_.size(); ++i)
-        if (!Dominated(bounds_, i)) out.push_back(bounds_[i].tag);
+        if (!Dominated(bounds_, i, c)) out.push_back(bounds_[i].tag);
     return false;
 }
 

@@ -1,5 +1,7 @@
 #include "quadrix/engines/scanline/scanline_engine.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/engines/scanline/overlap_guard.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/engines/scanline/resolver.h"
 
@@ -51,6 +54,12 @@ class ScanlineEngine final : public Engine {
                       "face stacks carried along the row (seed 001 ch. 5), or exact per span"),
             O::Bool("check", "on", "verify the carried face stacks (off: trust them, to measure)"),
             O::Bool("verify", "off", "count spans whose stack head differs from exact evaluation"),
+            O::Int("max-literals", "256", 1, 1e9,
+                   "literals of one body above which its solid is drawn by raycast (the Resolver "
+                   "intersects every pair and triple of a body's half-spaces; overlap_guard.h)"),
+            O::Int("max-overlap", "64", 0, 1e9,
+                   "bodies overlapping one 8x8-pixel cell above which their solids are drawn by "
+                   "raycast (face stacks cost ~k^3; overlap_guard.h)"),
         };
         return kSchema;
     }
@@ -127,6 +136,50 @@ class ScanlineEngine final : public Engine {
             }
         }
 
+        // The complexity guard (overlap_guard.h): solids in cells of too many overlapping
+        // bodies go to raycast through the render context.
+        RenderStats stats;
+        const OverlapReport overlap =
+            OverloadedSolids(units, width, height, static_cast<int>(options.Int("max-overlap")));
+        const std::size_t maxLiterals = static_cast<std::size_t>(options.Int("max-literals"));
+        std::vector<char> drop(scene.solids.size(), 0);
+        for (const Unit& u : units) {
+            std::size_t most = 0;
+            if (u.kind == Unit::Kind::kBody)
+                most = scene.bodies[static_cast<std::size_t>(u.body)].literals.size();
+            else
+                for (int b : u.bodies)
+                    most = std::max(most, scene.bodies[static_cast<std::size_t>(b)].literals.size());
+            if (most <= maxLiterals || drop[static_cast<std::size_t>(u.solid)]) continue;
+            drop[static_cast<std::size_t>(u.solid)] = 1;
+            stats.undrawn.push_back(
+                {u.solid, fmt::format("a body of {} literals (max-literals={}: the Resolver's "
+                                      "i-vertices cost ~literals^3)",
+                                      most, maxLiterals)});
+        }
+        for (int s : overlap.solids) {
+            if (drop[static_cast<std::size_t>(s)]) continue;
+            drop[static_cast<std::size_t>(s)] = 1;
+            stats.undrawn.push_back(
+                {s, fmt::format("bodies overlapping up to {} deep in one 8x8-pixel cell "
+                                "(max-overlap={}: the face stacks cost ~depth^3)",
+                                overlap.maxDepth, options.Int("max-overlap"))});
+        }
+        if (!stats.undrawn.empty()) {
+            std::vector<Unit> kept;
+            bodiesToResolve.clear();
+            for (Unit& u : units) {
+                if (drop[static_cast<std::size_t>(u.solid)]) continue;
+                if (u.kind == Unit::Kind::kBody)
+                    bodiesToResolve.push_back(u.body);
+                else
+                    bodiesToResolve.insert(bodiesToResolve.end(), u.bodies.begin(),
+                                           u.bodies.end());
+                kept.push_back(std::move(u));
+            }
+            units = std::move(kept);
+        }
+
         // Resolver.
         ResolverCounters rc;
         std::vector<ShowFace> faces;
@@ -157,7 +210,6 @@ class ScanlineEngine final : public Engine {
         RenderScanlines(scene, edges, faces, units, pixelBody, stackBody, settings, frame, c);
         const auto t2 = Clock::now();
 
-        RenderStats stats;
         stats.seconds = Seconds(t0, t2);
         auto add = [&](const char* name, double v) { stats.counters.emplace_back(name, v); };
         std::uint64_t perPixelBodies = 0;
@@ -224,6 +276,9 @@ class ScanlineEngine final : public Engine {
         add("face_stack_vertex_fallbacks", static_cast<double>(c.stackVertexFallbacks));
         add("face_stack_rebuilds", static_cast<double>(c.stackRebuilds));
         add("interpenetration_pixels", static_cast<double>(c.interpenetrationPixels));
+        add("overlap_max_depth", static_cast<double>(overlap.maxDepth));
+        add("overlap_solids_to_raycast", static_cast<double>(overlap.solids.size()));
+        add("solids_to_raycast", static_cast<double>(stats.undrawn.size()));
         if (settings.verify) {
             add("verify_spans", static_cast<double>(c.verifySpans));
             add("verify_mismatch_spans", static_cast<double>(c.verifyMismatchSpans));
