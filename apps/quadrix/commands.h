@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/pipeline/output.h"
+#include "quadrix/pipeline/pipeline.h"
+#include "quadrix/shade/shader.h"
+
 namespace quadrix::cli {
 
 struct RenderArgs {
@@ -32,6 +36,11 @@ struct RenderArgs {
     // Limits for servers and batch runs (docs/output.md).
     std::string maxMemory;  // e.g. "2G"; empty = the machine's budget only
     double timeLimit = 0;   // seconds of wall-clock time; 0 = none
+    // Animation and view lists (docs/batch.md; src/quadrix/batch/).
+    int frames = 0;          // --frames N
+    std::string frameRange;  // --frame-range a:b
+    int turntable = 0;       // --turntable N
+    std::string views;       // --views FILE
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 int RunRender(const RenderArgs& args);
@@ -100,6 +109,21 @@ struct DrawArgs {
 };
 void AddDrawCommand(CLI::App& app, DrawArgs& args);
 int RunDraw(const DrawArgs& args);
+
+// `quadrix batch JOBFILE` (batch_command.cpp) and render's animation options
+// (animation_options.cpp; src/quadrix/batch/, docs/batch.md).
+struct BatchArgs {
+    std::string jobFile;
+    int threads = 0;
+    bool restart = false;  // render every frame, even those whose outputs exist
+    bool quiet = false;
+    bool json = false;  // the summary as JSON on standard output
+};
+void AddBatchCommand(CLI::App& app, BatchArgs& args);
+int RunBatch(const BatchArgs& args);
+void AddAnimationOptions(CLI::App& cmd, RenderArgs& args);
+int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
+                 const ShadeOptions& shade, const OutputRequest& outputs);
 
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);

@@ -93,6 +93,7 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Memory budget, e.g. 2G or 512M: larger images are refused (docs/output.md)");
     cmd->add_option("--time-limit", args.timeLimit,
                     "Give up after this many seconds (exit 124, no output left)");
+    AddAnimationOptions(*cmd, args);
 }
 
 namespace {
@@ -186,14 +187,26 @@ int RunRender(const RenderArgs& args) {
     }
 
     // The outputs against the inputs named on the command line (io/output_file.h); files read
-    // later (`read`) are refused when the output is opened.
+    // later (`read`) are refused when the output is opened. (An animation's are frame patterns,
+    // checked frame by frame when each is opened.)
+    const bool animated = args.frames > 0 || args.turntable > 0 || !args.views.empty();
     std::vector<std::string> inputs = args.scenes;
     if (!args.rtView.empty()) inputs.push_back(args.rtView);
-    if (auto e = CheckOutputPaths({args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
-                                  inputs);
+    if (auto e = animated ? std::string()
+                          : CheckOutputPaths(
+                                {args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
+                                inputs);
         !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
+    }
+
+    if (args.frames > 0 || args.turntable > 0 || !args.views.empty()) {
+        ShadeOptions so;
+        so.fast = args.fast;
+        so.shadows = args.shadows;
+        if (args.phong) so.model = ShadingModel::kPhong;
+        return RunAnimation(args, po, engine, so, outputs);
     }
 
     RenderContext ctx(args.threads);

@@ -92,14 +92,18 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     inputs_ = import::InputReport{};
     flatValid_ = false;
     if (request.paths.empty()) {
-        lang::Reader reader(scene_, diags);
+        lang::ReadOptions ro;
+        ro.clock = request.clock;
+        lang::Reader reader(scene_, diags, ro);
         reader.ReadText(request.text, request.textName);
+        inputs_.usesClock = reader.UsesClock();
     } else {
         // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
         import::InputOptions io;
         io.import.topObjects = request.topObjects;
         io.import.strict = request.strict;
         io.import.allowMissing = request.allowMissing;
+        io.clock = request.clock;
         import::ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
     }
     readSeconds = SecondsSince(t0);

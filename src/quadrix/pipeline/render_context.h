@@ -53,6 +53,9 @@ struct InputRequest {
     // Primitives that cannot be drawn are an error unless allowMissing (--allow-missing): then
     // they are left out with a warning and counted in Inputs() (ImportReport::skipped).
     bool allowMissing = false;
+    // The value of `clock` in the scene's numbers (an animation frame's time, 0 → 1;
+    // docs/language.md §3.14). Inputs().usesClock tells whether the scene depends on it.
+    double clock = 0;
 };
 
 // Stage 2: the view of one picture.
