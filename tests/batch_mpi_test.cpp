@@ -122,5 +122,27 @@ TEST(BatchMpi, AnimationAndBatchAreByteIdenticalToOneProcess) {
     }
 }
 
+TEST(BatchMpi, SortLastCompositeIsByteIdenticalToOneProcess) {
+    if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
+    TempDir dir;
+    // Five solids overlapping on screen and in depth, so that the composite decides pixels.
+    std::ostringstream scene;
+    for (int k = 0; k < 5; ++k)
+        scene << "solid sphere s" << k << " =at " << (k - 2) * 0.7 << " " << (k % 2) * 0.4 << " "
+              << k * 0.3 << " =r .8 =c " << 0.2 * k << " .5 " << 1 - 0.2 * k << ";\n";
+    scene << "view v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
+    const std::string path = dir.Write("spheres.uq", scene.str());
+    const std::string args = " render '" + path + "' --size 64x48 --threads 1 --phong -o ";
+    auto a = RunShell(QuadrixBinary() + args + "'" + dir.File("one.png") + "' --dump-frame '" +
+                      dir.File("one.qxf") + "'");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    auto b = RunShell(Mpirun() + QuadrixBinary() + args + "'" + dir.File("many.png") +
+                      "' --dump-frame '" + dir.File("many.qxf") + "' --sort-last");
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    ASSERT_TRUE(FileExists(dir.File("many.png"))) << b.err;
+    EXPECT_EQ(Bytes(dir.File("one.png")), Bytes(dir.File("many.png")));
+    EXPECT_EQ(Bytes(dir.File("one.qxf")), Bytes(dir.File("many.qxf")));  // depth, normals, ids
+}
+
 }  // namespace
 }  // namespace quadrix::testing

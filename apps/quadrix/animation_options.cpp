@@ -3,12 +3,15 @@
 // renders the frames; `quadrix render` without them is unchanged.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.h"
 #include "quadrix/batch/job_file.h"
 #include "quadrix/batch/run.h"
+#include "quadrix/batch/sort_last.h"
 #include "quadrix/batch/view_list.h"
+#include "quadrix/io/bounded_read.h"
 
 namespace quadrix::cli {
 
@@ -23,9 +26,19 @@ void AddAnimationOptions(CLI::App& cmd, RenderArgs& args) {
                    "N frames orbiting the scene's centre once (start azimuth --az, elevation "
                    "--el, default 35 and 25 degrees)")
         ->check(CLI::Range(1, 10'000'000));
+    cmd.add_flag("--sort-last", args.sortLast,
+                 "Under mpirun: every rank draws a share of the solids, rank 0 composes them by "
+                 "depth and writes the picture (docs/batch.md)");
     cmd.add_option("--views", args.views,
                    "One frame per view of FILE: UniQuadrix view statements, or an rt view script "
                    "(several views between `start N;` and `end;`)");
+}
+
+bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
+                       Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer) {
+    writer = !args.sortLast || batch::MpiRank() == 0;
+    if (!args.sortLast) return ctx.Render(engine, frame, report, diags);
+    return batch::RenderSortLast(ctx, engine, frame, report, diags);
 }
 
 int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
@@ -39,6 +52,21 @@ int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const Engine
     job.shade = shade;
     job.output = outputs;
     job.frames = args.frames;
+    // Standard input can be read once: its text is kept and read again from memory per frame.
+    if (std::count(job.input.paths.begin(), job.input.paths.end(), "-") > 0) {
+        if (job.input.paths.size() != 1) {
+            std::fprintf(stderr,
+                         "quadrix: error: an animation reads standard input ('-') only "
+                         "as its one input\n");
+            return 2;
+        }
+        if (auto why = ReadBoundedFile("-", job.input.text); !why.empty()) {
+            std::fprintf(stderr, "quadrix: error: cannot read standard input: %s\n", why.c_str());
+            return 1;
+        }
+        job.input.textName = "<stdin>";
+        job.input.paths.clear();
+    }
     if (args.turntable > 0) {
         if (args.frames > 0 && args.frames != args.turntable) {
             std::fprintf(stderr,
@@ -75,6 +103,10 @@ int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const Engine
             std::fprintf(stderr, "quadrix: error: --%s\n", e.c_str());
             return 2;
         }
+    }
+    if (args.sortLast) {
+        std::fprintf(stderr, "quadrix: error: --sort-last renders one picture, not frames\n");
+        return 2;
     }
     if (auto e = batch::CheckJob(job); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());

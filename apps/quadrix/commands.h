@@ -41,6 +41,7 @@ struct RenderArgs {
     std::string frameRange;  // --frame-range a:b
     int turntable = 0;       // --turntable N
     std::string views;       // --views FILE
+    bool sortLast = false;   // --sort-last: solids shared among MPI ranks (batch/sort_last.h)
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 int RunRender(const RenderArgs& args);
@@ -122,6 +123,10 @@ struct BatchArgs {
 void AddBatchCommand(CLI::App& app, BatchArgs& args);
 int RunBatch(const BatchArgs& args);
 void AddAnimationOptions(CLI::App& cmd, RenderArgs& args);
+// Stage 3 of `render` with --sort-last (the solids shared among MPI ranks); sets `writer` false
+// on the ranks that do not write the picture.
+bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
+                       Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer);
 int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
                  const ShadeOptions& shade, const OutputRequest& outputs);
 

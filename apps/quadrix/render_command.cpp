@@ -212,8 +212,9 @@ int RunRender(const RenderArgs& args) {
     RenderContext ctx(args.threads);
     Frame frame;
     RenderReport report;
+    bool writer = true;  // false on the MPI ranks of --sort-last other than rank 0
     bool ok = ctx.Read(po.Input(), diags) && ctx.Flatten(po.View(), diags) &&
-              ctx.Render(engine, frame, report, diags);
+              RenderMaybeShared(args, ctx, engine, frame, report, diags, writer);
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; no image written\n", diags.ErrorCount(),
@@ -223,6 +224,7 @@ int RunRender(const RenderArgs& args) {
     for (const std::string& w : report.stats.warnings)
         std::fprintf(stderr, "quadrix: warning: engine %s: %s\n", args.engine.c_str(), w.c_str());
     for (const std::string& n : report.notes) std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
+    if (!writer) return 0;
 
     auto t0 = std::chrono::steady_clock::now();
     std::optional<Image> image;

@@ -79,6 +79,11 @@ struct EngineRequest {
     std::map<std::string, std::string> options;  // --engine-opt KEY=VALUE
     // Refuse (an error) rather than compose what the engine cannot draw.
     bool strict = false;
+    // Sort-last distributed rendering (batch/sort_last.h): when set, only these solids of the
+    // flat scene are drawn, and its freeform surfaces only with shareFreeforms. Frame ids stay
+    // those of the whole flat scene, so the Frames of several shares compose by ComposeMin.
+    std::optional<std::vector<int>> share;
+    bool shareFreeforms = true;
 };
 
 // How the picture was made: the engine's own statistics and what composition added.
