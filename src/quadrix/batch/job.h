@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/scene/scene.h"

@@ -9,7 +9,7 @@
 #include "quadrix/batch/view_list.h"
 #include "quadrix/engines/options.h"
 #include "quadrix/frame/image_limits.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
 #include "quadrix/io/bounded_read.h"
 
 namespace quadrix::batch {

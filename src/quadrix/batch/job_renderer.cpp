@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
 
 namespace quadrix::batch {
 
