@@ -14,9 +14,9 @@ ReadOptions At(double clock) {
     return o;
 }
 
-// The plane's D coefficient after reading `plane p <0 1 0 EXPR>;` at `clock`.
+// The plane's D coefficient after reading `plane pl <0 1 0 EXPR>;` at `clock`.
 double PlaneD(const std::string& expr, double clock) {
-    auto r = Parse("plane p <0 1 0 " + expr + ">;", At(clock));
+    auto r = Parse("plane pl <0 1 0 " + expr + ">;", At(clock));
     EXPECT_TRUE(r.ok) << expr << "\n" << r.All();
     if (r.scene.top.halfSpaces.empty()) return NAN;
     return r.scene.top.halfSpaces[0].plane.d;
@@ -41,7 +41,7 @@ TEST(NumberExpression, ArithmeticWithPrecedenceAndSigns) {
 }
 
 TEST(NumberExpression, NumbersOutsideParenthesesStayAList) {
-    auto r = Parse("plane p <1 -2 +3 -4>;");
+    auto r = Parse("plane pl <1 -2 +3 -4>;");
     ASSERT_TRUE(r.ok) << r.All();
     const auto& pl = r.scene.top.halfSpaces[0].plane;
     EXPECT_EQ(pl.a, 1);
@@ -51,8 +51,8 @@ TEST(NumberExpression, NumbersOutsideParenthesesStayAList) {
 }
 
 TEST(NumberExpression, ReaderTellsWhetherTheClockWasUsed) {
-    for (auto [text, uses] : {std::pair{"plane p <0 1 0 1>;", false},
-                              std::pair{"plane p <0 1 0 (clock * 2)>;", true}}) {
+    for (auto [text, uses] : {std::pair{"plane pl <0 1 0 1>;", false},
+                              std::pair{"plane pl <0 1 0 (clock * 2)>;", true}}) {
         scene::Scene s;
         Diagnostics d;
         Reader reader(s, d);
@@ -63,8 +63,8 @@ TEST(NumberExpression, ReaderTellsWhetherTheClockWasUsed) {
 
 TEST(NumberExpression, ClockInTransformsSolidsAndViews) {
     const std::string text =
-        "definition d; quadric s <1 1 1 0 0 0 0 0 0 -1>; body b <s>; enddef;\n"
-        "instance i (d =tx (2 * clock) =ry (90 * clock));\n"
+        "definition dd; quadric sq <1 1 1 0 0 0 0 0 0 -1>; body bb <sq>; enddef;\n"
+        "instance ii (dd =tx (2 * clock) =ry (90 * clock));\n"
         "solid sphere ball =at clock 0 0 =r (1 + clock);\n"
         "view v vrp 0 0 0 dop (clock - 1) 0 -1;\n";
     auto r = Parse(text, At(1));
@@ -84,11 +84,11 @@ TEST(NumberExpression, ErrorsNameTheOperatorAndTheNumber) {
         const char* text;
         const char* expect;
     };
-    for (const Case& c : {Case{"plane p <0 1 0 (1 / (clock))>;", "division by zero"},
-                          Case{"plane p <0 1 0 (1 + )>;", "expected a number, 'clock' or '('"},
-                          Case{"plane p <0 1 0 (1 + 2>;", "expected ')'"},
-                          Case{"plane p <0 1 0 (1e300 * 1e300)>;", "not a finite number"},
-                          Case{"plane p <0 1 0 cl0ck>;", "expected"}}) {
+    for (const Case& c : {Case{"plane pl <0 1 0 (1 / (clock))>;", "division by zero"},
+                          Case{"plane pl <0 1 0 (1 + )>;", "expected a number, 'clock' or '('"},
+                          Case{"plane pl <0 1 0 (1 + 2>;", "expected ')'"},
+                          Case{"plane pl <0 1 0 (1e300 * 1e300)>;", "not a finite number"},
+                          Case{"plane pl <0 1 0 cl0ck>;", "expected"}}) {
         auto r = Parse(c.text);
         EXPECT_FALSE(r.ok) << c.text;
         ASSERT_FALSE(r.Errors().empty()) << c.text;
@@ -100,7 +100,7 @@ TEST(NumberExpression, ErrorsNameTheOperatorAndTheNumber) {
 
 TEST(NumberExpression, DeepNestingIsAnErrorNotACrash) {
     const std::string deep = std::string(5000, '(') + "1" + std::string(5000, ')');
-    auto r = Parse("plane p <0 1 0 " + deep + ">;");
+    auto r = Parse("plane pl <0 1 0 " + deep + ">;");
     EXPECT_FALSE(r.ok);
     ASSERT_FALSE(r.Errors().empty());
     EXPECT_NE(r.Errors()[0]->message.find("nested"), std::string::npos) << r.All();
