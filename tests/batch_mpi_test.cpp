@@ -22,7 +22,7 @@ std::string Bytes(const std::string& path) {
 }
 
 constexpr const char* kMoving =
-    "quadric ball <1 1 1 (-2 * clock) 0 0 0 0 0 (clock * clock - 1)>;\n"
+    "quadric ball <1 1 1 0 0 0 (-1 * clock) 0 0 (clock * clock - 1)>;\n"
     "body ballb <ball> =c .8 .3 .2;\nview v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
 
 std::string Mpirun() {

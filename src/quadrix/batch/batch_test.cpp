@@ -160,7 +160,7 @@ constexpr const char* kStill =
     "quadric ball <1 1 1 0 0 0 0 0 0 -1>; body ballb <ball> =c .8 .3 .2;\n"
     "plane floor <0 1 0 1.2>; quadric big <1 1 1 0 0 0 0 0 0 -9>; body floorb <floor big>;\n";
 constexpr const char* kMoving =
-    "quadric ball <1 1 1 (-2 * clock) 0 0 0 0 0 (clock * clock - 1)>;\n"
+    "quadric ball <1 1 1 0 0 0 (-1 * clock) 0 0 (clock * clock - 1)>;\n"
     "body ballb <ball> =c .8 .3 .2;\nview v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
 
 Job MakeJob(const std::string& scene, const std::string& out) {
