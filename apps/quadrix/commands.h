@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/pipeline/output.h"
+#include "quadrix/pipeline/pipeline.h"
+#include "quadrix/shade/shader.h"
+
 namespace quadrix::cli {
 
 struct RenderArgs {
@@ -44,6 +48,12 @@ struct RenderArgs {
     // Limits for servers and batch runs (docs/output.md).
     std::string maxMemory;  // e.g. "2G"; empty = the machine's budget only
     double timeLimit = 0;   // seconds of wall-clock time; 0 = none
+    // Animation and view lists (docs/batch.md; src/quadrix/batch/).
+    int frames = 0;          // --frames N
+    std::string frameRange;  // --frame-range a:b
+    int turntable = 0;       // --turntable N
+    std::string views;       // --views FILE
+    bool sortLast = false;   // --sort-last: solids shared among MPI ranks (batch/sort_last.h)
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
 // --aa's default: samples per edge pixel (docs/shading.md, measured on the machined part).
@@ -129,6 +139,24 @@ struct ManArgs {
 };
 void AddManCommand(CLI::App& app, ManArgs& args);
 int RunMan(const CLI::App& app, const ManArgs& args);
+// `quadrix batch JOBFILE` (batch_command.cpp) and render's animation options
+// (animation_options.cpp; src/quadrix/batch/, docs/batch.md).
+struct BatchArgs {
+    std::string jobFile;
+    int threads = 0;
+    bool restart = false;  // render every frame, even those whose outputs exist
+    bool quiet = false;
+    bool json = false;  // the summary as JSON on standard output
+};
+void AddBatchCommand(CLI::App& app, BatchArgs& args);
+int RunBatch(const BatchArgs& args);
+void AddAnimationOptions(CLI::App& cmd, RenderArgs& args);
+// Stage 3 of `render` with --sort-last (the solids shared among MPI ranks); sets `writer` false
+// on the ranks that do not write the picture.
+bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
+                       Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer);
+int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
+                 const ShadeOptions& shade, const OutputRequest& outputs);
 
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);

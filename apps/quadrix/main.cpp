@@ -119,6 +119,8 @@ int Run(int argc, char** argv) {
         "usage error (unknown subcommand, option, engine or bad option value); see docs/cli.md.");
     quadrix::cli::ManArgs manArgs;
     quadrix::cli::AddManCommand(app, manArgs);
+    quadrix::cli::BatchArgs batchArgs;
+    quadrix::cli::AddBatchCommand(app, batchArgs);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     if (argc >= 2 && argv[1][0] != '-') {
@@ -147,6 +149,7 @@ int Run(int argc, char** argv) {
     if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
     if (app.got_subcommand("help")) return RunHelp(app, helpTopic);
     if (app.got_subcommand("man")) return quadrix::cli::RunMan(app, manArgs);
+    if (app.got_subcommand("batch")) return quadrix::cli::RunBatch(batchArgs);
     return 2;
 }
 

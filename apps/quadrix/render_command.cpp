@@ -122,6 +122,7 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Memory budget, e.g. 2G or 512M: larger images are refused (docs/output.md)");
     cmd->add_option("--time-limit", args.timeLimit,
                     "Give up after this many seconds (exit 124, no output left)");
+    AddAnimationOptions(*cmd, args);
 }
 
 std::string ParseAaSamples(const std::string& text, int& samples) {
@@ -286,11 +287,15 @@ int RunRender(const RenderArgs& args) {
     }
 
     // The outputs against the inputs named on the command line (io/output_file.h); files read
-    // later (`read`) are refused when the output is opened.
+    // later (`read`) are refused when the output is opened. (An animation's are frame patterns,
+    // checked frame by frame when each is opened.)
+    const bool animated = args.frames > 0 || args.turntable > 0 || !args.views.empty();
     std::vector<std::string> inputs = args.scenes;
     if (!args.rtView.empty()) inputs.push_back(args.rtView);
-    if (auto e = CheckOutputPaths({args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
-                                  inputs);
+    if (auto e = animated ? std::string()
+                          : CheckOutputPaths(
+                                {args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
+                                inputs);
         !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
@@ -306,14 +311,34 @@ int RunRender(const RenderArgs& args) {
                              "--az/--el or an rt view\n");
         return 2;
     }
+    const bool animation = args.frames > 0 || args.turntable > 0 || !args.views.empty();
+    if (animation && camera.Any()) {
+        std::fprintf(stderr, "quadrix: error: the camera options cannot be combined with "
+                             "--frames, --turntable or --views (docs/batch.md)\n");
+        return 2;
+    }
+    if (animation) {
+        // Frames of an animation take the picture options as given (docs/batch.md): shadows and
+        // anti-aliasing when asked for, not the single picture's defaults.
+        ShadeOptions so;
+        so.fast = args.fast;
+        so.shadows = args.shadows;
+        so.aaSamples = args.aa == "default" ? 0 : aaSamples;
+        so.aaMitchell = args.aaFilter == "mitchell";
+        so.edges = args.edges;
+        if (args.phong) so.model = ShadingModel::kPhong;
+        return RunAnimation(args, po, engine, so, outputs);
+    }
 
     RenderContext ctx(args.threads);
     Frame frame;
     RenderReport report;
     ViewRequest view = po.View();
+    bool writer = true;  // false on the MPI ranks of --sort-last other than rank 0
     bool ok = ctx.Read(po.Input(), diags);
     if (ok && camera.Any()) ok = ApplyCamera(ctx, camera, view, diags);
-    ok = ok && ctx.Flatten(view, diags) && ctx.Render(engine, frame, report, diags);
+    ok = ok && ctx.Flatten(view, diags) &&
+         RenderMaybeShared(args, ctx, engine, frame, report, diags, writer);
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; no image written\n", diags.ErrorCount(),
@@ -323,6 +348,7 @@ int RunRender(const RenderArgs& args) {
     for (const std::string& w : report.stats.warnings)
         std::fprintf(stderr, "quadrix: warning: engine %s: %s\n", args.engine.c_str(), w.c_str());
     for (const std::string& n : report.notes) std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
+    if (!writer) return 0;
 
     auto t0 = std::chrono::steady_clock::now();
     std::optional<Image> image;

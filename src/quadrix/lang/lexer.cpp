@@ -36,6 +36,8 @@ bool StartsToken(int c) {
         case '|':
         case '&':
         case '-':
+        case '*':
+        case '/':
             return true;
         default:
             return false;
@@ -164,6 +166,10 @@ Token Lexer::Next() {
             return single(TokenKind::kPipe);
         case '&':
             return single(TokenKind::kAmp);
+        case '*':
+            return single(TokenKind::kStar);
+        case '/':
+            return single(TokenKind::kSlash);
         case '"':
             return LexString(start);
         case '=':
@@ -181,6 +187,7 @@ Token Lexer::Next() {
             ((c == '+' || c == '-') && (IsDigit(d) || (d == '.' && IsDigit(PeekChar(2)))));
         if (number) return LexNumber(start);
         if (c == '-') return single(TokenKind::kMinus);
+        if (c == '+') return single(TokenKind::kPlus);
     }
     if (IsIdStart(c)) return LexWord(start);
     return LexGarbage(start);

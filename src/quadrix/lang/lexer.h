@@ -10,6 +10,8 @@
 //    A number glued to a letter or another '.' (`1x`, `1.2.3`) is malformed.
 //  - Strings: "..." on one line, no escapes (they hold path names, §2.1.7).
 //  - Options: '=' followed at once by letters/digits: `=t`, `=0`, `=tx`, `=vxy`, `=c`.
+//  - Operators of number expressions (parser.h, NumberExpression): '*', '/', and '+' or '-' when
+//    not starting a number.
 //
 // Lexical errors go to Diagnostics (kind "syntax") and come back as a kError token. A run of
 // unexpected bytes (binary garbage) is one error. While the parser is skipping to the next ';'

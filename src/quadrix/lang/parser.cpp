@@ -55,6 +55,12 @@ bool Parser::Expected(std::string_view what) {
 std::optional<double> Parser::ExpectNumber(std::string_view what) {
     const Token& t = Peek();
     if (t.kind == TokenKind::kNumber) return Take().number;
+    // `clock` and parenthesised expressions (number_expression.cpp).
+    if (t.kind == TokenKind::kId && t.text == "clock") {
+        Take();
+        return ClockValue();
+    }
+    if (t.kind == TokenKind::kLParen) return Parenthesised(what, 0);
     if (t.kind == TokenKind::kId) {
         std::string lower = t.text;
         std::transform(lower.begin(), lower.end(), lower.begin(),

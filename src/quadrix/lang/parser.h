@@ -73,8 +73,11 @@ public:
     bool Expected(std::string_view what);
 
     // --- shared grammar pieces --------------------------------------------------------------
-    // A number; `what` names it in the error message ("coefficient B of the plane").
+    // A number; `what` names it in the error message ("coefficient B of the plane"). Also
+    // `clock` or a parenthesised expression (number_expression.cpp, docs/language.md §3.14).
     std::optional<double> ExpectNumber(std::string_view what);
+    // True when the next token starts a number (a NUMBER, `clock` or '(').
+    bool PeekIsNumber();
     // The ';' that ends a statement; `after` completes "expected ';' after ...". When it is
     // missing but a statement keyword follows, the error is reported and true is returned: the
     // statement is kept and reading resumes at that keyword.
@@ -105,6 +108,12 @@ public:
                          scene::Finish& finish);
 
 private:
+    // Number expressions (number_expression.cpp).
+    std::optional<double> ClockValue();
+    std::optional<double> Parenthesised(std::string_view what, int depth);
+    std::optional<double> Sum(std::string_view what, int depth);
+    std::optional<double> Product(std::string_view what, int depth);
+    std::optional<double> Factor(std::string_view what, int depth);
     std::optional<scene::Color> ParseColorName(const Token& option);
     bool RunStatement();
     void SkipToSemicolon();

@@ -28,6 +28,8 @@ bool Reader::ReadText(std::string_view text, const std::string& name) {
     return impl_->state.diags.ErrorCount() == before;
 }
 
+bool Reader::UsesClock() const { return impl_->state.usesClock; }
+
 bool ReadSceneFiles(const std::vector<std::string>& paths, scene::Scene& scene, Diagnostics& diags,
                     ReadOptions options) {
     Reader reader(scene, diags, options);

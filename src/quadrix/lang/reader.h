@@ -47,6 +47,8 @@ public:
 struct ReadOptions {
     int maxIncludeDepth = 16;  // seed 001 §2.1.7: reads nest to depth 16
     CommandHandler* commands = nullptr;
+    // The value of `clock` in numbers (an animation's frame time, docs/language.md §3.14).
+    double clock = 0;
 };
 
 class Reader {
@@ -58,6 +60,9 @@ public:
     bool ReadFile(const std::string& path);
     // Reads text; `name` is used in diagnostics and to resolve relative `read` paths.
     bool ReadText(std::string_view text, const std::string& name);
+    // Whether some number read so far was written with `clock` (docs/language.md §3.14): the
+    // scene then depends on ReadOptions::clock, and an animation reads it again per frame.
+    bool UsesClock() const;
 
 private:
     struct Impl;

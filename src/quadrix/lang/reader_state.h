@@ -82,6 +82,8 @@ public:
     std::vector<IncludeFrame> includeStack;
     // Set when reading must stop everywhere (too many errors).
     bool aborted = false;
+    // Some number was written with `clock` (number_expression.cpp): the scene depends on it.
+    bool usesClock = false;
     // Statements read by this reader, over all its inputs. Beyond kMaxStatements reading stops
     // with a message: an endless generated input must not grow the scene until memory runs out.
     long long statementCount = 0;

@@ -53,7 +53,10 @@ bool ParseLightOptions(Parser& p, LightValues& v) {
             v.cone = p.ExpectNumber("the cone half-angle in degrees after =cone");
             if (!v.cone) return false;
             v.falloff.reset();
-            if (p.PeekIs(TokenKind::kNumber)) v.falloff = p.Take().number;
+            if (p.PeekIsNumber()) {
+                v.falloff = p.ExpectNumber("the spot light's falloff exponent");
+                if (!v.falloff) return false;
+            }
         } else if (option.text == "c") {
             if (v.color) p.Warning(option.loc, "color given twice; the last one is used");
             v.color = p.ParseColor(option);
@@ -71,11 +74,11 @@ bool ParseLightOptions(Parser& p, LightValues& v) {
 
 // intensity [x y z], or nothing at all when `optional` (redef). False on a syntax error.
 bool ParseLightValues(Parser& p, LightValues& v, bool optional) {
-    if (optional && !p.PeekIs(TokenKind::kNumber)) return ParseLightOptions(p, v);
+    if (optional && !p.PeekIsNumber()) return ParseLightOptions(p, v);
     v.intensityLoc = p.Peek().loc;
     v.intensity = p.ExpectNumber("the light's intensity");
     if (!v.intensity) return false;
-    if (!p.PeekIs(TokenKind::kNumber)) return ParseLightOptions(p, v);
+    if (!p.PeekIsNumber()) return ParseLightOptions(p, v);
     v.directionLoc = p.Peek().loc;
     Vec3 d;
     static constexpr const char* kAxes[3] = {"x", "y", "z"};

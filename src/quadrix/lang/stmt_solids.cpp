@@ -389,7 +389,11 @@ bool ParseOptions(Parser& p, const Kind& kind, SolidContext& ctx, Flags& flags,
         }
         Param param;
         param.loc = option.loc;
-        while (p.PeekIs(TokenKind::kNumber)) param.values.push_back(p.Take().number);
+        while (p.PeekIsNumber()) {
+            auto v = p.ExpectNumber(fmt::format("a value of {}", Describe(option)));
+            if (!v) return false;
+            param.values.push_back(*v);
+        }
         const std::size_t n = param.values.size();
         if (n > 3 || !(spec->counts & (1u << n))) {
             p.Error(option.loc,

@@ -24,6 +24,9 @@ enum class TokenKind {
     kPipe,       // |  CSG union
     kAmp,        // &  CSG intersection
     kMinus,      // -  CSG difference (a '-' not starting a number); also `read -;`
+    kPlus,       // +  (a '+' not starting a number) in a clock expression
+    kStar,       // *  in a clock expression
+    kSlash,      // /  in a clock expression
     kError,      // malformed input; the lexer has already reported it
 };
 

@@ -55,7 +55,11 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
                      scene::Scene& scene, Diagnostics& diags, InputReport& report) {
     std::unique_ptr<lang::Reader> uq;  // one reader for every .uq file, as before importers
     auto uqReader = [&]() -> lang::Reader& {
-        if (!uq) uq = std::make_unique<lang::Reader>(scene, diags);
+        if (!uq) {
+            lang::ReadOptions ro;
+            ro.clock = options.clock;
+            uq = std::make_unique<lang::Reader>(scene, diags, ro);
+        }
         return *uq;
     };
     for (const std::string& path : paths) {
@@ -131,6 +135,7 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
                                                                : std::string("the imported files")),
                         {}, "command line");
     }
+    report.usesClock = uq && uq->UsesClock();
     return !diags.HasErrors();
 }
 

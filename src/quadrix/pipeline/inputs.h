@@ -33,11 +33,15 @@ InputFormat DetectInputFormat(const std::string& path, std::string_view text);
 
 struct InputOptions {
     ImportOptions import;  // --top, --strict
+    double clock = 0;      // `clock` in UniQuadrix files (docs/language.md §3.14)
 };
 
 struct InputReport {
     std::vector<std::pair<std::string, ImportReport>> imports;  // (path, report) per imported file
     Box3 importedBounds;  // union of the imported models' bounds (Quadrix space)
+    // A UniQuadrix input wrote a number with `clock` (docs/language.md §3.14): the scene depends
+    // on InputOptions::clock.
+    bool usesClock = false;
 };
 
 // Reads every path ("-" = standard input, always UniQuadrix) into `scene`. Returns false when

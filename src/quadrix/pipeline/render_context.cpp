@@ -93,14 +93,18 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     inputs_ = InputReport{};
     flatValid_ = false;
     if (request.paths.empty()) {
-        lang::Reader reader(scene_, diags);
+        lang::ReadOptions ro;
+        ro.clock = request.clock;
+        lang::Reader reader(scene_, diags, ro);
         reader.ReadText(request.text, request.textName);
+        inputs_.usesClock = reader.UsesClock();
     } else {
         // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
         InputOptions io;
         io.import.topObjects = request.topObjects;
         io.import.strict = request.strict;
         io.import.allowMissing = request.allowMissing;
+        io.clock = request.clock;
         ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
     }
     readSeconds = SecondsSince(t0);
@@ -186,6 +190,28 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, Frame& fram
 bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderReport& report,
                            Diagnostics& diags) {
     QUADRIX_CHECK(flatValid_, "RenderContext::Render before a successful Flatten");
+    if (request.share) {
+        // A share of the solids: the flat scene without the others while the engine draws, then
+        // the Frame's solid ids mapped back to the whole scene's.
+        for (int s : *request.share)
+            if (s < 0 || static_cast<std::size_t>(s) >= flat_.solids.size()) {
+                diags.Error({}, fmt::format("solid {} of a share is not in the scene", s), {},
+                            "command line");
+                return false;
+            }
+        EngineRequest whole = request;
+        whole.share.reset();
+        FlatScene kept = std::move(flat_);
+        flat_ = SubsetOfSolids(kept, *request.share);
+        if (request.shareFreeforms) flat_.freeforms = kept.freeforms;
+        const bool ok = Render(whole, frame, report, diags);
+        flat_ = std::move(kept);
+        const std::vector<int>& ids = *request.share;
+        for (auto& s : frame.solid)
+            if (s != Frame::kNone) s = ids[static_cast<std::size_t>(s)];
+        for (UndrawnSolid& u : report.byReference) u.solid = ids[static_cast<std::size_t>(u.solid)];
+        return ok;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     report = RenderReport{};
     report.engine = request.engine;

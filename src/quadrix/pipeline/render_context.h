@@ -54,6 +54,9 @@ struct InputRequest {
     // Primitives that cannot be drawn are an error unless allowMissing (--allow-missing): then
     // they are left out with a warning and counted in Inputs() (ImportReport::skipped).
     bool allowMissing = false;
+    // The value of `clock` in the scene's numbers (an animation frame's time, 0 → 1;
+    // docs/language.md §3.14). Inputs().usesClock tells whether the scene depends on it.
+    double clock = 0;
 };
 
 // Stage 2: the view of one picture.
@@ -77,6 +80,11 @@ struct EngineRequest {
     std::map<std::string, std::string> options;  // --engine-opt KEY=VALUE
     // Refuse (an error) rather than compose what the engine cannot draw.
     bool strict = false;
+    // Sort-last distributed rendering (batch/sort_last.h): when set, only these solids of the
+    // flat scene are drawn, and its freeform surfaces only with shareFreeforms. Frame ids stay
+    // those of the whole flat scene, so the Frames of several shares compose by ComposeMin.
+    std::optional<std::vector<int>> share;
+    bool shareFreeforms = true;
 };
 
 // How the picture was made: the engine's own statistics and what composition added.

@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# The batch benchmark of issue 22 (docs/batch.md "Measured"): a turntable of the machined part,
+# FRAMES frames (default 360) at SIZE (default 1280x720), rendered
+#   1. by one process:               quadrix render --turntable FRAMES
+#   2. by MPI ranks:                 mpirun -np 2 quadrix render --turntable FRAMES
+#   3. by FRAMES separate processes: quadrix render --az A --el 25, one per frame
+#   4. by POV-Ray's animation loop of the exported scene (+KFI0 +KFF(FRAMES-1)), if povray exists
+# and writes the side-by-side table to bench/results/batch_<date>.md (and latest_batch.md). It
+# reports, it never fails on time.
+#
+#   bench/batch_turntable.sh [QUADRIX_BINARY] [FRAMES] [SIZE]
+# SAMPLE=N (environment) renders only the first N frames in runs 3 and 4 (they are slow): their
+# rates are per frame either way, and the table says how many frames were timed.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+Q=$(realpath "${1:-build/quadrix}")
+FRAMES=${2:-360}
+SIZE=${3:-1280x720}
+W=${SIZE%x*}
+H=${SIZE#*x}
+SCENE=$(realpath examples/machined_part.uq)
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+now() { date +%s.%N; }
+rate() { python3 -c "import sys; f,t=float(sys.argv[1]),float(sys.argv[2]); print(f'{t:.2f} s | {f/t:.1f} frames/s | {1e3*t/f:.1f} ms')" "$1" "$2"; }
+SAMPLE=${SAMPLE:-$FRAMES}
+rows=()
+
+mkdir -p "$OUT/one"
+t0=$(now)
+"$Q" render "$SCENE" -o "$OUT/one/f.png" --size "$SIZE" --turntable "$FRAMES" --el 25 \
+    2>"$OUT/one.log"
+t1=$(now)
+rows+=("| one process (\`render --turntable $FRAMES\`) | $(rate "$FRAMES" "$(echo "$t1 - $t0" | bc)") |")
+one_summary=$(tail -1 "$OUT/one.log")
+
+if command -v mpirun >/dev/null; then
+    mkdir -p "$OUT/mpi"
+    t0=$(now)
+    mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/mpi/f.png" --size "$SIZE" \
+        --turntable "$FRAMES" --el 25 2>"$OUT/mpi.log"
+    t1=$(now)
+    rows+=("| \`mpirun -np 2\`, 2 ranks | $(rate "$FRAMES" "$(echo "$t1 - $t0" | bc)") |")
+    mpi_summary=$(tail -1 "$OUT/mpi.log")
+    same=0
+    for f in "$OUT"/mpi/f_*.png; do cmp -s "$f" "$OUT/one/$(basename "$f")" && same=$((same + 1)); done
+else
+    mpi_summary="(mpirun not found)"
+    same="-"
+fi
+
+mkdir -p "$OUT/sep"
+t0=$(now)
+for ((i = 0; i < SAMPLE; i++)); do
+    az=$(python3 -c "print(35 + 360.0 * $i / $FRAMES)")
+    "$Q" render "$SCENE" -o "$(printf "$OUT/sep/f_%04d.png" "$i")" --size "$SIZE" --az "$az" \
+        --el 25 2>/dev/null
+done
+t1=$(now)
+rows+=("| separate \`quadrix render --az\` processes ($SAMPLE of $FRAMES frames timed) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
+
+if command -v povray >/dev/null; then
+    "$Q" export --to pov "$SCENE" -o "$OUT/part.pov" --size "$SIZE" 2>/dev/null
+    # The exported scene is in device space with a fixed camera: the solids turn with POV-Ray's
+    # clock about the vertical line through the image centre instead (the same work per frame,
+    # not the same pictures as the orbit).
+    python3 - "$OUT/part.pov" "$OUT/anim.pov" "$W" <<'PY'
+import sys, re
+src = open(sys.argv[1]).read()
+cx = float(sys.argv[3]) / 2
+# Everything after the camera/light declarations is wrapped in a union turned by the clock.
+m = re.search(r'^(union|intersection|difference|object|sphere|box|plane|quadric)\b', src, re.M)
+head, body = (src[:m.start()], src[m.start():]) if m else (src, '')
+open(sys.argv[2], 'w').write(head + 'union {\n' + body +
+                             f'\ntranslate <{-cx},0,0> rotate y*360*clock translate <{cx},0,0>\n}}\n')
+PY
+    t0=$(now)
+    (cd "$OUT" && povray +I"anim.pov" +O"pov_.png" +W"$W" +H"$H" +KFI0 +KFF$((FRAMES - 1)) +SF1 +EF"$SAMPLE" +KC \
+        -D +FN -GA >/dev/null 2>"$OUT/pov.log")
+    t1=$(now)
+    rows+=("| POV-Ray 3.7 \`+KFF$((FRAMES - 1))\` of the exported scene ($SAMPLE frames timed) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
+fi
+
+mkdir -p bench/results
+stamp=$(date -u +%Y-%m-%d_%H%M%S)
+{
+    echo "# Batch benchmark: turntable of examples/machined_part.uq, $FRAMES frames at $SIZE"
+    echo
+    echo "$(date -u), $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg)."
+    echo "Whole-run wall-clock time (includes process start, reading, PNG encoding and the"
+    echo "atomic write with fsync of every frame)."
+    echo
+    echo "| run | wall time | frames/s | per frame |"
+    echo "|---|---|---|---|"
+    printf '%s\n' "${rows[@]}"
+    echo
+    echo "One process: $one_summary"
+    echo
+    echo "MPI: $mpi_summary"
+    echo
+    echo "MPI frames byte-identical to the one-process frames: $same of $FRAMES."
+} >"bench/results/batch_$stamp.md"
+cp "bench/results/batch_$stamp.md" bench/results/latest_batch.md
+cat "bench/results/batch_$stamp.md"

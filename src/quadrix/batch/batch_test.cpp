@@ -1,0 +1,297 @@
+// The batch module: frame numbering and names, frame ranges, view lists, job files, and the
+// frame loop's reuse of reads and flattenings (issue 22). Pictures made by the loop are compared
+// with the same frames rendered one by one through a fresh RenderContext.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "quadrix/batch/job.h"
+#include "quadrix/batch/job_file.h"
+#include "quadrix/batch/job_renderer.h"
+#include "quadrix/batch/run.h"
+#include "quadrix/batch/view_list.h"
+
+namespace quadrix::batch {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Dir {
+  public:
+    Dir() {
+        for (int i = 0;; ++i) {
+            path_ = fs::temp_directory_path() /
+                    ("quadrix_batch_test_" + std::to_string(::getpid()) + "_" + std::to_string(i));
+            if (fs::create_directory(path_)) break;
+        }
+    }
+    ~Dir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    std::string File(const std::string& name) const { return (path_ / name).string(); }
+    std::string Write(const std::string& name, const std::string& text) const {
+        std::ofstream(File(name), std::ios::binary) << text;
+        return File(name);
+    }
+
+  private:
+    fs::path path_;
+};
+
+std::string Bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+TEST(BatchFramePath, PatternsAndInsertedNumbers) {
+    EXPECT_EQ(FramePath("out.png", 3, true), "out_0003.png");
+    EXPECT_EQ(FramePath("out.png", 3, false), "out.png");
+    EXPECT_EQ(FramePath("dir.v2/out", 12, true), "dir.v2/out_0012");
+    EXPECT_EQ(FramePath("out_%04d.png", 7, true), "out_0007.png");
+    EXPECT_EQ(FramePath("f%d.ppm", 123, true), "f123.ppm");
+    EXPECT_EQ(FramePath("f%3d.ppm", 5, true), "f  5.ppm");
+    EXPECT_EQ(FramePath("100%%_%02d.png", 4, true), "100%_04.png");
+    EXPECT_TRUE(HasFramePattern("a%04d.png"));
+    EXPECT_FALSE(HasFramePattern("a%%.png"));
+}
+
+TEST(BatchJob, ClockRunsFromZeroToOne) {
+    Job j;
+    j.frames = 5;
+    EXPECT_EQ(j.Clock(0), 0.0);
+    EXPECT_EQ(j.Clock(2), 0.5);
+    EXPECT_EQ(j.Clock(4), 1.0);
+    j.frames = 1;
+    EXPECT_EQ(j.Clock(0), 0.0);
+}
+
+TEST(BatchJob, FrameRangesAndChecks) {
+    int a = 0, b = 0;
+    EXPECT_EQ(ParseFrameRange("2:5", a, b), "");
+    EXPECT_EQ(a, 2);
+    EXPECT_EQ(b, 5);
+    EXPECT_EQ(ParseFrameRange("3:", a, b), "");
+    EXPECT_EQ(b, -1);
+    EXPECT_EQ(ParseFrameRange("7", a, b), "");
+    EXPECT_EQ(a, 7);
+    EXPECT_EQ(b, 7);
+    EXPECT_NE(ParseFrameRange("x:2", a, b), "");
+    EXPECT_NE(ParseFrameRange(":", a, b), "");
+    Job j;
+    j.frames = 4;
+    j.output.image = "o.png";
+    j.first = 1;
+    j.last = 3;
+    EXPECT_EQ(CheckJob(j), "");
+    j.last = 4;
+    EXPECT_NE(CheckJob(j).find("not one of the 4 frames"), std::string::npos);
+    j.last = 0;
+    EXPECT_NE(CheckJob(j).find("before"), std::string::npos);
+    Job still;
+    still.output.image = "o_%04d.png";
+    EXPECT_NE(CheckJob(still).find("no frames"), std::string::npos);
+    still.output.image = "o_%x.png";
+    still.frames = 2;
+    EXPECT_NE(CheckJob(still).find("'%'"), std::string::npos);
+}
+
+TEST(BatchViewList, ViewStatementsInOrder) {
+    Diagnostics d;
+    auto v = ParseViewList("view front vrp 0 0 0 dop 0 0 -1;\nview side dop 1 0 0;\n", "v.uq", d);
+    ASSERT_TRUE(v) << (d.Items().empty() ? "" : d.Items()[0].Format());
+    ASSERT_EQ(v->size(), 2u);
+    EXPECT_EQ((*v)[0].name, "front");
+    EXPECT_EQ((*v)[1].name, "side");
+    ASSERT_TRUE((*v)[1].view->dop);
+    EXPECT_EQ((*v)[1].view->dop->x, 1);
+}
+
+TEST(BatchViewList, RtScriptWithFramesAndErrorPositions) {
+    Diagnostics d;
+    const std::string text =
+        "start 0;\nviewsize 10;\neye_pt 0 0 20;\nviewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1;\nend;\n"
+        "start 1;\nviewsize 20;\neye_pt 0 0 20;\nviewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1;\nend;\n";
+    auto v = ParseViewList(text, "v.rt", d);
+    ASSERT_TRUE(v) << (d.Items().empty() ? "" : d.Items()[0].Format());
+    ASSERT_EQ(v->size(), 2u);
+    EXPECT_EQ((*v)[0].rtView->viewsize, 10);
+    EXPECT_EQ((*v)[1].rtView->viewsize, 20);
+    Diagnostics bad;
+    EXPECT_FALSE(ParseViewList("viewsize 10;\neye_pt 0 0;\n", "bad.rt", bad));
+    ASSERT_FALSE(bad.Items().empty());
+    EXPECT_EQ(bad.Items()[0].loc.FileName(), "bad.rt");
+    EXPECT_GE(bad.Items()[0].loc.line, 1);
+    Diagnostics none;
+    EXPECT_FALSE(ParseViewList("plane p <0 1 0 0>;", "none.uq", none));
+}
+
+TEST(BatchJobFile, GoodAndBadLines) {
+    const std::string text =
+        "# comment\n"
+        "{\"inputs\": [\"a.uq\"], \"output\": \"a.png\", \"size\": \"64x48\", \"az\": 30}\n"
+        "\n"
+        "{\"input\": \"b.uq\", \"output\": \"b_%03d.png\", \"turntable\": 8, \"el\": 10}\n"
+        "{\"inputs\": [\"c.uq\"], \"output\": \"c.png\", \"colour\": 1}\n"
+        "not json\n"
+        "{\"inputs\": [\"d.uq\"], \"output\": \"d.png\", \"engine\": \"nonesuch\"}\n";
+    auto jobs = ParseJobFile(text, "jobs.jsonl");
+    ASSERT_EQ(jobs.size(), 5u);
+    EXPECT_EQ(jobs[0].error, "");
+    EXPECT_EQ(jobs[0].job.view.width, 64);
+    EXPECT_EQ(jobs[0].job.view.height, 48);
+    EXPECT_EQ(jobs[0].job.view.azimuth, 30);
+    EXPECT_EQ(jobs[1].error, "");
+    EXPECT_EQ(jobs[1].job.FrameCount(), 8);
+    ASSERT_TRUE(jobs[1].job.turntable);
+    EXPECT_EQ(jobs[1].job.turntable->elevation, 10);
+    EXPECT_EQ(jobs[2].error, "jobs.jsonl:5: unknown key \"colour\"");
+    EXPECT_EQ(jobs[3].error, "jobs.jsonl:6: not a JSON object");
+    EXPECT_NE(jobs[4].error.find("jobs.jsonl:7: "), std::string::npos);
+    EXPECT_NE(jobs[4].error.find("nonesuch"), std::string::npos);
+}
+
+constexpr const char* kStill =
+    "quadric ball <1 1 1 0 0 0 0 0 0 -1>; body ballb <ball> =c .8 .3 .2;\n"
+    "plane floor <0 1 0 1.2>; quadric big <1 1 1 0 0 0 0 0 0 -9>; body floorb <floor big>;\n";
+constexpr const char* kMoving =
+    "quadric ball <1 1 1 0 0 0 (-1 * clock) 0 0 (clock * clock - 1)>;\n"
+    "body ballb <ball> =c .8 .3 .2;\nview v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
+
+Job MakeJob(const std::string& scene, const std::string& out) {
+    Job j;
+    j.input.paths = {scene};
+    j.view.width = 48;
+    j.view.height = 40;
+    j.output.image = out;
+    return j;
+}
+
+// Frame `frame` of `job` rendered alone through a fresh RenderContext (the reference).
+std::string RenderAlone(const Job& job, int frame, const std::string& out) {
+    RenderContext ctx(1);
+    Diagnostics d;
+    InputRequest in = job.input;
+    in.clock = job.Clock(frame);
+    EXPECT_TRUE(ctx.Read(in, d));
+    ViewRequest v = job.view;
+    if (job.turntable) {
+        RenderContext probe(1);
+        Diagnostics pd;
+        EXPECT_TRUE(probe.Read(in, pd));
+        v.view = TurntableView(*job.turntable, frame, job.FrameCount(), SceneWorldBounds(probe, pd),
+                               v.width, v.height);
+    }
+    EXPECT_TRUE(ctx.Flatten(v, d));
+    Frame f;
+    RenderReport rep;
+    EXPECT_TRUE(ctx.Render(job.engine, f, rep, d));
+    Image img = ctx.Shade(f, job.shade);
+    OutputRequest o = job.output;
+    o.image = out;
+    EXPECT_EQ(WriteOutputs(o, f, &img), "");
+    return Bytes(out);
+}
+
+TEST(BatchJobRenderer, StillSceneIsReadOnceAndFlattenedOnce) {
+    Dir dir;
+    Job job = MakeJob(dir.Write("s.uq", kStill), dir.File("s_%02d.ppm"));
+    job.frames = 3;
+    JobRenderer r(1);
+    for (int f = 0; f < 3; ++f) {
+        FrameResult fr = r.Render(job, 0, f);
+        EXPECT_EQ(fr.error, "");
+        EXPECT_EQ(fr.read, f == 0);
+        EXPECT_EQ(fr.flattened, f == 0);
+    }
+    EXPECT_EQ(r.reads, 1);
+    EXPECT_EQ(r.flattens, 1);
+    EXPECT_EQ(Bytes(dir.File("s_00.ppm")), Bytes(dir.File("s_02.ppm")));
+    EXPECT_EQ(Bytes(dir.File("s_01.ppm")), RenderAlone(job, 1, dir.File("ref.ppm")));
+}
+
+TEST(BatchJobRenderer, ClockSceneIsReadPerFrameAndMatchesSingleRenders) {
+    Dir dir;
+    Job job = MakeJob(dir.Write("m.uq", kMoving), dir.File("m.ppm"));
+    job.frames = 3;
+    JobRenderer r(1);
+    for (int f = 0; f < 3; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
+    EXPECT_EQ(r.reads, 3);
+    EXPECT_EQ(r.flattens, 3);
+    EXPECT_NE(Bytes(dir.File("m_0000.ppm")), Bytes(dir.File("m_0002.ppm")));  // the ball moved
+    for (int f = 0; f < 3; ++f)
+        EXPECT_EQ(Bytes(dir.File("m_000" + std::to_string(f) + ".ppm")),
+                  RenderAlone(job, f, dir.File("ref.ppm")))
+            << f;
+}
+
+TEST(BatchJobRenderer, TurntableOrbitsTheBoundsAndKeepsOneRead) {
+    Dir dir;
+    const std::string scene =
+        dir.Write("t.uq",
+                  "quadric c <1 0 1 0 0 0 0 0 0 -1>; plane top <0 1 0 -2>; plane bot <0 -1 0 -1>;\n"
+                  "body rod <c top bot> =c .2 .6 .9;\n"
+                  "plane px <1 0 0 -3>; plane nx <-1 0 0 2>; plane py <0 1 0 -.5>;\n"
+                  "plane ny <0 -1 0 0>; plane pz <0 0 1 -.5>; plane nz <0 0 -1 -.5>;\n"
+                  "body arm <px nx py ny pz nz> =c .9 .7 .1;\n");
+    Job job = MakeJob(scene, dir.File("t.ppm"));
+    job.frames = 4;
+    job.turntable = Turntable{0, 20};
+    JobRenderer r(1);
+    for (int f = 0; f < 4; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
+    EXPECT_EQ(r.reads, 1);
+    EXPECT_EQ(r.flattens, 4);  // one per frame (the bounds probe is not a frame)
+    // The world box: the rod x,z in [-1,1], y in [-1,2]; the arm reaches x = 3.
+    RenderContext ctx(1);
+    Diagnostics d;
+    InputRequest in = job.input;
+    ASSERT_TRUE(ctx.Read(in, d));
+    const Box3 box = SceneWorldBounds(ctx, d);
+    EXPECT_NEAR(box.hi.x, 3, 0.05);
+    EXPECT_NEAR(box.lo.y, -1, 0.05);
+    EXPECT_NEAR(box.hi.y, 2, 0.05);
+    EXPECT_LE(box.lo.x, -0.99);
+    EXPECT_NE(Bytes(dir.File("t_0000.ppm")), Bytes(dir.File("t_0001.ppm")));
+    EXPECT_EQ(Bytes(dir.File("t_0003.ppm")), RenderAlone(job, 3, dir.File("ref.ppm")));
+}
+
+TEST(BatchRun, FailedJobIsReportedAndTheRestIsDoneThenResumed) {
+    Dir dir;
+    std::vector<JobEntry> jobs(3);
+    jobs[0].job = MakeJob(dir.Write("a.uq", kStill), dir.File("a.ppm"));
+    jobs[1].job = MakeJob(dir.Write("bad.uq", "plane p <0 1 0>;\n"), dir.File("bad.ppm"));
+    jobs[1].job.label = "the bad job";
+    jobs[2].job = MakeJob(dir.Write("m.uq", kMoving), dir.File("m.ppm"));
+    jobs[2].job.frames = 2;
+    RunOptions o;
+    o.threads = 1;
+    o.quiet = true;
+    o.skipExisting = true;
+    o.useMpi = false;
+    Summary s = RunJobs(jobs, o);
+    EXPECT_EQ(s.frames, 4);
+    EXPECT_EQ(s.rendered, 3);
+    EXPECT_EQ(s.failed, 1);
+    EXPECT_EQ(s.failedJobs, 1);
+    ASSERT_EQ(s.failures.size(), 1u);
+    EXPECT_NE(s.failures[0].find("the bad job: "), std::string::npos);
+    EXPECT_NE(s.failures[0].find("bad.uq:1:"), std::string::npos) << s.failures[0];
+    EXPECT_TRUE(fs::exists(dir.File("a.ppm")));
+    EXPECT_FALSE(fs::exists(dir.File("bad.ppm")));
+    EXPECT_TRUE(fs::exists(dir.File("m_0001.ppm")));
+    // Resume: one output removed (as if the run had been interrupted) is the only one rendered.
+    fs::remove(dir.File("m_0001.ppm"));
+    Summary again = RunJobs(jobs, o);
+    EXPECT_EQ(again.rendered, 1);
+    EXPECT_EQ(again.skipped, 2);
+    EXPECT_EQ(again.failed, 1);
+    EXPECT_TRUE(fs::exists(dir.File("m_0001.ppm")));
+}
+
+}  // namespace
+}  // namespace quadrix::batch

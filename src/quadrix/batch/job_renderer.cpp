@@ -1,0 +1,161 @@
+#include "quadrix/batch/job_renderer.h"
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "quadrix/import/rt_view.h"
+
+namespace quadrix::batch {
+
+namespace {
+
+double Since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Errors (and, separately, warnings and notes) of `diags` as text, one diagnostic per line.
+std::string ErrorText(const Diagnostics& diags) {
+    std::string out;
+    for (const Diagnostic& d : diags.Items())
+        if (d.severity == Diagnostic::Severity::kError) out += d.Format(false) + "\n";
+    return out;
+}
+std::string WarningText(const Diagnostics& diags) {
+    std::string out;
+    for (const Diagnostic& d : diags.Items())
+        if (d.severity != Diagnostic::Severity::kError) out += d.Format(false) + "\n";
+    return out;
+}
+
+bool Exists(const std::string& path) {
+    struct stat st {};
+    return !path.empty() && path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+}  // namespace
+
+Box3 SceneWorldBounds(RenderContext& ctx, Diagnostics& diags) {
+    ViewRequest probe;
+    probe.width = probe.height = 256;
+    scene::View v;
+    v.id = "bounds";
+    v.dop = Vec3{0, 0, -1};  // toward the viewer; vpn into the scene
+    v.vpn = Vec3{0, 0, 1};
+    v.vup = Vec3{0, 1, 0};
+    probe.view = v;
+    Box3 world;
+    if (!ctx.Flatten(probe, diags)) return world;
+    const FlatScene& flat = ctx.Flat();
+    const Transform worldFromDevice = flat.projection.deviceFromWorld.Inverted();
+    for (const FlatSolid& s : flat.solids) {
+        if (!s.bounds.Finite()) continue;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 p{(corner & 1) ? s.bounds.hi.x : s.bounds.lo.x,
+                         (corner & 2) ? s.bounds.hi.y : s.bounds.lo.y,
+                         (corner & 4) ? s.bounds.hi.z : s.bounds.lo.z};
+            world.Extend(worldFromDevice.MapPoint(p));
+        }
+    }
+    return world;
+}
+
+scene::View TurntableView(const Turntable& t, int frame, int count, const Box3& worldBox, int width,
+                          int height) {
+    const double az = t.azimuth0 + 360.0 * frame / count;
+    scene::View v = import::MakeAzElView(az, t.elevation, worldBox, std::nullopt, width, height);
+    v.id = fmt::format("turntable{}", frame);
+    return v;
+}
+
+bool JobRenderer::Load(const Job& job, int jobId, double clock, FrameResult& r) {
+    const bool same = loadedJob_ == jobId && (!ctx_.Inputs().usesClock || loadedClock_ == clock);
+    if (same) {
+        if (!loadedOk_) r.error = loadError_;
+        return loadedOk_;
+    }
+    Diagnostics diags;
+    InputRequest in = job.input;
+    in.clock = clock;
+    const auto t0 = std::chrono::steady_clock::now();
+    loadedOk_ = ctx_.Read(in, diags);
+    r.read = true;
+    ++reads;
+    worldBox_.reset();
+    if (loadedOk_ && job.turntable) {
+        worldBox_ = SceneWorldBounds(ctx_, diags);
+        if (diags.HasErrors()) loadedOk_ = false;
+    }
+    r.readSeconds = Since(t0);
+    loadedJob_ = jobId;
+    loadedClock_ = clock;
+    loadError_ = loadedOk_ ? std::string() : ErrorText(diags);
+    if (!loadedOk_) r.error = loadError_;
+    r.warnings += WarningText(diags);
+    return loadedOk_;
+}
+
+FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipExisting) {
+    const auto t0 = std::chrono::steady_clock::now();
+    FrameResult r;
+    const bool animated = job.Animated();
+    r.image = FramePath(job.output.image, frame, animated);
+    r.dumpFrame = FramePath(job.output.dumpFrame, frame, animated);
+    if (skipExisting && Exists(r.image) && (r.dumpFrame.empty() || Exists(r.dumpFrame))) {
+        r.skipped = true;
+        return r;
+    }
+    if (!Load(job, jobId, job.Clock(frame), r)) {
+        r.seconds = Since(t0);
+        return r;
+    }
+    ViewRequest view = job.view;
+    if (job.turntable) {
+        view.view = TurntableView(*job.turntable, frame, job.FrameCount(),
+                                  worldBox_.value_or(Box3{}), view.width, view.height);
+    } else if (!job.views.empty()) {
+        const ListedView& lv = job.views[frame];
+        view.viewName.clear();
+        view.azimuth.reset();
+        view.elevation.reset();
+        view.view = lv.view;
+        view.rtView = lv.rtView;
+    }
+    Diagnostics diags;
+    const auto t1 = std::chrono::steady_clock::now();
+    if (!ctx_.Flatten(view, diags)) {
+        r.error = ErrorText(diags);
+        r.seconds = Since(t0);
+        return r;
+    }
+    r.flattenSeconds = Since(t1);
+    r.flattened = !ctx_.LastFlattenReused();
+    if (r.flattened) ++flattens;
+    Frame fb;
+    RenderReport report;
+    const auto t2 = std::chrono::steady_clock::now();
+    if (!ctx_.Render(job.engine, fb, report, diags)) {
+        r.error = ErrorText(diags);
+        r.seconds = Since(t0);
+        return r;
+    }
+    r.renderSeconds = Since(t2);
+    for (const std::string& w : report.stats.warnings)
+        r.warnings += fmt::format("warning: engine {}: {}\n", job.engine.engine, w);
+    r.warnings += WarningText(diags);
+    const auto t3 = std::chrono::steady_clock::now();
+    OutputRequest out = job.output;
+    out.image = r.image;
+    out.dumpFrame = r.dumpFrame;
+    std::optional<Image> image;
+    if (NeedsImage(out)) image = ctx_.Shade(fb, job.shade);
+    if (std::string e = WriteOutputs(out, fb, image ? &*image : nullptr); !e.empty())
+        r.error = e + "\n";
+    r.writeSeconds = Since(t3);
+    r.seconds = Since(t0);
+    return r;
+}
+
+}  // namespace quadrix::batch

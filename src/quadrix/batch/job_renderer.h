@@ -1,0 +1,65 @@
+// Renders the frames of jobs through one RenderContext (pipeline/render_context.h), keeping what
+// can be kept between frames (issue 22: "read and flattened once per distinct geometry"):
+//   - the scene is read once per job; a scene that uses `clock` (Scene::usesClock) is read again
+//     for each frame whose clock differs, since its geometry depends on it;
+//   - the flat scene is reused by the context when the next frame has the same view (a still
+//     animation of a clock-free scene renders from one flattening);
+//   - a turntable orbits the centre of the scene's world bounds (SceneWorldBounds) at a fixed
+//     distance and window, so the part keeps its size from frame to frame.
+// Each frame is written through pipeline/output.h (an OutputFile each: temporary file + rename),
+// so an output that exists is complete — what makes batch runs resumable.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "quadrix/batch/job.h"
+#include "quadrix/pipeline/render_context.h"
+
+namespace quadrix::batch {
+
+// What rendering one frame did and cost.
+struct FrameResult {
+    std::string image, dumpFrame;  // the paths written (or that would have been)
+    std::string error;             // empty on success; diagnostics, one per line
+    std::string warnings;          // warnings and notes, one per line
+    bool skipped = false;          // every output existed already (SkipExisting)
+    bool read = false, flattened = false;
+    double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0, writeSeconds = 0;
+    double seconds = 0;  // the whole frame
+};
+
+// The world-space (Quadrix space) box of the scene's bounded solids, found by flattening it once
+// with an axis-aligned parallel view and mapping the solids' device boxes back; unbounded solids
+// (a ground plane) are left out. Empty box when nothing is bounded. Replaces the kept flat scene.
+Box3 SceneWorldBounds(RenderContext& ctx, Diagnostics& diags);
+
+// The view of turntable frame `frame` of `count`: rt's azimuth/elevation view about the box's
+// centre, viewsize = the box's diagonal (import::MakeAzElView).
+scene::View TurntableView(const Turntable& t, int frame, int count, const Box3& worldBox, int width,
+                          int height);
+
+class JobRenderer {
+  public:
+    // threads: 0 = all cores (the context's oneTBB arena).
+    explicit JobRenderer(int threads = 0) : ctx_(threads) {}
+
+    // Renders frame `frame` of `job` (jobId tells jobs apart for the kept scene). With
+    // skipExisting, a frame whose every output file exists is not rendered (result.skipped).
+    FrameResult Render(const Job& job, int jobId, int frame, bool skipExisting = false);
+
+    // Times the scene was read and flattened (tests and the summary).
+    int reads = 0, flattens = 0;
+
+  private:
+    bool Load(const Job& job, int jobId, double clock, FrameResult& r);
+
+    RenderContext ctx_;
+    int loadedJob_ = -1;
+    double loadedClock_ = 0;
+    bool loadedOk_ = false;
+    std::string loadError_;
+    std::optional<Box3> worldBox_;
+};
+
+}  // namespace quadrix::batch

@@ -1,0 +1,315 @@
+#include "quadrix/batch/run.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <utility>
+
+#include "quadrix/batch/job_renderer.h"
+#include "quadrix/batch/progress.h"
+
+#ifdef QUADRIX_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace quadrix::batch {
+
+namespace {
+
+struct Unit {
+    int job = -1, frame = 0;  // frame -1: an invalid entry
+};
+
+std::vector<Unit> Units(const std::vector<JobEntry>& jobs) {
+    std::vector<Unit> units;
+    for (int j = 0; j < static_cast<int>(jobs.size()); ++j) {
+        if (!jobs[j].error.empty()) {
+            units.push_back({j, -1});
+            continue;
+        }
+        for (int f = jobs[j].job.FirstFrame(); f <= jobs[j].job.LastFrame(); ++f)
+            units.push_back({j, f});
+    }
+    return units;
+}
+
+// What one rank did: counts and the first error of each job it saw fail.
+struct RankTally {
+    int rendered = 0, skipped = 0, failed = 0, reads = 0, flattens = 0;
+    double frameSeconds = 0, minFrame = 1e300, maxFrame = 0;
+    std::map<int, std::string> failures;  // job → first error
+};
+
+std::string Label(const std::vector<JobEntry>& jobs, int j) {
+    const std::string& l = jobs[j].job.label;
+    return l.empty() ? fmt::format("job {}", j) : l;
+}
+
+// Renders the units that `next` hands out (-1 = none left).
+template <typename Next>
+RankTally RenderUnits(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units,
+                      const RunOptions& options, Progress& progress, Next next) {
+    RankTally t;
+    JobRenderer renderer(options.threads);
+    for (int u = next(); u >= 0 && u < static_cast<int>(units.size()); u = next()) {
+        const Unit& unit = units[u];
+        const std::string label = Label(jobs, unit.job);
+        if (unit.frame < 0) {
+            ++t.failed;
+            t.failures.emplace(unit.job, jobs[unit.job].error);
+            progress.Error(unit.job, label, jobs[unit.job].error);
+            continue;
+        }
+        const Job& job = jobs[unit.job].job;
+        FrameResult r = renderer.Render(job, unit.job, unit.frame, options.skipExisting);
+        const std::string frameLabel =
+            job.Animated() ? fmt::format("{}, frame {}", label, unit.frame) : label;
+        if (!r.error.empty()) {
+            ++t.failed;
+            const bool first = t.failures.emplace(unit.job, r.error).second;
+            progress.Frame(unit.job, unit.frame, r, frameLabel, first);
+            continue;
+        }
+        if (r.skipped) {
+            ++t.skipped;
+        } else {
+            ++t.rendered;
+            t.frameSeconds += r.seconds;
+            t.minFrame = std::min(t.minFrame, r.seconds);
+            t.maxFrame = std::max(t.maxFrame, r.seconds);
+        }
+        progress.Frame(unit.job, unit.frame, r, frameLabel);
+    }
+    t.reads = renderer.reads;
+    t.flattens = renderer.flattens;
+    return t;
+}
+
+Summary Summed(const std::vector<JobEntry>& jobs, const std::vector<RankTally>& tallies, int frames,
+               double seconds) {
+    Summary s;
+    s.jobs = static_cast<int>(jobs.size());
+    s.frames = frames;
+    s.ranks = static_cast<int>(tallies.size());
+    s.seconds = seconds;
+    std::map<int, std::string> failures;
+    s.minFrame = 1e300;
+    for (const RankTally& t : tallies) {
+        s.rendered += t.rendered;
+        s.skipped += t.skipped;
+        s.failed += t.failed;
+        s.reads += t.reads;
+        s.flattens += t.flattens;
+        s.frameSeconds += t.frameSeconds;
+        s.minFrame = std::min(s.minFrame, t.minFrame);
+        s.maxFrame = std::max(s.maxFrame, t.maxFrame);
+        for (const auto& [j, e] : t.failures) failures.emplace(j, e);
+    }
+    if (s.rendered == 0) s.minFrame = 0;
+    s.failedJobs = static_cast<int>(failures.size());
+    for (const auto& [j, e] : failures) {
+        std::string text = e;
+        while (!text.empty() && text.back() == '\n') text.pop_back();
+        s.failures.push_back(fmt::format("{}: {}", Label(jobs, j), text));
+    }
+    return s;
+}
+
+double Since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+#ifdef QUADRIX_HAVE_MPI
+bool mpiStarted = false;
+void StartMpi() {
+    if (mpiStarted) return;
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised) {
+        MPI_Init(nullptr, nullptr);
+        std::atexit([] {
+            int finalised = 0;
+            MPI_Finalized(&finalised);
+            if (!finalised) MPI_Finalize();
+        });
+    }
+    mpiStarted = true;
+}
+
+nlohmann::json TallyJson(const RankTally& t) {
+    nlohmann::json j;
+    j["rendered"] = t.rendered;
+    j["skipped"] = t.skipped;
+    j["failed"] = t.failed;
+    j["reads"] = t.reads;
+    j["flattens"] = t.flattens;
+    j["frame_s"] = t.frameSeconds;
+    j["min_s"] = t.minFrame;
+    j["max_s"] = t.maxFrame;
+    nlohmann::json f = nlohmann::json::object();
+    for (const auto& [job, e] : t.failures) f[std::to_string(job)] = e;
+    j["failures"] = f;
+    return j;
+}
+
+RankTally TallyFromJson(const nlohmann::json& j) {
+    RankTally t;
+    t.rendered = j["rendered"];
+    t.skipped = j["skipped"];
+    t.failed = j["failed"];
+    t.reads = j["reads"];
+    t.flattens = j["flattens"];
+    t.frameSeconds = j["frame_s"];
+    t.minFrame = j["min_s"];
+    t.maxFrame = j["max_s"];
+    for (const auto& [k, v] : j["failures"].items()) t.failures.emplace(std::stoi(k), v);
+    return t;
+}
+
+// Every rank's tally on every rank (a JSON text each: allgather of lengths, then of bytes).
+std::vector<RankTally> AllTallies(const RankTally& mine) {
+    const std::string text = TallyJson(mine).dump();
+    int size = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    int length = static_cast<int>(text.size());
+    std::vector<int> lengths(size), offsets(size);
+    MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    int total = 0;
+    for (int r = 0; r < size; ++r) {
+        offsets[r] = total;
+        total += lengths[r];
+    }
+    std::string all(total, '\0');
+    MPI_Allgatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
+                   MPI_CHAR, MPI_COMM_WORLD);
+    std::vector<RankTally> tallies;
+    for (int r = 0; r < size; ++r)
+        tallies.push_back(TallyFromJson(nlohmann::json::parse(all.substr(offsets[r], lengths[r]))));
+    return tallies;
+}
+
+Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units,
+               const RunOptions& options, bool terminal) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int rank = MpiRank();
+    // The next unit's index lives in rank 0's window; MPI_Fetch_and_op takes one (passive
+    // target, no reply from a busy rank needed).
+    long long* counter = nullptr;
+    MPI_Win win;
+    MPI_Win_allocate(rank == 0 ? sizeof(long long) : 0, sizeof(long long), MPI_INFO_NULL,
+                     MPI_COMM_WORLD, &counter, &win);
+    if (rank == 0) *counter = 0;
+    MPI_Barrier(MPI_COMM_WORLD);
+    MPI_Win_lock_all(0, win);
+    const long long one = 1;
+    auto next = [&]() -> int {
+        long long got = 0;
+        MPI_Fetch_and_op(&one, &got, MPI_LONG_LONG, 0, 0, MPI_SUM, win);
+        MPI_Win_flush(0, win);
+        return got < static_cast<long long>(units.size()) ? static_cast<int>(got) : -1;
+    };
+    // Only rank 0 draws progress (its own frames, and the others' as it learns of them at the
+    // end); every rank reports its own errors as they happen.
+    Progress progress(stderr, static_cast<int>(units.size()), terminal, options.quiet || rank != 0);
+    RankTally mine = RenderUnits(jobs, units, options, progress, next);
+    MPI_Win_unlock_all(win);
+    MPI_Barrier(MPI_COMM_WORLD);
+    MPI_Win_free(&win);
+    progress.Finish();
+    std::vector<RankTally> tallies = AllTallies(mine);
+    return Summed(jobs, tallies, static_cast<int>(units.size()), Since(t0));
+}
+#endif
+
+}  // namespace
+
+bool UnderMpiLauncher() {
+#ifdef QUADRIX_HAVE_MPI
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
+        if (std::getenv(v)) return true;
+#endif
+    return false;
+}
+
+int MpiRank() {
+#ifdef QUADRIX_HAVE_MPI
+    if (!UnderMpiLauncher()) return 0;
+    StartMpi();
+    int r = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &r);
+    return r;
+#else
+    return 0;
+#endif
+}
+
+int MpiSize() {
+#ifdef QUADRIX_HAVE_MPI
+    if (!UnderMpiLauncher()) return 1;
+    StartMpi();
+    int n = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &n);
+    return n;
+#else
+    return 1;
+#endif
+}
+
+Summary RunJobs(const std::vector<JobEntry>& jobs, const RunOptions& options) {
+    const std::vector<Unit> units = Units(jobs);
+    const bool terminal = options.terminal < 0 ? StderrIsTerminal() : options.terminal == 1;
+#ifdef QUADRIX_HAVE_MPI
+    if (options.useMpi && MpiSize() > 1) return RunMpi(jobs, units, options, terminal);
+#endif
+    const auto t0 = std::chrono::steady_clock::now();
+    Progress progress(stderr, static_cast<int>(units.size()), terminal, options.quiet);
+    int at = 0;
+    RankTally t = RenderUnits(jobs, units, options, progress, [&] { return at++; });
+    progress.Finish();
+    return Summed(jobs, {t}, static_cast<int>(units.size()), Since(t0));
+}
+
+std::string Summary::Text() const {
+    const double rate = seconds > 0 ? rendered / seconds : 0;
+    std::string s = fmt::format(
+        "{} job{}, {} failed; {} frame{}: {} rendered, {} skipped (outputs exist), {} failed; "
+        "{:.3f} s, {:.1f} frames/s",
+        jobs, jobs == 1 ? "" : "s", failedJobs, frames, frames == 1 ? "" : "s", rendered, skipped,
+        failed, seconds, rate);
+    if (rendered > 0)
+        s += fmt::format("; per frame {:.2f} ms mean, {:.2f} min, {:.2f} max",
+                         1e3 * frameSeconds / rendered, 1e3 * minFrame, 1e3 * maxFrame);
+    s += fmt::format("; scene read {} time{}, flattened {} time{}", reads, reads == 1 ? "" : "s",
+                     flattens, flattens == 1 ? "" : "s");
+    if (ranks > 1) s += fmt::format("; {} MPI ranks", ranks);
+    return s;
+}
+
+std::string Summary::Json() const {
+    nlohmann::json j;
+    j["event"] = "summary";
+    j["jobs"] = jobs;
+    j["failed_jobs"] = failedJobs;
+    j["frames"] = frames;
+    j["rendered"] = rendered;
+    j["skipped"] = skipped;
+    j["failed"] = failed;
+    j["seconds"] = seconds;
+    j["frames_per_s"] = seconds > 0 ? rendered / seconds : 0.0;
+    j["mean_frame_s"] = rendered > 0 ? frameSeconds / rendered : 0.0;
+    j["min_frame_s"] = minFrame;
+    j["max_frame_s"] = maxFrame;
+    j["reads"] = reads;
+    j["flattens"] = flattens;
+    j["ranks"] = ranks;
+    j["failures"] = failures;
+    return j.dump();
+}
+
+}  // namespace quadrix::batch

@@ -1,0 +1,67 @@
+// The scheduler of the batch module: renders every frame of a list of jobs, in one process or
+// shared among the ranks of an MPI run (mpi_run.cpp), and sums up (issue 22, docs/batch.md).
+//
+// Work units are (job, frame) pairs in job order, frames in order. One process renders them in
+// order with one JobRenderer (so a job's scene is read once and its flat scene reused). Under
+// MPI the units are handed out dynamically: rank 0 holds a counter in an MPI window and every
+// rank, rank 0 included, takes the next unit with MPI_Fetch_and_op when it is idle — a rank that
+// draws fast frames simply takes more of them, and no rank waits for a reply from a busy one.
+// Each rank keeps its own JobRenderer (its engines use all its cores through oneTBB), so
+// consecutive units of one job on one rank share the read; each rank writes the frames it
+// renders (a shared file system). At the end the ranks' counts and failures are gathered on
+// rank 0, which prints the summary; every rank returns the same exit code.
+//
+// A job whose entry is invalid (a bad job line) fails without frames; a frame that fails is
+// reported with its error and the run goes on. With skipExisting a frame whose outputs all exist
+// is skipped: outputs are written atomically (io/output_file.h), so an existing file is complete
+// and an interrupted run is resumed by running it again.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "quadrix/batch/job.h"
+
+namespace quadrix::batch {
+
+struct JobEntry {
+    Job job;
+    std::string error;  // set: the entry is invalid and fails without rendering
+};
+
+struct RunOptions {
+    int threads = 0;            // per process; 0 = all cores
+    bool skipExisting = false;  // resume: skip frames whose outputs exist
+    bool quiet = false;         // only errors and the summary
+    // -1 = decide by isatty(stderr); 0 = JSON lines; 1 = a bar.
+    int terminal = -1;
+    bool useMpi = true;  // when built with MPI and launched by mpirun
+};
+
+struct Summary {
+    int jobs = 0, failedJobs = 0;
+    int frames = 0, rendered = 0, skipped = 0, failed = 0;
+    int reads = 0, flattens = 0;  // over every rank
+    int ranks = 1;
+    double seconds = 0;       // wall clock of the whole run
+    double frameSeconds = 0;  // sum of the rendered frames' times (all ranks)
+    double minFrame = 0, maxFrame = 0;
+    std::vector<std::string> failures;  // "label: error" of each failed job (first error)
+    // One line for people, and one JSON object (event "summary").
+    std::string Text() const;
+    std::string Json() const;
+};
+
+// Renders every frame of every job; progress and errors on standard error; returns the summary
+// (on every rank the same counts under MPI).
+Summary RunJobs(const std::vector<JobEntry>& jobs, const RunOptions& options);
+
+// Whether this process was started by an MPI launcher (mpirun/srun set the rank's environment)
+// and Quadrix was built with MPI.
+bool UnderMpiLauncher();
+// This process's rank and the number of ranks (0 and 1 without MPI). Initialises MPI on first
+// use when UnderMpiLauncher().
+int MpiRank();
+int MpiSize();
+
+}  // namespace quadrix::batch

@@ -1,0 +1,148 @@
+// The batch front ends end to end (issue 22): `quadrix render --frames/--turntable`, `quadrix
+// batch` with a bad job and resumption, and the same runs under `mpirun --oversubscribe -np 3`,
+// whose outputs must be byte-identical to the single-process ones. Small pictures, few frames.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_util.h"
+
+namespace quadrix::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+constexpr const char* kMoving =
+    "quadric ball <1 1 1 0 0 0 (-1 * clock) 0 0 (clock * clock - 1)>;\n"
+    "body ballb <ball> =c .8 .3 .2;\nview v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
+
+std::string Mpirun() {
+#ifdef QUADRIX_MPIEXEC
+    // Root in containers and CI needs Open MPI's explicit permission.
+    return std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 '") +
+           QUADRIX_MPIEXEC + "' --oversubscribe -np 3 ";
+#else
+    return {};
+#endif
+}
+
+// A job file of four jobs, the third of which cannot be read.
+std::string JobFile(const TempDir& in, const std::string& outDir) {
+    const std::string moving = in.Write("moving.uq", kMoving);
+    const std::string part = SourcePath("examples/machined_part.uq");
+    const std::string bad = in.Write("bad.uq", "plane p <0 1 0>;\n");
+    std::ostringstream j;
+    j << "{\"inputs\": [\"" << part << "\"], \"output\": \"" << outDir
+      << "/part.png\", \"size\": \"64x48\"}\n"
+      << "{\"inputs\": [\"" << moving << "\"], \"output\": \"" << outDir
+      << "/moving_%02d.png\", \"size\": \"40x40\", \"frames\": 4}\n"
+      << "{\"inputs\": [\"" << bad << "\"], \"output\": \"" << outDir << "/bad.png\"}\n"
+      << "{\"inputs\": [\"" << part << "\"], \"output\": \"" << outDir
+      << "/spin.png\", \"size\": \"48x32\", \"turntable\": 3, \"el\": 30}\n";
+    return in.Write("jobs.jsonl", j.str());
+}
+
+const std::vector<std::string> kBatchOutputs = {"part.png",      "moving_00.png", "moving_01.png",
+                                                "moving_02.png", "moving_03.png", "spin_0000.png",
+                                                "spin_0001.png", "spin_0002.png"};
+
+TEST(BatchCommand, RenderFramesWritesNumberedFramesWithTimes) {
+    TempDir dir;
+    const std::string scene = dir.Write("m.uq", kMoving);
+    auto r = RunShell(QuadrixBinary() + " render '" + scene + "' -o '" + dir.File("f.png") +
+                      "' --size 32x32 --frames 5 --frame-range 1:3 --threads 1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(FileExists(dir.File("f_0000.png")));
+    for (const char* f : {"f_0001.png", "f_0002.png", "f_0003.png"})
+        EXPECT_TRUE(FileExists(dir.File(f))) << f << "\n" << r.err;
+    EXPECT_FALSE(FileExists(dir.File("f_0004.png")));
+    EXPECT_NE(r.err.find("\"event\":\"frame\""), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("\"seconds\":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("3 rendered"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("scene read 3 times"), std::string::npos) << r.err;  // uses clock
+    auto bad = RunShell(QuadrixBinary() + " render '" + scene + "' -o '" + dir.File("g.png") +
+                        "' --frames 3 --frame-range 2:7");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("frame range"), std::string::npos) << bad.err;
+}
+
+TEST(BatchCommand, BadJobIsReportedTheRestDoneAndARerunResumes) {
+    TempDir in, out;
+    const std::string jobs = JobFile(in, out.path());
+    auto r = RunShell(QuadrixBinary() + " batch '" + jobs + "' --threads 1");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    for (const std::string& f : kBatchOutputs) EXPECT_TRUE(FileExists(out.File(f))) << f;
+    EXPECT_FALSE(FileExists(out.File("bad.png")));
+    EXPECT_NE(r.err.find("bad.uq:1:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("4 jobs, 1 failed"), std::string::npos) << r.err;
+    fs::remove(out.File("moving_02.png"));
+    auto again = RunShell(QuadrixBinary() + " batch '" + jobs + "' --threads 1 --json");
+    EXPECT_EQ(again.exitCode, 1);
+    EXPECT_NE(again.err.find("1 rendered, 7 skipped"), std::string::npos) << again.err;
+    EXPECT_NE(again.out.find("\"event\":\"summary\""), std::string::npos) << again.out;
+    EXPECT_TRUE(FileExists(out.File("moving_02.png")));
+}
+
+TEST(BatchMpi, AnimationAndBatchAreByteIdenticalToOneProcess) {
+    if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
+    TempDir in, one, many;
+    // An animation: frames shared among 3 ranks.
+    const std::string scene = in.Write("m.uq", kMoving);
+    const std::string args = " render '" + scene + "' --size 40x32 --frames 6 --threads 1 -o ";
+    auto a = RunShell(QuadrixBinary() + args + "'" + one.File("a.png") + "'");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    auto b = RunShell(Mpirun() + QuadrixBinary() + args + "'" + many.File("a.png") + "'");
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    EXPECT_NE(b.err.find("3 MPI ranks"), std::string::npos) << b.err;
+    for (int f = 0; f < 6; ++f) {
+        const std::string name = "a_000" + std::to_string(f) + ".png";
+        ASSERT_TRUE(FileExists(many.File(name))) << name;
+        EXPECT_EQ(Bytes(one.File(name)), Bytes(many.File(name))) << name;
+    }
+    // A batch with one bad job: reported, the rest done, the same bytes.
+    auto c = RunShell(QuadrixBinary() + " batch '" + JobFile(in, one.path()) + "' --threads 1");
+    EXPECT_EQ(c.exitCode, 1) << c.err;
+    auto d = RunShell(Mpirun() + QuadrixBinary() + " batch '" + JobFile(in, many.path()) +
+                      "' --threads 1");
+    EXPECT_EQ(d.exitCode, 1) << d.err;
+    EXPECT_NE(d.err.find("bad.uq:1:"), std::string::npos) << d.err;
+    EXPECT_NE(d.err.find("4 jobs, 1 failed"), std::string::npos) << d.err;
+    for (const std::string& f : kBatchOutputs) {
+        ASSERT_TRUE(FileExists(many.File(f))) << f;
+        EXPECT_EQ(Bytes(one.File(f)), Bytes(many.File(f))) << f;
+    }
+}
+
+TEST(BatchMpi, SortLastCompositeIsByteIdenticalToOneProcess) {
+    if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
+    TempDir dir;
+    // Five solids overlapping on screen and in depth, so that the composite decides pixels.
+    std::ostringstream scene;
+    for (int k = 0; k < 5; ++k)
+        scene << "solid sphere s" << k << " =at " << (k - 2) * 0.7 << " " << (k % 2) * 0.4 << " "
+              << k * 0.3 << " =r .8 =c " << 0.2 * k << " .5 " << 1 - 0.2 * k << ";\n";
+    scene << "view v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
+    const std::string path = dir.Write("spheres.uq", scene.str());
+    const std::string args = " render '" + path + "' --size 64x48 --threads 1 --phong -o ";
+    auto a = RunShell(QuadrixBinary() + args + "'" + dir.File("one.png") + "' --dump-frame '" +
+                      dir.File("one.qxf") + "'");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    auto b = RunShell(Mpirun() + QuadrixBinary() + args + "'" + dir.File("many.png") +
+                      "' --dump-frame '" + dir.File("many.qxf") + "' --sort-last");
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    ASSERT_TRUE(FileExists(dir.File("many.png"))) << b.err;
+    EXPECT_EQ(Bytes(dir.File("one.png")), Bytes(dir.File("many.png")));
+    EXPECT_EQ(Bytes(dir.File("one.qxf")), Bytes(dir.File("many.qxf")));  // depth, normals, ids
+}
+
+}  // namespace
+}  // namespace quadrix::testing
