@@ -40,6 +40,8 @@ int Run(int argc, char** argv) {
     quadrix::cli::AddEnginesCommand(app, enginesMarkdown);
     quadrix::cli::DrawArgs drawArgs;
     quadrix::cli::AddDrawCommand(app, drawArgs);
+    quadrix::cli::ViewArgs viewArgs;
+    quadrix::cli::AddViewCommand(app, viewArgs);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     try {
@@ -60,6 +62,7 @@ int Run(int argc, char** argv) {
     if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);
     if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
     if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
+    if (app.got_subcommand("view")) return quadrix::cli::RunView(viewArgs);
     return 2;
 }
 
