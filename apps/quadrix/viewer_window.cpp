@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -122,6 +123,16 @@ class Viewer {
 };
 
 bool Viewer::Open() {
+    // Without a display server SDL may still initialise a console or offscreen driver and open
+    // an invisible "window" that no one can close: refuse unless a driver was asked for.
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") &&
+        !std::getenv("SDL_VIDEODRIVER")) {
+        std::fprintf(stderr,
+                     "quadrix: error: cannot open a window: no display (DISPLAY and "
+                     "WAYLAND_DISPLAY are unset; run under a desktop session or `xvfb-run -a`; "
+                     "`quadrix view --bench N` renders offscreen)\n");
+        return false;
+    }
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
         std::fprintf(stderr,
                      "quadrix: error: cannot open a window: %s\n(no display? run under a desktop "
@@ -193,6 +204,10 @@ void Viewer::PumpWorker() {
         if (!frame->error.empty()) {
             if (frame->error != error_) std::fputs(frame->error.c_str(), stderr);
             error_ = frame->error.substr(0, frame->error.find('\n'));
+            if (s_.script) {  // a scripted session cannot go on with a picture it did not get
+                exitCode_ = 1;
+                running_ = false;
+            }
         } else {
             for (const std::string& n : frame->notes)
                 if (frame->job.request.scale == 1 && n != lastNote_) {
