@@ -311,7 +311,7 @@ void Viewer::RunCommand(Command c) {
             standard(StandardView::kIso);
             break;
         case Command::kTogglePerspective:
-            camera_.SetPerspective(!camera_.perspective);
+            camera_.SetPerspective(!camera_.perspective, 3 * s_.sphere.radius);
             Changed();
             break;
         case Command::kReset:

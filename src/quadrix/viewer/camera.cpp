@@ -97,9 +97,13 @@ void Camera::FitAll(const SceneSphere& sphere, int width, int height) {
     if (perspective) distance = kEyeRatio * halfHeight;
 }
 
-void Camera::SetPerspective(bool on) {
-    if (on && !perspective) distance = kEyeRatio * halfHeight;
+void Camera::SetPerspective(bool on, double minDistance) {
+    if (on && !perspective) distance = std::max(kEyeRatio * halfHeight, minDistance);
     perspective = on;
+}
+
+void Camera::MoveTargetToDepthOf(const Vec3& p) {
+    if (!perspective) target += toward * Dot(p - target, toward);
 }
 
 scene::View Camera::ToView() const {

@@ -73,7 +73,14 @@ struct Camera {
     // Centres on the sphere and sizes the window so that it fits a width×height image with a 5%
     // margin, keeping the direction.
     void FitAll(const SceneSphere& sphere, int width, int height);
-    void SetPerspective(bool on);
+    // Switching perspective on puts the eye at max(kEyeRatio·halfHeight, minDistance) from the
+    // target (the viewer passes three scene radii, so that the model's near side is not blown
+    // up when the window is small next to it).
+    void SetPerspective(bool on, double minDistance = 0);
+    // Parallel views: slides the target along the view direction to the plane through `p` (the
+    // scene's centre), which changes nothing in the picture but makes `p`'s depth the orbit
+    // centre's and the perspective eye's reference. Perspective views are left as they are.
+    void MoveTargetToDepthOf(const Vec3& p);
 
     // The scene::View of this camera (id "camera"): vrp, vpn, vup, whh and dop or cop.
     scene::View ToView() const;

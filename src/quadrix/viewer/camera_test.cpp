@@ -163,6 +163,21 @@ TEST(ViewerCamera, StartsFromTheScenesViewExactly) {
     }
 }
 
+TEST(ViewerCamera, MovingTheTargetInDepthKeepsTheParallelPicture) {
+    Camera c = SomeCamera();
+    const Projection before = Flatten(c);
+    c.MoveTargetToDepthOf({5, -3, 8});
+    EXPECT_NEAR(Dot(Vec3{5, -3, 8} - c.target, c.Right()),
+                Dot(Vec3{5, -3, 8} - SomeCamera().target, c.Right()), 1e-12);
+    EXPECT_NEAR(Dot(Vec3{5, -3, 8} - c.target, c.toward), 0, 1e-12);
+    const Projection after = Flatten(c);
+    for (Vec3 p : {Vec3{1, 0, 0}, Vec3{3, 1, 0}, Vec3{-1, -1, 2}}) {
+        const Vec3 a = before.deviceFromWorld.MapPoint(p), b = after.deviceFromWorld.MapPoint(p);
+        EXPECT_NEAR(a.x, b.x, 1e-9);
+        EXPECT_NEAR(a.y, b.y, 1e-9);
+    }
+}
+
 TEST(ViewerCamera, StandardViewsLookAlongTheAxes) {
     const SceneSphere s{{1, 2, 3}, 2};
     struct Case {

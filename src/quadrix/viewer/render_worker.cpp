@@ -250,6 +250,7 @@ std::string RenderWorker::InitialCamera(const std::string& viewName, int width, 
         std::optional<SceneSphere> s;
         if (ctx_->Flatten(fit, fitDiags)) s = BoundingSphere(ctx_->Flat());
         sphere = s ? *s : SceneSphere{camera.target, camera.halfHeight};
+        camera.MoveTargetToDepthOf(sphere.centre);
     });
     return error;
 }

@@ -72,7 +72,8 @@ class RenderWorker {
     FrameOutcome RenderNow(const FrameJob& job);
 
     // The camera for the scene's view `viewName` at width×height and the scene's bounding sphere
-    // (falling back to the camera's window when nothing is bounded). Error message or empty.
+    // (falling back to the camera's window when nothing is bounded); a parallel camera's target
+    // is moved to the depth of the sphere's centre, the orbit centre. Error message or empty.
     std::string InitialCamera(const std::string& viewName, int width, int height, Camera& camera,
                               SceneSphere& sphere);
     // The pick at window pixel (x, y) of the last frame drawn (scaled to its resolution).
