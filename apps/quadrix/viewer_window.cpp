@@ -82,7 +82,7 @@ class Viewer {
     void Changed() { scheduler_.ViewChanged(); }
     void HandleEvent(const SDL_Event& ev);
     void RunCommand(Command c);
-    void Upload(const viewer::FrameOutcome& frame);
+    void Upload(viewer::FrameOutcome& frame);
     void Present(std::vector<std::uint8_t>* readback);
     void PumpWorker();
     void PollFiles();
@@ -167,7 +167,7 @@ void Viewer::Title() {
     SDL_SetWindowTitle(window_, t.c_str());
 }
 
-void Viewer::Upload(const viewer::FrameOutcome& frame) {
+void Viewer::Upload(viewer::FrameOutcome& frame) {
     const Image& im = frame.image;
     if (!texture_ || textureW_ != im.width || textureH_ != im.height) {
         if (texture_) SDL_DestroyTexture(texture_);
@@ -178,7 +178,7 @@ void Viewer::Upload(const viewer::FrameOutcome& frame) {
     }
     shown_ = DisplayBytes(im);
     if (texture_) SDL_UpdateTexture(texture_, nullptr, shown_.data(), im.width * 3);
-    shownImage_ = im;
+    shownImage_ = std::move(frame.image);  // `im` is not used below
     shownScale_ = frame.job.request.scale;
     shownSeconds_ = frame.seconds;
     Present(nullptr);
