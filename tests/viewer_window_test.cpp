@@ -72,6 +72,58 @@ TEST(ViewerWindow, ScriptedSessionMatchesRenderOfThePrintedViews) {
     }
 }
 
+// Live reload: a save with an error keeps the last good picture and reports file:line:col; the
+// fixed file is drawn (and equals `quadrix render` of it from the printed view). The shell edits
+// the scene when the window's outputs appear, so the order does not depend on timing.
+TEST(ViewerWindow, ReloadKeepsTheLastGoodPictureOnErrorThenDrawsTheFix) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string original = "quadric ball <1 1 1 0 0 0 0 0 0 -4>;\nbody thing <ball>;\n";
+    const std::string scene = dir.Write("scene.uq", original);
+    const std::string script = dir.Write("events.txt", "screenshot " + dir.File("a.ppm") +
+                                                           "\n"
+                                                           "wait-reload\n"
+                                                           "screenshot " +
+                                                           dir.File("bad.ppm") +
+                                                           "\n"
+                                                           "print-view " +
+                                                           dir.File("m.uq") +
+                                                           "\n"
+                                                           "wait-reload\n"
+                                                           "screenshot " +
+                                                           dir.File("b.ppm") +
+                                                           "\n"
+                                                           "print-view " +
+                                                           dir.File("b.uq") + "\n");
+    auto waitFor = [&](const std::string& name) {
+        return "for i in $(seq 400); do [ -f '" + dir.File(name) +
+               "' ] && break; sleep 0.05; done; ";
+    };
+    const std::string editor = "(" + waitFor("a.ppm") + "printf 'quadric oops <1 2>;\\n' >> '" +
+                               scene + "'; " + waitFor("m.uq") +
+                               "printf 'quadric ball <1 1 1 0 0 0 0 0 0 -2.25>;\\nbody thing "
+                               "<ball>;\\n' > '" +
+                               scene + "') & ";
+    const CommandResult run =
+        RunShell(editor + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" + scene +
+                 "' --size 160x120 --script '" + script + "'; s=$?; wait; exit $s");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.err.find(scene + ":3:18: error:"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("keeping the last good picture"), std::string::npos) << run.err;
+    Image a, bad, b, cli;
+    ASSERT_TRUE(ReadPnm(dir.File("a.ppm"), a));
+    ASSERT_TRUE(ReadPnm(dir.File("bad.ppm"), bad));
+    ASSERT_TRUE(ReadPnm(dir.File("b.ppm"), b));
+    EXPECT_EQ(bad.pixels, a.pixels);  // the last good picture
+    EXPECT_NE(b.pixels, a.pixels);    // the smaller ball
+    const CommandResult r =
+        RunShell(QuadrixBinary() + " render '" + scene + "' '" + dir.File("b.uq") +
+                 "' --size 160x120 -o '" + dir.File("r.ppm") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_TRUE(ReadPnm(dir.File("r.ppm"), cli));
+    EXPECT_EQ(b.pixels, cli.pixels);
+}
+
 TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {
     const std::string scene = SourcePath("examples/tube.uq");
     const CommandResult noDisplay =

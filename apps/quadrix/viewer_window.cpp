@@ -120,6 +120,9 @@ class Viewer {
     int exitCode_ = 0;
     int screenshotCount_ = 0;
     std::string pendingScreenshot_;
+    int reloads_ = 0;       // reloads done (successful or not)
+    int reloadTarget_ = 0;  // the script waits until reloads_ reaches it
+    Clock::time_point reloadDeadline_{};
 };
 
 bool Viewer::Open() {
@@ -219,6 +222,7 @@ void Viewer::PumpWorker() {
         Title();
     }
     if (auto load = s_.worker->TakeReload()) {
+        ++reloads_;
         watch_.SetFiles(load->files);
         if (load->ok) {
             if (!load->messages.empty()) std::fputs(load->messages.c_str(), stderr);
@@ -442,6 +446,13 @@ void Viewer::StepScript() {
     const auto& script = *s_.script;
     if (Clock::now() < sleepUntil_) return;
     if (scriptWaitsFinal_ && !scheduler_.Final()) return;
+    if (reloads_ < reloadTarget_) {
+        if (Clock::now() < reloadDeadline_) return;
+        std::fprintf(stderr, "quadrix: error: wait-reload: no reload within 20 s\n");
+        exitCode_ = 1;
+        running_ = false;
+        return;
+    }
     scriptWaitsFinal_ = false;
     while (running_ && scriptPos_ < script.size()) {
         const ScriptEvent& e = script[scriptPos_];
@@ -529,6 +540,10 @@ void Viewer::StepScript() {
             case ScriptEvent::Kind::kSleep:
                 sleepUntil_ = Clock::now() +
                               std::chrono::microseconds(static_cast<long long>(e.amount * 1000));
+                return;
+            case ScriptEvent::Kind::kWaitReload:
+                reloadTarget_ = reloads_ + 1;
+                reloadDeadline_ = Clock::now() + std::chrono::seconds(20);
                 return;
             case ScriptEvent::Kind::kQuit:
                 running_ = false;

@@ -112,6 +112,7 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
         {"screenshot", {Kind::kScreenshot, 0, 0, 1}},
         {"print-view", {Kind::kPrintView, 0, 0, 2}},
         {"sleep", {Kind::kSleep, 1, 0, 0}},
+        {"wait-reload", {Kind::kWaitReload, 0, 0, 0}},
         {"quit", {Kind::kQuit, 0, 0, 0}},
     };
     auto file = std::make_shared<const std::string>(name);
@@ -130,11 +131,12 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
         auto at = [&](int column) { return SourceLoc{file, lineNo, column}; };
         auto it = kSyntax.find(Lower(words[0].text));
         if (it == kSyntax.end()) {
-            diags.Error(at(words[0].column),
-                        fmt::format("unknown script event '{}' (orbit, pan, zoom, click, key, "
-                                    "engine, wait, screenshot, print-view, sleep, quit)",
-                                    words[0].text),
-                        std::string(line), "script");
+            diags.Error(
+                at(words[0].column),
+                fmt::format("unknown script event '{}' (orbit, pan, zoom, click, key, "
+                            "engine, wait, screenshot, print-view, sleep, wait-reload, quit)",
+                            words[0].text),
+                std::string(line), "script");
             continue;
         }
         const Syntax& syn = it->second;

@@ -20,6 +20,8 @@
 //   screenshot FILE       wait, then save the window's picture (PNG or PNM by extension)
 //   print-view [FILE]     print the view statement (standard output, or written to FILE)
 //   sleep MS              let MS milliseconds of real time pass (file reloads, progressive frames)
+//   wait-reload           until the input files have changed and been read again (successfully
+//                         or not); more than 20 s is an error
 //   quit                  close the window (the end of the script does too)
 // Errors are reported at file:line:column; a bad script opens no window.
 #pragma once
@@ -71,6 +73,7 @@ struct ScriptEvent {
         kScreenshot,
         kPrintView,
         kSleep,
+        kWaitReload,
         kQuit
     };
     Kind kind = Kind::kWait;

@@ -23,10 +23,11 @@ TEST(ViewerScript, ParsesEveryEvent) {
         "print-view\n"
         "print-view v.uq\n"
         "sleep 250\n"
+        "wait-reload\n"
         "quit\n",
         "s.txt", diags);
     ASSERT_TRUE(events) << diags.Items().front().Format();
-    ASSERT_EQ(events->size(), 13u);
+    ASSERT_EQ(events->size(), 14u);
     using K = ScriptEvent::Kind;
     const auto& e = *events;
     EXPECT_EQ(e[0].kind, K::kOrbit);
@@ -47,7 +48,8 @@ TEST(ViewerScript, ParsesEveryEvent) {
     EXPECT_EQ(e[9].text, "");
     EXPECT_EQ(e[10].text, "v.uq");
     EXPECT_EQ(e[11].amount, 250);
-    EXPECT_EQ(e[12].kind, K::kQuit);
+    EXPECT_EQ(e[12].kind, K::kWaitReload);
+    EXPECT_EQ(e[13].kind, K::kQuit);
 }
 
 TEST(ViewerScript, ErrorsNameLineAndColumn) {
