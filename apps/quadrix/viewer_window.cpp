@@ -381,9 +381,11 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
             break;
         case SDL_MOUSEBUTTONUP:
             if (ev.button.button == dragButton_) {
-                if (!moved_ && dragButton_ == SDL_BUTTON_LEFT)
-                    std::printf("%s\n", s_.worker->PickText(ev.button.x, ev.button.y).c_str()),
-                        std::fflush(stdout);
+                if (!moved_ && dragButton_ == SDL_BUTTON_LEFT) {
+                    const std::string pick = s_.worker->PickText(ev.button.x, ev.button.y);
+                    std::printf("%s\n", pick.c_str());
+                    std::fflush(stdout);
+                }
                 dragButton_ = 0;
             }
             break;
