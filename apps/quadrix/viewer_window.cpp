@@ -372,6 +372,15 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
             }
             break;
         case SDL_MOUSEBUTTONDOWN:
+            if (ev.button.button == SDL_BUTTON_LEFT && ev.button.clicks == 2) {
+                // A double-click makes the picked point the orbit centre.
+                const viewer::PickResult p = s_.worker->PickAt(ev.button.x, ev.button.y);
+                if (p.hit) {
+                    camera_.pivot = p.point;
+                    std::printf("orbit centre %.6g %.6g %.6g\n", p.point.x, p.point.y, p.point.z);
+                    std::fflush(stdout);
+                }
+            }
             if (dragButton_ == 0) {
                 dragButton_ = ev.button.button;
                 downX_ = ev.button.x;

@@ -33,11 +33,15 @@ void Camera::Orbit(double dx, double dy, int height) {
     const double yaw = std::numbers::pi * dx / height;
     const double pitch = std::numbers::pi * dy / height;
     const Vec3 axis = Dot(up, worldUp) < 0 ? -worldUp : worldUp;
+    Vec3 offset = pivot ? target - *pivot : Vec3{};
     toward = Rotate(toward, axis, yaw);
     up = Rotate(up, axis, yaw);
+    offset = Rotate(offset, axis, yaw);
     const Vec3 right = Right();
     toward = Rotate(toward, right, pitch);
     up = Rotate(up, right, pitch);
+    offset = Rotate(offset, right, pitch);
+    if (pivot) target = *pivot + offset;
     Orthonormalize(toward, up);
 }
 
@@ -59,6 +63,7 @@ void Camera::Zoom(double clicks, double x, double y, int width, int height) {
 
 void Camera::SetStandardView(StandardView view, const SceneSphere& sphere) {
     target = sphere.centre;
+    pivot.reset();
     worldUp = {0, 1, 0};
     // The default view looks along +z (docs/language.md §2): the front is seen from -z.
     switch (view) {
@@ -90,6 +95,7 @@ void Camera::SetStandardView(StandardView view, const SceneSphere& sphere) {
 
 void Camera::FitAll(const SceneSphere& sphere, int width, int height) {
     target = sphere.centre;
+    pivot.reset();
     const double aspect = (width > 0 && height > 0) ? double(height) / width : 1.0;
     // In perspective the silhouette of a sphere of radius r seen from D is r D / sqrt(D² - r²)
     // wide at the target's plane; with D >= 2.75 · 1.05 r that is at most 7% more.

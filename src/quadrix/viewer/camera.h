@@ -57,6 +57,10 @@ struct Camera {
     double halfHeight = 1;
     bool perspective = false;
     double distance = 1;
+    // The point orbited about when set (a double-click's pick), instead of the target: the
+    // whole camera turns rigidly about it, so it stays where it is on the screen. Views that
+    // re-centre (standard views, fit-all) clear it.
+    std::optional<Vec3> pivot;
 
     // The half-distance ratio used when perspective is switched on: the eye sits at
     // kEyeRatio·halfHeight from the target, a vertical field of view of 2·atan(1/kEyeRatio) ≈ 40°.

@@ -101,6 +101,21 @@ TEST(ViewerCamera, OrbitCarriesTheNearSideWithTheDrag) {
     EXPECT_NEAR(Length(f.toward - Vec3{0, 0, 1}), 0, 1e-12);
 }
 
+TEST(ViewerCamera, OrbitAboutAPivotKeepsItOnTheScreen) {
+    for (bool perspective : {false, true}) {
+        Camera c = SomeCamera();
+        c.SetPerspective(perspective, 10);
+        const Vec3 pivot{2, 0.5, -1};
+        c.pivot = pivot;
+        const Vec3 before = Flatten(c).deviceFromWorld.MapPoint(pivot);
+        c.Orbit(55, -20, kH);
+        const Vec3 after = Flatten(c).deviceFromWorld.MapPoint(pivot);
+        EXPECT_NEAR(after.x, before.x, 1e-9);
+        EXPECT_NEAR(after.y, before.y, 1e-9);
+        EXPECT_NE(c.target, SomeCamera().target);
+    }
+}
+
 // The device point (x, y) on the view plane (device z = 0 there, view_setup.h) in world space.
 Vec3 WorldAt(const Projection& p, double x, double y) {
     return p.deviceFromWorld.Inverse().MapPoint({x, y, 0});

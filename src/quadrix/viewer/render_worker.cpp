@@ -255,6 +255,17 @@ std::string RenderWorker::InitialCamera(const std::string& viewName, int width, 
     return error;
 }
 
+PickResult RenderWorker::PickAt(int x, int y) {
+    PickResult p;
+    Call([&] {
+        if (ctx_ && frame_.width > 0)
+            p = Pick(frame_, ctx_->Flat(), &ctx_->Scene(), x / frameScale_, y / frameScale_);
+        p.x = x;
+        p.y = y;
+    });
+    return p;
+}
+
 std::string RenderWorker::PickText(int x, int y) {
     std::string text;
     Call([&] {

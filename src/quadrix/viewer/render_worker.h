@@ -26,6 +26,7 @@
 #include "quadrix/io/image.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/viewer/camera.h"
+#include "quadrix/viewer/picking.h"
 #include "quadrix/viewer/progressive.h"
 
 namespace quadrix::viewer {
@@ -78,6 +79,8 @@ class RenderWorker {
                               SceneSphere& sphere);
     // The pick at window pixel (x, y) of the last frame drawn (scaled to its resolution).
     std::string PickText(int x, int y);
+    // The same pick as data (world point and normal, ids, names).
+    PickResult PickAt(int x, int y);
 
   private:
     void Loop();
