@@ -95,6 +95,7 @@ class Viewer {
     viewer::Camera camera_;
     int width_, height_;
     std::string engine_;
+    bool edges_ = false;
     std::vector<std::string> engines_;
     viewer::FrameScheduler scheduler_;
     viewer::FileWatch watch_;
@@ -163,6 +164,7 @@ void Viewer::Title() {
     if (shownScale_ > 1) t += fmt::format(" (1/{})", shownScale_);
     if (shownSeconds_ > 0) t += fmt::format(" — {:.1f} ms", 1e3 * shownSeconds_);
     t += camera_.perspective ? " — perspective" : " — parallel";
+    if (edges_) t += " — edges";
     if (!error_.empty())
         t += " — ERROR " + error_;
     else
@@ -244,6 +246,7 @@ void Viewer::PumpWorker() {
             job.width = width_;
             job.height = height_;
             job.engine = engine_;
+            job.edges = edges_;
             s_.worker->Submit(job);
         }
     }
@@ -316,6 +319,10 @@ void Viewer::RunCommand(Command c) {
             break;
         case Command::kTogglePerspective:
             camera_.SetPerspective(!camera_.perspective, 3 * s_.sphere.radius);
+            Changed();
+            break;
+        case Command::kToggleEdges:
+            edges_ = !edges_;
             Changed();
             break;
         case Command::kReset:

@@ -6,6 +6,7 @@
 #include <future>
 #include <set>
 
+#include "quadrix/viewer/edges.h"
 #include "quadrix/viewer/picking.h"
 
 namespace quadrix::viewer {
@@ -202,6 +203,7 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     }
     frameScale_ = s;
     out.image = ctx_->Shade(frame_, ShadeOptions{});
+    if (job.edges) DrawEdges(frame_, out.image);
     out.notes = report.notes;
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;

@@ -44,6 +44,7 @@ struct FrameJob {
     scene::View view;
     int width = 0, height = 0;  // the full-resolution size; the image is divided by request.scale
     std::string engine = "raycast";
+    bool edges = false;  // show-edges over the shading (viewer/edges.h)
 };
 
 struct FrameOutcome {

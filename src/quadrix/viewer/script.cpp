@@ -62,6 +62,7 @@ Command CommandForKey(std::string_view keyName, bool shift) {
         {"0", Command::kIso},
         {"i", Command::kIso},
         {"p", Command::kTogglePerspective},
+        {"l", Command::kToggleEdges},
         {"r", Command::kReset},
         {"f", Command::kFitAll},
         {"v", Command::kPrintView},
@@ -88,7 +89,7 @@ Command CommandForKey(std::string_view keyName, bool shift) {
 std::string KeyHelp() {
     return "mouse: left-drag orbit, right/middle-drag pan, wheel zoom at the cursor, click pick\n"
            "keys:  1 front  2 back  3 left  4 right  5 top  6 bottom  0/I isometric\n"
-           "       P perspective/parallel  R reset  F fit all  V print view\n"
+           "       P perspective/parallel  L show-edges  R reset  F fit all  V print view\n"
            "       E/shift-E next/previous engine  S screenshot  H help  Q/Esc quit\n";
 }
 

@@ -4,8 +4,8 @@
 // case) to commands, shared by the window and the script's `key` line, so that a script presses
 // the very keys a user does:
 //   1 front  2 back  3 left  4 right  5 top  6 bottom  0 or I isometric
-//   P perspective/parallel   R reset   F fit all   V print the view   E / shift-E next/previous
-//   engine   S screenshot   H help   Q or Escape quit
+//   P perspective/parallel   L show-edges on/off   R reset   F fit all   V print the view   E /
+//   shift-E next/previous engine   S screenshot   H help   Q or Escape quit
 //
 // A script (`quadrix view --script FILE`) is a text file of events, one a line, `#` to the end of
 // a line is a comment. Positions and motions are in window pixels.
@@ -46,6 +46,7 @@ enum class Command {
     kBottom,
     kIso,
     kTogglePerspective,
+    kToggleEdges,
     kReset,
     kFitAll,
     kPrintView,
