@@ -38,6 +38,7 @@
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/antialias.h"
 #include "scenes.h"
+#include "viewer_orbit.h"
 
 extern char** environ;
 
@@ -576,6 +577,10 @@ int main(int argc, char** argv) {
     md += AntialiasTable(scenes, outDir, only, quick ? 1 : 3);
     if (only.empty() || std::string("isocurve").find(only) != std::string::npos)
         md += IsocurveTable(sourceDir, quick ? 1 : 3);
+    if (only.empty() || std::string("viewer").find(only) != std::string::npos)
+        md += ViewerOrbitTable({FromFile("machined_part", sourceDir + "/examples/machined_part.uq"),
+                                SpheresMinusCylinder(1000)},
+                               1280, 720, quick ? 12 : 36, threads);
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".md") << md;
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".csv") << csv;
     std::ofstream(outDir + "/latest.md") << md;

@@ -157,6 +157,21 @@ bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineR
                        Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer);
 int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
                  const ShadeOptions& shade, const OutputRequest& outputs);
+// `quadrix view`: the interactive window (view_command.cpp, viewer_window.cpp, docs/viewer.md).
+struct ViewArgs {
+    std::vector<std::string> scenes;
+    std::string size = "960x720";
+    std::string view;
+    std::string engine = "raycast";
+    int threads = 0;
+    std::string script;
+    int bench = 0;
+    bool offscreen = false;
+    std::vector<std::string> top;
+    bool allowMissing = false;
+};
+void AddViewCommand(CLI::App& app, ViewArgs& args);
+int RunView(const ViewArgs& args);
 
 // "WxH" → width, height; returns an error message or empty.
 std::string ParseSize(const std::string& text, int& width, int& height);

@@ -111,9 +111,6 @@ int Run(int argc, char** argv) {
     std::string helpTopic;
     app.add_subcommand("help", "Print this text, or the options of one subcommand")
         ->add_option("subcommand", helpTopic, "The subcommand to describe");
-    // Every subcommand answers --version (docs/cli.md), and exit codes follow docs/cli.md.
-    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
-        sub->set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
     app.footer(
         "Exit status: 0 success, 1 an error in the scene or input (or a failed output), 2 a "
         "usage error (unknown subcommand, option, engine or bad option value); see docs/cli.md.");
@@ -121,6 +118,11 @@ int Run(int argc, char** argv) {
     quadrix::cli::AddManCommand(app, manArgs);
     quadrix::cli::BatchArgs batchArgs;
     quadrix::cli::AddBatchCommand(app, batchArgs);
+    quadrix::cli::ViewArgs viewArgs;
+    quadrix::cli::AddViewCommand(app, viewArgs);
+    // Every subcommand answers --version (docs/cli.md), and exit codes follow docs/cli.md.
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        sub->set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
 
     if (int uqCode = 0; quadrix::cli::MaybeRunUq(argc, argv, uqCode)) return uqCode;
     if (argc >= 2 && argv[1][0] != '-') {
@@ -150,6 +152,7 @@ int Run(int argc, char** argv) {
     if (app.got_subcommand("help")) return RunHelp(app, helpTopic);
     if (app.got_subcommand("man")) return quadrix::cli::RunMan(app, manArgs);
     if (app.got_subcommand("batch")) return quadrix::cli::RunBatch(batchArgs);
+    if (app.got_subcommand("view")) return quadrix::cli::RunView(viewArgs);
     return 2;
 }
 

@@ -1,0 +1,664 @@
+// The SDL2 window of `quadrix view` (issue 18). Software frames from the render thread
+// (viewer/render_worker.h) are blitted as a streaming texture: no OpenGL is needed, and under
+// Xvfb SDL's software renderer does the same job. The event thread only turns events into camera
+// moves and commands, asks the render thread for frames (viewer/progressive.h), and uploads what
+// comes back; it never renders and never waits for a frame, except in the bench.
+//
+// Scripted input (viewer/script.h) is replayed as SDL events pushed onto the window's own queue,
+// so a script drives exactly the code a user does: the same mouse and key handlers.
+#include "viewer_window.h"
+
+#ifdef QUADRIX_HAVE_SDL2
+
+#include <SDL.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "quadrix/engines/registry.h"
+#include "quadrix/io/writers.h"
+#include "quadrix/viewer/file_watch.h"
+#include "quadrix/viewer/progressive.h"
+
+namespace quadrix::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using viewer::Command;
+using viewer::ScriptEvent;
+
+double Since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::vector<std::string> UserEngines() {
+    std::vector<std::string> names;
+    for (const EngineInfo& e : Engines())
+        if (!e.hidden) names.push_back(e.name);
+    return names;
+}
+
+// 8-bit sRGB RGB bytes of an image (gray expanded), as the PNG writer encodes them.
+std::vector<std::uint8_t> DisplayBytes(const Image& image) {
+    std::vector<std::uint8_t> srgb = EncodeSrgb8(image);
+    if (image.channels == 3) return srgb;
+    std::vector<std::uint8_t> rgb(srgb.size() * 3);
+    for (std::size_t i = 0; i < srgb.size(); ++i)
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = srgb[i];
+    return rgb;
+}
+
+class Viewer {
+  public:
+    explicit Viewer(const ViewerSession& s)
+        : s_(s),
+          camera_(s.camera),
+          width_(s.width),
+          height_(s.height),
+          engine_(s.engine),
+          engines_(UserEngines()) {
+        watch_.SetFiles(s.files);
+    }
+    ~Viewer() {
+        if (texture_) SDL_DestroyTexture(texture_);
+        if (renderer_) SDL_DestroyRenderer(renderer_);
+        if (window_) SDL_DestroyWindow(window_);
+        SDL_Quit();
+    }
+
+    bool Open();
+    int Run();
+    int Bench();
+
+  private:
+    void Title();
+    void Changed() { scheduler_.ViewChanged(); }
+    void HandleEvent(const SDL_Event& ev);
+    void RunCommand(Command c);
+    void Upload(viewer::FrameOutcome& frame);
+    void Present(std::vector<std::uint8_t>* readback);
+    void PumpWorker();
+    void PollFiles();
+    // Runs script events until one must wait; false when the script asks to quit.
+    void StepScript();
+    bool Screenshot(const std::string& path);
+    void PushMouse(Uint32 type, Uint8 button, int x, int y, int dx = 0, int dy = 0);
+
+    const ViewerSession& s_;
+    viewer::Camera camera_;
+    int width_, height_;
+    std::string engine_;
+    bool edges_ = false;
+    std::vector<std::string> engines_;
+    viewer::FrameScheduler scheduler_;
+    viewer::FileWatch watch_;
+    Clock::time_point lastPoll_ = Clock::now();
+    SDL_Window* window_ = nullptr;
+    SDL_Renderer* renderer_ = nullptr;
+    SDL_Texture* texture_ = nullptr;
+    int textureW_ = 0, textureH_ = 0;
+    std::vector<std::uint8_t> shown_;  // the bytes in the texture
+    Image shownImage_;                 // the image they came from
+    int shownScale_ = 1;
+    double shownSeconds_ = 0;
+    std::string error_;  // the current reload/frame error, for the title
+    std::string lastNote_;
+    // Mouse.
+    int dragButton_ = 0, downX_ = 0, downY_ = 0;
+    bool moved_ = false;
+    // Script.
+    std::size_t scriptPos_ = 0;
+    bool scriptWaitsFinal_ = false;
+    Clock::time_point sleepUntil_{};
+    bool running_ = true;
+    int exitCode_ = 0;
+    int screenshotCount_ = 0;
+    std::string pendingScreenshot_;
+    int reloads_ = 0;       // reloads done (successful or not)
+    int reloadTarget_ = 0;  // the script waits until reloads_ reaches it
+    Clock::time_point reloadDeadline_{};
+};
+
+bool Viewer::Open() {
+    // Without a display server SDL may still initialise a console or offscreen driver and open
+    // an invisible "window" that no one can close: refuse unless a driver was asked for.
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") &&
+        !std::getenv("SDL_VIDEODRIVER")) {
+        std::fprintf(stderr,
+                     "quadrix: error: cannot open a window: no display (DISPLAY and "
+                     "WAYLAND_DISPLAY are unset; run under a desktop session or `xvfb-run -a`; "
+                     "`quadrix view --bench N` renders offscreen)\n");
+        return false;
+    }
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+        std::fprintf(stderr,
+                     "quadrix: error: cannot open a window: %s\n(no display? run under a desktop "
+                     "session or `xvfb-run -a`; `quadrix view --bench N` renders offscreen)\n",
+                     SDL_GetError());
+        return false;
+    }
+    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "nearest");
+    window_ = SDL_CreateWindow("quadrix view", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
+                               width_, height_, SDL_WINDOW_RESIZABLE);
+    if (window_) renderer_ = SDL_CreateRenderer(window_, -1, 0);
+    if (window_ && !renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    if (!window_ || !renderer_) {
+        std::fprintf(stderr, "quadrix: error: cannot open a window: %s\n", SDL_GetError());
+        return false;
+    }
+    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
+    Title();
+    return true;
+}
+
+void Viewer::Title() {
+    std::string t =
+        fmt::format("quadrix view — {} — {} — {}x{}", s_.name, engine_, width_, height_);
+    if (shownScale_ > 1) t += fmt::format(" (1/{})", shownScale_);
+    if (shownSeconds_ > 0) t += fmt::format(" — {:.1f} ms", 1e3 * shownSeconds_);
+    t += camera_.perspective ? " — perspective" : " — parallel";
+    if (edges_) t += " — edges";
+    if (!error_.empty())
+        t += " — ERROR " + error_;
+    else
+        t += " — H: help";
+    SDL_SetWindowTitle(window_, t.c_str());
+}
+
+void Viewer::Upload(viewer::FrameOutcome& frame) {
+    const Image& im = frame.image;
+    if (!texture_ || textureW_ != im.width || textureH_ != im.height) {
+        if (texture_) SDL_DestroyTexture(texture_);
+        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
+                                     im.width, im.height);
+        textureW_ = im.width;
+        textureH_ = im.height;
+    }
+    shown_ = DisplayBytes(im);
+    if (texture_) SDL_UpdateTexture(texture_, nullptr, shown_.data(), im.width * 3);
+    shownImage_ = std::move(frame.image);  // `im` is not used below
+    shownScale_ = frame.job.request.scale;
+    shownSeconds_ = frame.seconds;
+    Present(nullptr);
+}
+
+void Viewer::Present(std::vector<std::uint8_t>* readback) {
+    SDL_RenderClear(renderer_);
+    if (texture_) SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+    if (readback) {
+        int w = 0, h = 0;
+        SDL_GetRendererOutputSize(renderer_, &w, &h);
+        readback->assign(static_cast<std::size_t>(w) * h * 3, 0);
+        if (SDL_RenderReadPixels(renderer_, nullptr, SDL_PIXELFORMAT_RGB24, readback->data(),
+                                 w * 3) != 0)
+            readback->clear();
+    }
+    SDL_RenderPresent(renderer_);
+}
+
+void Viewer::PumpWorker() {
+    if (auto frame = s_.worker->TakeFrame()) {
+        scheduler_.Delivered(frame->job.request, frame->seconds);
+        if (!frame->error.empty()) {
+            if (frame->error != error_) std::fputs(frame->error.c_str(), stderr);
+            error_ = frame->error.substr(0, frame->error.find('\n'));
+            if (s_.script) {  // a scripted session cannot go on with a picture it did not get
+                exitCode_ = 1;
+                running_ = false;
+            }
+        } else {
+            for (const std::string& n : frame->notes)
+                if (frame->job.request.scale == 1 && n != lastNote_) {
+                    std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
+                    lastNote_ = n;
+                }
+            Upload(*frame);
+        }
+        Title();
+    }
+    if (auto load = s_.worker->TakeReload()) {
+        ++reloads_;
+        watch_.SetFiles(load->files);
+        if (load->ok) {
+            if (!load->messages.empty()) std::fputs(load->messages.c_str(), stderr);
+            std::fprintf(stderr, "quadrix: reloaded\n");
+            error_.clear();
+            Changed();
+        } else {
+            std::fputs(load->messages.c_str(), stderr);
+            std::fprintf(stderr, "quadrix: the scene has errors; keeping the last good picture\n");
+            error_ = load->firstError;
+        }
+        Title();
+    }
+    if (!scheduler_.InFlight()) {
+        if (auto req = scheduler_.Next()) {
+            viewer::FrameJob job;
+            job.request = *req;
+            job.view = camera_.ToView();
+            job.width = width_;
+            job.height = height_;
+            job.engine = engine_;
+            job.edges = edges_;
+            s_.worker->Submit(job);
+        }
+    }
+}
+
+void Viewer::PollFiles() {
+    if (Since(lastPoll_) < 0.05) return;
+    lastPoll_ = Clock::now();
+    if (watch_.Changed()) s_.worker->ReloadAsync();
+}
+
+bool Viewer::Screenshot(const std::string& path) {
+    std::vector<std::uint8_t> pixels;
+    Present(&pixels);
+    int w = 0, h = 0;
+    SDL_GetRendererOutputSize(renderer_, &w, &h);
+    // The window must show the image byte for byte when it is at its full resolution.
+    if (shownScale_ == 1 && w == shownImage_.width && h == shownImage_.height && pixels != shown_) {
+        std::fprintf(stderr, "quadrix: error: the window's pixels differ from the frame drawn\n");
+        exitCode_ = 1;
+    }
+    ImageFormat format;
+    if (!ImageFormatFromPath(path, format) || format == ImageFormat::kFrameDump) {
+        std::fprintf(stderr, "quadrix: error: screenshot '%s': use .png, .ppm or .pgm\n",
+                     path.c_str());
+        exitCode_ = 1;
+        return false;
+    }
+    const std::string e =
+        format == ImageFormat::kPng ? WritePng(path, shownImage_) : WritePnm(path, shownImage_);
+    if (!e.empty()) {
+        std::fprintf(stderr, "quadrix: error: screenshot: %s\n", e.c_str());
+        exitCode_ = 1;
+        return false;
+    }
+    std::fprintf(stderr, "quadrix: screenshot %s (%dx%d)\n", path.c_str(), shownImage_.width,
+                 shownImage_.height);
+    return true;
+}
+
+void Viewer::RunCommand(Command c) {
+    using viewer::StandardView;
+    auto standard = [&](StandardView v) {
+        camera_.SetStandardView(v, s_.sphere);
+        Changed();
+    };
+    switch (c) {
+        case Command::kNone:
+            break;
+        case Command::kFront:
+            standard(StandardView::kFront);
+            break;
+        case Command::kBack:
+            standard(StandardView::kBack);
+            break;
+        case Command::kLeft:
+            standard(StandardView::kLeft);
+            break;
+        case Command::kRight:
+            standard(StandardView::kRight);
+            break;
+        case Command::kTop:
+            standard(StandardView::kTop);
+            break;
+        case Command::kBottom:
+            standard(StandardView::kBottom);
+            break;
+        case Command::kIso:
+            standard(StandardView::kIso);
+            break;
+        case Command::kTogglePerspective:
+            camera_.SetPerspective(!camera_.perspective, 3 * s_.sphere.radius);
+            Changed();
+            break;
+        case Command::kToggleEdges:
+            edges_ = !edges_;
+            Changed();
+            break;
+        case Command::kReset:
+            camera_ = s_.camera;
+            Changed();
+            break;
+        case Command::kFitAll:
+            camera_.FitAll(s_.sphere, width_, height_);
+            Changed();
+            break;
+        case Command::kPrintView:
+            std::fputs(viewer::FormatViewStatement(camera_, width_, height_).c_str(), stdout);
+            std::fflush(stdout);
+            break;
+        case Command::kNextEngine:
+        case Command::kPreviousEngine: {
+            if (engines_.empty()) break;
+            auto it = std::find(engines_.begin(), engines_.end(), engine_);
+            std::size_t i =
+                it == engines_.end() ? 0 : static_cast<std::size_t>(it - engines_.begin());
+            const std::size_t n = engines_.size();
+            i = c == Command::kNextEngine ? (i + 1) % n : (i + n - 1) % n;
+            engine_ = engines_[i];
+            std::fprintf(stderr, "quadrix: engine %s\n", engine_.c_str());
+            Changed();
+            break;
+        }
+        case Command::kScreenshot:
+            pendingScreenshot_ = fmt::format("quadrix-view-{}.png", ++screenshotCount_);
+            break;
+        case Command::kHelp:
+            std::fputs(viewer::KeyHelp().c_str(), stdout);
+            break;
+        case Command::kQuit:
+            running_ = false;
+            break;
+    }
+    Title();
+}
+
+void Viewer::HandleEvent(const SDL_Event& ev) {
+    switch (ev.type) {
+        case SDL_QUIT:
+            running_ = false;
+            break;
+        case SDL_WINDOWEVENT:
+            if (ev.window.event == SDL_WINDOWEVENT_SIZE_CHANGED) {
+                width_ = std::max(1, ev.window.data1);
+                height_ = std::max(1, ev.window.data2);
+                Changed();
+                Present(nullptr);
+            } else if (ev.window.event == SDL_WINDOWEVENT_EXPOSED) {
+                Present(nullptr);
+            }
+            break;
+        case SDL_MOUSEBUTTONDOWN:
+            if (ev.button.button == SDL_BUTTON_LEFT && ev.button.clicks == 2) {
+                // A double-click makes the picked point the orbit centre.
+                const viewer::PickResult p = s_.worker->PickAt(ev.button.x, ev.button.y);
+                if (p.hit) {
+                    camera_.pivot = p.point;
+                    std::printf("orbit centre %.6g %.6g %.6g\n", p.point.x, p.point.y, p.point.z);
+                    std::fflush(stdout);
+                }
+            }
+            if (dragButton_ == 0) {
+                dragButton_ = ev.button.button;
+                downX_ = ev.button.x;
+                downY_ = ev.button.y;
+                moved_ = false;
+            }
+            break;
+        case SDL_MOUSEBUTTONUP:
+            if (ev.button.button == dragButton_) {
+                if (!moved_ && dragButton_ == SDL_BUTTON_LEFT) {
+                    const std::string pick = s_.worker->PickText(ev.button.x, ev.button.y);
+                    std::printf("%s\n", pick.c_str());
+                    std::fflush(stdout);
+                }
+                dragButton_ = 0;
+            }
+            break;
+        case SDL_MOUSEMOTION:
+            if (dragButton_ == 0) break;
+            if (!moved_ && std::abs(ev.motion.x - downX_) + std::abs(ev.motion.y - downY_) < 3 &&
+                std::abs(ev.motion.xrel) + std::abs(ev.motion.yrel) < 3)
+                break;  // a click that trembles is still a click
+            moved_ = true;
+            if (dragButton_ == SDL_BUTTON_LEFT)
+                camera_.Orbit(ev.motion.xrel, ev.motion.yrel, height_);
+            else
+                camera_.Pan(ev.motion.xrel, ev.motion.yrel, height_);
+            Changed();
+            break;
+        case SDL_MOUSEWHEEL: {
+            if (ev.wheel.y == 0) break;
+            int x = 0, y = 0;
+#if SDL_VERSION_ATLEAST(2, 26, 0)
+            x = ev.wheel.mouseX;
+            y = ev.wheel.mouseY;
+#else
+            SDL_GetMouseState(&x, &y);
+#endif
+            const int clicks =
+                ev.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -ev.wheel.y : ev.wheel.y;
+            camera_.Zoom(clicks, x, y, width_, height_);
+            Changed();
+            break;
+        }
+        case SDL_KEYDOWN:
+            RunCommand(viewer::CommandForKey(SDL_GetKeyName(ev.key.keysym.sym),
+                                             (ev.key.keysym.mod & KMOD_SHIFT) != 0));
+            break;
+        default:
+            break;
+    }
+}
+
+void Viewer::PushMouse(Uint32 type, Uint8 button, int x, int y, int dx, int dy) {
+    SDL_Event ev{};
+    ev.type = type;
+    if (type == SDL_MOUSEMOTION) {
+        ev.motion.x = x;
+        ev.motion.y = y;
+        ev.motion.xrel = dx;
+        ev.motion.yrel = dy;
+    } else {
+        ev.button.button = button;
+        ev.button.x = x;
+        ev.button.y = y;
+        ev.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
+        ev.button.clicks = 1;
+    }
+    SDL_PushEvent(&ev);
+}
+
+void Viewer::StepScript() {
+    if (!s_.script) return;
+    const auto& script = *s_.script;
+    if (Clock::now() < sleepUntil_) return;
+    if (scriptWaitsFinal_ && !scheduler_.Final()) return;
+    if (reloads_ < reloadTarget_) {
+        if (Clock::now() < reloadDeadline_) return;
+        std::fprintf(stderr, "quadrix: error: wait-reload: no reload within 20 s\n");
+        exitCode_ = 1;
+        running_ = false;
+        return;
+    }
+    scriptWaitsFinal_ = false;
+    while (running_ && scriptPos_ < script.size()) {
+        const ScriptEvent& e = script[scriptPos_];
+        // Picks and screenshots need the full-resolution frame of the view so far.
+        if ((e.kind == ScriptEvent::Kind::kClick || e.kind == ScriptEvent::Kind::kScreenshot ||
+             e.kind == ScriptEvent::Kind::kWait) &&
+            !scheduler_.Final()) {
+            scriptWaitsFinal_ = true;
+            return;
+        }
+        ++scriptPos_;
+        const int cx = width_ / 2, cy = height_ / 2;
+        switch (e.kind) {
+            case ScriptEvent::Kind::kOrbit:
+            case ScriptEvent::Kind::kPan: {
+                const Uint8 button =
+                    e.kind == ScriptEvent::Kind::kOrbit ? SDL_BUTTON_LEFT : SDL_BUTTON_RIGHT;
+                PushMouse(SDL_MOUSEBUTTONDOWN, button, cx, cy);
+                // Integer motions summing exactly to the total.
+                int doneX = 0, doneY = 0;
+                for (int k = 1; k <= e.steps; ++k) {
+                    const int toX = static_cast<int>(std::lround(e.x * k / e.steps));
+                    const int toY = static_cast<int>(std::lround(e.y * k / e.steps));
+                    PushMouse(SDL_MOUSEMOTION, 0, cx + toX, cy + toY, toX - doneX, toY - doneY);
+                    doneX = toX;
+                    doneY = toY;
+                }
+                PushMouse(SDL_MOUSEBUTTONUP, button, cx + doneX, cy + doneY);
+                return;  // let the window handle them before the next script line
+            }
+            case ScriptEvent::Kind::kZoom: {
+                SDL_Event ev{};
+                ev.type = SDL_MOUSEWHEEL;
+                ev.wheel.y = static_cast<Sint32>(std::lround(e.amount));
+                ev.wheel.direction = SDL_MOUSEWHEEL_NORMAL;
+#if SDL_VERSION_ATLEAST(2, 26, 0)
+                ev.wheel.mouseX = std::isnan(e.x) ? cx : static_cast<Sint32>(e.x);
+                ev.wheel.mouseY = std::isnan(e.y) ? cy : static_cast<Sint32>(e.y);
+#endif
+                SDL_PushEvent(&ev);
+                return;
+            }
+            case ScriptEvent::Kind::kClick:
+                PushMouse(SDL_MOUSEBUTTONDOWN, SDL_BUTTON_LEFT, int(e.x), int(e.y));
+                PushMouse(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, int(e.x), int(e.y));
+                return;
+            case ScriptEvent::Kind::kKey: {
+                SDL_Event ev{};
+                ev.type = SDL_KEYDOWN;
+                ev.key.state = SDL_PRESSED;
+                ev.key.keysym.sym = SDL_GetKeyFromName(e.text.c_str());
+                ev.key.keysym.scancode = SDL_GetScancodeFromKey(ev.key.keysym.sym);
+                SDL_PushEvent(&ev);
+                return;
+            }
+            case ScriptEvent::Kind::kEngine:
+                if (e.text == "next") {
+                    RunCommand(Command::kNextEngine);
+                } else if (std::find(engines_.begin(), engines_.end(), e.text) != engines_.end()) {
+                    engine_ = e.text;
+                    Changed();
+                } else {
+                    std::fprintf(stderr, "%s: error: unknown engine '%s' (%s)\n",
+                                 e.loc.ToString().c_str(), e.text.c_str(), EngineList().c_str());
+                    exitCode_ = 1;
+                    running_ = false;
+                }
+                break;
+            case ScriptEvent::Kind::kWait:
+                break;
+            case ScriptEvent::Kind::kScreenshot:
+                if (!Screenshot(e.text)) running_ = false;
+                break;
+            case ScriptEvent::Kind::kPrintView:
+                if (e.text.empty()) {
+                    RunCommand(Command::kPrintView);
+                } else if (auto err = WriteFileAtomically(
+                               e.text, viewer::FormatViewStatement(camera_, width_, height_));
+                           !err.empty()) {
+                    std::fprintf(stderr, "quadrix: error: print-view: %s\n", err.c_str());
+                    exitCode_ = 1;
+                    running_ = false;
+                }
+                break;
+            case ScriptEvent::Kind::kSleep:
+                sleepUntil_ = Clock::now() +
+                              std::chrono::microseconds(static_cast<long long>(e.amount * 1000));
+                return;
+            case ScriptEvent::Kind::kWaitReload:
+                reloadTarget_ = reloads_ + 1;
+                reloadDeadline_ = Clock::now() + std::chrono::seconds(20);
+                return;
+            case ScriptEvent::Kind::kQuit:
+                running_ = false;
+                break;
+        }
+    }
+    if (scriptPos_ >= script.size()) running_ = false;  // the end of a script closes the window
+}
+
+int Viewer::Run() {
+    while (running_) {
+        SDL_Event ev;
+        if (SDL_WaitEventTimeout(&ev, 10)) {
+            HandleEvent(ev);
+            while (running_ && SDL_PollEvent(&ev)) HandleEvent(ev);
+        }
+        PumpWorker();
+        if (!pendingScreenshot_.empty() && scheduler_.Final()) {
+            Screenshot(pendingScreenshot_);
+            pendingScreenshot_.clear();
+        }
+        PollFiles();
+        StepScript();
+    }
+    return exitCode_;
+}
+
+int Viewer::Bench() {
+    // A fixed orbit: one full turn about the scene's up axis in N frames, each drawn at full
+    // resolution and shown (render + blit), timed from the first request to the last present.
+    const int n = s_.benchFrames;
+    viewer::Camera cam = camera_;
+    const auto t0 = Clock::now();
+    double slowest = 0;
+    for (int i = 0; i < n; ++i) {
+        cam.Orbit(2.0 * height_ / n, 0, height_);
+        viewer::FrameJob job;
+        job.view = cam.ToView();
+        job.width = width_;
+        job.height = height_;
+        job.engine = engine_;
+        const auto f0 = Clock::now();
+        viewer::FrameOutcome out = s_.worker->RenderNow(job);
+        if (!out.error.empty()) {
+            std::fputs(out.error.c_str(), stderr);
+            return 1;
+        }
+        Upload(out);
+        SDL_Event ev;
+        while (SDL_PollEvent(&ev))
+            if (ev.type == SDL_QUIT) return 0;
+        slowest = std::max(slowest, Since(f0));
+    }
+    const double seconds = Since(t0);
+    std::printf(
+        "view bench: %d frames %dx%d engine %s in a window: %.1f frames/s (mean %.2f ms, "
+        "slowest %.2f ms)\n",
+        n, width_, height_, engine_.c_str(), n / seconds, 1e3 * seconds / n, 1e3 * slowest);
+    return 0;
+}
+
+}  // namespace
+
+bool HaveViewerWindow() { return true; }
+
+void WakeViewerWindow() {
+    // SDL_PushEvent may be called from any thread; before SDL_Init it is simply not done.
+    if (SDL_WasInit(SDL_INIT_VIDEO) == 0) return;
+    SDL_Event ev{};
+    ev.type = SDL_USEREVENT;
+    SDL_PushEvent(&ev);
+}
+
+int RunViewerWindow(const ViewerSession& session) {
+    Viewer viewer(session);
+    if (!viewer.Open()) return 1;
+    return session.benchFrames > 0 ? viewer.Bench() : viewer.Run();
+}
+
+}  // namespace quadrix::cli
+
+#else  // !QUADRIX_HAVE_SDL2
+
+#include <cstdio>
+
+namespace quadrix::cli {
+
+bool HaveViewerWindow() { return false; }
+void WakeViewerWindow() {}
+
+int RunViewerWindow(const ViewerSession&) {
+    std::fprintf(stderr,
+                 "quadrix: error: this quadrix was built without SDL2 (Debian: libsdl2-dev), so "
+                 "`quadrix view` has no window; `quadrix view --bench N` renders offscreen\n");
+    return 1;
+}
+
+}  // namespace quadrix::cli
+
+#endif

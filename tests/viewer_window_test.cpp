@@ -1,0 +1,153 @@
+// `quadrix view` end to end (issue 18 §7): the real binary and its SDL2 window under Xvfb, driven
+// by a script of mouse and key events; its screenshots must equal, pixel for pixel, what
+// `quadrix render` draws from the view statements the window printed.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "test_util.h"
+
+namespace quadrix::testing {
+namespace {
+
+// Why the window cannot be tested here, or empty.
+std::string WindowUnavailable() {
+    const CommandResult probe = RunShell(QuadrixBinary() + " view /nonexistent.uq --size 8x8");
+    if (probe.err.find("built without SDL2") != std::string::npos)
+        return "this quadrix was built without SDL2 (libsdl2-dev): no window to test";
+    if (!HaveProgram("xvfb-run"))
+        return "xvfb-run (package xvfb) is not installed: no display server for the window";
+    return {};
+}
+
+TEST(ViewerWindow, ScriptedSessionMatchesRenderOfThePrintedViews) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string script = dir.Write("events.txt",
+                                         "orbit 90 -40 3\n"
+                                         "zoom 2 200 90\n"
+                                         "pan 12 -7\n"
+                                         "click 160 120\n"
+                                         "click 2 2\n"
+                                         "screenshot " +
+                                             dir.File("a.ppm") +
+                                             "\n"
+                                             "print-view " +
+                                             dir.File("a.uq") +
+                                             "\n"
+                                             "key P\n"
+                                             "orbit -30 10\n"
+                                             "screenshot " +
+                                             dir.File("b.ppm") +
+                                             "\n"
+                                             "print-view " +
+                                             dir.File("b.uq") +
+                                             "\n"
+                                             "print-view\n"
+                                             "quit\n");
+    const std::string scene = SourcePath("examples/machined_part.uq");
+    const CommandResult run = RunShell("timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
+                                       scene + "' --size 320x240 --script '" + script + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find("pick 160 120: solid part body part"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("machined_part.uq:"), std::string::npos) << run.out;  // source line
+    EXPECT_NE(run.out.find("pick 2 2: background"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("view camera vrp"), std::string::npos) << run.out;
+    Image previous;
+    for (const char* name : {"a", "b"}) {
+        const std::string shot = dir.File(std::string(name) + ".ppm");
+        const std::string rendered = dir.File(std::string(name) + "_render.ppm");
+        const CommandResult r = RunShell(QuadrixBinary() + " render '" + scene + "' '" +
+                                         dir.File(std::string(name) + ".uq") +
+                                         "' --size 320x240 -o '" + rendered + "'");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        Image window, cli;
+        ASSERT_TRUE(ReadPnm(shot, window)) << shot;
+        ASSERT_TRUE(ReadPnm(rendered, cli)) << rendered;
+        ASSERT_EQ(window.width, 320);
+        ASSERT_EQ(window.height, 240);
+        EXPECT_EQ(window.pixels, cli.pixels) << name;  // identical at full resolution
+        EXPECT_NE(window.pixels, previous.pixels);     // and the two views differ
+        previous = window;
+    }
+}
+
+// Live reload: a save with an error keeps the last good picture and reports file:line:col; the
+// fixed file is drawn (and equals `quadrix render` of it from the printed view). The shell edits
+// the scene when the window's outputs appear, so the order does not depend on timing.
+TEST(ViewerWindow, ReloadKeepsTheLastGoodPictureOnErrorThenDrawsTheFix) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string original = "quadric ball <1 1 1 0 0 0 0 0 0 -4>;\nbody thing <ball>;\n";
+    const std::string scene = dir.Write("scene.uq", original);
+    const std::string script = dir.Write("events.txt", "screenshot " + dir.File("a.ppm") +
+                                                           "\n"
+                                                           "wait-reload\n"
+                                                           "screenshot " +
+                                                           dir.File("bad.ppm") +
+                                                           "\n"
+                                                           "print-view " +
+                                                           dir.File("m.uq") +
+                                                           "\n"
+                                                           "wait-reload\n"
+                                                           "screenshot " +
+                                                           dir.File("b.ppm") +
+                                                           "\n"
+                                                           "print-view " +
+                                                           dir.File("b.uq") + "\n");
+    auto waitFor = [&](const std::string& name) {
+        return "for i in $(seq 400); do [ -f '" + dir.File(name) +
+               "' ] && break; sleep 0.05; done; ";
+    };
+    const std::string editor = "(" + waitFor("a.ppm") + "printf 'quadric oops <1 2>;\\n' >> '" +
+                               scene + "'; " + waitFor("m.uq") +
+                               "printf 'quadric ball <1 1 1 0 0 0 0 0 0 -2.25>;\\nbody thing "
+                               "<ball>;\\n' > '" +
+                               scene + "') & ";
+    const CommandResult run =
+        RunShell(editor + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" + scene +
+                 "' --size 160x120 --script '" + script + "'; s=$?; wait; exit $s");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.err.find(scene + ":3:18: error:"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("keeping the last good picture"), std::string::npos) << run.err;
+    Image a, bad, b, cli;
+    ASSERT_TRUE(ReadPnm(dir.File("a.ppm"), a));
+    ASSERT_TRUE(ReadPnm(dir.File("bad.ppm"), bad));
+    ASSERT_TRUE(ReadPnm(dir.File("b.ppm"), b));
+    EXPECT_EQ(bad.pixels, a.pixels);  // the last good picture
+    EXPECT_NE(b.pixels, a.pixels);    // the smaller ball
+    const CommandResult r =
+        RunShell(QuadrixBinary() + " render '" + scene + "' '" + dir.File("b.uq") +
+                 "' --size 160x120 -o '" + dir.File("r.ppm") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_TRUE(ReadPnm(dir.File("r.ppm"), cli));
+    EXPECT_EQ(b.pixels, cli.pixels);
+}
+
+TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {
+    const std::string scene = SourcePath("examples/tube.uq");
+    const CommandResult noDisplay =
+        RunShell("env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER timeout 60 " +
+                 QuadrixBinary() + " view '" + scene + "'");
+    EXPECT_EQ(noDisplay.exitCode, 1);
+    EXPECT_TRUE(noDisplay.err.find("cannot open a window") != std::string::npos ||
+                noDisplay.err.find("built without SDL2") != std::string::npos)
+        << noDisplay.err;
+    const CommandResult bench =
+        RunShell(QuadrixBinary() + " view '" + scene + "' --bench 6 --offscreen --size 64x48");
+    ASSERT_EQ(bench.exitCode, 0) << bench.err;
+    EXPECT_NE(bench.out.find("view bench: 6 frames 64x48 engine raycast offscreen:"),
+              std::string::npos)
+        << bench.out;
+    const CommandResult badScript =
+        RunShell("printf 'orbit 1\\n' > /tmp/quadrix_view_bad_$$.txt; " + QuadrixBinary() +
+                 " view '" + scene +
+                 "' --script /tmp/quadrix_view_bad_$$.txt; s=$?; rm -f "
+                 "/tmp/quadrix_view_bad_$$.txt; exit $s");
+    EXPECT_EQ(badScript.exitCode, 2);
+    EXPECT_NE(badScript.err.find(":1:7: error: 'orbit' takes 2 to 3 arguments"), std::string::npos)
+        << badScript.err;
+}
+
+}  // namespace
+}  // namespace quadrix::testing
