@@ -15,6 +15,8 @@ PACKAGES=(
   libcairo2-dev                      # PDF/EPS output of `quadrix draw` (vector drawings)
   povray                             # the independent exact renderer the tests compare against
   clang libclang-rt-14-dev           # libFuzzer: the reader's fuzz target (tests/fuzz_reader)
+  clang-format                       # scripts/check-format.sh: the checked-in .clang-format
+  dpkg-dev file                      # cpack -G DEB (dpkg-shlibdeps) and its test
   libsdl2-dev xvfb xauth             # quadrix view: the window (SDL2); its tests run under Xvfb
   pybind11-dev python3-dev           # the Python module (import quadrix)
   python3-numpy python3-pytest       # its arrays and its tests
