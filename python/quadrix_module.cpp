@@ -5,7 +5,7 @@
 // Interface (Python):
 //   read(path | [paths], *, text=, name=, top=, strict=, allow_missing=, threads=) -> Scene
 //   render(path | Scene | None, *, text=, size=(w, h), engine=, view=, camera=, shading=,
-//          threads=, engine_options=, strict=, shadows=, background=) -> Frame
+//          threads=, engine_options=, strict=, shadows=, background=, aa=, edges=) -> Frame
 //   Scene: add(text), add_solid(kind, id, **params), add_light(...), add_view(...), solids(),
 //          lights(), views(), render(...)
 //   Frame: image, linear, depth, normals, surface, body, solid (NumPy arrays sharing the Frame's
@@ -284,6 +284,14 @@ struct RenderArgs {
     bool strict = false;
 };
 
+EngineRequest EngineOf(const RenderArgs& args) {
+    EngineRequest e;
+    e.engine = args.engine;
+    e.options = args.engineOptions;
+    e.strict = args.strict;
+    return e;
+}
+
 class Scene {
   public:
     explicit Scene(int threads = 0)
@@ -374,8 +382,7 @@ class Scene {
 
     // Stages 2-4 and the products copied out of nothing: the Frame is rendered in place.
     std::shared_ptr<Rendered> Render(const RenderArgs& args) {
-        if (auto e = RenderContext::CheckEngine({args.engine, args.engineOptions, args.strict});
-            !e.empty())
+        if (auto e = RenderContext::CheckEngine(EngineOf(args)); !e.empty())
             throw py::value_error(e);
         auto out = std::make_shared<Rendered>();
         Diagnostics diags;
@@ -395,7 +402,7 @@ class Scene {
             view.height = args.height;
             view.viewName = args.viewName;
             view.view = args.camera;
-            EngineRequest engine{args.engine, args.engineOptions, args.strict};
+            const EngineRequest engine = EngineOf(args);
             ok = ctx_->Flatten(view, diags) && ctx_->Render(engine, out->frame, out->report, diags);
             if (ok && !diags.HasErrors()) {
                 const auto t0 = std::chrono::steady_clock::now();
@@ -444,7 +451,7 @@ RenderArgs ParseRenderArgs(const py::object& size, const std::string& engine,
                            const py::object& view, const py::object& camera,
                            const std::string& shading, const py::object& threads,
                            const py::object& engineOptions, bool strict, bool shadows,
-                           const py::object& background) {
+                           const py::object& background, int aa, bool edges) {
     RenderArgs a;
     auto wh = py::cast<std::vector<long long>>(size);
     if (wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 1 << 20 || wh[1] > 1 << 20)
@@ -461,6 +468,10 @@ RenderArgs ParseRenderArgs(const py::object& size, const std::string& engine,
     }
     a.shade.model = ParseShading(shading);
     a.shade.shadows = shadows;
+    if (aa != 0 && aa != 4 && aa != 16 && aa != 64)
+        throw py::value_error("aa: 0 (off), 4, 16 or 64 samples on edge pixels");
+    a.shade.aaSamples = aa;
+    a.shade.edges = edges;
     if (!background.is_none()) {
         const Vec3 c = ToVec3(background, "background");
         a.shade.background = scene::Color{c.x, c.y, c.z};
@@ -599,7 +610,8 @@ PYBIND11_MODULE(quadrix, m) {
         .def(
             "save",
             [](const Rendered& r, const std::string& path) {
-                OutputRequest request{path, {}, {}};
+                OutputRequest request;
+                request.image = path;
                 if (auto e = CheckOutputs(request); !e.empty()) throw py::value_error(e);
                 std::string error;
                 {
@@ -619,7 +631,8 @@ PYBIND11_MODULE(quadrix, m) {
         "Renders through the render context: size=(width, height), engine (quadrix.engines()), "
         "view (a view id of the scene) or camera (a dict of view parameters: vrp vpn vup dop "
         "cop whh whw fbp), shading (lambert, fast, phong, blinn-phong), threads (0 = all), "
-        "engine_options (dict), strict, shadows, background=(r, g, b). Returns a Frame.";
+        "engine_options (dict), strict, shadows, background=(r, g, b), aa (0 = off, 4, 16, 64 "
+        "samples on edge pixels), edges (silhouette lines). Returns a Frame.";
 
     py::class_<Scene>(m, "Scene", "A scene: read from files or text, edited, rendered.")
         .def(py::init<int>(), py::arg("threads") = 0, "An empty scene.")
@@ -689,16 +702,18 @@ PYBIND11_MODULE(quadrix, m) {
             [](Scene& s, const py::object& size, const std::string& engine, const py::object& view,
                const py::object& camera, const std::string& shading, const py::object& threads,
                const py::object& engineOptions, bool strict, bool shadows,
-               const py::object& background) {
+               const py::object& background, int aa, bool edges) {
                 return s.Render(ParseRenderArgs(size, engine, view, camera, shading, threads,
-                                                engineOptions, strict, shadows, background));
+                                                engineOptions, strict, shadows, background, aa,
+                                                edges));
             },
             py::kw_only(), py::arg("size") = py::make_tuple(512, 512),
             py::arg("engine") = "raycast", py::arg("view") = py::none(),
             py::arg("camera") = py::none(), py::arg("shading") = "lambert",
             py::arg("threads") = py::none(), py::arg("engine_options") = py::none(),
             py::arg("strict") = false, py::arg("shadows") = false,
-            py::arg("background") = py::none(), renderDoc);
+            py::arg("background") = py::none(), py::arg("aa") = 0, py::arg("edges") = false,
+            renderDoc);
 
     m.def(
         "read",
@@ -720,9 +735,10 @@ PYBIND11_MODULE(quadrix, m) {
         [](const py::object& source, const py::object& text, const py::object& size,
            const std::string& engine, const py::object& view, const py::object& camera,
            const std::string& shading, const py::object& threads, const py::object& engineOptions,
-           bool strict, bool shadows, const py::object& background) {
+           bool strict, bool shadows, const py::object& background, int aa, bool edges) {
             RenderArgs args = ParseRenderArgs(size, engine, view, camera, shading, threads,
-                                              engineOptions, strict, shadows, background);
+                                              engineOptions, strict, shadows, background, aa,
+                                              edges);
             if (!source.is_none() && py::isinstance<Scene>(source))
                 return source.cast<Scene&>().Render(args);
             Scene scene(args.threads.value_or(0));
@@ -734,7 +750,8 @@ PYBIND11_MODULE(quadrix, m) {
         py::arg("view") = py::none(), py::arg("camera") = py::none(),
         py::arg("shading") = "lambert", py::arg("threads") = py::none(),
         py::arg("engine_options") = py::none(), py::arg("strict") = false,
-        py::arg("shadows") = false, py::arg("background") = py::none(),
+        py::arg("shadows") = false, py::arg("background") = py::none(), py::arg("aa") = 0,
+        py::arg("edges") = false,
         "render(path | Scene, ...) — reads (when given a path or text=) and renders. "
         "See Scene.render.");
 

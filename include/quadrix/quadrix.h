@@ -240,6 +240,10 @@ class Renderer {
         bool strict = false;
         Shading shading = Shading::kLambert;
         bool shadows = false;             // shadow rays (parallel views)
+        // Anti-aliasing (docs/shading.md): 0 = off, or 4, 16 or 64 exact samples on each edge
+        // pixel (interior pixels are not resampled); edges = one-pixel silhouette/crease lines.
+        int antialias = 0;
+        bool edges = false;
         std::optional<Color> background;  // instead of the scene's
         std::string view;                 // a view of the scene by id (empty: the last one)
         std::optional<View> camera;       // a view given here instead

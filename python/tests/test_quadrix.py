@@ -67,6 +67,18 @@ def test_sphere_depth_and_normals_are_analytic():
     assert np.all(f.solid[~covered] == -1) and np.all(f.body[~covered] == -1)
 
 
+def test_antialiasing_changes_only_the_rim():
+    plain = quadrix.render(text=SPHERE, size=(N, N))
+    smooth = quadrix.render(text=SPHERE, size=(N, N), aa=16)
+    _, x, y, _ = analytic_sphere()
+    from_rim = np.abs(np.sqrt(x * x + y * y) - R) * K  # pixels
+    changed = np.any(plain.image != smooth.image, axis=-1)
+    assert changed.sum() > 50  # the rim is about 2 pi R K = 163 pixels long
+    assert np.all(from_rim[changed] < 1.5)
+    with pytest.raises(ValueError):
+        quadrix.render(text=SPHERE, size=(N, N), aa=5)
+
+
 def test_ids_name_the_solids():
     text = """
     solid sphere left =at -1.5 0 0 =r 1;

@@ -92,7 +92,14 @@ Rendering Renderer::Render(const Scene& scene, const Options& options) {
     const auto t0 = std::chrono::steady_clock::now();
     if (auto e = CheckImageSize(options.width, options.height); !e.empty())
         throw Error("Options: " + e);
-    EngineRequest engine{options.engine, options.engineOptions, options.strict};
+    if (options.antialias != 0 && options.antialias != 4 && options.antialias != 16 &&
+        options.antialias != 64)
+        throw Error(fmt::format("Options: antialias {}: expected 0 (off), 4, 16 or 64",
+                                options.antialias));
+    EngineRequest engine;
+    engine.engine = options.engine;
+    engine.options = options.engineOptions;
+    engine.strict = options.strict;
     if (auto e = RenderContext::CheckEngine(engine); !e.empty()) throw Error("Options: " + e);
 
     RenderContext& ctx = impl_->context;
@@ -145,6 +152,8 @@ Rendering Renderer::Render(const Scene& scene, const Options& options) {
         ShadeOptions so;
         so.model = ToModel(options.shading);
         so.shadows = options.shadows;
+        so.aaSamples = options.antialias;
+        so.edges = options.edges;
         so.forceColor = true;
         if (options.background)
             so.background =

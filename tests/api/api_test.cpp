@@ -78,6 +78,34 @@ TEST(Api, UnitSphereMatchesTheAnalyticAnswer) {
     EXPECT_EQ(r.image.At(0, 0)[0], 0);
 }
 
+// Anti-aliasing resamples only pixels at the silhouette: interior pixels are the plain ones, bit
+// for bit, and every pixel that changes lies within a pixel and a half of the analytic rim.
+TEST(Api, AntialiasingChangesOnlyTheRimPixels) {
+    quadrix::Scene scene;
+    scene.AddSphere("ball", {0, 0, 0}, 1);
+    quadrix::Renderer renderer(2);
+    quadrix::Renderer::Options o = SphereOptions();
+    const quadrix::Rendering plain = renderer.Render(scene, o);
+    o.antialias = 16;
+    const quadrix::Rendering smooth = renderer.Render(scene, o);
+    int changed = 0;
+    for (int j = 0; j < kSize; ++j)
+        for (int i = 0; i < kSize; ++i) {
+            const double x = WorldX(i), y = WorldY(j);
+            const double fromRim = std::abs(std::sqrt(x * x + y * y) - 1) / kPixel;  // pixels
+            bool same = true;
+            for (int c = 0; c < 3; ++c) same &= plain.image.At(i, j)[c] == smooth.image.At(i, j)[c];
+            if (!same) {
+                ++changed;
+                EXPECT_LT(fromRim, 1.5) << i << "," << j;
+            }
+        }
+    // The rim is about 2π·16 ≈ 100 pixels long.
+    EXPECT_GT(changed, 50);
+    o.antialias = 5;
+    EXPECT_THROW(renderer.Render(scene, o), quadrix::Error);
+}
+
 TEST(Api, CsgThroughHoleShowsTheBackgroundAndNamesTheFace) {
     quadrix::Scene scene;
     scene.AddBox("block", {-1, -1, -1}, {1, 1, 1}, quadrix::Color{0.8, 0.2, 0.2})
