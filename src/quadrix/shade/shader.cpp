@@ -98,7 +98,7 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
     const ShadingModel model = options.fast ? ShadingModel::kFast : options.model;
     const bool color = AnyColor(scene, options);
     Image image(frame.width, frame.height, color ? 3 : 1);
-    image.linear.assign(image.pixels.size(), 0.0f);
+    if (options.linear) image.linear.assign(image.pixels.size(), 0.0f);
     const ViewerGeometry viewer(scene.projection);
     const bool needPoint = NeedsPoint(scene, model);
     const bool shadows = options.shadows && !scene.projection.perspective;
@@ -117,60 +117,120 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
     }
     const ShadingModel reflection = model == ShadingModel::kFast ? ShadingModel::kLambert : model;
 
+    // Only ambient and parallel lights, no shadows: every light's incidence is fixed, and the
+    // terms are those of PhongAt (same operations, same order) without its per-light dispatch.
+    const bool fixedOnly = !needPoint && !shadows;
+    const Vec3 towardViewerFixed = viewer.TowardViewer({0, 0, 0});
+    const bool keepLinear = options.linear;
+
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
-    // is the same for any thread count.
+    // is the same for any thread count. A row's pixels mostly repeat the previous pixel's
+    // (surface, body): its material (color, finish, reflectance) is looked up once per run.
     auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
+        std::int32_t lastSurface = Frame::kNone, lastBody = Frame::kNone;
+        scene::Finish finish;
+        Reflectance m;
+        scene::Color base;
         for (int y = rows.begin(); y < rows.end(); ++y) {
             const scene::Color background = BackgroundAt(scene, options, y, frame.height);
+            const std::uint8_t bg[3] = {ToByte(background.r), ToByte(background.g),
+                                        ToByte(background.b)};
+            const float bgf[3] = {ToUnit(background.r), ToUnit(background.g),
+                                  ToUnit(background.b)};
+            const std::size_t row = frame.Index(0, y);
+            std::uint8_t* prow = image.At(0, y);
+            float* frow = keepLinear ? &image.linear[row * image.channels] : nullptr;
             for (int x = 0; x < frame.width; ++x) {
-                const std::size_t i = frame.Index(x, y);
-                scene::Color c = background;
-                if (frame.surface[i] != Frame::kNone) {
-                    const Vec3 n = model == ShadingModel::kFast
-                                       ? meanNormal.find({frame.surface[i], frame.body[i]})->second
-                                       : frame.normal[i];
-                    const scene::Finish finish =
-                        scene.SurfaceFinish(frame.surface[i], frame.body[i]);
-                    const Reflectance m = ReflectanceOf(finish, options, reflection);
+                const std::size_t i = row + static_cast<std::size_t>(x);
+                std::uint8_t* p = prow + static_cast<std::size_t>(x) * image.channels;
+                const std::int32_t surface = frame.surface[i];
+                if (surface == Frame::kNone) {
+                    p[0] = bg[0];
+                    if (color) p[1] = bg[1], p[2] = bg[2];
+                    if (frow) {
+                        float* f = frow + static_cast<std::size_t>(x) * image.channels;
+                        f[0] = bgf[0];
+                        if (color) f[1] = bgf[1], f[2] = bgf[2];
+                    }
+                    continue;
+                }
+                const std::int32_t bodyIndex = frame.body[i];
+                if (surface != lastSurface || bodyIndex != lastBody) {
+                    lastSurface = surface;
+                    lastBody = bodyIndex;
+                    finish = scene.SurfaceFinish(surface, bodyIndex);
+                    m = ReflectanceOf(finish, options, reflection);
+                    base = scene.SurfaceColor(surface, bodyIndex);
+                }
+                const Vec3 n = model == ShadingModel::kFast
+                                   ? meanNormal.find({surface, bodyIndex})->second
+                                   : frame.normal[i];
+                PhongTerms t;
+                if (fixedOnly) {
+                    for (const Incident& in : fixedLight) {
+                        if (in.ambient) {
+                            t.diffuse.r += in.rgb.r;
+                            t.diffuse.g += in.rgb.g;
+                            t.diffuse.b += in.rgb.b;
+                            continue;
+                        }
+                        const double nl = Dot(n, in.toLight);
+                        if (!(nl > 0)) continue;
+                        t.diffuse.r += in.rgb.r * m.diffuse * nl;
+                        t.diffuse.g += in.rgb.g * m.diffuse * nl;
+                        t.diffuse.b += in.rgb.b * m.diffuse * nl;
+                        if (!(m.specular > 0)) continue;
+                        double c;
+                        if (m.blinn) {
+                            c = Dot(n, Normalize(in.toLight + towardViewerFixed));
+                        } else {
+                            const Vec3 r = n * (2 * nl) - in.toLight;
+                            c = Dot(r, towardViewerFixed);
+                        }
+                        if (!(c > 0)) continue;
+                        const double sp = m.specular * std::pow(c, m.shininess);
+                        t.specular.r += in.rgb.r * sp;
+                        t.specular.g += in.rgb.g * sp;
+                        t.specular.b += in.rgb.b * sp;
+                    }
+                } else {
                     Vec3 point{0, 0, 0};
                     if (needPoint) point = viewer.WorldPoint({x + 0.5, y + 0.5, frame.depth[i]});
                     ShadowTest inShadow;
                     if (shadows) {
-                        const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
-                        inShadow = [&, p](std::size_t k, const Incident& in) {
+                        const Vec3 dp{x + 0.5, y + 0.5, frame.depth[i]};
+                        inShadow = [&, dp](std::size_t k, const Incident& in) {
                             const scene::Light& l = scene.lights[k];
                             if (l.kind == scene::Light::Kind::kParallel)
                                 return shadowTester.Blocked(
-                                    p, deviceFromWorld.MapVector(in.toLight), HUGE_VAL);
-                            return shadowTester.Blocked(p, deviceFromWorld.MapPoint(l.position) - p,
-                                                        1.0);
+                                    dp, deviceFromWorld.MapVector(in.toLight), HUGE_VAL);
+                            return shadowTester.Blocked(
+                                dp, deviceFromWorld.MapPoint(l.position) - dp, 1.0);
                         };
                     }
-                    const PhongTerms t = PhongAt(scene.lights, point, n, viewer.TowardViewer(point),
-                                                 m, inShadow, &fixedLight);
-                    const scene::Color base = scene.SurfaceColor(frame.surface[i], frame.body[i]);
-                    // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
-                    c = {base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
-                         base.g * std::min(t.diffuse.g, 1.0) + t.specular.g,
-                         base.b * std::min(t.diffuse.b, 1.0) + t.specular.b};
-                    if (finish.opacity && *finish.opacity < 1) {
-                        const double a = *finish.opacity;
-                        c = {a * c.r + (1 - a) * background.r, a * c.g + (1 - a) * background.g,
-                             a * c.b + (1 - a) * background.b};
-                    }
+                    t = PhongAt(scene.lights, point, n, viewer.TowardViewer(point), m, inShadow,
+                                &fixedLight);
                 }
-                std::uint8_t* p = image.At(x, y);
-                float* f = &image.linear[static_cast<std::size_t>(p - image.pixels.data())];
+                // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
+                scene::Color c = {base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
+                                  base.g * std::min(t.diffuse.g, 1.0) + t.specular.g,
+                                  base.b * std::min(t.diffuse.b, 1.0) + t.specular.b};
+                if (finish.opacity && *finish.opacity < 1) {
+                    const double a = *finish.opacity;
+                    c = {a * c.r + (1 - a) * background.r, a * c.g + (1 - a) * background.g,
+                         a * c.b + (1 - a) * background.b};
+                }
                 if (color) {
                     p[0] = ToByte(c.r);
                     p[1] = ToByte(c.g);
                     p[2] = ToByte(c.b);
-                    f[0] = ToUnit(c.r);
-                    f[1] = ToUnit(c.g);
-                    f[2] = ToUnit(c.b);
                 } else {
                     p[0] = ToByte(c.r);
+                }
+                if (frow) {
+                    float* f = frow + static_cast<std::size_t>(x) * image.channels;
                     f[0] = ToUnit(c.r);
+                    if (color) f[1] = ToUnit(c.g), f[2] = ToUnit(c.b);
                 }
             }
         }

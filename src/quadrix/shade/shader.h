@@ -50,6 +50,10 @@ struct ShadeOptions {
     bool shadows = false;
     // Finish defaults of kPhong and kBlinnPhong (seed 000's post-shading unit).
     double phongDiffuse = 0.8, phongSpecular = 0.4, phongShininess = 24;
+    // Fill Image::linear (the unquantised values). Only 16-bit PNG output and the precise 8-bit
+    // encoding read it; a front end that writes 8-bit files may turn it off (11 MB less to write
+    // at 1280×720).
+    bool linear = true;
 };
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options = {});
