@@ -46,8 +46,12 @@ void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, boo
     std::vector<std::uint8_t> raw(static_cast<std::size_t>(y1 - y0) * stride);
     for (int y = y0; y < y1; ++y) {
         std::uint8_t* p = raw.data() + static_cast<std::size_t>(y - y0) * stride;
-        p[0] = 0;  // filter type None
+        p[0] = static_cast<std::uint8_t>(r.filter);
         r.row(y, p + 1);
+        if (r.filter == 1) {  // Sub, in place from the right: byte k - bpp is still unfiltered
+            const std::size_t bpp = static_cast<std::size_t>(r.channels * r.bitDepth / 8);
+            for (std::size_t k = rowBytes; k-- > bpp;) p[1 + k] -= p[1 + k - bpp];
+        }
     }
     s.rawBytes = raw.size();
     s.adler = adler32(1L, raw.data(), static_cast<uInt>(raw.size()));
@@ -80,7 +84,7 @@ void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, boo
 
 std::string EncodePng(const PngRaster& r, std::FILE* out) {
     if (r.width <= 0 || r.height <= 0 || (r.channels != 1 && r.channels != 3) ||
-        (r.bitDepth != 8 && r.bitDepth != 16) || !r.row)
+        (r.bitDepth != 8 && r.bitDepth != 16) || (r.filter != 0 && r.filter != 1) || !r.row)
         return "internal error: malformed PNG raster";
     const std::size_t rowBytes = static_cast<std::size_t>(r.width) *
                                  static_cast<std::size_t>(r.channels) *

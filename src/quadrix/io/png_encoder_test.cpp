@@ -79,6 +79,7 @@ TEST(PngEncoder, ManyStripsReadBackExactly) {
         r.bitDepth = c.depth;
         r.srgb = c.channels == 3;
         r.software = "Quadrix test";
+        r.filter = c.depth == 16 ? 1 : 0;
         r.row = [&](int y, std::uint8_t* out) {
             std::copy_n(want.data() + static_cast<std::size_t>(y) * rowBytes, rowBytes, out);
         };
