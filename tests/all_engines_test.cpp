@@ -14,6 +14,7 @@
 // reference shows one surface (edge pixels may go either way by one rounding), and the depth of
 // same-surface pixels within 1e-6 device units per pixel of image size (the incremental engines
 // step depths by forward differences; raycast solves per pixel).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "quadrix/engines/registry.h"
+#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/render_context.h"
 #include "test_util.h"
@@ -211,6 +213,55 @@ TEST_P(AllEngines, MatchesRaycastThroughTheRenderContext) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, AllEngines, ::testing::ValuesIn(Cases()), CaseName);
+
+// raycast's fast paths (tile reduction, body batches, kernels, depth cuts) give, bit for bit, what
+// the shared evaluator (eval/ray_evaluator.h) gives pixel by pixel: per solid the first opaque
+// endpoint of its tree's set on the pixel's ray, the nearest solid winning and exact ties going to
+// the lower index.
+TEST(AllEnginesReference, RaycastEqualsTheSharedEvaluatorBitForBit) {
+    for (const CorpusScene& scene : Corpus()) {
+        RenderContext ctx;
+        Diagnostics diags;
+        InputRequest in;
+        in.text = scene.text;
+        in.textName = scene.name + ".uq";
+        ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(Size(96, 72), diags)) << scene.name;
+        Frame frame;
+        RenderReport report;
+        ASSERT_TRUE(ctx.Render(Request("raycast"), frame, report, diags));
+        const FlatScene& flat = ctx.Flat();
+        eval::RayEvaluator evaluator(flat);
+        std::uint64_t mismatches = 0, covered = 0;
+        std::string first;
+        for (int y = 0; y < flat.height; ++y)
+            for (int x = 0; x < flat.width; ++x) {
+                eval::RayEvaluator::Hit best;
+                int bestSolid = Frame::kNone;
+                for (std::size_t s = 0; s < flat.solids.size(); ++s) {
+                    eval::RayEvaluator::Hit hit;
+                    if (evaluator.Node(flat.solids[s].root, x + 0.5, y + 0.5, hit) &&
+                        hit.t < best.t) {
+                        best = hit;
+                        bestSolid = static_cast<int>(s);
+                    }
+                }
+                const std::size_t i = frame.Index(x, y);
+                covered += bestSolid != Frame::kNone;
+                const bool same =
+                    bestSolid == Frame::kNone
+                        ? frame.solid[i] == Frame::kNone
+                        : frame.depth[i] == best.t && frame.surface[i] == best.halfSpace &&
+                              frame.body[i] == best.body && frame.solid[i] == bestSolid;
+                if (!same && mismatches++ == 0)
+                    first = fmt::format("({}, {}): evaluator t {} surface {} solid {}, raycast t {} "
+                                        "surface {} solid {}",
+                                        x, y, best.t, best.halfSpace, bestSolid, frame.depth[i],
+                                        frame.surface[i], frame.solid[i]);
+            }
+        EXPECT_GT(covered, 100u) << scene.name;
+        EXPECT_EQ(mismatches, 0u) << scene.name << ": first at " << first;
+    }
+}
 
 // pixelpowers' paper machine (mode=approx) and its fixed-point depth words (depth-bits=24) on the
 // coincident-face rows: depths are approximate or rounded, but a plane's sheet and its inside test

@@ -15,7 +15,8 @@
 #include "quadrix/import/brlcad/brlcad_import.h"
 #include "quadrix/import/brlcad/g_writer.h"
 #include "quadrix/import/brlcad/readers.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 

@@ -14,7 +14,8 @@
 #include <sstream>
 
 #include "quadrix/import/brlcad/brlcad_import.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::import {

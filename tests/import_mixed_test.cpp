@@ -5,7 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 

@@ -14,7 +14,8 @@
 #include "quadrix/import/brlcad/mesh_solid.h"
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/import/openscad/polygon_solids.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 

@@ -10,7 +10,8 @@
 #include <random>
 
 #include "quadrix/import/openscad/openscad_import.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/math/srgb.h"
 #include "quadrix/scene/css_colors.h"

@@ -25,9 +25,10 @@
 #include <string>
 #include <tuple>
 
+#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/engine_test_util.h"
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
@@ -39,51 +40,28 @@ using testing_util::Counter;
 using testing_util::RenderWith;
 using testing_util::TestSceneBuilder;
 
+// scanline against raycast through the one comparison (frame/compare.h), plus the depth range of
+// the reference, which scales the depth tolerance.
 struct Agreement {
-    std::size_t covered = 0, sameSurface = 0, mismatches = 0, interiorMismatches = 0;
-    double maxDepthError = 0, depthRange = 0, maxNormalError = 0;
+    FrameComparison cmp;
+    std::size_t covered = 0, mismatches = 0, interiorMismatches = 0;
+    double maxDepthError = 0, depthRange = 0, maxNormalErrorDegrees = 0;
     std::string firstInterior;
 };
 
 Agreement Compare(const Frame& ref, const Frame& got) {
     Agreement a;
+    a.cmp = CompareFrames(got, ref);
     double zlo = HUGE_VAL, zhi = -HUGE_VAL;
     for (double z : ref.depth)
         if (std::isfinite(z)) zlo = std::min(zlo, z), zhi = std::max(zhi, z);
     a.depthRange = zhi > zlo ? zhi - zlo : 1;
-    auto edgePixel = [&](int x, int y) {
-        int s = ref.surface[ref.Index(x, y)];
-        const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
-        for (int k = 0; k < 4; ++k) {
-            int nx = x + dx[k], ny = y + dy[k];
-            if (nx < 0 || ny < 0 || nx >= ref.width || ny >= ref.height) continue;
-            if (ref.surface[ref.Index(nx, ny)] != s) return true;
-        }
-        return false;
-    };
-    for (int y = 0; y < ref.height; ++y) {
-        for (int x = 0; x < ref.width; ++x) {
-            std::size_t i = ref.Index(x, y);
-            a.covered += ref.surface[i] != Frame::kNone;
-            if (ref.surface[i] != got.surface[i]) {
-                ++a.mismatches;
-                if (std::getenv("SCANLINE_DUMP"))
-                    std::fprintf(stderr, "mismatch (%d,%d) ref %d got %d\n", x, y, ref.surface[i],
-                                 got.surface[i]);
-                if (!edgePixel(x, y)) {
-                    if (a.interiorMismatches++ == 0)
-                        a.firstInterior = "(" + std::to_string(x) + "," + std::to_string(y) +
-                                          ") ref " + std::to_string(ref.surface[i]) + " got " +
-                                          std::to_string(got.surface[i]);
-                }
-                continue;
-            }
-            if (ref.surface[i] == Frame::kNone) continue;
-            ++a.sameSurface;
-            a.maxDepthError = std::max(a.maxDepthError, std::fabs(ref.depth[i] - got.depth[i]));
-            a.maxNormalError = std::max(a.maxNormalError, Length(ref.normal[i] - got.normal[i]));
-        }
-    }
+    a.covered = a.cmp.coveredBoth + a.cmp.onlyReference;
+    a.mismatches = a.cmp.onlyA + a.cmp.onlyReference + a.cmp.surfaceDiffers;
+    a.interiorMismatches = a.cmp.offEdgeDifferences;
+    a.firstInterior = a.cmp.firstDifference;
+    a.maxDepthError = a.cmp.maxDepthError;
+    a.maxNormalErrorDegrees = a.cmp.maxNormalErrorDegrees;
     return a;
 }
 
@@ -99,7 +77,7 @@ void ExpectAgree(const Frame& ref, const Frame& got, const std::string& what) {
     EXPECT_LE(static_cast<double>(a.mismatches), 0.005 * std::max<double>(a.covered, 1))
         << a.mismatches << " of " << a.covered;
     EXPECT_LE(a.maxDepthError, 1e-6 * a.depthRange);
-    EXPECT_LE(a.maxNormalError, 1e-6);
+    EXPECT_LE(a.maxNormalErrorDegrees, 1e-6 * 180 / M_PI);  // 1e-6 radians
 }
 
 void CheckScene(FlatScene& scene, const std::string& what, std::size_t minCovered = 1) {
@@ -543,7 +521,7 @@ TEST(ScanlineScene, FrameDoesNotDependOnThreads) {
     ASSERT_TRUE(RunPipeline(o, one, d1));
     o.threads = 0;
     ASSERT_TRUE(RunPipeline(o, many, d2));
-    EXPECT_EQ(testing_util::FrameDifference(one.frame, many.frame), "");
+    EXPECT_EQ(FirstBitDifference(one.frame, many.frame), "");
     EXPECT_EQ(Counter(one.stats, "spans"), Counter(many.stats, "spans"));
 }
 
@@ -578,7 +556,7 @@ PipelineResult CheckFaceStacks(PipelineOptions o, const std::string& what) {
     o.engineOptions = {};
     PipelineResult plain;
     EXPECT_TRUE(RunPipeline(o, plain, d)) << what;
-    EXPECT_EQ(testing_util::FrameDifference(plain.frame, got.frame), "") << what;
+    EXPECT_EQ(FirstBitDifference(plain.frame, got.frame), "") << what;
     return got;
 }
 
@@ -618,7 +596,7 @@ TEST(ScanlineFaceStacks, SphereStackCountsAreExact) {
     // render=exact: the colleague's per-span evaluation, kept as an option: same frame.
     RenderStats exactStats;
     Frame exact = RenderWith("scanline", b.scene(), &exactStats, {{"render", "exact"}});
-    EXPECT_EQ(testing_util::FrameDifference(exact, got), "");
+    EXPECT_EQ(FirstBitDifference(exact, got), "");
     EXPECT_EQ(Counter(exactStats, "face_stack_inserts"), 0);
     EXPECT_GT(Counter(exactStats, "span_sample_evaluations"), 0);
 }
@@ -732,7 +710,7 @@ TEST(ScanlineFaceStacks, FrameDoesNotDependOnThreads) {
     ASSERT_TRUE(RunPipeline(o, one, d1));
     o.threads = 0;
     ASSERT_TRUE(RunPipeline(o, many, d2));
-    EXPECT_EQ(testing_util::FrameDifference(one.frame, many.frame), "");
+    EXPECT_EQ(FirstBitDifference(one.frame, many.frame), "");
     EXPECT_EQ(Counter(one.stats, "face_stack_inserts"), Counter(many.stats, "face_stack_inserts"));
     EXPECT_GT(Counter(one.stats, "face_stack_inserts"), 0);
 }

@@ -14,7 +14,7 @@ bool XYInside(const Box3& b, double x, double y) {
 // A surface parallel to the rays (a plane seen edge-on, a cylinder seen along its axis) whose
 // value on the ray vanishes to within the rounding of its evaluation (1e-11 of the sum of the
 // magnitudes of its terms).
-bool ContainsRay(const raycast::RayHalfSpace& h, double x, double y) {
+bool ContainsRay(const eval::RayHalfSpace& h, double x, double y) {
     if (h.c != 0) return false;
     if (h.isPlane) {
         const double e = h.px * x + h.py * y + h.pd;
@@ -37,9 +37,9 @@ SceneProbe::SceneProbe(const FlatScene& scene) : scene_(scene) {
     for (const FlatHalfSpace& h : scene.halfSpaces) {
         Vec3 ref{};
         if (!h.isPlane) {
-            if (auto c = raycast::RayHalfSpace::Centre(h.quadric)) ref = *c;
+            if (auto c = eval::RayHalfSpace::Centre(h.quadric)) ref = *c;
         }
-        rays_.push_back(raycast::RayHalfSpace::From(h, ref));
+        rays_.push_back(eval::RayHalfSpace::From(h, ref));
     }
 }
 
@@ -99,21 +99,21 @@ void SceneProbe::BodyOnRay(int body, double x, double y, IntervalList& out) {
     const FlatBody& b = scene_.bodies[static_cast<std::size_t>(body)];
     if (!XYInside(b.bounds, x, y)) return;
     out = IntervalList::All();
-    raycast::LiteralCounters counters;
+    eval::LiteralCounters counters;
     for (const FlatLiteral& lit : b.literals) {
         if (lit.halfSpace < 0 || lit.halfSpace >= static_cast<int>(rays_.size())) {
             out.clear();
             return;
         }
-        const raycast::RayHalfSpace& rh = rays_[static_cast<std::size_t>(lit.halfSpace)];
-        raycast::RaySet s;
+        const eval::RayHalfSpace& rh = rays_[static_cast<std::size_t>(lit.halfSpace)];
+        eval::RaySet s;
         if (ContainsRay(rh, x, y)) {
             // The ray lies in the surface (to rounding): H holds along all of it, !H nowhere
             // (raycast's convention for a plane containing the ray), decided the same way at
             // every point of the curve instead of by the sign of a rounding error.
             if (!lit.complemented) s.piece[s.count++] = {-HUGE_VAL, HUGE_VAL, -1, -1};
         } else {
-            s = raycast::LiteralOnRay(rh, lit.complemented, x, y, lit.halfSpace, counters);
+            s = eval::LiteralOnRay(rh, lit.complemented, x, y, lit.halfSpace, counters);
         }
         if (s.count == 0) {
             out.clear();

@@ -8,7 +8,7 @@
 //    boundary does not arise.
 //  - FirstOpaqueHit(x, y): the depth of the visible point on the ray through (x, y): per solid,
 //    the set of t where the ray is inside is computed as raycast computes it (each literal's set by
-//    raycast::LiteralOnRay, bodies intersect, CSG trees combine regularised interval lists,
+//    eval::LiteralOnRay, bodies intersect, CSG trees combine regularised interval lists,
 //    math/interval_list.h); the visible point of a solid is its first finite endpoint on an opaque
 //    surface (transparent half-spaces and clipping planes bound but are not drawn), and the nearest
 //    solid wins. This is raycast's visible-point rule on an arbitrary ray (not only pixel centres),
@@ -25,7 +25,7 @@
 #include <deque>
 #include <vector>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/eval/ray_literal.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/math/interval_list.h"
 
@@ -56,7 +56,7 @@ class SceneProbe {
     IntervalList& Scratch(std::size_t depth, int which);
 
     const FlatScene& scene_;
-    std::vector<raycast::RayHalfSpace> rays_;
+    std::vector<eval::RayHalfSpace> rays_;
     std::deque<IntervalList> scratch_;  // 3 lists per recursion depth (deque: stable references)
     IntervalList solidList_, literalList_, tmp_;
 };

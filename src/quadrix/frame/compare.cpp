@@ -56,8 +56,8 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
         c.sizeMismatch = true;
         return c;
     }
-    std::vector<double> errors;
-    double sum = 0;
+    std::vector<double> errors, intensityErrors;
+    double sum = 0, intensitySum = 0;
     for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
             const std::size_t i = ref.Index(x, y);
@@ -73,8 +73,15 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
                     c.depthOverTolerance += e > options.depthTolerance;
                     sum += e;
                     errors.push_back(e);
-                    c.maxNormalErrorDegrees =
-                        std::fmax(c.maxNormalErrorDegrees, AngleDegrees(a.normal[i], ref.normal[i]));
+                    c.maxNormalErrorDegrees = std::fmax(c.maxNormalErrorDegrees,
+                                                        AngleDegrees(a.normal[i], ref.normal[i]));
+                    if (options.intensity) {
+                        const double d = std::fabs(options.intensity(a.normal[i]) -
+                                                   options.intensity(ref.normal[i]));
+                        c.maxIntensityError = std::fmax(c.maxIntensityError, d);
+                        intensitySum += d;
+                        intensityErrors.push_back(d);
+                    }
                 } else {
                     ++c.surfaceDiffers;
                 }
@@ -87,7 +94,8 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
                 ++c.offEdgeDifferences;
                 if (c.firstDifference.empty())
                     c.firstDifference = fmt::format(
-                        "pixel ({}, {}): surface {} vs {}, solid {} vs {}, depth {:.17g} vs {:.17g}",
+                        "pixel ({}, {}): surface {} vs {}, solid {} vs {}, depth {:.17g} vs "
+                        "{:.17g}",
                         x, y, a.surface[i], ref.surface[i], a.solid[i], ref.solid[i], a.depth[i],
                         ref.depth[i]);
             }
@@ -98,7 +106,32 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
         std::nth_element(errors.begin(), errors.begin() + k, errors.end());
         c.p999DepthError = errors[static_cast<std::size_t>(k)];
     }
+    if (!intensityErrors.empty()) {
+        c.meanIntensityError = intensitySum / static_cast<double>(intensityErrors.size());
+        const auto k =
+            static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(intensityErrors.size() - 1));
+        std::nth_element(intensityErrors.begin(), intensityErrors.begin() + k,
+                         intensityErrors.end());
+        c.p99IntensityError = intensityErrors[static_cast<std::size_t>(k)];
+    }
     return c;
+}
+
+std::string FirstBitDifference(const Frame& a, const Frame& b) {
+    if (a.width != b.width || a.height != b.height)
+        return fmt::format("sizes differ: {}x{} vs {}x{}", a.width, a.height, b.width, b.height);
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const std::size_t i = a.Index(x, y);
+            if (a.depth[i] != b.depth[i] || !(a.normal[i] == b.normal[i]) ||
+                a.surface[i] != b.surface[i] || a.body[i] != b.body[i] || a.solid[i] != b.solid[i])
+                return fmt::format(
+                    "pixel ({}, {}): depth {:.17g} vs {:.17g}, surface {} vs {}, body {} vs {}, "
+                    "solid {} vs {}",
+                    x, y, a.depth[i], b.depth[i], a.surface[i], b.surface[i], a.body[i], b.body[i],
+                    a.solid[i], b.solid[i]);
+        }
+    return {};
 }
 
 Image FrameDiffImage(const Frame& a, const Frame& ref, const CompareOptions& options) {

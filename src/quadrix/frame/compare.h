@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "quadrix/frame/frame.h"
@@ -24,9 +25,13 @@ struct FrameComparison {
     std::uint64_t sameSurface = 0, sameSolid = 0;
     std::uint64_t surfaceDiffers = 0;      // covered in both, different surface id
     std::uint64_t offEdgeDifferences = 0;  // coverage or surface differs away from any edge
-    std::uint64_t depthOverTolerance = 0;  // same surface, |Δz| above CompareOptions::depthTolerance
+    std::uint64_t depthOverTolerance =
+        0;  // same surface, |Δz| above CompareOptions::depthTolerance
     double maxDepthError = 0, meanDepthError = 0, p999DepthError = 0;
     double maxNormalErrorDegrees = 0;
+    // Shading error on same-surface pixels, when CompareOptions::intensity is given:
+    // |intensity(normal in A) − intensity(normal in the reference)|.
+    double maxIntensityError = 0, meanIntensityError = 0, p99IntensityError = 0;
     std::string firstDifference;  // the first off-edge difference, described
 
     // Share of pixels covered in both that show the same surface (1 when none are).
@@ -37,10 +42,18 @@ struct FrameComparison {
 
 struct CompareOptions {
     double depthTolerance = 1e-6;  // device z units, for depthOverTolerance
+    // A shader's intensity of a normal (e.g. Lambert under the scene's lights, in [0, 1]); when
+    // set, the comparison also reports the intensity error.
+    std::function<double(const Vec3& normal)> intensity;
 };
 
 FrameComparison CompareFrames(const Frame& a, const Frame& reference,
                               const CompareOptions& options = {});
+
+// Empty when the two Frames are identical bit for bit (depth, normal and ids of every pixel;
+// NaN-free frames), else the first difference, described. The test of "bit-identical" refactors
+// and of fast paths against their reference.
+std::string FirstBitDifference(const Frame& a, const Frame& b);
 
 // A picture of the comparison: black = background in both, gray = same surface (brighter where
 // the depth error is larger), yellow = different surface, red = only in a, blue = only in the

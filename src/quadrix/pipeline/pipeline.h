@@ -13,7 +13,8 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/frame/image_limits.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
@@ -54,7 +55,7 @@ struct PipelineResult {
     // summary appended to the report.
     RenderStats stats;
     RenderReport report;
-    import::InputReport inputs;  // what the importers found (census, skipped primitives, bounds)
+    InputReport inputs;  // what the importers found (census, skipped primitives, bounds)
     double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0;
 };
 

@@ -89,18 +89,18 @@ RenderContext::~RenderContext() = default;
 bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     const auto t0 = std::chrono::steady_clock::now();
     scene_ = scene::Scene{};
-    inputs_ = import::InputReport{};
+    inputs_ = InputReport{};
     flatValid_ = false;
     if (request.paths.empty()) {
         lang::Reader reader(scene_, diags);
         reader.ReadText(request.text, request.textName);
     } else {
         // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
-        import::InputOptions io;
+        InputOptions io;
         io.import.topObjects = request.topObjects;
         io.import.strict = request.strict;
         io.import.allowMissing = request.allowMissing;
-        import::ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
+        ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
     }
     readSeconds = SecondsSince(t0);
     return !diags.HasErrors();

@@ -34,7 +34,8 @@
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/io/image.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/rt_view.h"
+#include "quadrix/pipeline/inputs.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 #include "quadrix/shade/shader.h"
@@ -108,7 +109,7 @@ class RenderContext {
     scene::Scene& Scene() { return scene_; }
     const scene::Scene& Scene() const { return scene_; }
     void SceneChanged() { flatValid_ = false; }
-    const import::InputReport& Inputs() const { return inputs_; }
+    const InputReport& Inputs() const { return inputs_; }
 
     // Stage 2. false with errors in diags. Reuses the kept flat scene when nothing changed.
     bool Flatten(const ViewRequest& view, Diagnostics& diags);
@@ -138,7 +139,7 @@ class RenderContext {
 
     std::unique_ptr<Arena> arena_;
     scene::Scene scene_;
-    import::InputReport inputs_;
+    InputReport inputs_;
     FlatScene flat_;
     bool flatValid_ = false, lastReused_ = false;
     // The request the kept flat scene was made for (lights and view as given).

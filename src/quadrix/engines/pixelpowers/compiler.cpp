@@ -13,7 +13,7 @@ Vec3 RaycastReferencePoint(const FlatScene& scene, std::size_t h) {
     // Same rule as raycast's SceneTables::ReferencePoints.
     Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
     const FlatHalfSpace& hs = scene.halfSpaces[h];
-    return hs.isPlane ? anchor : raycast::RayHalfSpace::Centre(hs.quadric).value_or(anchor);
+    return hs.isPlane ? anchor : eval::RayHalfSpace::Centre(hs.quadric).value_or(anchor);
 }
 
 namespace {
@@ -242,7 +242,7 @@ class Compiler {
         if (it != literalIndex_.end()) return it->second;
         const FlatHalfSpace& hs = scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
         MachineLiteral m;
-        m.ray = raycast::RayHalfSpace::From(
+        m.ray = eval::RayHalfSpace::From(
             hs, RaycastReferencePoint(scene_, static_cast<std::size_t>(l.halfSpace)));
         m.complemented = l.complemented;
         m.isPlane = hs.isPlane;

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/eval/ray_literal.h"
 
 namespace quadrix::pixelpowers {
 
@@ -102,7 +102,7 @@ struct Block {
 
 // A literal as the extended machine's root unit sees it.
 struct MachineLiteral {
-    raycast::RayHalfSpace ray;
+    eval::RayHalfSpace ray;
     bool complemented = false;
     bool isPlane = true;
 };

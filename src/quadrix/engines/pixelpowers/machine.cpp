@@ -36,14 +36,14 @@ double Qee(const double* q, double x, double y) {
     return (q[0] * x + q[1] * y + q[3]) * x + (q[2] * y + q[4]) * y + q[5];
 }
 
-// Plane literals inline, with exactly the arithmetic of raycast::LiteralOnRay (ray_literal.cpp:
+// Plane literals inline, with exactly the arithmetic of eval::LiteralOnRay (ray_literal.cpp:
 // e = A x + B y + D, r = −e/C, the set (−∞, r] for C > 0, [r, ∞) for C < 0, all or nothing for
 // C = 0, empty both ways for non-finite values, closure of the complement when complemented), so
 // results stay bit-identical to the oracle; this only skips the call and the interval bookkeeping.
 // `word` rounds the finite root as ZTEMP's words do (depth-bits; the identity otherwise), so that
 // coincident surfaces compare equal in the rounded domain too.
 template <class Word>
-bool PlaneInside(const raycast::RayHalfSpace& h, bool complemented, double x, double y, double z,
+bool PlaneInside(const eval::RayHalfSpace& h, bool complemented, double x, double y, double z,
                  std::uint8_t mode, const Word& word) {
     double e = h.px * x + h.py * y + h.pd;
     if (!std::isfinite(e) || !std::isfinite(h.c)) return false;
@@ -76,7 +76,7 @@ bool InPiece(const Interval& v, double z, std::uint8_t mode) {
 }
 
 // The plane's finite entry (exit) point, if any.
-bool PlaneRoot(const raycast::RayHalfSpace& h, bool complemented, bool exit, double x, double y,
+bool PlaneRoot(const eval::RayHalfSpace& h, bool complemented, bool exit, double x, double y,
                double& t) {
     double e = h.px * x + h.py * y + h.pd;
     if (!std::isfinite(e) || !std::isfinite(h.c) || h.c == 0) return false;
@@ -261,8 +261,8 @@ class TileRunner {
                     break;
                 }
                 ForEach(rect, [&](std::size_t k, double x, double y) {
-                    raycast::RaySet s =
-                        raycast::LiteralOnRay(lit.ray, lit.complemented, x, y, 0, literalCounters_);
+                    eval::RaySet s =
+                        eval::LiteralOnRay(lit.ray, lit.complemented, x, y, 0, literalCounters_);
                     ++ops;
                     // A literal has at most one finite entry and one finite exit on a ray
                     // (ray_literal.h: at most two pieces, infinite at the outer ends).
@@ -293,8 +293,8 @@ class TileRunner {
                 }
                 ForEach(rect, [&](std::size_t k, double x, double y) {
                     if (!fa[k]) return;
-                    raycast::RaySet s =
-                        raycast::LiteralOnRay(lit.ray, lit.complemented, x, y, 0, literalCounters_);
+                    eval::RaySet s =
+                        eval::LiteralOnRay(lit.ray, lit.complemented, x, y, 0, literalCounters_);
                     ++ops;
                     double z = r_.ztemp[k];
                     bool in = false;
@@ -342,7 +342,7 @@ class TileRunner {
     const Program& program_;
     TileRegisters& r_;
     MachineCounters& counters_;
-    raycast::LiteralCounters literalCounters_;
+    eval::LiteralCounters literalCounters_;
     int tx0_ = 0, ty0_ = 0;
     double step_ = 0, origin_ = 0, maxWord_ = 0;
 };

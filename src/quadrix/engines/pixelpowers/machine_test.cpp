@@ -224,9 +224,9 @@ TEST(PixelPowersMachine, InsideModesAndStrictDepthTests) {
         return v;
     };
     Program lits;
-    lits.literals.push_back({raycast::RayHalfSpace::From(plane), false, true});
-    lits.literals.push_back({raycast::RayHalfSpace::From(plane), true, true});
-    lits.literals.push_back({raycast::RayHalfSpace::From(slab), false, false});
+    lits.literals.push_back({eval::RayHalfSpace::From(plane), false, true});
+    lits.literals.push_back({eval::RayHalfSpace::From(plane), true, true});
+    lits.literals.push_back({eval::RayHalfSpace::From(slab), false, false});
     // z <= 0: the endpoint 0 (pixel 10) belongs to the closed set and to the side before it.
     EXPECT_EQ(run(lits, Opcode::kInside, kInsideClosed, 0), range(0, 10));
     EXPECT_EQ(run(lits, Opcode::kInside, kInsideOpen, 0), range(0, 9));

@@ -11,6 +11,7 @@
 #include "quadrix/engines/pixelpowers/compiler.h"
 #include "quadrix/engines/pixelpowers/machine.h"
 #include "quadrix/engines/raycast/raycast.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/shade/shader.h"
 
 namespace quadrix {
@@ -46,7 +47,8 @@ const OptionSchema& PixelPowersSchema() {
         O::Choice("shading", "", {"exact", "paper"},
                   "exact normals at ZMIN, or the paper's approximate shading (default: paper "
                   "in approx mode, else exact)"),
-        O::Int("depth-bits", "", 8, 52, "fixed-point ZTEMP/ZMIN words of N bits (default: doubles)"),
+        O::Int("depth-bits", "", 8, 52,
+               "fixed-point ZTEMP/ZMIN words of N bits (default: doubles)"),
         O::Int("max-products", "20000", 1, 10000000,
                "normal-form explosion guard per solid (a solid past it goes to raycast)"),
         O::Int("max-instructions", "1000000", 1, 100000000,
@@ -71,59 +73,6 @@ Settings ReadSettings(const EngineOptions& o) {
     st.compile.paperShading = o.Given("shading") ? o.Choice("shading") == "paper" : approx;
     st.compare = o.Given("compare") ? o.Bool("compare") : approx;
     return st;
-}
-
-struct Agreement {
-    std::uint64_t coveredBoth = 0, coveredOnlyHere = 0, coveredOnlyReference = 0;
-    std::uint64_t sameSolid = 0, sameSurface = 0;
-    double maxDepthError = 0, sumDepthError = 0;  // over pixels with the same surface
-    // Pixels with the same surface but an error above the tolerance: next to an intersection curve
-    // the approximate depth may move a pixel onto the other sheet of the same quadric.
-    std::uint64_t overTolerance = 0;
-    double p999 = 0;  // 99.9th percentile of the same-surface error
-    // Shading: |LambertIntensity(here) − LambertIntensity(raycast)| on same-surface pixels (the
-    // shader's intensity before color, in [0, 1]; ×255 for 8-bit gray levels).
-    double maxIntensityError = 0, sumIntensityError = 0, p99Intensity = 0;
-};
-
-Agreement CompareFrames(const Frame& here, const Frame& ref, const FlatScene& scene,
-                        double tolerance) {
-    Agreement a;
-    std::vector<double> errors, intensityErrors;
-    for (std::size_t i = 0; i < here.depth.size(); ++i) {
-        bool h = here.surface[i] != Frame::kNone, r = ref.surface[i] != Frame::kNone;
-        if (h && r) {
-            ++a.coveredBoth;
-            a.sameSolid += here.solid[i] == ref.solid[i];
-            if (here.surface[i] == ref.surface[i]) {
-                ++a.sameSurface;
-                double e = std::fabs(here.depth[i] - ref.depth[i]);
-                a.maxDepthError = std::fmax(a.maxDepthError, e);
-                a.sumDepthError += e;
-                a.overTolerance += e > tolerance * (1 + 1e-9);
-                errors.push_back(e);
-                double di = std::fabs(LambertIntensity(scene, here.normal[i]) -
-                                      LambertIntensity(scene, ref.normal[i]));
-                a.maxIntensityError = std::fmax(a.maxIntensityError, di);
-                a.sumIntensityError += di;
-                intensityErrors.push_back(di);
-            }
-        } else if (h) {
-            ++a.coveredOnlyHere;
-        } else if (r) {
-            ++a.coveredOnlyReference;
-        }
-    }
-    if (!errors.empty()) {
-        auto k = static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(errors.size() - 1));
-        std::nth_element(errors.begin(), errors.begin() + k, errors.end());
-        a.p999 = errors[static_cast<std::size_t>(k)];
-        auto k99 = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(errors.size() - 1));
-        std::nth_element(intensityErrors.begin(), intensityErrors.begin() + k99,
-                         intensityErrors.end());
-        a.p99Intensity = intensityErrors[static_cast<std::size_t>(k99)];
-    }
-    return a;
 }
 
 std::string Table1(const CompileStats& cs, const Program& program, const std::string& name) {
@@ -167,8 +116,7 @@ class PixelPowersEngine final : public Engine {
     const OptionSchema& Schema() const override { return PixelPowersSchema(); }
 
   protected:
-    RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
-                     Frame& frame) override {
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) override {
         auto start = std::chrono::steady_clock::now();
         RenderStats stats;
         const Settings st = ReadSettings(options);
@@ -286,39 +234,42 @@ class PixelPowersEngine final : public Engine {
             const double tolerance = st.compile.mode == DepthMode::kApprox
                                          ? st.compile.tolerance + 0.5 * program.depthStep
                                          : 0.5 * program.depthStep;
-            Agreement a = CompareFrames(frame, ref, scene, tolerance);
-            std::uint64_t union_ = a.coveredBoth + a.coveredOnlyHere + a.coveredOnlyReference;
+            // Shading: the shader's Lambert intensity before color, in [0, 1] (×255 for 8-bit
+            // gray levels). The depth tolerance is widened by 1e-9 of itself (its rounding).
+            CompareOptions co;
+            co.depthTolerance = tolerance * (1 + 1e-9);
+            co.intensity = [&scene](const Vec3& n) { return LambertIntensity(scene, n); };
+            const FrameComparison a = quadrix::CompareFrames(frame, ref, co);
+            std::uint64_t union_ = a.coveredBoth + a.onlyA + a.onlyReference;
             double same = a.coveredBoth ? static_cast<double>(a.sameSolid) / a.coveredBoth : 1.0;
-            double mean = a.sameSurface ? a.sumDepthError / static_cast<double>(a.sameSurface) : 0;
+            const double mean = a.meanDepthError, meanI = a.meanIntensityError;
             count("cmp_covered_both", a.coveredBoth);
-            count("cmp_covered_only_here", a.coveredOnlyHere);
-            count("cmp_covered_only_raycast", a.coveredOnlyReference);
+            count("cmp_covered_only_here", a.onlyA);
+            count("cmp_covered_only_raycast", a.onlyReference);
             add("cmp_same_solid_share", same);
             add("cmp_depth_error_max", a.maxDepthError);
             add("cmp_depth_error_mean", mean);
-            add("cmp_depth_error_p999", a.p999);
-            count("cmp_depth_error_over_tolerance", a.overTolerance);
-            double meanI =
-                a.sameSurface ? a.sumIntensityError / static_cast<double>(a.sameSurface) : 0;
+            add("cmp_depth_error_p999", a.p999DepthError);
+            count("cmp_depth_error_over_tolerance", a.depthOverTolerance);
             add("cmp_intensity_error_max", a.maxIntensityError);
             add("cmp_intensity_error_mean", meanI);
-            add("cmp_intensity_error_p99", a.p99Intensity);
+            add("cmp_intensity_error_p99", a.p99IntensityError);
             std::snprintf(
                 line, sizeof line,
                 "vs raycast: %llu covered pixels, %.4f%% same solid, coverage differs on "
                 "%llu; depth error (same surface) max %.4g p99.9 %.4g mean %.4g device z, "
                 "%llu pixels over the tolerance %.4g\n",
                 static_cast<unsigned long long>(union_), 100.0 * same,
-                static_cast<unsigned long long>(a.coveredOnlyHere + a.coveredOnlyReference),
-                a.maxDepthError, a.p999, mean, static_cast<unsigned long long>(a.overTolerance),
+                static_cast<unsigned long long>(a.onlyA + a.onlyReference), a.maxDepthError,
+                a.p999DepthError, mean, static_cast<unsigned long long>(a.depthOverTolerance),
                 tolerance);
             report += line;
             std::snprintf(line, sizeof line,
                           "vs raycast shading (%s): Lambert intensity error (same surface) max "
                           "%.4f p99 %.4f mean %.4f (x255: %.1f / %.1f / %.2f gray levels)\n",
                           st.compile.paperShading ? "paper" : "exact normals", a.maxIntensityError,
-                          a.p99Intensity, meanI, 255 * a.maxIntensityError, 255 * a.p99Intensity,
-                          255 * meanI);
+                          a.p99IntensityError, meanI, 255 * a.maxIntensityError,
+                          255 * a.p99IntensityError, 255 * meanI);
             report += line;
         }
         stats.report = report;

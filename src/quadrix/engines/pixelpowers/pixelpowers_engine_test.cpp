@@ -11,7 +11,8 @@
 #include "quadrix/engines/pixelpowers/compiler.h"
 #include "quadrix/engines/pixelpowers/machine.h"
 #include "quadrix/engines/raycast/raycast.h"
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/shade/shader.h"
 
 namespace quadrix::pixelpowers {
@@ -19,54 +20,6 @@ namespace {
 
 using testing_util::Counter;
 using testing_util::TestSceneBuilder;
-
-struct Agreement {
-    std::size_t coveredBoth = 0, sameSurface = 0, sameSolid = 0;
-    std::size_t offEdgeDifferences = 0;  // coverage or surface differs away from any edge
-    std::size_t depthMismatch = 0;       // same surface, different depth
-    std::string first;
-};
-
-// A pixel is on an edge when an 8-neighbour's raycast surface differs from its own: there a ray
-// grazes a surface or crosses an intersection curve and one rounding may decide either way.
-Agreement Compare(const Frame& a, const Frame& ref) {
-    Agreement g;
-    auto edge = [&](int x, int y) {
-        std::int32_t s = ref.surface[ref.Index(x, y)];
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                int u = x + dx, v = y + dy;
-                if (u < 0 || v < 0 || u >= ref.width || v >= ref.height) continue;
-                if (ref.surface[ref.Index(u, v)] != s) return true;
-            }
-        return false;
-    };
-    for (int y = 0; y < ref.height; ++y) {
-        for (int x = 0; x < ref.width; ++x) {
-            std::size_t i = ref.Index(x, y);
-            bool ca = a.surface[i] != Frame::kNone, cr = ref.surface[i] != Frame::kNone;
-            if (ca != cr || (ca && a.surface[i] != ref.surface[i])) {
-                if (!edge(x, y)) {
-                    ++g.offEdgeDifferences;
-                    if (g.first.empty())
-                        g.first = "pixel " + std::to_string(x) + "," + std::to_string(y) +
-                                  ": surface " + std::to_string(a.surface[i]) + " vs " +
-                                  std::to_string(ref.surface[i]) + ", depth " +
-                                  std::to_string(a.depth[i]) + " vs " +
-                                  std::to_string(ref.depth[i]);
-                }
-            }
-            if (!ca || !cr) continue;
-            ++g.coveredBoth;
-            g.sameSolid += a.solid[i] == ref.solid[i];
-            if (a.surface[i] == ref.surface[i]) {
-                ++g.sameSurface;
-                g.depthMismatch += a.depth[i] != ref.depth[i];
-            }
-        }
-    }
-    return g;
-}
 
 Frame RenderWith(Engine& e, const FlatScene& scene, std::map<std::string, std::string> opts = {}) {
     RenderOptions o;
@@ -81,12 +34,14 @@ void ExpectMatchesRaycast(const FlatScene& scene, const std::string& what,
     auto pp = MakePixelPowersEngine();
     auto rc = MakeRaycastEngine();
     Frame a = RenderWith(*pp, scene), r = RenderWith(*rc, scene);
-    Agreement g = Compare(a, r);
+    CompareOptions exactDepth;
+    exactDepth.depthTolerance = 0;  // any difference counts
+    const FrameComparison g = CompareFrames(a, r, exactDepth);
     EXPECT_GE(g.coveredBoth, minCovered) << what;
-    EXPECT_EQ(g.offEdgeDifferences, 0u) << what << ": " << g.first;
+    EXPECT_EQ(g.offEdgeDifferences, 0u) << what << ": " << g.firstDifference;
     // Justification: both engines compute each literal's roots with LiteralOnRay on the same
     // re-centred coefficients, so the same surface gives the same double.
-    EXPECT_EQ(g.depthMismatch, 0u) << what;
+    EXPECT_EQ(g.depthOverTolerance, 0u) << what;
     EXPECT_GE(static_cast<double>(g.sameSurface), 0.99 * static_cast<double>(g.coveredBoth))
         << what;
 }

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/math/interval_list.h"
 
 namespace quadrix::raycast {

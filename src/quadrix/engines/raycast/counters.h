@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/engines/raycast/eval_names.h"
 
 namespace quadrix::raycast {
 

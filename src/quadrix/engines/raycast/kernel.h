@@ -24,7 +24,7 @@
 
 #include "quadrix/engines/raycast/body_batch.h"
 #include "quadrix/engines/raycast/counters.h"
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/kernel_lanes.h"
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/engines/raycast/settings.h"

@@ -15,7 +15,7 @@
 
 #include <cstdint>
 
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/tiling.h"
 
 namespace quadrix::raycast {

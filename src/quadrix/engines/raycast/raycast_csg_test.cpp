@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/math/quadratic.h"
 
 namespace quadrix {
@@ -21,7 +22,6 @@ namespace {
 
 using scene::CsgOp;
 using testing_util::CounterOrFail;
-using testing_util::FrameDifference;
 using testing_util::FrameHasNaN;
 using testing_util::SphereBounds;
 using testing_util::TestSceneBuilder;
@@ -234,7 +234,7 @@ TEST(RaycastCsg, KernelsMatchTraceBitForBitOnRandomScenes) {
         Frame a, b;
         RenderStats stats = MakeRaycastEngine()->Render(scene, on, a);
         MakeRaycastEngine()->Render(scene, off, b);
-        ASSERT_EQ(FrameDifference(a, b), "") << "scene " << n;
+        ASSERT_EQ(FirstBitDifference(a, b), "") << "scene " << n;
         lanePixels +=
             CounterOrFail(stats, "kernel_pixels") - CounterOrFail(stats, "kernel_scalar_pixels");
         scalarPixels += CounterOrFail(stats, "kernel_scalar_pixels");
@@ -293,7 +293,7 @@ TEST(RaycastCsg, BoundsCullingChangesNoBit) {
     RenderStats culled, unculled;
     Frame f = Render(b.scene(), 0, &culled);
     Frame g = Render(b.WithoutBounds(), 0, &unculled);
-    EXPECT_EQ(FrameDifference(f, g), "");
+    EXPECT_EQ(FirstBitDifference(f, g), "");
     EXPECT_GT(f.CoveredCount(), 8000u);
     // And culling is what makes it fast: far fewer quadrics solved per pixel. (Without bounds
     // the per-sub-tile discriminant test, which needs none, still skips most misses.)
@@ -305,8 +305,8 @@ TEST(RaycastCsg, BoundsCullingChangesNoBit) {
 TEST(RaycastCsg, ThreadCountChangesNoBit) {
     TestSceneBuilder b = ManySpheres(280, 130, 200, 8);  // not a multiple of the tile sizes
     Frame one = Render(b.scene(), 1), two = Render(b.scene(), 2), all = Render(b.scene(), 0);
-    EXPECT_EQ(FrameDifference(one, two), "");
-    EXPECT_EQ(FrameDifference(one, all), "");
+    EXPECT_EQ(FirstBitDifference(one, two), "");
+    EXPECT_EQ(FirstBitDifference(one, all), "");
 }
 
 TEST(RaycastCsg, ExactDepthTiesKeepTheLowerSolidIndex) {

@@ -6,17 +6,17 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::raycast {
 namespace {
 
 using testing_util::Counter;
-using testing_util::FrameDifference;
 using testing_util::RenderWith;
 
 FlatScene Load(const std::string& text, int w, int h) {
@@ -64,7 +64,7 @@ TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
         for (const char* batch : {"on", "off"})
             for (const char* cull : {"on", "off"})
                 for (const char* kern : {"on", "off"})
-                    EXPECT_EQ(FrameDifference(Render(scene, batch, cull, nullptr, kern), reference),
+                    EXPECT_EQ(FirstBitDifference(Render(scene, batch, cull, nullptr, kern), reference),
                               "")
                         << text << " batch=" << batch << " tile-cull=" << cull
                         << " kernel=" << kern;

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/flatten/flat_scene.h"
 
 namespace quadrix::raycast {

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "quadrix/engines/raycast/counters.h"
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/pixel_rows.h"
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/engines/raycast/settings.h"

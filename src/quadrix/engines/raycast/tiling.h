@@ -8,7 +8,7 @@
 // thread that ran it.
 #pragma once
 
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/frame/frame.h"
 

@@ -25,8 +25,7 @@
 
 #include "quadrix/engines/raycast/body_batch.h"
 #include "quadrix/engines/raycast/counters.h"
-#include "quadrix/engines/raycast/csg_program.h"
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/engines/raycast/tile_reduction.h"
 #include "quadrix/math/interval_list.h"

@@ -11,7 +11,7 @@
 
 #include "quadrix/engines/raycast/body_batch.h"
 #include "quadrix/engines/raycast/counters.h"
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/kernel.h"
 #include "quadrix/engines/raycast/pixel_rows.h"
 #include "quadrix/engines/raycast/scene_tables.h"

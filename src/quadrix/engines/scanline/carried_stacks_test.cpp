@@ -13,9 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/engine_test_util.h"
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/engines/scanline/resolver.h"
 #include "quadrix/pipeline/pipeline.h"
 
@@ -23,7 +24,6 @@ namespace quadrix {
 namespace {
 
 using testing_util::Counter;
-using testing_util::FrameDifference;
 using testing_util::RenderWith;
 using testing_util::TestSceneBuilder;
 
@@ -121,7 +121,7 @@ TEST(ScanlineCarriedStacks, ExamplesAndGalleryNeedNoCorrections) {
             EXPECT_EQ(Counter(s, "face_stack_rebuilds"), 0) << what;
             // The carried stacks alone (no verifier) draw the same frame.
             PipelineResult unchecked = RunScene(name, w, h, "scanline", {{"check", "off"}});
-            EXPECT_EQ(FrameDifference(unchecked.frame, got.frame), "") << what;
+            EXPECT_EQ(FirstBitDifference(unchecked.frame, got.frame), "") << what;
             swaps += Counter(s, "face_stack_swap_updates");
             deriveInserts += Counter(s, "face_stack_derive_inserts");
             vertices += Counter(s, "face_stack_vertices");
@@ -243,7 +243,7 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
         const std::string what = "random scene " + std::to_string(scene);
         ExpectRaycastFrame(RenderWith("raycast", b.scene()), got, 2, what);
         EXPECT_EQ(
-            FrameDifference(RenderWith("scanline", b.scene(), nullptr, {{"render", "exact"}}), got),
+            FirstBitDifference(RenderWith("scanline", b.scene(), nullptr, {{"render", "exact"}}), got),
             "")
             << what;
         EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
@@ -254,7 +254,7 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
         EXPECT_EQ(Counter(stats, "face_stack_inserts"), Counter(stats, "face_stack_deletes"))
             << what;
         EXPECT_EQ(
-            FrameDifference(RenderWith("scanline", b.scene(), nullptr, {{"check", "off"}}), got),
+            FirstBitDifference(RenderWith("scanline", b.scene(), nullptr, {{"check", "off"}}), got),
             "")
             << what;
         swaps += Counter(stats, "face_stack_swap_updates");
@@ -319,7 +319,7 @@ RenderStats ExpectVerticesClosed(const FlatScene& scene, std::size_t allowed,
     // The carried stacks alone: the same frame (a vertex processed wrongly would leave wrong
     // stacks to the right of it, which only the verifier corrects).
     const Frame unchecked = RenderWith("scanline", scene, nullptr, {{"check", "off"}});
-    EXPECT_EQ(FrameDifference(unchecked, got), "") << what;
+    EXPECT_EQ(FirstBitDifference(unchecked, got), "") << what;
     EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0) << what;
     EXPECT_EQ(Counter(stats, "face_stack_order_corrections"), 0) << what;
@@ -355,7 +355,7 @@ TEST(ScanlineVertexProcessing, RowsExactlyOnHorizontalEdges) {
     RenderStats stats;
     const Frame got = RenderWith("scanline", b.scene(), &stats);
     const Frame unchecked = RenderWith("scanline", b.scene(), nullptr, {{"check", "off"}});
-    EXPECT_EQ(FrameDifference(unchecked, got), "");
+    EXPECT_EQ(FirstBitDifference(unchecked, got), "");
     EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0);
     EXPECT_EQ(Counter(stats, "face_stack_vertex_fallbacks"), 0);

@@ -73,7 +73,7 @@ void CsgSpans::PruneSpanUnits() {
     }
 }
 
-bool CsgSpans::EvaluateExact(int u, double x, double y, RayEvaluator::Hit& hit) {
+bool CsgSpans::EvaluateExact(int u, double x, double y, eval::RayEvaluator::Hit& hit) {
     const Unit& unit = ctx_.UnitOf(u);
     pruneLeaves_.clear();
     for (int b : row_.Bodies()) {

@@ -61,7 +61,7 @@ class CsgSpans {
     // At pixel i: the template faces' depths from their conics, then each CSG unit's visible
     // point offered to (hit, solid, unit): taken when strictly nearer, or as near and winning
     // raycast's tie rule (ScanContext::UnitWinsTie).
-    inline void OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid,
+    inline void OfferPixel(int i, double y, eval::RayEvaluator::Hit& hit, int& solid,
                            int& unit);  // (_inline.h)
     void AdvanceTemplates() {
         for (StackFace& f : tFaces_) AdvanceFace(f);
@@ -69,7 +69,7 @@ class CsgSpans {
 
     // An exact pixel (x, y): CSG unit u's tree pruned to the operands whose x range on this row
     // holds x, each evaluated exactly.
-    bool EvaluateExact(int u, double x, double y, RayEvaluator::Hit& hit);
+    bool EvaluateExact(int u, double x, double y, eval::RayEvaluator::Hit& hit);
 
   private:
     // (The functions declared inline here are defined in csg_spans_inline.h: the per-pixel path.)
@@ -108,7 +108,7 @@ class CsgSpans {
     inline void UpdateTemplateDepths();
     // The CSG unit's visible point at pixel i from its pruned tree and templates; false when
     // nothing is visible. Where a template does not hold, the pruned tree is evaluated exactly.
-    inline bool CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit);
+    inline bool CsgPixel(const CsgSpanUnit& cu, int i, double y, eval::RayEvaluator::Hit& hit);
     // BuildTemplate's read at the sample pixel: the ends of the body's intervals into `cache`.
     void ReadTemplate(int body, int sample, double y, CachedTemplate& cache);
     // The set of template t at the current pixel (depths from the span shader's conics).

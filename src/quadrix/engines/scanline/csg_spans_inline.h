@@ -27,11 +27,11 @@ inline void CsgSpans::UpdateTemplateDepths() {
     }
 }
 
-inline void CsgSpans::OfferPixel(int i, double y, RayEvaluator::Hit& hit, int& solid,
+inline void CsgSpans::OfferPixel(int i, double y, eval::RayEvaluator::Hit& hit, int& solid,
                                  int& unit) {
     UpdateTemplateDepths();
     for (const CsgSpanUnit& cu : units_) {
-        RayEvaluator::Hit h;
+        eval::RayEvaluator::Hit h;
         if (!CsgPixel(cu, i, y, h)) continue;
         if (h.t < hit.t ||
             (h.t == hit.t && ctx_.UnitWinsTie(cu.unit, h.halfSpace, unit, hit.halfSpace, i + 0.5, y,
@@ -63,7 +63,7 @@ inline void CsgSpans::TemplateSet(int tmpl, IntervalList& out, bool& broken) {
 
 // The set of pruned node pn on the ray through (x, y): template leaves from the span's
 // templates (exact leaves, or all leaves with `exact`, by the interval code of raycast),
-// combined as RayEvaluator::TreeSet does. Scratch lists come from pool_ by depth.
+// combined as eval::RayEvaluator::TreeSet does. Scratch lists come from pool_ by depth.
 inline void CsgSpans::EvalPruned(int pn, std::size_t depth, double x, double y, IntervalList& out,
                                  bool& broken, bool exact) {
     const PNode& p = pNodes_[static_cast<std::size_t>(pn)];
@@ -87,11 +87,11 @@ inline void CsgSpans::EvalPruned(int pn, std::size_t depth, double x, double y, 
         }
         EvalPruned(kid, depth + 1, x, y, operand, broken, exact);
         if (broken) return;
-        CombineOperand(p.op, out, operand, tmp);
+        eval::CombineOperand(p.op, out, operand, tmp);
     }
 }
 
-inline bool CsgSpans::CsgPixel(const CsgSpanUnit& cu, int i, double y, RayEvaluator::Hit& hit) {
+inline bool CsgSpans::CsgPixel(const CsgSpanUnit& cu, int i, double y, eval::RayEvaluator::Hit& hit) {
     ++ctx_.c.csgPixels;
     bool broken = false;
     IntervalList& l = Pool(0);

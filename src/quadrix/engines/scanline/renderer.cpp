@@ -96,7 +96,7 @@ class ScanRenderer {
     // The span's candidates from body b: its face (a body drawn on its own) or its CSG leaves.
     void AddSpanBody(int b, int i0, int sample, int j);
     void ShadeSpan(int i0, int i1, int j);
-    bool EvaluateUnit(int u, double x, double y, RayEvaluator::Hit& hit);
+    bool EvaluateUnit(int u, double x, double y, eval::RayEvaluator::Hit& hit);
     void ExactPixel(int i, int j);
 
     ScanContext ctx_;
@@ -193,7 +193,7 @@ void ScanRenderer::AddSpanBody(int b, int i0, int sample, int j) {
         if (ctx_.pixelBody[k]) {
             perPixel_.push_back(u);
         } else if (!ctx_.useStack[k]) {  // stack bodies: TakeStackFaces
-            RayEvaluator::Hit hit;
+            eval::RayEvaluator::Hit hit;
             ++ctx_.c.sampleEvaluations;
             if (ctx_.eval.Body(b, sample + 0.5, y, hit)) shader_.AddExactFace(hit, u, sample, y);
         }
@@ -232,13 +232,13 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
         } else {
             // Units evaluated per pixel (refused bodies, CSG solids) compete with the stack.
             // (Their order is kept: ties between equal depths of one solid go to the first.)
-            RayEvaluator::Hit ph;
+            eval::RayEvaluator::Hit ph;
             int phSolid = -1, phUnit = -1;
             for (int u : perPixel_) {
                 const Unit& unit = ctx_.UnitOf(u);
                 if (i < unit.x0 || i > unit.x1) continue;
                 ++ctx_.c.perPixelUnitPixels;
-                RayEvaluator::Hit hit;
+                eval::RayEvaluator::Hit hit;
                 if (EvaluateUnit(u, i + 0.5, y, hit) &&
                     (hit.t < ph.t ||
                      (hit.t == ph.t && ctx_.UnitWinsTie(u, hit.halfSpace, phUnit, ph.halfSpace,
@@ -269,7 +269,7 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
     }
 }
 
-bool ScanRenderer::EvaluateUnit(int u, double x, double y, RayEvaluator::Hit& hit) {
+bool ScanRenderer::EvaluateUnit(int u, double x, double y, eval::RayEvaluator::Hit& hit) {
     const Unit& unit = ctx_.UnitOf(u);
     if (unit.kind != Unit::Kind::kCsg) return ctx_.eval.Body(unit.body, x, y, hit);
     if (!ctx_.settings.csgTemplates) return ctx_.eval.Node(unit.node, x, y, hit);  // csg=pixels
@@ -281,12 +281,12 @@ bool ScanRenderer::EvaluateUnit(int u, double x, double y, RayEvaluator::Hit& hi
 void ScanRenderer::ExactPixel(int i, int j) {
     ++ctx_.c.exactPixels;
     const double x = i + 0.5, y = j + 0.5;
-    RayEvaluator::Hit best;
+    eval::RayEvaluator::Hit best;
     int bestSolid = -1, bestUnit = -1;
     for (int u : row_.ActiveUnits()) {
         const Unit& unit = ctx_.UnitOf(u);
         if (i < unit.x0 || i > unit.x1) continue;
-        RayEvaluator::Hit hit;
+        eval::RayEvaluator::Hit hit;
         if (EvaluateUnit(u, x, y, hit) &&
             (hit.t < best.t ||
              (hit.t == best.t &&

@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "quadrix/engines/scanline/depth_order.h"
-#include "quadrix/engines/scanline/ray_evaluator.h"
+#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/engines/scanline/resolver.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/math/interval_list.h"

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
 
 namespace quadrix::scanline {
 namespace {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "quadrix/engines/scanline/depth_order.h"
-#include "quadrix/engines/scanline/ray_evaluator.h"
+#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/engines/scanline/resolver.h"
 #include "quadrix/frame/frame.h"
@@ -37,7 +37,7 @@ struct ScanContext {
     const RenderSettings& settings;
     Frame& frame;
     RendererCounters& c;
-    RayEvaluator eval;
+    eval::RayEvaluator eval;
     std::vector<int> bodyUnit;                // body → its kBody unit (−1: a CSG operand)
     std::vector<std::vector<int>> bodyFaces;  // body → its show-faces
     std::vector<char> useStack;               // body drawn from the face stacks
@@ -78,7 +78,7 @@ struct ScanContext {
         bool complemented = false;
         for (const FlatLiteral& l : scene.bodies[static_cast<std::size_t>(body)].literals)
             if (l.halfSpace == hs) complemented = l.complemented;
-        const raycast::RayHalfSpace& r = eval.Ray(hs);
+        const eval::RayHalfSpace& r = eval.Ray(hs);
         const double slope =
             r.isPlane ? r.c : r.c * (t - r.z0) + r.hx * (x - r.x0) + r.hy * (y - r.y0) + r.h0;
         return (slope > 0) != complemented;

@@ -4,7 +4,7 @@
 
 namespace quadrix::scanline {
 
-void SpanShader::AddExactFace(const RayEvaluator::Hit& hit, int unit, int sample, double y) {
+void SpanShader::AddExactFace(const eval::RayEvaluator::Hit& hit, int unit, int sample, double y) {
     StackFace f = MakeFaceAt(ctx_.eval, hit.halfSpace, hit.t, sample + 0.5, y);
     f.unit = unit;
     f.body = hit.body;

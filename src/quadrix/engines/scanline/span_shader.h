@@ -16,7 +16,7 @@
 #include <limits>
 #include <vector>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/eval/ray_literal.h"
 #include "quadrix/engines/scanline/scan_context.h"
 #include "quadrix/math/quadratic.h"
 
@@ -27,7 +27,7 @@ struct StackFace {
     int unit = -1;
     int halfSpace = -1, body = -1, solid = -1;
     int sheet = 0;
-    const raycast::RayHalfSpace* ray = nullptr;
+    const eval::RayHalfSpace* ray = nullptr;
     double h = 0, k = 0, dk = 0;  // quadric: c z'² + 2 h z' + k = 0 at the current pixel
     double planeE = 0;            // plane: px x + py y + pd at the current pixel
     double depth = HUGE_VAL;      // at the current pixel (NaN: no root)
@@ -38,7 +38,7 @@ struct StackFace {
 
 // A show-face from an interval endpoint at depth t found on the ray through (x, y): its sheet is
 // the root nearer to t.
-inline StackFace MakeFaceAt(const RayEvaluator& eval, int halfSpace, double t, double x, double y) {
+inline StackFace MakeFaceAt(const eval::RayEvaluator& eval, int halfSpace, double t, double x, double y) {
     StackFace f;
     f.halfSpace = halfSpace;
     f.ray = &eval.Ray(halfSpace);
@@ -48,7 +48,7 @@ inline StackFace MakeFaceAt(const RayEvaluator& eval, int halfSpace, double t, d
 
 // The face state at pixel i (x = i + ½) on row y.
 inline void SeekFace(StackFace& f, int i, double y) {
-    const raycast::RayHalfSpace& r = *f.ray;
+    const eval::RayHalfSpace& r = *f.ray;
     const double x = i + 0.5;
     if (r.isPlane) {
         f.planeE = r.px * x + r.py * y + r.pd;
@@ -61,7 +61,7 @@ inline void SeekFace(StackFace& f, int i, double y) {
 }
 // One pixel on along the row: the conic's differences (6.3).
 inline void AdvanceFace(StackFace& f) {
-    const raycast::RayHalfSpace& r = *f.ray;
+    const eval::RayHalfSpace& r = *f.ray;
     if (r.isPlane) {
         f.planeE += r.px;
         return;
@@ -73,7 +73,7 @@ inline void AdvanceFace(StackFace& f) {
 
 // The depth of f's sheet from the roots of its quadric on the current ray.
 [[gnu::always_inline]] inline double SheetDepth(const StackFace& f, const QuadraticRoots& roots) {
-    const raycast::RayHalfSpace& r = *f.ray;
+    const eval::RayHalfSpace& r = *f.ray;
     switch (roots.kind) {
         case RootKind::kTwo:
             return r.z0 + (f.sheet == 1 ? roots.t1 : roots.t0);
@@ -89,7 +89,7 @@ inline void AdvanceFace(StackFace& f) {
 // loop is large enough that GCC stops inlining these per-pixel helpers there.)
 [[gnu::always_inline]] inline double FaceDepth(const StackFace& f, RendererCounters& c) {
     ++c.depthCalcs;
-    const raycast::RayHalfSpace& r = *f.ray;
+    const eval::RayHalfSpace& r = *f.ray;
     if (r.isPlane) return r.c != 0 ? -f.planeE / r.c : std::numeric_limits<double>::quiet_NaN();
     return SheetDepth(f, SolveQuadratic(r.c, f.h, f.k));
 }
@@ -106,7 +106,7 @@ class SpanShader {
     int StackHead() const { return stackHead_; }
 
     // The visible face of a body evaluated exactly at the sample pixel joins the span's faces.
-    void AddExactFace(const RayEvaluator::Hit& hit, int unit, int sample, double y);
+    void AddExactFace(const eval::RayEvaluator::Hit& hit, int unit, int sample, double y);
     // The span's faces from the face stack `shown`: per stack body its first (nearest) face, in
     // stack order, so Faces()[0] is the head when no exactly evaluated unit shares the span.
     void TakeStackFaces(const std::vector<int>& shown, int sample, double y);

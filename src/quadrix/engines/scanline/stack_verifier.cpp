@@ -245,13 +245,13 @@ inline void StackVerifier::FixOrder(std::vector<int>& t, double xe, double xq, d
 
 void StackVerifier::VerifySpan(const std::vector<int>& activeUnits, const std::vector<int>& shown,
                                const std::vector<StackFace>& spanFaces, int sample, double y) {
-    RayEvaluator::Hit best;
+    eval::RayEvaluator::Hit best;
     for (int u : activeUnits) {
         const Unit& unit = ctx_.UnitOf(u);
         if (unit.kind != Unit::Kind::kBody || !ctx_.useStack[static_cast<std::size_t>(unit.body)])
             continue;
         if (sample < unit.x0 || sample > unit.x1) continue;
-        RayEvaluator::Hit hit;
+        eval::RayEvaluator::Hit hit;
         if (ctx_.eval.Body(unit.body, sample + 0.5, y, hit) && hit.t < best.t) best = hit;
     }
     const bool head = !shown.empty();
@@ -270,7 +270,7 @@ void StackVerifier::VerifySpan(const std::vector<int>& activeUnits, const std::v
         if (unit.kind != Unit::Kind::kBody || !ctx_.useStack[static_cast<std::size_t>(unit.body)])
             continue;
         if (sample < unit.x0 || sample > unit.x1) continue;
-        RayEvaluator::Hit hit;
+        eval::RayEvaluator::Hit hit;
         const bool exact = ctx_.eval.Body(unit.body, sample + 0.5, y, hit);
         const StackFace* mine = nullptr;
         for (const StackFace& sf : spanFaces)

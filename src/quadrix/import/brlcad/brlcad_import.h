@@ -10,7 +10,7 @@
 // envmap regions are skipped. Member matrices compose along the path (m15 = inverse scale).
 //
 // Coordinates: BRL-CAD is right-handed with Z up, Quadrix's viewing frame is left-handed with y up
-// (scene.h View), so the importer maps (x, y, z) → (x, z, y) (QuadrixFromZUp in scene_input.h): a
+// (scene.h View), so the importer maps (x, y, z) → (x, z, y) (QuadrixFromZUp in model_space.h): a
 // reflection, which makes Quadrix views show what rt shows instead of its mirror image.
 #pragma once
 

@@ -27,7 +27,7 @@
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/openscad/polygon_solids.h"
-#include "quadrix/import/scene_input.h"
+#include "quadrix/import/model_space.h"
 #include "quadrix/math/srgb.h"
 #include "quadrix/scene/css_colors.h"
 

@@ -1,10 +1,10 @@
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/eval/csg_program.h"
 
 #include <gtest/gtest.h>
 
-#include "quadrix/engines/raycast/test_scene_builder.h"
+#include "quadrix/flatten/test_scene_builder.h"
 
-namespace quadrix::raycast {
+namespace quadrix::eval {
 namespace {
 
 using scene::CsgOp;
@@ -95,4 +95,4 @@ TEST(RaycastProgram, SolidsAreSortedByNearestDepthThenIndex) {
 }
 
 }  // namespace
-}  // namespace quadrix::raycast
+}  // namespace quadrix::eval

@@ -1,54 +1,17 @@
-// The input dispatcher: reads a list of files of mixed formats into one Scene.
-//
-// Format by extension, then by content (docs/import.md):
-//   .uq (and anything not recognised)      UniQuadrix language (lang::Reader)
-//   .asc .g-ascii .cg .comgeom             BRL-CAD ASCII v4 / v5 / COMGEOM deck (content decides)
-//   .g                                     BRL-CAD binary database, format v5 (brlcad/g_format.h)
-//   .csg .scad                             OpenSCAD CSG subset
-//   .obj .bpt .bez .bbp .teaset            freeform models (import/freeform; drawn by isocurves)
-// A file with an unknown extension whose first line looks like a BRL-CAD database (or that starts
-// with the v5 binary header 76 01 .. 35) is read as one.
-//
-// Imported (Z-up, right-handed) models are mapped into Quadrix space by QuadrixFromZUp:
-// (x, y, z) → (x, z, y). Views and lights of .uq files in the same render are in Quadrix space.
-//
 // Views like rt (FORMAT.md §9.4): MakeAzElView and MakeRtView build orthographic scene::Views in
-// Quadrix space from rt's parameters, which are given in the model's own coordinates.
+// Quadrix space from rt's parameters, which are given in the model's own coordinates
+// (model_space.h maps them). Also rt's view scripts and its default lights.
 #pragma once
 
 #include <optional>
 #include <string>
-#include <vector>
+#include <string_view>
 
-#include "quadrix/import/brlcad/brlcad_import.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 
 namespace quadrix::import {
-
-// (x, y, z) → (x, z, y): BRL-CAD / OpenSCAD model space to Quadrix space (a reflection; see
-// brlcad_import.h for why).
-Mat4 QuadrixFromZUp();
-
-enum class InputFormat { kUniQuadrix, kBrlcad, kOpenScad, kFreeform };
-
-// The format a path will be read as (extension first, then the first bytes of `text`).
-InputFormat DetectInputFormat(const std::string& path, std::string_view text);
-
-struct InputOptions {
-    ImportOptions import;  // --top, --strict
-};
-
-struct InputReport {
-    std::vector<std::pair<std::string, ImportReport>> imports;  // (path, report) per imported file
-    Box3 importedBounds;  // union of the imported models' bounds (Quadrix space)
-};
-
-// Reads every path ("-" = standard input, always UniQuadrix) into `scene`. Returns false when
-// errors were added to diags. A --top name that no imported file defines is an error.
-bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& options,
-                     scene::Scene& scene, Diagnostics& diags, InputReport& report);
 
 // rt's explicit orthographic view (FORMAT.md §9.4), in MODEL coordinates: rows 0-2 of `viewrot`
 // are the view's X (right), Y (up) and Z (toward the viewer) axes; the image spans `viewsize`

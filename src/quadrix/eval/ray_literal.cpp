@@ -1,4 +1,4 @@
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/eval/ray_literal.h"
 
 #include <cmath>
 #if defined(__SSE2__)
@@ -7,7 +7,7 @@
 
 #include "quadrix/math/quadratic.h"
 
-namespace quadrix::raycast {
+namespace quadrix::eval {
 
 RayHalfSpace RayHalfSpace::From(const FlatHalfSpace& hs, const Vec3& p0) {
     RayHalfSpace r;
@@ -469,4 +469,4 @@ void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double
         out.Append(s.piece[i].lo, s.piece[i].loId, s.piece[i].hi, s.piece[i].hiId);
 }
 
-}  // namespace quadrix::raycast
+}  // namespace quadrix::eval

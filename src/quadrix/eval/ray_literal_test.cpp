@@ -1,4 +1,4 @@
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/eval/ray_literal.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace quadrix::raycast {
+namespace quadrix::eval {
 namespace {
 
 constexpr double kInf = HUGE_VAL;
@@ -840,4 +840,4 @@ TEST(RayLiteralBatch, LeavesPixelsThatAreNotLiveAlone) {
 }
 
 }  // namespace
-}  // namespace quadrix::raycast
+}  // namespace quadrix::eval

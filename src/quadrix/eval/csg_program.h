@@ -20,7 +20,7 @@
 
 #include "quadrix/flatten/flat_scene.h"
 
-namespace quadrix::raycast {
+namespace quadrix::eval {
 
 enum class NodeKind : std::uint8_t { kBody, kUnion, kIntersection, kDifference };
 
@@ -75,4 +75,4 @@ void BuildProgram(const FlatScene& scene, CsgProgram& out);
 void PruneProgram(const CsgProgram& src, const Rect& r, CsgProgram& dst,
                   std::vector<std::int32_t>& stack);
 
-}  // namespace quadrix::raycast
+}  // namespace quadrix::eval

@@ -140,22 +140,4 @@ inline bool FrameHasNaN(const Frame& f) {
     return false;
 }
 
-// Empty when the Frames are identical bit for bit (NaN-free frames: == on doubles); otherwise the
-// first difference.
-inline std::string FrameDifference(const Frame& a, const Frame& b) {
-    if (a.width != b.width || a.height != b.height) return "sizes differ";
-    for (std::size_t i = 0; i < a.depth.size(); ++i) {
-        if (a.depth[i] != b.depth[i] || !(a.normal[i] == b.normal[i]) ||
-            a.surface[i] != b.surface[i] || a.body[i] != b.body[i] || a.solid[i] != b.solid[i]) {
-            return "pixel (" + std::to_string(i % static_cast<std::size_t>(a.width)) + ", " +
-                   std::to_string(i / static_cast<std::size_t>(a.width)) + "): depth " +
-                   std::to_string(a.depth[i]) + " vs " + std::to_string(b.depth[i]) + ", surface " +
-                   std::to_string(a.surface[i]) + " vs " + std::to_string(b.surface[i]) +
-                   ", body " + std::to_string(a.body[i]) + " vs " + std::to_string(b.body[i]) +
-                   ", solid " + std::to_string(a.solid[i]) + " vs " + std::to_string(b.solid[i]);
-        }
-    }
-    return {};
-}
-
 }  // namespace quadrix::testing_util

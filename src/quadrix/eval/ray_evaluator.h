@@ -10,11 +10,11 @@
 #include <utility>
 #include <vector>
 
-#include "quadrix/engines/raycast/ray_literal.h"
+#include "quadrix/eval/ray_literal.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/math/interval_list.h"
 
-namespace quadrix::scanline {
+namespace quadrix::eval {
 
 // Exact per-ray evaluation of bodies and CSG trees (the same interval semantics as `raycast`).
 class RayEvaluator {
@@ -38,7 +38,7 @@ class RayEvaluator {
     // (x, y): 1 when the back root is the nearer one to t, else 0 (planes: 0).
     int SheetOf(int halfSpace, double t, double x, double y) const;
     int TagHalfSpace(int tag) const { return tags_[static_cast<std::size_t>(tag)].halfSpace; }
-    const raycast::RayHalfSpace& Ray(int halfSpace) const {
+    const RayHalfSpace& Ray(int halfSpace) const {
         return halfSpaces_[static_cast<std::size_t>(halfSpace)];
     }
 
@@ -49,10 +49,10 @@ class RayEvaluator {
     };
 
     const FlatScene& scene_;
-    std::vector<raycast::RayHalfSpace> halfSpaces_;
+    std::vector<RayHalfSpace> halfSpaces_;
     std::vector<Tag> tags_;
     std::vector<int> bodyFirstTag_;
-    raycast::LiteralCounters literalCounters_;
+    LiteralCounters literalCounters_;
 };
 
 // One step of a left-to-right CSG fold: out = out op operand (tmp is scratch), with the empty
@@ -100,4 +100,4 @@ void RayEvaluator::TreeSet(int node, LeafFn&& leaf, IntervalList& out) {
     }
 }
 
-}  // namespace quadrix::scanline
+}  // namespace quadrix::eval

@@ -24,7 +24,7 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/math/interval_list.h"
 
-namespace quadrix::raycast {
+namespace quadrix::eval {
 
 // A half-space's coefficients regrouped for evaluation along rays parallel to z.
 //
@@ -123,4 +123,4 @@ void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, i
 void LiteralSetOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
                      IntervalList& out, LiteralCounters& counters);
 
-}  // namespace quadrix::raycast
+}  // namespace quadrix::eval

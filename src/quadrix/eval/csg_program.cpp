@@ -1,9 +1,9 @@
-#include "quadrix/engines/raycast/csg_program.h"
+#include "quadrix/eval/csg_program.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace quadrix::raycast {
+namespace quadrix::eval {
 namespace {
 
 constexpr double kInf = HUGE_VAL;
@@ -198,4 +198,4 @@ void PruneProgram(const CsgProgram& src, const Rect& r, CsgProgram& dst,
     std::sort(dst.solids.begin(), dst.solids.end(), SolidLess);
 }
 
-}  // namespace quadrix::raycast
+}  // namespace quadrix::eval

@@ -1,11 +1,11 @@
-#include "quadrix/engines/scanline/ray_evaluator.h"
+#include "quadrix/eval/ray_evaluator.h"
 
 #include <cmath>
 #include <utility>
 
 #include "quadrix/math/quadratic.h"
 
-namespace quadrix::scanline {
+namespace quadrix::eval {
 
 RayEvaluator::RayEvaluator(const FlatScene& scene) : scene_(scene) {
     // The same re-centring points as raycast (its SceneTables::ReferencePoints), so the two
@@ -13,8 +13,8 @@ RayEvaluator::RayEvaluator(const FlatScene& scene) : scene_(scene) {
     Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
     halfSpaces_.reserve(scene.halfSpaces.size());
     for (const FlatHalfSpace& hs : scene.halfSpaces) {
-        Vec3 ref = hs.isPlane ? anchor : raycast::RayHalfSpace::Centre(hs.quadric).value_or(anchor);
-        halfSpaces_.push_back(raycast::RayHalfSpace::From(hs, ref));
+        Vec3 ref = hs.isPlane ? anchor : RayHalfSpace::Centre(hs.quadric).value_or(anchor);
+        halfSpaces_.push_back(RayHalfSpace::From(hs, ref));
     }
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
         bodyFirstTag_.push_back(static_cast<int>(tags_.size()));
@@ -39,8 +39,8 @@ void RayEvaluator::BodySet(int body, double x, double y, IntervalList& out) {
     IntervalList lit, tmp;
     for (int t = first; t < last; ++t) {
         const Tag& tag = tags_[static_cast<std::size_t>(t)];
-        raycast::RaySet s =
-            raycast::LiteralOnRay(halfSpaces_[static_cast<std::size_t>(tag.halfSpace)],
+        RaySet s =
+            LiteralOnRay(halfSpaces_[static_cast<std::size_t>(tag.halfSpace)],
                                   tag.complemented, x, y, t, literalCounters_);
         if (s.count == 0) {
             out.clear();
@@ -90,7 +90,7 @@ bool RayEvaluator::Node(int node, double x, double y, Hit& hit) {
 }
 
 int RayEvaluator::SheetOf(int halfSpace, double t, double x, double y) const {
-    const raycast::RayHalfSpace& r = Ray(halfSpace);
+    const RayHalfSpace& r = Ray(halfSpace);
     if (r.isPlane) return 0;
     const double dx = x - r.x0, dy = y - r.y0;
     QuadraticRoots roots =
@@ -102,4 +102,4 @@ int RayEvaluator::SheetOf(int halfSpace, double t, double x, double y) const {
                : 0;
 }
 
-}  // namespace quadrix::scanline
+}  // namespace quadrix::eval
