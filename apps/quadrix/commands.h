@@ -14,6 +14,9 @@
 namespace quadrix::cli {
 
 struct RenderArgs {
+    // Set by main for the one-shot `quadrix render`: once every output is committed the process
+    // ends at once (_exit), without freeing the Frame, the image and the scene (issue 24).
+    bool exitWhenDone = false;
     std::vector<std::string> scenes;
     std::string output;
     std::string format;  // --format: overrides the extension (and the PNG of -o -)

@@ -143,7 +143,10 @@ int Run(int argc, char** argv) {
         std::fprintf(stderr, "quadrix: error: %s\n(run 'quadrix --help' for usage)\n", e.what());
         return 2;
     }
-    if (app.got_subcommand("render")) return quadrix::cli::RunRender(renderArgs);
+    if (app.got_subcommand("render")) {
+        renderArgs.exitWhenDone = true;  // a one-shot process: no freeing pass (render_command)
+        return quadrix::cli::RunRender(renderArgs);
+    }
     if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
     if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
     if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);

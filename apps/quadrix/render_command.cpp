@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -217,6 +219,28 @@ std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnosti
         return "--view cannot be combined with --az/--el or an rt view";
     return {};
 }
+// The end of a one-shot render whose outputs are all committed: the process exits here, so the
+// destructors of the Frame (40 MB at 1280×720), the image, the scene and the thread pool do not
+// run (5–6 ms of freeing, issue 24). Nothing is lost: the outputs are renamed into place and
+// fsynced, no temporary file is pending (the signal-cleanup table is empty, so its handlers have
+// nothing to do), and the standard streams are flushed here. Under AddressSanitizer the process
+// returns normally, so that LeakSanitizer still checks the render path at exit.
+#if defined(__SANITIZE_ADDRESS__)
+#define QUADRIX_RENDER_FAST_EXIT 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define QUADRIX_RENDER_FAST_EXIT 0
+#endif
+#endif
+#ifndef QUADRIX_RENDER_FAST_EXIT
+#define QUADRIX_RENDER_FAST_EXIT 1
+#endif
+int FinishRender(const RenderArgs& args, int code) {
+    if (!QUADRIX_RENDER_FAST_EXIT || !args.exitWhenDone || PendingOutputFiles() != 0) return code;
+    const bool flushed = std::fflush(stdout) == 0 && !std::ferror(stdout);
+    std::fflush(stderr);
+    ::_exit(flushed ? code : 1);
+}
 }  // namespace
 
 int RunRender(const RenderArgs& args) {
@@ -374,6 +398,7 @@ int RunRender(const RenderArgs& args) {
         so.aaMitchell = args.aaFilter == "mitchell";
         so.edges = args.edges;
         if (args.phong) so.model = ShadingModel::kPhong;
+        so.linear = outputs.png.bitDepth == 16;  // 8-bit files are encoded from the 8-bit pixels
         image = ctx.Shade(frame, so);
     }
     const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);
@@ -388,7 +413,7 @@ int RunRender(const RenderArgs& args) {
         const std::string text = args.json ? FormatStatsJson(in) : FormatStatsText(in);
         std::fputs(text.c_str(), args.json ? stdout : stderr);
     }
-    return 0;
+    return FinishRender(args, 0);
 }
 
 }  // namespace quadrix::cli

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,15 @@ namespace quadrix {
 // int32, Vec3) are implicit-lifetime types, so this is well defined, and it lets an engine that
 // writes every pixel (Frame::ResizeForOverwrite) size a fresh Frame without first writing 40 MB
 // from one thread: the pages are first touched by the engine's own parallel writes.
+//
+// Arrays of 2 MiB and more are mapped on their own, aligned to 2 MiB, with
+// madvise(MADV_HUGEPAGE): where transparent huge pages are enabled for madvise (Debian's
+// default), a fresh 1280×720 Frame is faulted in 20 pages of 2 MiB instead of about 10,000 of
+// 4 KiB (issue 24: writing a fresh Frame costs 12 ms in small pages, 4 ms in huge ones).
+void* AllocateFrameBytes(std::size_t bytes);
+void FreeFrameBytes(void* p, std::size_t bytes);
+constexpr std::size_t kFrameHugeBytes = std::size_t{2} << 20;
+
 template <class T>
 struct FrameAllocator : std::allocator<T> {
     using value_type = T;
@@ -27,6 +37,17 @@ struct FrameAllocator : std::allocator<T> {
     FrameAllocator() = default;
     template <class U>
     FrameAllocator(const FrameAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
+        if (n * sizeof(T) < kFrameHugeBytes) return std::allocator<T>::allocate(n);
+        return static_cast<T*>(AllocateFrameBytes(n * sizeof(T)));
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        if (n * sizeof(T) < kFrameHugeBytes)
+            std::allocator<T>::deallocate(p, n);
+        else
+            FreeFrameBytes(p, n * sizeof(T));
+    }
     template <class U>
     void construct(U*) noexcept {}
     template <class U, class... Args>

@@ -1,12 +1,14 @@
 #include "quadrix/io/writers.h"
 
-#include <png.h>
+#include <sys/uio.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
-#include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "quadrix/io/png_encoder.h"
 #include "quadrix/math/srgb.h"
 
 namespace quadrix {
@@ -60,6 +63,31 @@ const std::vector<std::uint8_t>& SrgbTable16() {
     return table;
 }
 
+// Two 8-bit linear samples (the first in the low byte) → their two sRGB bytes, low byte first:
+// half the lookups of SrgbTable for a row (128 KiB, built on first use).
+const std::vector<std::uint16_t>& SrgbPairTable() {
+    static const std::vector<std::uint16_t> table = [] {
+        const auto& t = SrgbTable();
+        std::vector<std::uint16_t> p(65536);
+        for (std::size_t i = 0; i < 65536; ++i)
+            p[i] = static_cast<std::uint16_t>(t[i & 0xff] | (t[i >> 8] << 8));
+        return p;
+    }();
+    return table;
+}
+
+// n samples at `in` → their sRGB bytes at `out`.
+void EncodeSrgbRow(const std::uint8_t* in, std::uint8_t* out, std::size_t n) {
+    const std::uint16_t* pairs = SrgbPairTable().data();
+    std::size_t k = 0;
+    for (; k + 2 <= n; k += 2) {
+        const std::uint16_t v = pairs[in[k] | (in[k + 1] << 8)];
+        out[k] = static_cast<std::uint8_t>(v);
+        out[k + 1] = static_cast<std::uint8_t>(v >> 8);
+    }
+    if (k < n) out[k] = SrgbTable()[in[k]];
+}
+
 std::uint8_t EncodeLinear8(const std::uint8_t* table, float v) {
     if (!(v > 0)) return 0;
     if (v >= 1) return 255;
@@ -68,16 +96,15 @@ std::uint8_t EncodeLinear8(const std::uint8_t* table, float v) {
 
 bool HasLinear(const Image& image) { return image.linear.size() == image.pixels.size(); }
 
-// Row y as big-endian 16-bit sRGB samples.
-void EncodeRow16(const Image& image, int y, std::vector<png_byte>& row) {
+// Row y as big-endian 16-bit sRGB samples (2·width·channels bytes at `row`).
+void EncodeRow16(const Image& image, int y, std::uint8_t* row) {
     const std::size_t n = static_cast<std::size_t>(image.width) * image.channels;
     const std::size_t at = static_cast<std::size_t>(y) * n;
-    row.resize(2 * n);
     for (std::size_t k = 0; k < n; ++k) {
         const double v = HasLinear(image) ? image.linear[at + k] : image.pixels[at + k] / 255.0;
         const auto s = static_cast<unsigned>(std::lround(SrgbFromLinear(v) * 65535.0));
-        row[2 * k] = static_cast<png_byte>(s >> 8);
-        row[2 * k + 1] = static_cast<png_byte>(s & 0xff);
+        row[2 * k] = static_cast<std::uint8_t>(s >> 8);
+        row[2 * k + 1] = static_cast<std::uint8_t>(s & 0xff);
     }
 }
 
@@ -128,57 +155,31 @@ std::string WritePng(OutputFile& f, const Image& image, const PngOptions& option
     if (auto e = CheckImage(image); !e.empty()) return e;
     if (options.bitDepth != 8 && options.bitDepth != 16)
         return fmt::format("internal error: PNG bit depth {} (8 or 16)", options.bitDepth);
-    const bool sixteen = options.srgb && options.bitDepth == 16;
-    // Encoded before libpng starts: nothing with a destructor may be created after setjmp.
-    std::vector<std::uint8_t> encoded;
-    if (options.srgb && !sixteen) encoded = EncodeSrgb8(image);
-    std::vector<png_byte> row;
-    static const std::string software = std::string("Quadrix ") + QUADRIX_VERSION;
     if (!f.ok()) return f.error();
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    if (!png) return "cannot initialise libpng";
-    png_infop info = png_create_info_struct(png);
-    if (!info) {
-        png_destroy_write_struct(&png, nullptr);
-        return "cannot initialise libpng";
-    }
-    // libpng reports errors by longjmp; nothing with a destructor is created between here and
-    // the end of the block.
-    if (setjmp(png_jmpbuf(png))) {
-        png_destroy_write_struct(&png, &info);
-        return fmt::format("cannot write '{}': PNG encoding failed", f.path());
-    }
-    png_init_io(png, f.stream());
-    png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-                 static_cast<png_uint_32>(image.height), sixteen ? 16 : 8,
-                 image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    // Speed over size (docs/performance.md): libpng's defaults try five row filters and zlib
-    // level 6, which cost more than rendering a frame. Rendered images are mostly smooth
-    // gradients and flat background, where the Sub filter and a low level lose little (measured:
-    // a few percent larger files, several times faster).
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
-    png_set_compression_level(png, 2);
-    if (options.srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
-    png_text text{};
-    text.compression = PNG_TEXT_COMPRESSION_NONE;
-    text.key = const_cast<png_charp>("Software");
-    text.text = const_cast<png_charp>(software.c_str());
-    png_set_text(png, info, &text, 1);
-    png_write_info(png, info);
+    const bool sixteen = options.srgb && options.bitDepth == 16;
+    static const std::string software = std::string("Quadrix ") + QUADRIX_VERSION;
+    PngRaster r;
+    r.width = image.width;
+    r.height = image.height;
+    r.channels = image.channels;
+    r.bitDepth = sixteen ? 16 : 8;
+    r.srgb = options.srgb;
+    r.software = software;
+    r.filter = sixteen ? 1 : 0;
+    // Speed over size (docs/performance.md "Output"): filter None (Sub for 16 bits), zlib level
+    // 1, strips in parallel (io/png_encoder.h). The 8-bit sRGB encoding is done row by row as the
+    // encoder asks for the rows (no whole-image copy).
     const std::size_t stride = static_cast<std::size_t>(image.width) * image.channels;
-    for (int y = 0; y < image.height; ++y) {
-        if (sixteen) {
-            EncodeRow16(image, y, row);
-            png_write_row(png, row.data());
-        } else if (options.srgb) {
-            png_write_row(png, encoded.data() + static_cast<std::size_t>(y) * stride);
-        } else {
-            png_write_row(png, const_cast<png_bytep>(image.At(0, y)));
-        }
+    if (sixteen) {
+        r.row = [&](int y, std::uint8_t* out) { EncodeRow16(image, y, out); };
+    } else if (options.srgb) {
+        SrgbPairTable();  // built before the threads ask for it
+        r.row = [&](int y, std::uint8_t* out) { EncodeSrgbRow(image.At(0, y), out, stride); };
+    } else {
+        r.row = [&](int y, std::uint8_t* out) { std::memcpy(out, image.At(0, y), stride); };
     }
-    png_write_end(png, nullptr);
-    png_destroy_write_struct(&png, &info);
+    if (auto e = EncodePng(r, f.stream()); !e.empty())
+        return fmt::format("cannot write '{}': {}", f.path(), e);
     return {};
 }
 
@@ -226,10 +227,32 @@ std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
     Image converted;
     if (channels != image.channels) converted = ConvertChannels(image, channels);
     const Image& source = channels != image.channels ? converted : image;
-    std::fprintf(f.stream(), "P%c\n%d %d\n255\n", channels == 3 ? '6' : '5', image.width,
-                 image.height);
-    const std::vector<std::uint8_t> encoded = EncodeSrgb8(source);
-    std::fwrite(encoded.data(), 1, encoded.size(), f.stream());
+    char header[64];
+    const int h = std::snprintf(header, sizeof header, "P%c\n%d %d\n255\n",
+                                channels == 3 ? '6' : '5', image.width, image.height);
+    // The samples encoded in parallel, then the header and the samples in one writev.
+    std::vector<std::uint8_t> encoded(source.pixels.size());
+    SrgbPairTable();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, encoded.size(), 1 << 18),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          EncodeSrgbRow(source.pixels.data() + r.begin(), encoded.data() + r.begin(),
+                                        r.size());
+                      });
+    if (std::fflush(f.stream()) != 0) return fmt::format("cannot write '{}'", f.path());
+    const int fd = fileno(f.stream());
+    iovec v[2] = {{header, static_cast<std::size_t>(h)}, {encoded.data(), encoded.size()}};
+    int first = 0;
+    while (first < 2) {
+        const ssize_t n = ::writev(fd, v + first, 2 - first);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return fmt::format("cannot write '{}': {}", f.path(), std::strerror(errno));
+        std::size_t done = static_cast<std::size_t>(n);
+        while (first < 2 && done >= v[first].iov_len) done -= v[first++].iov_len;
+        if (first < 2) {
+            v[first].iov_base = static_cast<char*>(v[first].iov_base) + done;
+            v[first].iov_len -= done;
+        }
+    }
     return {};
 }
 

@@ -63,6 +63,11 @@ struct ShadeOptions {
     // Silhouette and crease lines from the Frame (antialias.h DrawEdgeLines), over the shading.
     bool edges = false;
     scene::Color edgeColor{0, 0, 0};
+    // Fill Image::linear (the unquantised values). Only 16-bit PNG output and the precise 8-bit
+    // encoding read it; a front end that writes 8-bit files may turn it off (11 MB less to write
+    // at 1280×720).
+    // (Shade() fills it always for now: the anti-aliasing pass averages it.)
+    bool linear = true;
 };
 
 // The shading of one visible point, as Shade() computes it for a pixel centre: used by Shade()

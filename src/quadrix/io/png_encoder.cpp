@@ -1,0 +1,154 @@
+#include "quadrix/io/png_encoder.h"
+
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace quadrix {
+
+namespace {
+
+void Put32(std::vector<std::uint8_t>& v, std::uint32_t x) {
+    v.push_back(static_cast<std::uint8_t>(x >> 24));
+    v.push_back(static_cast<std::uint8_t>(x >> 16));
+    v.push_back(static_cast<std::uint8_t>(x >> 8));
+    v.push_back(static_cast<std::uint8_t>(x));
+}
+
+// Appends a whole chunk: length, type, data, CRC-32 of type and data.
+void Chunk(std::vector<std::uint8_t>& v, const char* type, const std::uint8_t* data,
+           std::size_t n) {
+    Put32(v, static_cast<std::uint32_t>(n));
+    const std::size_t at = v.size();
+    v.insert(v.end(), type, type + 4);
+    if (n) v.insert(v.end(), data, data + n);
+    const uLong crc = crc32(0L, v.data() + at, static_cast<uInt>(4 + n));
+    Put32(v, static_cast<std::uint32_t>(crc));
+}
+
+void Chunk(std::vector<std::uint8_t>& v, const char* type, const std::vector<std::uint8_t>& d) {
+    Chunk(v, type, d.data(), d.size());
+}
+
+struct Strip {
+    std::vector<std::uint8_t> chunk;  // the whole IDAT chunk
+    uLong adler = 1;
+    std::size_t rawBytes = 0;
+    bool ok = true;
+};
+
+// Filtered rows y0..y1 deflated (raw, level 1); the first strip carries the zlib header.
+void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, bool last, Strip& s) {
+    const std::size_t stride = rowBytes + 1;
+    std::vector<std::uint8_t> raw(static_cast<std::size_t>(y1 - y0) * stride);
+    for (int y = y0; y < y1; ++y) {
+        std::uint8_t* p = raw.data() + static_cast<std::size_t>(y - y0) * stride;
+        p[0] = static_cast<std::uint8_t>(r.filter);
+        r.row(y, p + 1);
+        if (r.filter == 1) {  // Sub, in place from the right: byte k - bpp is still unfiltered
+            const std::size_t bpp = static_cast<std::size_t>(r.channels * r.bitDepth / 8);
+            for (std::size_t k = rowBytes; k-- > bpp;) p[1 + k] -= p[1 + k - bpp];
+        }
+    }
+    s.rawBytes = raw.size();
+    s.adler = adler32(1L, raw.data(), static_cast<uInt>(raw.size()));
+
+    z_stream z{};
+    if (deflateInit2(&z, 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+        s.ok = false;
+        return;
+    }
+    const std::size_t head = 8 + (y0 == 0 ? 2 : 0);
+    std::vector<std::uint8_t>& c = s.chunk;
+    c.resize(head + deflateBound(&z, raw.size()) + 16 + 4 + 4);
+    if (y0 == 0) c[8] = 0x78, c[9] = 0x01;  // CM 8, 32 KiB window; FLEVEL 0; FCHECK
+    z.next_in = raw.data();
+    z.avail_in = static_cast<uInt>(raw.size());
+    z.next_out = c.data() + head;
+    z.avail_out = static_cast<uInt>(c.size() - head - 8);
+    const int rc = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    const bool done = last ? rc == Z_STREAM_END : (rc == Z_OK && z.avail_in == 0);
+    std::size_t n = c.size() - 8 - z.avail_out;  // end of the data so far
+    deflateEnd(&z);
+    if (!done) {
+        s.ok = false;
+        return;
+    }
+    c.resize(n);  // the Adler-32 (last strip) and the CRC are appended by the caller
+}
+
+}  // namespace
+
+std::string EncodePng(const PngRaster& r, std::FILE* out) {
+    if (r.width <= 0 || r.height <= 0 || (r.channels != 1 && r.channels != 3) ||
+        (r.bitDepth != 8 && r.bitDepth != 16) || (r.filter != 0 && r.filter != 1) || !r.row)
+        return "internal error: malformed PNG raster";
+    const std::size_t rowBytes = static_cast<std::size_t>(r.width) *
+                                 static_cast<std::size_t>(r.channels) *
+                                 static_cast<std::size_t>(r.bitDepth / 8);
+    // Strips of about 128 KiB of filtered rows (and fewer than 2^31 bytes each for zlib).
+    const int rowsPerStrip =
+        static_cast<int>(std::clamp<std::size_t>((128u << 10) / (rowBytes + 1), 1, 1u << 14));
+    const int strips = (r.height + rowsPerStrip - 1) / rowsPerStrip;
+    std::vector<Strip> s(static_cast<std::size_t>(strips));
+    tbb::parallel_for(0, strips, [&](int k) {
+        const int y0 = k * rowsPerStrip, y1 = std::min(r.height, y0 + rowsPerStrip);
+        CompressStrip(r, rowBytes, y0, y1, k + 1 == strips, s[static_cast<std::size_t>(k)]);
+    });
+    uLong adler = 1;
+    for (const Strip& x : s) {
+        if (!x.ok) return "PNG encoding failed (zlib)";
+        adler = adler32_combine(adler, x.adler, static_cast<z_off_t>(x.rawBytes));
+    }
+
+    std::vector<std::uint8_t> head = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    std::vector<std::uint8_t> d;
+    Put32(d, static_cast<std::uint32_t>(r.width));
+    Put32(d, static_cast<std::uint32_t>(r.height));
+    d.push_back(static_cast<std::uint8_t>(r.bitDepth));
+    d.push_back(r.channels == 3 ? 2 : 0);  // colour type: truecolour or greyscale
+    d.push_back(0);                        // compression: deflate
+    d.push_back(0);                        // filter method 0
+    d.push_back(0);                        // no interlace
+    Chunk(head, "IHDR", d);
+    if (r.srgb) {
+        d.clear();
+        Put32(d, 45455);  // gamma 1/2.2 × 100000
+        Chunk(head, "gAMA", d);
+        d = {0};  // rendering intent: perceptual
+        Chunk(head, "sRGB", d);
+        d.clear();
+        for (std::uint32_t v : {31270u, 32900u, 64000u, 33000u, 30000u, 60000u, 15000u, 6000u})
+            Put32(d, v);  // white, red, green, blue chromaticities × 100000
+        Chunk(head, "cHRM", d);
+    }
+    if (!r.software.empty()) {
+        d.assign({'S', 'o', 'f', 't', 'w', 'a', 'r', 'e', 0});
+        d.insert(d.end(), r.software.begin(), r.software.end());
+        Chunk(head, "tEXt", d);
+    }
+    bool ok = std::fwrite(head.data(), 1, head.size(), out) == head.size();
+    for (std::size_t k = 0; k < s.size() && ok; ++k) {
+        std::vector<std::uint8_t>& c = s[k].chunk;
+        if (k + 1 == s.size()) {
+            const std::size_t n = c.size();
+            c.resize(n + 4);
+            for (int b = 0; b < 4; ++b) c[n + b] = static_cast<std::uint8_t>(adler >> (24 - 8 * b));
+        }
+        const std::size_t n = c.size() - 8;  // the data: after the length and the type
+        for (int b = 0; b < 4; ++b) c[b] = static_cast<std::uint8_t>(n >> (24 - 8 * b));
+        std::memcpy(c.data() + 4, "IDAT", 4);
+        const uLong crc = crc32(0L, c.data() + 4, static_cast<uInt>(n + 4));
+        for (int b = 0; b < 4; ++b) c.push_back(static_cast<std::uint8_t>(crc >> (24 - 8 * b)));
+        ok = std::fwrite(c.data(), 1, c.size(), out) == c.size();
+    }
+    std::vector<std::uint8_t> tail;
+    Chunk(tail, "IEND", nullptr, 0);
+    ok = ok && std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
+    return ok ? std::string() : std::string("write error");
+}
+
+}  // namespace quadrix
