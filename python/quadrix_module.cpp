@@ -736,9 +736,9 @@ PYBIND11_MODULE(quadrix, m) {
            const std::string& engine, const py::object& view, const py::object& camera,
            const std::string& shading, const py::object& threads, const py::object& engineOptions,
            bool strict, bool shadows, const py::object& background, int aa, bool edges) {
-            RenderArgs args = ParseRenderArgs(size, engine, view, camera, shading, threads,
-                                              engineOptions, strict, shadows, background, aa,
-                                              edges);
+            RenderArgs args =
+                ParseRenderArgs(size, engine, view, camera, shading, threads, engineOptions, strict,
+                                shadows, background, aa, edges);
             if (!source.is_none() && py::isinstance<Scene>(source))
                 return source.cast<Scene&>().Render(args);
             Scene scene(args.threads.value_or(0));

@@ -239,7 +239,7 @@ class Renderer {
         // Refuse (Error) what the engine cannot draw instead of drawing it with raycast.
         bool strict = false;
         Shading shading = Shading::kLambert;
-        bool shadows = false;             // shadow rays (parallel views)
+        bool shadows = false;  // shadow rays (parallel views)
         // Anti-aliasing (docs/shading.md): 0 = off, or 4, 16 or 64 exact samples on each edge
         // pixel (interior pixels are not resampled); edges = one-pixel silhouette/crease lines.
         int antialias = 0;

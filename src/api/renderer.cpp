@@ -94,8 +94,8 @@ Rendering Renderer::Render(const Scene& scene, const Options& options) {
         throw Error("Options: " + e);
     if (options.antialias != 0 && options.antialias != 4 && options.antialias != 16 &&
         options.antialias != 64)
-        throw Error(fmt::format("Options: antialias {}: expected 0 (off), 4, 16 or 64",
-                                options.antialias));
+        throw Error(
+            fmt::format("Options: antialias {}: expected 0 (off), 4, 16 or 64", options.antialias));
     EngineRequest engine;
     engine.engine = options.engine;
     engine.options = options.engineOptions;

@@ -119,9 +119,16 @@ scene::Color PixelShader::Background(int y, int height) const {
     return BackgroundAt(scene_, options_, y, height);
 }
 
+struct PixelShader::MaterialCache {
+    std::int32_t surface = Frame::kNone - 1, body = Frame::kNone - 1;
+    scene::Finish finish;
+    Reflectance reflectance;
+    scene::Color base;
+};
+
 scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int32_t body,
-                             double depth, const Vec3& normal,
-                             const scene::Color& background) const {
+                             double depth, const Vec3& normal, const scene::Color& background,
+                             MaterialCache* cache) const {
     if (surface == Frame::kNone) return background;
     Vec3 n = normal;
     if (model_ == ShadingModel::kFast) {
@@ -129,8 +136,17 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
         auto it = meanNormal_.find({surface, body});
         if (it != meanNormal_.end()) n = it->second;
     }
-    const scene::Finish finish = scene_.SurfaceFinish(surface, body);
-    const Reflectance m = ReflectanceOf(finish, options_, reflection_);
+    MaterialCache local;
+    MaterialCache& mc = cache ? *cache : local;
+    if (mc.surface != surface || mc.body != body) {
+        mc.surface = surface;
+        mc.body = body;
+        mc.finish = scene_.SurfaceFinish(surface, body);
+        mc.reflectance = ReflectanceOf(mc.finish, options_, reflection_);
+        mc.base = scene_.SurfaceColor(surface, body);
+    }
+    const scene::Finish& finish = mc.finish;
+    const Reflectance& m = mc.reflectance;
     Vec3 point{0, 0, 0};
     if (needPoint_) point = viewer_.WorldPoint({x, y, depth});
     ShadowTest inShadow;
@@ -145,7 +161,7 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     }
     const PhongTerms t =
         PhongAt(scene_.lights, point, n, viewer_.TowardViewer(point), m, inShadow, &fixedLight_);
-    const scene::Color base = scene_.SurfaceColor(surface, body);
+    const scene::Color& base = mc.base;
     // min(1, D)·color + S (phong.h); S is 0 unless the surface is specular.
     scene::Color c{base.r * std::min(t.diffuse.r, 1.0) + t.specular.r,
                    base.g * std::min(t.diffuse.g, 1.0) + t.specular.g,
@@ -178,17 +194,26 @@ void StorePixel(Image& image, int x, int y, const scene::Color& c) {
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
     const PixelShader shader(frame, scene, options);
     Image image(frame.width, frame.height, shader.Color() ? 3 : 1);
-    image.linear.assign(image.pixels.size(), 0.0f);
+    if (options.linear) image.linear.assign(image.pixels.size(), 0.0f);
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
-    // is the same for any thread count.
+    // is the same for any thread count. A row's material lookups are cached while the
+    // (surface, body) pair repeats.
     auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
+        PixelShader::MaterialCache cache;
         for (int y = rows.begin(); y < rows.end(); ++y) {
             const scene::Color background = shader.Background(y, frame.height);
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);
-                StorePixel(image, x, y,
-                           shader.At(x + 0.5, y + 0.5, frame.surface[i], frame.body[i],
-                                     frame.depth[i], frame.normal[i], background));
+                const scene::Color c =
+                    shader.At(x + 0.5, y + 0.5, frame.surface[i], frame.body[i], frame.depth[i],
+                              frame.normal[i], background, &cache);
+                if (options.linear) {
+                    StorePixel(image, x, y, c);
+                } else {
+                    std::uint8_t* p = image.At(x, y);
+                    p[0] = ToByte(c.r);
+                    if (image.channels == 3) p[1] = ToByte(c.g), p[2] = ToByte(c.b);
+                }
             }
         }
     };

@@ -66,7 +66,6 @@ struct ShadeOptions {
     // Fill Image::linear (the unquantised values). Only 16-bit PNG output and the precise 8-bit
     // encoding read it; a front end that writes 8-bit files may turn it off (11 MB less to write
     // at 1280×720).
-    // (Shade() fills it always for now: the anti-aliasing pass averages it.)
     bool linear = true;
 };
 
@@ -77,8 +76,13 @@ struct ShadeOptions {
 class PixelShader {
   public:
     PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options);
+    // What At() looks up per (surface, body) — finish, reflectance, colour — kept between calls
+    // by a caller that shades runs of pixels (a row mostly repeats its neighbour's surface). One
+    // per thread; defined in shader.cpp.
+    struct MaterialCache;
     scene::Color At(double x, double y, std::int32_t surface, std::int32_t body, double depth,
-                    const Vec3& normal, const scene::Color& background) const;
+                    const Vec3& normal, const scene::Color& background,
+                    MaterialCache* cache = nullptr) const;
     // The background of row y of `height` (a vertical gradient, or one color).
     scene::Color Background(int y, int height) const;
     // Whether the image is RGB (some color involved) rather than gray.
