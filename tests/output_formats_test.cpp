@@ -11,6 +11,7 @@
 
 #include "quadrix/engines/registry.h"
 #include "quadrix/io/exr.h"
+#include "quadrix/math/srgb.h"
 #include "quadrix/pipeline/render_context.h"
 #include "test_util.h"
 
@@ -161,8 +162,10 @@ bool ReadRawPng(const std::string& path, RawPng& out) {
     return true;
 }
 
-// 16-bit PNG (--png16): 16 bits a sample, and each sample's top byte within one level of the
-// 8-bit file's (which rounds the 8-bit linear pixels; the 16-bit file encodes the floats).
+// 16-bit PNG (--png16): 16 bits a sample, and each sample agrees with the 8-bit file's. The
+// 8-bit file encodes the 8-bit linear pixels (io/writers.h EncodeSrgb8) and the 16-bit file the
+// floats, so the 8-bit sample is sRGB(round(255 l) / 255) for the 16-bit file's linear value l,
+// within one level (the float's own rounding to 8 bits may go either way at a half).
 TEST(OutputFormats, Png16IsSixteenBitsAndAgreesWithEightBits) {
     TempDir dir;
     const std::string scene = dir.Write("s.uq", kTwoSpheres);
@@ -181,12 +184,13 @@ TEST(OutputFormats, Png16IsSixteenBitsAndAgreesWithEightBits) {
         for (int k = 0; k < kW * b.channels; ++k) {
             const int hi = a.rows[y][2 * k], lo = a.rows[y][2 * k + 1];
             const double v16 = (hi * 256 + lo) / 65535.0 * 255.0;
-            ASSERT_NEAR(v16, b.rows[y][k], 1.0) << k << "," << y;
+            const double l = LinearFromSrgb(v16 / 255.0);
+            const double expected8 = 255.0 * SrgbFromLinear(std::round(255.0 * l) / 255.0);
+            ASSERT_NEAR(expected8, b.rows[y][k], 1.0) << k << "," << y << ": 16-bit " << v16;
             distinct16 += lo != 0 && lo != hi;  // not merely an 8-bit value scaled up
         }
     EXPECT_GT(distinct16, 100);
 }
-
 
 // --stats --json for every registered engine: one valid JSON object on standard output with the
 // engine's name, the size and the same counters as the render context reports in process.

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "quadrix/batch/run.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/engines/registry.h"
 #include "quadrix/frame/memory_budget.h"
@@ -236,7 +237,10 @@ std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnosti
 #define QUADRIX_RENDER_FAST_EXIT 1
 #endif
 int FinishRender(const RenderArgs& args, int code) {
-    if (!QUADRIX_RENDER_FAST_EXIT || !args.exitWhenDone || PendingOutputFiles() != 0) return code;
+    // Not under an MPI launcher: MPI must be finalised at exit (batch/run.h).
+    if (!QUADRIX_RENDER_FAST_EXIT || !args.exitWhenDone || PendingOutputFiles() != 0 ||
+        batch::UnderMpiLauncher())
+        return code;
     const bool flushed = std::fflush(stdout) == 0 && !std::ferror(stdout);
     std::fflush(stderr);
     ::_exit(flushed ? code : 1);

@@ -41,7 +41,7 @@ grep -q '^ Architecture: ' "$work/info"
 depends="$(sed -n 's/^ Depends: //p' "$work/info")"
 [[ -n "$depends" ]] || { echo "no Depends"; exit 1; }
 # The libraries the binaries need must be among the dependencies.
-for lib in libc6 libstdc++6 libtbb libpng16 libfmt libcairo2; do
+for lib in libc6 libstdc++6 libtbb zlib1g libfmt libcairo2; do
   grep -q "$lib" <<< "$depends" || { echo "Depends lacks $lib: $depends"; exit 1; }
 done
 # Every dependency is a package installed here, so `apt-get install ./quadrix_*.deb` has them.
