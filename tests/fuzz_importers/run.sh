@@ -42,7 +42,7 @@ for t in "${targets[@]}"; do
     c="$work/corpus-$t"
     mkdir -p "$c" "$here/findings/$t"
     case "$t" in
-        v4|v5|comgeom|openscad) for f in "$here/seeds/$t"/*; do seed "$f" "$c"; done ;;
+        v4|v5|comgeom|openscad) for f in "$here/seeds/$t"/*; do [ -f "$f" ] && seed "$f" "$c"; done ;;
     esac
     case "$t" in
         v4) for f in "$samples"/brlcad/*.asc; do
@@ -70,7 +70,8 @@ for t in "${targets[@]}"; do
         -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$here/findings/$t/" \
         -print_final_stats=1 < /dev/null 2>&1 | grep -E "^(==|#[0-9]+ *DONE|stat::number_of_executed_units|INFO: seed)|ERROR|SUMMARY|violated" || true)
     # A finding leaves a crash-/timeout-/oom- file: fail.
-    if ls "$here/findings/$t"/{crash,timeout,oom,leak}-* >/dev/null 2>&1; then
+    if compgen -G "$here/findings/$t/crash-*" >/dev/null || compgen -G "$here/findings/$t/timeout-*" >/dev/null ||
+       compgen -G "$here/findings/$t/oom-*" >/dev/null || compgen -G "$here/findings/$t/leak-*" >/dev/null; then
         echo "fuzz_$t: findings in $here/findings/$t" >&2
         exit 1
     fi

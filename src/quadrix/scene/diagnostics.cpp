@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace quadrix {
 
 namespace {
@@ -47,6 +49,10 @@ std::string Diagnostic::Format(bool withSource) const {
 }
 
 void Diagnostics::Add(Diagnostic d) {
+    // Stored visible too, so that every reader of Items() (the API's and Python's exceptions, the
+    // viewer's title, JSON) gets a message without control bytes.
+    if (std::find_if(d.message.begin(), d.message.end(), IsControl) != d.message.end())
+        d.message = Visible(d.message);
     if (d.severity == Diagnostic::Severity::kError) ++errorCount_;
     if (d.severity == Diagnostic::Severity::kWarning) ++warningCount_;
     if (static_cast<int>(items_.size()) < kMaxStored) items_.push_back(std::move(d));
