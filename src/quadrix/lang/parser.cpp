@@ -214,9 +214,9 @@ void Parser::CheckUnclosedDefinition() {
     state_.CloseDefinition();
 }
 
-bool Parser::RunAvailable() {
-    // The statement loop of Run(), minus the end-of-input checks: the kEnd token seen now only
-    // means "nothing more yet", so it is dropped for the lexer to look again next time.
+// The statement loop shared by Run() and RunAvailable(): statements until the end of the input
+// seen so far, `quit`, or an abort (the statement limit).
+void Parser::RunStatements() {
     while (!stopped_ && !state_.aborted) {
         if (PeekIs(TokenKind::kEnd)) break;
         if (++state_.statementCount > ReaderState::kMaxStatements) {
@@ -228,8 +228,14 @@ bool Parser::RunAvailable() {
             break;
         }
         if (!RunStatement()) SkipToSemicolon();
-        CheckErrorLimit();
+        CheckErrorLimit();  // lexical errors go to Diagnostics directly
     }
+}
+
+bool Parser::RunAvailable() {
+    // Run() minus the end-of-input checks: the kEnd token seen now only means "nothing more
+    // yet", so it is dropped for the lexer to look again next time.
+    RunStatements();
     if (next_ && next_->kind == TokenKind::kEnd) next_.reset();
     return !Stopped();
 }
@@ -244,19 +250,7 @@ void Parser::SkipInput(std::size_t end) {
 }
 
 void Parser::Run() {
-    while (!stopped_ && !state_.aborted) {
-        if (PeekIs(TokenKind::kEnd)) break;
-        if (++state_.statementCount > ReaderState::kMaxStatements) {
-            Error(Peek().loc,
-                  fmt::format("more than {} statements; reading stopped",
-                              ReaderState::kMaxStatements),
-                  kParser);
-            state_.aborted = true;
-            break;
-        }
-        if (!RunStatement()) SkipToSemicolon();
-        CheckErrorLimit();  // lexical errors go to Diagnostics directly
-    }
+    RunStatements();
     if (!state_.aborted) CheckUnclosedDefinition();
 }
 

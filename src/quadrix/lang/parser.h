@@ -117,6 +117,7 @@ private:
     std::optional<scene::Color> ParseColorName(const Token& option);
     bool RunStatement();
     void SkipToSemicolon();
+    void RunStatements();
     void CheckUnclosedDefinition();
     // Stops reading everywhere once Diagnostics::kMaxStored errors have been reported.
     void CheckErrorLimit();
