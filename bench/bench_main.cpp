@@ -8,12 +8,14 @@
 // and writes a Markdown table with ratios and a CSV to the output directory. Nothing is asserted:
 // benchmarks report, they do not fail on time.
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <malloc.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -22,15 +24,12 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
-#include <fstream>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
 
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
@@ -133,10 +132,11 @@ std::string Ratio(double slow, double fast) {
 // 1024×1024 (teapot view of docs/isocurve.md). The tolerance is given as the screen gap between
 // adjacent isocurves (δ = gap / pixels-per-unit; render.h); median of `reps` runs.
 std::string IsocurveTable(const std::string& sourceDir, int reps) {
-    std::string out = "\n## Isocurve engine: extraction and drawing per model and tolerance "
-                      "(1024×1024)\n\n"
-                      "| model | patches | gap px | δ (world) | curves | extraction ms | drawing ms "
-                      "| pixels drawn | redundancy |\n|---|---|---|---|---|---|---|---|---|\n";
+    std::string out =
+        "\n## Isocurve engine: extraction and drawing per model and tolerance "
+        "(1024×1024)\n\n"
+        "| model | patches | gap px | δ (world) | curves | extraction ms | drawing ms "
+        "| pixels drawn | redundancy |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const char* model : {"teapot", "teacup", "teaspoon"}) {
         PipelineOptions po;
         po.sceneText = fmt::format(
@@ -177,9 +177,10 @@ std::string IsocurveTable(const std::string& sourceDir, int reps) {
 // leaves out its default anti-aliasing there (the sample rays have no spatial index).
 std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::string& outDir,
                            const std::string& only, int reps) {
-    std::string out = "\n## Anti-aliasing cost (1280×720, raycast frame + shading, median)\n\n"
-                      "| scene | edge pixels | plain ms | --aa 4 | --aa 16 | --aa 64 |\n"
-                      "|---|---|---|---|---|---|\n";
+    std::string out =
+        "\n## Anti-aliasing cost (1280×720, raycast frame + shading, median)\n\n"
+        "| scene | edge pixels | plain ms | --aa 4 | --aa 16 | --aa 64 |\n"
+        "|---|---|---|---|---|---|\n";
     for (const BenchScene& scene : scenes) {
         if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
         PipelineOptions po;
@@ -201,19 +202,19 @@ std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::str
                 Image img = Shade(frame, pr.flat, so);
                 const AntialiasStats st = Antialias(frame, pr.flat, so, img);
                 if (edges) *edges = st.edgePixels;
-                ms.push_back(std::chrono::duration<double, std::milli>(
-                                 std::chrono::steady_clock::now() - t0)
-                                 .count());
+                ms.push_back(
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count());
             }
             return Median(ms);
         };
         std::size_t edges = 0;
         const double plain = timed(0, nullptr);
         const double a4 = timed(4, &edges), a16 = timed(16, nullptr), a64 = timed(64, nullptr);
-        out += fmt::format("| {} | {} | {:.1f} | {:.1f} ms ({:.2f}×) | {:.1f} ms ({:.2f}×) | "
-                           "{:.1f} ms ({:.2f}×) |\n",
-                           scene.name, edges, plain, a4, a4 / plain, a16, a16 / plain, a64,
-                           a64 / plain);
+        out += fmt::format(
+            "| {} | {} | {:.1f} | {:.1f} ms ({:.2f}×) | {:.1f} ms ({:.2f}×) | "
+            "{:.1f} ms ({:.2f}×) |\n",
+            scene.name, edges, plain, a4, a4 / plain, a16, a16 / plain, a64, a64 / plain);
         std::fprintf(stderr, "antialias %s done\n", scene.name.c_str());
     }
     return out;
@@ -237,8 +238,9 @@ std::string Scaling(const std::vector<Row>& rows) {
     };
     const std::size_t engines = rows.empty() ? 0 : rows[0].engineMs.size();
     std::string out = "\n## Scaling with pixels\n\n";
-    out += "| engine | scene | from | to | pixels × | time × | exponent | × per doubling |\n"
-           "|---|---|---|---|---|---|---|---|\n";
+    out +=
+        "| engine | scene | from | to | pixels × | time × | exponent | × per doubling |\n"
+        "|---|---|---|---|---|---|---|---|\n";
     for (std::size_t e = 0; e < engines; ++e) {
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const Row* lo = &rows[i];
@@ -251,13 +253,14 @@ std::string Scaling(const std::vector<Row>& rows) {
             const double t = frameMs(*hi, e) / frameMs(*lo, e);
             const double ex = std::log(t) / std::log(px);
             out += fmt::format("| {} | {} | {}×{} | {}×{} | {:.1f} | {:.2f} | {:.2f} | {:.2f} |\n",
-                               lo->engineMs[e].first, lo->scene, lo->size.w, lo->size.h,
-                               hi->size.w, hi->size.h, px, t, ex, std::pow(2.0, ex));
+                               lo->engineMs[e].first, lo->scene, lo->size.w, lo->size.h, hi->size.w,
+                               hi->size.h, px, t, ex, std::pow(2.0, ex));
         }
     }
-    out += "\n## Scaling with primitives\n\n"
-           "| engine | size | from | to | primitives × | time × | exponent | × per doubling |\n"
-           "|---|---|---|---|---|---|---|---|\n";
+    out +=
+        "\n## Scaling with primitives\n\n"
+        "| engine | size | from | to | primitives × | time × | exponent | × per doubling |\n"
+        "|---|---|---|---|---|---|---|---|\n";
     for (std::size_t e = 0; e < engines; ++e) {
         for (const Row& a : rows) {
             const std::string fam = familyOf(a.scene);
@@ -277,21 +280,22 @@ std::string Scaling(const std::vector<Row>& rows) {
             const double t = frameMs(*best, e) / frameMs(a, e);
             const double ex = std::log(t) / std::log(n);
             out += fmt::format("| {} | {}×{} | {} | {} | {:.0f} | {:.2f} | {:.2f} | {:.2f} |\n",
-                               a.engineMs[e].first, a.size.w, a.size.h, a.scene, best->scene, n,
-                               t, ex, std::pow(2.0, ex));
+                               a.engineMs[e].first, a.size.w, a.size.h, a.scene, best->scene, n, t,
+                               ex, std::pow(2.0, ex));
         }
     }
     // The sum-of-products explosion: A − B1∩C1 − … − Bk∩Ck has 2^k products in sum-of-products
     // form; the default engine evaluates the tree as it is, so its time per frame should grow
     // linearly (or less) with k.
-    out += "\n## Sum-of-products explosion (A − B1∩C1 − … − Bk∩Ck), default engine\n\n"
-           "| size | k | primitives | products in SOP form | frame ms | ms per primitive |\n"
-           "|---|---|---|---|---|---|\n";
+    out +=
+        "\n## Sum-of-products explosion (A − B1∩C1 − … − Bk∩Ck), default engine\n\n"
+        "| size | k | primitives | products in SOP form | frame ms | ms per primitive |\n"
+        "|---|---|---|---|---|---|\n";
     for (const Row& r : rows) {
         if (familyOf(r.scene) != "sop" || frameMs(r, 0) <= 0) continue;
         const int k = (r.primitives - 1) / 2;
-        out += fmt::format("| {}×{} | {} | {} | 2^{} | {:.1f} | {:.3f} |\n", r.size.w, r.size.h,
-                           k, r.primitives, k, frameMs(r, 0), frameMs(r, 0) / r.primitives);
+        out += fmt::format("| {}×{} | {} | {} | 2^{} | {:.1f} | {:.3f} |\n", r.size.w, r.size.h, k,
+                           r.primitives, k, frameMs(r, 0), frameMs(r, 0) / r.primitives);
     }
     return out;
 }
@@ -314,11 +318,14 @@ int main(int argc, char** argv) {
     app.add_flag("--quick", quick, "Small subset: one size, fewer repetitions");
     app.add_flag("--no-pov", noPov, "Do not run POV-Ray");
     app.add_option("--reps", reps, "Repetitions of Quadrix measurements (median)");
-    app.add_option("--pov-reps", povReps, "Repetitions of POV-Ray runs (median; 1 for slow scenes)");
+    app.add_option("--pov-reps", povReps,
+                   "Repetitions of POV-Ray runs (median; 1 for slow scenes)");
     app.add_option("--only", only, "Run only scenes whose name contains this text");
-    app.add_option("--sizes", sizeList, "Comma-separated image sizes WxH (default: the suite's three)");
+    app.add_option("--sizes", sizeList,
+                   "Comma-separated image sizes WxH (default: the suite's three)");
     app.add_option("--threads", threads, "Worker threads for in-process frames (0 = all cores)");
-    app.add_flag("--no-process", noProcess, "Time in-process frames only (no whole processes, no POV-Ray)");
+    app.add_flag("--no-process", noProcess,
+                 "Time in-process frames only (no whole processes, no POV-Ray)");
     std::vector<std::string> engineOpts;
     app.add_option("--engine-opt", engineOpts,
                    "ENGINE:KEY=VALUE, an engine option for the in-process frames (repeatable), "
@@ -416,78 +423,80 @@ int main(int argc, char** argv) {
             // In process: read + flatten once, then each engine warm. (A block: its frames and
             // scene are freed before the processes are spawned; see ResetPeakRss.)
             {
-            PipelineOptions po;
-            po.scenePaths = {scenePath};
-            po.width = size.w;
-            po.height = size.h;
-            PipelineResult pr;
-            Diagnostics diags;
-            if (!RunPipeline(po, pr, diags)) {
-                diags.Print(stderr);
-                continue;
-            }
-            row.flattenMs = pr.flattenSeconds * 1e3;
-            Frame reference;
-            for (const std::string& name : EngineNames()) {
-                // An engine that took over 10 s for a frame of this scene at a smaller size is
-                // not run at the larger ones (reported as skipped), so the suite ends.
-                const bool unselected =
-                    !engineList.empty() &&
-                    ("," + engineList + ",").find("," + name + ",") == std::string::npos;
-                // An engine whose frame on the family's previous, smaller member at this size,
-                // scaled linearly by the primitive count, would exceed 10 s is not started: a
-                // frame cannot be interrupted, and scanline or pixelpowers on 10,000 spheres
-                // would hold the suite for many minutes.
-                const std::string famKey =
-                    familyOf(scene.name) + "/" + name + fmt::format("/{}x{}", size.w, size.h);
-                if (auto it = lastOfFamily.find(famKey);
-                    it != lastOfFamily.end() && name != "raycast" &&
-                    (it->second.second < 0 ||
-                     it->second.second * scene.primitives / std::max(it->second.first, 1) > 10000))
-                    tooSlow.insert(scene.name + "/" + name);
-                if (name != "raycast" && (unselected || tooSlow.count(scene.name + "/" + name))) {
-                    if (!unselected) lastOfFamily[famKey] = {scene.primitives, -1.0};
-                    row.engineMs.emplace_back(name, unselected ? -2.0 : -1.0);
-                    row.engineDiffPct.push_back(0.0);
+                PipelineOptions po;
+                po.scenePaths = {scenePath};
+                po.width = size.w;
+                po.height = size.h;
+                PipelineResult pr;
+                Diagnostics diags;
+                if (!RunPipeline(po, pr, diags)) {
+                    diags.Print(stderr);
                     continue;
                 }
-                auto engine = MakeEngine(name);
-                RenderOptions ro;
-                ro.threads = threads;
-                if (auto it = optionsOf.find(name); it != optionsOf.end())
-                    ro.engineOptions = it->second;
-                Frame frame;
-                const auto tw = std::chrono::steady_clock::now();
-                engine->Render(pr.flat, ro, frame);  // warm-up
-                const double warmMs = std::chrono::duration<double, std::milli>(
-                                          std::chrono::steady_clock::now() - tw)
-                                          .count();
-                if (name == "raycast") reference = frame;
-                std::size_t differ = 0;
-                for (std::size_t i = 0; i < frame.surface.size() && i < reference.surface.size();
-                     ++i)
-                    differ += (frame.surface[i] == Frame::kNone) !=
-                              (reference.surface[i] == Frame::kNone);
-                row.engineDiffPct.push_back(
-                    frame.surface.size() == reference.surface.size() && !frame.surface.empty()
-                        ? 100.0 * static_cast<double>(differ) /
-                              static_cast<double>(frame.surface.size())
-                        : 100.0);
-                std::vector<double> ms;
-                // A slow engine (over 2 s a frame) is timed once more, not `reps` times, so the
-                // suite stays within minutes; its time is still a warm frame.
-                const int engineReps = warmMs > 2000 ? 1 : reps;
-                if (warmMs > 10000) tooSlow.insert(scene.name + "/" + name);
-                for (int i = 0; i < engineReps; ++i) {
-                    auto t0 = std::chrono::steady_clock::now();
-                    engine->Render(pr.flat, ro, frame);
-                    ms.push_back(std::chrono::duration<double, std::milli>(
-                                     std::chrono::steady_clock::now() - t0)
-                                     .count());
+                row.flattenMs = pr.flattenSeconds * 1e3;
+                Frame reference;
+                for (const std::string& name : EngineNames()) {
+                    // An engine that took over 10 s for a frame of this scene at a smaller size is
+                    // not run at the larger ones (reported as skipped), so the suite ends.
+                    const bool unselected =
+                        !engineList.empty() &&
+                        ("," + engineList + ",").find("," + name + ",") == std::string::npos;
+                    // An engine whose frame on the family's previous, smaller member at this size,
+                    // scaled linearly by the primitive count, would exceed 10 s is not started: a
+                    // frame cannot be interrupted, and scanline or pixelpowers on 10,000 spheres
+                    // would hold the suite for many minutes.
+                    const std::string famKey =
+                        familyOf(scene.name) + "/" + name + fmt::format("/{}x{}", size.w, size.h);
+                    if (auto it = lastOfFamily.find(famKey);
+                        it != lastOfFamily.end() && name != "raycast" &&
+                        (it->second.second < 0 ||
+                         it->second.second * scene.primitives / std::max(it->second.first, 1) >
+                             10000))
+                        tooSlow.insert(scene.name + "/" + name);
+                    if (name != "raycast" &&
+                        (unselected || tooSlow.count(scene.name + "/" + name))) {
+                        if (!unselected) lastOfFamily[famKey] = {scene.primitives, -1.0};
+                        row.engineMs.emplace_back(name, unselected ? -2.0 : -1.0);
+                        row.engineDiffPct.push_back(0.0);
+                        continue;
+                    }
+                    auto engine = MakeEngine(name);
+                    RenderOptions ro;
+                    ro.threads = threads;
+                    if (auto it = optionsOf.find(name); it != optionsOf.end())
+                        ro.engineOptions = it->second;
+                    Frame frame;
+                    const auto tw = std::chrono::steady_clock::now();
+                    engine->Render(pr.flat, ro, frame);  // warm-up
+                    const double warmMs = std::chrono::duration<double, std::milli>(
+                                              std::chrono::steady_clock::now() - tw)
+                                              .count();
+                    if (name == "raycast") reference = frame;
+                    std::size_t differ = 0;
+                    for (std::size_t i = 0;
+                         i < frame.surface.size() && i < reference.surface.size(); ++i)
+                        differ += (frame.surface[i] == Frame::kNone) !=
+                                  (reference.surface[i] == Frame::kNone);
+                    row.engineDiffPct.push_back(frame.surface.size() == reference.surface.size() &&
+                                                        !frame.surface.empty()
+                                                    ? 100.0 * static_cast<double>(differ) /
+                                                          static_cast<double>(frame.surface.size())
+                                                    : 100.0);
+                    std::vector<double> ms;
+                    // A slow engine (over 2 s a frame) is timed once more, not `reps` times, so the
+                    // suite stays within minutes; its time is still a warm frame.
+                    const int engineReps = warmMs > 2000 ? 1 : reps;
+                    if (warmMs > 10000) tooSlow.insert(scene.name + "/" + name);
+                    for (int i = 0; i < engineReps; ++i) {
+                        auto t0 = std::chrono::steady_clock::now();
+                        engine->Render(pr.flat, ro, frame);
+                        ms.push_back(std::chrono::duration<double, std::milli>(
+                                         std::chrono::steady_clock::now() - t0)
+                                         .count());
+                    }
+                    row.engineMs.emplace_back(name, Median(ms));
+                    lastOfFamily[famKey] = {scene.primitives, Median(ms)};
                 }
-                row.engineMs.emplace_back(name, Median(ms));
-                lastOfFamily[famKey] = {scene.primitives, Median(ms)};
-            }
             }
             row.benchFloorMiB = ResetPeakRss();
 
@@ -496,15 +505,16 @@ int main(int argc, char** argv) {
             std::string png = outDir + "/scenes/" + scene.name + ".png";
             std::string pov = outDir + "/scenes/" + scene.name + ".pov";
             if (havePov) {
-                ProcessRun ex = Spawn({quadrixBin, "export", "--to", "pov", scenePath, "--size",
-                                       sizeArg, "-o", pov});
+                ProcessRun ex = Spawn(
+                    {quadrixBin, "export", "--to", "pov", scenePath, "--size", sizeArg, "-o", pov});
                 row.povOk = ex.exitCode == 0;
             }
             std::vector<double> qMs, pMs;
             int rounds = noProcess ? 0 : std::max(reps, havePov ? povReps : 0);
             for (int i = 0; i < rounds; ++i) {
                 if (i < reps) {
-                    ProcessRun q = Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png});
+                    ProcessRun q =
+                        Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png});
                     if (q.exitCode == 0) {
                         qMs.push_back(q.seconds * 1e3);
                         row.quadrixPeakMiB = std::max(row.quadrixPeakMiB, q.peakMiB);
@@ -513,7 +523,8 @@ int main(int argc, char** argv) {
                 // POV-Ray at 10,000 primitives takes a minute a run: one run is enough there.
                 bool slow = scene.primitives > 5000;
                 if (row.povOk && i < (slow ? 1 : povReps)) {
-                    ProcessRun p = Spawn({"povray", "+I" + pov, "+O" + outDir + "/scenes/" + scene.name + "_pov.png",
+                    ProcessRun p = Spawn({"povray", "+I" + pov,
+                                          "+O" + outDir + "/scenes/" + scene.name + "_pov.png",
                                           fmt::format("+W{}", size.w), fmt::format("+H{}", size.h),
                                           "-A", "-D", "-V", "-GA", "+WT2"});
                     if (p.exitCode == 0) {
@@ -525,8 +536,8 @@ int main(int argc, char** argv) {
             row.quadrixProcessMs = Median(qMs);
             row.povProcessMs = Median(pMs);
             std::fprintf(stderr, "engine %.1f ms  process %.1f ms  povray %.1f ms\n",
-                         row.engineMs.empty() ? 0.0 : row.engineMs[0].second,
-                         row.quadrixProcessMs, row.povProcessMs);
+                         row.engineMs.empty() ? 0.0 : row.engineMs[0].second, row.quadrixProcessMs,
+                         row.povProcessMs);
             rows.push_back(row);
         }
     }
@@ -536,16 +547,20 @@ int main(int argc, char** argv) {
     std::time_t now = std::time(nullptr);
     std::strftime(stamp, sizeof stamp, "%Y-%m-%d_%H%M%S", std::gmtime(&now));
     std::string md = fmt::format("# Quadrix benchmark results {}\n\n", stamp);
-    md += "Frame = in-process render of a flattened scene (warm, median); process = whole "
-          "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "
-          "process. Peak = maximum resident set of the process; a peak at the suite's own resident set "
-          "(floor) only says the process stayed below it (see ResetPeakRss). An engine time "
-          "marked (≠ p %) "
-          "comes from a frame whose coverage differs from raycast's on p % of the pixels: that "
-          "engine does not draw the whole scene (e.g. `patch` skips CSG solids).\n\n";
+    md +=
+        "Frame = in-process render of a flattened scene (warm, median); process = whole "
+        "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "
+        "process. Peak = maximum resident set of the process; a peak at the suite's own resident "
+        "set "
+        "(floor) only says the process stayed below it (see ResetPeakRss). An engine time "
+        "marked (≠ p %) "
+        "comes from a frame whose coverage differs from raycast's on p % of the pixels: that "
+        "engine does not draw the whole scene (e.g. `patch` skips CSG solids).\n\n";
     md += "| scene | prims | size | flatten ms |";
     for (const auto& e : EngineNames()) md += fmt::format(" {} frame ms |", e);
-    md += " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB | floor MiB |\n|---|---|---|---|";
+    md +=
+        " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB | "
+        "floor MiB |\n|---|---|---|---|";
     for (std::size_t i = 0; i < EngineNames().size(); ++i) md += "---|";
     md += "---|---|---|---|---|---|\n";
     std::string csv = "scene,primitives,width,height,flatten_ms";
@@ -554,13 +569,14 @@ int main(int argc, char** argv) {
     for (const Row& r : rows) {
         md += fmt::format("| {} | {} | {}×{} | {:.1f} |", r.scene, r.primitives, r.size.w, r.size.h,
                           r.flattenMs);
-        csv += fmt::format("{},{},{},{},{:.3f}", r.scene, r.primitives, r.size.w, r.size.h, r.flattenMs);
+        csv += fmt::format("{},{},{},{},{:.3f}", r.scene, r.primitives, r.size.w, r.size.h,
+                           r.flattenMs);
         for (std::size_t e = 0; e < r.engineMs.size(); ++e) {
             const double ms = r.engineMs[e].second, diff = r.engineDiffPct[e];
             // Coverage differing on more than 0.5 % of the pixels (more than silhouette
             // rounding): the engine did not draw the whole scene, so its time is not comparable.
-            md += ms == -2.0  ? std::string(" – |")
-                  : ms < 0    ? std::string(" skipped (> 10 s, measured or predicted) |")
+            md += ms == -2.0   ? std::string(" – |")
+                  : ms < 0     ? std::string(" skipped (> 10 s, measured or predicted) |")
                   : diff > 0.5 ? fmt::format(" {:.1f} (≠{:.0f} %) |", ms, diff)
                                : fmt::format(" {:.1f} |", ms);
             csv += fmt::format(",{:.3f}", ms);

@@ -1,11 +1,11 @@
 #include "scenes.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <random>
 #include <sstream>
-
-#include <fmt/format.h>
 
 namespace quadrix::bench {
 
@@ -37,9 +37,9 @@ std::string Cylinder(const std::string& id, V p, V d, double r) {
     double mp[3];
     for (int i = 0; i < 3; ++i) mp[i] = m[i][0] * pv[0] + m[i][1] * pv[1] + m[i][2] * pv[2];
     double k = pv[0] * mp[0] + pv[1] * mp[1] + pv[2] * mp[2] - r * r;
-    return fmt::format("quadric {} <{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g}>;\n",
-                       id, m[0][0], m[1][1], m[2][2], m[0][1], m[1][2], m[0][2], -mp[0], -mp[1],
-                       -mp[2], k);
+    return fmt::format(
+        "quadric {} <{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g}>;\n", id,
+        m[0][0], m[1][1], m[2][2], m[0][1], m[1][2], m[0][2], -mp[0], -mp[1], -mp[2], k);
 }
 
 // Plane through q with outward normal n: n·(x-q) <= 0.
@@ -59,7 +59,8 @@ BenchScene SpheresMinusCylinder(int n) {
     // Radius so that the spheres fill about 60 % of the cube's volume in total: they overlap.
     double r = std::cbrt(0.6 * 8000.0 / (n * 4.18879));
     std::ostringstream out;
-    out << fmt::format("{{ {} spheres of radius {:.4g} unioned, minus a cylinder (issue 8) }}\n", n, r);
+    out << fmt::format("{{ {} spheres of radius {:.4g} unioned, minus a cylinder (issue 8) }}\n", n,
+                       r);
     for (int i = 0; i < n; ++i) {
         out << Sphere(fmt::format("q{}", i), {u(rng), u(rng), u(rng)}, r);
         out << fmt::format("body s{} (q{});\n", i, i);
@@ -76,7 +77,9 @@ BenchScene SpheresMinusCylinder(int n) {
 
 BenchScene TwoCylinders(char op) {
     BenchScene s;
-    s.name = op == '|' ? "two_cyl_union" : op == '&' ? "two_cyl_intersection" : "two_cyl_difference";
+    s.name = op == '|'   ? "two_cyl_union"
+             : op == '&' ? "two_cyl_intersection"
+                         : "two_cyl_difference";
     std::ostringstream out;
     out << "quadric qa <1 0 1 0 0 0 0 0 0 -4>;\nplane at <0 1 0 -4>;\nplane ab <0 -1 0 -4>;\n"
            "quadric qb <0 1 1 0 0 0 0 0 0 -2.25>;\nplane br <1 0 0 -4>;\nplane bl <-1 0 0 -4>;\n"
@@ -100,7 +103,8 @@ BenchScene MiteredKnot(int segments) {
     }
     const double r = 0.6;
     std::ostringstream out;
-    out << fmt::format("{{ a trefoil of {} mitered pipes with spheres at the joints }}\n", segments);
+    out << fmt::format("{{ a trefoil of {} mitered pipes with spheres at the joints }}\n",
+                       segments);
     for (int i = 0; i < segments; ++i) {
         V a = p[i], b = p[(i + 1) % segments];
         V prev = p[(i + segments - 1) % segments], next = p[(i + 2) % segments];
@@ -124,9 +128,10 @@ BenchScene SumOfProductsExplosion(int pairs) {
     BenchScene s;
     s.name = fmt::format("sop{}", pairs);
     std::ostringstream out;
-    out << fmt::format("{{ A - B1&C1 - B2&C2 - ... with {} pairs: 2^{} products in sum-of-products "
-                       "form }}\n",
-                       pairs, pairs);
+    out << fmt::format(
+        "{{ A - B1&C1 - B2&C2 - ... with {} pairs: 2^{} products in sum-of-products "
+        "form }}\n",
+        pairs, pairs);
     out << "quadric big <1 1 1 0 0 0 0 0 0 -100>;\nbody A (big);\n";
     for (int i = 0; i < pairs; ++i) {
         double a = 2 * M_PI * i / pairs;

@@ -8,9 +8,9 @@
 namespace quadrix::bench {
 
 struct BenchScene {
-    std::string name;     // short id, used in file names and tables
-    std::string text;     // UniQuadrix source
-    int primitives = 0;   // half-spaces in the scene (planes + quadrics)
+    std::string name;    // short id, used in file names and tables
+    std::string text;    // UniQuadrix source
+    int primitives = 0;  // half-spaces in the scene (planes + quadrics)
 };
 
 // N spheres (fixed random placement in a 20-unit cube, overlapping) unioned, minus a cylinder.

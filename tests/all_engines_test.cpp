@@ -45,9 +45,9 @@ class DummyEngine final : public Engine {
 };
 
 // The one row that registers an engine.
-const bool kDummyRegistered = RegisterEngine(
-    {"dummy-test", "draws nothing (tests composition)",
-     [] { return std::make_unique<DummyEngine>(); }, EngineCapabilities{true, false}, true});
+const bool kDummyRegistered = RegisterEngine({"dummy-test", "draws nothing (tests composition)",
+                                              [] { return std::make_unique<DummyEngine>(); },
+                                              EngineCapabilities{true, false}, true});
 
 struct CorpusScene {
     std::string name;
@@ -59,8 +59,10 @@ const std::vector<CorpusScene>& Corpus() {
         {"sphere", "solid sphere ball =at 0 0 0 =r 1; view front dop .3 .4 -1;"},
         {"ellipsoid_turned",
          "solid ellipsoid egg =at 0 0 0 =r 2 1 .7 =rz 30 =rx 20; view front dop .2 .3 -1;"},
-        {"cylinder_capped", "solid cylinder rod =from 0 -1 0 =to 0 1 0 =r .8; view front dop .5 .6 -1;"},
-        {"cone_apex", "solid cone tip =from 0 -1 0 =to 0 1 0 =r0 1 =r1 0; view front dop .4 .2 -1;"},
+        {"cylinder_capped",
+         "solid cylinder rod =from 0 -1 0 =to 0 1 0 =r .8; view front dop .5 .6 -1;"},
+        {"cone_apex",
+         "solid cone tip =from 0 -1 0 =to 0 1 0 =r0 1 =r1 0; view front dop .4 .2 -1;"},
         {"hyperboloid_paraboloid",
          "solid hyperboloid reel =from -2 -1 0 =to -2 1 0 =r 1 =waist .5;\n"
          "solid paraboloid dish =from 1 -1 0 =to 1 1 0 =r 1; view front dop .3 .5 -1;"},
@@ -134,7 +136,8 @@ const std::vector<CorpusScene>& Corpus() {
          "solid sphere ball =at 0 0 0 =r 1;\n"
          "solid cylinder bore =from 0 -1.5 0 =to 0 1.5 0 =r .4;\n"
          "csg ring (ball - bore); view front dop 0 0 -1 whh 1.2 whw 1.2 fbp -.3 .5;"},
-        {"machined_part", "read \"" + quadrix::testing::SourcePath("examples/machined_part.uq") + "\";"},
+        {"machined_part",
+         "read \"" + quadrix::testing::SourcePath("examples/machined_part.uq") + "\";"},
     };
     return kScenes;
 }
@@ -199,9 +202,9 @@ TEST_P(AllEngines, MatchesRaycastThroughTheRenderContext) {
 
     const FrameComparison cmp = CompareFrames(got, reference, {});
     EXPECT_GT(reference.CoveredCount(), 200u) << "the scene must be visible";
-    EXPECT_EQ(cmp.offEdgeDifferences, 0u) << c.engine << " on " << c.scene << ": "
-                                          << cmp.firstDifference << "\n"
-                                          << cmp.Summary();
+    EXPECT_EQ(cmp.offEdgeDifferences, 0u)
+        << c.engine << " on " << c.scene << ": " << cmp.firstDifference << "\n"
+        << cmp.Summary();
     const double tolerance = 1e-6 * 160;
     EXPECT_LE(cmp.maxDepthError, tolerance) << cmp.Summary();
     // Every solid is drawn by the engine or composed from raycast: never silently missing.
@@ -253,10 +256,11 @@ TEST(AllEnginesReference, RaycastEqualsTheSharedEvaluatorBitForBit) {
                         : frame.depth[i] == best.t && frame.surface[i] == best.halfSpace &&
                               frame.body[i] == best.body && frame.solid[i] == bestSolid;
                 if (!same && mismatches++ == 0)
-                    first = fmt::format("({}, {}): evaluator t {} surface {} solid {}, raycast t {} "
-                                        "surface {} solid {}",
-                                        x, y, best.t, best.halfSpace, bestSolid, frame.depth[i],
-                                        frame.surface[i], frame.solid[i]);
+                    first = fmt::format(
+                        "({}, {}): evaluator t {} surface {} solid {}, raycast t {} "
+                        "surface {} solid {}",
+                        x, y, best.t, best.halfSpace, bestSolid, frame.depth[i], frame.surface[i],
+                        frame.solid[i]);
             }
         EXPECT_GT(covered, 100u) << scene.name;
         EXPECT_EQ(mismatches, 0u) << scene.name << ": first at " << first;

@@ -49,9 +49,9 @@ constexpr const char* kFrontView = "view front dop 0 0 -1 whw 2 whh 2;\n";
 // A flat bilinear Bézier square [-1, 1]² at z = 0 covers 100×100 pixels. The isocurves are drawn
 // about 1.75 px wide (render.h default thickness), so the edges may spill up to one pixel out.
 TEST(FreeformScene, BezierSquareCoversItsPixels) {
-    auto run = Render(std::string(kFrontView) +
-                          "bezier sq 1 1 < -1 -1 0  1 -1 0  -1 1 0  1 1 0 > =c 1 0 0;\n",
-                      200, 200);
+    auto run = Render(
+        std::string(kFrontView) + "bezier sq 1 1 < -1 -1 0  1 -1 0  -1 1 0  1 1 0 > =c 1 0 0;\n",
+        200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
     ASSERT_EQ(run->r.flat.freeforms.size(), 1u);
     const Frame& f = run->r.frame;
@@ -87,9 +87,10 @@ TEST(FreeformScene, TransformsMoveTheControlPoints) {
 TEST(FreeformScene, ComposesWithSolidsByDepth) {
     const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);\n";
     for (double z : {-2.0, 2.0}) {
-        const std::string sq = fmt::format("bezier sq 1 1 < -.5 -.5 {0} .5 -.5 {0} -.5 .5 {0} "
-                                           ".5 .5 {0} >;\n",
-                                           z);
+        const std::string sq = fmt::format(
+            "bezier sq 1 1 < -.5 -.5 {0} .5 -.5 {0} -.5 .5 {0} "
+            ".5 .5 {0} >;\n",
+            z);
         for (const char* engine : {"raycast", "isocurve", "patch"}) {
             auto run = Render(std::string(kFrontView) + sphere + sq, 200, 200, engine);
             ASSERT_TRUE(run->ok) << run->Messages();
@@ -203,8 +204,7 @@ TEST(FreeformScene, BadStatementsAreErrorsAtTheirPlace) {
         {"bezier bad 1 1 < 0 0 0  1 0 0  0 1 0 >;", "has 9 numbers; expected 12", ">"},
         {"bezier bad 0 1 < >;", "degree in u must be a whole number from 1 to 12", "0"},
         {"bezier bad 1.5 1 < >;", "degree in u must be a whole number", "1.5"},
-        {"bezier bad 1 1 < 0 0 0 1 0 0 0 1 0 1 1 0 > =r < 1 1 -1 1 >;", "weight 3 is -1",
-         "< 1 1"},
+        {"bezier bad 1 1 < 0 0 0 1 0 0 0 1 0 1 1 0 > =r < 1 1 -1 1 >;", "weight 3 is -1", "< 1 1"},
         {"bspline bad 1 1 2 2 < 0 1 0 1 > < 0 0 1 1 > < 0 0 0 1 0 0 0 1 0 1 1 0 >;",
          "u knot 3 (0) is smaller than knot 2 (1)", "< 0 1 0 1"},
         {"bspline bad 1 1 2 2 < 0 0 0 0 > < 0 0 1 1 > < 0 0 0 1 0 0 0 1 0 1 1 0 >;",
@@ -226,7 +226,8 @@ TEST(FreeformScene, BadStatementsAreErrorsAtTheirPlace) {
                 EXPECT_EQ(item.loc.line, 1) << c.text << "\n" << run->Messages();
                 EXPECT_EQ(item.loc.column,
                           static_cast<int>(std::string_view(c.text).find(c.at)) + 1)
-                    << c.text << "\n" << run->Messages();
+                    << c.text << "\n"
+                    << run->Messages();
             }
         }
         EXPECT_TRUE(found) << c.text << "\n" << run->Messages();
@@ -279,10 +280,10 @@ TEST(PatchStatement, BadPatchesAreErrors) {
         {"quadric qq <1 1 1 0 0 0 0 0 0 -1>; quadric rr <1 1 0 0 0 0 0 0 0 -1>; patch pp (qq rr);",
          "'rr' is a second one", "rr)"},
         {"quadric qq <1 1 1 0 0 0 0 0 0 -1>; plane pa <1 0 0 0>; plane pb <0 1 0 0>;"
-         "plane pc <0 0 1 0>; plane pd <1 1 0 0>; plane pe <1 0 1 0>; patch pp (qq pa pb pc pd pe);",
+         "plane pc <0 0 1 0>; plane pd <1 1 0 0>; plane pe <1 0 1 0>; patch pp (qq pa pb pc pd "
+         "pe);",
          "at most 4 planes", "pe)"},
-        {"quadric qq <1 1 1 0 0 0 0 0 0 -1>; patch pp (qq zz);", "unknown half-space 'zz'",
-         "zz"},
+        {"quadric qq <1 1 1 0 0 0 0 0 0 -1>; patch pp (qq zz);", "unknown half-space 'zz'", "zz"},
     };
     for (const BadFreeform& c : cases) {
         auto run = Render(c.text, 64, 64);
@@ -294,7 +295,8 @@ TEST(PatchStatement, BadPatchesAreErrors) {
                 EXPECT_EQ(item.loc.line, 1) << c.text;
                 EXPECT_EQ(item.loc.column,
                           static_cast<int>(std::string_view(c.text).find(c.at)) + 1)
-                    << c.text << "\n" << run->Messages();
+                    << c.text << "\n"
+                    << run->Messages();
             }
         EXPECT_TRUE(found) << c.text << "\n" << run->Messages();
     }

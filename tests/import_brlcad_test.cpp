@@ -3,13 +3,12 @@
 // shared/data/brlcad (census, skipped primitives, rendering, bounding boxes).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-
 #include <pthread.h>
 
 #include <cmath>
-#include <functional>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <sstream>
 
@@ -645,9 +644,10 @@ TEST(ImportBrlcad, EveryPrimitiveParsesInV5AndV4) {
     EXPECT_TRUE(Inside(im->scene, "h", Q(1000, -1000, 4.9)));
     EXPECT_FALSE(Inside(im->scene, "h", Q(0, 0, 5.1)));
     // v4: S 26 rpc and S 33 hyp with their 24 numbers.
-    std::string v4 = "I 1 v4\nt\n"
-                     "S 26 r 0 10 0 0  0 0 2  0 1 0  1 0 0  0 0 0  0 0 0  0 0 0  0 0 0\n"
-                     "S 33 y 0 50 0 0  0 0 2  1 0 0  0.5 0.6 0  0 0 0  0 0 0  0 0 0  0 0 0\n";
+    std::string v4 =
+        "I 1 v4\nt\n"
+        "S 26 r 0 10 0 0  0 0 2  0 1 0  1 0 0  0 0 0  0 0 0  0 0 0  0 0 0\n"
+        "S 33 y 0 50 0 0  0 0 2  1 0 0  0.5 0.6 0  0 0 0  0 0 0  0 0 0  0 0 0\n";
     auto im4 = Import(v4);
     ASSERT_TRUE(im4->ok) << AllMessages(im4->diags);
     EXPECT_TRUE(Inside(im4->scene, "r", Q(10, 0.5, 1)));
@@ -716,8 +716,7 @@ TEST(ImportBrlcad, V5DeepTreesOnAOneMebibyteStack) {
 
 TEST(ImportBrlcad, NumbersBeyondIntAreRangeErrors) {
     // Issue 23: converted to int unchecked (UBSan float-cast-overflow).
-    const std::string sphere =
-        "title {t}\nput {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n";
+    const std::string sphere = "title {t}\nput {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n";
     const std::pair<std::string, std::string> cases[] = {
         {"I 1 v4\nt\nm 4 2.5e12 3 0 0 0\n", "test.asc:3:5: error: colour table record 'm': low"},
         {"I 1 v4\nt\nm 4 1 3 0 0 256\n", "blue '256'"},
@@ -735,8 +734,8 @@ TEST(ImportBrlcad, NumbersBeyondIntAreRangeErrors) {
     for (const auto& [text, expect] : cases) {
         auto im = Import(text);
         EXPECT_FALSE(im->ok) << text;
-        EXPECT_NE(AllMessages(im->diags).find(expect), std::string::npos)
-            << text << "\n" << AllMessages(im->diags);
+        EXPECT_NE(AllMessages(im->diags).find(expect), std::string::npos) << text << "\n"
+                                                                          << AllMessages(im->diags);
     }
 }
 

@@ -11,9 +11,9 @@
 
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/import/rt_view.h"
+#include "quadrix/math/srgb.h"
 #include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
-#include "quadrix/math/srgb.h"
 #include "quadrix/scene/css_colors.h"
 #include "test_util.h"
 
@@ -245,12 +245,13 @@ TEST(ImportOpenScad, ColorNamesHexAndAlpha) {
     scene::Scene s;
     Diagnostics d;
     ImportReport r;
-    ASSERT_TRUE(ImportOpenScad("color(\"SteelBlue\", 0.5) sphere(1);\n"
-                               "color([1, 0.5, 0, 0.25]) cube(1);\n"
-                               "color(\"#ff8000\") cube(1);\n"
-                               "color(c = \"#0f08\") cube(1);\n"
-                               "color(\"rebeccapurple\") cube(1);\n",
-                               "t.csg", {}, s, d, r));
+    ASSERT_TRUE(
+        ImportOpenScad("color(\"SteelBlue\", 0.5) sphere(1);\n"
+                       "color([1, 0.5, 0, 0.25]) cube(1);\n"
+                       "color(\"#ff8000\") cube(1);\n"
+                       "color(c = \"#0f08\") cube(1);\n"
+                       "color(\"rebeccapurple\") cube(1);\n",
+                       "t.csg", {}, s, d, r));
     ASSERT_EQ(s.top.bodies.size(), 5u);
     const auto& b = s.top.bodies;
     EXPECT_EQ(*b[0].color, *scene::CssColor("steelblue"));

@@ -1,12 +1,13 @@
 // Scene-level tests through the whole pipeline (reader → Flattener → raycast → Frame), written in
 // the scene language: the trunk's acceptance criteria that need every stage.
+#include "quadrix/pipeline/pipeline.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <set>
 
 #include "quadrix/io/writers.h"
-#include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/shader.h"
 #include "test_util.h"
 
@@ -81,7 +82,8 @@ TEST(Pipeline, CoincidentArrayCopiesGiveTheFirstCopysImage) {
     const std::string def =
         "definition ball; quadric s <1 1 1 0 0 0 0 0 -.5 -.75>; plane cut <1 0 0 -.5>;\n"
         "body ball (s cut); enddef;\n";  // a sphere cut by a plane: the cut is not axis-symmetric
-    const std::string view = "light amb .2; light key .8 .3 .5 -1; view v dop .2 .4 -1 whh 1.5 whw 1.5;\n";
+    const std::string view =
+        "light amb .2; light key .8 .3 .5 -1; view v dop .2 .4 -1 whh 1.5 whw 1.5;\n";
     PipelineResult many = Render(def + "array (ball =rx 0) 7 =rz 360;\n" + view, 160, 160);
     PipelineResult one = Render(def + "instance (ball =rx 0);\n" + view, 160, 160);
     ASSERT_EQ(many.flat.bodies.size(), 7u);
@@ -115,8 +117,10 @@ TEST(Pipeline, PerspectiveSpheresShrinkAsOneOverDistance) {
         // the window is 0.5 wide over 400 px.
         double expected = 400.0 / 0.5 / std::sqrt(d * d - 1);
         EXPECT_NEAR(radius / expected, 1.0, 0.01) << "d=" << d;
-        if (d == 10) radiusAt10 = radius;
-        else EXPECT_NEAR(radius * d / (radiusAt10 * 10), 1.0, 0.02) << "d=" << d;
+        if (d == 10)
+            radiusAt10 = radius;
+        else
+            EXPECT_NEAR(radius * d / (radiusAt10 * 10), 1.0, 0.02) << "d=" << d;
     }
 }
 

@@ -3,9 +3,8 @@
 // through the same pixel centres; see io/pov_export.h) and rendered by POV-Ray without
 // antialiasing; the two coverage masks must agree except on silhouette pixels, where a ray grazes
 // a surface and the two renderers' root finders may legitimately differ.
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -30,15 +29,16 @@ TEST_P(PovrayTest, CoverageMatchesExceptOnSilhouettes) {
     if (!HaveProgram("povray")) GTEST_SKIP() << "povray is not installed";
     const PovCase& c = GetParam();
     TempDir dir;
-    std::string scenePath = c.scene.rfind("text:", 0) == 0 ? dir.Write("scene.uq", c.scene.substr(5))
-                                                           : SourcePath(c.scene);
+    std::string scenePath = c.scene.rfind("text:", 0) == 0
+                                ? dir.Write("scene.uq", c.scene.substr(5))
+                                : SourcePath(c.scene);
     std::string size = fmt::format("{}x{}", c.width, c.height);
-    CommandResult e = RunShell(QuadrixBinary() + " export --to pov --mask '" + scenePath + "' --size " +
-                          size + " -o '" + dir.File("s.pov") + "'");
+    CommandResult e = RunShell(QuadrixBinary() + " export --to pov --mask '" + scenePath +
+                               "' --size " + size + " -o '" + dir.File("s.pov") + "'");
     ASSERT_EQ(e.exitCode, 0) << e.err;
-    CommandResult p = RunShell(fmt::format(
-        "cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} -A +FP -D -V -GA +WT2", dir.path(), c.width,
-        c.height));
+    CommandResult p =
+        RunShell(fmt::format("cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} -A +FP -D -V -GA +WT2",
+                             dir.path(), c.width, c.height));
     ASSERT_EQ(p.exitCode, 0) << p.err;
     Image pov;
     ASSERT_TRUE(ReadPnm(dir.File("s.ppm"), pov));
@@ -94,12 +94,13 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
     const PovCase& c = GetParam();
     if (c.perspective) GTEST_SKIP() << "POV-Ray shades the export with device-space normals";
     TempDir dir;
-    std::string scenePath = c.scene.rfind("text:", 0) == 0 ? dir.Write("scene.uq", c.scene.substr(5))
-                                                           : SourcePath(c.scene);
+    std::string scenePath = c.scene.rfind("text:", 0) == 0
+                                ? dir.Write("scene.uq", c.scene.substr(5))
+                                : SourcePath(c.scene);
     std::string size = fmt::format("{}x{}", c.width, c.height);
-    CommandResult e = RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " +
-                               size + " -o '" + dir.File("s.pov") + "'" +
-                               (c.shadows ? " --shadows" : ""));
+    CommandResult e =
+        RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " + size + " -o '" +
+                 dir.File("s.pov") + "'" + (c.shadows ? " --shadows" : ""));
     ASSERT_EQ(e.exitCode, 0) << e.err;
     CommandResult p = RunShell(fmt::format(
         "cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} -A +FP -D -V -GA +WT2 File_Gamma=sRGB",
@@ -178,21 +179,20 @@ const std::string kPerspectiveBalls =
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, PovrayTest,
-    ::testing::Values(PovCase{"Tube", "examples/tube.uq", 160, 120},
-                      PovCase{"StackOfBundles", "examples/stack_of_bundles.uq", 200, 200},
-                      PovCase{"CylinderMinusCylinder", "examples/cylinder_minus_cylinder.uq", 200, 160},
-                      PovCase{"MachinedPart", "examples/machined_part.uq", 320, 240},
-                      PovCase{"BundleOfTubes", "examples/bundle_of_tubes.uq", 200, 160},
-                      PovCase{"LitScene", kLitScene, 240, 160},
-                      PovCase{"DefaultRigColors", kDefaultRigColors, 240, 160},
-                      PovCase{"PerspectiveCsg", kPerspectiveBalls, 240, 180, true},
-                      PovCase{"LitSceneShadows", kLitScene, 240, 160, false, true},
-                      PovCase{"Materials", "examples/materials.uq", 240, 180},
-                      PovCase{"MaterialsShadows", "examples/materials.uq", 240, 180, false, true},
-                      PovCase{"StackOfBundlesShadows", "examples/stack_of_bundles.uq", 200, 200,
-                              false, true},
-                      PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240,
-                              false, true}),
+    ::testing::Values(
+        PovCase{"Tube", "examples/tube.uq", 160, 120},
+        PovCase{"StackOfBundles", "examples/stack_of_bundles.uq", 200, 200},
+        PovCase{"CylinderMinusCylinder", "examples/cylinder_minus_cylinder.uq", 200, 160},
+        PovCase{"MachinedPart", "examples/machined_part.uq", 320, 240},
+        PovCase{"BundleOfTubes", "examples/bundle_of_tubes.uq", 200, 160},
+        PovCase{"LitScene", kLitScene, 240, 160},
+        PovCase{"DefaultRigColors", kDefaultRigColors, 240, 160},
+        PovCase{"PerspectiveCsg", kPerspectiveBalls, 240, 180, true},
+        PovCase{"LitSceneShadows", kLitScene, 240, 160, false, true},
+        PovCase{"Materials", "examples/materials.uq", 240, 180},
+        PovCase{"MaterialsShadows", "examples/materials.uq", 240, 180, false, true},
+        PovCase{"StackOfBundlesShadows", "examples/stack_of_bundles.uq", 200, 200, false, true},
+        PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240, false, true}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

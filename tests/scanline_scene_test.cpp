@@ -25,11 +25,11 @@
 #include <string>
 #include <tuple>
 
-#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/engine_test_util.h"
-#include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/engines/scanline/renderer.h"
+#include "quadrix/flatten/test_scene_builder.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 

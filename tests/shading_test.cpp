@@ -243,7 +243,7 @@ TEST(Shading, PngIsSrgbEncodedWithItsChunks) {
         const double tol = depth == 8 ? 0.5 / 255 : 0.5 / 65535;
         EXPECT_EQ(sample(0), 0);
         EXPECT_EQ(sample(3), 1);
-        if (depth == 16) {  // from the unquantised values
+        if (depth == 16) {                                     // from the unquantised values
             EXPECT_NEAR(sample(1), SrgbFromLinear(0.5), tol);  // 0.7354
             EXPECT_NEAR(sample(2), 0.0031308 * 12.92, tol + 1e-6);
         } else {  // from the 8-bit linear pixels 128 and 1

@@ -25,7 +25,7 @@ std::string SourcePath(const std::string& relative);
 
 // A fresh empty directory, removed when the object dies.
 class TempDir {
-public:
+  public:
     TempDir();
     ~TempDir();
     TempDir(const TempDir&) = delete;
@@ -35,7 +35,7 @@ public:
     // Writes a file inside the directory and returns its path.
     std::string Write(const std::string& name, const std::string& contents) const;
 
-private:
+  private:
     std::string path_;
 };
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -47,7 +46,7 @@ struct RenderArgs {
     bool strict = false;
     bool allowMissing = false;
     std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
-    std::string rtView;                                     // file of rt view commands
+    std::string rtView;                                    // file of rt view commands
     // Limits for servers and batch runs (docs/output.md).
     std::string maxMemory;  // e.g. "2G"; empty = the machine's budget only
     double timeLimit = 0;   // seconds of wall-clock time; 0 = none

@@ -110,8 +110,8 @@ int RunCompare(const CompareArgs& args) {
             return 1;
         }
     }
-    const bool agree = !cmp.sizeMismatch && cmp.offEdgeDifferences == 0 &&
-                       cmp.depthOverTolerance == 0;
+    const bool agree =
+        !cmp.sizeMismatch && cmp.offEdgeDifferences == 0 && cmp.depthOverTolerance == 0;
     std::printf("%s\n", agree ? "frames agree" : "frames differ");
     return agree ? 0 : 1;
 }

@@ -1,6 +1,6 @@
-#include <cstdio>
-
 #include <fmt/format.h>
+
+#include <cstdio>
 
 #include "commands.h"
 #include "quadrix/io/output_file.h"
@@ -14,7 +14,8 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
     CLI::App* cmd = app.add_subcommand("export", "Write a scene in another renderer's format");
     cmd->add_option("scenes", args.scenes, "Scene files, read in order ('-' = standard input)")
         ->required();
-    cmd->add_option("--to", args.to, "Target format")->check(CLI::IsMember({"pov"}))
+    cmd->add_option("--to", args.to, "Target format")
+        ->check(CLI::IsMember({"pov"}))
         ->capture_default_str();
     cmd->add_option("-o,--output", args.output, "Output file")->required();
     cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT the export is set up for")

@@ -22,9 +22,9 @@
 #include "quadrix/draw/page.h"
 #include "quadrix/draw/svg_writer.h"
 #include "quadrix/engines/engine.h"
-#include "quadrix/io/output_file.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/io/bounded_read.h"
+#include "quadrix/io/output_file.h"
 #include "quadrix/lang/input_files.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/source.h"
@@ -220,8 +220,8 @@ Scan ScanStatement(const std::string& text) {
             return scan;
         }
         if (c == '"') inString = true;
-        const bool wordChar = std::isalnum(static_cast<unsigned char>(c)) || c == '_' ||
-                              c == '#' || c == '?' || c == '.';
+        const bool wordChar = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '#' ||
+                              c == '?' || c == '.';
         if (!wordDone && wordChar) {
             scan.firstWord += c;
         } else if (!scan.firstWord.empty() && !wordDone) {
@@ -251,8 +251,8 @@ bool IsVectorDeviceSpec(const std::string& spec, std::string& path, std::string&
     const std::string ext = Lower(std::filesystem::path(path).extension().string());
     error.clear();
     if (ext != "." + name)
-        error = fmt::format("device {} writes .{} files; '{}' has another extension", name, name,
-                            path);
+        error =
+            fmt::format("device {} writes .{} files; '{}' has another extension", name, name, path);
     return true;
 }
 
@@ -660,7 +660,7 @@ bool UqSession::FlattenCurrent(const std::string& view, const device::DeviceInfo
     // Passed in, never swapped into the scene; none declared: the Flattener's default rig.
     if (std::vector<scene::Light> lights = CurrentLights(); !lights.empty())
         request.lights = std::move(lights);
-    ctx_.SceneChanged();               // the reader may have added statements since
+    ctx_.SceneChanged();  // the reader may have added statements since
     if (!ctx_.Flatten(request, diags_)) return false;
     const FlatScene& flat = ctx_.Flat();
     Trace(

@@ -1,7 +1,6 @@
 // quadrix: the command-line tool. Subcommands live in their own files (render_command.cpp, ...);
 // this file only wires them into one CLI11 application.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <new>
@@ -60,8 +59,9 @@ int UnknownSubcommand(CLI::App& app, const std::string& word) {
 int RunHelp(CLI::App& app, const std::string& topic) {
     if (topic.empty()) {
         // Not app.help(): after parsing it describes the selected subcommand (help itself).
-        std::fputs(app.get_formatter()->make_help(&app, "quadrix", CLI::AppFormatMode::Normal).c_str(),
-                   stdout);
+        std::fputs(
+            app.get_formatter()->make_help(&app, "quadrix", CLI::AppFormatMode::Normal).c_str(),
+            stdout);
         return 0;
     }
     if (topic == "uq" || topic == "-i") {

@@ -160,7 +160,8 @@ int RunPipe(const PipeArgs& args) {
                                   : std::filesystem::path(args.input).filename().string();
     wo.definition = args.definition;
     wo.prefix = args.prefix;
-    if (std::string e = WriteOutputFile(args.output, model::WriteUniQuadrix(pipes, wo)); !e.empty()) {
+    if (std::string e = WriteOutputFile(args.output, model::WriteUniQuadrix(pipes, wo));
+        !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }

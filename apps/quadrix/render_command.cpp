@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -5,11 +6,8 @@
 #include <optional>
 #include <string>
 
-#include <fmt/format.h>
-
 #include "commands.h"
 #include "quadrix/batch/run.h"
-#include "quadrix/io/writers.h"
 #include "quadrix/engines/registry.h"
 #include "quadrix/frame/memory_budget.h"
 #include "quadrix/io/bounded_read.h"
@@ -82,8 +80,7 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     cmd->add_option("--camera", args.camera,
                     "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
                     "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
-    cmd->add_option("--projection", args.projection,
-                    "With --camera: ortho|persp (default persp)");
+    cmd->add_option("--projection", args.projection, "With --camera: ortho|persp (default persp)");
     cmd->add_option("--fov", args.fov, "With --camera: vertical field of view in degrees (22.5)")
         ->expected(1);
     cmd->add_flag("--viewall", args.viewAll, "Fit the window to the whole scene");
@@ -260,8 +257,9 @@ int RunRender(const RenderArgs& args) {
         SetMemoryBudget(bytes);
     }
     if (args.timeLimit != 0 && !SetTimeLimit(args.timeLimit)) {
-        std::fprintf(stderr, "quadrix: error: --time-limit: expected a positive number of "
-                             "seconds\n");
+        std::fprintf(stderr,
+                     "quadrix: error: --time-limit: expected a positive number of "
+                     "seconds\n");
         return 2;
     }
     int aaSamples = kDefaultAaSamples;
@@ -278,8 +276,9 @@ int RunRender(const RenderArgs& args) {
     OutputRequest outputs{args.output, args.dumpFrame, {}, args.format};
     outputs.png.bitDepth = args.png16 ? 16 : 8;
     if (args.output == "-" && args.stats && args.json) {
-        std::fprintf(stderr, "quadrix: error: --stats --json and -o - both write to standard "
-                             "output; write the image to a file\n");
+        std::fprintf(stderr,
+                     "quadrix: error: --stats --json and -o - both write to standard "
+                     "output; write the image to a file\n");
         return 2;
     }
     if (auto e = CheckOutputs(outputs); !e.empty()) {
@@ -320,10 +319,10 @@ int RunRender(const RenderArgs& args) {
     const bool animated = args.frames > 0 || args.turntable > 0 || !args.views.empty();
     std::vector<std::string> inputs = args.scenes;
     if (!args.rtView.empty()) inputs.push_back(args.rtView);
-    if (auto e = animated ? std::string()
-                          : CheckOutputPaths(
-                                {args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame},
-                                inputs);
+    if (auto e = animated
+                     ? std::string()
+                     : CheckOutputPaths(
+                           {args.output, args.dumpFrame.empty() ? "-" : args.dumpFrame}, inputs);
         !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
@@ -335,14 +334,16 @@ int RunRender(const RenderArgs& args) {
         return 2;
     }
     if (camera.Any() && (po.rtView || po.azimuth || po.elevation)) {
-        std::fprintf(stderr, "quadrix: error: the camera options cannot be combined with "
-                             "--az/--el or an rt view\n");
+        std::fprintf(stderr,
+                     "quadrix: error: the camera options cannot be combined with "
+                     "--az/--el or an rt view\n");
         return 2;
     }
     const bool animation = args.frames > 0 || args.turntable > 0 || !args.views.empty();
     if (animation && camera.Any()) {
-        std::fprintf(stderr, "quadrix: error: the camera options cannot be combined with "
-                             "--frames, --turntable or --views (docs/batch.md)\n");
+        std::fprintf(stderr,
+                     "quadrix: error: the camera options cannot be combined with "
+                     "--frames, --turntable or --views (docs/batch.md)\n");
         return 2;
     }
     if (animation) {
@@ -375,7 +376,8 @@ int RunRender(const RenderArgs& args) {
     }
     for (const std::string& w : report.stats.warnings)
         std::fprintf(stderr, "quadrix: warning: engine %s: %s\n", args.engine.c_str(), w.c_str());
-    for (const std::string& n : report.notes) std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
+    for (const std::string& n : report.notes)
+        std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
     if (!writer) return 0;
 
     auto t0 = std::chrono::steady_clock::now();
@@ -391,12 +393,12 @@ int RunRender(const RenderArgs& args) {
         const bool defaultShadows = !args.shadows && !args.noShadows && DeclaresLights(ctx.Flat());
         const bool defaultAa = args.aa == "default" && aaSamples > 1;
         if (!small && (defaultShadows || defaultAa))
-            std::fprintf(stderr,
-                         "quadrix: note: %zu bodies: no default%s%s (--shadows, --aa N ask for "
-                         "them)\n",
-                         ctx.Flat().bodies.size(), defaultShadows ? " shadows" : "",
-                         defaultAa ? (defaultShadows ? " or anti-aliasing" : " anti-aliasing")
-                                   : "");
+            std::fprintf(
+                stderr,
+                "quadrix: note: %zu bodies: no default%s%s (--shadows, --aa N ask for "
+                "them)\n",
+                ctx.Flat().bodies.size(), defaultShadows ? " shadows" : "",
+                defaultAa ? (defaultShadows ? " or anti-aliasing" : " anti-aliasing") : "");
         so.shadows = args.shadows || (defaultShadows && small);
         so.aaSamples = defaultAa && !small ? 0 : aaSamples;
         so.aaMitchell = args.aaFilter == "mitchell";

@@ -137,11 +137,10 @@ std::string UqHelpText(const std::string& topic, const scene::Scene& scene,
         std::string out = "Statements (each ends with ';'; 'help WORD' shows one):\n";
         out += Wrapped(StatementKeywords(), "  ");
         out += "  help [WORD]   this text (at the prompt; the ';' may be left out)\n";
-        out += fmt::format(
-            "Current view: {}   light: {}   device: {}   engine: {}\n",
-            state.view.empty() ? "(the last defined)" : state.view,
-            state.light.empty() ? "(the last parallel light)" : state.light,
-            state.device, state.engine);
+        out += fmt::format("Current view: {}   light: {}   device: {}   engine: {}\n",
+                           state.view.empty() ? "(the last defined)" : state.view,
+                           state.light.empty() ? "(the last parallel light)" : state.light,
+                           state.device, state.engine);
         out += "Ids in the scene:\n";
         out += IdLine("half-spaces", ids.halfSpaces) + IdLine("solids", ids.solids) +
                IdLine("definitions", ids.definitions) + IdLine("lights", ids.lights) +

@@ -45,8 +45,7 @@ class AsciiDevice : public Device {
         if (!open_) return "device is not open";
         open_ = false;
         text_ += fmt::format("end {}\n", count_);
-        std::string error =
-            info_.path == "-" ? std::string() : WriteOutputFile(info_.path, text_);
+        std::string error = info_.path == "-" ? std::string() : WriteOutputFile(info_.path, text_);
         if (info_.path == "-") std::fwrite(text_.data(), 1, text_.size(), stdout);
         text_.clear();
         return error;

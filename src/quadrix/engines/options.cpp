@@ -14,10 +14,14 @@ namespace {
 
 const char* TypeName(OptionSpec::Type t) {
     switch (t) {
-        case OptionSpec::Type::kBool: return "on|off";
-        case OptionSpec::Type::kInt: return "integer";
-        case OptionSpec::Type::kNumber: return "number";
-        case OptionSpec::Type::kChoice: return "choice";
+        case OptionSpec::Type::kBool:
+            return "on|off";
+        case OptionSpec::Type::kInt:
+            return "integer";
+        case OptionSpec::Type::kNumber:
+            return "number";
+        case OptionSpec::Type::kChoice:
+            return "choice";
     }
     return "?";
 }
@@ -41,7 +45,8 @@ std::string Accepted(const OptionSpec& spec) {
                                                    : fmt::format("{:g}", v);
     };
     switch (spec.type) {
-        case OptionSpec::Type::kBool: return "on or off";
+        case OptionSpec::Type::kBool:
+            return "on or off";
         case OptionSpec::Type::kChoice: {
             if (spec.choices.size() < 2) return Join(spec.choices, "");
             std::vector<std::string> head(spec.choices.begin(), spec.choices.end() - 1);
@@ -49,14 +54,15 @@ std::string Accepted(const OptionSpec& spec) {
         }
         case OptionSpec::Type::kInt:
         case OptionSpec::Type::kNumber: {
-            const char* what = spec.allowsAuto                         ? "auto or an integer"
+            const char* what = spec.allowsAuto                       ? "auto or an integer"
                                : spec.type == OptionSpec::Type::kInt ? "an integer"
-                                                                       : "a number";
+                                                                     : "a number";
             const bool lo = std::isfinite(spec.min), hi = std::isfinite(spec.max);
             if (lo && hi && !spec.minExclusive)
                 return fmt::format("{} in {}..{}", what, num(spec.min), num(spec.max));
             if (lo && hi) return fmt::format("{} in ({}, {}]", what, num(spec.min), num(spec.max));
-            if (lo) return fmt::format("{} {} {}", what, spec.minExclusive ? ">" : ">=", num(spec.min));
+            if (lo)
+                return fmt::format("{} {} {}", what, spec.minExclusive ? ">" : ">=", num(spec.min));
             if (hi) return fmt::format("{} <= {}", what, num(spec.max));
             return what;
         }
@@ -174,7 +180,8 @@ std::string ParseEngineOptions(std::string_view engine, const OptionSchema& sche
         for (auto& candidate : out.values_)
             if (candidate.spec->name == key) v = &candidate;
         if (!v) {
-            if (schema.empty()) return fmt::format("engine '{}' has no options (given '{}')", engine, key);
+            if (schema.empty())
+                return fmt::format("engine '{}' has no options (given '{}')", engine, key);
             return fmt::format("engine '{}' has no option '{}' (options: {})", engine, key,
                                Names(schema));
         }
@@ -186,7 +193,8 @@ std::string ParseEngineOptions(std::string_view engine, const OptionSchema& sche
     return {};
 }
 
-const EngineOptions::Value& EngineOptions::Find(std::string_view name, OptionSpec::Type type) const {
+const EngineOptions::Value& EngineOptions::Find(std::string_view name,
+                                                OptionSpec::Type type) const {
     for (const Value& v : values_)
         if (v.spec->name == name) {
             QUADRIX_CHECK(v.spec->type == type, "option '{}' read as {} but declared {}", name,

@@ -57,7 +57,8 @@ TEST(EngineOptions, OneBooleanVocabulary) {
         EXPECT_FALSE(o.Bool("fast")) << no;
     }
     EngineOptions o;
-    EXPECT_EQ(Parse({{"fast", "On"}}, o), "engine 'toy': option 'fast' must be on or off, not 'On'");
+    EXPECT_EQ(Parse({{"fast", "On"}}, o),
+              "engine 'toy': option 'fast' must be on or off, not 'On'");
 }
 
 TEST(EngineOptions, ErrorsNameTheKeyAndWhatIsAccepted) {

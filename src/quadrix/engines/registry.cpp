@@ -17,16 +17,31 @@ namespace {
 std::vector<EngineInfo>& Table() {
     // One row per engine: name, help, factory, capabilities.
     static std::vector<EngineInfo> table{
-        {"raycast", "exact reference: interval CSG per pixel, tiles and threads", MakeRaycastEngine,
-         {.solids = true, .freeforms = false}, false},
-        {"scanline", "the UniQuadrix Resolver, Renderer and Shader (seed 001): conic edges, spans",
-         MakeScanlineEngine, {.solids = true, .freeforms = false}, false},
-        {"pixelpowers", "Goldfeather CSG normal form on a simulated Pixel-Powers frame buffer",
-         MakePixelPowersEngine, {.solids = true, .freeforms = false}, false},
-        {"patch", "the quadric patch processor (seed 000), float or bit-exact fixed point",
-         MakePatchEngine, {.solids = true, .freeforms = false}, false},
-        {"isocurve", "freeform (Bezier/NURBS) surfaces by adaptive isocurves (seed 002)",
-         isocurve::MakeIsocurveEngine, {.solids = false, .freeforms = true}, false},
+        {"raycast",
+         "exact reference: interval CSG per pixel, tiles and threads",
+         MakeRaycastEngine,
+         {.solids = true, .freeforms = false},
+         false},
+        {"scanline",
+         "the UniQuadrix Resolver, Renderer and Shader (seed 001): conic edges, spans",
+         MakeScanlineEngine,
+         {.solids = true, .freeforms = false},
+         false},
+        {"pixelpowers",
+         "Goldfeather CSG normal form on a simulated Pixel-Powers frame buffer",
+         MakePixelPowersEngine,
+         {.solids = true, .freeforms = false},
+         false},
+        {"patch",
+         "the quadric patch processor (seed 000), float or bit-exact fixed point",
+         MakePatchEngine,
+         {.solids = true, .freeforms = false},
+         false},
+        {"isocurve",
+         "freeform (Bezier/NURBS) surfaces by adaptive isocurves (seed 002)",
+         isocurve::MakeIsocurveEngine,
+         {.solids = false, .freeforms = true},
+         false},
     };
     return table;
 }
@@ -70,7 +85,8 @@ std::string EnginesMarkdown() {
     for (const EngineInfo& e : Table()) {
         if (e.hidden) continue;
         std::string help = e.help;
-        if (!help.empty()) help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
+        if (!help.empty())
+            help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
         s += fmt::format("## `{}`\n\n{}.", e.name, help);
         s += fmt::format(" Draws {}.\n\n",
                          e.capabilities.solids && e.capabilities.freeforms ? "solids and freeforms"

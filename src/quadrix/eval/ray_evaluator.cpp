@@ -39,9 +39,8 @@ void RayEvaluator::BodySet(int body, double x, double y, IntervalList& out) {
     IntervalList lit, tmp;
     for (int t = first; t < last; ++t) {
         const Tag& tag = tags_[static_cast<std::size_t>(t)];
-        RaySet s =
-            LiteralOnRay(halfSpaces_[static_cast<std::size_t>(tag.halfSpace)],
-                                  tag.complemented, x, y, t, literalCounters_);
+        RaySet s = LiteralOnRay(halfSpaces_[static_cast<std::size_t>(tag.halfSpace)],
+                                tag.complemented, x, y, t, literalCounters_);
         if (s.count == 0) {
             out.clear();
             return;

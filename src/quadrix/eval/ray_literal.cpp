@@ -185,16 +185,15 @@ QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, double x0, double x1, doub
                          std::fmax(auu, 0.0) * hu * hu + std::fabs(auv) * hu * hv +
                          std::fmax(avv, 0.0) * hv * hv;
     const double ac = std::fabs(c);
-    const double scale =
-        H0 * H0 + ac * std::fabs(K0) +
-        (2 * std::fabs(H0 * hs.hx) + ac * std::fabs(Ku)) * hu +
-        (2 * std::fabs(H0 * hs.hy) + ac * std::fabs(Kv)) * hv +
-        (hs.hx * hs.hx + ac * std::fabs(hs.axx)) * hu * hu +
-        (2 * std::fabs(hs.hx * hs.hy) + ac * std::fabs(hs.axy)) * hu * hv +
-        (hs.hy * hs.hy + ac * std::fabs(hs.byy)) * hv * hv +
-        ac * (std::fabs(X0 * hs.ax) + std::fabs(Y0 * hs.by) + std::fabs(hs.k0) +
-              std::fabs(hs.axx) * X0 * X0 + std::fabs(hs.axy * X0 * Y0) +
-              std::fabs(hs.byy) * Y0 * Y0);
+    const double scale = H0 * H0 + ac * std::fabs(K0) +
+                         (2 * std::fabs(H0 * hs.hx) + ac * std::fabs(Ku)) * hu +
+                         (2 * std::fabs(H0 * hs.hy) + ac * std::fabs(Kv)) * hv +
+                         (hs.hx * hs.hx + ac * std::fabs(hs.axx)) * hu * hu +
+                         (2 * std::fabs(hs.hx * hs.hy) + ac * std::fabs(hs.axy)) * hu * hv +
+                         (hs.hy * hs.hy + ac * std::fabs(hs.byy)) * hv * hv +
+                         ac * (std::fabs(X0 * hs.ax) + std::fabs(Y0 * hs.by) + std::fabs(hs.k0) +
+                               std::fabs(hs.axx) * X0 * X0 + std::fabs(hs.axy * X0 * Y0) +
+                               std::fabs(hs.byy) * Y0 * Y0);
     if (!std::isfinite(bound) || !std::isfinite(scale)) return QuadricOnRect::kUnknown;
     if (!(bound < -1e-8 * scale)) return QuadricOnRect::kUnknown;
     return c < 0 ? QuadricOnRect::kInsideEverywhere : QuadricOnRect::kOutsideEverywhere;
@@ -445,13 +444,12 @@ void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, i
         double* const cuts = cutMode ? cut + base : noCut;
         if (!cutMode)
             for (int p = 0; p < m; ++p) noCut[p] = kInf;
-        const int live =
-            flip ? QuadricBatchFast<true>(hs, cutMode, tag, m, xs + base, ys + base, lo + base,
-                                          loId + base, hi + base, hiId + base, flag + base, cuts,
-                                          need)
-                 : QuadricBatchFast<false>(hs, cutMode, tag, m, xs + base, ys + base, lo + base,
-                                           loId + base, hi + base, hiId + base, flag + base, cuts,
-                                           need);
+        const int live = flip ? QuadricBatchFast<true>(hs, cutMode, tag, m, xs + base, ys + base,
+                                                       lo + base, loId + base, hi + base,
+                                                       hiId + base, flag + base, cuts, need)
+                              : QuadricBatchFast<false>(hs, cutMode, tag, m, xs + base, ys + base,
+                                                        lo + base, loId + base, hi + base,
+                                                        hiId + base, flag + base, cuts, need);
         counters.quadrics += static_cast<std::uint64_t>(live);
         LiteralCounters unused;  // already counted
         for (int p = 0; p < m; ++p)

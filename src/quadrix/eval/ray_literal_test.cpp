@@ -765,7 +765,8 @@ TEST(RayLiteralBatch, CutModeKeepsTheFirstIntervalExactBelowTheCut) {
                 Intersection(list, literal, next);
                 std::swap(list, next);
             }
-            const std::string where = "body " + std::to_string(body) + " pixel " + std::to_string(p);
+            const std::string where =
+                "body " + std::to_string(body) + " pixel " + std::to_string(p);
             if (flag[p] == kBatchScalar) {
                 ++scalar;
                 continue;

@@ -94,8 +94,8 @@ RelaxationOutcome BoundByConvexRelaxation(const std::vector<const InsideFn*>& fn
 // for bodies of more than kWorkingSetThreshold literals: near-linear in their number.
 inline constexpr std::size_t kWorkingSetThreshold = 128;
 RelaxationOutcome BoundByWorkingSetRelaxation(const std::vector<const InsideFn*>& fns,
-                                              const std::vector<Nappe>& nappes,
-                                              const Box3& region, Box3& work, BoundsStats* stats);
+                                              const std::vector<Nappe>& nappes, const Box3& region,
+                                              Box3& work, BoundsStats* stats);
 
 // Stage (b2), see bounds_search.cpp: refines the sides selected by sides[2·axis + (sign > 0)];
 // false when the set is proven empty.

@@ -55,7 +55,8 @@ std::string FlatScene::Validate() const {
         const FlatCsgNode& node = nodes[static_cast<std::size_t>(n)];
         if (node.isLeaf) {
             if (node.body < 0 || node.body >= nb)
-                return bad("leaf " + std::to_string(n) + " names body " + std::to_string(node.body));
+                return bad("leaf " + std::to_string(n) + " names body " +
+                           std::to_string(node.body));
         } else {
             for (int c : node.children)
                 if (c < 0 || c >= n)

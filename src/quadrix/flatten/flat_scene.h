@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/freeform/surface.h"
 #include "quadrix/math/mat4.h"
+#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/math/quadric.h"
 #include "quadrix/math/vec.h"
 #include "quadrix/scene/scene.h"
@@ -26,8 +26,8 @@ namespace quadrix {
 struct FlatHalfSpace : PlaneOrQuadric {
     bool transparent = false;
     bool isClip = false;  // a clipping plane added by the Flattener (front/back/near/far)
-    std::string name;     // path for diagnostics, e.g. "stack_of_bundles[1]/bundle_of_tubes[3]/outer_tube"
-
+    std::string
+        name;  // path for diagnostics, e.g. "stack_of_bundles[1]/bundle_of_tubes[3]/outer_tube"
 };
 
 struct FlatLiteral {
@@ -37,27 +37,27 @@ struct FlatLiteral {
 
 struct FlatBody {
     std::vector<FlatLiteral> literals;
-    scene::Color color;        // resolved: the body's color, else its CSG solid's, else white
-    int solid = -1;            // the FlatSolid this body belongs to
+    scene::Color color;  // resolved: the body's color, else its CSG solid's, else white
+    int solid = -1;      // the FlatSolid this body belongs to
     std::string name;
-    Box3 bounds;               // conservative device-space bounds (may be infinite)
-    scene::Finish finish;      // resolved like color, property by property (unset = model default)
+    Box3 bounds;           // conservative device-space bounds (may be infinite)
+    scene::Finish finish;  // resolved like color, property by property (unset = model default)
 };
 
 struct FlatCsgNode {
     bool isLeaf = true;
-    int body = -1;                          // when isLeaf
-    scene::CsgOp op = scene::CsgOp::kUnion; // when !isLeaf
+    int body = -1;                           // when isLeaf
+    scene::CsgOp op = scene::CsgOp::kUnion;  // when !isLeaf
     // Children when !isLeaf. For kDifference the first child is the minuend and every other child
     // is subtracted; kUnion/kIntersection are n-ary.
     std::vector<int> children;
-    Box3 bounds;                            // conservative device-space bounds
+    Box3 bounds;  // conservative device-space bounds
 };
 
 struct FlatSolid {
     int root = -1;  // index into FlatScene::nodes
     std::string name;
-    Box3 bounds;    // conservative device-space bounds, clipped to the image in x and y
+    Box3 bounds;  // conservative device-space bounds, clipped to the image in x and y
 };
 
 // A freeform surface to draw (scene::FreeformSurface under its instance transforms). It stays in
@@ -68,7 +68,7 @@ struct FlatFreeform {
     freeform::Surface surface;  // world coordinates
     scene::Color color;         // resolved like a body's
     std::string name;
-    scene::Finish finish;       // resolved like a body's
+    scene::Finish finish;  // resolved like a body's
 };
 
 // How the world was projected; the shader needs it to express normals in world space.

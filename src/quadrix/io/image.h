@@ -13,13 +13,15 @@ namespace quadrix {
 
 struct Image {
     int width = 0, height = 0;
-    int channels = 1;  // 1 = gray, 3 = RGB
+    int channels = 1;                  // 1 = gray, 3 = RGB
     std::vector<std::uint8_t> pixels;  // row-major, channels interleaved
     std::vector<float> linear;         // empty, or the same layout as pixels, in [0, 1]
 
     Image() = default;
     Image(int w, int h, int c)
-        : width(w), height(h), channels(c),
+        : width(w),
+          height(h),
+          channels(c),
           pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
                      static_cast<std::size_t>(c),
                  0) {}

@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <random>
 #include <cerrno>
 #include <climits>
 #include <csignal>
@@ -15,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <mutex>
+#include <random>
 
 namespace quadrix {
 
@@ -235,7 +235,8 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
         // file). tmpfile() is unlinked already: nothing to clean up at a signal.
         toStdout_ = true;
         file_ = std::tmpfile();
-        if (!file_) error_ = fmt::format("cannot write to standard output: {}", std::strerror(errno));
+        if (!file_)
+            error_ = fmt::format("cannot write to standard output: {}", std::strerror(errno));
         return;
     }
     bool exists = false;
@@ -330,8 +331,9 @@ std::string OutputFile::CopyToStdout() {
     const bool bad = std::ferror(file_) != 0 || std::fflush(stdout) != 0 || std::ferror(stdout);
     std::fclose(file_);
     file_ = nullptr;
-    if (bad) return error_ = fmt::format("cannot write to standard output: {}",
-                                         std::strerror(errno ? errno : EIO));
+    if (bad)
+        return error_ = fmt::format("cannot write to standard output: {}",
+                                    std::strerror(errno ? errno : EIO));
     committed_ = true;
     return {};
 }

@@ -45,8 +45,8 @@ bool IsSameFile(const std::string& a, const std::string& b);
 void NoteInputFile(int fd);
 
 // One output file in the making; "-" is standard output (the bytes are kept in an anonymous
-// temporary file and copied to stdout at Commit, so a failed write sends nothing). Not copyable; the destructor removes the temporary file unless
-// Commit() succeeded.
+// temporary file and copied to stdout at Commit, so a failed write sends nothing). Not copyable;
+// the destructor removes the temporary file unless Commit() succeeded.
 class OutputFile {
   public:
     explicit OutputFile(const std::string& path);

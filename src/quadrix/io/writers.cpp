@@ -1,5 +1,6 @@
 #include "quadrix/io/writers.h"
 
+#include <fmt/format.h>
 #include <sys/uio.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -15,8 +16,6 @@
 #include <fstream>
 #include <sstream>
 
-#include <fmt/format.h>
-
 #include "quadrix/io/png_encoder.h"
 #include "quadrix/math/srgb.h"
 
@@ -31,7 +30,8 @@ std::string Lower(std::string s) {
 
 std::string CheckImage(const Image& image) {
     if (image.width <= 0 || image.height <= 0 || (image.channels != 1 && image.channels != 3) ||
-        image.pixels.size() != static_cast<std::size_t>(image.width) * image.height * image.channels)
+        image.pixels.size() !=
+            static_cast<std::size_t>(image.width) * image.height * image.channels)
         return "internal error: malformed image";
     return {};
 }
@@ -222,8 +222,7 @@ std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
     if (auto e = CheckImage(image); !e.empty()) return e;
     if (!f.ok()) return f.error();
     if (kind == PnmKind::kFromPath) kind = PnmKindFromPath(f.path());
-    const int channels =
-        kind == PnmKind::kColor ? 3 : kind == PnmKind::kGray ? 1 : image.channels;
+    const int channels = kind == PnmKind::kColor ? 3 : kind == PnmKind::kGray ? 1 : image.channels;
     Image converted;
     if (channels != image.channels) converted = ConvertChannels(image, channels);
     const Image& source = channels != image.channels ? converted : image;
@@ -235,8 +234,8 @@ std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
     SrgbPairTable();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, encoded.size(), 1 << 18),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          EncodeSrgbRow(source.pixels.data() + r.begin(), encoded.data() + r.begin(),
-                                        r.size());
+                          EncodeSrgbRow(source.pixels.data() + r.begin(),
+                                        encoded.data() + r.begin(), r.size());
                       });
     if (std::fflush(f.stream()) != 0) return fmt::format("cannot write '{}'", f.path());
     const int fd = fileno(f.stream());

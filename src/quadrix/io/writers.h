@@ -25,13 +25,13 @@ bool ImageFormatFromPath(const std::string& path, ImageFormat& format);
 // are written sRGB-encoded (math/srgb.h). 8-bit output is encoded from the 8-bit linear pixels,
 // so that every front end (render, and uq's devices, which rebuild the picture from 8-bit spans)
 // writes the same bytes; this loses levels in the darks (linear 1/255 is sRGB 13/255). 16-bit
-// PNG is encoded from Image::linear when the shader filled it (no banding). PNG files carry the sRGB chunk (perceptual
-// intent) with the gAMA (1/2.2) and cHRM (BT.709 primaries, D65) chunks libpng would write with it
-// for readers that do not know sRGB (io/png_encoder.h writes the file), and a Software text
-// chunk "Quadrix <version>".
+// PNG is encoded from Image::linear when the shader filled it (no banding). PNG files carry the
+// sRGB chunk (perceptual intent) with the gAMA (1/2.2) and cHRM (BT.709 primaries, D65) chunks
+// libpng would write with it for readers that do not know sRGB (io/png_encoder.h writes the file),
+// and a Software text chunk "Quadrix <version>".
 struct PngOptions {
-    int bitDepth = 8;   // 8 or 16 bits per channel
-    bool srgb = true;   // false: the pixels as they are (8-bit), no colour chunks (bilevel output)
+    int bitDepth = 8;  // 8 or 16 bits per channel
+    bool srgb = true;  // false: the pixels as they are (8-bit), no colour chunks (bilevel output)
 };
 
 // Returns an empty string on success, else a one-line error message (no file left behind).

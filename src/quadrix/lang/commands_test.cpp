@@ -14,7 +14,7 @@ using testing::Parse;
 using testing::Parsed;
 
 class Recorder : public CommandHandler {
-public:
+  public:
     bool OnCommand(const Command& command, scene::Scene& scene, Diagnostics&) override {
         commands.push_back(command);
         lightsSeen.push_back(scene.lights.size());

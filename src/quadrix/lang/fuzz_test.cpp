@@ -28,15 +28,29 @@ const char* const kSeeds[] = {
     "{ comment { nested } } plane { inside } c <1 2 3 4>; \"string\" ;",
 };
 
-const char* const kTokens[] = {
-    "plane", "quadric", "body",  "csg",  "definition", "enddef",     "instance", "array", "light",
-    "view",  "read",    "redef", "show", "quit",       "device",     "def",      "end",   "a",
-    "(",     ")",       "<",     ">",    "!",          "|",          "&",        "-",     ";",
-    "{",     "}",       "\"",    "=t",   "=0",         "=c",         "=tx",      "=ry",   "=sa",
-    "=vzy",  "=p",      "=r",    "=",    "vrp",        "cop",        "dop",      "whh",   "fbp",
-    "1e308", "1e999",   "-0",    ".5",   "0",          "1e-320",     "nan",      "inf",   "#",
-    "_x",    "tube",    "x",     "\n",   "read part;", "read loop;", "((((((((", "=finish",
-    "=alpha", "=at",    "=aim",  "=cone", "background", "steelblue", "solid sphere s =r 1"};
+const char* const kTokens[] = {"plane",      "quadric",    "body",
+                               "csg",        "definition", "enddef",
+                               "instance",   "array",      "light",
+                               "view",       "read",       "redef",
+                               "show",       "quit",       "device",
+                               "def",        "end",        "a",
+                               "(",          ")",          "<",
+                               ">",          "!",          "|",
+                               "&",          "-",          ";",
+                               "{",          "}",          "\"",
+                               "=t",         "=0",         "=c",
+                               "=tx",        "=ry",        "=sa",
+                               "=vzy",       "=p",         "=r",
+                               "=",          "vrp",        "cop",
+                               "dop",        "whh",        "fbp",
+                               "1e308",      "1e999",      "-0",
+                               ".5",         "0",          "1e-320",
+                               "nan",        "inf",        "#",
+                               "_x",         "tube",       "x",
+                               "\n",         "read part;", "read loop;",
+                               "((((((((",   "=finish",    "=alpha",
+                               "=at",        "=aim",       "=cone",
+                               "background", "steelblue",  "solid sphere s =r 1"};
 
 std::string MutateOnce(std::string s, std::mt19937& rng) {
     auto pick = [&](std::size_t n) {
@@ -70,7 +84,7 @@ std::string MutateOnce(std::string s, std::mt19937& rng) {
 }
 
 class CountingHandler : public CommandHandler {
-public:
+  public:
     bool OnCommand(const Command&, scene::Scene&, Diagnostics&) override {
         return ++count % 7 != 0;
     }

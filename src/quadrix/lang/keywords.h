@@ -27,9 +27,9 @@ enum class Keyword {
     kShow,
     kQuit,
     kCsg,
-    kSolid,  // solids by dimensions (extension, stmt_solids.cpp)
-    kPatch,     // quadric patch (extension, stmt_patch.cpp)
-    kBezier,    // freeform surfaces (extension, stmt_freeform.cpp)
+    kSolid,   // solids by dimensions (extension, stmt_solids.cpp)
+    kPatch,   // quadric patch (extension, stmt_patch.cpp)
+    kBezier,  // freeform surfaces (extension, stmt_freeform.cpp)
     kBspline,
     kPatches,
     kBackground,  // background color or gradient (extension, stmt_background.cpp)

@@ -29,7 +29,7 @@
 namespace quadrix::lang {
 
 class Lexer {
-public:
+  public:
     Lexer(Source& source, Diagnostics& diags);
 
     // The next token; kEnd forever once the input is exhausted.
@@ -45,7 +45,7 @@ public:
     // The source line of `loc` for a diagnostic (see Source::LineForDiagnostic).
     std::string LineOf(const SourceLoc& loc) const;
 
-private:
+  private:
     int PeekChar(std::size_t ahead = 0);  // -1 at end of input
     void Advance();
     SourceLoc Here() const;

@@ -33,7 +33,7 @@ inline constexpr const char* kInput = "input";    // well-formed statements that
 inline constexpr const char* kParser = "parser";  // files, nesting limits, too many errors
 
 class Parser {
-public:
+  public:
     Parser(ReaderState& state, Source& source);
 
     // Reads statements to the end of the source, a `quit`, or until reading is aborted.
@@ -107,7 +107,7 @@ public:
     bool ParseAppearance(const Token& option, std::optional<scene::Color>& color,
                          scene::Finish& finish);
 
-private:
+  private:
     // Number expressions (number_expression.cpp).
     std::optional<double> ClockValue();
     std::optional<double> Parenthesised(std::string_view what, int depth);

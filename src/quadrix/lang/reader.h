@@ -29,16 +29,16 @@ namespace quadrix::lang {
 struct Command {
     enum class Kind { kRedefLight, kRedefView, kDevice, kShow, kQuit, kNakedRead };
     Kind kind = Kind::kShow;
-    std::string id;                     // light/view id for redef and show
-    bool fast = false;                  // show ... fast
-    std::string device;                 // device name
-    bool keep = false, nokeep = false;  // device options
+    std::string id;                           // light/view id for redef and show
+    bool fast = false;                        // show ... fast
+    std::string device;                       // device name
+    bool keep = false, nokeep = false;        // device options
     double xsizeInches = 0, ysizeInches = 0;  // device options, 0 = not given
     SourceLoc loc;
 };
 
 class CommandHandler {
-public:
+  public:
     virtual ~CommandHandler() = default;
     // Returns false to stop reading the current input (quit).
     virtual bool OnCommand(const Command& command, scene::Scene& scene, Diagnostics& diags) = 0;
@@ -52,7 +52,7 @@ struct ReadOptions {
 };
 
 class Reader {
-public:
+  public:
     Reader(scene::Scene& scene, Diagnostics& diags, ReadOptions options = {});
     ~Reader();
 
@@ -64,7 +64,7 @@ public:
     // scene then depends on ReadOptions::clock, and an animation reads it again per frame.
     bool UsesClock() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -35,7 +35,7 @@ struct IncludeFrame {
 };
 
 class ReaderState {
-public:
+  public:
     ReaderState(scene::Scene& scene, Diagnostics& diags, ReadOptions options);
 
     scene::Scene& scene;
@@ -95,7 +95,7 @@ public:
     static constexpr long long kMaxFilesRead = 10'000;
     static constexpr long long kMaxBytesRead = 1LL << 30;  // 1 GiB (each file: 256 MiB)
 
-private:
+  private:
     ScopeIndex& CurrentIndex();
     const ScopeIndex& CurrentIndex() const;
     bool Taken(const std::string& id, Namespace ns) const;

@@ -16,7 +16,7 @@
 namespace quadrix::lang {
 
 class Source {
-public:
+  public:
     // Appends the next line (including its '\n' when there is one) to `text`; false at end of
     // input.
     using LineReader = std::function<bool(std::string& text)>;
@@ -46,7 +46,7 @@ public:
 
     static constexpr int kMaxShownColumn = 1000;
 
-private:
+  private:
     void IndexLines(std::size_t from);
 
     std::shared_ptr<const std::string> name_;

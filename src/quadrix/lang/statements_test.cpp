@@ -40,7 +40,8 @@ TEST(LangStatements, MaterialsLightsAndBackground) {
     Parsed r = Parse(
         "plane ha <1 0 0 0>; body bb (ha) =c SteelBlue =finish .5 .25 12 =alpha .75;\n"
         "csg c (bb) =alpha .5;\n"
-        "def d; plane hd <1 0 0 0>; body (hd) =c 1 0 0; end; array row (d) =finish 1 0 3 2 =tx 1 =alpha .1;\n"
+        "def d; plane hd <1 0 0 0>; body (hd) =c 1 0 0; end; array row (d) =finish 1 0 3 2 =tx 1 "
+        "=alpha .1;\n"
         "solid sphere s =r 1 =c gold =finish 1 .5 20;\n"
         "light bulb .5 =at 1 2 3 =c 1 .5 0; light spot .75 =at 0 5 0 =aim 0 0 0 =cone 15;\n"
         "light sp2 1 =at 0 5 0 =aim 0 0 0 =cone 15 25;\n"

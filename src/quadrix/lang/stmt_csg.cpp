@@ -20,7 +20,7 @@ constexpr int kMaxNesting = 256;
 constexpr int kInvalid = -1;  // a subtree with an unknown operand (reported)
 
 class CsgBuilder {
-public:
+  public:
     CsgBuilder(Parser& p, scene::Csg& csg) : p_(p), csg_(csg) {}
 
     // Each returns the node index, kInvalid for a subtree with a reported meaning error, or
@@ -57,7 +57,7 @@ public:
         return inner;
     }
 
-private:
+  private:
     std::optional<int> Term() {
         auto left = Factor();
         while (left && (p_.PeekIs(TokenKind::kAmp) || p_.PeekIs(TokenKind::kMinus))) {

@@ -39,8 +39,8 @@ std::optional<int> ExpectCount(Parser& p, std::string_view what, int lo, int hi)
     auto v = p.ExpectNumber(what);
     if (!v) return std::nullopt;
     if (!(*v >= lo && *v <= hi) || std::floor(*v) != *v) {
-        p.Error(at, fmt::format("{} must be a whole number from {} to {}; got {}", what, lo, hi,
-                                *v));
+        p.Error(at,
+                fmt::format("{} must be a whole number from {} to {}; got {}", what, lo, hi, *v));
         return std::nullopt;
     }
     return static_cast<int>(*v);
@@ -122,7 +122,8 @@ bool ParseTail(Parser& p, std::string_view statement, std::size_t points, bool a
             if (!p.ParseAppearance(c, tail.color, tail.finish)) return false;
         } else {
             p.Error(option.loc,
-                    fmt::format("unknown option {} for a {} (expected {}transforms, =c r g b, =finish or =alpha)",
+                    fmt::format("unknown option {} for a {} (expected {}transforms, =c r g b, "
+                                "=finish or =alpha)",
                                 Describe(option), statement, allowWeights ? "=r <weights>, " : ""),
                     kSyntax);
             return false;
@@ -186,9 +187,9 @@ bool ParseBezier(Parser& p, const Token& keyword) {
     if (!dv) return false;
     const std::size_t points = static_cast<std::size_t>((*du + 1) * (*dv + 1));
     std::vector<double> xyz;
-    if (!ExpectList(p, fmt::format("control points ({} × {} points of x y z, u fastest)", *du + 1,
-                                   *dv + 1),
-                    3 * points, xyz))
+    if (!ExpectList(
+            p, fmt::format("control points ({} × {} points of x y z, u fastest)", *du + 1, *dv + 1),
+            3 * points, xyz))
         return false;
     Tail tail;
     if (!ParseTail(p, "bezier", points, true, tail)) return false;
@@ -223,8 +224,7 @@ bool ParseBspline(Parser& p, const Token& keyword) {
     const SourceLoc kvLoc = p.Peek().loc;
     if (!ExpectList(p, "v knots", static_cast<std::size_t>(*nv + *dv + 1), kv)) return false;
     const std::size_t points = static_cast<std::size_t>(*nu) * static_cast<std::size_t>(*nv);
-    if (!ExpectList(p, fmt::format("control points ({} × {} points of x y z, u fastest)", *nu,
-                                   *nv),
+    if (!ExpectList(p, fmt::format("control points ({} × {} points of x y z, u fastest)", *nu, *nv),
                     3 * points, xyz))
         return false;
     Tail tail;
@@ -247,14 +247,19 @@ bool ParsePatches(Parser& p, const Token& keyword) {
     import::FreeformFormat format = import::FreeformFormat::kAuto;
     if (p.PeekIs(TokenKind::kId)) {
         const Token f = p.Take();
-        if (f.text == "newell") format = import::FreeformFormat::kNewell;
-        else if (f.text == "bpt") format = import::FreeformFormat::kBpt;
-        else if (f.text == "geomview") format = import::FreeformFormat::kGeomview;
-        else if (f.text == "obj") format = import::FreeformFormat::kObj;
+        if (f.text == "newell")
+            format = import::FreeformFormat::kNewell;
+        else if (f.text == "bpt")
+            format = import::FreeformFormat::kBpt;
+        else if (f.text == "geomview")
+            format = import::FreeformFormat::kGeomview;
+        else if (f.text == "obj")
+            format = import::FreeformFormat::kObj;
         else {
-            p.Error(f.loc, fmt::format("unknown freeform format '{}' (expected newell, bpt, "
-                                       "geomview or obj)",
-                                       f.text),
+            p.Error(f.loc,
+                    fmt::format("unknown freeform format '{}' (expected newell, bpt, "
+                                "geomview or obj)",
+                                f.text),
                     kSyntax);
             return false;
         }

@@ -65,10 +65,10 @@ bool ParsePatch(Parser& p, const Token& keyword) {
     while (p.PeekIs(TokenKind::kOption)) {
         Token option = p.Take();
         if (option.text != "c") {
-            p.Error(option.loc,
-                    fmt::format("unknown option {} for a patch (expected =c r g b)",
-                                Describe(option)),
-                    kSyntax);
+            p.Error(
+                option.loc,
+                fmt::format("unknown option {} for a patch (expected =c r g b)", Describe(option)),
+                kSyntax);
             return false;
         }
         if (color) p.Warning(option.loc, "color given twice; the last one is used");
@@ -86,8 +86,8 @@ bool ParsePatch(Parser& p, const Token& keyword) {
         const scene::HalfSpace& h = scope.halfSpaces[static_cast<std::size_t>(item.halfSpace)];
         if (h.kind == scene::HalfSpace::Kind::kQuadric) {
             if (quadric >= 0) {
-                p.Error(item.loc, fmt::format("a patch has one quadric; '{}' is a second one",
-                                              h.id));
+                p.Error(item.loc,
+                        fmt::format("a patch has one quadric; '{}' is a second one", h.id));
                 return true;
             }
             quadric = static_cast<int>(&item - items.data());
@@ -122,7 +122,8 @@ bool ParsePatch(Parser& p, const Token& keyword) {
     body.literals.push_back({q.halfSpace, q.complemented});
     for (const PatchItem& item : planes) {
         // Copy before AddHalfSpace: it may reallocate the scope's vector.
-        scene::HalfSpace copy = s.CurrentScope().halfSpaces[static_cast<std::size_t>(item.halfSpace)];
+        scene::HalfSpace copy =
+            s.CurrentScope().halfSpaces[static_cast<std::size_t>(item.halfSpace)];
         copy.id = fmt::format("{}~{}", id, copy.id);
         copy.transparent = true;
         copy.loc = item.loc;

@@ -49,7 +49,7 @@ inline Parsed Parse(const std::string& text, ReadOptions options = {},
 
 // A fresh temporary directory, removed at the end of the test.
 class TempDir {
-public:
+  public:
     TempDir() {
         auto base = std::filesystem::temp_directory_path();
         for (int i = 0;; ++i) {
@@ -70,7 +70,7 @@ public:
         return p.string();
     }
 
-private:
+  private:
     std::filesystem::path path_;
 };
 

@@ -60,7 +60,6 @@ void IntervalList::Grow(std::size_t minCapacity) {
     capacity_ = cap;
 }
 
-
 bool IntervalList::Contains(double t) const {
     // Lists are short; a linear scan beats a binary search in practice.
     for (std::size_t i = 0; i < size_; ++i) {

@@ -76,7 +76,8 @@ class IntervalList {
     // with lo >= hi (a point or a NaN) is dropped, and one that touches or overlaps the last
     // interval (lo <= back().hi) is merged into it. Precondition: lo >= back().lo.
     void Append(double lo, std::int32_t loId, double hi, std::int32_t hiId) {  // inline: hot
-        if (!(lo < hi)) return;  // a point, an inverted interval or a NaN: not part of a regular set
+        if (!(lo < hi))
+            return;  // a point, an inverted interval or a NaN: not part of a regular set
         if (size_ > 0 && lo <= data_[size_ - 1].hi) {
             Interval& last = data_[size_ - 1];
             if (hi > last.hi) {
@@ -166,6 +167,5 @@ inline void AppendDifferenceOfOne(const Interval& a, const Interval& b, Interval
     out.Append(a.lo, a.loId, b.lo, b.loId);  // b starts inside a (or where a ends)
     if (b.hi < a.hi) out.Append(b.hi, b.hiId, a.hi, a.hiId);
 }
-
 
 }  // namespace quadrix

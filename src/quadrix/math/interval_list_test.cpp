@@ -251,7 +251,6 @@ TEST(MathIntervalList, UnionAndIntersectionFoldsAreAssociativeIdsIncluded) {
     }
 }
 
-
 // The tie rules of the file comment as an independent oracle: every endpoint of both operands
 // becomes an event, the events are sorted by (t, starts before ends, a before b, list order), and
 // one pass emits the pieces where op holds, naming each end by the event that opened or closed

@@ -1,9 +1,9 @@
 #include "quadrix/math/mat4.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <utility>
-
-#include <fmt/format.h>
 
 namespace quadrix {
 
@@ -146,10 +146,22 @@ void SinCosDegrees(double degrees, double& s, double& c) {
         rc = std::cos(rad);
     }
     switch (quadrant & 3) {
-        case 0: s = rs; c = rc; break;
-        case 1: s = rc; c = -rs; break;
-        case 2: s = -rs; c = -rc; break;
-        default: s = -rc; c = rs; break;
+        case 0:
+            s = rs;
+            c = rc;
+            break;
+        case 1:
+            s = rc;
+            c = -rs;
+            break;
+        case 2:
+            s = -rs;
+            c = -rc;
+            break;
+        default:
+            s = -rc;
+            c = rs;
+            break;
     }
     if (degrees < 0) s = -s;
 }

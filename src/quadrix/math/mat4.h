@@ -2,7 +2,8 @@
 //
 // Convention (DESIGN.md): points are column vectors and map as x' = M x. Planes (covectors) map as
 // p' = M^-T p and quadrics as Q' = M^-T Q M^-1. A Transform keeps M and M^-1 together so that the
-// inverse is composed, never recomputed (as the UniQuadrix Flattener stores inverses, seed 001 §3.3).
+// inverse is composed, never recomputed (as the UniQuadrix Flattener stores inverses, seed 001
+// §3.3).
 #pragma once
 
 #include <array>
@@ -42,7 +43,7 @@ struct Mat4 {
 
 // A transform with its inverse. Factories build both exactly, so no inversion is ever needed.
 class Transform {
-public:
+  public:
     Transform() : m_(Mat4::Identity()), inv_(Mat4::Identity()) {}
     Transform(const Mat4& m, const Mat4& inv) : m_(m), inv_(inv) {}
     // nullopt when m is singular.
@@ -70,7 +71,7 @@ public:
     Vec3 MapPoint(const Vec3& p) const { return m_.MapPoint(p); }
     Vec3 MapVector(const Vec3& v) const { return m_.MapVector(v); }
 
-private:
+  private:
     Mat4 m_;
     Mat4 inv_;
 };

@@ -20,7 +20,8 @@ bool Plane::AllFinite() const {
 
 Mat4 Quadric::Matrix() const {
     Mat4 q;
-    q.m = {{{A(), D(), F(), G()}, {D(), B(), E(), H()}, {F(), E(), C(), J()}, {G(), H(), J(), K()}}};
+    q.m = {
+        {{A(), D(), F(), G()}, {D(), B(), E(), H()}, {F(), E(), C(), J()}, {G(), H(), J(), K()}}};
     return q;
 }
 
@@ -40,8 +41,9 @@ Quadric Quadric::FromPlaneProduct(const Plane& p1, const Plane& p2) {
 
 double Quadric::Evaluate(const Vec3& p) const {
     const double x = p.x, y = p.y, z = p.z;
-    return A() * x * x + B() * y * y + C() * z * z + 2.0 * (D() * x * y + E() * y * z + F() * x * z) +
-           2.0 * (G() * x + H() * y + J() * z) + K();
+    return A() * x * x + B() * y * y + C() * z * z +
+           2.0 * (D() * x * y + E() * y * z + F() * x * z) + 2.0 * (G() * x + H() * y + J() * z) +
+           K();
 }
 
 Vec4 Quadric::HomogeneousGradient(const Vec3& p) const {

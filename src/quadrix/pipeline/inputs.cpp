@@ -10,9 +10,9 @@
 
 #include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/freeform/freeform_reader.h"
+#include "quadrix/import/model_space.h"
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/io/bounded_read.h"
-#include "quadrix/import/model_space.h"
 #include "quadrix/lang/reader.h"
 
 namespace quadrix {
@@ -46,7 +46,8 @@ InputFormat DetectInputFormat(const std::string& path, std::string_view text) {
         if (EndsWith(p, ext)) return InputFormat::kOpenScad;
     for (const char* ext : {".obj", ".bpt", ".bez", ".bbp", ".teaset"})
         if (EndsWith(p, ext)) return InputFormat::kFreeform;
-    if (import::brlcad::DetectFormat(text) == import::brlcad::TextFormat::kV4 || import::brlcad::IsV5Binary(text))
+    if (import::brlcad::DetectFormat(text) == import::brlcad::TextFormat::kV4 ||
+        import::brlcad::IsV5Binary(text))
         return InputFormat::kBrlcad;
     return InputFormat::kUniQuadrix;
 }
@@ -96,7 +97,8 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
                 // Freeform models (docs/isocurve.md): every surface of the file, drawn by
                 // adaptive isocurves. OBJ is Y-up like Quadrix; the tea-set formats (BPT,
                 // Geomview BEZ/BBP, Newell) are Z-up like BRL-CAD and get the same axis swap.
-                auto model = import::ReadFreeformText(text, path, import::FreeformFormat::kAuto, diags);
+                auto model =
+                    import::ReadFreeformText(text, path, import::FreeformFormat::kAuto, diags);
                 if (!model) break;
                 const bool zUp = model->format != import::FreeformFormat::kObj;
                 const std::string stem = std::filesystem::path(path).stem().string();

@@ -67,7 +67,8 @@ FlatScene SubsetOfSolids(const FlatScene& flat, const std::vector<int>& solids) 
 bool SameView(const ViewRequest& a, const ViewRequest& b) {
     return a.width == b.width && a.height == b.height && a.viewName == b.viewName &&
            a.azimuth == b.azimuth && a.elevation == b.elevation && a.viewsize == b.viewsize &&
-           SameSceneView(a.view, b.view) && SameRtView(a.rtView, b.rtView) && SameLights(a.lights, b.lights);
+           SameSceneView(a.view, b.view) && SameRtView(a.rtView, b.rtView) &&
+           SameLights(a.lights, b.lights);
 }
 
 std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
@@ -79,8 +80,7 @@ std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
 }
 
 struct RenderContext::Arena {
-    explicit Arena(int threads)
-        : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+    explicit Arena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
     tbb::task_arena arena;
 };
 
@@ -131,9 +131,9 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
         std::erase_if(scene_.views, [](const scene::View& v) { return v.id == "rt"; });
         scene::View made =
             view.rtView ? import::MakeRtView(*view.rtView, view.width, view.height)
-                        : import::MakeAzElView(view.azimuth.value_or(35), view.elevation.value_or(25),
-                                               inputs_.importedBounds, view.viewsize, view.width,
-                                               view.height);
+                        : import::MakeAzElView(view.azimuth.value_or(35),
+                                               view.elevation.value_or(25), inputs_.importedBounds,
+                                               view.viewsize, view.width, view.height);
         import::AddRtLights(scene_, made);
         scene_.views.push_back(made);
         viewName = made.id;
@@ -224,8 +224,8 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     RenderOptions ro;
     ro.engineOptions = request.options;
     const EngineCapabilities caps = info->capabilities;
-    const bool drawsSomething = (caps.solids && !flat_.solids.empty()) ||
-                                (caps.freeforms && !flat_.freeforms.empty());
+    const bool drawsSomething =
+        (caps.solids && !flat_.solids.empty()) || (caps.freeforms && !flat_.freeforms.empty());
 
     arena_->arena.execute([&] {
         if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))

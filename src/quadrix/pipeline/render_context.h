@@ -33,8 +33,8 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/frame/frame.h"
-#include "quadrix/io/image.h"
 #include "quadrix/import/rt_view.h"
+#include "quadrix/io/image.h"
 #include "quadrix/pipeline/inputs.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
@@ -90,11 +90,11 @@ struct EngineRequest {
 // How the picture was made: the engine's own statistics and what composition added.
 struct RenderReport {
     std::string engine;
-    RenderStats stats;                 // the requested engine's
+    RenderStats stats;                      // the requested engine's
     std::vector<UndrawnSolid> byReference;  // solids drawn by raycast instead, with the reason
-    int freeformsByIsocurve = 0;       // freeform surfaces drawn by the isocurve drawer
-    std::string isocurveSummary;       // one line about them (curves, tolerance)
-    double seconds = 0;                // whole stage, composition included
+    int freeformsByIsocurve = 0;            // freeform surfaces drawn by the isocurve drawer
+    std::string isocurveSummary;            // one line about them (curves, tolerance)
+    double seconds = 0;                     // whole stage, composition included
     // Lines for the user ("note: ..."): printed without --stats, like warnings.
     std::vector<std::string> notes;
     // Counters of the composition (solids_by_engine, solids_by_raycast, freeforms_by_isocurve)

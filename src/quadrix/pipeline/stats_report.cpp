@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 namespace quadrix {
 
@@ -58,8 +57,8 @@ std::string FormatStatsJson(const StatsInput& in) {
     j["imports"] = imports;
     json byRef = json::array();
     for (const UndrawnSolid& u : r.byReference)
-        byRef.push_back({{"solid", flat.solids[static_cast<std::size_t>(u.solid)].name},
-                         {"reason", u.reason}});
+        byRef.push_back(
+            {{"solid", flat.solids[static_cast<std::size_t>(u.solid)].name}, {"reason", u.reason}});
     j["composition"] = {{"solids_by_raycast", byRef},
                         {"freeforms_by_isocurve", r.freeformsByIsocurve}};
     json counters = json::object();

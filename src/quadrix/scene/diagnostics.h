@@ -20,10 +20,10 @@ namespace quadrix {
 struct Diagnostic {
     enum class Severity { kNote, kWarning, kError };
     Severity severity = Severity::kError;
-    SourceLoc loc;           // line 0 = no position (e.g. a command-line problem)
+    SourceLoc loc;  // line 0 = no position (e.g. a command-line problem)
     std::string message;
     std::string sourceLine;  // the text of the offending line, empty when unknown
-    std::string kind;        // category for summaries: "syntax", "input", "parser", "command line", ...
+    std::string kind;  // category for summaries: "syntax", "input", "parser", "command line", ...
 
     // "file:line:column: error: message" (one line), optionally followed by the source line and a
     // caret line when withSource is true.
@@ -31,7 +31,7 @@ struct Diagnostic {
 };
 
 class Diagnostics {
-public:
+  public:
     void Add(Diagnostic d);
     void Error(const SourceLoc& loc, std::string message, std::string sourceLine = {},
                std::string kind = "input");
@@ -51,7 +51,7 @@ public:
     // Errors beyond this many are counted but not stored (a runaway file cannot flood memory).
     static constexpr int kMaxStored = 100;
 
-private:
+  private:
     std::vector<Diagnostic> items_;
     int errorCount_ = 0;
     int warningCount_ = 0;

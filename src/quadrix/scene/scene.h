@@ -58,8 +58,8 @@ struct HalfSpace {
     enum class Kind { kPlane, kQuadric };
     std::string id;
     Kind kind = Kind::kPlane;
-    Plane plane;        // when kind == kPlane
-    Quadric quadric;    // when kind == kQuadric
+    Plane plane;               // when kind == kPlane
+    Quadric quadric;           // when kind == kQuadric
     bool transparent = false;  // =t: bounds others but is not drawn
     SourceLoc loc;
 };
@@ -109,9 +109,9 @@ struct SolidRef {
 // A CSG expression tree stored as nodes; node 0 is not special, Csg::root is.
 struct CsgNode {
     bool isLeaf = true;
-    SolidRef ref;                // when isLeaf
-    CsgOp op = CsgOp::kUnion;    // when !isLeaf
-    int left = -1, right = -1;   // when !isLeaf: indices into Csg::nodes
+    SolidRef ref;               // when isLeaf
+    CsgOp op = CsgOp::kUnion;   // when !isLeaf
+    int left = -1, right = -1;  // when !isLeaf: indices into Csg::nodes
     SourceLoc loc;
 };
 
@@ -163,13 +163,13 @@ struct Light {
     std::string id;
     Kind kind = Kind::kAmbient;
     double intensity = 0;
-    Vec3 direction;  // kParallel: toward the light
-    Vec3 position;   // kPoint, kSpot: world space
-    Vec3 aim;        // kSpot: the point the spot is aimed at
+    Vec3 direction;                                // kParallel: toward the light
+    Vec3 position;                                 // kPoint, kSpot: world space
+    Vec3 aim;                                      // kSpot: the point the spot is aimed at
     double coneDegrees = 30, falloffDegrees = 40;  // kSpot: half-angles, cone <= falloff < 90
-    Color color;     // the light's color (white unless given)
-    bool isDefault = false;  // the automatic `light default 1 0 0 -1`
-    bool isRig = false;      // one of the default rig's lights (no light declared)
+    Color color;                                   // the light's color (white unless given)
+    bool isDefault = false;                        // the automatic `light default 1 0 0 -1`
+    bool isRig = false;  // one of the default rig's lights (no light declared)
     SourceLoc loc;
 };
 

@@ -30,14 +30,14 @@ namespace quadrix::detail {
                                            ::fmt::format("" __VA_OPT__(, ) __VA_ARGS__)); \
     } while (0)
 
-#define QUADRIX_CHECK_OP(a, op, b)                                                             \
-    do {                                                                                       \
-        const auto& quadrixCheckA_ = (a);                                                      \
-        const auto& quadrixCheckB_ = (b);                                                      \
-        if (!(quadrixCheckA_ op quadrixCheckB_)) [[unlikely]]                                  \
-            ::quadrix::detail::CheckFailed(                                                    \
-                __FILE__, __LINE__, #a " " #op " " #b,                                         \
-                ::fmt::format("{} vs {}", quadrixCheckA_, quadrixCheckB_));                    \
+#define QUADRIX_CHECK_OP(a, op, b)                                          \
+    do {                                                                    \
+        const auto& quadrixCheckA_ = (a);                                   \
+        const auto& quadrixCheckB_ = (b);                                   \
+        if (!(quadrixCheckA_ op quadrixCheckB_)) [[unlikely]]               \
+            ::quadrix::detail::CheckFailed(                                 \
+                __FILE__, __LINE__, #a " " #op " " #b,                      \
+                ::fmt::format("{} vs {}", quadrixCheckA_, quadrixCheckB_)); \
     } while (0)
 
 #define QUADRIX_CHECK_EQ(a, b) QUADRIX_CHECK_OP(a, ==, b)

@@ -157,7 +157,8 @@ const OptionSchema& IsocurveSchema() {
                   "isocurves of constant u, constant v, or chosen per surface"),
         O::Int("min-level", "2", 0, 20, "subdivision levels always made"),
         O::Int("max-level", "24", 1, 50, "subdivision levels at most"),
-        O::Int("base", "1", 1, 4096, "base intervals: 1 = Algorithm 1, auto = from the spacing, or N")
+        O::Int("base", "1", 1, 4096,
+               "base intervals: 1 = Algorithm 1, auto = from the spacing, or N")
             .AllowingAuto(),
         O::Bool("uniform", "off", "uniformly spaced curves instead of adaptive ones"),
         O::Int("progressive", "1", 0, 8, "coarse levels drawn before the final one"),

@@ -200,8 +200,7 @@ class PatchEngine final : public Engine {
     RenderStats Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) override;
 };
 
-RenderStats PatchEngine::Draw(const FlatScene& scene, const EngineOptions& options,
-                              Frame& frame) {
+RenderStats PatchEngine::Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) {
     const auto t0 = std::chrono::steady_clock::now();
     RenderStats stats;
     frame.Reset(scene.width, scene.height);
@@ -217,8 +216,9 @@ RenderStats PatchEngine::Draw(const FlatScene& scene, const EngineOptions& optio
         const FlatCsgNode& node = scene.nodes[static_cast<std::size_t>(solid.root)];
         if (!node.isLeaf) {
             ++csgSkipped;
-            stats.undrawn.push_back({static_cast<int>(s), "a CSG solid (the patch processor "
-                                                          "draws one quadric within four planes)"});
+            stats.undrawn.push_back({static_cast<int>(s),
+                                     "a CSG solid (the patch processor "
+                                     "draws one quadric within four planes)"});
             continue;
         }
         if (node.body < 0 || node.body >= static_cast<int>(scene.bodies.size())) continue;

@@ -131,10 +131,10 @@ class Compiler {
                 most = std::max(most, n);
             }
             if (most > options_.maxLiterals) {
-                stats_.errors.push_back(who + " not drawn: a product of " + std::to_string(most) +
-                                        " literals passes max-literals = " +
-                                        std::to_string(options_.maxLiterals) +
-                                        " (paring costs ~literals^2 per product)");
+                stats_.errors.push_back(
+                    who + " not drawn: a product of " + std::to_string(most) +
+                    " literals passes max-literals = " + std::to_string(options_.maxLiterals) +
+                    " (paring costs ~literals^2 per product)");
                 stats_.undrawnSolids.push_back(static_cast<int>(s));
                 continue;
             }

@@ -94,8 +94,7 @@ class RaycastEngine final : public Engine {
     const OptionSchema& Schema() const override { return RaycastSchema(); }
 
   protected:
-    RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
-                     Frame& frame) override {
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) override {
         auto start = std::chrono::steady_clock::now();
         int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
         frame.ResizeForOverwrite(width, height);
@@ -129,7 +128,8 @@ class RaycastEngine final : public Engine {
                                       int x0 = bx0 + (k % kTilesX) * kTileW;
                                       int y0 = by0 + (k / kTilesX) * kTileH;
                                       if (x0 >= bx1 || y0 >= by1) continue;
-                                      RenderTile(scene, tables, block, x0, y0, std::min(x0 + kTileW, bx1),
+                                      RenderTile(scene, tables, block, x0, y0,
+                                                 std::min(x0 + kTileW, bx1),
                                                  std::min(y0 + kTileH, by1), w, frame);
                                   }
                               });

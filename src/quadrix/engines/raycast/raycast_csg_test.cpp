@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/flatten/test_scene_builder.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/math/quadratic.h"
 
 namespace quadrix {

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/engine_test_util.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/flatten/test_scene_builder.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::raycast {
@@ -64,8 +64,9 @@ TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
         for (const char* batch : {"on", "off"})
             for (const char* cull : {"on", "off"})
                 for (const char* kern : {"on", "off"})
-                    EXPECT_EQ(FirstBitDifference(Render(scene, batch, cull, nullptr, kern), reference),
-                              "")
+                    EXPECT_EQ(
+                        FirstBitDifference(Render(scene, batch, cull, nullptr, kern), reference),
+                        "")
                         << text << " batch=" << batch << " tile-cull=" << cull
                         << " kernel=" << kern;
     }

@@ -106,7 +106,8 @@ bool NearBeyondFar(const std::vector<PlaneBound>& bounds) {
         for (std::ptrdiff_t i : c.nearAt)
             for (std::ptrdiff_t j : c.farAt)
                 if (i >= 0 && j >= 0 &&
-                    Beyond(bounds[static_cast<std::size_t>(i)], bounds[static_cast<std::size_t>(j)]))
+                    Beyond(bounds[static_cast<std::size_t>(i)],
+                           bounds[static_cast<std::size_t>(j)]))
                     return true;
         return false;
     }
@@ -193,8 +194,7 @@ inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, c
     // an empty set, and ∅ is an exact identity of every operator).
     const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds_));
     if (empty) return true;
-    const Candidates c =
-        bounds_.size() > kExactPairs ? TightestAtCorners(bounds_) : Candidates{};
+    const Candidates c = bounds_.size() > kExactPairs ? TightestAtCorners(bounds_) : Candidates{};
     for (std::size_t i = 0; i < bounds_.size(); ++i)
         if (!Dominated(bounds_, i, c)) out.push_back(bounds_[i].tag);
     return false;

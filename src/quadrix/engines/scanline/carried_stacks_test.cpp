@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/frame/compare.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/engine_test_util.h"
-#include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/engines/scanline/resolver.h"
+#include "quadrix/flatten/test_scene_builder.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix {
@@ -242,9 +242,9 @@ TEST(ScanlineCarriedStacks, CrossingOutlinesSwapStacksExactly) {
         Frame got = RenderWith("scanline", b.scene(), &stats, {{"verify", "on"}});
         const std::string what = "random scene " + std::to_string(scene);
         ExpectRaycastFrame(RenderWith("raycast", b.scene()), got, 2, what);
-        EXPECT_EQ(
-            FirstBitDifference(RenderWith("scanline", b.scene(), nullptr, {{"render", "exact"}}), got),
-            "")
+        EXPECT_EQ(FirstBitDifference(
+                      RenderWith("scanline", b.scene(), nullptr, {{"render", "exact"}}), got),
+                  "")
             << what;
         EXPECT_EQ(Counter(stats, "face_stack_corrections"), 0) << what;
         EXPECT_EQ(Counter(stats, "face_stack_repairs"), 0) << what;

@@ -33,9 +33,8 @@ inline void CsgSpans::OfferPixel(int i, double y, eval::RayEvaluator::Hit& hit, 
     for (const CsgSpanUnit& cu : units_) {
         eval::RayEvaluator::Hit h;
         if (!CsgPixel(cu, i, y, h)) continue;
-        if (h.t < hit.t ||
-            (h.t == hit.t && ctx_.UnitWinsTie(cu.unit, h.halfSpace, unit, hit.halfSpace, i + 0.5, y,
-                                              h.t))) {
+        if (h.t < hit.t || (h.t == hit.t && ctx_.UnitWinsTie(cu.unit, h.halfSpace, unit,
+                                                             hit.halfSpace, i + 0.5, y, h.t))) {
             hit = h;
             solid = ctx_.UnitOf(cu.unit).solid;
             unit = cu.unit;
@@ -91,7 +90,8 @@ inline void CsgSpans::EvalPruned(int pn, std::size_t depth, double x, double y, 
     }
 }
 
-inline bool CsgSpans::CsgPixel(const CsgSpanUnit& cu, int i, double y, eval::RayEvaluator::Hit& hit) {
+inline bool CsgSpans::CsgPixel(const CsgSpanUnit& cu, int i, double y,
+                               eval::RayEvaluator::Hit& hit) {
     ++ctx_.c.csgPixels;
     bool broken = false;
     IntervalList& l = Pool(0);

@@ -39,8 +39,8 @@
 #include <vector>
 
 #include "quadrix/engines/scanline/depth_order.h"
-#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/engines/scanline/resolver.h"
+#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/math/interval_list.h"
 

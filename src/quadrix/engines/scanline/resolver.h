@@ -40,9 +40,9 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/engines/scanline/coefficients.h"
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/math/plane_or_quadric.h"
 
 namespace quadrix::scanline {
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "quadrix/engines/scanline/depth_order.h"
-#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/engines/scanline/resolver.h"
+#include "quadrix/eval/ray_evaluator.h"
 #include "quadrix/frame/frame.h"
 
 namespace quadrix::scanline {

@@ -65,8 +65,7 @@ class ScanlineEngine final : public Engine {
     }
 
   protected:
-    RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
-                     Frame& frame) override {
+    RenderStats Draw(const FlatScene& scene, const EngineOptions& options, Frame& frame) override {
         const auto t0 = Clock::now();
         RenderSettings settings;
         settings.shadeInterval = options.Int("sd");
@@ -149,7 +148,8 @@ class ScanlineEngine final : public Engine {
                 most = scene.bodies[static_cast<std::size_t>(u.body)].literals.size();
             else
                 for (int b : u.bodies)
-                    most = std::max(most, scene.bodies[static_cast<std::size_t>(b)].literals.size());
+                    most =
+                        std::max(most, scene.bodies[static_cast<std::size_t>(b)].literals.size());
             if (most <= maxLiterals || drop[static_cast<std::size_t>(u.solid)]) continue;
             drop[static_cast<std::size_t>(u.solid)] = 1;
             stats.undrawn.push_back(
@@ -173,8 +173,7 @@ class ScanlineEngine final : public Engine {
                 if (u.kind == Unit::Kind::kBody)
                     bodiesToResolve.push_back(u.body);
                 else
-                    bodiesToResolve.insert(bodiesToResolve.end(), u.bodies.begin(),
-                                           u.bodies.end());
+                    bodiesToResolve.insert(bodiesToResolve.end(), u.bodies.begin(), u.bodies.end());
                 kept.push_back(std::move(u));
             }
             units = std::move(kept);

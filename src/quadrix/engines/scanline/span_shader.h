@@ -16,8 +16,8 @@
 #include <limits>
 #include <vector>
 
-#include "quadrix/eval/ray_literal.h"
 #include "quadrix/engines/scanline/scan_context.h"
+#include "quadrix/eval/ray_literal.h"
 #include "quadrix/math/quadratic.h"
 
 namespace quadrix::scanline {
@@ -38,7 +38,8 @@ struct StackFace {
 
 // A show-face from an interval endpoint at depth t found on the ray through (x, y): its sheet is
 // the root nearer to t.
-inline StackFace MakeFaceAt(const eval::RayEvaluator& eval, int halfSpace, double t, double x, double y) {
+inline StackFace MakeFaceAt(const eval::RayEvaluator& eval, int halfSpace, double t, double x,
+                            double y) {
     StackFace f;
     f.halfSpace = halfSpace;
     f.ray = &eval.Ray(halfSpace);
@@ -126,7 +127,8 @@ class SpanShader {
             if (f.depth < bestT ||
                 (f.depth == bestT && best >= 0 &&
                  ctx_.UnitWinsTie(f.unit, f.halfSpace, faces_[static_cast<std::size_t>(best)].unit,
-                                  faces_[static_cast<std::size_t>(best)].halfSpace, x, y, f.depth))) {
+                                  faces_[static_cast<std::size_t>(best)].halfSpace, x, y,
+                                  f.depth))) {
                 best = static_cast<int>(s);
                 bestT = f.depth;
             }

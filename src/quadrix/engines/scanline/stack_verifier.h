@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/engines/scanline/edge_list.h"
 #include "quadrix/engines/scanline/scan_context.h"
+#include "quadrix/math/plane_or_quadric.h"
 
 namespace quadrix::scanline {
 

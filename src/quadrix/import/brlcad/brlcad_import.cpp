@@ -304,10 +304,9 @@ class Converter {
         if (auto it = leafCache_.find(key); it != leafCache_.end()) return it->second;
         auto t = Transform::FromMatrix(total);
         if (!t) {
-            diags_.Error(refLoc,
-                         fmt::format("the matrices on the path to '{}' cannot be inverted: "
-                                     "singular, not finite, or scales more than 1e14 apart",
-                                     p.name));
+            diags_.Error(refLoc, fmt::format("the matrices on the path to '{}' cannot be inverted: "
+                                             "singular, not finite, or scales more than 1e14 apart",
+                                             p.name));
             aborted_ = true;
             return -1;
         }

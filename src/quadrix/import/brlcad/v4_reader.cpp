@@ -293,8 +293,8 @@ class V4Reader {
         // Range checks before any conversion to int (a double beyond int is undefined behaviour,
         // UBSan float-cast-overflow; issue 23): region ids are whole numbers from 0 to 2^31 - 1,
         // colour components whole numbers from 0 to 255.
-        static const char* kField[] = {"", "low region id", "high region id", "red", "green",
-                                       "blue"};
+        static const char* kField[] = {"",    "low region id", "high region id",
+                                       "red", "green",         "blue"};
         for (int k = 1; k < 6; ++k) {
             const double hi = k <= 2 ? 2147483647.0 : 255.0;
             if (v[k] != std::floor(v[k]) || v[k] < 0 || v[k] > hi) {

@@ -144,8 +144,8 @@ class V5Reader {
     // `w`. Checked before a conversion to int, which is undefined beyond int's range.
     bool WholeNumberIn(const Word& w, double v, double lo, double hi, const std::string& what) {
         if (v == std::floor(v) && v >= lo && v <= hi) return true;
-        Error(w.offset, fmt::format("{}: '{}' is not a whole number from {} to {}", what, w.text,
-                                    lo, hi));
+        Error(w.offset,
+              fmt::format("{}: '{}' is not a whole number from {} to {}", what, w.text, lo, hi));
         return false;
     }
 

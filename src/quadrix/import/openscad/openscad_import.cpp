@@ -26,8 +26,8 @@
 #include "quadrix/import/brlcad/mesh_solid.h"
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
-#include "quadrix/import/openscad/polygon_solids.h"
 #include "quadrix/import/model_space.h"
+#include "quadrix/import/openscad/polygon_solids.h"
 #include "quadrix/math/srgb.h"
 #include "quadrix/scene/css_colors.h"
 
@@ -388,8 +388,8 @@ class Builder {
     // the positive one's; both are errors here rather than a silently different picture.
     bool Positive(const Node& n, const char* name, double v) {
         if (v > 0) return true;
-        Error(n.offset, fmt::format("{}: {} = {} must be positive (OpenSCAD draws nothing)",
-                                    n.name, name, v));
+        Error(n.offset, fmt::format("{}: {} = {} must be positive (OpenSCAD draws nothing)", n.name,
+                                    name, v));
         return false;
     }
     bool Flag(const Node& n, const char* name, int position) {
@@ -757,8 +757,8 @@ class Builder {
     }
 
     // polyhedron(points, faces | triangles): the solid the closed mesh bounds.
-    int Polyhedron(scene::Csg& csg, const Node& n, const Mat4& m,
-                   const std::optional<Paint>& color, Box3& box) {
+    int Polyhedron(scene::Csg& csg, const Node& n, const Mat4& m, const std::optional<Paint>& color,
+                   Box3& box) {
         ++report_.census[n.name];
         const Value* pts = Find(n, "points", 0);
         const Value* faces = Find(n, "faces", 1);
@@ -802,8 +802,8 @@ class Builder {
     // linear_extrude / rotate_extrude: the 2D children (square, circle, polygon, their
     // transforms and booleans) become 3D leaves combined by the same booleans, which commute
     // with both extrusions.
-    int Extrude(scene::Csg& csg, const Node& n, const Mat4& m,
-                const std::optional<Paint>& color, Box3& box) {
+    int Extrude(scene::Csg& csg, const Node& n, const Mat4& m, const std::optional<Paint>& color,
+                Box3& box) {
         ++report_.census[n.name];
         if (extrusion_) return Refuse(n, fmt::format("'{}' inside another extrusion", n.name));
         Extrusion e;
@@ -848,8 +848,8 @@ class Builder {
     }
 
     // A node of the 2D profile under an extrusion; m2 places it in the extrusion's plane.
-    int Emit2D(scene::Csg& csg, const Node& n, const Mat4& m2,
-               const std::optional<Paint>& color, Box3& box) {
+    int Emit2D(scene::Csg& csg, const Node& n, const Mat4& m2, const std::optional<Paint>& color,
+               Box3& box) {
         box = Box3{};
         if (n.dropped || failed_) return -1;
         const std::string& k = n.name;
@@ -873,8 +873,8 @@ class Builder {
     }
 
     // square, circle, polygon → rings in the extrusion plane → the extruded or revolved shape.
-    int Profile(scene::Csg& csg, const Node& n, const Mat4& m2,
-                const std::optional<Paint>& color, Box3& box) {
+    int Profile(scene::Csg& csg, const Node& n, const Mat4& m2, const std::optional<Paint>& color,
+                Box3& box) {
         ++report_.census[n.name];
         const Extrusion& e = *extrusion_;
         const std::string& k = n.name;
