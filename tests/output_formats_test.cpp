@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -234,6 +235,39 @@ TEST(OutputFormats, JsonStatsOfEveryEngine) {
             << info.name;
         for (const auto& [name, value] : report.stats.counters)
             EXPECT_TRUE(j["counters"].contains(name)) << info.name << ": " << name;
+        // The engine's paper tables, cell for cell: text as strings, numbers as numbers.
+        ASSERT_TRUE(j["tables"].is_array()) << info.name;
+        ASSERT_EQ(j["tables"].size(), report.stats.tables.size()) << info.name;
+        for (std::size_t t = 0; t < report.stats.tables.size(); ++t) {
+            const StatsTable& table = report.stats.tables[t];
+            const nlohmann::json& jt = j["tables"][t];
+            EXPECT_EQ(jt["title"], table.title);
+            ASSERT_EQ(jt["rows"].size(), table.rows.size()) << table.title;
+            for (std::size_t r = 0; r < table.rows.size(); ++r)
+                for (std::size_t c = 0; c < table.rows[r].size(); ++c) {
+                    const StatsCell& cell = table.rows[r][c];
+                    const nlohmann::json& jc = jt["rows"][r][c];
+                    if (cell.kind == StatsCell::Kind::kText) {
+                        EXPECT_EQ(jc, cell.text);
+                    }
+                    if (cell.kind == StatsCell::Kind::kInteger) {
+                        EXPECT_EQ(jc, cell.integer);
+                    }
+                    if (cell.kind == StatsCell::Kind::kReal) {
+                        EXPECT_TRUE(jc.is_number());
+                    }
+                    if (cell.kind == StatsCell::Kind::kEmpty) {
+                        EXPECT_TRUE(jc.is_null());
+                    }
+                }
+        }
+        // The engines with a paper's tables give them (scanline 7.1–7.3, pixelpowers Table 1,
+        // patch Tables 1.6 and 1.1–1.7).
+        const std::map<std::string, std::size_t> expected{
+            {"scanline", 3}, {"pixelpowers", 1}, {"patch", 7}};
+        if (auto it = expected.find(info.name); it != expected.end()) {
+            EXPECT_EQ(report.stats.tables.size(), it->second) << info.name;
+        }
     }
     EXPECT_GE(engines, 5);
 }

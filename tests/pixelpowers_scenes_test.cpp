@@ -8,6 +8,7 @@
 
 #include "quadrix/engines/engine_test_util.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/pipeline/stats_report.h"
 #include "test_util.h"
 
 namespace quadrix {
@@ -187,8 +188,19 @@ TEST(PixelPowersScenes, ApproxModeReportsDepthError) {
 TEST(PixelPowersScenes, StatsTableAndBadOption) {
     SceneRun pp = Render(std::string(kTwoCylinders) + "csg d (cyl1 - cyl2);", "", "pixelpowers");
     ASSERT_TRUE(pp.ok);
-    EXPECT_NE(pp.result.stats.report.find("Primitives  Opcodes  Equations"), std::string::npos);
-    EXPECT_NE(pp.result.stats.report.find("MBB"), std::string::npos);
+    // Table 1: this scene's row (2 primitives), then the paper's rows (MBB among them).
+    ASSERT_EQ(pp.result.stats.tables.size(), 1u);
+    const StatsTable& t = pp.result.stats.tables[0];
+    ASSERT_EQ(t.columns.size(), 6u);
+    EXPECT_EQ(t.columns[2], "Primitives");
+    ASSERT_EQ(t.rows.size(), 8u);
+    EXPECT_EQ(t.rows[0][1].text, "quadrix");
+    EXPECT_EQ(t.rows[0][2].integer, 2);
+    EXPECT_GT(t.rows[0][4].integer, 0);  // equations
+    EXPECT_EQ(t.rows[6][0].text, "MBB");
+    EXPECT_EQ(t.rows[6][4].integer, 1854);
+    const std::string text = FormatStatsTable(t);
+    EXPECT_NE(text.find("Primitives  Opcodes  Equations"), std::string::npos) << text;
     SceneRun bad = Render(kTwoCylinders, "", "pixelpowers", {{"mode", "fast"}});
     EXPECT_FALSE(bad.ok);
 }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "quadrix/engines/options.h"
+#include "quadrix/engines/stats_table.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
 
@@ -41,7 +42,9 @@ struct UndrawnSolid {
 struct RenderStats {
     double seconds = 0;
     std::vector<std::pair<std::string, double>> counters;
-    std::string report;  // free-form multi-line text (tables of a paper's layout, histograms)
+    // Tables laid out like the engine's paper (engines/stats_table.h), formatted by the report.
+    std::vector<StatsTable> tables;
+    std::string report;  // free-form multi-line text (notes, histograms)
     // What the user must hear even without --stats (a guard that stopped it, an accuracy bound
     // that did not hold): printed by the CLI as "warning: ..." lines after every render.
     std::vector<std::string> warnings;

@@ -133,28 +133,27 @@ CostModel ComputeCost(const DatapathWidths& widths, int planes) {
 
 namespace {
 
-void FormatTable(const CostTable& t, std::string& out) {
-    out += t.title + "\n";
-    for (const CostLine& l : t.lines) {
-        std::string lhs =
-            l.count == 1 ? fmt::format("{}", l.unit) : fmt::format("{} x {}", l.count, l.unit);
-        out += fmt::format("  {:<34}{:>16} = {:>7}", l.cell, lhs, l.Total());
-        if (l.paper) out += fmt::format("   paper {:>7}", *l.paper);
-        out += "\n";
-    }
-    out += fmt::format("  {:<34}{:>16}   {:>7}", "TOTAL", "", t.Total());
-    if (t.paperTotal) out += fmt::format("   paper {:>7}", *t.paperTotal);
-    out += "\n";
+StatsTable Table(const CostTable& t) {
+    using C = StatsCell;
+    StatsTable out;
+    out.title = t.title;
+    out.columns = {"Cell", "Count", "Each", "Total", "Paper"};
+    for (const CostLine& l : t.lines)
+        out.rows.push_back({C::Text(l.cell), C::Integer(l.count), C::Integer(l.unit),
+                            C::Integer(l.Total()), l.paper ? C::Integer(*l.paper) : C::Empty()});
+    out.rows.push_back({C::Text("TOTAL"), C::Empty(), C::Empty(), C::Integer(t.Total()),
+                        t.paperTotal ? C::Integer(*t.paperTotal) : C::Empty()});
+    return out;
 }
 
 }  // namespace
 
-std::string FormatCost(const CostModel& m) {
-    std::string out =
-        fmt::format("Cost model (transistors; depth {} bits, normals {} bits, {} planes)\n",
-                    m.widths.depthBits, m.widths.normalBits, m.planes);
+std::vector<StatsTable> CostTables(const CostModel& m) {
+    std::vector<StatsTable> out;
     for (const CostTable* t : {&m.basicCells, &m.ep1, &m.ep2, &m.sre, &m.multiplier, &m.processor})
-        FormatTable(*t, out);
+        out.push_back(Table(*t));
+    out.back().notes = {fmt::format("transistors; depth {} bits, normals {} bits, {} planes",
+                                    m.widths.depthBits, m.widths.normalBits, m.planes)};
     return out;
 }
 

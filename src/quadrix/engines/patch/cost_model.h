@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "quadrix/engines/patch/fixed_point.h"
+#include "quadrix/engines/stats_table.h"
 
 namespace quadrix::patch {
 
@@ -81,7 +82,8 @@ std::int64_t SreMidLineBits(int rootBits, int adderBits);
 // The SRE's D-latches: 2r per line plus the calibrated mid-line registers.
 std::int64_t SreLatches(int rootBits, int adderBits);
 
-// The tables as text, with a "paper" column where the paper gives a figure.
-std::string FormatCost(const CostModel& model);
+// The tables for the report (engines/stats_table.h), with a "Paper" column where the paper
+// gives a figure; the widths in the last table's notes.
+std::vector<StatsTable> CostTables(const CostModel& model);
 
 }  // namespace quadrix::patch

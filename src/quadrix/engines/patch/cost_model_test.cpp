@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "quadrix/pipeline/stats_report.h"
+
 namespace quadrix::patch {
 namespace {
 
@@ -58,9 +60,17 @@ TEST(PatchCost, OtherWidthsScaleAndCarryNoPaperFigures) {
 }
 
 TEST(PatchCost, FormattedTablesShowTheTotalNextToThePaper) {
-    const std::string text = FormatCost(ComputeCost(DatapathWidths{}));
-    EXPECT_NE(text.find("Table 1.7"), std::string::npos);
-    EXPECT_NE(text.find("225732   paper  225732"), std::string::npos) << text;
+    const std::vector<StatsTable> tables = CostTables(ComputeCost(DatapathWidths{}));
+    ASSERT_EQ(tables.size(), 6u);
+    const StatsTable& t = tables.back();
+    EXPECT_NE(t.title.find("Table 1.7"), std::string::npos);
+    // The TOTAL row: our total next to the paper's.
+    const std::vector<StatsCell>& total = t.rows.back();
+    EXPECT_EQ(total[0].text, "TOTAL");
+    EXPECT_EQ(total[3].integer, 225732);
+    EXPECT_EQ(total[4].integer, kPaperTotalTransistors);
+    const std::string text = FormatStatsTable(t);
+    EXPECT_NE(text.find("225732  225732"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -367,8 +367,8 @@ RenderStats PatchEngine::Draw(const FlatScene& scene, const EngineOptions& optio
         "streamed back to back)\n",
         timing.cycles, timing.Seconds(), st.clockHz / 1e6, timing.streamedCycles,
         timing.StreamedSeconds());
-    r += FormatSchedule(st.widths);
-    r += FormatCost(cost);
+    stats.tables.push_back(ScheduleTable(st.widths));
+    for (StatsTable& t : CostTables(cost)) stats.tables.push_back(std::move(t));
     if (!(st.widths == DatapathWidths{}))
         r += fmt::format("  (the paper's widths 24/16 give {} transistors)\n",
                          ComputeCost(DatapathWidths{}).Total());

@@ -51,16 +51,17 @@ void FrameTiming::AddPatch(std::int64_t windowPixels, int latency) {
     streamedCycles += windowPixels;
 }
 
-std::string FormatSchedule(const DatapathWidths& widths) {
-    std::string out = fmt::format("Table 1.6 Scheduling (depth {} bits, normals {} bits)\n",
-                                  widths.depthBits, widths.normalBits);
-    out += fmt::format("  {:>7}  {:<22}{}\n", "Timing", "Step", "Extra storage");
+StatsTable ScheduleTable(const DatapathWidths& widths) {
+    StatsTable t;
+    t.title = fmt::format("Table 1.6 Scheduling (depth {} bits, normals {} bits)", widths.depthBits,
+                          widths.normalBits);
+    t.columns = {"Timing", "Step", "Extra storage"};
     for (const ScheduleStep& step : Schedule(widths))
-        out += fmt::format("  {:>7}  {:<22}{}\n", fmt::format("{}/{}", step.start, step.end),
-                           step.step, step.extraStorage);
-    out += fmt::format("  pipeline start-up {} cycles; {} extra registers\n",
-                       PipelineLatency(widths), ExtraRegisters(widths));
-    return out;
+        t.rows.push_back({StatsCell::Text(fmt::format("{}/{}", step.start, step.end)),
+                          StatsCell::Text(step.step), StatsCell::Text(step.extraStorage)});
+    t.notes = {fmt::format("pipeline start-up {} cycles; {} extra registers",
+                           PipelineLatency(widths), ExtraRegisters(widths))};
+    return t;
 }
 
 }  // namespace quadrix::patch

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "quadrix/engines/patch/fixed_point.h"
+#include "quadrix/engines/stats_table.h"
 
 namespace quadrix::patch {
 
@@ -61,7 +62,7 @@ struct FrameTiming {
     double StreamedSeconds() const { return static_cast<double>(streamedCycles) / clockHz; }
 };
 
-// Table 1.6 as text, plus the latency.
-std::string FormatSchedule(const DatapathWidths& widths);
+// Table 1.6 for the report (engines/stats_table.h), the latency in its notes.
+StatsTable ScheduleTable(const DatapathWidths& widths);
 
 }  // namespace quadrix::patch

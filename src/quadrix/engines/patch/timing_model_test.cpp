@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "quadrix/pipeline/stats_report.h"
+
 namespace quadrix::patch {
 namespace {
 
@@ -51,7 +53,7 @@ TEST(PatchTiming, FrameTimeAtFiftyMegahertz) {
     EXPECT_EQ(t.cycles, 1500 + 2 * 58);
     EXPECT_EQ(t.streamedCycles, 1500 + 58);
     EXPECT_DOUBLE_EQ(t.Seconds(), (1500 + 116) / 50e6);
-    const std::string text = FormatSchedule(DatapathWidths{});
+    const std::string text = FormatStatsTable(ScheduleTable(DatapathWidths{}));
     EXPECT_NE(text.find("41/57"), std::string::npos) << text;
     EXPECT_NE(text.find("start-up 58 cycles"), std::string::npos) << text;
 }

@@ -78,19 +78,16 @@ Settings ReadSettings(const EngineOptions& o) {
     return st;
 }
 
-std::string Table1(const CompileStats& cs, const Program& program, const std::string& name) {
-    std::string s;
-    char line[256];
-    s += "Pixel-Powers estimate (layout of seed 004 Table 1; 10 MHz, ~4.05 us per equation)\n";
-    s += "Part Name          Source        Primitives  Opcodes  Equations     Time"
-         "   (our primitives: bodies)\n";
+// Seed 004 Table 1 with this scene's row first, then the paper's rows.
+StatsTable Table1(const CompileStats& cs, const Program& program, const std::string& name) {
+    using C = StatsCell;
+    StatsTable t;
+    t.title = "Pixel-Powers estimate (layout of seed 004 Table 1; 10 MHz, ~4.05 us per equation)";
+    t.columns = {"Part Name", "Source", "Primitives", "Opcodes", "Equations", "Time"};
     double ms = static_cast<double>(program.Equations()) * kMicrosecondsPerEquation / 1000.0;
-    std::snprintf(line, sizeof line, "%-18s %-13s %10zu %8llu %10llu %7.2f msec\n",
-                  (name.empty() ? std::string("this scene") : name).substr(0, 18).c_str(),
-                  "quadrix", cs.primitives, static_cast<unsigned long long>(program.Opcodes()),
-                  static_cast<unsigned long long>(program.Equations()), ms);
-    s += line;
-    s += "-- the paper's figures --\n";
+    t.rows.push_back({C::Text(name.empty() ? std::string("this scene") : name), C::Text("quadrix"),
+                      C::Integer(cs.primitives), C::Integer(program.Opcodes()),
+                      C::Integer(program.Equations()), C::Real(ms, 2, "msec")});
     struct Row {
         const char* name;
         const char* source;
@@ -104,12 +101,12 @@ std::string Table1(const CompileStats& cs, const Program& program, const std::st
                                {"Cut Tube", "Okino 84", 12, 1969, 1733, 7.0},
                                {"MBB", "Okino 84", 24, 2139, 1854, 7.5},
                                {"Tie Rod", "BRL", 17, 2660, 2309, 9.3}};
-    for (const Row& r : rows) {
-        std::snprintf(line, sizeof line, "%-18s %-13s %10d %8d %10d %7.2f msec\n", r.name, r.source,
-                      r.primitives, r.opcodes, r.equations, r.ms);
-        s += line;
-    }
-    return s;
+    for (const Row& r : rows)
+        t.rows.push_back({C::Text(r.name), C::Text(r.source), C::Integer(r.primitives),
+                          C::Integer(r.opcodes), C::Integer(r.equations),
+                          C::Real(r.ms, 2, "msec")});
+    t.notes = {"first row: this scene (our primitives: bodies); the others: the paper's figures"};
+    return t;
 }
 
 class PixelPowersEngine final : public Engine {
@@ -190,7 +187,8 @@ class PixelPowersEngine final : public Engine {
         std::string part = scene.solids.size() == 1
                                ? scene.solids[0].name
                                : std::to_string(scene.solids.size()) + " solids";
-        std::string report = Table1(cs, program, part);
+        stats.tables.push_back(Table1(cs, program, part));
+        std::string report;
         char line[256];
         std::snprintf(line, sizeof line,
                       "normal form: %zu products, %zu factors (tree: %zu primitives, %zu "

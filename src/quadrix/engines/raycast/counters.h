@@ -10,40 +10,58 @@
 
 namespace quadrix::raycast {
 
+// Each counter once: X(field, name in --stats and JSON). The struct's fields, its sum and the
+// report's entries are generated from this list, so a new counter is one line.
+#define QUADRIX_RAYCAST_COUNTERS(X)               \
+    X(blocks, "blocks_256")                       \
+    X(coarseTiles, "tiles_256x8")                 \
+    X(tiles, "sub_tiles")                         \
+    X(pixels, "pixels")                           \
+    X(covered, "covered_pixels")                  \
+    X(tileSolids, "tile_solids")                  \
+    X(pixelSolids, "pixel_solids")                \
+    X(zStops, "depth_early_outs")                 \
+    X(bodies, "body_evaluations")                 \
+    X(csgOps, "csg_operations")                   \
+    X(cutRetries, "depth_cut_retries")            \
+    X(prunedLiterals, "tile_literals_pruned")     \
+    X(flatTiles, "flat_sub_tiles")                \
+    X(flatPixels, "flat_pixels")                  \
+    X(emptyBodies, "tile_bodies_empty")           \
+    X(batchBodies, "batched_bodies")              \
+    X(batchPixels, "batched_body_pixels")         \
+    X(bodyFillTiles, "single_body_sub_tiles")     \
+    X(emptyTiles, "empty_sub_tiles")              \
+    X(kernelTiles, "kernel_sub_tiles")            \
+    X(kernelPixels, "kernel_pixels")              \
+    X(kernelScalarBodies, "kernel_scalar_bodies") \
+    X(kernelScalarPixels, "kernel_scalar_pixels")
+
 struct Counters {
-    std::uint64_t blocks = 0, coarseTiles = 0, tiles = 0, pixels = 0, tileSolids = 0,
-                  pixelSolids = 0, zStops = 0, bodies = 0, csgOps = 0, covered = 0, cutRetries = 0,
-                  prunedLiterals = 0, flatTiles = 0, flatPixels = 0, emptyBodies = 0,
-                  batchBodies = 0, batchPixels = 0, bodyFillTiles = 0, emptyTiles = 0,
-                  kernelTiles = 0, kernelPixels = 0, kernelScalarBodies = 0, kernelScalarPixels = 0;
+#define QUADRIX_COUNTER_FIELD(field, name) std::uint64_t field = 0;
+    QUADRIX_RAYCAST_COUNTERS(QUADRIX_COUNTER_FIELD)
+#undef QUADRIX_COUNTER_FIELD
+    // Literal evaluations by kind (eval/ray_literal.h), reported as plane_evaluations,
+    // quadric_solves and their sum literal_evaluations.
     LiteralCounters literals;
 
     void Add(const Counters& o) {
-        blocks += o.blocks;
-        coarseTiles += o.coarseTiles;
-        tiles += o.tiles;
-        pixels += o.pixels;
-        tileSolids += o.tileSolids;
-        pixelSolids += o.pixelSolids;
-        zStops += o.zStops;
-        bodies += o.bodies;
-        csgOps += o.csgOps;
-        covered += o.covered;
-        cutRetries += o.cutRetries;
-        prunedLiterals += o.prunedLiterals;
-        flatTiles += o.flatTiles;
-        flatPixels += o.flatPixels;
-        emptyBodies += o.emptyBodies;
-        batchBodies += o.batchBodies;
-        batchPixels += o.batchPixels;
-        bodyFillTiles += o.bodyFillTiles;
-        emptyTiles += o.emptyTiles;
-        kernelTiles += o.kernelTiles;
-        kernelPixels += o.kernelPixels;
-        kernelScalarBodies += o.kernelScalarBodies;
-        kernelScalarPixels += o.kernelScalarPixels;
+#define QUADRIX_COUNTER_ADD(field, name) field += o.field;
+        QUADRIX_RAYCAST_COUNTERS(QUADRIX_COUNTER_ADD)
+#undef QUADRIX_COUNTER_ADD
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
+    }
+
+    // Calls f(name, value) for every counter, in the list's order, then the literal counts.
+    template <class F>
+    void ForEach(F&& f) const {
+#define QUADRIX_COUNTER_VISIT(field, name) f(name, field);
+        QUADRIX_RAYCAST_COUNTERS(QUADRIX_COUNTER_VISIT)
+#undef QUADRIX_COUNTER_VISIT
+        f("literal_evaluations", literals.planes + literals.quadrics);
+        f("plane_evaluations", literals.planes);
+        f("quadric_solves", literals.quadrics);
     }
 };
 

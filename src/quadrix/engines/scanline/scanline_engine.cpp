@@ -287,51 +287,35 @@ class ScanlineEngine final : public Engine {
         add("resolver_seconds", Seconds(t0, t1));
         add("renderer_shader_seconds", Seconds(t1, t2));
 
-        // The paper's table layout (Tables 7.1–7.3), one row for this image.
-        char buf[2048];
-        std::snprintf(buf, sizeof buf,
-                      "Table 7.1 - Resolver statistics\n"
-                      "  %8s %8s %8s %10s %10s %10s %10s\n"
-                      "  %8s %8s %8s %10s %10s %10s %10s\n"
-                      "  %8zu %8llu %8llu %10llu %10llu %10llu %10llu\n"
-                      "Table 7.2 - Renderer statistics\n"
-                      "  %10s %10s %10s %10s %10s %9s %9s %12s %10s\n"
-                      "  %10llu %10llu %10llu %10llu %10llu %9llu %9.2f %12llu %10.1f\n"
-                      "Table 7.3 - Run times (seconds)\n"
-                      "  %10s %16s %10s\n"
-                      "  %10.4f %16.4f %10.4f\n",
-                      "Bodies", "HSBs", "HSBs", "Ivertices", "Ivertices", "ShowEdges", "ShowEdges",
-                      "", "planar", "quadric", "calc", "kept", "linear", "conic",
-                      bodiesToResolve.size(), static_cast<unsigned long long>(rc.planarHsbs),
-                      static_cast<unsigned long long>(rc.quadricHsbs),
-                      static_cast<unsigned long long>(rc.verticesCalculated),
-                      static_cast<unsigned long long>(rc.verticesKept),
-                      static_cast<unsigned long long>(rc.edgesLinear),
-                      static_cast<unsigned long long>(rc.edgesConic), "DepthCalc", "FaceInsert",
-                      "FaceDelete", "EdgeSwaps", "Spans", "MaxStack", "MeanStack", "Intensities",
-                      "Pixels(k)", static_cast<unsigned long long>(c.depthCalcs),
-                      // Face inserts: into the edges' carried face stacks (§5.3, §5.4: at
-                      // vertices, after swaps, and the verifier's corrections) plus the per-span
-                      // inserts of bodies evaluated exactly (render=exact, CSG operands, refused
-                      // bodies); deletes from the carried stacks.
-                      static_cast<unsigned long long>(c.stackDeriveInserts + c.faceInserts),
-                      static_cast<unsigned long long>(c.stackDeriveDeletes),
-                      static_cast<unsigned long long>(c.edgeSwaps),
-                      static_cast<unsigned long long>(c.spans),
-                      static_cast<unsigned long long>(c.stackMaxDepth),
-                      c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0,
-                      static_cast<unsigned long long>(c.normals),
-                      width * static_cast<double>(height) / 1000, "Resolver", "Renderer+Shader",
-                      "Total", Seconds(t0, t1), Seconds(t1, t2), Seconds(t0, t2));
-        stats.report = buf;
-        std::string json = "{\"engine\":\"scanline\"";
-        for (const auto& [name, v] : stats.counters) {
-            char num[64];
-            std::snprintf(num, sizeof num, "%.17g", v);
-            json += ",\"" + name + "\":" + num;
-        }
-        json += "}";
-        stats.report += "JSON " + json + "\n";
+        // The paper's tables (7.1–7.3), one row for this image; the report formats them.
+        using C = StatsCell;
+        StatsTable resolver{
+            "Table 7.1 - Resolver statistics",
+            {"Bodies", "HSBs\nplanar", "HSBs\nquadric", "Ivertices\ncalc", "Ivertices\nkept",
+             "ShowEdges\nlinear", "ShowEdges\nconic"},
+            {{C::Integer(bodiesToResolve.size()), C::Integer(rc.planarHsbs),
+              C::Integer(rc.quadricHsbs), C::Integer(rc.verticesCalculated),
+              C::Integer(rc.verticesKept), C::Integer(rc.edgesLinear), C::Integer(rc.edgesConic)}},
+            {}};
+        // Face inserts: into the edges' carried face stacks (§5.3, §5.4: at vertices, after
+        // swaps, and the verifier's corrections) plus the per-span inserts of bodies evaluated
+        // exactly (render=exact, CSG operands, refused bodies); deletes from the carried stacks.
+        StatsTable renderer{
+            "Table 7.2 - Renderer statistics",
+            {"DepthCalc", "FaceInsert", "FaceDelete", "EdgeSwaps", "Spans", "MaxStack", "MeanStack",
+             "Intensities", "Pixels(k)"},
+            {{C::Integer(c.depthCalcs), C::Integer(c.stackDeriveInserts + c.faceInserts),
+              C::Integer(c.stackDeriveDeletes), C::Integer(c.edgeSwaps), C::Integer(c.spans),
+              C::Integer(c.stackMaxDepth),
+              C::Real(c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0, 2),
+              C::Integer(c.normals), C::Real(width * static_cast<double>(height) / 1000, 1)}},
+            {}};
+        StatsTable times{"Table 7.3 - Run times (seconds)",
+                         {"Resolver", "Renderer+Shader", "Total"},
+                         {{C::Real(Seconds(t0, t1), 4), C::Real(Seconds(t1, t2), 4),
+                           C::Real(Seconds(t0, t2), 4)}},
+                         {}};
+        stats.tables = {std::move(resolver), std::move(renderer), std::move(times)};
         return stats;
     }
 };
