@@ -5,7 +5,9 @@
 #   2. by MPI ranks:                 mpirun -np 2 quadrix render --turntable FRAMES
 #   3. by FRAMES separate processes: quadrix render --az A --el 25, one per frame
 #   4. by POV-Ray's animation loop of the exported scene (+KFI0 +KFF(FRAMES-1)), if povray exists
-# and writes the side-by-side table to bench/results/batch_<date>.md (and latest_batch.md). It
+#      (exported with --shadows, as Quadrix's frames have them by default)
+# then one big picture (BIG, default 3840x2160) by one process and by `mpirun -np 2
+# --sort-first` (pixel bands shared), and writes the side-by-side table to bench/results/batch_<date>.md (and latest_batch.md). It
 # reports, it never fails on time.
 #
 #   bench/batch_turntable.sh [QUADRIX_BINARY] [FRAMES] [SIZE]
@@ -61,7 +63,7 @@ t1=$(now)
 rows+=("| separate \`quadrix render --az\` processes ($SAMPLE of $FRAMES frames timed) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
 
 if command -v povray >/dev/null; then
-    "$Q" export --to pov "$SCENE" -o "$OUT/part.pov" --size "$SIZE" 2>/dev/null
+    "$Q" export --to pov "$SCENE" -o "$OUT/part.pov" --size "$SIZE" --shadows 2>/dev/null
     # The exported scene is in device space with a fixed camera: the solids turn with POV-Ray's
     # clock about the vertical line through the image centre instead (the same work per frame,
     # not the same pictures as the orbit).
@@ -82,6 +84,22 @@ PY
     rows+=("| POV-Ray 3.7 \`+KFF$((FRAMES - 1))\` of the exported scene ($SAMPLE frames timed) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
 fi
 
+BIG=${BIG:-3840x2160}
+big_same="-"
+t0=$(now)
+"$Q" render "$SCENE" -o "$OUT/big_one.png" --size "$BIG" --dump-frame "$OUT/big_one.qxf" 2>/dev/null
+t1=$(now)
+rows+=("| one picture at $BIG, one process | $(rate 1 "$(echo "$t1 - $t0" | bc)") |")
+if command -v mpirun >/dev/null; then
+    t0=$(now)
+    mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/big_mpi.png" --size "$BIG" \
+        --dump-frame "$OUT/big_mpi.qxf" --sort-first 2>/dev/null
+    t1=$(now)
+    rows+=("| one picture at $BIG, \`mpirun -np 2 --sort-first\` | $(rate 1 "$(echo "$t1 - $t0" | bc)") |")
+    cmp -s "$OUT/big_one.png" "$OUT/big_mpi.png" && cmp -s "$OUT/big_one.qxf" "$OUT/big_mpi.qxf" \
+        && big_same=yes || big_same=no
+fi
+
 mkdir -p bench/results
 stamp=$(date -u +%Y-%m-%d_%H%M%S)
 {
@@ -100,6 +118,8 @@ stamp=$(date -u +%Y-%m-%d_%H%M%S)
     echo "MPI: $mpi_summary"
     echo
     echo "MPI frames byte-identical to the one-process frames: $same of $FRAMES."
+    echo
+    echo "Sort-first picture (PNG and .qxf Frame dump) byte-identical to the one-process one: $big_same."
 } >"bench/results/batch_$stamp.md"
 cp "bench/results/batch_$stamp.md" bench/results/latest_batch.md
 cat "bench/results/batch_$stamp.md"
