@@ -27,7 +27,7 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 now() { date +%s.%N; }
-rate() { python3 -c "import sys; f,t=float(sys.argv[1]),float(sys.argv[2]); print(f'{t:.2f} s | {f/t:.1f} frames/s | {1e3*t/f:.1f} ms')" "$1" "$2"; }
+rate() { python3 -c "import sys; f,t=float(sys.argv[1]),float(sys.argv[2]); print(f'{t:.2f} s | {f/t:.3g} frames/s | {1e3*t/f:.1f} ms')" "$1" "$2"; }
 SAMPLE=${SAMPLE:-$FRAMES}
 RANGE=()
 [ "$SAMPLE" -lt "$FRAMES" ] && RANGE=(--frame-range "0:$((SAMPLE - 1))")
