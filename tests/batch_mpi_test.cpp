@@ -219,8 +219,10 @@ TEST(BatchMpi, SortFirstBandsAreByteIdenticalToOneProcess) {
     EXPECT_NE(c.exitCode, 0);
 }
 
-// A rank killed mid-run (rank 1 after its second frame) ends the MPI run; the same run again
-// resumes it — with the frames already written skipped — and every frame is then correct.
+// A rank killed mid-run ends the MPI run; the same run again resumes it — with the frames
+// already written skipped — and every frame is then correct. Every rank is set to die after its
+// first frame, so that whichever rank the dynamic scheduling gives frames to, the run (8 frames,
+// 2 ranks) is killed before it ends.
 TEST(BatchMpi, ARankKilledMidRunIsResumed) {
     if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
     TempDir dir, ref, out;
@@ -228,13 +230,14 @@ TEST(BatchMpi, ARankKilledMidRunIsResumed) {
     const std::string args = " render '" + scene + "' --size 40x32 --frames 8 --threads 1 -o ";
     auto a = RunShell(QuadrixBinary() + args + "'" + ref.File("f.png") + "'");
     ASSERT_EQ(a.exitCode, 0) << a.err;
-    auto killed = RunShell(Mpirun(2) + "-x QUADRIX_FAULT_KILL_AFTER=2:1 " + QuadrixBinary() + args +
+    auto killed = RunShell(Mpirun(2) + "-x QUADRIX_FAULT_KILL_AFTER=1 " + QuadrixBinary() + args +
                            "'" + out.File("f.png") + "' --resume");
     EXPECT_NE(killed.exitCode, 0) << killed.err;
     int written = 0;
     for (int f = 0; f < 8; ++f)
         written += FileExists(out.File("f_000" + std::to_string(f) + ".png"));
-    EXPECT_GE(written, 2);
+    EXPECT_GE(written, 1);
+    EXPECT_LE(written, 2);
     auto resumed =
         RunShell(Mpirun(2) + QuadrixBinary() + args + "'" + out.File("f.png") + "' --resume");
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
