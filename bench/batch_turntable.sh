@@ -5,12 +5,16 @@
 #   2. by MPI ranks:                 mpirun -np 2 quadrix render --turntable FRAMES
 #   3. by FRAMES separate processes: quadrix render --az A --el 25, one per frame
 #   4. by POV-Ray's animation loop of the exported scene (+KFI0 +KFF(FRAMES-1)), if povray exists
-# and writes the side-by-side table to bench/results/batch_<date>.md (and latest_batch.md). It
+#      (exported with --shadows, as Quadrix's frames have them by default)
+# then one big picture (BIG, default 3840x2160) by one process and by `mpirun -np 2
+# --sort-first` (pixel bands shared), and writes the side-by-side table to bench/results/batch_<date>.md (and latest_batch.md). It
 # reports, it never fails on time.
 #
 #   bench/batch_turntable.sh [QUADRIX_BINARY] [FRAMES] [SIZE]
-# SAMPLE=N (environment) renders only the first N frames in runs 3 and 4 (they are slow): their
-# rates are per frame either way, and the table says how many frames were timed.
+# SAMPLE=N (environment) renders only the first N frames of the FRAMES-frame orbit in every run
+# (runs 1 and 2 with --frame-range 0:N-1): the rates are per frame either way, and the table
+# says how many frames were timed. On a loaded machine that keeps the runs comparable in one
+# sitting.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 Q=$(realpath "${1:-build/quadrix}")
@@ -23,25 +27,27 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 now() { date +%s.%N; }
-rate() { python3 -c "import sys; f,t=float(sys.argv[1]),float(sys.argv[2]); print(f'{t:.2f} s | {f/t:.1f} frames/s | {1e3*t/f:.1f} ms')" "$1" "$2"; }
+rate() { python3 -c "import sys; f,t=float(sys.argv[1]),float(sys.argv[2]); print(f'{t:.2f} s | {f/t:.3g} frames/s | {1e3*t/f:.1f} ms')" "$1" "$2"; }
 SAMPLE=${SAMPLE:-$FRAMES}
+RANGE=()
+[ "$SAMPLE" -lt "$FRAMES" ] && RANGE=(--frame-range "0:$((SAMPLE - 1))")
 rows=()
 
 mkdir -p "$OUT/one"
 t0=$(now)
 "$Q" render "$SCENE" -o "$OUT/one/f.png" --size "$SIZE" --turntable "$FRAMES" --el 25 \
-    2>"$OUT/one.log"
+    "${RANGE[@]}" 2>"$OUT/one.log"
 t1=$(now)
-rows+=("| one process (\`render --turntable $FRAMES\`) | $(rate "$FRAMES" "$(echo "$t1 - $t0" | bc)") |")
+rows+=("| one process (\`render --turntable $FRAMES\`, $SAMPLE frames) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
 one_summary=$(tail -1 "$OUT/one.log")
 
 if command -v mpirun >/dev/null; then
     mkdir -p "$OUT/mpi"
     t0=$(now)
     mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/mpi/f.png" --size "$SIZE" \
-        --turntable "$FRAMES" --el 25 2>"$OUT/mpi.log"
+        --turntable "$FRAMES" --el 25 "${RANGE[@]}" 2>"$OUT/mpi.log"
     t1=$(now)
-    rows+=("| \`mpirun -np 2\`, 2 ranks | $(rate "$FRAMES" "$(echo "$t1 - $t0" | bc)") |")
+    rows+=("| \`mpirun -np 2\`, 2 ranks ($SAMPLE frames) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
     mpi_summary=$(tail -1 "$OUT/mpi.log")
     same=0
     for f in "$OUT"/mpi/f_*.png; do cmp -s "$f" "$OUT/one/$(basename "$f")" && same=$((same + 1)); done
@@ -61,7 +67,7 @@ t1=$(now)
 rows+=("| separate \`quadrix render --az\` processes ($SAMPLE of $FRAMES frames timed) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
 
 if command -v povray >/dev/null; then
-    "$Q" export --to pov "$SCENE" -o "$OUT/part.pov" --size "$SIZE" 2>/dev/null
+    "$Q" export --to pov "$SCENE" -o "$OUT/part.pov" --size "$SIZE" --shadows 2>/dev/null
     # The exported scene is in device space with a fixed camera: the solids turn with POV-Ray's
     # clock about the vertical line through the image centre instead (the same work per frame,
     # not the same pictures as the orbit).
@@ -82,6 +88,22 @@ PY
     rows+=("| POV-Ray 3.7 \`+KFF$((FRAMES - 1))\` of the exported scene ($SAMPLE frames timed) | $(rate "$SAMPLE" "$(echo "$t1 - $t0" | bc)") |")
 fi
 
+BIG=${BIG:-3840x2160}
+big_same="-"
+t0=$(now)
+"$Q" render "$SCENE" -o "$OUT/big_one.png" --size "$BIG" --dump-frame "$OUT/big_one.qxf" 2>/dev/null
+t1=$(now)
+rows+=("| one picture at $BIG, one process | $(rate 1 "$(echo "$t1 - $t0" | bc)") |")
+if command -v mpirun >/dev/null; then
+    t0=$(now)
+    mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/big_mpi.png" --size "$BIG" \
+        --dump-frame "$OUT/big_mpi.qxf" --sort-first 2>/dev/null
+    t1=$(now)
+    rows+=("| one picture at $BIG, \`mpirun -np 2 --sort-first\` | $(rate 1 "$(echo "$t1 - $t0" | bc)") |")
+    cmp -s "$OUT/big_one.png" "$OUT/big_mpi.png" && cmp -s "$OUT/big_one.qxf" "$OUT/big_mpi.qxf" \
+        && big_same=yes || big_same=no
+fi
+
 mkdir -p bench/results
 stamp=$(date -u +%Y-%m-%d_%H%M%S)
 {
@@ -99,7 +121,9 @@ stamp=$(date -u +%Y-%m-%d_%H%M%S)
     echo
     echo "MPI: $mpi_summary"
     echo
-    echo "MPI frames byte-identical to the one-process frames: $same of $FRAMES."
+    echo "MPI frames byte-identical to the one-process frames: $same of $SAMPLE."
+    echo
+    echo "Sort-first picture (PNG and .qxf Frame dump) byte-identical to the one-process one: $big_same."
 } >"bench/results/batch_$stamp.md"
 cp "bench/results/batch_$stamp.md" bench/results/latest_batch.md
 cat "bench/results/batch_$stamp.md"

@@ -25,7 +25,7 @@ constexpr const char* kMoving =
     "quadric ball <1 1 1 0 0 0 (-1 * clock) 0 0 (clock * clock - 1)>;\n"
     "body ballb <ball> =c .8 .3 .2;\nview v vrp 0 0 0 dop .3 .3 -1 whw 3;\n";
 
-std::string Mpirun() {
+std::string Mpirun(int ranks = 3) {
 #ifdef QUADRIX_MPIEXEC
     // Root in containers and CI needs Open MPI's explicit permission. Under the sanitizers, Open
     // MPI's own allocations at exit (its dlopen'ed components, unnamed in the stacks, so no
@@ -34,7 +34,7 @@ std::string Mpirun() {
     return std::string(
                "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" "
                "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 '") +
-           QUADRIX_MPIEXEC + "' --oversubscribe -np 3 ";
+           QUADRIX_MPIEXEC + "' --oversubscribe -np " + std::to_string(ranks) + " ";
 #else
     return {};
 #endif
@@ -97,6 +97,52 @@ TEST(BatchCommand, BadJobIsReportedTheRestDoneAndARerunResumes) {
     EXPECT_TRUE(FileExists(out.File("moving_02.png")));
 }
 
+// A run killed after three frames (QUADRIX_FAULT_KILL_AFTER, batch/run.h: SIGKILL, as a killed
+// node) leaves those three complete and nothing else; a frame whose file was cut short (a
+// truncated copy) exists but is not complete. `--resume` renders the rest and that one again,
+// and every frame is then the same bytes as an uninterrupted run's.
+TEST(BatchCommand, KilledRunIsResumedAndEveryFrameIsCorrect) {
+    TempDir dir, ref, out;
+    const std::string scene = dir.Write("m.uq", kMoving);
+    const std::string args = " render '" + scene + "' --size 40x32 --frames 8 --threads 1 -o ";
+    auto a = RunShell(QuadrixBinary() + args + "'" + ref.File("f.png") + "'");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    auto killed = RunShell("QUADRIX_FAULT_KILL_AFTER=3 " + QuadrixBinary() + args + "'" +
+                           out.File("f.png") + "'");
+    EXPECT_EQ(killed.exitCode, 128 + 9) << killed.err;
+    for (int f = 0; f < 8; ++f)
+        EXPECT_EQ(FileExists(out.File("f_000" + std::to_string(f) + ".png")), f < 3) << f;
+    const std::string five = Bytes(ref.File("f_0005.png"));
+    std::ofstream(out.File("f_0005.png"), std::ios::binary) << five.substr(0, five.size() / 2);
+    auto resumed = RunShell(QuadrixBinary() + args + "'" + out.File("f.png") + "' --resume");
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_NE(resumed.err.find("5 rendered, 3 skipped"), std::string::npos) << resumed.err;
+    EXPECT_NE(resumed.err.find("exists but is incomplete"), std::string::npos) << resumed.err;
+    for (int f = 0; f < 8; ++f) {
+        const std::string name = "f_000" + std::to_string(f) + ".png";
+        EXPECT_EQ(Bytes(ref.File(name)), Bytes(out.File(name))) << name;
+    }
+}
+
+// Frames of an animation get the picture defaults of one `quadrix render` (shadows from the
+// scene's lights, anti-aliasing), and --no-shadows --aa off turn them off alike.
+TEST(BatchCommand, AnimationFramesGetThePictureDefaults) {
+    TempDir dir;
+    const std::string base = QuadrixBinary() + " render '" +
+                             SourcePath("examples/machined_part.uq") +
+                             "' --size 64x48 --threads 1 -o '" + dir.File("");
+    for (const std::string plain : {"", " --no-shadows --aa off"}) {
+        const std::string tag = plain.empty() ? "d" : "p";
+        auto still = RunShell(base + tag + "still.png'" + plain);
+        ASSERT_EQ(still.exitCode, 0) << still.err;
+        auto frames = RunShell(base + tag + "anim.png' --frames 2" + plain);
+        ASSERT_EQ(frames.exitCode, 0) << frames.err;
+        EXPECT_EQ(Bytes(dir.File(tag + "still.png")), Bytes(dir.File(tag + "anim_0000.png")))
+            << plain;
+    }
+    EXPECT_NE(Bytes(dir.File("dstill.png")), Bytes(dir.File("pstill.png")));
+}
+
 TEST(BatchMpi, AnimationAndBatchAreByteIdenticalToOneProcess) {
     if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
     TempDir in, one, many;
@@ -108,6 +154,8 @@ TEST(BatchMpi, AnimationAndBatchAreByteIdenticalToOneProcess) {
     auto b = RunShell(Mpirun() + QuadrixBinary() + args + "'" + many.File("a.png") + "'");
     ASSERT_EQ(b.exitCode, 0) << b.err;
     EXPECT_NE(b.err.find("3 MPI ranks"), std::string::npos) << b.err;
+    // Rank 0's progress counts every rank's frames: its last count is the whole run's.
+    EXPECT_NE(b.err.find("\"done\":6,"), std::string::npos) << b.err;
     for (int f = 0; f < 6; ++f) {
         const std::string name = "a_000" + std::to_string(f) + ".png";
         ASSERT_TRUE(FileExists(many.File(name))) << name;
@@ -147,6 +195,58 @@ TEST(BatchMpi, SortLastCompositeIsByteIdenticalToOneProcess) {
     ASSERT_TRUE(FileExists(dir.File("many.png"))) << b.err;
     EXPECT_EQ(Bytes(dir.File("one.png")), Bytes(dir.File("many.png")));
     EXPECT_EQ(Bytes(dir.File("one.qxf")), Bytes(dir.File("many.qxf")));  // depth, normals, ids
+}
+
+// Sort-first: two ranks draw interleaved bands of rows of one picture (72 rows: bands of 16, the
+// last one short), rank 0 gathers them, shades with the picture defaults (shadows, anti-aliasing)
+// and writes: the same Frame and the same PNG bytes as one process.
+TEST(BatchMpi, SortFirstBandsAreByteIdenticalToOneProcess) {
+    if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
+    TempDir dir;
+    const std::string args =
+        " render '" + SourcePath("examples/machined_part.uq") + "' --size 96x72 --threads 1 -o ";
+    auto a = RunShell(QuadrixBinary() + args + "'" + dir.File("one.png") + "' --dump-frame '" +
+                      dir.File("one.qxf") + "'");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    auto b = RunShell(Mpirun(2) + QuadrixBinary() + args + "'" + dir.File("many.png") +
+                      "' --dump-frame '" + dir.File("many.qxf") + "' --sort-first");
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    ASSERT_TRUE(FileExists(dir.File("many.qxf"))) << b.err;
+    EXPECT_EQ(Bytes(dir.File("one.qxf")), Bytes(dir.File("many.qxf")));  // depth, normals, ids
+    EXPECT_EQ(Bytes(dir.File("one.png")), Bytes(dir.File("many.png")));
+    auto c =
+        RunShell(QuadrixBinary() + args + "'" + dir.File("x.png") + "' --sort-first --sort-last");
+    EXPECT_NE(c.exitCode, 0);
+}
+
+// A rank killed mid-run ends the MPI run; the same run again resumes it — with the frames
+// already written skipped — and every frame is then correct. Every rank is set to die after its
+// first frame, so that whichever rank the dynamic scheduling gives frames to, the run (8 frames,
+// 2 ranks) is killed before it ends.
+TEST(BatchMpi, ARankKilledMidRunIsResumed) {
+    if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
+    TempDir dir, ref, out;
+    const std::string scene = dir.Write("m.uq", kMoving);
+    const std::string args = " render '" + scene + "' --size 40x32 --frames 8 --threads 1 -o ";
+    auto a = RunShell(QuadrixBinary() + args + "'" + ref.File("f.png") + "'");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    auto killed = RunShell(Mpirun(2) + "-x QUADRIX_FAULT_KILL_AFTER=1 " + QuadrixBinary() + args +
+                           "'" + out.File("f.png") + "' --resume");
+    EXPECT_NE(killed.exitCode, 0) << killed.err;
+    int written = 0;
+    for (int f = 0; f < 8; ++f)
+        written += FileExists(out.File("f_000" + std::to_string(f) + ".png"));
+    EXPECT_GE(written, 1);
+    EXPECT_LE(written, 2);
+    auto resumed =
+        RunShell(Mpirun(2) + QuadrixBinary() + args + "'" + out.File("f.png") + "' --resume");
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_NE(resumed.err.find(std::to_string(written) + " skipped"), std::string::npos)
+        << resumed.err;
+    for (int f = 0; f < 8; ++f) {
+        const std::string name = "f_000" + std::to_string(f) + ".png";
+        EXPECT_EQ(Bytes(ref.File(name)), Bytes(out.File(name))) << name;
+    }
 }
 
 }  // namespace

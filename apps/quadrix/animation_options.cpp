@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "quadrix/batch/job_file.h"
 #include "quadrix/batch/run.h"
+#include "quadrix/batch/sort_first.h"
 #include "quadrix/batch/sort_last.h"
 #include "quadrix/batch/view_list.h"
 #include "quadrix/io/bounded_read.h"
@@ -29,6 +30,13 @@ void AddAnimationOptions(CLI::App& cmd, RenderArgs& args) {
     cmd.add_flag("--sort-last", args.sortLast,
                  "Under mpirun: every rank draws a share of the solids, rank 0 composes them by "
                  "depth and writes the picture (docs/batch.md)");
+    cmd.add_flag("--sort-first", args.sortFirst,
+                 "Under mpirun: every rank draws bands of the picture's rows, rank 0 gathers "
+                 "them and writes the picture (docs/batch.md)")
+        ->excludes("--sort-last");
+    cmd.add_flag("--resume", args.resume,
+                 "With --frames/--turntable/--views: skip the frames whose outputs exist and are "
+                 "complete (an interrupted run goes on where it stopped)");
     cmd.add_option("--views", args.views,
                    "One frame per view of FILE: UniQuadrix view statements, or an rt view script "
                    "(several views between `start N;` and `end;`)");
@@ -36,13 +44,15 @@ void AddAnimationOptions(CLI::App& cmd, RenderArgs& args) {
 
 bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
                        Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer) {
-    writer = !args.sortLast || batch::MpiRank() == 0;
-    if (!args.sortLast) return ctx.Render(engine, frame, report, diags);
-    return batch::RenderSortLast(ctx, engine, frame, report, diags);
+    writer = !(args.sortLast || args.sortFirst) || batch::MpiRank() == 0;
+    if (args.sortFirst) return batch::RenderSortFirst(ctx, engine, frame, report, diags);
+    if (args.sortLast) return batch::RenderSortLast(ctx, engine, frame, report, diags);
+    return ctx.Render(engine, frame, report, diags);
 }
 
 int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
-                 const ShadeOptions& shade, const OutputRequest& outputs) {
+                 const ShadeOptions& shade, const PictureDefaults& picture,
+                 const OutputRequest& outputs) {
     batch::JobEntry entry;
     batch::Job& job = entry.job;
     job.label = "animation";
@@ -50,6 +60,7 @@ int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const Engine
     job.view = po.View();
     job.engine = engine;
     job.shade = shade;
+    job.picture = picture;
     job.output = outputs;
     job.frames = args.frames;
     // Standard input can be read once: its text is kept and read again from memory per frame.
@@ -104,8 +115,9 @@ int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const Engine
             return 2;
         }
     }
-    if (args.sortLast) {
-        std::fprintf(stderr, "quadrix: error: --sort-last renders one picture, not frames\n");
+    if (args.sortLast || args.sortFirst) {
+        std::fprintf(stderr, "quadrix: error: --sort-%s renders one picture, not frames\n",
+                     args.sortLast ? "last" : "first");
         return 2;
     }
     if (auto e = batch::CheckJob(job); !e.empty()) {
@@ -114,6 +126,7 @@ int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const Engine
     }
     batch::RunOptions ro;
     ro.threads = args.threads;
+    ro.skipExisting = args.resume;
     const batch::Summary s = batch::RunJobs({entry}, ro);
     if (batch::MpiRank() == 0) {
         std::fprintf(stderr, "quadrix: %s\n", s.Text().c_str());

@@ -8,6 +8,7 @@
 
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/shade/picture_defaults.h"
 #include "quadrix/shade/shader.h"
 
 namespace quadrix::cli {
@@ -56,14 +57,11 @@ struct RenderArgs {
     int turntable = 0;       // --turntable N
     std::string views;       // --views FILE
     bool sortLast = false;   // --sort-last: solids shared among MPI ranks (batch/sort_last.h)
+    bool sortFirst = false;  // --sort-first: pixel bands shared among MPI ranks (sort_first.h)
+    bool resume = false;     // --resume: skip frames whose outputs exist and are complete
 };
 void AddRenderCommand(CLI::App& app, RenderArgs& args);
-// --aa's default: samples per edge pixel (docs/shading.md, measured on the machined part).
-constexpr int kDefaultAaSamples = 4;
-// Scenes with more bodies get neither default shadows nor default anti-aliasing (their cost).
-constexpr std::size_t kPictureDefaultBodies = 256;
-// --aa's value → samples (0 = off); an error message or empty.
-std::string ParseAaSamples(const std::string& text, int& samples);
+// The picture defaults, kDefaultAaSamples and ParseAaSamples: shade/picture_defaults.h.
 int RunRender(const RenderArgs& args);
 
 struct ExportArgs {
@@ -153,12 +151,14 @@ struct BatchArgs {
 void AddBatchCommand(CLI::App& app, BatchArgs& args);
 int RunBatch(const BatchArgs& args);
 void AddAnimationOptions(CLI::App& cmd, RenderArgs& args);
-// Stage 3 of `render` with --sort-last (the solids shared among MPI ranks); sets `writer` false
+// Stage 3 of `render` with --sort-last (the solids shared among MPI ranks) or --sort-first (the
+// pixels); sets `writer` false
 // on the ranks that do not write the picture.
 bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
                        Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer);
 int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
-                 const ShadeOptions& shade, const OutputRequest& outputs);
+                 const ShadeOptions& shade, const PictureDefaults& picture,
+                 const OutputRequest& outputs);
 // `quadrix view`: the interactive window (view_command.cpp, viewer_window.cpp, docs/viewer.md).
 struct ViewArgs {
     std::vector<std::string> scenes;

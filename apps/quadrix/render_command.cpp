@@ -125,29 +125,13 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     AddAnimationOptions(*cmd, args);
 }
 
-std::string ParseAaSamples(const std::string& text, int& samples) {
-    if (text == "default") {
-        samples = kDefaultAaSamples;
-        return {};
-    }
-    if (text == "off" || text == "0" || text == "1") {
-        samples = 0;
-        return {};
-    }
-    for (int n : {4, 16, 64})
-        if (text == std::to_string(n)) {
-            samples = n;
-            return {};
-        }
-    return fmt::format("--aa: expected off, 4, 16 or 64, found '{}'", text);
-}
-
 namespace {
-// Whether the scene declares a light that can cast a shadow (not the default rig: docs/shading.md).
-bool DeclaresLights(const FlatScene& flat) {
-    for (const scene::Light& l : flat.lights)
-        if (!l.isRig && l.kind != scene::Light::Kind::kAmbient) return true;
-    return false;
+// Which picture options the command line leaves to the defaults.
+PictureDefaults PictureRequest(const RenderArgs& args) {
+    PictureDefaults d;
+    d.shadows = !args.shadows && !args.noShadows;
+    d.antialiasing = args.aa == "default";
+    return d;
 }
 
 // The camera options → CameraRequest; an error message or empty.
@@ -273,7 +257,10 @@ int RunRender(const RenderArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
-    OutputRequest outputs{args.output, args.dumpFrame, {}, args.format};
+    OutputRequest outputs;
+    outputs.image = args.output;
+    outputs.dumpFrame = args.dumpFrame;
+    outputs.format = args.format;
     outputs.png.bitDepth = args.png16 ? 16 : 8;
     if (args.output == "-" && args.stats && args.json) {
         std::fprintf(stderr,
@@ -347,16 +334,17 @@ int RunRender(const RenderArgs& args) {
         return 2;
     }
     if (animation) {
-        // Frames of an animation take the picture options as given (docs/batch.md): shadows and
-        // anti-aliasing when asked for, not the single picture's defaults.
+        // Frames of an animation get the picture defaults of a single picture (docs/batch.md),
+        // applied frame by frame by the batch module; --no-shadows and --aa off turn them off.
         ShadeOptions so;
         so.fast = args.fast;
         so.shadows = args.shadows;
         so.aaSamples = args.aa == "default" ? 0 : aaSamples;
+        so.linear = NeedsLinear(outputs);
         so.aaMitchell = args.aaFilter == "mitchell";
         so.edges = args.edges;
         if (args.phong) so.model = ShadingModel::kPhong;
-        return RunAnimation(args, po, engine, so, outputs);
+        return RunAnimation(args, po, engine, so, PictureRequest(args), outputs);
     }
 
     RenderContext ctx(args.threads);
@@ -385,26 +373,17 @@ int RunRender(const RenderArgs& args) {
     if (NeedsImage(outputs)) {
         ShadeOptions so;
         so.fast = args.fast;
-        // The picture defaults (docs/shading.md): shadows where the scene declares lights, and
-        // anti-aliasing, both only for scenes of at most kPictureDefaultBodies bodies: their
-        // rays visit the CSG trees without the engine's spatial pruning, which makes a union of
-        // thousands of spheres take minutes (asked for explicitly, they are still done).
-        const bool small = ctx.Flat().bodies.size() <= kPictureDefaultBodies;
-        const bool defaultShadows = !args.shadows && !args.noShadows && DeclaresLights(ctx.Flat());
-        const bool defaultAa = args.aa == "default" && aaSamples > 1;
-        if (!small && (defaultShadows || defaultAa))
-            std::fprintf(
-                stderr,
-                "quadrix: note: %zu bodies: no default%s%s (--shadows, --aa N ask for "
-                "them)\n",
-                ctx.Flat().bodies.size(), defaultShadows ? " shadows" : "",
-                defaultAa ? (defaultShadows ? " or anti-aliasing" : " anti-aliasing") : "");
-        so.shadows = args.shadows || (defaultShadows && small);
-        so.aaSamples = defaultAa && !small ? 0 : aaSamples;
+        // The picture defaults (shade/picture_defaults.h, docs/shading.md): shadows where the
+        // scene declares lights, and anti-aliasing, for scenes of at most kPictureDefaultBodies
+        // bodies.
+        so.shadows = args.shadows;
+        so.aaSamples = args.aa == "default" ? 0 : aaSamples;
+        if (auto note = ApplyPictureDefaults(ctx.Flat(), PictureRequest(args), so); !note.empty())
+            std::fprintf(stderr, "quadrix: note: %s\n", note.c_str());
         so.aaMitchell = args.aaFilter == "mitchell";
         so.edges = args.edges;
         if (args.phong) so.model = ShadingModel::kPhong;
-        so.linear = outputs.png.bitDepth == 16;  // 8-bit files are encoded from the 8-bit pixels
+        so.linear = NeedsLinear(outputs);  // 8-bit files are encoded from the 8-bit pixels
         image = ctx.Shade(frame, so);
     }
     const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);

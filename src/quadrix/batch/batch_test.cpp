@@ -13,6 +13,8 @@
 #include "quadrix/batch/job_renderer.h"
 #include "quadrix/batch/run.h"
 #include "quadrix/batch/view_list.h"
+#include "quadrix/io/exr.h"
+#include "quadrix/io/output_check.h"
 
 namespace quadrix::batch {
 namespace {
@@ -156,6 +158,57 @@ TEST(BatchJobFile, GoodAndBadLines) {
     EXPECT_NE(jobs[4].error.find("nonesuch"), std::string::npos);
 }
 
+// Picture options and the extra EXR output of a job line.
+TEST(BatchJobFile, PictureDefaultsAndExr) {
+    const std::string text =
+        "{\"input\": \"a.uq\", \"output\": \"a.png\"}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": \"off\", \"shadows\": false}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": 16, \"shadows\": true}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": 7}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a_%02d.png\", \"exr\": \"a_%02d.exr\", "
+        "\"frames\": 2}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"exr\": \"a.tiff\"}\n";
+    auto jobs = ParseJobFile(text, "j");
+    ASSERT_EQ(jobs.size(), 6u);
+    EXPECT_TRUE(jobs[0].job.picture.shadows && jobs[0].job.picture.antialiasing);
+    EXPECT_EQ(jobs[1].error, "");
+    EXPECT_FALSE(jobs[1].job.picture.shadows || jobs[1].job.picture.antialiasing);
+    EXPECT_FALSE(jobs[1].job.shade.shadows);
+    EXPECT_EQ(jobs[1].job.shade.aaSamples, 0);
+    EXPECT_TRUE(jobs[2].job.shade.shadows);
+    EXPECT_EQ(jobs[2].job.shade.aaSamples, 16);
+    EXPECT_NE(jobs[3].error.find("\"aa\" must be"), std::string::npos) << jobs[3].error;
+    if (HaveOpenExr()) {
+        EXPECT_EQ(jobs[4].error, "");
+        EXPECT_EQ(jobs[4].job.output.exr, "a_%02d.exr");
+        EXPECT_TRUE(jobs[4].job.shade.linear);
+    }
+    EXPECT_NE(jobs[5].error.find("not a .exr file"), std::string::npos) << jobs[5].error;
+}
+
+// What a resumed run accepts as done (io/output_check.h): whole files of the job's size.
+TEST(BatchOutputCheck, CompleteFilesOfTheRightSizeOnly) {
+    Dir dir;
+    Frame frame(6, 4);
+    frame.Offer(frame.Index(2, 1), 0.5, Vec3{0, 0, 1}, 0, 0, 0);
+    Image image(6, 4, 3);
+    for (auto& p : image.pixels) p = 128;
+    for (const char* name : {"p.png", "p.ppm", "p.pgm", "p.qxf", "p.exr"}) {
+        if (std::string(name) == "p.exr" && !HaveOpenExr()) continue;
+        OutputRequest o;
+        o.image = dir.File(name);
+        ASSERT_EQ(WriteOutputs(o, frame, &image), "") << name;
+        EXPECT_EQ(CheckCompleteOutput(o.image, 6, 4), "") << name;
+        EXPECT_NE(CheckCompleteOutput(o.image, 6, 5).find("6×4 pixels, not 6×5"), std::string::npos)
+            << name << ": " << CheckCompleteOutput(o.image, 6, 5);
+        const std::string bytes = Bytes(o.image);
+        dir.Write(name, bytes.substr(0, bytes.size() - 3));  // cut short
+        EXPECT_NE(CheckCompleteOutput(o.image, 6, 4), "") << name;
+    }
+    dir.Write("empty.png", "");
+    EXPECT_EQ(CheckCompleteOutput(dir.File("empty.png"), 6, 4), "empty");
+}
+
 constexpr const char* kStill =
     "quadric ball <1 1 1 0 0 0 0 0 0 -1>; body ballb <ball> =c .8 .3 .2;\n"
     "plane floor <0 1 0 1.2>; quadric big <1 1 1 0 0 0 0 0 0 -9>; body floorb <floor big>;\n";
@@ -191,7 +244,9 @@ std::string RenderAlone(const Job& job, int frame, const std::string& out) {
     Frame f;
     RenderReport rep;
     EXPECT_TRUE(ctx.Render(job.engine, f, rep, d));
-    Image img = ctx.Shade(f, job.shade);
+    ShadeOptions so = job.shade;
+    ApplyPictureDefaults(ctx.Flat(), job.picture, so);  // as `quadrix render` does
+    Image img = ctx.Shade(f, so);
     OutputRequest o = job.output;
     o.image = out;
     EXPECT_EQ(WriteOutputs(o, f, &img), "");
@@ -258,6 +313,25 @@ TEST(BatchJobRenderer, TurntableOrbitsTheBoundsAndKeepsOneRead) {
     EXPECT_LE(box.lo.x, -0.99);
     EXPECT_NE(Bytes(dir.File("t_0000.ppm")), Bytes(dir.File("t_0001.ppm")));
     EXPECT_EQ(Bytes(dir.File("t_0003.ppm")), RenderAlone(job, 3, dir.File("ref.ppm")));
+}
+
+// A job's extra EXR (picture and Frame layers) is numbered like the image and counts for
+// resumption: a frame is skipped only when both exist and are complete.
+TEST(BatchJobRenderer, ExrBesideThePictureAndResumption) {
+    if (!HaveOpenExr()) GTEST_SKIP() << "built without OpenEXR";
+    Dir dir;
+    Job job = MakeJob(dir.Write("m.uq", kMoving), dir.File("m_%d.png"));
+    job.output.exr = dir.File("m_%d.exr");
+    job.frames = 2;
+    JobRenderer r(1);
+    for (int f = 0; f < 2; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
+    for (const char* name : {"m_0.png", "m_1.png", "m_0.exr", "m_1.exr"})
+        EXPECT_EQ(CheckCompleteOutput(dir.File(name), 48, 40), "") << name;
+    EXPECT_TRUE(r.Render(job, 0, 1, true).skipped);
+    fs::remove(dir.File("m_1.exr"));
+    FrameResult again = r.Render(job, 0, 1, true);
+    EXPECT_FALSE(again.skipped);
+    EXPECT_EQ(CheckCompleteOutput(dir.File("m_1.exr"), 48, 40), "");
 }
 
 TEST(BatchRun, FailedJobIsReportedAndTheRestIsDoneThenResumed) {

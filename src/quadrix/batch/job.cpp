@@ -118,7 +118,7 @@ std::string CheckJob(const Job& job) {
         return fmt::format("frame range: the last frame {} is not one of the {} frames (0..{})",
                            job.last, n, n - 1);
     bool malformed = false;
-    for (const std::string* p : {&job.output.image, &job.output.dumpFrame}) {
+    for (const std::string* p : {&job.output.image, &job.output.dumpFrame, &job.output.exr}) {
         Conversions(*p, malformed);
         if (malformed)
             return fmt::format("output '{}': a '%' that is not a frame number (%d, %04d) or %%",

@@ -21,6 +21,7 @@
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/scene/scene.h"
+#include "quadrix/shade/picture_defaults.h"
 #include "quadrix/shade/shader.h"
 
 namespace quadrix::batch {
@@ -41,9 +42,10 @@ struct Job {
     InputRequest input;  // paths and importer options; input.clock is set per frame
     ViewRequest view;    // size and the still view (name, az/el, rt view)
     EngineRequest engine;
-    ShadeOptions shade;
-    OutputRequest output;  // image: a path or a pattern; dumpFrame likewise (may be empty)
-    int frames = 0;        // 0 = a still picture (or as many frames as `views`)
+    ShadeOptions shade;       // as asked; the picture defaults are added frame by frame
+    PictureDefaults picture;  // which of them apply (shade/picture_defaults.h)
+    OutputRequest output;     // image: a path or a pattern; dumpFrame likewise (may be empty)
+    int frames = 0;           // 0 = a still picture (or as many frames as `views`)
     std::optional<Turntable> turntable;
     std::vector<ListedView> views;  // one frame per view
     int first = 0, last = -1;       // frame range; last < 0 = to the end

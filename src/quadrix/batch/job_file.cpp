@@ -31,10 +31,11 @@ std::string ParseSizeText(const std::string& text, int& width, int& height) {
 
 const std::set<std::string>& Keys() {
     static const std::set<std::string> keys = {
-        "inputs",      "input",     "output", "size",       "engine",        "engine_options",
-        "view",        "az",        "el",     "viewsize",   "rt_view",       "frames",
-        "frame_range", "turntable", "views",  "dump_frame", "fast",          "phong",
-        "shadows",     "png16",     "top",    "strict",     "allow_missing", "threads"};
+        "inputs",        "input",     "output", "size",       "engine",  "engine_options",
+        "view",          "az",        "el",     "viewsize",   "rt_view", "frames",
+        "frame_range",   "turntable", "views",  "dump_frame", "exr",     "fast",
+        "phong",         "shadows",   "aa",     "png16",      "top",     "strict",
+        "allow_missing", "threads"};
     return keys;
 }
 
@@ -91,6 +92,7 @@ std::string JobFromJson(const json& j, Job& job) {
     if (!(e = str("output", job.output.image)).empty()) return e;
     if (job.output.image.empty()) return "no \"output\"";
     if (!(e = str("dump_frame", job.output.dumpFrame)).empty()) return e;
+    if (!(e = str("exr", job.output.exr)).empty()) return e;
     std::string size = "512x512";
     if (!(e = str("size", size)).empty()) return e;
     if (!(e = ParseSizeText(size, job.view.width, job.view.height)).empty()) return e;
@@ -117,7 +119,20 @@ std::string JobFromJson(const json& j, Job& job) {
     bool png16 = false, phong = false;
     if (!(e = flag("fast", job.shade.fast)).empty()) return e;
     if (!(e = flag("phong", phong)).empty()) return e;
-    if (!(e = flag("shadows", job.shade.shadows)).empty()) return e;
+    if (j.contains("shadows")) {
+        // true: always; false: never; absent: the picture default (shade/picture_defaults.h).
+        if (!(e = flag("shadows", job.shade.shadows)).empty()) return e;
+        job.picture.shadows = false;
+    }
+    if (j.contains("aa")) {
+        const json& aa = j["aa"];
+        if (!aa.is_string() && !aa.is_number_integer())
+            return "\"aa\" must be \"off\", 4, 16 or 64";
+        const std::string text = aa.is_string() ? aa.get<std::string>() : aa.dump();
+        if (ParseAaSamples(text, job.shade.aaSamples).size() || text == "default")
+            return fmt::format("\"aa\" must be \"off\", 4, 16 or 64, found {}", aa.dump());
+        job.picture.antialiasing = false;
+    }
     if (!(e = flag("png16", png16)).empty()) return e;
     if (!(e = flag("strict", job.input.strict)).empty()) return e;
     job.engine.strict = job.input.strict;
@@ -125,6 +140,7 @@ std::string JobFromJson(const json& j, Job& job) {
     if (!(e = strings("top", job.input.topObjects)).empty()) return e;
     if (phong) job.shade.model = ShadingModel::kPhong;
     job.output.png.bitDepth = png16 ? 16 : 8;
+    job.shade.linear = NeedsLinear(job.output);  // 8-bit files: from the 8-bit pixels
     if (!job.view.viewName.empty() && (job.view.azimuth || job.view.elevation || !rtView.empty()))
         return "\"view\" cannot be combined with \"az\"/\"el\" or \"rt_view\"";
     if (turntable > 0) {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "quadrix/import/rt_view.h"
+#include "quadrix/io/output_check.h"
 
 namespace quadrix::batch {
 
@@ -33,6 +34,24 @@ std::string WarningText(const Diagnostics& diags) {
 bool Exists(const std::string& path) {
     struct stat st {};
     return !path.empty() && path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// Whether every output of the frame exists and is complete (io/output_check.h). An output that
+// exists but is not complete is noted in r.warnings: the frame is rendered again.
+bool AllComplete(FrameResult& r, int width, int height) {
+    bool all = true;
+    for (const std::string* path : {&r.image, &r.dumpFrame, &r.exr}) {
+        if (path->empty()) continue;
+        if (!Exists(*path)) {
+            all = false;
+            continue;
+        }
+        if (std::string why = CheckCompleteOutput(*path, width, height); !why.empty()) {
+            r.warnings += fmt::format("note: '{}' exists but is {}: rendered again\n", *path, why);
+            all = false;
+        }
+    }
+    return all;
 }
 
 }  // namespace
@@ -103,7 +122,8 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
     const bool animated = job.Animated();
     r.image = FramePath(job.output.image, frame, animated);
     r.dumpFrame = FramePath(job.output.dumpFrame, frame, animated);
-    if (skipExisting && Exists(r.image) && (r.dumpFrame.empty() || Exists(r.dumpFrame))) {
+    r.exr = FramePath(job.output.exr, frame, animated);
+    if (skipExisting && AllComplete(r, job.view.width, job.view.height)) {
         r.skipped = true;
         return r;
     }
@@ -149,8 +169,17 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
     OutputRequest out = job.output;
     out.image = r.image;
     out.dumpFrame = r.dumpFrame;
+    out.exr = r.exr;
     std::optional<Image> image;
-    if (NeedsImage(out)) image = ctx_.Shade(fb, job.shade);
+    if (NeedsImage(out)) {
+        // The picture defaults of a single `quadrix render` (shade/picture_defaults.h), which
+        // depend on the flat scene; a too-big scene's note once per flattening.
+        ShadeOptions so = job.shade;
+        if (auto note = ApplyPictureDefaults(ctx_.Flat(), job.picture, so);
+            !note.empty() && r.flattened)
+            r.warnings += "note: " + note + "\n";
+        image = ctx_.Shade(fb, so);
+    }
     if (std::string e = WriteOutputs(out, fb, image ? &*image : nullptr); !e.empty())
         r.error = e + "\n";
     r.writeSeconds = Since(t3);

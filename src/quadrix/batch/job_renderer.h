@@ -20,10 +20,10 @@ namespace quadrix::batch {
 
 // What rendering one frame did and cost.
 struct FrameResult {
-    std::string image, dumpFrame;  // the paths written (or that would have been)
-    std::string error;             // empty on success; diagnostics, one per line
-    std::string warnings;          // warnings and notes, one per line
-    bool skipped = false;          // every output existed already (SkipExisting)
+    std::string image, dumpFrame, exr;  // the paths written (or that would have been)
+    std::string error;                  // empty on success; diagnostics, one per line
+    std::string warnings;               // warnings and notes, one per line
+    bool skipped = false;               // every output existed already (SkipExisting)
     bool read = false, flattened = false;
     double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0, writeSeconds = 0;
     double seconds = 0;  // the whole frame

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "quadrix/batch/job_renderer.h"
 
@@ -38,24 +39,63 @@ void Progress::Bar() {
     barShown_ = true;
 }
 
+void Progress::Count(int done, int rendered, int failed) {
+    if (!exchange_) {
+        done_ += done;
+        rendered_ += rendered;
+        failed_ += failed;
+        return;
+    }
+    const ProgressCounts totals = exchange_({done, rendered, failed});
+    done_ = totals.done;
+    rendered_ = totals.rendered;
+    failed_ = totals.failed;
+}
+
+void Progress::Wait(double period) {
+    if (!exchange_) return;
+    ProgressCounts last{done_, rendered_, failed_};
+    while (done_ < total_) {
+        std::this_thread::sleep_for(std::chrono::duration<double>(period));
+        Count(0, 0, 0);
+        if (done_ == last.done && failed_ == last.failed) continue;
+        last = {done_, rendered_, failed_};
+        if (quiet_) continue;
+        if (terminal_) {
+            Bar();
+            continue;
+        }
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const double rate = elapsed > 0 ? rendered_ / elapsed : 0;
+        nlohmann::json j;
+        j["event"] = "progress";
+        j["done"] = done_;
+        j["total"] = total_;
+        j["failed"] = failed_;
+        j["frames_per_s"] = rate;
+        j["eta_s"] = rate > 0 ? (total_ - done_) / rate : 0.0;
+        fmt::print(out_, "{}\n", j.dump());
+        std::fflush(out_);
+    }
+}
+
 void Progress::Frame(int job, int frame, const FrameResult& r, const std::string& label,
                      bool printError) {
     if (!r.error.empty()) {
-        if (printError) {
+        if (printError)
             Error(job, label, r.error);
-        } else {
-            ++failed_;
-            ++done_;
-        }
+        else
+            Count(1, 0, 1);
         return;
     }
-    ++done_;
-    if (!r.skipped) {
-        ++rendered_;
-        renderedSeconds_ += r.seconds;
-    }
+    Count(1, r.skipped ? 0 : 1, 0);
+    if (!r.skipped) renderedSeconds_ += r.seconds;
+    std::string notes = r.warnings;
+    while (!notes.empty() && notes.back() == '\n') notes.pop_back();
     if (quiet_) return;
     if (terminal_) {
+        if (!notes.empty()) fmt::print(out_, "\r\x1b[K{}\n", notes);
         Bar();
         return;
     }
@@ -74,6 +114,7 @@ void Progress::Frame(int job, int frame, const FrameResult& r, const std::string
         j["render_s"] = r.renderSeconds;
         j["write_s"] = r.writeSeconds;
     }
+    if (!notes.empty()) j["notes"] = notes;
     j["done"] = done_;
     j["total"] = total_;
     j["failed"] = failed_;
@@ -84,8 +125,7 @@ void Progress::Frame(int job, int frame, const FrameResult& r, const std::string
 }
 
 void Progress::Error(int job, const std::string& label, const std::string& error) {
-    ++failed_;
-    ++done_;
+    Count(1, 0, 1);
     if (barShown_) fmt::print(out_, "\r\x1b[K");
     std::string text = error;
     while (!text.empty() && text.back() == '\n') text.pop_back();

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -51,12 +53,23 @@ std::string Label(const std::vector<JobEntry>& jobs, int j) {
     return l.empty() ? fmt::format("job {}", j) : l;
 }
 
+// The fault-injection hook of the resumption tests (run.h): the number of frames after which
+// this process kills itself, 0 = never.
+int KillAfterFrames(int rank) {
+    const char* v = std::getenv("QUADRIX_FAULT_KILL_AFTER");
+    if (!v) return 0;
+    int frames = 0, onRank = -1;
+    if (std::sscanf(v, "%d:%d", &frames, &onRank) < 1 || frames < 1) return 0;
+    return onRank < 0 || onRank == rank ? frames : 0;
+}
+
 // Renders the units that `next` hands out (-1 = none left).
 template <typename Next>
 RankTally RenderUnits(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units,
                       const RunOptions& options, Progress& progress, Next next) {
     RankTally t;
     JobRenderer renderer(options.threads);
+    const int killAfter = KillAfterFrames(MpiRank());
     for (int u = next(); u >= 0 && u < static_cast<int>(units.size()); u = next()) {
         const Unit& unit = units[u];
         const std::string label = Label(jobs, unit.job);
@@ -85,6 +98,7 @@ RankTally RenderUnits(const std::vector<JobEntry>& jobs, const std::vector<Unit>
             t.maxFrame = std::max(t.maxFrame, r.seconds);
         }
         progress.Frame(unit.job, unit.frame, r, frameLabel);
+        if (killAfter > 0 && t.rendered == killAfter) std::raise(SIGKILL);
     }
     t.reads = renderer.reads;
     t.flattens = renderer.flattens;
@@ -200,11 +214,13 @@ Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units
     const int rank = MpiRank();
     // The next unit's index lives in rank 0's window; MPI_Fetch_and_op takes one (passive
     // target, no reply from a busy rank needed).
+    // Next to it the run's progress counts (done, rendered, failed), which every rank adds its
+    // frames to, so that rank 0 shows the whole run's progress.
     long long* counter = nullptr;
     MPI_Win win;
-    MPI_Win_allocate(rank == 0 ? sizeof(long long) : 0, sizeof(long long), MPI_INFO_NULL,
+    MPI_Win_allocate(rank == 0 ? 4 * sizeof(long long) : 0, sizeof(long long), MPI_INFO_NULL,
                      MPI_COMM_WORLD, &counter, &win);
-    if (rank == 0) *counter = 0;
+    if (rank == 0) std::fill_n(counter, 4, 0LL);
     MPI_Barrier(MPI_COMM_WORLD);
     MPI_Win_lock_all(0, win);
     const long long one = 1;
@@ -214,10 +230,21 @@ Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units
         MPI_Win_flush(0, win);
         return got < static_cast<long long>(units.size()) ? static_cast<int>(got) : -1;
     };
-    // Only rank 0 draws progress (its own frames, and the others' as it learns of them at the
-    // end); every rank reports its own errors as they happen.
+    // Only rank 0 draws progress (the whole run's counts, progress.h); every rank reports its own
+    // errors as they happen.
     Progress progress(stderr, static_cast<int>(units.size()), terminal, options.quiet || rank != 0);
+    progress.ShareCounts([&](const ProgressCounts& delta) {
+        const long long add[3] = {delta.done, delta.rendered, delta.failed};
+        long long before[3] = {0, 0, 0};
+        MPI_Get_accumulate(add, 3, MPI_LONG_LONG, before, 3, MPI_LONG_LONG, 0, 1, 3, MPI_LONG_LONG,
+                           MPI_SUM, win);
+        MPI_Win_flush(0, win);
+        return ProgressCounts{static_cast<int>(before[0] + add[0]),
+                              static_cast<int>(before[1] + add[1]),
+                              static_cast<int>(before[2] + add[2])};
+    });
     RankTally mine = RenderUnits(jobs, units, options, progress, next);
+    if (rank == 0) progress.Wait();
     MPI_Win_unlock_all(win);
     MPI_Barrier(MPI_COMM_WORLD);
     MPI_Win_free(&win);

@@ -14,7 +14,12 @@
 // A job whose entry is invalid (a bad job line) fails without frames; a frame that fails is
 // reported with its error and the run goes on. With skipExisting a frame whose outputs all exist
 // is skipped: outputs are written atomically (io/output_file.h), so an existing file is complete
-// and an interrupted run is resumed by running it again.
+// and an interrupted run is resumed by running it again; an output that exists but is not
+// complete or not of the job's size (io/output_check.h) is rendered again.
+//
+// Fault injection (the resumption tests, docs/batch.md): with QUADRIX_FAULT_KILL_AFTER=N in the
+// environment a process kills itself (SIGKILL) right after rendering its N-th frame; with
+// QUADRIX_FAULT_KILL_AFTER=N:R only MPI rank R does. Nothing else reads it.
 #pragma once
 
 #include <string>

@@ -29,11 +29,17 @@ RenderStats Engine::Render(const FlatScene& scene, const RenderOptions& options,
         stats.warnings.push_back(error + "; nothing drawn");
         return stats;
     }
+    region_ = options.region ? &*options.region : nullptr;
+    RenderStats stats;
     if (options.threads > 0) {
         tbb::task_arena arena(options.threads);
-        return arena.execute([&] { return Draw(scene, parsed, frame); });
+        stats = arena.execute([&] { return Draw(scene, parsed, frame); });
+    } else {
+        stats = Draw(scene, parsed, frame);
     }
-    return Draw(scene, parsed, frame);
+    region_ = nullptr;
+    if (options.region) CropToRegion(frame, *options.region);
+    return stats;
 }
 
 std::unique_ptr<Engine> MakeEngine(std::string_view name) {

@@ -9,10 +9,16 @@
 // Threads: Render runs Draw in the caller's oneTBB arena (the render context owns one), or, when
 // RenderOptions::threads > 0, in a temporary arena of that many threads. Engines never make their
 // own arenas; they use tbb::parallel_for and friends, and their results never depend on threads.
+//
+// Regions: RenderOptions::region asks for part of the picture (frame/pixel_region.h, sort-first
+// rendering). The Frame keeps the scene's full size; Render sets every pixel outside the region
+// to background after Draw, so an engine may ignore the region (draw everything, cropped) or use
+// Region() to skip the work outside it, which must not change a pixel inside it.
 #pragma once
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,6 +27,7 @@
 #include "quadrix/engines/stats_table.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
+#include "quadrix/frame/pixel_region.h"
 
 namespace quadrix {
 
@@ -29,6 +36,8 @@ struct RenderOptions {
     // The user's option request, "key" → "value" (CLI: --engine-opt key=value), checked against
     // the engine's schema: an unknown key or a bad value is an error, not a silent default.
     std::map<std::string, std::string> engineOptions;
+    // Only these pixels (see the header comment); unset = the whole picture.
+    std::optional<PixelRegion> region;
 };
 
 // A solid the engine did not draw at all (no pixel of it is in the Frame), and why. The render
@@ -75,8 +84,13 @@ class Engine {
     RenderStats Render(const FlatScene& scene, const RenderOptions& options, Frame& frame);
 
   protected:
+    // The region of the current Render call, or nullptr for the whole picture (for Draw).
+    const PixelRegion* Region() const { return region_; }
     virtual RenderStats Draw(const FlatScene& scene, const EngineOptions& options,
                              Frame& frame) = 0;
+
+  private:
+    const PixelRegion* region_ = nullptr;
 };
 
 // Registry shortcuts (engines/registry.h): nullptr when `name` is not a registered engine.

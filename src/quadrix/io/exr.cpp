@@ -14,6 +14,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfIO.h>
+#include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
@@ -123,7 +124,47 @@ std::string WriteExr(OutputFile& file, const Frame& frame, const Image* image) {
     return {};
 }
 
+std::string CheckExrFile(const std::string& path, int width, int height) {
+    try {
+        Imf::InputFile in(path.c_str());
+        const Imath::Box2i dw = in.header().dataWindow();
+        if (dw.max.x - dw.min.x + 1 != width || dw.max.y - dw.min.y + 1 != height)
+            return fmt::format("{}×{} pixels, not {}×{}", dw.max.x - dw.min.x + 1,
+                               dw.max.y - dw.min.y + 1, width, height);
+        if (!in.isComplete()) return "incomplete (scan lines missing)";
+        // Every chunk decoded (one channel's worth of memory): a file cut inside its last chunk
+        // still has a complete offset table.
+        const Imf::ChannelList& channels = in.header().channels();
+        if (channels.begin() != channels.end()) {
+            std::vector<float> scratch(static_cast<std::size_t>(width) *
+                                       static_cast<std::size_t>(height));
+            Imf::FrameBuffer fb;
+            fb.insert(
+                channels.begin().name(),
+                Imf::Slice(Imf::FLOAT,
+                           reinterpret_cast<char*>(scratch.data() - dw.min.x -
+                                                   static_cast<std::ptrdiff_t>(dw.min.y) * width),
+                           sizeof(float), sizeof(float) * static_cast<std::size_t>(width)));
+            in.setFrameBuffer(fb);
+            in.readPixels(dw.min.y, dw.max.y);
+        }
+    } catch (const std::exception& e) {
+        return fmt::format("not a readable OpenEXR file ({})", e.what());
+    }
+    return {};
+}
+
 #else
+
+std::string CheckExrFile(const std::string& path, int, int) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return "cannot be read";
+    unsigned char magic[4] = {};
+    const bool ok = std::fread(magic, 1, 4, f) == 4 && magic[0] == 0x76 && magic[1] == 0x2f &&
+                    magic[2] == 0x31 && magic[3] == 0x01;
+    std::fclose(f);
+    return ok ? std::string() : "not an OpenEXR file";
+}
 
 bool HaveOpenExr() { return false; }
 

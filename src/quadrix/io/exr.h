@@ -32,5 +32,8 @@ bool HaveOpenExr();
 // `file` (committed by the caller). Empty string on success, else a one-line message.
 std::string WriteExr(OutputFile& file, const Frame& frame, const Image* image);
 std::string WriteExr(const std::string& path, const Frame& frame, const Image* image);
+// Whether `path` is a complete OpenEXR file (every scan line present, OpenEXR's isComplete) of
+// width × height pixels: empty, else why not. Without OpenEXR only the magic number is checked.
+std::string CheckExrFile(const std::string& path, int width, int height);
 
 }  // namespace quadrix

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "quadrix/io/exr.h"
 #include "quadrix/io/output_file.h"
@@ -49,6 +50,20 @@ std::string CheckOutputs(const OutputRequest& request) {
             CheckOutputPaths({request.image, request.dumpFrame.empty() ? "-" : request.dumpFrame});
         !e.empty())
         return e;
+    if (!request.exr.empty()) {
+        ImageFormat exr;
+        if (!ImageFormatFromPath(request.exr, exr) || exr != ImageFormat::kExr)
+            return fmt::format("exr output: '{}' is not a .exr file", request.exr);
+        if (!HaveOpenExr())
+            return "this quadrix was built without OpenEXR: .exr output is not available";
+        if (auto e = CheckOutputPaths({request.exr}); !e.empty()) return e;
+        std::error_code ec;
+        for (const std::string* other : {&request.image, &request.dumpFrame})
+            if (*other == request.exr || std::filesystem::weakly_canonical(request.exr, ec) ==
+                                             std::filesystem::weakly_canonical(*other, ec))
+                return fmt::format("the exr output and another output name the same file '{}'",
+                                   request.exr);
+    }
     if (!request.dumpFrame.empty()) {
         ImageFormat dump;
         if (!ImageFormatFromPath(request.dumpFrame, dump) || dump != ImageFormat::kFrameDump)
@@ -65,7 +80,16 @@ std::string CheckOutputs(const OutputRequest& request) {
 bool NeedsImage(const OutputRequest& request) {
     ImageFormat format;
     PnmKind pnm;
-    return OutputFormat(request, format, pnm) && format != ImageFormat::kFrameDump;
+    return !request.exr.empty() ||
+           (OutputFormat(request, format, pnm) && format != ImageFormat::kFrameDump);
+}
+
+bool NeedsLinear(const OutputRequest& request) {
+    ImageFormat format;
+    PnmKind pnm;
+    if (!OutputFormat(request, format, pnm)) return true;
+    return !request.exr.empty() || format == ImageFormat::kExr ||
+           (format == ImageFormat::kPng && request.png.bitDepth == 16);
 }
 
 std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const Image* image) {
@@ -78,6 +102,8 @@ std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const
     OutputFile main(request.image);
     std::optional<OutputFile> dump;
     if (!request.dumpFrame.empty()) dump.emplace(request.dumpFrame);
+    std::optional<OutputFile> exr;
+    if (!request.exr.empty()) exr.emplace(request.exr);
     std::string error;
     if (format == ImageFormat::kFrameDump)
         error = WriteFrameDump(main, frame);
@@ -90,7 +116,13 @@ std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const
     else
         error = WritePnm(main, *image, pnm);
     if (error.empty() && dump) error = WriteFrameDump(*dump, frame);
-    if (error.empty()) error = dump ? CommitAll({&main, &*dump}) : CommitAll({&main});
+    if (error.empty() && exr) error = WriteExr(*exr, frame, image);
+    if (error.empty()) {
+        std::vector<OutputFile*> files{&main};
+        if (dump) files.push_back(&*dump);
+        if (exr) files.push_back(&*exr);
+        error = CommitAll(files);
+    }
     return error;
 }
 

@@ -14,7 +14,10 @@ namespace quadrix {
 struct OutputRequest {
     std::string image;      // the main output; its extension picks the format; "-" = stdout
     std::string dumpFrame;  // optional .qxf dump of the Frame (--dump-frame)
-    PngOptions png;         // bit depth of a PNG main output (--png16)
+    // Optional OpenEXR file beside the main output: the picture in linear light and the Frame's
+    // depth, normal and id layers (io/exr.h; a batch job's "exr").
+    std::string exr;
+    PngOptions png;  // bit depth of a PNG main output (--png16)
     // --format: png, ppm, pgm, exr or qxf; overrides the extension. Empty: the extension, and
     // png for standard output.
     std::string format;
@@ -26,8 +29,11 @@ bool OutputFormat(const OutputRequest& request, ImageFormat& format, PnmKind& pn
 
 // Checks the request before any work: a known format, two different paths. Error or empty.
 std::string CheckOutputs(const OutputRequest& request);
-// Whether the main output needs a shaded Image (a .qxf output does not).
+// Whether the outputs need a shaded Image (a .qxf output alone does not).
 bool NeedsImage(const OutputRequest& request);
+// Whether the outputs keep the unquantised shading (ShadeOptions::linear): a 16-bit PNG or an
+// OpenEXR picture; 8-bit files are encoded from the 8-bit pixels.
+bool NeedsLinear(const OutputRequest& request);
 // Writes every output (atomically, each). Error message or empty.
 std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const Image* image);
 

@@ -172,15 +172,18 @@ Engine* RenderContext::EngineNamed(const std::string& name) {
     return engines_.emplace(name, info->make()).first->second.get();
 }
 
-void RenderContext::ComposeReference(const std::vector<int>& solids, Frame& frame) {
+void RenderContext::ComposeReference(const std::vector<int>& solids, const EngineRequest& request,
+                                     Frame& frame) {
     Engine* reference = EngineNamed(std::string(kReferenceEngine));
     QUADRIX_CHECK(reference != nullptr, "the reference engine is not registered");
     Frame other;
+    RenderOptions ro;
+    ro.region = request.region;
     if (solids.size() == flat_.solids.size()) {
-        reference->Render(flat_, RenderOptions{}, other);
+        reference->Render(flat_, ro, other);
     } else {
         const FlatScene sub = SubsetOfSolids(flat_, solids);
-        reference->Render(sub, RenderOptions{}, other);
+        reference->Render(sub, ro, other);
         for (auto& s : other.solid)
             if (s != Frame::kNone) s = solids[static_cast<std::size_t>(s)];
     }
@@ -223,6 +226,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     Engine* engine = EngineNamed(request.engine);
     RenderOptions ro;
     ro.engineOptions = request.options;
+    ro.region = request.region;
     const EngineCapabilities caps = info->capabilities;
     const bool drawsSomething =
         (caps.solids && !flat_.solids.empty()) || (caps.freeforms && !flat_.freeforms.empty());
@@ -264,7 +268,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     if (!undrawn.empty()) {
         std::vector<int> solids;
         for (const UndrawnSolid& u : undrawn) solids.push_back(u.solid);
-        arena_->arena.execute([&] { ComposeReference(solids, frame); });
+        arena_->arena.execute([&] { ComposeReference(solids, request, frame); });
         report.byReference = undrawn;
         if (caps.solids) {
             std::map<std::string, int> reasons;
@@ -288,6 +292,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
             st = isocurve::RenderFreeform(isocurve::SceneDrawables(flat_), flat_.projection, {},
                                           other);
         });
+        if (request.region) CropToRegion(other, *request.region);
         ComposeMin(frame, other);
         report.freeformsByIsocurve = st.surfaces;
         report.isocurveSummary = fmt::format(

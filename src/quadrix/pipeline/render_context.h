@@ -15,7 +15,9 @@
 //                engine without that capability — the reference engine (raycast) draws into a
 //                second Frame, and freeform surfaces an engine cannot draw the isocurve drawer
 //                draws into a third; the Frames are merged by per-pixel minimum depth
-//                (ComposeMin). With `strict` the context refuses instead (an error naming what
+//                (ComposeMin). A request may ask for a share of the solids (sort-last) or a
+//                region of the pixels (sort-first; the pixels outside are background). With
+//                `strict` the context refuses instead (an error naming what
 //                could not be drawn). Engines are kept per name, so their tables stay warm.
 //   4. Shade     the Frame into an Image (shade/), by the chosen model.
 //   5. Write     the outputs (pipeline/output.h): PNG, PNM, .qxf frame dumps, all checked before
@@ -33,6 +35,7 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/frame/frame.h"
+#include "quadrix/frame/pixel_region.h"
 #include "quadrix/import/rt_view.h"
 #include "quadrix/io/image.h"
 #include "quadrix/pipeline/inputs.h"
@@ -85,6 +88,10 @@ struct EngineRequest {
     // those of the whole flat scene, so the Frames of several shares compose by ComposeMin.
     std::optional<std::vector<int>> share;
     bool shareFreeforms = true;
+    // Sort-first distributed rendering (batch/sort_first.h): when set, only these pixels are
+    // drawn (by the engine, the reference engine and the isocurve drawer alike); every pixel
+    // outside is background (frame/pixel_region.h).
+    std::optional<PixelRegion> region;
 };
 
 // How the picture was made: the engine's own statistics and what composition added.
@@ -143,7 +150,8 @@ class RenderContext {
     struct Arena;
     Engine* EngineNamed(const std::string& name);
     // Draws `solids` of the flat scene with the reference engine and merges them into `frame`.
-    void ComposeReference(const std::vector<int>& solids, Frame& frame);
+    void ComposeReference(const std::vector<int>& solids, const EngineRequest& request,
+                          Frame& frame);
 
     std::unique_ptr<Arena> arena_;
     scene::Scene scene_;

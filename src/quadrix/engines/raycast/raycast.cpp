@@ -106,11 +106,16 @@ class RaycastEngine final : public Engine {
         constexpr int kTilesX = kBlock / kTileW, kTilesY = kBlock / kTileH;
         const Settings settings = ReadSettings(options);
         tbb::enumerable_thread_specific<Worker> workers(&tables, full.maxDepth, settings);
+        // A region (sort-first): the blocks and tiles outside it are skipped (Engine::Render
+        // makes their pixels background); those inside are the same rectangles, pruned the same
+        // way, as in a render of the whole picture, so their pixels are the same bits.
+        const PixelRegion* region = Region();
         // Blocks own their pruned program (not the thread: a thread waiting in the nested loop may
         // run another block); tiles use per-thread scratch, held by no task across a wait.
         auto renderBlock = [&](int b) {
             int bx0 = (b % blocksX) * kBlock, by0 = (b / blocksX) * kBlock;
             int bx1 = std::min(bx0 + kBlock, width), by1 = std::min(by0 + kBlock, height);
+            if (region && !region->Intersects(bx0, by0, bx1, by1)) return;
             CsgProgram block;
             std::vector<std::int32_t> stack;
             PruneProgram(full, Centres(bx0, by0, bx1, by1), block, stack);
@@ -121,18 +126,20 @@ class RaycastEngine final : public Engine {
                 FillBackground(frame, bx0, by0, bx1, by1);
                 return;
             }
-            tbb::parallel_for(tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
-                              [&](const tbb::blocked_range<int>& range) {
-                                  Worker& w = workers.local();
-                                  for (int k = range.begin(); k < range.end(); ++k) {
-                                      int x0 = bx0 + (k % kTilesX) * kTileW;
-                                      int y0 = by0 + (k / kTilesX) * kTileH;
-                                      if (x0 >= bx1 || y0 >= by1) continue;
-                                      RenderTile(scene, tables, block, x0, y0,
-                                                 std::min(x0 + kTileW, bx1),
-                                                 std::min(y0 + kTileH, by1), w, frame);
-                                  }
-                              });
+            tbb::parallel_for(
+                tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
+                [&](const tbb::blocked_range<int>& range) {
+                    Worker& w = workers.local();
+                    for (int k = range.begin(); k < range.end(); ++k) {
+                        int x0 = bx0 + (k % kTilesX) * kTileW;
+                        int y0 = by0 + (k / kTilesX) * kTileH;
+                        if (x0 >= bx1 || y0 >= by1) continue;
+                        if (region && !region->Intersects(x0, y0, x0 + kTileW, y0 + kTileH))
+                            continue;
+                        RenderTile(scene, tables, block, x0, y0, std::min(x0 + kTileW, bx1),
+                                   std::min(y0 + kTileH, by1), w, frame);
+                    }
+                });
         };
         tbb::parallel_for(tbb::blocked_range<int>(0, blocksX * blocksY, 1),
                           [&](const tbb::blocked_range<int>& range) {

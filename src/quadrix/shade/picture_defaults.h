@@ -1,0 +1,43 @@
+// The picture defaults (docs/shading.md "Defaults"): what a picture gets unless told otherwise —
+// `quadrix render`, and every frame of an animation, a turntable or a batch job alike:
+//   - shadows, when the scene declares a light that can cast one (not the default rig);
+//   - anti-aliasing, kDefaultAaSamples samples per edge pixel (box filter);
+// both only for scenes of at most kPictureDefaultBodies bodies, since their rays visit the CSG
+// trees without the engine's spatial pruning (a union of thousands of spheres would take
+// minutes); asked for explicitly they are still done. They depend on the flat scene (its lights
+// and bodies), so they are applied after flattening, frame by frame.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "quadrix/flatten/flat_scene.h"
+#include "quadrix/shade/shader.h"
+
+namespace quadrix {
+
+// --aa's default: samples per edge pixel (measured on the machined part, docs/shading.md).
+constexpr int kDefaultAaSamples = 4;
+// Scenes with more bodies get neither default shadows nor default anti-aliasing.
+constexpr std::size_t kPictureDefaultBodies = 256;
+
+// Which of the options the request leaves to the defaults.
+struct PictureDefaults {
+    // Shadows when the scene declares lights; false: --no-shadows (or shadows given as asked).
+    bool shadows = true;
+    // kDefaultAaSamples; false: the request's aaSamples stand (--aa N, --aa off).
+    bool antialiasing = true;
+};
+
+// Whether the scene declares a light that can cast a shadow (not the default rig).
+bool DeclaresLights(const FlatScene& flat);
+
+// Sets options.shadows and options.aaSamples where `defaults` leaves them open. Returns a note
+// ("... bodies: no default shadows ...") when the scene is too big for the defaults, else empty.
+std::string ApplyPictureDefaults(const FlatScene& flat, const PictureDefaults& defaults,
+                                 ShadeOptions& options);
+
+// --aa's value ("off", "4", "16", "64" or "default") → samples (0 = off); error or empty.
+std::string ParseAaSamples(const std::string& text, int& samples);
+
+}  // namespace quadrix
