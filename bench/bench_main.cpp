@@ -585,9 +585,14 @@ int main(int argc, char** argv) {
         "floor MiB |\n|---|---|---|---|";
     for (std::size_t i = 0; i < EngineNames().size(); ++i) md += "---|";
     md += "---|---|---|---|---|---|\n";
-    std::string csv = "# machine: " + machine + "\nscene,primitives,width,height,flatten_ms";
+    std::string csv = "scene,primitives,width,height,flatten_ms";
     for (const auto& e : EngineNames()) csv += "," + e + "_frame_ms";
-    csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib\n";
+    csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib,machine\n";
+    std::string machineCsv = machine;  // one CSV field: quoted, inner quotes doubled
+    for (std::size_t q = machineCsv.find('"'); q != std::string::npos;
+         q = machineCsv.find('"', q + 2))
+        machineCsv.insert(q, 1, '"');
+    machineCsv = "\"" + machineCsv + "\"";
     for (const Row& r : rows) {
         md += fmt::format("| {} | {} | {}×{} | {:.1f} |", r.scene, r.primitives, r.size.w, r.size.h,
                           r.flattenMs);
@@ -608,8 +613,8 @@ int main(int argc, char** argv) {
                           Ratio(r.povProcessMs, r.quadrixProcessMs), r.quadrixPeakMiB,
                           r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–",
                           r.benchFloorMiB);
-        csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f}\n", r.quadrixProcessMs, r.povProcessMs,
-                           r.quadrixPeakMiB, r.povPeakMiB);
+        csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f},{}\n", r.quadrixProcessMs, r.povProcessMs,
+                           r.quadrixPeakMiB, r.povPeakMiB, machineCsv);
     }
     md += Scaling(rows);
     md += AntialiasTable(scenes, outDir, only, quick ? 1 : 3);
