@@ -44,6 +44,25 @@ extern char** environ;
 namespace quadrix::bench {
 namespace {
 
+// The machine every result was measured on (issue 24: these VMs change CPU between sessions):
+// the CPU model from /proc/cpuinfo, the core count and the load average when the run began.
+std::string MachineLine() {
+    std::string model = "unknown CPU";
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    for (std::string line; std::getline(cpuinfo, line);) {
+        if (line.rfind("model name", 0) != 0) continue;
+        if (auto colon = line.find(':'); colon != std::string::npos) {
+            model = line.substr(colon + 1);
+            model.erase(0, model.find_first_not_of(" \t"));
+        }
+        break;
+    }
+    double load[3] = {0, 0, 0};
+    if (getloadavg(load, 3) < 0) load[0] = load[1] = load[2] = -1;
+    return fmt::format("{}, {} hardware threads, load average {:.2f} {:.2f} {:.2f}", model,
+                       sysconf(_SC_NPROCESSORS_ONLN), load[0], load[1], load[2]);
+}
+
 struct ProcessRun {
     double seconds = 0;
     double peakMiB = 0;
@@ -371,6 +390,7 @@ int main(int argc, char** argv) {
         SpheresMinusCylinder(100),
         SpheresMinusCylinder(1000),
         SpheresMinusCylinder(10000),
+        SpheresMinusCylinder(10000, /*distributed=*/true),
         SumOfProductsExplosion(8),
         SumOfProductsExplosion(16),
         SumOfProductsExplosion(32),
@@ -399,6 +419,7 @@ int main(int argc, char** argv) {
     if (noProcess) noPov = true;
     bool havePov = !noPov && std::system("command -v povray >/dev/null 2>&1") == 0;
 
+    const std::string machine = MachineLine();  // before the suite loads the machine itself
     std::vector<Row> rows;
     std::set<std::string> tooSlow;  // "scene/engine" pairs over 10 s a frame
     // Per "family/engine/size" (family = scene name without its trailing count, e.g. spheres):
@@ -546,7 +567,8 @@ int main(int argc, char** argv) {
     char stamp[32];
     std::time_t now = std::time(nullptr);
     std::strftime(stamp, sizeof stamp, "%Y-%m-%d_%H%M%S", std::gmtime(&now));
-    std::string md = fmt::format("# Quadrix benchmark results {}\n\n", stamp);
+    std::string md =
+        fmt::format("# Quadrix benchmark results {}\n\nMachine: {}\n\n", stamp, machine);
     md +=
         "Frame = in-process render of a flattened scene (warm, median); process = whole "
         "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "
@@ -565,7 +587,12 @@ int main(int argc, char** argv) {
     md += "---|---|---|---|---|---|\n";
     std::string csv = "scene,primitives,width,height,flatten_ms";
     for (const auto& e : EngineNames()) csv += "," + e + "_frame_ms";
-    csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib\n";
+    csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib,machine\n";
+    std::string machineCsv = machine;  // one CSV field: quoted, inner quotes doubled
+    for (std::size_t q = machineCsv.find('"'); q != std::string::npos;
+         q = machineCsv.find('"', q + 2))
+        machineCsv.insert(q, 1, '"');
+    machineCsv = "\"" + machineCsv + "\"";
     for (const Row& r : rows) {
         md += fmt::format("| {} | {} | {}×{} | {:.1f} |", r.scene, r.primitives, r.size.w, r.size.h,
                           r.flattenMs);
@@ -586,8 +613,8 @@ int main(int argc, char** argv) {
                           Ratio(r.povProcessMs, r.quadrixProcessMs), r.quadrixPeakMiB,
                           r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–",
                           r.benchFloorMiB);
-        csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f}\n", r.quadrixProcessMs, r.povProcessMs,
-                           r.quadrixPeakMiB, r.povPeakMiB);
+        csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f},{}\n", r.quadrixProcessMs, r.povProcessMs,
+                           r.quadrixPeakMiB, r.povPeakMiB, machineCsv);
     }
     md += Scaling(rows);
     md += AntialiasTable(scenes, outDir, only, quick ? 1 : 3);

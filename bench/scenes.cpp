@@ -51,9 +51,9 @@ const char* kLights = "light fill .25;\nlight key .8 .5 .9 -1;\n";
 
 }  // namespace
 
-BenchScene SpheresMinusCylinder(int n) {
+BenchScene SpheresMinusCylinder(int n, bool distributed) {
     BenchScene s;
-    s.name = fmt::format("spheres{}", n);
+    s.name = distributed ? fmt::format("spheres{}_distributed", n) : fmt::format("spheres{}", n);
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> u(-10.0, 10.0);
     // Radius so that the spheres fill about 60 % of the cube's volume in total: they overlap.
@@ -67,9 +67,18 @@ BenchScene SpheresMinusCylinder(int n) {
     }
     out << Cylinder("cyl", {0, 0, 0}, {1, 0.2, 0}, 4.0);
     out << "plane cl <-1 0 0 -13>;\nplane cr <1 0 0 -13>;\nbody drill (cyl cl cr);\n";
-    out << "csg balls ((";
-    for (int i = 0; i < n; ++i) out << (i ? " | " : "") << "s" << i << ((i % 16 == 15) ? "\n" : "");
-    out << ") - drill) =c .9 .75 .55;\n" << kLights << "view v dop .4 .5 -1;\n";
+    if (distributed) {
+        out << "csg balls (";
+        for (int i = 0; i < n; ++i)
+            out << (i ? " | " : "") << "(s" << i << " - drill)" << ((i % 16 == 15) ? "\n" : "");
+        out << ") =c .9 .75 .55;\n";
+    } else {
+        out << "csg balls ((";
+        for (int i = 0; i < n; ++i)
+            out << (i ? " | " : "") << "s" << i << ((i % 16 == 15) ? "\n" : "");
+        out << ") - drill) =c .9 .75 .55;\n";
+    }
+    out << kLights << "view v dop .4 .5 -1;\n";
     s.text = out.str();
     s.primitives = n + 3;
     return s;

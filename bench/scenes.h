@@ -13,8 +13,10 @@ struct BenchScene {
     int primitives = 0;  // half-spaces in the scene (planes + quadrics)
 };
 
-// N spheres (fixed random placement in a 20-unit cube, overlapping) unioned, minus a cylinder.
-BenchScene SpheresMinusCylinder(int n);
+// N spheres (fixed random placement in a 20-unit cube, overlapping) unioned, minus a cylinder:
+// (∪ sphereᵢ) − drill, or with `distributed` the same solid written ∪(sphereᵢ − drill) (issue 24:
+// cost must not depend on how the tree is written; named "spheresN_distributed").
+BenchScene SpheresMinusCylinder(int n, bool distributed = false);
 // Two crossing capped cylinders combined by `op` ('|', '&' or '-').
 BenchScene TwoCylinders(char op);
 // A closed trefoil ("clover knot") of `segments` mitered pipes with spheres at the joints.

@@ -30,6 +30,8 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/coefficient_scale.h"
@@ -157,22 +159,60 @@ class FlattenerImpl {
         return ok;
     }
 
-    // Every body's box. Bodies in parallel: each box depends only on its body (BodyBounds is a
-    // pure function), so the result is the same for any thread count. Mitered pipes and other
-    // bodies of oblique planes cost milliseconds each (branch and bound, bounds.h).
+    // For each body, the first body with the same literal list (itself when there is none
+    // before it). A body named by several CSG operands (the drill of ∪(sphereᵢ − drill)) is one
+    // FlatBody per reference over the same half-spaces, and a body's box is a pure function of
+    // its literals: it is computed once per distinct list and copied, which changes no bit.
+    // Lists are matched by a hash and then compared; a hash collision only leaves two bodies
+    // distinct.
+    static std::vector<std::size_t> FirstWithSameLiterals(const FlatScene& flat) {
+        const std::size_t n = flat.bodies.size();
+        std::vector<std::size_t> first(n);
+        std::unordered_map<std::uint64_t, std::size_t> byHash;
+        byHash.reserve(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint64_t h = 1469598103934665603ull;
+            for (const FlatLiteral& l : flat.bodies[i].literals)
+                h = (h ^ (static_cast<std::uint64_t>(l.halfSpace) * 2 + l.complemented)) *
+                    1099511628211ull;
+            auto [it, inserted] = byHash.emplace(h, i);
+            const auto& a = flat.bodies[it->second].literals;
+            const auto& b = flat.bodies[i].literals;
+            bool same = !inserted && a.size() == b.size();
+            for (std::size_t k = 0; same && k < a.size(); ++k)
+                same = a[k].halfSpace == b[k].halfSpace && a[k].complemented == b[k].complemented;
+            first[i] = same ? it->second : i;
+        }
+        return first;
+    }
+
+    // Every body's box. Bodies in parallel: each box depends only on its body's literals
+    // (BodyBounds is a pure function), so the result is the same for any thread count, and
+    // bodies with the same literals share one computation (FirstWithSameLiterals). Mitered pipes
+    // and other bodies of oblique planes cost milliseconds each (branch and bound, bounds.h).
     // `anySearched` is set when some box was not exact from the analytic stage.
     static std::vector<Box3> AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
                                            bool* anySearched) {
+        const std::vector<std::size_t> first = FirstWithSameLiterals(flat);
+        std::vector<std::size_t> distinct;
+        for (std::size_t i = 0; i < first.size(); ++i)
+            if (first[i] == i) distinct.push_back(i);
         std::vector<Box3> bodyBoxes(flat.bodies.size());
         std::vector<char> searched(flat.bodies.size(), 0);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flat.bodies.size(), 8),
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, distinct.size(), 8),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                              for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                  const std::size_t i = distinct[j];
                                   BoundsStats st;
                                   bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
                                   searched[i] = st.analyticOnly == 0;
                               }
                           });
+        for (std::size_t i = 0; i < first.size(); ++i)
+            if (first[i] != i) {
+                bodyBoxes[i] = bodyBoxes[first[i]];
+                searched[i] = searched[first[i]];
+            }
         if (anySearched)
             for (char c : searched) *anySearched |= c != 0;
         return bodyBoxes;
@@ -199,8 +239,13 @@ class FlattenerImpl {
                 fitPlanes.push_back(h);
             }
             const std::size_t nClip = finalClips.size();
+            const std::vector<std::size_t> first = FirstWithSameLiterals(flat);
             std::vector<BoundLiteral> lits;
             for (std::size_t i = 0; i < flat.bodies.size(); ++i) {
+                if (first[i] != i) {
+                    bodyBoxes[i] = bodyBoxes[first[i]];
+                    continue;
+                }
                 const FlatBody& b = flat.bodies[i];
                 lits.clear();
                 for (std::size_t l = 0; l + nClip < b.literals.size(); ++l)

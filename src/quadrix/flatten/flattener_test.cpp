@@ -2,6 +2,7 @@
 // fit, perspective, clipping planes, culling and user errors. Scenes are built programmatically.
 #include "quadrix/flatten/flattener.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/flatten_test_util.h"
+#include "quadrix/lang/reader.h"
 
 namespace quadrix {
 namespace {
@@ -522,6 +524,64 @@ TEST(FlattenNormals, WorldNormalOfASphereFacesTheViewer) {
         Vec3 expected = Normalize(world - Vec3{1, 2, 3});
         EXPECT_NEAR(Length(n - expected), 0, 1e-9) << "perspective " << perspective;
     }
+}
+
+}  // namespace
+}  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// ∪(ballᵢ − drill): the drill is one FlatBody per operand over the same half-spaces, and its box
+// is computed once and shared (flattener.cpp, FirstWithSameLiterals). The same solid written
+// with a separate copy of the drill's half-spaces per operand computes every box on its own: the
+// two flat scenes must agree bit for bit, and the drill's boxes must bound it (a cylinder along x
+// of radius 1, cut at x = ±3, seen along z).
+TEST(FlattenBounds, BodiesSharingLiteralsShareExactlyTheBoxesComputedAlone) {
+    auto sceneText = [](bool copies) {
+        std::string t;
+        for (int i = 0; i < 6; ++i) {
+            t += fmt::format("quadric q{} <1 1 1 0 0 0 {} 0 0 {}>;\nbody s{} (q{});\n", i,
+                             -(i - 2.5), (i - 2.5) * (i - 2.5) - 0.81, i, i);
+            const std::string k = copies ? std::to_string(i) : "";
+            if (copies || i == 0)
+                t += fmt::format(
+                    "quadric cyl{0} <0 1 1 0 0 0 0 0 0 -1>;\nplane cl{0} <-1 0 0 -3>;\n"
+                    "plane cr{0} <1 0 0 -3>;\nbody drill{0} (cyl{0} cl{0} cr{0});\n",
+                    k);
+        }
+        t += "csg u (";
+        for (int i = 0; i < 6; ++i)
+            t += fmt::format("{}(s{} - drill{})", i ? " | " : "", i,
+                             copies ? std::to_string(i) : "");
+        t += ");\nview v dop 0 0 -1;\n";
+        scene::Scene s;
+        Diagnostics d;
+        lang::Reader reader(s, d);
+        EXPECT_TRUE(reader.ReadText(t, "shared.uq"));
+        return s;
+    };
+    Result shared = RunFlatten(sceneText(false), 300, 200);
+    Result alone = RunFlatten(sceneText(true), 300, 200);
+    ASSERT_TRUE(shared.flat && alone.flat) << shared.Messages() << alone.Messages();
+    ASSERT_EQ(shared.flat->bodies.size(), 12u);
+    ASSERT_EQ(alone.flat->bodies.size(), 12u);
+    for (std::size_t i = 0; i < 12; ++i) {
+        const Box3& a = shared.flat->bodies[i].bounds;
+        const Box3& b = alone.flat->bodies[i].bounds;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(a.lo[k], b.lo[k]) << "body " << i;
+            EXPECT_EQ(a.hi[k], b.hi[k]) << "body " << i;
+        }
+    }
+    for (std::size_t n = 0; n < shared.flat->nodes.size(); ++n) {
+        EXPECT_EQ(shared.flat->nodes[n].bounds.lo[0], alone.flat->nodes[n].bounds.lo[0]);
+        EXPECT_EQ(shared.flat->nodes[n].bounds.hi[1], alone.flat->nodes[n].bounds.hi[1]);
+    }
+    // The drill's box is finite and wider in x than in y: it was bounded, not left unbounded.
+    const Box3& drill = shared.flat->bodies[1].bounds;
+    EXPECT_GT(drill.hi[0] - drill.lo[0], 2 * (drill.hi[1] - drill.lo[1]));
+    EXPECT_TRUE(std::isfinite(drill.lo[0]) && std::isfinite(drill.hi[1]));
 }
 
 }  // namespace

@@ -82,29 +82,17 @@ Lexer::Lexer(Source& source, Diagnostics& diags) : source_(source), diags_(diags
     if (PeekChar(0) == 0xEF && PeekChar(1) == 0xBB && PeekChar(2) == 0xBF) pos_ = 3;
 }
 
-int Lexer::PeekChar(std::size_t ahead) {
-    if (!source_.Has(pos_ + ahead)) return -1;
-    return static_cast<unsigned char>(source_.At(pos_ + ahead));
+std::size_t Lexer::IdRun(std::size_t from) {
+    std::size_t n = from;
+    while (IsIdChar(PeekChar(n))) ++n;
+    return n - from;
 }
-
-void Lexer::Advance() {
-    if (!source_.Has(pos_)) return;
-    if (source_.At(pos_) == '\n') {
-        ++line_;
-        column_ = 1;
-    } else {
-        ++column_;
-    }
-    ++pos_;
-}
-
-SourceLoc Lexer::Here() const { return SourceLoc{source_.Name(), line_, column_}; }
 
 std::string Lexer::LineOf(const SourceLoc& loc) const {
     return source_.LineForDiagnostic(loc.line, loc.column);
 }
 
-Token Lexer::ErrorToken(const SourceLoc& loc, std::string message, bool evenWhenQuiet) {
+Token Lexer::ErrorToken(const TokenLoc& loc, std::string message, bool evenWhenQuiet) {
     if (!quiet_ || evenWhenQuiet) diags_.Error(loc, std::move(message), LineOf(loc), "syntax");
     Token t;
     t.kind = TokenKind::kError;
@@ -121,7 +109,7 @@ void Lexer::SkipSpaceAndComments() {
         }
         if (c != '{') return;
         // Nested comment (§2.1.8): a depth counter, so nesting depth costs no stack.
-        SourceLoc start = Here();
+        TokenLoc start = Here();
         long long depth = 0;
         do {
             c = PeekChar();
@@ -138,7 +126,7 @@ void Lexer::SkipSpaceAndComments() {
 
 Token Lexer::Next() {
     SkipSpaceAndComments();
-    SourceLoc start = Here();
+    TokenLoc start = Here();
     int c = PeekChar();
     Token t;
     t.loc = start;
@@ -147,7 +135,7 @@ Token Lexer::Next() {
         t.kind = kind;
         t.text = static_cast<char>(c);
         Advance();
-        return t;
+        return std::move(t);
     };
     switch (c) {
         case ';':
@@ -193,47 +181,47 @@ Token Lexer::Next() {
     return LexGarbage(start);
 }
 
-Token Lexer::LexNumber(SourceLoc start) {
-    std::string text;
-    auto take = [&] {
-        text += static_cast<char>(PeekChar());
-        Advance();
-    };
+Token Lexer::LexNumber(TokenLoc start) {
+    // The token's extent is found by looking ahead (n bytes from pos_), then taken at once: no
+    // newline can be inside a number, so the column simply advances by its length.
+    std::size_t n = 0;
     bool negative = PeekChar() == '-';
-    if (PeekChar() == '+' || PeekChar() == '-') take();
-    std::size_t mantissaStart = text.size();
-    while (IsDigit(PeekChar())) take();
-    if (PeekChar() == '.') {
-        take();
-        while (IsDigit(PeekChar())) take();
+    if (PeekChar() == '+' || PeekChar() == '-') ++n;
+    const std::size_t mantissaStart = n;
+    while (IsDigit(PeekChar(n))) ++n;
+    if (PeekChar(n) == '.') {
+        ++n;
+        while (IsDigit(PeekChar(n))) ++n;
     }
-    std::size_t mantissaEnd = text.size();
+    const std::size_t mantissaEnd = n;
     long long exponent = 0;
-    int e = PeekChar();
-    int afterE = PeekChar(1);
+    int e = PeekChar(n);
+    int afterE = PeekChar(n + 1);
     if ((e == 'e' || e == 'E') &&
-        (IsDigit(afterE) || ((afterE == '+' || afterE == '-') && IsDigit(PeekChar(2))))) {
-        take();
+        (IsDigit(afterE) || ((afterE == '+' || afterE == '-') && IsDigit(PeekChar(n + 2))))) {
+        ++n;
         bool negExp = false;
-        if (PeekChar() == '+' || PeekChar() == '-') {
-            negExp = PeekChar() == '-';
-            take();
+        if (PeekChar(n) == '+' || PeekChar(n) == '-') {
+            negExp = PeekChar(n) == '-';
+            ++n;
         }
-        while (IsDigit(PeekChar())) {
-            if (exponent < 1000000) exponent = exponent * 10 + (PeekChar() - '0');
-            take();
-        }
+        for (int c = PeekChar(n); IsDigit(c); c = PeekChar(++n))
+            if (exponent < 1000000) exponent = exponent * 10 + (c - '0');
         if (negExp) exponent = -exponent;
     }
     // A number glued to more id characters or dots ("1x", "1.2.3", "2e") is one malformed token.
-    if (IsIdChar(PeekChar()) || PeekChar() == '.') {
-        while (IsIdChar(PeekChar()) || PeekChar() == '.') take();
+    if (IsIdChar(PeekChar(n)) || PeekChar(n) == '.') {
+        while (IsIdChar(PeekChar(n)) || PeekChar(n) == '.') ++n;
+        std::string text(source_.From(pos_).substr(0, n));
+        AdvanceInLine(n);
         std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
         return ErrorToken(start, fmt::format("malformed number '{}'", shown));
     }
     Token t;
     t.kind = TokenKind::kNumber;
     t.loc = start;
+    std::string_view text = source_.From(pos_).substr(0, n);
+    AdvanceInLine(n);
     const char* first = text.data() + mantissaStart;
     const char* last = text.data() + text.size();
     double value = 0;
@@ -241,31 +229,32 @@ Token Lexer::LexNumber(SourceLoc start) {
     if (ec == std::errc::result_out_of_range) {
         std::string_view mantissa(first, mantissaEnd - mantissaStart);
         if (DecimalOrder(mantissa, exponent) > 0) {
-            std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
-            return ErrorToken(start, fmt::format("number '{}' is too large", shown));
+            std::string shown =
+                text.size() > 40 ? std::string(text.substr(0, 40)) + "..." : std::string(text);
+            return ErrorToken(t.loc, fmt::format("number '{}' is too large", shown));
         }
         value = 0;  // underflow: below the smallest double, as good as zero
     } else if (ec != std::errc() || ptr != last || !std::isfinite(value)) {
-        return ErrorToken(start, fmt::format("malformed number '{}'", text));
+        return ErrorToken(t.loc, fmt::format("malformed number '{}'", text));
     }
     t.number = negative ? -value : value;
-    t.text = std::move(text);
+    t.text.assign(text.data(), text.size());
     return t;
 }
 
-Token Lexer::LexWord(SourceLoc start) {
+Token Lexer::LexWord(TokenLoc start) {
     Token t;
     t.loc = start;
-    while (IsIdChar(PeekChar())) {
-        t.text += static_cast<char>(PeekChar());
-        Advance();
-    }
-    t.keyword = LookupKeyword(t.text);
+    std::size_t n = IdRun(0);
+    std::string_view word = source_.From(pos_).substr(0, n);
+    t.keyword = LookupKeyword(word);
+    t.text.assign(word.data(), word.size());
+    AdvanceInLine(n);
     t.kind = t.keyword == Keyword::kNone ? TokenKind::kId : TokenKind::kKeyword;
     return t;
 }
 
-Token Lexer::LexString(SourceLoc start) {
+Token Lexer::LexString(TokenLoc start) {
     Advance();  // the opening quote
     Token t;
     t.kind = TokenKind::kString;
@@ -282,21 +271,20 @@ Token Lexer::LexString(SourceLoc start) {
     }
 }
 
-Token Lexer::LexOption(SourceLoc start) {
+Token Lexer::LexOption(TokenLoc start) {
     Advance();  // '='
     Token t;
     t.kind = TokenKind::kOption;
     t.loc = start;
-    while (IsIdChar(PeekChar())) {
-        t.text += static_cast<char>(PeekChar());
-        Advance();
-    }
+    std::size_t n = IdRun(0);
+    t.text.assign(source_.From(pos_).substr(0, n));
+    AdvanceInLine(n);
     if (t.text.empty())
         return ErrorToken(start, "expected an option name right after '=' (as in =t, =tx, =c)");
     return t;
 }
 
-Token Lexer::LexGarbage(SourceLoc start) {
+Token Lexer::LexGarbage(TokenLoc start) {
     int first = PeekChar();
     int count = 0;
     do {

@@ -46,16 +46,37 @@ class Lexer {
     std::string LineOf(const SourceLoc& loc) const;
 
   private:
-    int PeekChar(std::size_t ahead = 0);  // -1 at end of input
-    void Advance();
-    SourceLoc Here() const;
+    // -1 at end of input.
+    int PeekChar(std::size_t ahead = 0) {
+        if (!source_.Has(pos_ + ahead)) return -1;
+        return static_cast<unsigned char>(source_.At(pos_ + ahead));
+    }
+    void Advance() {
+        if (!source_.Has(pos_)) return;
+        if (source_.At(pos_) == '\n') {
+            ++line_;
+            column_ = 1;
+        } else {
+            ++column_;
+        }
+        ++pos_;
+    }
+    // Advances over `n` bytes already held that contain no newline (a token's characters).
+    void AdvanceInLine(std::size_t n) {
+        pos_ += n;
+        column_ += static_cast<int>(n);
+    }
+    // The length of the run of id characters from byte pos_ + `from` on, reading more of a
+    // growing source when the run reaches the end of what is held.
+    std::size_t IdRun(std::size_t from);
+    TokenLoc Here() const { return TokenLoc{&source_.Name(), line_, column_}; }
     void SkipSpaceAndComments();
-    Token LexNumber(SourceLoc start);
-    Token LexWord(SourceLoc start);
-    Token LexString(SourceLoc start);
-    Token LexOption(SourceLoc start);
-    Token LexGarbage(SourceLoc start);
-    Token ErrorToken(const SourceLoc& loc, std::string message, bool evenWhenQuiet = false);
+    Token LexNumber(TokenLoc start);
+    Token LexWord(TokenLoc start);
+    Token LexString(TokenLoc start);
+    Token LexOption(TokenLoc start);
+    Token LexGarbage(TokenLoc start);
+    Token ErrorToken(const TokenLoc& loc, std::string message, bool evenWhenQuiet = false);
 
     Source& source_;
     Diagnostics& diags_;

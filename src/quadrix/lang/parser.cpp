@@ -144,8 +144,11 @@ std::optional<scene::Color> Parser::ParseColor(const Token& option) {
     double rgb[3];
     for (int i = 0; i < 3; ++i) {
         SourceLoc at = Peek().loc;
-        auto v =
-            ExpectNumber(fmt::format("the {} component after {}", kNames[i], Describe(option)));
+        std::optional<double> v;
+        if (double x; TakeNumber(x))
+            v = x;
+        else
+            v = ExpectNumber(fmt::format("the {} component after {}", kNames[i], Describe(option)));
         if (!v) return std::nullopt;
         if (*v < 0 || *v > 1) {
             Error(at, fmt::format("color component {} is outside [0, 1]", *v));

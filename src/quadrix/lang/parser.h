@@ -57,6 +57,24 @@ class Parser {
     const Token& Peek();
     Token Take();
     bool PeekIs(TokenKind kind) { return Peek().kind == kind; }
+    // Takes the next token when it is of `kind`. With TakeNumber, the fast paths in front of the
+    // Expect... calls below, whose messages are then formatted only when something is wrong:
+    //   p.TakeIf(TokenKind::kSemicolon) || p.ExpectSemicolon(fmt::format(...))
+    bool TakeIf(TokenKind kind) {
+        if (!PeekIs(kind)) return false;
+        lastLine_ = next_->loc.line;
+        next_.reset();
+        return true;
+    }
+    // Takes a plain NUMBER token into `value`; false (nothing taken) for anything else, including
+    // `clock` and parenthesised expressions, which ExpectNumber reads.
+    bool TakeNumber(double& value) {
+        if (!PeekIs(TokenKind::kNumber)) return false;
+        value = next_->number;
+        lastLine_ = next_->loc.line;
+        next_.reset();
+        return true;
+    }
     bool PeekIsKeyword(Keyword keyword) {
         return Peek().kind == TokenKind::kKeyword && Peek().keyword == keyword;
     }

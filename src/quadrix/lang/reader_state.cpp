@@ -3,16 +3,39 @@
 namespace quadrix::lang {
 
 namespace {
+using Kind = scene::SolidRef::Kind;
+
+int EncodeSolid(const scene::SolidRef& ref) { return ref.index * 4 + static_cast<int>(ref.kind); }
+scene::SolidRef DecodeSolid(int value) { return {static_cast<Kind>(value & 3), value >> 2}; }
+
+// The idOf functions of the scope's id tables (id_table.h).
+auto HalfSpaceIds(const scene::Scope& scope) {
+    return [&scope](int v) -> const std::string& { return scope.halfSpaces[v].id; };
+}
+auto SolidIds(const scene::Scope& scope) {
+    return [&scope](int v) -> const std::string& {
+        scene::SolidRef ref = DecodeSolid(v);
+        switch (ref.kind) {
+            case Kind::kBody:
+                return scope.bodies[ref.index].id;
+            case Kind::kInstance:
+                return scope.instances[ref.index].id;
+            case Kind::kCsg:
+                break;
+        }
+        return scope.csgs[ref.index].id;
+    };
+}
+
 void IndexScope(const scene::Scope& scope, ScopeIndex& index) {
-    using Kind = scene::SolidRef::Kind;
     for (int i = 0; i < static_cast<int>(scope.halfSpaces.size()); ++i)
-        index.halfSpaces[scope.halfSpaces[i].id] = i;
+        index.halfSpaces.Set(scope.halfSpaces[i].id, i, HalfSpaceIds(scope));
     for (int i = 0; i < static_cast<int>(scope.bodies.size()); ++i)
-        index.solids[scope.bodies[i].id] = {Kind::kBody, i};
+        index.solids.Set(scope.bodies[i].id, EncodeSolid({Kind::kBody, i}), SolidIds(scope));
     for (int i = 0; i < static_cast<int>(scope.instances.size()); ++i)
-        index.solids[scope.instances[i].id] = {Kind::kInstance, i};
+        index.solids.Set(scope.instances[i].id, EncodeSolid({Kind::kInstance, i}), SolidIds(scope));
     for (int i = 0; i < static_cast<int>(scope.csgs.size()); ++i)
-        index.solids[scope.csgs[i].id] = {Kind::kCsg, i};
+        index.solids.Set(scope.csgs[i].id, EncodeSolid({Kind::kCsg, i}), SolidIds(scope));
 }
 template <class T>
 void IndexGlobal(const std::vector<T>& items, std::unordered_map<std::string, int>& index) {
@@ -35,6 +58,9 @@ ReaderState::ReaderState(scene::Scene& scene_, Diagnostics& diags_, ReadOptions 
 }
 
 scene::Scope& ReaderState::CurrentScope() {
+    return openDefinition_ ? openDefinition_->scope : scene.top;
+}
+const scene::Scope& ReaderState::CurrentScopeConst() const {
     return openDefinition_ ? openDefinition_->scope : scene.top;
 }
 ScopeIndex& ReaderState::CurrentIndex() {
@@ -61,14 +87,13 @@ int ReaderState::CloseDefinition() {
 }
 
 int ReaderState::FindHalfSpace(const std::string& id) const {
-    return Lookup(CurrentIndex().halfSpaces, id);
+    return CurrentIndex().halfSpaces.Find(id, HalfSpaceIds(CurrentScopeConst()));
 }
 
 std::optional<scene::SolidRef> ReaderState::FindSolid(const std::string& id) const {
-    const auto& solids = CurrentIndex().solids;
-    auto it = solids.find(id);
-    if (it == solids.end()) return std::nullopt;
-    return it->second;
+    int v = CurrentIndex().solids.Find(id, SolidIds(CurrentScopeConst()));
+    if (v < 0) return std::nullopt;
+    return DecodeSolid(v);
 }
 
 SourceLoc ReaderState::SolidLoc(const scene::SolidRef& ref) const {
@@ -120,34 +145,37 @@ void ReaderState::MarkOperand(const scene::SolidRef& ref) {
 }
 
 int ReaderState::AddHalfSpace(scene::HalfSpace hs) {
-    auto& v = CurrentScope().halfSpaces;
-    int index = static_cast<int>(v.size());
-    CurrentIndex().halfSpaces[hs.id] = index;
-    v.push_back(std::move(hs));
+    scene::Scope& scope = CurrentScope();
+    int index = static_cast<int>(scope.halfSpaces.size());
+    scope.halfSpaces.push_back(std::move(hs));
+    CurrentIndex().halfSpaces.Set(scope.halfSpaces.back().id, index, HalfSpaceIds(scope));
     return index;
 }
 
 int ReaderState::AddBody(scene::Body body) {
-    auto& v = CurrentScope().bodies;
-    int index = static_cast<int>(v.size());
-    CurrentIndex().solids[body.id] = {scene::SolidRef::Kind::kBody, index};
-    v.push_back(std::move(body));
+    scene::Scope& scope = CurrentScope();
+    int index = static_cast<int>(scope.bodies.size());
+    scope.bodies.push_back(std::move(body));
+    CurrentIndex().solids.Set(scope.bodies.back().id, EncodeSolid({Kind::kBody, index}),
+                              SolidIds(scope));
     return index;
 }
 
 int ReaderState::AddInstance(scene::Instance instance) {
-    auto& v = CurrentScope().instances;
-    int index = static_cast<int>(v.size());
-    CurrentIndex().solids[instance.id] = {scene::SolidRef::Kind::kInstance, index};
-    v.push_back(std::move(instance));
+    scene::Scope& scope = CurrentScope();
+    int index = static_cast<int>(scope.instances.size());
+    scope.instances.push_back(std::move(instance));
+    CurrentIndex().solids.Set(scope.instances.back().id, EncodeSolid({Kind::kInstance, index}),
+                              SolidIds(scope));
     return index;
 }
 
 int ReaderState::AddCsg(scene::Csg csg) {
-    auto& v = CurrentScope().csgs;
-    int index = static_cast<int>(v.size());
-    CurrentIndex().solids[csg.id] = {scene::SolidRef::Kind::kCsg, index};
-    v.push_back(std::move(csg));
+    scene::Scope& scope = CurrentScope();
+    int index = static_cast<int>(scope.csgs.size());
+    scope.csgs.push_back(std::move(csg));
+    CurrentIndex().solids.Set(scope.csgs.back().id, EncodeSolid({Kind::kCsg, index}),
+                              SolidIds(scope));
     return index;
 }
 

@@ -17,15 +17,18 @@
 #include <unordered_map>
 #include <vector>
 
+#include "quadrix/lang/id_table.h"
 #include "quadrix/lang/reader.h"
 
 namespace quadrix::lang {
 
 class Source;
 
+// The id tables of one scope (id_table.h: the ids stay in the scope's objects). Solids are
+// stored as index * 4 + kind.
 struct ScopeIndex {
-    std::unordered_map<std::string, int> halfSpaces;
-    std::unordered_map<std::string, scene::SolidRef> solids;
+    IdTable halfSpaces;
+    IdTable solids;
 };
 
 // One file (or text) being read; the stack of them detects cycles and limits nesting (§2.1.7).
@@ -98,6 +101,7 @@ class ReaderState {
   private:
     ScopeIndex& CurrentIndex();
     const ScopeIndex& CurrentIndex() const;
+    const scene::Scope& CurrentScopeConst() const;
     bool Taken(const std::string& id, Namespace ns) const;
 
     struct OpenDef {

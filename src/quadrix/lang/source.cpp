@@ -1,6 +1,7 @@
 #include "quadrix/lang/source.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace quadrix::lang {
 
@@ -18,7 +19,7 @@ void Source::Append(std::string_view more) {
     IndexLines(before);
 }
 
-bool Source::Has(std::size_t pos) {
+bool Source::ReadMore(std::size_t pos) {
     while (pos >= text_.size() && readLine_) {
         std::size_t before = text_.size();
         if (!readLine_(text_)) {
@@ -31,8 +32,14 @@ bool Source::Has(std::size_t pos) {
 }
 
 void Source::IndexLines(std::size_t from) {
-    for (std::size_t i = from; i < text_.size(); ++i)
-        if (text_[i] == '\n') lineStarts_.push_back(i + 1);
+    const char* begin = text_.data();
+    const char* end = begin + text_.size();
+    for (const char* p = begin + from; p < end;) {
+        const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
+        if (!nl) break;
+        p = static_cast<const char*>(nl) + 1;
+        lineStarts_.push_back(static_cast<std::size_t>(p - begin));
+    }
 }
 
 std::string Source::LineForDiagnostic(int line, int column) const {

@@ -33,10 +33,13 @@ class Source {
     // The name used in diagnostics; shared by every SourceLoc of this source.
     const std::shared_ptr<const std::string>& Name() const { return name_; }
 
-    // True when byte `pos` exists, reading more lines when needed.
-    bool Has(std::size_t pos);
+    // True when byte `pos` exists, reading more lines when needed. Inline for the bytes already
+    // held (the lexer asks once per byte); only the growing case leaves the header.
+    bool Has(std::size_t pos) { return pos < text_.size() || ReadMore(pos); }
     // Byte `pos`; only valid after Has(pos) returned true.
     char At(std::size_t pos) const { return text_[pos]; }
+    // The bytes held from `pos` on (valid until the source grows); `pos` <= Size().
+    std::string_view From(std::size_t pos) const { return std::string_view(text_).substr(pos); }
 
     // The text of 1-based line `line` for a diagnostic: without its newline, control characters
     // replaced by '?', and shortened when very long (the caret must still point at `column`, so
@@ -47,6 +50,7 @@ class Source {
     static constexpr int kMaxShownColumn = 1000;
 
   private:
+    bool ReadMore(std::size_t pos);
     void IndexLines(std::size_t from);
 
     std::shared_ptr<const std::string> name_;

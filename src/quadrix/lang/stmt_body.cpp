@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/statements.h"
@@ -15,7 +17,34 @@ namespace quadrix::lang {
 namespace {
 
 // Reads one literal and appends it to `body` unless its id is unknown (reported).
-bool ParseLiteral(Parser& p, scene::Body& body, std::unordered_map<int, SourceLoc>& seen) {
+// The half-spaces a body has named so far, with where: a short list searched linearly (most
+// bodies name a handful), indexed by a hash map once it grows past kLinear entries.
+class SeenLiterals {
+  public:
+    const SourceLoc* Find(int index) const {
+        if (map_.empty()) {
+            for (const auto& [i, loc] : list_)
+                if (i == index) return &loc;
+            return nullptr;
+        }
+        auto it = map_.find(index);
+        return it == map_.end() ? nullptr : &list_[it->second].second;
+    }
+    void Add(int index, const SourceLoc& loc) {
+        list_.emplace_back(index, loc);
+        if (list_.size() == kLinear)
+            for (std::size_t k = 0; k < list_.size(); ++k) map_.emplace(list_[k].first, k);
+        else if (list_.size() > kLinear)
+            map_.emplace(index, list_.size() - 1);
+    }
+
+  private:
+    static constexpr std::size_t kLinear = 16;
+    std::vector<std::pair<int, SourceLoc>> list_;
+    std::unordered_map<int, std::size_t> map_;
+};
+
+bool ParseLiteral(Parser& p, scene::Body& body, SeenLiterals& seen) {
     bool complemented = false;
     if (p.PeekIs(TokenKind::kBang)) {
         p.Take();
@@ -36,11 +65,11 @@ bool ParseLiteral(Parser& p, scene::Body& body, std::unordered_map<int, SourceLo
         p.Error(loc, fmt::format("unknown half-space '{}'{}", id, where));
         return true;
     }
-    if (auto it = seen.find(index); it != seen.end())
+    if (const SourceLoc* first = seen.Find(index))
         p.Warning(loc, fmt::format("half-space '{}' is named twice in this body (first at {})", id,
-                                   it->second.ToString()));
+                                   first->ToString()));
     else
-        seen.emplace(index, loc);
+        seen.Add(index, loc);
     body.literals.push_back({index, complemented});
     return true;
 }
@@ -59,7 +88,7 @@ bool ParseBody(Parser& p, const Token& keyword) {
     p.Take();
     TokenKind closeKind = open.kind == TokenKind::kLParen ? TokenKind::kRParen : TokenKind::kRAngle;
     const char* closeText = open.kind == TokenKind::kLParen ? "')'" : "'>'";
-    std::unordered_map<int, SourceLoc> seen;
+    SeenLiterals seen;
     bool sawLiteral = false;
     while (!p.PeekIs(closeKind)) {
         if (!p.PeekIs(TokenKind::kId) && !p.PeekIs(TokenKind::kBang) &&
@@ -86,7 +115,7 @@ bool ParseBody(Parser& p, const Token& keyword) {
         }
         if (!p.ParseAppearance(option, body.color, body.finish)) return false;
     }
-    if (!p.ExpectSemicolon("body list")) return false;
+    if (!p.TakeIf(TokenKind::kSemicolon) && !p.ExpectSemicolon("body list")) return false;
 
     ReaderState& s = p.State();
     if (body.id.empty()) body.id = s.GenerateId("b", ReaderState::Namespace::kSolid);

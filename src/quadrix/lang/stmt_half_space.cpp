@@ -23,17 +23,16 @@ bool ParseCoefficients(Parser& p, std::string_view statement, std::string_view n
         return p.Expected(fmt::format("'<' before the {} coefficients", statement));
     p.Take();
     for (std::size_t i = 0; i < names.size(); ++i) {
+        if (p.TakeNumber(out[i])) continue;
         auto v =
             p.ExpectNumber(fmt::format("coefficient {} of the {} ({} numbers between '<' and '>')",
                                        names[i], statement, names.size()));
         if (!v) return false;
         out[i] = *v;
     }
-    if (!p.PeekIs(TokenKind::kRAngle))
-        return p.Expected(
-            fmt::format("'>' after the {} coefficients of the {}", names.size(), statement));
-    p.Take();
-    return true;
+    if (p.TakeIf(TokenKind::kRAngle)) return true;
+    return p.Expected(
+        fmt::format("'>' after the {} coefficients of the {}", names.size(), statement));
 }
 
 bool ParseTransparency(Parser& p, std::string_view statement, bool& transparent) {
@@ -65,7 +64,9 @@ bool ParseHalfSpace(Parser& p, const Token& keyword, scene::HalfSpace hs, std::s
     SourceLoc listLoc;
     if (!ParseCoefficients(p, statement, names, coefficients, listLoc)) return false;
     if (!ParseTransparency(p, statement, hs.transparent)) return false;
-    if (!p.ExpectSemicolon(fmt::format("{} coefficients", statement))) return false;
+    if (!p.TakeIf(TokenKind::kSemicolon) &&
+        !p.ExpectSemicolon(fmt::format("{} coefficients", statement)))
+        return false;
 
     ReaderState& s = p.State();
     // Generated ids: p#1, q#1, ... (quietly; only lights announce theirs).

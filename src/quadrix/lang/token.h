@@ -1,6 +1,7 @@
 // Tokens of the UniQuadrix language, each tagged with its file:line:column.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "quadrix/lang/keywords.h"
@@ -30,12 +31,26 @@ enum class TokenKind {
     kError,      // malformed input; the lexer has already reported it
 };
 
+// Where a token starts. A SourceLoc holds the file name by shared pointer, whose atomic
+// reference count would be touched twice for every token read; a token instead points at the
+// Source's own pointer and becomes a SourceLoc only when something keeps its position (a
+// diagnostic, an object of the scene). Valid while the Source it came from exists, which outlives
+// the parsing of its statements.
+struct TokenLoc {
+    const std::shared_ptr<const std::string>* file = nullptr;
+    int line = 0;    // 1-based
+    int column = 0;  // 1-based
+
+    operator SourceLoc() const { return SourceLoc{file ? *file : nullptr, line, column}; }
+    std::string ToString() const { return SourceLoc(*this).ToString(); }
+};
+
 struct Token {
     TokenKind kind = TokenKind::kEnd;
     Keyword keyword = Keyword::kNone;
     std::string text;   // the spelling as written (strings: the contents)
     double number = 0;  // kNumber only; always finite
-    SourceLoc loc;
+    TokenLoc loc;
 };
 
 // How a token is named in "expected X, found Y" messages: 'quadric', '1.5', "path", end of input.
