@@ -66,10 +66,10 @@ int RunExport(const ExportArgs& args) {
         return 1;
     }
     const FlatScene* flat = &ctx.Flat();
-    PovExportOptions po;
-    po.mask = args.mask;
-    po.shadows = args.shadows;
-    if (auto e = WriteOutputFile(args.output, ExportPov(*flat, po)); !e.empty()) {
+    PovExportOptions pov;
+    pov.mask = args.mask;
+    pov.shadows = args.shadows;
+    if (auto e = WriteOutputFile(args.output, ExportPov(*flat, pov)); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }
