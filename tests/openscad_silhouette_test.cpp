@@ -155,6 +155,8 @@ TEST(OpenScadSilhouettes, SameShapeAsOpenScadsOwnPng) {
                 else
                     ++mismatch;
             }
+        RecordProperty(std::string(m.name) + "_covered", covered);
+        RecordProperty(std::string(m.name) + "_edge_differences", edge);
         // The model fills a good part of the picture, and the pictures agree.
         EXPECT_GT(covered, kW * kH / 20);
         EXPECT_EQ(mismatch, 0) << "edge differences: " << edge << " of " << covered;

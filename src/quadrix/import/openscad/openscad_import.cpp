@@ -165,7 +165,9 @@ class Parser {
                 s += t_[i_++];
             char* end = nullptr;
             v.number = std::strtod(s.c_str(), &end);
-            if (s.empty() || *end != 0 || !std::isfinite(v.number))
+            if (!s.empty() && *end == 0 && !std::isfinite(v.number))
+                return Fail(start, fmt::format("'{}' is not a finite number", s));
+            if (s.empty() || *end != 0)
                 return Fail(start, fmt::format("'{}' is not a number (only literal values are "
                                                "supported, no expressions)",
                                                s));

@@ -80,8 +80,10 @@ class PositionMap {
         const std::size_t ls = lineStarts_[static_cast<std::size_t>(loc.line) - 1];
         std::size_t le = csg_.find('\n', ls);
         if (le == std::string_view::npos) le = csg_.size();
-        std::size_t p = ls + static_cast<std::size_t>(loc.column > 0 ? loc.column - 1 : 0);
-        while (p < le && !IdentChar(csg_[p])) ++p;  // a modifier ('#', '%') or spaces
+        // OpenSCAD writes one statement per line, its name first (after indentation and a
+        // modifier): the name of the statement, whichever column the diagnostic points at.
+        std::size_t p = ls;
+        while (p < le && !IdentChar(csg_[p])) ++p;
         std::size_t q = p;
         while (q < le && IdentChar(csg_[q])) ++q;
         m.name = std::string(csg_.substr(p, q - p));
