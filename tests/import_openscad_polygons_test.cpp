@@ -294,6 +294,36 @@ TEST(ImportOpenScadPolygons, RotateExtrudedPolygons) {
     ExpectSameSolid(cone->scene, {-7, -7, -1}, {7, 7, 5}, 24, wantCone, distCone, "cone");
 }
 
+TEST(ImportOpenScadPolygons, RotateExtrudeWithFnIsOpenScadsPolygonalRing) {
+    // rotate_extrude($fn = 5) of the square [7, 10] × [0, 2]: OpenSCAD 2021.01's pentagonal ring,
+    // vertices at 180° + 72°·i (so a vertex on −x, an edge's middle on +x), faces planar.
+    auto ring = Load("rotate_extrude($fn = 5) translate([7, 0]) square([3, 2]);");
+    ASSERT_TRUE(ring->ok) << Messages(ring->diags);
+    // p·n_k − R cos 36° for the edge normals n_k at 216° + 72°·k: the largest is <= 0 inside.
+    auto side = [](const Vec3& p, double r) {
+        double worst = -HUGE_VAL;
+        for (int k = 0; k < 5; ++k) {
+            const double a = (216.0 + 72.0 * k) * std::numbers::pi / 180;
+            worst = std::max(
+                worst, p.x * std::cos(a) + p.y * std::sin(a) - r * std::cos(std::numbers::pi / 5));
+        }
+        return worst;
+    };
+    auto want = [&](const Vec3& p) {
+        return side(p, 10) <= 0 && side(p, 7) >= 0 && p.z >= 0 && p.z <= 2;
+    };
+    auto dist = [&](const Vec3& p) {
+        return std::min(
+            {std::fabs(side(p, 10)), std::fabs(side(p, 7)), std::fabs(p.z), std::fabs(p.z - 2)});
+    };
+    ExpectSameSolid(ring->scene, {-11, -11, -1}, {11, 11, 3}, 30, want, dist, "pentagonal ring");
+    // $fn given to a transform holds for its children, as OpenSCAD passes it down.
+    auto hex = Load("translate([0, 0, 0], $fn = 6) cylinder(r = 10, h = 1);");
+    ASSERT_TRUE(hex->ok) << Messages(hex->diags);
+    EXPECT_TRUE(Inside(hex->scene, Q(9.5, 0, 0.5)));   // towards a vertex
+    EXPECT_FALSE(Inside(hex->scene, Q(0, 9.5, 0.5)));  // beyond the apothem 8.66
+}
+
 TEST(ImportOpenScadPolygons, FnSphereIsItsPolyhedron) {
     auto l = Load("sphere(r = 10, $fn = 8);");
     ASSERT_TRUE(l->ok) << Messages(l->diags);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/pipeline/camera.h"
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/picture_defaults.h"
@@ -13,7 +14,32 @@
 
 namespace quadrix::cli {
 
-struct RenderArgs {
+// The scene and view options render and export share (view_options.cpp; docs/cli.md): --view,
+// --top, --allow-missing, the rt-style views (--az/--el, --viewsize, --eye-pt, --viewrot,
+// --rt-view) and the OpenSCAD-style camera (--camera, --projection, --fov, --viewall,
+// --autocenter). One table, one parser: every model that renders can be exported the same way.
+struct SceneViewArgs {
+    std::string view;
+    // Importers and rt-style views (docs/import.md).
+    std::vector<std::string> top;
+    bool allowMissing = false;
+    std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
+    std::string rtView;                                    // file of rt view commands
+    // OpenSCAD-style camera (pipeline/camera.h).
+    std::string camera, projection;
+    std::vector<double> fov;  // empty = not given
+    bool viewAll = false, autoCenter = false;
+};
+// Adds the options to `cmd`; `verb` ("draw", "export") words the --allow-missing help.
+void AddSceneViewOptions(CLI::App& cmd, SceneViewArgs& args, const std::string& verb);
+// The rt-style views → po (azimuth, elevation, viewsize, rtView) and the camera options →
+// camera; a usage error message or empty (the rt view file's own errors go to diags).
+std::string SceneViewOptions(const SceneViewArgs& args, PipelineOptions& po, CameraRequest& camera,
+                             Diagnostics& diags);
+// After Read (the input format says which axis is up): the camera's view into `view`.
+bool ApplyCamera(RenderContext& ctx, CameraRequest camera, ViewRequest& view, Diagnostics& diags);
+
+struct RenderArgs : SceneViewArgs {
     // Set by main for the one-shot `quadrix render`: once every output is committed the process
     // ends at once (_exit), without freeing the Frame, the image and the scene (issue 24).
     bool exitWhenDone = false;
@@ -21,7 +47,6 @@ struct RenderArgs {
     std::string output;
     std::string format;  // --format: overrides the extension (and the PNG of -o -)
     std::string size = "512x512";
-    std::string view;
     std::string engine = "raycast";
     bool fast = false;
     bool phong = false;  // Phong post-shading (seed 000's post-shading unit)
@@ -32,22 +57,12 @@ struct RenderArgs {
     std::string aa = "default";  // off | 4 | 16 | 64 | default (kDefaultAaSamples)
     std::string aaFilter = "box";
     bool edges = false;
-    // OpenSCAD-style camera (pipeline/camera.h): --camera, --projection, --fov, --viewall,
-    // --autocenter.
-    std::string camera, projection;
-    std::vector<double> fov;  // empty = not given
-    bool viewAll = false, autoCenter = false;
     bool stats = false;
     bool json = false;  // --stats --json
     int threads = 0;
     std::string dumpFrame;
     std::vector<std::string> engineOptions;  // key=value
-    // Importers and rt-style views (docs/import.md).
-    std::vector<std::string> top;
-    bool strict = false;
-    bool allowMissing = false;
-    std::vector<double> az, el, viewsize, eyePt, viewrot;  // empty = not given
-    std::string rtView;                                    // file of rt view commands
+    bool strict = false;                     // --strict (importers and engine composition)
     // Limits for servers and batch runs (docs/output.md).
     std::string maxMemory;  // e.g. "2G"; empty = the machine's budget only
     double timeLimit = 0;   // seconds of wall-clock time; 0 = none
@@ -64,15 +79,13 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args);
 // The picture defaults, kDefaultAaSamples and ParseAaSamples: shade/picture_defaults.h.
 int RunRender(const RenderArgs& args);
 
-struct ExportArgs {
+struct ExportArgs : SceneViewArgs {
     std::vector<std::string> scenes;
     std::string to = "pov";
     std::string output;
     std::string size = "512x512";
-    std::string view;
     bool mask = false;
     bool shadows = false;
-    bool allowMissing = false;
 };
 void AddExportCommand(CLI::App& app, ExportArgs& args);
 int RunExport(const ExportArgs& args);

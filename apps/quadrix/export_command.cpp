@@ -20,34 +20,38 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
     cmd->add_option("-o,--output", args.output, "Output file")->required();
     cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT the export is set up for")
         ->capture_default_str();
-    cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
     cmd->add_flag("--mask", args.mask, "Unlit white solids on black (coverage masks)");
     cmd->add_flag("--shadows", args.shadows,
                   "Lights cast shadows (as quadrix render --shadows; default: shadowless)");
-    cmd->add_flag("--allow-missing", args.allowMissing,
-                  "Export an imported model without the primitives that cannot be drawn");
+    // The same scene and view options as render (view_options.cpp).
+    AddSceneViewOptions(*cmd, args, "Export");
 }
 
 int RunExport(const ExportArgs& args) {
-    int width = 0, height = 0;
-    if (auto e = ParseSize(args.size, width, height); !e.empty()) {
+    Diagnostics diags;
+    PipelineOptions po;
+    if (auto e = ParseSize(args.size, po.width, po.height); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
-    if (auto e = CheckOutputPaths({args.output}, args.scenes); !e.empty()) {
+    po.scenePaths = args.scenes;
+    CameraRequest camera;
+    if (auto e = SceneViewOptions(args, po, camera, diags); !e.empty()) {
+        diags.Print(stderr);
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
+    std::vector<std::string> inputs = args.scenes;
+    if (!args.rtView.empty()) inputs.push_back(args.rtView);
+    if (auto e = CheckOutputPaths({args.output}, inputs); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }
-    Diagnostics diags;
-    InputRequest input;
-    input.paths = args.scenes;
-    input.allowMissing = args.allowMissing;
-    ViewRequest view;
-    view.width = width;
-    view.height = height;
-    view.viewName = args.view;
     RenderContext ctx;
-    const bool ok = ctx.Read(input, diags) && ctx.Flatten(view, diags);
+    ViewRequest view = po.View();
+    bool ok = ctx.Read(po.Input(), diags);
+    if (ok && camera.Any()) ok = ApplyCamera(ctx, camera, view, diags);
+    ok = ok && ctx.Flatten(view, diags);
     if (ok && !ctx.Flat().freeforms.empty())
         diags.Warning({},
                       fmt::format("{} freeform surface{} not exported (POV-Ray has no exact "
@@ -62,10 +66,10 @@ int RunExport(const ExportArgs& args) {
         return 1;
     }
     const FlatScene* flat = &ctx.Flat();
-    PovExportOptions po;
-    po.mask = args.mask;
-    po.shadows = args.shadows;
-    if (auto e = WriteOutputFile(args.output, ExportPov(*flat, po)); !e.empty()) {
+    PovExportOptions pov;
+    pov.mask = args.mask;
+    pov.shadows = args.shadows;
+    if (auto e = WriteOutputFile(args.output, ExportPov(*flat, pov)); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }

@@ -51,7 +51,6 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->check(CLI::IsMember({"png", "ppm", "pgm", "pnm", "exr", "qxf"}));
     cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT in pixels")
         ->capture_default_str();
-    cmd->add_option("--view", args.view, "Name of the view to use (default: the last one defined)");
     cmd->add_option("--engine", args.engine,
                     "Rendering engine (" + EngineList() +
                         "); what it cannot draw is drawn by raycast and composed by depth")
@@ -77,14 +76,6 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->check(CLI::IsMember({"box", "mitchell"}));
     cmd->add_flag("--edges", args.edges,
                   "Draw exact silhouette, intersection and crease lines, one pixel wide");
-    cmd->add_option("--camera", args.camera,
-                    "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
-                    "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
-    cmd->add_option("--projection", args.projection, "With --camera: ortho|persp (default persp)");
-    cmd->add_option("--fov", args.fov, "With --camera: vertical field of view in degrees (22.5)")
-        ->expected(1);
-    cmd->add_flag("--viewall", args.viewAll, "Fit the window to the whole scene");
-    cmd->add_flag("--autocenter", args.autoCenter, "Centre the scene in the picture");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_flag("--json", args.json,
                   "With --stats: the statistics as one JSON object on standard output");
@@ -94,30 +85,12 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Engine-specific setting KEY=VALUE (repeatable; see docs/ for each engine)");
     cmd->add_option("--dump-frame", args.dumpFrame,
                     "Also write the Frame (depth, normal, ids) as a .qxf text dump");
-    cmd->add_option("--top", args.top,
-                    "Objects to draw from BRL-CAD/OpenSCAD files (repeatable or comma-separated; "
-                    "default: every top-level object)")
-        ->delimiter(',')
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_flag("--strict", args.strict,
                   "Refuse what cannot be drawn as asked: primitives that cannot be drawn "
                   "(torus, ...) even with --allow-missing, and solids the engine cannot draw "
                   "(instead of composing them from raycast)");
-    cmd->add_flag("--allow-missing", args.allowMissing,
-                  "Draw an imported model without the primitives that cannot be drawn (torus, "
-                  "...): a warning and a count in --stats instead of an error");
+    AddSceneViewOptions(*cmd, args, "Draw");
     cmd->footer(EnginesHelp());
-    cmd->add_option("--az", args.az, "Azimuth in degrees (rt convention), orthographic fit")
-        ->expected(1);
-    cmd->add_option("--el", args.el, "Elevation in degrees (rt convention)")->expected(1);
-    cmd->add_option("--viewsize", args.viewsize, "rt view size in mm (with --az/--el or --eye-pt)")
-        ->expected(1);
-    cmd->add_option("--eye-pt", args.eyePt, "rt eye point X Y Z in model mm")->expected(3);
-    cmd->add_option("--viewrot", args.viewrot, "rt view rotation: 16 numbers, row-major")
-        ->expected(16);
-    cmd->add_option("--rt-view", args.rtView,
-                    "File of rt view commands (viewsize; eye_pt; viewrot or orientation)");
     cmd->add_option("--max-memory", args.maxMemory,
                     "Memory budget, e.g. 2G or 512M: larger images are refused (docs/output.md)");
     cmd->add_option("--time-limit", args.timeLimit,
@@ -134,73 +107,6 @@ PictureDefaults PictureRequest(const RenderArgs& args) {
     return d;
 }
 
-// The camera options → CameraRequest; an error message or empty.
-std::string CameraOptions(const RenderArgs& args, CameraRequest& camera) {
-    if (!args.camera.empty())
-        if (auto e = ParseCamera(args.camera, camera); !e.empty()) return e;
-    if (!args.projection.empty()) {
-        if (args.camera.empty()) return "--projection needs --camera";
-        if (auto e = ParseProjection(args.projection, camera); !e.empty()) return e;
-    }
-    if (!args.fov.empty()) camera.fovDegrees = args.fov[0];
-    camera.viewAll = args.viewAll;
-    camera.autoCenter = args.autoCenter;
-    return {};
-}
-
-// The camera's view into `view` (after Read: the input format says which axis is up).
-bool ApplyCamera(RenderContext& ctx, CameraRequest camera, ViewRequest& view, Diagnostics& diags) {
-    camera.zUp = !ctx.Inputs().imports.empty();
-    const std::optional<scene::View> own = ctx.Scene().ViewToUse(view.viewName);
-    if (!own) return true;  // Flatten reports the unknown view
-    std::string error;
-    std::optional<scene::View> v = CameraView(camera, *own, error);
-    if (!v) {
-        diags.Error({}, error, {}, "command line");
-        return false;
-    }
-    if (camera.autoCenter) {
-        ViewRequest fit = view;
-        fit.view = *v;
-        fit.view->whh = fit.view->whw = std::nullopt;
-        if (!ctx.Flatten(fit, diags)) return false;
-        v = CentreOnScene(*v, ctx.Flat());
-    }
-    view.view = v;
-    view.viewName.clear();
-    return true;
-}
-
-// The rt-style view options → PipelineOptions; returns an error message or empty.
-std::string RtViewOptions(const RenderArgs& args, PipelineOptions& po, Diagnostics& diags) {
-    if (!args.az.empty()) po.azimuth = args.az[0];
-    if (!args.el.empty()) po.elevation = args.el[0];
-    if (!args.viewsize.empty()) {
-        if (!(args.viewsize[0] > 0)) return "--viewsize must be positive";
-        po.viewsize = args.viewsize[0];
-    }
-    bool explicitView = !args.eyePt.empty() || !args.viewrot.empty();
-    if (explicitView) {
-        if (args.eyePt.size() != 3 || args.viewrot.size() != 16 || !po.viewsize)
-            return "an explicit rt view needs --viewsize, --eye-pt (3 numbers) and --viewrot (16)";
-        import::RtView rt;
-        rt.viewsize = *po.viewsize;
-        rt.eye = {args.eyePt[0], args.eyePt[1], args.eyePt[2]};
-        for (int k = 0; k < 16; ++k) rt.viewrot.m[k / 4][k % 4] = args.viewrot[k];
-        po.rtView = rt;
-    }
-    if (!args.rtView.empty()) {
-        std::string text;
-        if (auto why = ReadBoundedFile(args.rtView, text); !why.empty())
-            return fmt::format("--rt-view: cannot read '{}': {}", args.rtView, why);
-        auto rt = import::ParseRtViewScript(text, args.rtView, diags);
-        if (!rt) return "--rt-view: the view file has errors";
-        po.rtView = *rt;
-    }
-    if ((po.rtView || po.azimuth || po.elevation) && !args.view.empty())
-        return "--view cannot be combined with --az/--el or an rt view";
-    return {};
-}
 // The end of a one-shot render whose outputs are all committed: the process exits here, so the
 // destructors of the Frame (40 MB at 1280×720), the image, the scene and the thread pool do not
 // run (5–6 ms of freeing, issue 24). Nothing is lost: the outputs are renamed into place and
@@ -273,13 +179,11 @@ int RunRender(const RenderArgs& args) {
         return 2;
     }
     po.scenePaths = args.scenes;
-    po.viewName = args.view;
     po.engine = args.engine;
     po.threads = args.threads;
-    po.topObjects = args.top;
     po.strict = args.strict;
-    po.allowMissing = args.allowMissing;
-    if (auto e = RtViewOptions(args, po, diags); !e.empty()) {
+    CameraRequest camera;
+    if (auto e = SceneViewOptions(args, po, camera, diags); !e.empty()) {
         diags.Print(stderr);
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
@@ -315,17 +219,6 @@ int RunRender(const RenderArgs& args) {
         return 1;
     }
 
-    CameraRequest camera;
-    if (auto e = CameraOptions(args, camera); !e.empty()) {
-        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
-        return 2;
-    }
-    if (camera.Any() && (po.rtView || po.azimuth || po.elevation)) {
-        std::fprintf(stderr,
-                     "quadrix: error: the camera options cannot be combined with "
-                     "--az/--el or an rt view\n");
-        return 2;
-    }
     const bool animation = args.frames > 0 || args.turntable > 0 || !args.views.empty();
     if (animation && camera.Any()) {
         std::fprintf(stderr,

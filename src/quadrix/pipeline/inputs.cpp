@@ -12,6 +12,7 @@
 #include "quadrix/import/freeform/freeform_reader.h"
 #include "quadrix/import/model_space.h"
 #include "quadrix/import/openscad/openscad_import.h"
+#include "quadrix/import/openscad/scad_source.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/lang/reader.h"
 
@@ -88,7 +89,12 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
             }
             case InputFormat::kOpenScad: {
                 ImportReport r;
-                import::ImportOpenScad(text, path, options.import, scene, diags, r);
+                // .scad: read directly, or evaluated by OpenSCAD when it is beyond the literal
+                // subset (import/openscad/scad_source.h); .csg is OpenSCAD's own output.
+                if (EndsWith(Lower(path), ".scad"))
+                    import::ImportScadSource(text, path, options.import, scene, diags, r);
+                else
+                    import::ImportOpenScad(text, path, options.import, scene, diags, r);
                 report.importedBounds.Extend(r.bounds);
                 report.imports.emplace_back(path, std::move(r));
                 break;

@@ -6,6 +6,7 @@ namespace quadrix {
 
 std::string SourceLoc::ToString() const {
     if (line <= 0) return FileName();
+    if (column <= 0) return fmt::format("{}:{}", FileName(), line);  // a line without a column
     return fmt::format("{}:{}:{}", FileName(), line, column);
 }
 

@@ -165,7 +165,9 @@ class Parser {
                 s += t_[i_++];
             char* end = nullptr;
             v.number = std::strtod(s.c_str(), &end);
-            if (s.empty() || *end != 0 || !std::isfinite(v.number))
+            if (!s.empty() && *end == 0 && !std::isfinite(v.number))
+                return Fail(start, fmt::format("'{}' is not a finite number", s));
+            if (s.empty() || *end != 0)
                 return Fail(start, fmt::format("'{}' is not a number (only literal values are "
                                                "supported, no expressions)",
                                                s));
@@ -688,7 +690,7 @@ class Builder {
                  scene::CsgOp op, Box3& box) {
         int acc = -1;
         bool first = true;
-        SpecialsScope scope(*this, n.children);
+        SpecialsScope scope(*this, n.children, &n);
         for (const Node& c : n.children) {
             if (c.dropped || c.name == "=") continue;
             Box3 cb;
@@ -725,8 +727,13 @@ class Builder {
     // assignment of a name holds for the whole scope, as in OpenSCAD).
     class SpecialsScope {
       public:
-        SpecialsScope(Builder& b, const std::vector<Node>& nodes) : b_(b) {
+        // parent: the statement whose children these are; its own $fn/$fa/$fs arguments hold
+        // for its children (OpenSCAD's special variables are passed down the call).
+        SpecialsScope(Builder& b, const std::vector<Node>& nodes, const Node* parent = nullptr)
+            : b_(b) {
             scad::Specials s = b.specials_.back();
+            if (parent)
+                for (const Arg& a : parent->args) SetSpecial(s, a);
             for (const Node& n : nodes)
                 if (n.name == "=" && !n.args.empty()) SetSpecial(s, n.args[0]);
             b.specials_.push_back(s);
@@ -840,6 +847,7 @@ class Builder {
                               "rotate_extrude with an angle other than 360° is not supported; "
                               "it is left out");
             e.rotate = true;
+            e.specials = SpecialsOf(n);
         }
         extrusion_ = e;
         int root = Children(csg, n, Mat4::Identity(), color, scene::CsgOp::kUnion, box);
@@ -950,7 +958,7 @@ class Builder {
         }
         if (e.rotate) {
             std::string problem;
-            auto shape = scad::RotateExtrude(rings, &problem);
+            auto shape = scad::RotateExtrude(rings, e.specials, &problem);
             if (!shape)
                 return Refuse(n, fmt::format("rotate_extrude: {}; it is left out", problem));
             return LeafShape(csg, n, *shape, e.outer, color, box);
@@ -969,6 +977,7 @@ class Builder {
     // Inside linear_extrude/rotate_extrude: the extrusion and the matrix that places its frame.
     struct Extrusion {
         bool rotate = false;
+        scad::Specials specials;  // rotate_extrude's: its fragments (polygon_solids.h)
         double z0 = 0, h = 1, scale = 1;
         const Node* node = nullptr;
         Mat4 outer = Mat4::Identity();
@@ -992,6 +1001,12 @@ bool ImportOpenScad(std::string_view text, const std::string& file, const Import
         for (const std::string& t : options.topObjects) report.missingTops.push_back(t);
     }
     return diags.ErrorCount() == errorsBefore && !builder.failed();
+}
+
+bool ParsesAsOpenScadSubset(std::string_view text, const std::string& file, Diagnostics& diags) {
+    brlcad::TextMap map(text, file);
+    std::vector<Node> nodes;
+    return Parser(map, diags).Run(nodes);
 }
 
 }  // namespace quadrix::import

@@ -181,7 +181,8 @@ Shape LinearExtrude(const std::vector<Ring>& rings, double z0, double h, double 
     return s;
 }
 
-std::optional<Shape> RotateExtrude(const std::vector<Ring>& rings, std::string* problem) {
+std::optional<Shape> RotateExtrude(const std::vector<Ring>& rings, const Specials& specials,
+                                   std::string* problem) {
     double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
     for (const Ring& ring : rings)
         for (const Pt2& p : ring) {
@@ -206,6 +207,32 @@ std::optional<Shape> RotateExtrude(const std::vector<Ring>& rings, std::string* 
         return std::nullopt;
     }
     Shape s;
+    if (const std::optional<int> n = PolygonSides(xmax, specials)) {
+        // n wedges between the vertex angles θ_i = 180° + 360°·i/n; in wedge i the faces are
+        // u = c·L(z) and u = c·M(z), u the coordinate along the wedge's bisector
+        // (polygon_solids.h).
+        double sh = 0, c = 1;
+        SinCosDegrees(180.0 / *n, sh, c);
+        for (const Trapezoid& t : Trapezoids(profile))
+            for (int i = 0; i < *n; ++i) {
+                double sa = 0, ca = 1, sb = 0, cb = 1, sm = 0, cm = 1;
+                SinCosDegrees(180.0 + 360.0 * i / *n, sa, ca);
+                SinCosDegrees(180.0 + 360.0 * (i + 1) / *n, sb, cb);
+                SinCosDegrees(180.0 + 360.0 * (i + 0.5) / *n, sm, cm);
+                ShapeBody body;
+                body.push_back(PlaneHs(0, 0, -1, t.y0));                // z >= y0
+                body.push_back(PlaneHs(0, 0, 1, -t.y1));                // z <= y1
+                body.push_back(PlaneHs(sa, -ca, 0, 0));                 // counter-clockwise of θ_i
+                body.push_back(PlaneHs(-sb, cb, 0, 0));                 // clockwise of θ_i+1
+                body.push_back(PlaneHs(cm, sm, -c * t.qr, -c * t.pr));  // u <= c·L(z)
+                if (t.pl != 0 || t.ql != 0)
+                    body.push_back(PlaneHs(-cm, -sm, c * t.ql, c * t.pl));  // u >= c·M(z)
+                s.bodies.push_back(std::move(body));
+            }
+        for (double z : {ymin, ymax})
+            s.extent.push_back({{0, 0, z}, {xmax, 0, 0}, {0, xmax, 0}, {}});
+        return s;
+    }
     for (const Trapezoid& t : Trapezoids(profile)) {
         ShapeBody body;
         body.push_back(PlaneHs(0, 0, -1, t.y0));       // z >= y0

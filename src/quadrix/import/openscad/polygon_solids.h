@@ -24,6 +24,14 @@
 // and >= 0 on [z0, z1], revolves to z0 <= z <= z1, r² − L(z)² <= 0 (a cone, a cylinder when L is
 // constant) and r² − M(z)² >= 0 (the complement of a cone, dropped when M ≡ 0): on [z0, z1],
 // r <= L ⟺ r² <= L² because L >= 0 there, and the same for M.
+//
+// rotate_extrude with n fragments (n = PolygonSides of the profile's largest x; OpenSCAD 2021.01
+// puts the vertices at θ_i = 180° + 360°·i/n): each profile vertex (x, z) sweeps the n-gon of
+// radius x, and between θ_i and θ_i+1 the face swept by a profile edge joins two parallel chords,
+// so it is planar. With u = x·cos φ + y·sin φ, φ the wedge's bisector, a chord at radius r lies on
+// u = r·cos(180°/n); a trapezoid of the profile in wedge i is z0 <= z <= z1, the two half-planes
+// of the wedge through the z axis, u <= cos(180°/n)·L(z) and u >= cos(180°/n)·M(z) (dropped when
+// M ≡ 0): planes only, n bodies per trapezoid.
 #pragma once
 
 #include <optional>
@@ -67,6 +75,9 @@ std::optional<brlcad::Shape> PolygonalSphere(double r, int n);
 
 // Extrusions; an empty optional with *problem set when the profile cannot be used.
 brlcad::Shape LinearExtrude(const std::vector<Ring>& rings, double z0, double h, double scale);
-std::optional<brlcad::Shape> RotateExtrude(const std::vector<Ring>& rings, std::string* problem);
+// rotate_extrude: exact (cones) unless `specials` make its circle an n-gon (PolygonSides of the
+// profile's largest radius), then n planar wedges as OpenSCAD draws them.
+std::optional<brlcad::Shape> RotateExtrude(const std::vector<Ring>& rings, const Specials& specials,
+                                           std::string* problem);
 
 }  // namespace quadrix::import::scad
