@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <regex>
+#include <set>
 #include <string>
 
 #include "quadrix/scene/diagnostics.h"
@@ -28,6 +29,11 @@ struct BadInput {
     // Rows that must give a correct picture instead of an error (exit 0, out.ppm written, lit:
     // some pixel at least this bright); 0 = an error row.
     int expectLitPixel = 0;
+    // The other front ends (FrontEndRows): the whole command line after `quadrix` (in the temp
+    // dir; {dir} = its path) instead of `render main.uq EXTRA -o out.png`. Such a row must leave
+    // the directory as its setup left it (no output, no temporary file), and expectFirstLine is
+    // searched in every line of stderr.
+    std::string command = {};
 };
 
 void PrintTo(const BadInput& b, std::ostream* os) { *os << b.name; }
@@ -525,6 +531,39 @@ std::vector<BadInput> GuardAndScaleRows() {
          {{"part.uq", "{ nothing }\n"}, {"main.uq", wide + sphere}},
          "",
          R"(main\.uq:10001:\d+: error.*more than 10000 files read)"},
+        // Raycast's work budget (engines/raycast/work_budget.h): a dense union past
+        // max-evaluations per pixel is an error (the composing engines' too), not minutes of CPU.
+        {"DenseUnionPastRaycastBudget",
+         {{"main.uq", balls}},
+         "--engine-opt max-evaluations=50",
+         R"(error.*more than \d+ body evaluations.*max-evaluations=50.*solid 'u' has 300)"},
+        // Through the reference engine too: scanline hands the union to raycast (max-overlap),
+        // whose default budget (4,096 per pixel) 10,000 coincident balls pass.
+        {"DenseUnionComposedByRaycast",
+         {{"main.uq", CoincidentBallUnion(10000)}},
+         "--engine scanline --size 16x16",
+         R"(error.*max-evaluations=4096 per pixel.*solid 'u' has 10000 operands)"},
+        {"MaxEvaluationsZero",
+         {{"main.uq", sphere}},
+         "--engine-opt max-evaluations=0",
+         R"(error.*max-evaluations)"},
+        // The eye inside a solid (tests/eye_inside_test.cpp): auto-fit is an error naming it.
+        {"EyeInsideSolidAutoFit",
+         {{"main.uq", sphere + "view v vrp 0 0 0 vpn 0 0 1 cop 0 0 -0.5;\n"}},
+         "",
+         R"(main\.uq:2:1: error: the eye of view 'v' .*is inside body 'ball')"},
+        {"EyeInsideSolidWithWindow",
+         {{"main.uq", sphere + "view v vrp 0 0 0 vpn 0 0 1 cop 0 0 -0.5 whh 1;\n"}},
+         "",
+         "",
+         "",
+         50},
+        {"EyeInsideHollowShellAutoFit",
+         {{"main.uq", sphere +
+                          "quadric h <1 1 1 0 0 0 0 0 0 -0.64>;\nbody hole (h);\n"
+                          "csg shell (ball - hole);\nview v vrp 0 0 0 vpn 0 0 1 cop 0 0 -0.5;\n"}},
+         "",
+         R"(main\.uq:5:1: error: csg solid 'shell' .*(beside or behind the eye|unbounded in the view).*whh or whw)"},
         {"MaxOverlapNegative",
          {{"main.uq", sphere}},
          "--engine scanline --engine-opt max-overlap=-1",
@@ -633,6 +672,94 @@ std::vector<BadInput> GuardAndScaleRows() {
         // ---- Command line.
         {"MaxMemoryZero", {{"main.uq", sphere}}, "--max-memory 0", R"(error.*--max-memory)"},
         {"SizeZero", {{"main.uq", sphere}}, "--size 0x0", R"(error.*size)"},
+    };
+}
+
+// The front ends added by the second hardening session (issue 23): job files (`quadrix batch`),
+// the viewer (`quadrix view`, offscreen), hidden-line drawings (`quadrix draw`) and exports. Each
+// was tried as a user would, with wrong arguments and broken files.
+std::vector<BadInput> FrontEndRows() {
+    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
+    const std::string broken = "body x (";
+    const std::string eyeInside = sphere + "view v vrp 0 0 0 vpn 0 0 1 cop 0 0 -0.5;\n";
+    auto job = [](const std::string& fields) {
+        return "{\"inputs\": [\"main.uq\"], \"output\": \"out.png\", \"size\": \"16x16\"" + fields +
+               "}\n";
+    };
+    auto batchRow = [&](const char* name, const std::string& jobs, const std::string& expect,
+                        const std::string& scene) {
+        BadInput b{name, {{"jobs.jsonl", jobs}, {"main.uq", scene}}, "", expect};
+        b.command = "batch --quiet jobs.jsonl";
+        return b;
+    };
+    auto row = [](const char* name, std::map<std::string, std::string> files,
+                  const std::string& command, const std::string& expect,
+                  const std::string& setup = {}) {
+        BadInput b{name, std::move(files), "", expect, setup};
+        b.command = command;
+        return b;
+    };
+    return {
+        // ---- Job files: one positioned error per bad line (file:line:column for JSON syntax).
+        batchRow("BatchJsonSyntaxError", "{\"inputs\": [\"main.uq\"], \"output\": \"out.png\"\n",
+                 R"(jobs\.jsonl:1:\d+: invalid JSON: syntax error)", sphere),
+        batchRow("BatchNumberOverflow", job(", \"az\": 1e400"),
+                 R"(jobs\.jsonl:1:\d+: invalid JSON.*(overflow|out of range|too large))", sphere),
+        batchRow("BatchDuplicateKey", job(", \"output\": \"other.png\""),
+                 R"(jobs\.jsonl:1:\d+: the key .output. is given twice)", sphere),
+        batchRow("BatchUnknownKey", job(", \"colour\": 1"), R"(jobs\.jsonl:1: unknown key)",
+                 sphere),
+        batchRow("BatchNotAnObject", "[1, 2]\n", R"(jobs\.jsonl:1: a job is a JSON object)",
+                 sphere),
+        batchRow("BatchBadSize", job(", \"size\": \"0x0\""), R"(jobs\.jsonl:1:.*size)", sphere),
+        batchRow("BatchBadFrameRange", job(", \"frames\": 3, \"frame_range\": \"5:2\""),
+                 R"(jobs\.jsonl:1: frame range)", sphere),
+        batchRow("BatchUnknownEngine", job(", \"engine\": \"warp\""),
+                 R"(jobs\.jsonl:1: unknown engine 'warp')", sphere),
+        batchRow("BatchBadEngineOption", job(", \"engine_options\": {\"batch\": \"maybe\"}"),
+                 R"(jobs\.jsonl:1: .*'batch' must be on or off)", sphere),
+        batchRow("BatchBrokenScene", job(""), R"(main\.uq:1:9: error)", broken),
+        batchRow("BatchEyeInsideSolid", job(""), R"(main\.uq:2:1: error: the eye of view 'v')",
+                 eyeInside),
+        batchRow("BatchDumpFrameIsTheOutput", job(", \"dump_frame\": \"out.png\""),
+                 R"(cannot write 'out\.png'.*same file)", sphere),
+        row("BatchNoJobs", {{"jobs.jsonl", "# nothing\n"}}, "batch jobs.jsonl",
+            R"(error: the job file 'jobs\.jsonl' has no job)"),
+        row("BatchJobFileIsDevZero", {}, "batch /dev/zero", R"(error.*larger than 256 MiB)"),
+        // ---- The viewer, offscreen (no display needed).
+        row("ViewBrokenScene", {{"main.uq", broken}}, "view --offscreen --bench 1 main.uq",
+            R"(main\.uq:1:9: error)"),
+        row("ViewUnknownEngine", {{"main.uq", sphere}},
+            "view --offscreen --bench 1 --engine warp main.uq", R"(error: unknown engine 'warp')"),
+        row("ViewZeroSize", {{"main.uq", sphere}}, "view --offscreen --bench 1 --size 0x0 main.uq",
+            R"(error: --size.*not positive)"),
+        row("ViewUnknownView", {{"main.uq", sphere}},
+            "view --offscreen --bench 1 --view nope main.uq", R"(error: no view named 'nope')"),
+        row("ViewBadScript", {{"main.uq", sphere}, {"s.txt", "bogus 1 2\n"}},
+            "view --script s.txt main.uq", R"(s\.txt:1:1: error: unknown script event 'bogus')"),
+        row("ViewMissingScript", {{"main.uq", sphere}}, "view --script none.txt main.uq",
+            R"(error: --script: cannot read 'none\.txt')"),
+        row("ViewEyeInsideSolid", {{"main.uq", eyeInside}}, "view --offscreen --bench 1 main.uq",
+            R"(main\.uq:2:1: error: the eye of view 'v')"),
+        // ---- Drawings and exports.
+        row("DrawBrokenScene", {{"main.uq", broken}}, "draw main.uq -o out.svg",
+            R"(main\.uq:1:9: error)"),
+        row("DrawUnknownFormat", {{"main.uq", sphere}}, "draw main.uq -o out.bmp",
+            R"(error: out\.bmp: the output must end in)"),
+        row("DrawUnknownStandardView", {{"main.uq", sphere}},
+            "draw main.uq -o out.svg --views front,nope", R"(error: unknown view 'nope')"),
+        row("DrawEyeInsideSolid", {{"main.uq", eyeInside}}, "draw main.uq -o out.svg",
+            R"(main\.uq:2:1: error: the eye of view 'v')"),
+        row("DrawOutputIsTheScene", {{"main.uq", sphere}}, "draw main.uq -o main.svg",
+            R"(cannot write.*input)", "ln main.uq main.svg"),
+        row("ExportBrokenScene", {{"main.uq", broken}}, "export --to pov main.uq -o out.pov",
+            R"(main\.uq:1:9: error)"),
+        row("ExportOutputIsTheScene", {{"main.uq", sphere}}, "export --to pov main.uq -o main.uq",
+            R"(cannot write 'main\.uq': it is the input)"),
+        row("ExportUnknownFormat", {{"main.uq", sphere}}, "export --to warp main.uq -o out.pov",
+            R"(error: --to: warp not in)"),
+        row("CompareNotAFrameDump", {{"a.qxf", "garbage"}}, "compare a.qxf a.qxf",
+            R"(error: 'a\.qxf' is not a Quadrix frame dump)"),
     };
 }
 
@@ -756,6 +883,7 @@ std::vector<BadInput> Table() {
     for (BadInput& b : HardeningRows()) t.push_back(std::move(b));
     for (BadInput& b : AddressLimitRows()) t.push_back(std::move(b));
     for (BadInput& b : GuardAndScaleRows()) t.push_back(std::move(b));
+    for (BadInput& b : FrontEndRows()) t.push_back(std::move(b));
     return t;
 }
 
@@ -766,10 +894,41 @@ std::string Substitute(std::string s, const std::string& dir) {
 
 class BadInputTest : public ::testing::TestWithParam<BadInput> {};
 
+std::set<std::string> Listing(const std::string& dir) {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        names.insert(entry.path().filename().string());
+    return names;
+}
+
 TEST_P(BadInputTest, OneLineErrorNonZeroExitNoOutput) {
     const BadInput& b = GetParam();
     TempDir dir;
     for (const auto& [name, text] : b.files) dir.Write(name, text);
+    if (!b.command.empty()) {
+        // Another front end: the directory must be left as the setup left it.
+        if (!b.setup.empty()) {
+            ASSERT_EQ(RunShell("cd '" + dir.path() + "' && " + b.setup).exitCode, 0);
+        }
+        const std::set<std::string> before = Listing(dir.path());
+        const std::string cmd = "cd '" + dir.path() + "' && " + QuadrixBinary() + " " +
+                                Substitute(b.command, dir.path());
+        CommandResult r = RunShell(cmd);
+        EXPECT_NE(r.exitCode, 0) << cmd << "\n" << r.err;
+        EXPECT_LT(r.exitCode, 128) << "killed by a signal: " << r.err;
+        // The message is searched line by line (a batch prints its failures in a summary).
+        bool found = false;
+        for (std::size_t pos = 0; pos < r.err.size() && !found;) {
+            std::size_t end = r.err.find('\n', pos);
+            if (end == std::string::npos) end = r.err.size();
+            found = std::regex_search(r.err.substr(pos, end - pos), std::regex(b.expectFirstLine));
+            pos = end + 1;
+        }
+        EXPECT_TRUE(found) << "expected /" << b.expectFirstLine << "/ in a line of stderr:\n"
+                           << r.err;
+        EXPECT_EQ(Listing(dir.path()), before) << cmd;
+        return;
+    }
     const bool picture = b.expectLitPixel > 0;
     std::string out = dir.File(picture ? "out.ppm" : "out.png");
     std::string args = Substitute(b.extraArgs, dir.path());

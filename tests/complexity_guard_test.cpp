@@ -97,6 +97,49 @@ TEST(ComplexityGuard, ScanlineKeepsModestOverlap) {
 
 // A body of many literals is bounded over a working set grown by cutting planes
 // (bounds_working_set.cpp): the box must be the one the relaxation over every literal certifies.
+// Raycast's guard (engines/raycast/work_budget.h): a dense union costs pixels × operands; past
+// max-evaluations body evaluations per pixel on average the render is an error naming the limit
+// and the union, with no picture, and the decision is the same for any thread count. Just at the
+// budget the render passes, with the same picture as without the guard.
+TEST(ComplexityGuard, RaycastStopsADenseUnionPastMaxEvaluations) {
+    const std::string text = CoincidentBalls(150);
+    constexpr int kSize = 32;
+    Rendered whole = RenderText(text, "raycast", kSize, {{"max-evaluations", "1000000"}});
+    const auto evaluations =
+        static_cast<std::uint64_t>(Counter(whole.report.stats, "body_evaluations"));
+    const std::uint64_t pixels = kSize * kSize;
+    ASSERT_GT(evaluations, 100 * pixels / 2);  // dense: every operand at every covered pixel
+    const std::uint64_t enough = (evaluations + pixels - 1) / pixels;  // enough × pixels ≥ all
+    for (int threads : {1, 2}) {
+        for (std::uint64_t perPixel : {enough - 1, enough}) {
+            RenderContext ctx(threads);
+            Diagnostics diags;
+            InputRequest in;
+            in.text = text;
+            ASSERT_TRUE(ctx.Read(in, diags)) << Text(diags);
+            ViewRequest view;
+            view.width = view.height = kSize;
+            ASSERT_TRUE(ctx.Flatten(view, diags)) << Text(diags);
+            EngineRequest er;
+            er.options = {{"max-evaluations", std::to_string(perPixel)}};
+            Frame frame;
+            RenderReport report;
+            const bool ok = ctx.Render(er, frame, report, diags);
+            if (perPixel == enough) {
+                EXPECT_TRUE(ok) << Text(diags);
+                EXPECT_EQ(frame.depth, whole.frame.depth);
+                EXPECT_EQ(frame.surface, whole.frame.surface);
+            } else {
+                EXPECT_FALSE(ok) << "threads " << threads;
+                const std::string t = Text(diags);
+                EXPECT_NE(t.find("max-evaluations=" + std::to_string(perPixel)), std::string::npos)
+                    << t;
+                EXPECT_NE(t.find("solid 'u' has 150 operands"), std::string::npos) << t;
+            }
+        }
+    }
+}
+
 TEST(ComplexityGuard, WorkingSetBoundsEqualTheFullRelaxation) {
     const int n = 600;
     std::vector<FlatHalfSpace> hs(static_cast<std::size_t>(n));

@@ -4,11 +4,18 @@
 #
 #   tests/fuzz_importers/run.sh [SECONDS_PER_TARGET] [TARGET...]   (default 30 s each, all six)
 #
+# TARGET is one of v4 v5 comgeom openscad freeform pipeline, or `reader`: the language reader's
+# target (tests/fuzz_reader/run.sh, built here first), so that one run can schedule them all.
+# FUZZ_JOBS=N fuzzes N targets at once (default 1; scripts/test.sh runs 2 on its 2 cores): every
+# target is built first, then each runs in its own process with its own corpus copy and log, the
+# log printed when the target ends. The run fails when any target leaves a finding.
+#
 # Seeds: seeds/<target>/ (hand-written inputs and this issue's regressions), the freeform models of
 # src/quadrix/import/freeform/testdata, and the sample files of $QUADRIX_SAMPLE_DIR (default
 # /work/shared/data: BRL-CAD v4/v5 databases and the COMGEOM deck) when that directory exists.
 # The freeform and pipeline targets read their first byte as a selector (format, engine), so their
-# seeds get one prepended. Findings go to tests/fuzz_importers/findings/<target>/.
+# seeds get one prepended. Findings go to tests/fuzz_importers/findings/<target>/ (the reader's to
+# tests/fuzz_reader/findings/).
 set -euo pipefail
 seconds="${1:-30}"
 shift || true
@@ -21,7 +28,19 @@ samples="${QUADRIX_SAMPLE_DIR:-/work/shared/data}"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 CC=clang CXX=clang++ cmake -S "$here" -B "$build" -G Ninja "${launcher[@]}" >/dev/null
-ninja -C "$build" -j "${JOBS:-2}" $(printf 'fuzz_%s ' "${targets[@]}")
+jobs="${FUZZ_JOBS:-1}"
+reader=0
+built=()
+for t in "${targets[@]}"; do
+    case "$t" in
+        reader) reader=1 ;;
+        v4|v5|comgeom|openscad|freeform|pipeline) built+=("fuzz_$t") ;;
+        *) echo "run.sh: unknown target '$t' (v4 v5 comgeom openscad freeform pipeline reader)" >&2
+           exit 2 ;;
+    esac
+done
+if [ ${#built[@]} -gt 0 ]; then ninja -C "$build" -j "${JOBS:-2}" "${built[@]}"; fi
+if [ "$reader" = 1 ]; then FUZZ_BUILD_ONLY=1 bash "$root/tests/fuzz_reader/run.sh"; fi
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -38,8 +57,19 @@ seed() {
     done
 }
 
-for t in "${targets[@]}"; do
-    c="$work/corpus-$t"
+# fuzz_one TARGET: prepares the target's corpus and fuzzes it; its output goes to $work/log-TARGET.
+# Exits non-zero when the target left a finding.
+fuzz_one() {
+    local t="$1" c="$work/corpus-$1" f
+    if [ "$t" = reader ]; then
+        local rc=0
+        echo "== reader (tests/fuzz_reader/run.sh), $seconds s"
+        FUZZ_NO_BUILD=1 bash "$root/tests/fuzz_reader/run.sh" "$seconds" > "$work/raw-reader" 2>&1 || rc=$?
+        grep -E "^(#[0-9]+ *DONE|stat::number_of_executed_units|INFO: seed)|ERROR|SUMMARY|violated|artifact" \
+            "$work/raw-reader" || true
+        if [ "$rc" != 0 ]; then tail -40 "$work/raw-reader"; echo "reader: findings in $root/tests/fuzz_reader/findings" >&2; fi
+        return "$rc"
+    fi
     mkdir -p "$c" "$here/findings/$t"
     case "$t" in
         v4|v5|comgeom|openscad) for f in "$here/seeds/$t"/*; do [ -f "$f" ] && seed "$f" "$c"; done ;;
@@ -73,6 +103,28 @@ for t in "${targets[@]}"; do
     if compgen -G "$here/findings/$t/crash-*" >/dev/null || compgen -G "$here/findings/$t/timeout-*" >/dev/null ||
        compgen -G "$here/findings/$t/oom-*" >/dev/null || compgen -G "$here/findings/$t/leak-*" >/dev/null; then
         echo "fuzz_$t: findings in $here/findings/$t" >&2
-        exit 1
+        return 1
     fi
+}
+
+# At most $jobs targets at once; each log is printed when its target ends.
+declare -A pids=()
+failed=()
+finish() {  # waits for any one target, prints its log, records a failure
+    local done_pid rc=0 t
+    wait -n -p done_pid "${!pids[@]}" || rc=$?
+    t="${pids[$done_pid]}"
+    unset "pids[$done_pid]"
+    cat "$work/log-$t"
+    if [ "$rc" != 0 ]; then failed+=("$t"); fi
+}
+for t in "${targets[@]}"; do
+    while [ ${#pids[@]} -ge "$jobs" ]; do finish; done
+    fuzz_one "$t" > "$work/log-$t" 2>&1 &
+    pids[$!]="$t"
 done
+while [ ${#pids[@]} -gt 0 ]; do finish; done
+if [ ${#failed[@]} -gt 0 ]; then
+    echo "fuzzing: findings (or a failed run) in ${failed[*]}" >&2
+    exit 1
+fi

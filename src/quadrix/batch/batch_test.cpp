@@ -141,9 +141,11 @@ TEST(BatchJobFile, GoodAndBadLines) {
         "{\"input\": \"b.uq\", \"output\": \"b_%03d.png\", \"turntable\": 8, \"el\": 10}\n"
         "{\"inputs\": [\"c.uq\"], \"output\": \"c.png\", \"colour\": 1}\n"
         "not json\n"
-        "{\"inputs\": [\"d.uq\"], \"output\": \"d.png\", \"engine\": \"nonesuch\"}\n";
+        "{\"inputs\": [\"d.uq\"], \"output\": \"d.png\", \"engine\": \"nonesuch\"}\n"
+        "{\"inputs\": [\"e.uq\"], \"output\": \"e.png\", \"output\": \"f.png\"}\n"
+        "{\"inputs\": [\"g.uq\"], \"output\": \"g.png\"\n";
     auto jobs = ParseJobFile(text, "jobs.jsonl");
-    ASSERT_EQ(jobs.size(), 5u);
+    ASSERT_EQ(jobs.size(), 7u);
     EXPECT_EQ(jobs[0].error, "");
     EXPECT_EQ(jobs[0].job.view.width, 64);
     EXPECT_EQ(jobs[0].job.view.height, 48);
@@ -153,9 +155,15 @@ TEST(BatchJobFile, GoodAndBadLines) {
     ASSERT_TRUE(jobs[1].job.turntable);
     EXPECT_EQ(jobs[1].job.turntable->elevation, 10);
     EXPECT_EQ(jobs[2].error, "jobs.jsonl:5: unknown key \"colour\"");
-    EXPECT_EQ(jobs[3].error, "jobs.jsonl:6: not a JSON object");
+    // Syntax errors with the column where parsing stopped, a key given twice (nlohmann would keep
+    // the last one: the job wrote f.png only) at its second spelling.
+    EXPECT_EQ(jobs[3].error.rfind("jobs.jsonl:6:2: invalid JSON: syntax error", 0), 0u)
+        << jobs[3].error;
     EXPECT_NE(jobs[4].error.find("jobs.jsonl:7: "), std::string::npos);
     EXPECT_NE(jobs[4].error.find("nonesuch"), std::string::npos);
+    EXPECT_EQ(jobs[5].error, "jobs.jsonl:8:41: the key \"output\" is given twice in one object");
+    EXPECT_EQ(jobs[6].error.rfind("jobs.jsonl:9:", 0), 0u) << jobs[6].error;
+    EXPECT_NE(jobs[6].error.find("invalid JSON"), std::string::npos) << jobs[6].error;
 }
 
 // Picture options and the extra EXR output of a job line.

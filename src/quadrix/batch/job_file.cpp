@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "quadrix/batch/view_list.h"
 #include "quadrix/engines/options.h"
@@ -202,6 +204,46 @@ std::string ParseFrameRange(const std::string& text, int& first, int& last) {
     return {};
 }
 
+// One line of a job file as JSON, or the error: "COLUMN: invalid JSON: why" for a syntax error
+// (the column is the byte of the line where parsing stopped), or a key given twice in one object
+// (nlohmann would keep the last one silently: `"output"` twice wrote the second file only).
+std::string ParseJsonRow(std::string_view row, json& out) {
+    std::vector<std::set<std::string>> keys;  // per open object, its keys so far
+    std::string duplicate;
+    const json::parser_callback_t noteKeys = [&](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start) keys.emplace_back();
+        if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+        if (event == json::parse_event_t::key && !keys.empty() && parsed.is_string() &&
+            !keys.back().insert(parsed.get<std::string>()).second && duplicate.empty())
+            duplicate = parsed.get<std::string>();
+        return true;
+    };
+    try {
+        out = json::parse(row, noteKeys);
+    } catch (const json::out_of_range& e) {  // a number too large for a double (1e400)
+        std::string why = e.what();
+        if (std::size_t p = why.find("] "); p != std::string::npos) why = why.substr(p + 2);
+        return fmt::format("1: invalid JSON: {}", why);
+    } catch (const json::parse_error& e) {
+        // what() is "[json.exception.parse_error.101] parse error at line 1, column 9: syntax
+        // error while parsing ..."; the reason is what follows the position.
+        std::string why = e.what();
+        if (std::size_t p = why.find(": ", why.find("column")); p != std::string::npos)
+            why = why.substr(p + 2);
+        return fmt::format("{}: invalid JSON: {}", e.byte, why);
+    }
+    if (!duplicate.empty()) {
+        // The column of its second spelling (the key as written, which escapes could hide: then
+        // the line's start).
+        const std::string quoted = "\"" + duplicate + "\"";
+        std::size_t at = row.find(quoted);
+        at = at == std::string_view::npos ? at : row.find(quoted, at + 1);
+        return fmt::format("{}: the key \"{}\" is given twice in one object",
+                           at == std::string_view::npos ? 1 : at + 1, duplicate);
+    }
+    return {};
+}
+
 std::vector<JobEntry> ParseJobFile(std::string_view text, const std::string& file) {
     std::vector<JobEntry> jobs;
     std::size_t at = 0;
@@ -216,9 +258,9 @@ std::vector<JobEntry> ParseJobFile(std::string_view text, const std::string& fil
         if (first == std::string_view::npos || row[first] == '#') continue;
         JobEntry entry;
         entry.job.label = fmt::format("job {} ({}:{})", jobs.size(), file, line);
-        const json j = json::parse(row, nullptr, false);
-        if (j.is_discarded()) {
-            entry.error = fmt::format("{}:{}: not a JSON object", file, line);
+        json j;
+        if (std::string e = ParseJsonRow(row, j); !e.empty()) {
+            entry.error = fmt::format("{}:{}:{}", file, line, e);
         } else if (std::string e = JobFromJson(j, entry.job); !e.empty()) {
             entry.error = fmt::format("{}:{}: {}", file, line, e);
         }

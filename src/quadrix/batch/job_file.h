@@ -10,7 +10,8 @@
 //
 // "inputs" (a list, or "input": one path) and "output" are required. Paths are taken as written
 // (relative ones from the working directory). An unknown key, a value of the wrong type, or a
-// line that is not a JSON object makes that job invalid (JobEntry::error, "FILE:LINE: ...");
+// line that is not a JSON object makes that job invalid (JobEntry::error, "FILE:LINE: ...";
+// a JSON syntax error "FILE:LINE:COLUMN: invalid JSON: ...", a key given twice likewise);
 // the other jobs still run.
 #pragma once
 

@@ -111,6 +111,7 @@ class FlattenerImpl {
                          "outside definitions that is not a CSG operand");
             return std::nullopt;
         }
+        if (view_.perspective) FindSolidsAroundEye();
         for (FlatBody& b : flat.bodies)
             for (int c = 0; c < nClip; ++c) b.literals.push_back({c, false});
 
@@ -120,7 +121,7 @@ class FlattenerImpl {
         std::vector<Box3> bodyBoxes = AllBodyBounds(flat, bo, &anySearched);
         std::vector<Box3> fitBoxes =
             FitSolidBoxes(flat, view_.fitClips, view_.finalClips, view_.perspective ? view_.d : 0.0,
-                          bodyBoxes, bo);
+                          view_.fitNear, bodyBoxes, bo, &passesEye_);
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).
         for (const FlatFreeform& f : flat.freeforms) {
@@ -133,6 +134,7 @@ class FlattenerImpl {
 
         std::optional<WindowFit> fit = Fit(fitBoxes);
         if (!fit) return std::nullopt;
+        WarnAboutSolidsAroundEye();
         if (!view_.whw && !view_.whh && anySearched) RefineFit(*fit, fitBoxes);
         ToDevice(*fit, bodyBoxes);
         Cull();
@@ -221,12 +223,16 @@ class FlattenerImpl {
     // Solid boxes for the window fit: like the final ones, except that the fit ignores fbp, so
     // where the view's fit clip planes differ from the final ones the bodies are bounded again
     // with their own literals and the fit planes. `flat` and the planes are in one space (the
-    // provisional one, or the device space of RefineFit); farDepth as in FitTreeBounds.
+    // provisional one, or the device space of RefineFit); farDepth and nearDepth as in
+    // FitTreeBounds. `passesEye` (when given) gets per solid whether its box reaches the near
+    // plane (it holds the eye or passes beside or behind it).
     static std::vector<Box3> FitSolidBoxes(const FlatScene& flat,
                                            const std::vector<Plane>& fitClips,
                                            const std::vector<Plane>& finalClips, double farDepth,
+                                           double nearDepth,
                                            const std::vector<Box3>& finalBodyBoxes,
-                                           const BoundsOptions& bo) {
+                                           const BoundsOptions& bo,
+                                           std::vector<char>* passesEye = nullptr) {
         bool same = fitClips.size() == finalClips.size();
         for (std::size_t i = 0; same && i < fitClips.size(); ++i)
             same = fitClips[i] == finalClips[i];
@@ -256,10 +262,20 @@ class FlattenerImpl {
             }
         }
         std::vector<Box3> nodeBoxes = TreeBounds(flat, bodyBoxes);
-        std::vector<Box3> fitBoxes = FitTreeBounds(flat, bodyBoxes, nodeBoxes, farDepth);
+        std::vector<Box3> fitBoxes = FitTreeBounds(flat, bodyBoxes, nodeBoxes, farDepth, nearDepth);
         std::vector<Box3> solidBoxes(flat.solids.size());
         for (std::size_t i = 0; i < flat.solids.size(); ++i)
             solidBoxes[i] = fitBoxes[flat.solids[i].root];
+        if (passesEye) {
+            passesEye->assign(flat.solids.size(), 0);
+            for (std::size_t i = 0; i < flat.solids.size(); ++i) {
+                // Bounded in the world (not reaching the image of infinity, z = farDepth): an
+                // unbounded solid keeps its own message.
+                const Box3& b = nodeBoxes[flat.solids[i].root];
+                (*passesEye)[i] = ReachesNearPlane(b, nearDepth) &&
+                                  (farDepth <= 0 || b.hi.z < farDepth * (1 - 1e-9));
+            }
+        }
         return solidBoxes;
     }
 
@@ -292,9 +308,9 @@ class FlattenerImpl {
             BoundsOptions bo;
             bo.searchLimit = 1e6 * std::fmax(options_.width, options_.height);
             std::vector<Box3> bodyBoxes = AllBodyBounds(probe, bo, nullptr);
-            std::vector<Box3> boxes =
-                FitSolidBoxes(probe, fitClips, finalClips,
-                              view_.perspective ? fit.k * view_.d : 0.0, bodyBoxes, bo);
+            std::vector<Box3> boxes = FitSolidBoxes(probe, fitClips, finalClips,
+                                                    view_.perspective ? fit.k * view_.d : 0.0,
+                                                    fit.k * view_.fitNear, bodyBoxes, bo);
             // Back to provisional space, x = (x_dev - ox) / k, and intersected with the first
             // boxes where both are finite; freeform hulls stay as they are.
             const double o[3] = {fit.ox, fit.oy, 0};
@@ -371,6 +387,31 @@ class FlattenerImpl {
                 if (i >= flat_.solids.size()) return std::nullopt;  // (freeforms are finite)
                 const SourceLoc& loc = hierarchy_.solidLocs[i];
                 bool isBody = !hierarchy_.solidIsCsg[i];
+                // A solid holding the eye, or passing beside or behind it, has no bounded
+                // picture either (window_fit.h): say so rather than "unbounded".
+                if (i < eyeInside_.size() && eyeInside_[i]) {
+                    diags_.Error(loc, fmt::format("the eye of view '{}' (cop {}) is inside {} "
+                                                  "'{}' at {}, so nothing in front of the eye "
+                                                  "bounds the window; give the view a window "
+                                                  "with whh or whw (the solid is then drawn cut "
+                                                  "open by the near plane and seen from inside), "
+                                                  "or move cop out of it",
+                                                  view_.id, FormatPoint(view_.eye),
+                                                  isBody ? "body" : "csg solid",
+                                                  flat_.solids[i].name, loc.ToString()));
+                    return std::nullopt;
+                }
+                if (i < passesEye_.size() && passesEye_[i]) {
+                    diags_.Error(loc,
+                                 fmt::format("{} '{}' at {} reaches beside or behind the "
+                                             "eye of view '{}' (cop {}), so its picture "
+                                             "has no bounded extent and nothing else "
+                                             "bounds the window; give the view a window "
+                                             "with whh or whw",
+                                             isBody ? "body" : "csg solid", flat_.solids[i].name,
+                                             loc.ToString(), view_.id, FormatPoint(view_.eye)));
+                    return std::nullopt;
+                }
                 diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view and "
                                               "nothing bounded is there to fit the window to; "
                                               "give the view a window with whh or whw",
@@ -514,6 +555,90 @@ class FlattenerImpl {
         flat_.depthTolerance = 1e-9 * extent;
     }
 
+    static std::string FormatPoint(const Vec3& p) {
+        return fmt::format("({:g} {:g} {:g})", p.x, p.y, p.z);
+    }
+
+    // Issue 23, the eye inside a solid: eyeInside_[solid] when the eye of a perspective view lies
+    // strictly inside the solid (its clipping planes aside). In provisional space the eye is the
+    // point at infinity (0, 0, -1, 0) (view_setup.h: X = Y = W = 0 and Z = -d² there), where a
+    // plane <a b c d> takes the value -c and a quadric its coefficient C: positive multiples of
+    // their values at the eye in world space, so the signs are the world's. Values within 1e-12
+    // of the largest coefficient count as on the surface (not inside). O(literals + nodes).
+    void FindSolidsAroundEye() {
+        const FlatScene& flat = flat_;
+        // Per half-space: +1 the eye is strictly outside, -1 strictly inside, 0 on it.
+        std::vector<signed char> side(flat.halfSpaces.size(), 0);
+        for (std::size_t i = 0; i < flat.halfSpaces.size(); ++i) {
+            const FlatHalfSpace& h = flat.halfSpaces[i];
+            if (h.isClip) continue;
+            double v, scale;
+            if (h.isPlane) {
+                v = -h.plane.c;
+                scale = std::fmax(std::fmax(std::fabs(h.plane.a), std::fabs(h.plane.b)),
+                                  std::fmax(std::fabs(h.plane.c), std::fabs(h.plane.d)));
+            } else {
+                v = h.quadric.C();
+                scale = h.quadric.MaxAbs();
+            }
+            const double tol = 1e-12 * scale;
+            side[i] = v < -tol ? -1 : (v > tol ? 1 : 0);
+        }
+        std::vector<char> in(flat.nodes.size(), 0);  // children come before their parents
+        for (std::size_t n = 0; n < flat.nodes.size(); ++n) {
+            const FlatCsgNode& node = flat.nodes[n];
+            if (node.isLeaf) {
+                bool all = true;
+                for (const FlatLiteral& l : flat.bodies[node.body].literals) {
+                    if (flat.halfSpaces[l.halfSpace].isClip) continue;
+                    all = all && side[l.halfSpace] == (l.complemented ? 1 : -1);
+                }
+                in[n] = all;
+                continue;
+            }
+            bool v = node.op != scene::CsgOp::kUnion;
+            for (std::size_t c = 0; c < node.children.size(); ++c) {
+                const bool child = in[node.children[c]] != 0;
+                switch (node.op) {
+                    case scene::CsgOp::kUnion:
+                        v = v || child;
+                        break;
+                    case scene::CsgOp::kIntersection:
+                        v = v && child;
+                        break;
+                    case scene::CsgOp::kDifference:
+                        v = c == 0 ? child : v && !child;
+                        break;
+                }
+            }
+            in[n] = v;
+        }
+        eyeInside_.assign(flat.solids.size(), 0);
+        for (std::size_t i = 0; i < flat.solids.size(); ++i)
+            eyeInside_[i] = in[flat.solids[i].root];
+    }
+
+    // A warning per solid holding the eye (the picture is defined: the near plane cuts the solid
+    // open and its inside faces are drawn), three named at most.
+    void WarnAboutSolidsAroundEye() {
+        std::size_t count = 0;
+        for (char c : eyeInside_) count += c != 0;
+        std::size_t named = 0;
+        for (std::size_t i = 0; i < eyeInside_.size() && named < 3; ++i) {
+            if (!eyeInside_[i]) continue;
+            ++named;
+            const SourceLoc& loc = hierarchy_.solidLocs[i];
+            diags_.Warning(loc, fmt::format("the eye of view '{}' (cop {}) is inside {} '{}': the "
+                                            "near plane cuts it open and it is seen from inside",
+                                            view_.id, FormatPoint(view_.eye),
+                                            hierarchy_.solidIsCsg[i] ? "csg solid" : "body",
+                                            flat_.solids[i].name));
+        }
+        if (count > named)
+            diags_.Warning({}, fmt::format("the eye of view '{}' is inside {} more solids",
+                                           view_.id, count - named));
+    }
+
     const scene::Scene& scene_;
     const FlattenOptions& options_;
     Diagnostics& diags_;
@@ -521,6 +646,8 @@ class FlattenerImpl {
     FlatScene flat_;
     HierarchyResult hierarchy_;
     std::vector<std::string> freeformNames_;  // fit boxes past the solids
+    std::vector<char> eyeInside_;             // per solid (FindSolidsAroundEye)
+    std::vector<char> passesEye_;             // per solid: its box reaches the fit's near plane
 };
 
 }  // namespace

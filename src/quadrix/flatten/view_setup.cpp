@@ -204,8 +204,9 @@ class ViewResolver {
         auto depthOf = [d](double ne) { return d * (1 - d / ne); };
         const double near0 = kNearFraction * d;
         // The window fit ignores fbp: near plane at 1e-4 d and the image of n_e = +∞.
-        s.fitClips.push_back(Plane{0, 0, -1, depthOf(near0)});  // z >= z(near0)
-        s.fitClips.push_back(Plane{0, 0, 1, -d});               // z <= d
+        s.fitNear = depthOf(near0);
+        s.fitClips.push_back(Plane{0, 0, -1, s.fitNear});  // z >= z(near0)
+        s.fitClips.push_back(Plane{0, 0, 1, -d});          // z <= d
         std::optional<double> front, back;
         FrontBack(front, back);
         double nearDist = near0;

@@ -42,6 +42,7 @@
 // the near plane at 1e-4 d and the far plane, and for parallel none.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,6 +64,7 @@ struct ViewSetup {
     Vec3 towardViewer;        // unit, world: dop (parallel), -n (perspective)
     double d = 0;             // perspective: distance from the eye to the view plane
     std::optional<double> whh, whw;
+    double fitNear = -HUGE_VAL;     // perspective: the depth of the fit's near plane (1e-4 d)
     std::vector<Plane> fitClips;    // provisional space; the planes the window fit sees
     std::vector<Plane> finalClips;  // provisional space; appended to every body
 };

@@ -64,7 +64,8 @@ Box3 CombineFit(const FlatCsgNode& node, const std::vector<Box3>& fit) {
 }  // namespace
 
 std::vector<Box3> FitTreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes,
-                                const std::vector<Box3>& nodeBoxes, double farDepth) {
+                                const std::vector<Box3>& nodeBoxes, double farDepth,
+                                double nearDepth) {
     std::vector<Box3> fit(scene.nodes.size());
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         const FlatCsgNode& node = scene.nodes[i];
@@ -72,7 +73,8 @@ std::vector<Box3> FitTreeBounds(const FlatScene& scene, const std::vector<Box3>&
         if (real.Empty()) continue;  // the empty box
         if (node.isLeaf) {
             Box3 b = bodyBoxes[node.body];
-            bool reachesInfinity = farDepth > 0 && !(b.hi.z < farDepth * (1 - 1e-9));
+            bool reachesInfinity = (farDepth > 0 && !(b.hi.z < farDepth * (1 - 1e-9))) ||
+                                   ReachesNearPlane(b, nearDepth);
             for (int axis = 0; axis < 3; ++axis)
                 if (reachesInfinity || !FiniteOn(b, axis)) SetUnknown(b, axis);
             fit[i] = b;

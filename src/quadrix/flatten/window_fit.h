@@ -24,13 +24,17 @@
 // an axis no solid bounds is centred on vrp. In perspective the image of the points at infinity
 // is the plane z = d (view_setup.h); a body whose box reaches it goes to infinity in the world,
 // and its screen box is only bounded by the near plane (at 1e-4 d, so it would be 10⁴ times too
-// large): such a body counts as unbounded on every axis. Only a scene in which no axis is
-// bounded by anything, and no window is given, cannot be fitted.
+// large): such a body counts as unbounded on every axis. So does a body whose box reaches the
+// fit's near plane (depth `nearDepth`, the image of n_e = 1e-4 d): it passes beside or behind the
+// eye, or holds it (issue 23: the eye inside a solid), and its screen box is again only the
+// near plane's. Only a scene in which no axis is bounded by anything, and no window is given,
+// cannot be fitted (the Flattener's message then says which solid holds or passes the eye).
 //
 // fbp has no effect on auto-scaling (§2.1.6): the boxes given here are computed with the fit
 // clip planes, not the final ones.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -43,9 +47,16 @@ namespace quadrix {
 // scene.bodies) and the per-node ones (TreeBounds of the same bodies). An axis with no finite
 // fit interval is [-∞, +∞]; an empty box means the node is empty. `farDepth` > 0 (perspective:
 // the depth d of the image of infinity) marks bodies reaching z >= farDepth (1 - 1e-9) as
-// unbounded on every axis.
+// unbounded on every axis; `nearDepth` < 0 (perspective: the depth of the fit's near plane) marks
+// those reaching z <= nearDepth (1 - 1e-9) likewise.
 std::vector<Box3> FitTreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes,
-                                const std::vector<Box3>& nodeBoxes, double farDepth = 0);
+                                const std::vector<Box3>& nodeBoxes, double farDepth = 0,
+                                double nearDepth = -HUGE_VAL);
+// True when `box` reaches the near plane at depth `nearDepth` (< 0) as FitTreeBounds counts it.
+inline bool ReachesNearPlane(const Box3& box, double nearDepth) {
+    return std::isfinite(nearDepth) && nearDepth < 0 && !box.Empty() &&
+           !(box.lo.z > nearDepth * (1 - 1e-9));
+}
 
 struct WindowRequest {
     int width = 0, height = 0;

@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "quadrix/engines/engine_limit.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/engines/registry.h"
 #include "quadrix/frame/image_limits.h"
@@ -231,12 +232,24 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     const bool drawsSomething =
         (caps.solids && !flat_.solids.empty()) || (caps.freeforms && !flat_.freeforms.empty());
 
-    arena_->arena.execute([&] {
-        if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))
-            report.stats = engine->Render(flat_, ro, frame);
-        else
-            frame.Reset(flat_.width, flat_.height);
-    });
+    // A complexity guard that stopped an engine (or the reference engine composing for it) is an
+    // error: no picture rather than a partial one.
+    auto guarded = [&](auto&& draw) {
+        try {
+            arena_->arena.execute(draw);
+            return true;
+        } catch (const EngineLimitError& e) {
+            diags.Error({}, e.what(), {}, "engine");
+            return false;
+        }
+    };
+    if (!guarded([&] {
+            if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))
+                report.stats = engine->Render(flat_, ro, frame);
+            else
+                frame.Reset(flat_.width, flat_.height);
+        }))
+        return false;
 
     // What the engine left out, and why.
     std::vector<UndrawnSolid> undrawn;
@@ -268,7 +281,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     if (!undrawn.empty()) {
         std::vector<int> solids;
         for (const UndrawnSolid& u : undrawn) solids.push_back(u.solid);
-        arena_->arena.execute([&] { ComposeReference(solids, request, frame); });
+        if (!guarded([&] { ComposeReference(solids, request, frame); })) return false;
         report.byReference = undrawn;
         if (caps.solids) {
             std::map<std::string, int> reasons;

@@ -35,6 +35,7 @@
 // thread that ran it, so renders are bit-for-bit reproducible for any thread count.
 #include "quadrix/engines/raycast/raycast.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -47,6 +48,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadrix/engines/engine_limit.h"
 #include "quadrix/engines/raycast/counters.h"
 #include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/scene_tables.h"
@@ -67,6 +69,9 @@ namespace {
 //                     filled directly (TileReduction::TryFlatFill);
 //   kernel=on|off     small sub-tile programs compiled to postfix code over body batches and run
 //                     per pixel without Evaluate's recursion (kernel.h; needs batch).
+// and one complexity guard, which changes no pixel of a render it lets through:
+//   max-evaluations=N body evaluations per pixel on average (default 4,096) past which the
+//                     render stops with EngineLimitError (work_budget.h).
 
 const OptionSchema& RaycastSchema() {
     using O = OptionSpec;
@@ -76,6 +81,9 @@ const OptionSchema& RaycastSchema() {
                 "per-sub-tile proofs (empty bodies, literals that always hold, flat fills)"),
         O::Bool("kernel", "on",
                 "sub-tile programs compiled to postfix code over body batches (needs batch)"),
+        O::Int("max-evaluations", "4096", 1, 1e9,
+               "body evaluations per pixel on average past which the render stops with an "
+               "error (a dense union costs pixels x operands; work_budget.h)"),
     };
     return kSchema;
 }
@@ -110,6 +118,8 @@ class RaycastEngine final : public Engine {
         // makes their pixels background); those inside are the same rectangles, pruned the same
         // way, as in a render of the whole picture, so their pixels are the same bits.
         const PixelRegion* region = Region();
+        WorkBudget budget(static_cast<std::uint64_t>(options.Int("max-evaluations")),
+                          static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height));
         // Blocks own their pruned program (not the thread: a thread waiting in the nested loop may
         // run another block); tiles use per-thread scratch, held by no task across a wait.
         auto renderBlock = [&](int b) {
@@ -130,6 +140,7 @@ class RaycastEngine final : public Engine {
                 tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
                 [&](const tbb::blocked_range<int>& range) {
                     Worker& w = workers.local();
+                    w.budget = &budget;
                     for (int k = range.begin(); k < range.end(); ++k) {
                         int x0 = bx0 + (k % kTilesX) * kTileW;
                         int y0 = by0 + (k / kTilesX) * kTileH;
@@ -148,6 +159,23 @@ class RaycastEngine final : public Engine {
 
         Counters total;
         for (const Worker& w : workers) total.Add(w.counters);
+        if (budget.Exhausted()) {
+            // Name the solid of most operands (a flat union's root holds them all).
+            std::size_t widest = 0;
+            auto operands = [&](std::size_t s) {
+                return full.nodes[static_cast<std::size_t>(full.solids[s].root)].count;
+            };
+            for (std::size_t s = 1; s < full.solids.size(); ++s)
+                if (operands(s) > operands(widest)) widest = s;
+            const FlatSolid& named =
+                scene.solids[static_cast<std::size_t>(full.solids[widest].solid)];
+            throw EngineLimitError(fmt::format(
+                "raycast: the render needs more than {} body evaluations (max-evaluations={} "
+                "per pixel on average): too many bodies cover the same pixels (solid '{}' has "
+                "{} operands; a dense union costs pixels x operands). Raise the limit with "
+                "--engine-opt max-evaluations=N, or render fewer pixels",
+                budget.Limit(), budget.PerPixel(), named.name, operands(widest)));
+        }
         RenderStats stats;
         stats.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

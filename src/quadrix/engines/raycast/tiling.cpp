@@ -1,6 +1,7 @@
 #include "quadrix/engines/raycast/tiling.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "quadrix/engines/raycast/pixel_rows.h"
 #include "quadrix/engines/raycast/worker.h"
@@ -111,7 +112,14 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
             int ex = std::min(sx + kSubTile, x1), ey = std::min(sy + kSubTile, y1);
+            // Past the work budget the render is stopped (work_budget.h): the rest is skipped.
+            if (w.budget && w.budget->Exhausted()) {
+                out.FillBackground(sx, sy, ex, ey);
+                continue;
+            }
+            const std::uint64_t before = w.counters.bodies;
             RenderSubTile(scene, tables, sx, sy, ex, ey, w, out);
+            if (w.budget) w.budget->Spend(w.counters.bodies - before);
         }
     }
     w.tile.CopyTile(x0, y0, x1, y1, frame);

@@ -18,6 +18,7 @@
 #include "quadrix/engines/raycast/settings.h"
 #include "quadrix/engines/raycast/tile_reduction.h"
 #include "quadrix/engines/raycast/trace.h"
+#include "quadrix/engines/raycast/work_budget.h"
 
 namespace quadrix::raycast {
 
@@ -32,6 +33,7 @@ class Worker {
     Worker(const Worker&) = delete;
     Worker& operator=(const Worker&) = delete;
 
+    WorkBudget* budget = nullptr;  // the render's (work_budget.h), shared by the workers
     CsgProgram tileProgram, subTileProgram;
     std::vector<std::int32_t> stack;  // PruneProgram's scratch
     Counters counters;
