@@ -18,6 +18,7 @@
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/pipeline/render_context.h"
+#include "quadrix/pipeline/section_plane.h"
 #include "quadrix/pipeline/stats_report.h"
 #include "quadrix/shade/shader.h"
 
@@ -77,6 +78,9 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->check(CLI::IsMember({"box", "mitchell"}));
     cmd->add_flag("--edges", args.edges,
                   "Draw exact silhouette, intersection and crease lines, one pixel wide");
+    cmd->add_option("--section", args.section,
+                    "Section plane \"A B C D\" (world coordinates): keep the part where "
+                    "A x + B y + C z + D <= 0 and draw the cut faces (docs/viewer.md)");
     cmd->add_option("--camera", args.camera,
                     "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
                     "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
@@ -292,6 +296,14 @@ int RunRender(const RenderArgs& args) {
     po.topObjects = args.top;
     po.strict = args.strict;
     po.allowMissing = args.allowMissing;
+    if (!args.section.empty()) {
+        Plane section;
+        if (auto e = ParseSectionPlane(args.section, section); !e.empty()) {
+            std::fprintf(stderr, "quadrix: error: --section: %s\n", e.c_str());
+            return 2;
+        }
+        po.section = section;
+    }
     if (auto e = RtViewOptions(args, po, diags); !e.empty()) {
         diags.Print(stderr);
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());

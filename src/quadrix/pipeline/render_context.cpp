@@ -68,7 +68,7 @@ bool SameView(const ViewRequest& a, const ViewRequest& b) {
     return a.width == b.width && a.height == b.height && a.viewName == b.viewName &&
            a.azimuth == b.azimuth && a.elevation == b.elevation && a.viewsize == b.viewsize &&
            SameSceneView(a.view, b.view) && SameRtView(a.rtView, b.rtView) &&
-           SameLights(a.lights, b.lights);
+           SameLights(a.lights, b.lights) && a.section == b.section;
 }
 
 std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
@@ -144,6 +144,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     fo.viewName = viewName;
     fo.view = view.view;
     fo.lights = view.lights;
+    fo.section = view.section;
     const int errorsBefore = diags.ErrorCount();
     auto flat = quadrix::Flatten(scene_, fo, diags);
     flattenSeconds = SecondsSince(t0);
@@ -187,6 +188,12 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, Frame& fram
     ComposeMin(frame, other);
 }
 
+bool RenderContext::Execute(const std::function<void()>& work) {
+    bool done = true;
+    arena_->arena.execute([&] { done = cancel_ ? cancel_->Run(work) : (work(), true); });
+    return done;
+}
+
 bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderReport& report,
                            Diagnostics& diags) {
     QUADRIX_CHECK(flatValid_, "RenderContext::Render before a successful Flatten");
@@ -227,12 +234,18 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     const bool drawsSomething =
         (caps.solids && !flat_.solids.empty()) || (caps.freeforms && !flat_.freeforms.empty());
 
-    arena_->arena.execute([&] {
-        if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))
-            report.stats = engine->Render(flat_, ro, frame);
-        else
-            frame.Reset(flat_.width, flat_.height);
-    });
+    auto cancelled = [&] {
+        report.cancelled = true;
+        report.seconds = SecondsSince(t0);
+        return false;
+    };
+    if (!Execute([&] {
+            if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))
+                report.stats = engine->Render(flat_, ro, frame);
+            else
+                frame.Reset(flat_.width, flat_.height);
+        }))
+        return cancelled();
 
     // What the engine left out, and why.
     std::vector<UndrawnSolid> undrawn;
@@ -264,7 +277,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     if (!undrawn.empty()) {
         std::vector<int> solids;
         for (const UndrawnSolid& u : undrawn) solids.push_back(u.solid);
-        arena_->arena.execute([&] { ComposeReference(solids, frame); });
+        if (!Execute([&] { ComposeReference(solids, frame); })) return cancelled();
         report.byReference = undrawn;
         if (caps.solids) {
             std::map<std::string, int> reasons;
@@ -284,10 +297,11 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
         // tolerance (curves at most one pixel apart), composed by depth.
         Frame other(flat_.width, flat_.height);
         isocurve::IsocurveStats st;
-        arena_->arena.execute([&] {
-            st = isocurve::RenderFreeform(isocurve::SceneDrawables(flat_), flat_.projection, {},
-                                          other);
-        });
+        if (!Execute([&] {
+                st = isocurve::RenderFreeform(isocurve::SceneDrawables(flat_), flat_.projection, {},
+                                              other);
+            }))
+            return cancelled();
         ComposeMin(frame, other);
         report.freeformsByIsocurve = st.surfaces;
         report.isocurveSummary = fmt::format(
@@ -302,7 +316,12 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
     Image image = quadrix::Shade(frame, flat_, options);
     // Edge pixels re-rendered by sub-pixel samples, then the edge lines (shade/antialias.h).
-    if (options.aaSamples > 1) Antialias(frame, flat_, options, image);
+    if (options.aaSamples > 1) {
+        if (cancel_)
+            cancel_->Run([&] { Antialias(frame, flat_, options, image); });
+        else
+            Antialias(frame, flat_, options, image);
+    }
     if (options.edges) DrawEdgeLines(frame, options, image);
     return image;
 }
