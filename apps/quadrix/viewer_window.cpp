@@ -449,8 +449,8 @@ bool Viewer::Screenshot(const std::string& path, bool window) {
         exitCode_ = 1;
         return false;
     }
-    std::fprintf(stderr, "quadrix: screenshot %s (%dx%d%s)\n", path.c_str(), out.width, out.height,
-                 window ? ", the window with its overlay" : "");
+    std::fprintf(stderr, "quadrix: screenshot %s (%dx%d)\n", path.c_str(), shownImage_.width,
+                 shownImage_.height);
     return true;
 }
 
@@ -827,7 +827,7 @@ int Viewer::Run() {
 int Viewer::Bench() {
     // The fixed orbit (viewer/bench_orbit.h), each frame shown: render + encode + blit.
     const viewer::BenchResult r =
-        viewer::RunBenchOrbit(*s_.worker, camera_, width_, height_, engine_, s_.benchFrames,
+        viewer::RunBenchOrbit(*s_.worker, camera_, width_, height_, engine_, s_.benchFrames, 1,
                               [&](viewer::FrameOutcome& frame) {
                                   Upload(frame);
                                   SDL_Event ev;

@@ -8,7 +8,7 @@
 namespace quadrix::viewer {
 
 BenchResult RunBenchOrbit(RenderWorker& worker, Camera camera, int width, int height,
-                          const std::string& engine, int frames,
+                          const std::string& engine, int frames, int scale,
                           const std::function<bool(FrameOutcome&)>& show) {
     using Clock = std::chrono::steady_clock;
     auto since = [](Clock::time_point t) {
@@ -24,6 +24,7 @@ BenchResult RunBenchOrbit(RenderWorker& worker, Camera camera, int width, int he
         job.width = width;
         job.height = height;
         job.engine = engine;
+        job.request.scale = scale;
         const auto f0 = Clock::now();
         FrameOutcome out = worker.RenderNow(job);
         if (!out.error.empty()) {

@@ -122,6 +122,7 @@ LoadOutcome RenderWorker::ReadInto(std::unique_ptr<RenderContext>& ctx) {
     if (out.ok) {
         for (std::string& f : SourceFiles(fresh->Scene())) out.files.push_back(std::move(f));
         ctx = std::move(fresh);
+        frameView_.reset();  // frame_ is the old scene's: never shaded again
     } else {
         // Watch the files of the errors as well: a new `read` may be the broken one.
         for (const Diagnostic& d : diags.Items())

@@ -99,9 +99,9 @@ TEST(ViewerScript, KeyTable) {
 
 TEST(ViewerScript, SectionDragDrawingAndWindowScreenshot) {
     Diagnostics diags;
-    auto events = ParseScript(
-        "section-drag -30 4\nsection-drag 5\ndrawing a.svg\nscreenshot-window w.png\n", "s.txt",
-        diags);
+    auto events =
+        ParseScript("section-drag -30 4\nsection-drag 5\ndrawing a.svg\nscreenshot-window w.png\n",
+                    "s.txt", diags);
     ASSERT_TRUE(events) << diags.Items().size();
     ASSERT_EQ(events->size(), 4u);
     EXPECT_EQ((*events)[0].kind, ScriptEvent::Kind::kSectionDrag);
