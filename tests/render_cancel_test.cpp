@@ -19,7 +19,7 @@ const char* kScene =
     "solid sphere ball =at 1 1 -1 =r .6;\n"
     "csg part ((block - drill) | ball); view front dop .4 .5 -1;";
 
-bool Setup(RenderContext& ctx, int w, int h) {
+bool ReadAndFlatten(RenderContext& ctx, int w, int h) {
     Diagnostics diags;
     InputRequest in;
     in.text = kScene;
@@ -33,7 +33,7 @@ TEST(RenderCancel, CancelledBeforeTheFrameDrawsNothingAndIsNoError) {
     Cancellation cancel;
     RenderContext ctx(2);
     ctx.SetCancellation(&cancel);
-    ASSERT_TRUE(Setup(ctx, 64, 48));
+    ASSERT_TRUE(ReadAndFlatten(ctx, 64, 48));
     cancel.Cancel();
     Frame frame;
     RenderReport report;
@@ -53,7 +53,7 @@ TEST(RenderCancel, EveryEngineStopsMidFrameAndTheNextFrameIsWhole) {
     for (const EngineInfo& info : Engines()) {
         if (info.hidden) continue;
         RenderContext fresh(2);
-        ASSERT_TRUE(Setup(fresh, 320, 240));
+        ASSERT_TRUE(ReadAndFlatten(fresh, 320, 240));
         Frame expected;
         RenderReport report;
         Diagnostics diags;
@@ -64,7 +64,7 @@ TEST(RenderCancel, EveryEngineStopsMidFrameAndTheNextFrameIsWhole) {
         Cancellation cancel;
         RenderContext ctx(2);
         ctx.SetCancellation(&cancel);
-        ASSERT_TRUE(Setup(ctx, 320, 240));
+        ASSERT_TRUE(ReadAndFlatten(ctx, 320, 240));
         Frame frame;
         // Cancelled at several moments of the frame: before it starts, early, later.
         for (int delayUs : {0, 200, 2000}) {

@@ -3,9 +3,12 @@
 // every engine draws them. Checked analytically on raycast (a sphere cut through its centre shows
 // a disc of the plane, facing the viewer, at the plane's depth; the window is that of the uncut
 // scene), then every registered engine against raycast on cut CSG, as all_engines_test does.
+#include "quadrix/pipeline/section_plane.h"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -14,13 +17,12 @@
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/render_context.h"
-#include "quadrix/pipeline/section_plane.h"
 #include "test_util.h"
 
 namespace quadrix {
 namespace {
 
-ViewRequest View(int w, int h, std::optional<Plane> section) {
+ViewRequest Sized(int w, int h, std::optional<Plane> section) {
     ViewRequest v;
     v.width = w;
     v.height = h;
@@ -28,8 +30,8 @@ ViewRequest View(int w, int h, std::optional<Plane> section) {
     return v;
 }
 
-bool Render(RenderContext& ctx, const std::string& text, const ViewRequest& view,
-            const std::string& engine, Frame& frame) {
+bool RenderScene(RenderContext& ctx, const std::string& text, const ViewRequest& view,
+                 const std::string& engine, Frame& frame) {
     Diagnostics diags;
     InputRequest in;
     in.text = text;
@@ -46,8 +48,8 @@ TEST(SectionPlane, CutsASphereThroughItsCentreWithAFlatFaceTowardTheViewer) {
     const std::string scene = "solid sphere ball =at 0 0 0 =r 1; view front dop 0 0 -1;";
     RenderContext whole, cut;
     Frame a, b;
-    ASSERT_TRUE(Render(whole, scene, View(101, 101, std::nullopt), "raycast", a));
-    ASSERT_TRUE(Render(cut, scene, View(101, 101, Plane{0, 0, -1, 0}), "raycast", b));
+    ASSERT_TRUE(RenderScene(whole, scene, Sized(101, 101, std::nullopt), "raycast", a));
+    ASSERT_TRUE(RenderScene(cut, scene, Sized(101, 101, Plane{0, 0, -1, 0}), "raycast", b));
     // The window is that of the uncut sphere (the section does not change the fit).
     const Mat4& ma = whole.Flat().projection.deviceFromWorld.Matrix();
     const Mat4& mb = cut.Flat().projection.deviceFromWorld.Matrix();
@@ -58,7 +60,7 @@ TEST(SectionPlane, CutsASphereThroughItsCentreWithAFlatFaceTowardTheViewer) {
     for (std::size_t i = 0; i < flat.halfSpaces.size(); ++i)
         if (flat.halfSpaces[i].name == kSectionName) section = static_cast<int>(i);
     ASSERT_GE(section, 0);
-        EXPECT_FALSE(flat.halfSpaces[static_cast<std::size_t>(section)].transparent);
+    EXPECT_FALSE(flat.halfSpaces[static_cast<std::size_t>(section)].transparent);
     const Vec3 centre = mb.MapPoint(Vec3{0, 0, 0});
     const double radius = mb.MapPoint(Vec3{1, 0, 0}).x - centre.x;  // pixels
     ASSERT_GT(radius, 40);
@@ -86,7 +88,7 @@ TEST(SectionPlane, BadPlanesAreErrors) {
     InputRequest in;
     in.text = "solid sphere ball =at 0 0 0 =r 1;";
     ASSERT_TRUE(ctx.Read(in, diags));
-    EXPECT_FALSE(ctx.Flatten(View(16, 16, Plane{0, 0, 0, 1}), diags));
+    EXPECT_FALSE(ctx.Flatten(Sized(16, 16, Plane{0, 0, 0, 1}), diags));
     EXPECT_NE(diags.Items().back().message.find("section plane"), std::string::npos);
     Plane p;
     EXPECT_NE(ParseSectionPlane("1 2 3", p), "");
@@ -107,6 +109,7 @@ struct Cut {
 };
 
 const std::vector<Cut>& Cuts() {
+    // Each plane keeps the side away from the eye, so that the cut faces look at it.
     static const std::vector<Cut> kCuts{
         {"drilled_block_oblique",
          "solid box block =from -1 -1 -1 =to 1 1 1;\n"
@@ -116,7 +119,7 @@ const std::vector<Cut>& Cuts() {
         {"union_perspective",
          "solid sphere ball =at 0 0 0 =r 1.2; solid cylinder rod =from -2 0 0 =to 2 0 0 =r .4;\n"
          "csg joined (ball | rod); view eye vrp 0 0 0 cop 3 2.5 -4;",
-         Plane{-0.5, 0, 1, 0.2}},
+         Plane{0.5, 0, -1, -0.2}},
         {"machined_part",
          "read \"" + quadrix::testing::SourcePath("examples/machined_part.uq") + "\";",
          Plane{0, 0, -1, 0}},
@@ -147,8 +150,8 @@ TEST_P(SectionAllEngines, MatchesRaycast) {
     ASSERT_NE(cut, nullptr);
     RenderContext ctx;
     Frame reference, got;
-    ASSERT_TRUE(Render(ctx, cut->text, View(120, 90, cut->plane), "raycast", reference));
-    ASSERT_TRUE(Render(ctx, cut->text, View(120, 90, cut->plane), c.engine, got)) << c.engine;
+    ASSERT_TRUE(RenderScene(ctx, cut->text, Sized(120, 90, cut->plane), "raycast", reference));
+    ASSERT_TRUE(RenderScene(ctx, cut->text, Sized(120, 90, cut->plane), c.engine, got)) << c.engine;
     // The section shows: some pixels are the plane's.
     int section = -1;
     for (std::size_t i = 0; i < ctx.Flat().halfSpaces.size(); ++i)

@@ -163,13 +163,12 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
     EXPECT_NE(run.err.find("latency from an input event"), std::string::npos) << run.err;
     std::smatch m;
     const std::string viewText = Slurp(dir.File("a.uq"));
-    ASSERT_TRUE(std::regex_search(viewText, m, std::regex("--section \"([^\"]+)\"")))
-        << viewText;
+    ASSERT_TRUE(std::regex_search(viewText, m, std::regex("--section \"([^\"]+)\""))) << viewText;
     const std::string section = m[1];
     auto render = [&](const std::string& extra, const std::string& out) {
-        const CommandResult r = RunShell(QuadrixBinary() + " render '" + scene + "' '" +
-                                         dir.File("a.uq") + "' --size 240x180 --aa 4 " +
-                                         "--no-shadows " + extra + " -o '" + out + "'");
+        const CommandResult r =
+            RunShell(QuadrixBinary() + " render '" + scene + "' '" + dir.File("a.uq") +
+                     "' --size 240x180 --aa 4 " + "--no-shadows " + extra + " -o '" + out + "'");
         EXPECT_EQ(r.exitCode, 0) << r.err;
         Image im;
         EXPECT_TRUE(ReadPnm(out, im)) << out;
@@ -181,9 +180,9 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
     ASSERT_TRUE(ReadPnm(dir.File("a.ppm"), shot));
     ASSERT_TRUE(ReadPnm(dir.File("w.ppm"), window));
     ASSERT_TRUE(ReadPnm(dir.File("w2.ppm"), plain));
-    EXPECT_EQ(shot.pixels, cut.pixels);     // the section, exactly as render draws it
-    EXPECT_NE(shot.pixels, whole.pixels);   // and it cuts something
-    EXPECT_EQ(plain.pixels, shot.pixels);   // the window without the overlay is the frame
+    EXPECT_EQ(shot.pixels, cut.pixels);    // the section, exactly as render draws it
+    EXPECT_NE(shot.pixels, whole.pixels);  // and it cuts something
+    EXPECT_EQ(plain.pixels, shot.pixels);  // the window without the overlay is the frame
     // With the overlay, the window differs from the frame only in a box at the top-left corner.
     ASSERT_EQ(window.pixels.size(), shot.pixels.size());
     int differ = 0, outside = 0;
@@ -198,9 +197,9 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
     EXPECT_GT(differ, 1000);
     EXPECT_EQ(outside, 0);
     // The drawing key's SVG is `quadrix draw` of the printed view, byte for byte.
-    const CommandResult d = RunShell(QuadrixBinary() + " draw '" + scene + "' '" +
-                                     dir.File("a.uq") + "' --size 240x180 --section '" + section +
-                                     "' -o '" + dir.File("d.svg") + "'");
+    const CommandResult d =
+        RunShell(QuadrixBinary() + " draw '" + scene + "' '" + dir.File("a.uq") +
+                 "' --size 240x180 --section '" + section + "' -o '" + dir.File("d.svg") + "'");
     ASSERT_EQ(d.exitCode, 0) << d.err;
     const std::string svg = Slurp(dir.File("a.svg"));
     EXPECT_NE(svg.find("<svg"), std::string::npos);
