@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "quadrix/viewer/bench_orbit.h"
 #include "quadrix/viewer/progressive.h"
 #include "quadrix/viewer/render_worker.h"
 
@@ -13,20 +14,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Mean seconds a frame of a full orbit (one turn in `frames` frames) at 1/scale resolution.
-double Orbit(viewer::RenderWorker& worker, viewer::Camera cam, int w, int h, int frames,
+// Mean seconds a frame of the viewer's bench orbit (viewer/bench_orbit.h) at 1/scale
+// resolution; -1 when a frame fails.
+double Orbit(viewer::RenderWorker& worker, const viewer::Camera& cam, int w, int h, int frames,
              int scale) {
-    const auto t0 = Clock::now();
-    for (int i = 0; i < frames; ++i) {
-        cam.Orbit(2.0 * h / frames, 0, h);
-        viewer::FrameJob job;
-        job.view = cam.ToView();
-        job.width = w;
-        job.height = h;
-        job.request.scale = scale;
-        if (!worker.RenderNow(job).error.empty()) return -1;
-    }
-    return std::chrono::duration<double>(Clock::now() - t0).count() / frames;
+    const viewer::BenchResult r =
+        viewer::RunBenchOrbit(worker, cam, w, h, "raycast", frames, scale);
+    return r.error.empty() && r.frames > 0 ? r.seconds / r.frames : -1;
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
 // `quadrix view` end to end (issue 18 §7): the real binary and its SDL2 window under Xvfb, driven
 // by a script of mouse and key events; its screenshots must equal, pixel for pixel, what
-// `quadrix render` draws from the view statements the window printed.
+// `quadrix render` draws from the view statements the window printed (with the same --aa: the
+// still frame is anti-aliased, as a render is by default), and its drawings what `quadrix draw`
+// writes for them.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include "test_util.h"
@@ -66,7 +71,7 @@ TEST(ViewerWindow, ScriptedSessionMatchesRenderOfThePrintedViews) {
         const std::string rendered = dir.File(std::string(name) + "_render.ppm");
         const CommandResult r = RunShell(
             QuadrixBinary() + " render '" + scene + "' '" + dir.File(std::string(name) + ".uq") +
-            "' --size 320x240 --aa off --no-shadows -o '" + rendered + "'");
+            "' --size 320x240 --aa 4 --no-shadows -o '" + rendered + "'");
         ASSERT_EQ(r.exitCode, 0) << r.err;
         Image window, cli;
         ASSERT_TRUE(ReadPnm(shot, window)) << shot;
@@ -74,7 +79,7 @@ TEST(ViewerWindow, ScriptedSessionMatchesRenderOfThePrintedViews) {
         ASSERT_EQ(window.width, 320);
         ASSERT_EQ(window.height, 240);
         EXPECT_EQ(window.pixels, cli.pixels) << name;  // identical at full resolution (the
-        // window draws one sample a pixel without shadows: render's --aa off --no-shadows)
+        // window's still frame: 4 samples at edge pixels, no shadows)
         EXPECT_NE(window.pixels, previous.pixels);  // and the two views differ
         previous = window;
     }
@@ -126,10 +131,79 @@ TEST(ViewerWindow, ReloadKeepsTheLastGoodPictureOnErrorThenDrawsTheFix) {
     EXPECT_NE(b.pixels, a.pixels);    // the smaller ball
     const CommandResult r =
         RunShell(QuadrixBinary() + " render '" + scene + "' '" + dir.File("b.uq") +
-                 "' --size 160x120 --aa off --no-shadows -o '" + dir.File("r.ppm") + "'");
+                 "' --size 160x120 --aa 4 --no-shadows -o '" + dir.File("r.ppm") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     ASSERT_TRUE(ReadPnm(dir.File("r.ppm"), cli));
     EXPECT_EQ(b.pixels, cli.pixels);
+}
+
+std::string Slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// The section plane (X, moved by a ctrl-drag), the overlay (in the window's pixels, never in the
+// frame's screenshot; O hides it) and the drawing key's SVG, each against the CLI: `quadrix
+// render --section` and `quadrix draw --section` of the printed view.
+TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string script = dir.Write(
+        "events.txt", "orbit 50 -30 2\nkey X\norbit -60 20\nsection-drag -12 3\nscreenshot " +
+                          dir.File("a.ppm") + "\nscreenshot-window " + dir.File("w.ppm") +
+                          "\nprint-view " + dir.File("a.uq") + "\ndrawing " + dir.File("a.svg") +
+                          "\nkey O\nscreenshot-window " + dir.File("w2.ppm") + "\n");
+    const std::string scene = SourcePath("examples/machined_part.uq");
+    const CommandResult run =
+        RunShell(kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
+                 scene + "' --size 240x180 --stats --script '" + script + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.err.find("latency from an input event"), std::string::npos) << run.err;
+    std::smatch m;
+    const std::string viewText = Slurp(dir.File("a.uq"));
+    ASSERT_TRUE(std::regex_search(viewText, m, std::regex("--section \"([^\"]+)\""))) << viewText;
+    const std::string section = m[1];
+    auto render = [&](const std::string& extra, const std::string& out) {
+        const CommandResult r =
+            RunShell(QuadrixBinary() + " render '" + scene + "' '" + dir.File("a.uq") +
+                     "' --size 240x180 --aa 4 " + "--no-shadows " + extra + " -o '" + out + "'");
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        Image im;
+        EXPECT_TRUE(ReadPnm(out, im)) << out;
+        return im;
+    };
+    const Image cut = render("--section '" + section + "'", dir.File("cut.ppm"));
+    const Image whole = render("", dir.File("whole.ppm"));
+    Image shot, window, plain;
+    ASSERT_TRUE(ReadPnm(dir.File("a.ppm"), shot));
+    ASSERT_TRUE(ReadPnm(dir.File("w.ppm"), window));
+    ASSERT_TRUE(ReadPnm(dir.File("w2.ppm"), plain));
+    EXPECT_EQ(shot.pixels, cut.pixels);    // the section, exactly as render draws it
+    EXPECT_NE(shot.pixels, whole.pixels);  // and it cuts something
+    EXPECT_EQ(plain.pixels, shot.pixels);  // the window without the overlay is the frame
+    // With the overlay, the window differs from the frame only in a box at the top-left corner.
+    ASSERT_EQ(window.pixels.size(), shot.pixels.size());
+    int differ = 0, outside = 0;
+    for (int y = 0; y < shot.height; ++y)
+        for (int x = 0; x < shot.width; ++x)
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t i = (static_cast<std::size_t>(y) * shot.width + x) * 3 + k;
+                if (window.pixels[i] == shot.pixels[i]) continue;
+                ++differ;
+                outside += y > 40;
+            }
+    EXPECT_GT(differ, 1000);
+    EXPECT_EQ(outside, 0);
+    // The drawing key's SVG is `quadrix draw` of the printed view, byte for byte.
+    const CommandResult d =
+        RunShell(QuadrixBinary() + " draw '" + scene + "' '" + dir.File("a.uq") +
+                 "' --size 240x180 --section '" + section + "' -o '" + dir.File("d.svg") + "'");
+    ASSERT_EQ(d.exitCode, 0) << d.err;
+    const std::string svg = Slurp(dir.File("a.svg"));
+    EXPECT_NE(svg.find("<svg"), std::string::npos);
+    EXPECT_EQ(svg, Slurp(dir.File("d.svg")));
 }
 
 TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {

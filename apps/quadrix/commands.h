@@ -57,6 +57,7 @@ struct RenderArgs : SceneViewArgs {
     std::string aa = "default";  // off | 4 | 16 | 64 | default (kDefaultAaSamples)
     std::string aaFilter = "box";
     bool edges = false;
+    std::string section;  // --section "A B C D" (pipeline/section_plane.h); empty = none
     bool stats = false;
     bool json = false;  // --stats --json
     int threads = 0;
@@ -139,6 +140,7 @@ struct DrawArgs {
     std::string sheet = "A4";
     std::string projection = "third";
     std::string hidden = "dashed";
+    std::string section;  // --section "A B C D", as quadrix render's
     bool stats = false;
 };
 void AddDrawCommand(CLI::App& app, DrawArgs& args);
@@ -184,6 +186,9 @@ struct ViewArgs {
     bool offscreen = false;
     std::vector<std::string> top;
     bool allowMissing = false;
+    std::string aa = "default";  // the still frame's anti-aliasing, as quadrix render's --aa
+    bool noCancel = false;       // finish stale refining frames (to measure what cancelling saves)
+    bool stats = false;          // latency figures at exit
 };
 void AddViewCommand(CLI::App& app, ViewArgs& args);
 int RunView(const ViewArgs& args);

@@ -4,39 +4,16 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "quadrix/draw/cairo_writer.h"
 #include "quadrix/draw/drawing.h"
+#include "quadrix/draw/page_file.h"
 #include "quadrix/draw/sheet.h"
-#include "quadrix/draw/svg_writer.h"
 #include "quadrix/frame/image_limits.h"
 #include "quadrix/pipeline/render_context.h"
+#include "quadrix/pipeline/section_plane.h"
 
 namespace quadrix::cli {
 
 namespace {
-
-enum class OutFormat { kSvg, kPdf, kEps, kPng };
-
-bool FormatOf(const std::string& path, OutFormat& f) {
-    auto ends = [&](const char* ext) {
-        const std::string e = ext;
-        if (path.size() < e.size()) return false;
-        std::string tail = path.substr(path.size() - e.size());
-        for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return tail == e;
-    };
-    if (ends(".svg"))
-        f = OutFormat::kSvg;
-    else if (ends(".pdf"))
-        f = OutFormat::kPdf;
-    else if (ends(".eps") || ends(".ps"))
-        f = OutFormat::kEps;
-    else if (ends(".png"))
-        f = OutFormat::kPng;
-    else
-        return false;
-    return true;
-}
 
 std::vector<std::string> SplitComma(const std::string& s) {
     std::vector<std::string> out;
@@ -100,12 +77,14 @@ void AddDrawCommand(CLI::App& app, DrawArgs& args) {
     cmd->add_option("--hidden", args.hidden, "Hidden lines: dashed or off")
         ->check(CLI::IsMember({"dashed", "off"}))
         ->capture_default_str();
+    cmd->add_option("--section", args.section,
+                    "Section plane \"A B C D\": keep A x + B y + C z + D <= 0, as quadrix "
+                    "render --section");
     cmd->add_flag("--stats", args.stats, "Print curve counts and times to standard error");
 }
 
 int RunDraw(const DrawArgs& args) {
-    OutFormat format;
-    if (!FormatOf(args.output, format)) {
+    if (!draw::IsPageFileName(args.output)) {
         std::fprintf(stderr,
                      "quadrix: error: %s: the output must end in .svg, .pdf, .eps or .png\n",
                      args.output.c_str());
@@ -139,6 +118,15 @@ int RunDraw(const DrawArgs& args) {
             return 2;
         }
     }
+    std::optional<Plane> section;
+    if (!args.section.empty()) {
+        Plane p;
+        if (auto e = ParseSectionPlane(args.section, p); !e.empty()) {
+            std::fprintf(stderr, "quadrix: error: --section: %s\n", e.c_str());
+            return 2;
+        }
+        section = p;
+    }
     // Stages 1 and 2 of the render context (pipeline/render_context.h); the drawer takes the
     // flat scene where an engine would.
     Diagnostics diags;
@@ -150,11 +138,13 @@ int RunDraw(const DrawArgs& args) {
     request.width = width;
     request.height = height;
     request.viewName = args.view;
+    request.section = section;
     if (viewNames.empty() && (!context.Flatten(request, diags) || diags.HasErrors()))
         return Fail(diags);
     draw::DrawOptions dopt;
     dopt.hidden = args.hidden != "off";
-    const std::string title = args.scenes.empty() ? "" : args.scenes.back();
+    // The model's file: the first (later ones are usually views or settings for it).
+    const std::string title = args.scenes.empty() ? "" : args.scenes.front();
     draw::Page page;
     bool warnedFreeform = false;
     auto warnFreeform = [&] {
@@ -184,6 +174,7 @@ int RunDraw(const DrawArgs& args) {
             vr.width = 1000;
             vr.height = 1000;
             vr.viewName = sv.id;
+            vr.section = section;
             const bool ok = context.Flatten(vr, diags);
             context.Scene().views.pop_back();
             context.SceneChanged();
@@ -211,15 +202,7 @@ int RunDraw(const DrawArgs& args) {
         diags.Warning({}, "the drawing is empty: no edge or outline of the solids lies in the view",
                       {}, "draw");
     diags.Print(stderr);
-    std::string err;
-    if (format == OutFormat::kSvg) {
-        err = draw::WriteSvg(args.output, page);
-    } else {
-        err = draw::WriteCairo(args.output, page,
-                               format == OutFormat::kPdf   ? draw::CairoFormat::kPdf
-                               : format == OutFormat::kEps ? draw::CairoFormat::kEps
-                                                           : draw::CairoFormat::kPng);
-    }
+    const std::string err = draw::WritePageFile(args.output, page);
     if (!err.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", err.c_str());
         return 1;

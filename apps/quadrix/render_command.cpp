@@ -18,6 +18,7 @@
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/pipeline/render_context.h"
+#include "quadrix/pipeline/section_plane.h"
 #include "quadrix/pipeline/stats_report.h"
 #include "quadrix/shade/shader.h"
 
@@ -76,6 +77,9 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
         ->check(CLI::IsMember({"box", "mitchell"}));
     cmd->add_flag("--edges", args.edges,
                   "Draw exact silhouette, intersection and crease lines, one pixel wide");
+    cmd->add_option("--section", args.section,
+                    "Section plane \"A B C D\" (world coordinates): keep the part where "
+                    "A x + B y + C z + D <= 0 and draw the cut faces (docs/viewer.md)");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_flag("--json", args.json,
                   "With --stats: the statistics as one JSON object on standard output");
@@ -182,6 +186,14 @@ int RunRender(const RenderArgs& args) {
     po.engine = args.engine;
     po.threads = args.threads;
     po.strict = args.strict;
+    if (!args.section.empty()) {
+        Plane section;
+        if (auto e = ParseSectionPlane(args.section, section); !e.empty()) {
+            std::fprintf(stderr, "quadrix: error: --section: %s\n", e.c_str());
+            return 2;
+        }
+        po.section = section;
+    }
     CameraRequest camera;
     if (auto e = SceneViewOptions(args, po, camera, diags); !e.empty()) {
         diags.Print(stderr);

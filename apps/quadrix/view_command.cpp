@@ -13,6 +13,7 @@
 #include "quadrix/engines/registry.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/pipeline/render_context.h"
+#include "quadrix/viewer/bench_orbit.h"
 #include "quadrix/viewer/camera.h"
 #include "quadrix/viewer/render_worker.h"
 #include "quadrix/viewer/script.h"
@@ -42,6 +43,16 @@ void AddViewCommand(CLI::App& app, ViewArgs& args) {
                     "(offscreen when there is no display)")
         ->check(CLI::Range(1, 100000));
     cmd->add_flag("--offscreen", args.offscreen, "With --bench: render without a window");
+    cmd->add_option("--aa", args.aa,
+                    "Anti-aliasing of the still frame, as quadrix render's: off|4|16|64 (default " +
+                        std::to_string(kDefaultAaSamples) + " for scenes of at most " +
+                        std::to_string(kPictureDefaultBodies) + " bodies, else off)");
+    cmd->add_flag("--no-cancel", args.noCancel,
+                  "Finish a refining frame even when the view changed meanwhile (to measure "
+                  "what cancelling saves)");
+    cmd->add_flag("--stats", args.stats,
+                  "At exit, print the latency from input events to the first picture of their "
+                  "view");
     cmd->add_option("--top", args.top, "Objects to draw from BRL-CAD/OpenSCAD files")
         ->delimiter(',')
         ->expected(1)
@@ -50,41 +61,6 @@ void AddViewCommand(CLI::App& app, ViewArgs& args) {
                   "Draw an imported model without the primitives that cannot be drawn");
     cmd->footer(viewer::KeyHelp());
 }
-
-namespace {
-
-// The fixed orbit of --bench without a window: the frames of RunViewerWindow's bench, drawn by
-// the render thread and not shown.
-int OffscreenBench(viewer::RenderWorker& worker, viewer::Camera cam, int width, int height,
-                   const std::string& engine, int frames) {
-    using Clock = std::chrono::steady_clock;
-    const auto t0 = Clock::now();
-    double slowest = 0;
-    for (int i = 0; i < frames; ++i) {
-        cam.Orbit(2.0 * height / frames, 0, height);
-        viewer::FrameJob job;
-        job.view = cam.ToView();
-        job.width = width;
-        job.height = height;
-        job.engine = engine;
-        const auto f0 = Clock::now();
-        viewer::FrameOutcome out = worker.RenderNow(job);
-        if (!out.error.empty()) {
-            std::fputs(out.error.c_str(), stderr);
-            return 1;
-        }
-        slowest = std::max(slowest, std::chrono::duration<double>(Clock::now() - f0).count());
-    }
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    std::printf(
-        "view bench: %d frames %dx%d engine %s offscreen: %.1f frames/s (mean %.2f ms, "
-        "slowest %.2f ms)\n",
-        frames, width, height, engine.c_str(), frames / seconds, 1e3 * seconds / frames,
-        1e3 * slowest);
-    return 0;
-}
-
-}  // namespace
 
 int RunView(const ViewArgs& args) {
     ViewerSession session;
@@ -99,6 +75,13 @@ int RunView(const ViewArgs& args) {
         return 2;
     }
     session.engine = args.engine;
+    int aaSamples = kDefaultAaSamples;
+    if (auto e = ParseAaSamples(args.aa, aaSamples); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
+    session.cancelStale = !args.noCancel;
+    session.stats = args.stats;
     std::vector<viewer::ScriptEvent> script;
     if (!args.script.empty()) {
         std::string text;
@@ -146,9 +129,28 @@ int RunView(const ViewArgs& args) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 1;
     }
-    if (offscreen)
-        return OffscreenBench(worker, session.camera, session.width, session.height, args.engine,
-                              args.bench);
+    if (offscreen) {
+        const viewer::BenchResult r = viewer::RunBenchOrbit(
+            worker, session.camera, session.width, session.height, args.engine, args.bench);
+        if (!r.error.empty()) {
+            std::fputs(r.error.c_str(), stderr);
+            return 1;
+        }
+        std::fputs(
+            viewer::FormatBench(r, session.width, session.height, args.engine, "offscreen").c_str(),
+            stdout);
+        return 0;
+    }
+    // The picture defaults of quadrix render: anti-aliasing unless asked otherwise, but not by
+    // default for scenes of many bodies (their sub-pixel rays are not pruned).
+    const std::size_t bodies = worker.BodyCount();
+    if (args.aa == "default" && bodies > kPictureDefaultBodies) {
+        aaSamples = 0;
+        std::fprintf(stderr,
+                     "quadrix: note: %zu bodies: no default anti-aliasing (--aa N asks for it)\n",
+                     bodies);
+    }
+    session.aaSamples = aaSamples;
     session.worker = &worker;
     session.files = load.files;
     session.name = args.scenes.front();

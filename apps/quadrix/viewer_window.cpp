@@ -6,6 +6,12 @@
 //
 // Scripted input (viewer/script.h) is replayed as SDL events pushed onto the window's own queue,
 // so a script drives exactly the code a user does: the same mouse and key handlers.
+//
+// What the window shows: the frame's texture, scaled to the window when it is a reduced frame,
+// and over it the overlay's texture (viewer/overlay.h: text in an opaque box, transparent
+// elsewhere) when the overlay is on. A view change while a refining frame (full resolution or
+// anti-aliased) is drawn cancels it (viewer/progressive.h); the latency from an input event to
+// the first picture of a view at least that new is measured (--stats prints it at exit).
 #include "viewer_window.h"
 
 #ifdef QUADRIX_HAVE_SDL2
@@ -18,13 +24,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <numeric>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quadrix/engines/registry.h"
 #include "quadrix/io/writers.h"
+#include "quadrix/pipeline/section_plane.h"
+#include "quadrix/viewer/bench_orbit.h"
 #include "quadrix/viewer/file_watch.h"
+#include "quadrix/viewer/overlay.h"
 #include "quadrix/viewer/progressive.h"
+#include "quadrix/viewer/section.h"
 
 namespace quadrix::cli {
 
@@ -63,10 +76,12 @@ class Viewer {
           width_(s.width),
           height_(s.height),
           engine_(s.engine),
-          engines_(UserEngines()) {
+          engines_(UserEngines()),
+          scheduler_(1.0 / 40, s.aaSamples > 1) {
         watch_.SetFiles(s.files);
     }
     ~Viewer() {
+        if (overlayTexture_) SDL_DestroyTexture(overlayTexture_);
         if (texture_) SDL_DestroyTexture(texture_);
         if (renderer_) SDL_DestroyRenderer(renderer_);
         if (window_) SDL_DestroyWindow(window_);
@@ -79,7 +94,15 @@ class Viewer {
 
   private:
     void Title();
-    void Changed() { scheduler_.ViewChanged(); }
+    void Changed();
+    // The overlay's lines for the current state, and its texture made again when they changed.
+    std::vector<std::string> OverlayLines() const;
+    void UpdateOverlay();
+    // The section plane as `quadrix render` options (empty when off).
+    std::string SectionOptions() const;
+    void MoveSection(double pixels);  // along its normal, by `pixels` of the window's scale
+    bool WriteDrawing(const std::string& path);
+    void PrintLatency() const;
     void HandleEvent(const SDL_Event& ev);
     void RunCommand(Command c);
     void Upload(viewer::FrameOutcome& frame);
@@ -88,7 +111,8 @@ class Viewer {
     void PollFiles();
     // Runs script events until one must wait; false when the script asks to quit.
     void StepScript();
-    bool Screenshot(const std::string& path);
+    // Saves the frame (window = false) or the window's pixels with the overlay (true).
+    bool Screenshot(const std::string& path, bool window = false);
     void PushMouse(Uint32 type, Uint8 button, int x, int y, int dx = 0, int dy = 0);
 
     const ViewerSession& s_;
@@ -96,6 +120,8 @@ class Viewer {
     int width_, height_;
     std::string engine_;
     bool edges_ = false;
+    bool overlayOn_ = true;
+    viewer::SectionPlane section_;
     std::vector<std::string> engines_;
     viewer::FrameScheduler scheduler_;
     viewer::FileWatch watch_;
@@ -104,15 +130,25 @@ class Viewer {
     SDL_Renderer* renderer_ = nullptr;
     SDL_Texture* texture_ = nullptr;
     int textureW_ = 0, textureH_ = 0;
+    SDL_Texture* overlayTexture_ = nullptr;
+    viewer::OverlayImage overlay_;
+    std::vector<std::string> overlayLines_;
     std::vector<std::uint8_t> shown_;  // the bytes in the texture
     Image shownImage_;                 // the image they came from
     int shownScale_ = 1;
+    bool shownAntialiased_ = false;
     double shownSeconds_ = 0;
     std::string error_;  // the current reload/frame error, for the title
     std::string lastNote_;
-    // Mouse.
+    // Mouse (and ctrl, held for section drags).
     int dragButton_ = 0, downX_ = 0, downY_ = 0;
-    bool moved_ = false;
+    bool moved_ = false, ctrlDown_ = false, sectionDrag_ = false;
+    // Cancellation and latency: the first change not yet shown (generation, time).
+    bool cancelSent_ = false;
+    int framesCancelled_ = 0;
+    std::optional<std::pair<std::uint64_t, Clock::time_point>> pendingChange_;
+    std::vector<double> latencies_;
+    int drawingCount_ = 0;
     // Script.
     std::size_t scriptPos_ = 0;
     bool scriptWaitsFinal_ = false;
@@ -165,11 +201,102 @@ void Viewer::Title() {
     if (shownSeconds_ > 0) t += fmt::format(" — {:.1f} ms", 1e3 * shownSeconds_);
     t += camera_.perspective ? " — perspective" : " — parallel";
     if (edges_) t += " — edges";
+    if (section_.on) t += " — section";
     if (!error_.empty())
         t += " — ERROR " + error_;
     else
         t += " — H: help";
     SDL_SetWindowTitle(window_, t.c_str());
+    UpdateOverlay();
+}
+
+void Viewer::Changed() {
+    scheduler_.ViewChanged();
+    if (!pendingChange_) pendingChange_.emplace(scheduler_.Generation(), Clock::now());
+    if (s_.cancelStale && !cancelSent_ && scheduler_.StaleRefinementInFlight()) {
+        s_.worker->CancelFrame();
+        cancelSent_ = true;
+    }
+}
+
+std::vector<std::string> Viewer::OverlayLines() const {
+    std::string a = fmt::format("{}  {}x{}", engine_, width_, height_);
+    if (shownScale_ > 1) a += fmt::format(" (1/{})", shownScale_);
+    if (shownSeconds_ > 0) a += fmt::format("  {:.1f} ms", 1e3 * shownSeconds_);
+    if (shownAntialiased_) a += fmt::format("  aa {}", s_.aaSamples);
+    a += camera_.perspective ? "  perspective" : "  parallel";
+    if (edges_) a += "  edges";
+    if (section_.on) a += "  section";
+    std::vector<std::string> lines = {a};
+    if (!error_.empty()) lines.push_back("error: " + error_);
+    lines.push_back("H help  X section  [ ] move it  D drawing  V view  O overlay  Q quit");
+    return lines;
+}
+
+void Viewer::UpdateOverlay() {
+    if (!renderer_) return;
+    std::vector<std::string> lines = overlayOn_ ? OverlayLines() : std::vector<std::string>{};
+    int w = 0, h = 0;
+    SDL_GetRendererOutputSize(renderer_, &w, &h);
+    if (lines == overlayLines_ && overlay_.width == w && overlay_.height == h) return;
+    overlayLines_ = lines;
+    overlay_ = viewer::DrawOverlay(lines, w, h);
+    if (overlayTexture_) SDL_DestroyTexture(overlayTexture_);
+    overlayTexture_ = nullptr;
+    if (overlay_.Empty()) return;
+    overlayTexture_ =
+        SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING,
+                          overlay_.width, overlay_.height);
+    if (!overlayTexture_) return;
+    SDL_SetTextureBlendMode(overlayTexture_, SDL_BLENDMODE_BLEND);
+    SDL_UpdateTexture(overlayTexture_, nullptr, overlay_.rgba.data(), overlay_.width * 4);
+}
+
+std::string Viewer::SectionOptions() const {
+    const std::optional<Plane> p = section_.ToPlane();
+    return p ? fmt::format(" --section \"{}\"", FormatSectionPlane(*p)) : std::string();
+}
+
+void Viewer::MoveSection(double pixels) {
+    if (!section_.on) return;
+    section_.Move(pixels * 2 * camera_.halfHeight / height_);
+    Changed();
+}
+
+bool Viewer::WriteDrawing(const std::string& path) {
+    const std::string e = s_.worker->WriteDrawing(path, camera_.ToView(), width_, height_,
+                                                  section_.ToPlane(), s_.name);
+    if (!e.empty()) {
+        std::fprintf(stderr, "quadrix: error: drawing %s: %s\n", path.c_str(), e.c_str());
+        exitCode_ = 1;
+        return false;
+    }
+    std::fprintf(stderr,
+                 "quadrix: drawing %s: the view below, drawn as `quadrix draw %s VIEW.uq --size "
+                 "%dx%d%s -o %s`\n",
+                 path.c_str(), s_.name.c_str(), width_, height_, SectionOptions().c_str(),
+                 path.c_str());
+    std::fputs(
+        viewer::FormatViewStatement(camera_, width_, height_, "camera", SectionOptions()).c_str(),
+        stdout);
+    std::fflush(stdout);
+    return true;
+}
+
+void Viewer::PrintLatency() const {
+    if (latencies_.empty()) {
+        std::fprintf(stderr, "quadrix: latency: no input event was followed by a picture\n");
+        return;
+    }
+    std::vector<double> v = latencies_;
+    std::sort(v.begin(), v.end());
+    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+    std::fprintf(stderr,
+                 "quadrix: latency from an input event to the first picture of its view: %zu "
+                 "events, mean %.1f ms, median %.1f ms, 90th %.1f ms, max %.1f ms; %d stale "
+                 "frames cancelled\n",
+                 v.size(), 1e3 * mean, 1e3 * v[v.size() / 2], 1e3 * v[(v.size() * 9) / 10],
+                 1e3 * v.back(), framesCancelled_);
 }
 
 void Viewer::Upload(viewer::FrameOutcome& frame) {
@@ -185,13 +312,19 @@ void Viewer::Upload(viewer::FrameOutcome& frame) {
     if (texture_) SDL_UpdateTexture(texture_, nullptr, shown_.data(), im.width * 3);
     shownImage_ = std::move(frame.image);  // `im` is not used below
     shownScale_ = frame.job.request.scale;
-    shownSeconds_ = frame.seconds;
+    shownAntialiased_ = frame.job.request.antialiased;
+    if (!frame.job.request.antialiased) shownSeconds_ = frame.seconds;
+    if (pendingChange_ && frame.job.request.generation >= pendingChange_->first) {
+        latencies_.push_back(Since(pendingChange_->second));
+        pendingChange_.reset();
+    }
     Present(nullptr);
 }
 
 void Viewer::Present(std::vector<std::uint8_t>* readback) {
     SDL_RenderClear(renderer_);
     if (texture_) SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+    if (overlayTexture_ && overlayOn_) SDL_RenderCopy(renderer_, overlayTexture_, nullptr, nullptr);
     if (readback) {
         int w = 0, h = 0;
         SDL_GetRendererOutputSize(renderer_, &w, &h);
@@ -205,8 +338,12 @@ void Viewer::Present(std::vector<std::uint8_t>* readback) {
 
 void Viewer::PumpWorker() {
     if (auto frame = s_.worker->TakeFrame()) {
-        scheduler_.Delivered(frame->job.request, frame->seconds);
-        if (!frame->error.empty()) {
+        cancelSent_ = false;
+        if (frame->cancelled) {
+            scheduler_.Abandoned();  // a newer view is asked for below
+            ++framesCancelled_;
+        } else if (!frame->error.empty()) {
+            scheduler_.Delivered(frame->job.request, frame->seconds);
             if (frame->error != error_) std::fputs(frame->error.c_str(), stderr);
             error_ = frame->error.substr(0, frame->error.find('\n'));
             if (s_.script) {  // a scripted session cannot go on with a picture it did not get
@@ -214,6 +351,7 @@ void Viewer::PumpWorker() {
                 running_ = false;
             }
         } else {
+            scheduler_.Delivered(frame->job.request, frame->seconds);
             for (const std::string& n : frame->notes)
                 if (frame->job.request.scale == 1 && n != lastNote_) {
                     std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
@@ -247,6 +385,9 @@ void Viewer::PumpWorker() {
             job.height = height_;
             job.engine = engine_;
             job.edges = edges_;
+            job.section = section_.ToPlane();
+            job.aaSamples = s_.aaSamples;
+            cancelSent_ = false;
             s_.worker->Submit(job);
         }
     }
@@ -258,15 +399,41 @@ void Viewer::PollFiles() {
     if (watch_.Changed()) s_.worker->ReloadAsync();
 }
 
-bool Viewer::Screenshot(const std::string& path) {
+bool Viewer::Screenshot(const std::string& path, bool window) {
+    UpdateOverlay();
     std::vector<std::uint8_t> pixels;
     Present(&pixels);
     int w = 0, h = 0;
     SDL_GetRendererOutputSize(renderer_, &w, &h);
-    // The window must show the image byte for byte when it is at its full resolution.
-    if (shownScale_ == 1 && w == shownImage_.width && h == shownImage_.height && pixels != shown_) {
+    // The window must show the image byte for byte when it is at its full resolution, with the
+    // overlay's opaque pixels over it.
+    std::vector<std::uint8_t> expected = shown_;
+    if (overlayOn_ && overlayTexture_) viewer::CompositeOverlay(overlay_, expected);
+    if (shownScale_ == 1 && w == shownImage_.width && h == shownImage_.height &&
+        pixels != expected) {
         std::fprintf(stderr, "quadrix: error: the window's pixels differ from the frame drawn\n");
         exitCode_ = 1;
+    }
+    if (window) {
+        // The window's bytes are sRGB already (the image writers encode linear pixels): written
+        // as they are, a binary PPM.
+        const bool ppm = path.size() > 4 && path.compare(path.size() - 4, 4, ".ppm") == 0;
+        if (!ppm || pixels.size() != static_cast<std::size_t>(w) * h * 3) {
+            std::fprintf(stderr, "quadrix: error: screenshot-window '%s': %s\n", path.c_str(),
+                         ppm ? "the window cannot be read back" : "use .ppm");
+            exitCode_ = 1;
+            return false;
+        }
+        std::string bytes = fmt::format("P6\n{} {}\n255\n", w, h);
+        bytes.append(pixels.begin(), pixels.end());
+        if (auto e = WriteFileAtomically(path, bytes); !e.empty()) {
+            std::fprintf(stderr, "quadrix: error: screenshot-window: %s\n", e.c_str());
+            exitCode_ = 1;
+            return false;
+        }
+        std::fprintf(stderr, "quadrix: screenshot %s (%dx%d, the window with its overlay)\n",
+                     path.c_str(), w, h);
+        return true;
     }
     ImageFormat format;
     if (!ImageFormatFromPath(path, format) || format == ImageFormat::kFrameDump) {
@@ -334,7 +501,10 @@ void Viewer::RunCommand(Command c) {
             Changed();
             break;
         case Command::kPrintView:
-            std::fputs(viewer::FormatViewStatement(camera_, width_, height_).c_str(), stdout);
+            std::fputs(
+                viewer::FormatViewStatement(camera_, width_, height_, "camera", SectionOptions())
+                    .c_str(),
+                stdout);
             std::fflush(stdout);
             break;
         case Command::kNextEngine:
@@ -359,6 +529,30 @@ void Viewer::RunCommand(Command c) {
         case Command::kQuit:
             running_ = false;
             break;
+        case Command::kToggleSection:
+            section_.Toggle(camera_, camera_.pivot.value_or(camera_.target));
+            if (section_.on)
+                std::fprintf(stderr, "quadrix: section plane%s\n", SectionOptions().c_str());
+            Changed();
+            break;
+        case Command::kFlipSection:
+            if (!section_.on) break;
+            section_.Flip();
+            Changed();
+            break;
+        case Command::kSectionAway:
+        case Command::kSectionToward:
+            // A twentieth of the window's height a press.
+            MoveSection((c == Command::kSectionToward ? 1 : -1) * height_ / 20.0);
+            break;
+        case Command::kToggleOverlay:
+            overlayOn_ = !overlayOn_;
+            UpdateOverlay();
+            Present(nullptr);
+            break;
+        case Command::kDrawing:
+            WriteDrawing(fmt::format("quadrix-view-{}.svg", ++drawingCount_));
+            break;
     }
     Title();
 }
@@ -373,6 +567,7 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
                 width_ = std::max(1, ev.window.data1);
                 height_ = std::max(1, ev.window.data2);
                 Changed();
+                UpdateOverlay();
                 Present(nullptr);
             } else if (ev.window.event == SDL_WINDOWEVENT_EXPOSED) {
                 Present(nullptr);
@@ -393,11 +588,12 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
                 downX_ = ev.button.x;
                 downY_ = ev.button.y;
                 moved_ = false;
+                sectionDrag_ = ctrlDown_ && section_.on && dragButton_ == SDL_BUTTON_LEFT;
             }
             break;
         case SDL_MOUSEBUTTONUP:
             if (ev.button.button == dragButton_) {
-                if (!moved_ && dragButton_ == SDL_BUTTON_LEFT) {
+                if (!moved_ && dragButton_ == SDL_BUTTON_LEFT && !sectionDrag_) {
                     const std::string pick = s_.worker->PickText(ev.button.x, ev.button.y);
                     std::printf("%s\n", pick.c_str());
                     std::fflush(stdout);
@@ -411,7 +607,9 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
                 std::abs(ev.motion.xrel) + std::abs(ev.motion.yrel) < 3)
                 break;  // a click that trembles is still a click
             moved_ = true;
-            if (dragButton_ == SDL_BUTTON_LEFT)
+            if (sectionDrag_)
+                MoveSection(-ev.motion.yrel);  // dragging up moves it toward the viewer
+            else if (dragButton_ == SDL_BUTTON_LEFT)
                 camera_.Orbit(ev.motion.xrel, ev.motion.yrel, height_);
             else
                 camera_.Pan(ev.motion.xrel, ev.motion.yrel, height_);
@@ -432,7 +630,15 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
             Changed();
             break;
         }
+        case SDL_KEYUP:
+            if (ev.key.keysym.sym == SDLK_LCTRL || ev.key.keysym.sym == SDLK_RCTRL)
+                ctrlDown_ = false;
+            break;
         case SDL_KEYDOWN:
+            if (ev.key.keysym.sym == SDLK_LCTRL || ev.key.keysym.sym == SDLK_RCTRL) {
+                ctrlDown_ = true;
+                break;
+            }
             RunCommand(viewer::CommandForKey(SDL_GetKeyName(ev.key.keysym.sym),
                                              (ev.key.keysym.mod & KMOD_SHIFT) != 0));
             break;
@@ -476,7 +682,8 @@ void Viewer::StepScript() {
         const ScriptEvent& e = script[scriptPos_];
         // Picks and screenshots need the full-resolution frame of the view so far.
         if ((e.kind == ScriptEvent::Kind::kClick || e.kind == ScriptEvent::Kind::kScreenshot ||
-             e.kind == ScriptEvent::Kind::kWait) &&
+             e.kind == ScriptEvent::Kind::kScreenshotWindow ||
+             e.kind == ScriptEvent::Kind::kDrawing || e.kind == ScriptEvent::Kind::kWait) &&
             !scheduler_.Final()) {
             scriptWaitsFinal_ = true;
             return;
@@ -500,6 +707,27 @@ void Viewer::StepScript() {
                 }
                 PushMouse(SDL_MOUSEBUTTONUP, button, cx + doneX, cy + doneY);
                 return;  // let the window handle them before the next script line
+            }
+            case ScriptEvent::Kind::kSectionDrag: {
+                auto key = [](Uint32 type) {
+                    SDL_Event ev{};
+                    ev.type = type;
+                    ev.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
+                    ev.key.keysym.sym = SDLK_LCTRL;
+                    ev.key.keysym.scancode = SDL_SCANCODE_LCTRL;
+                    SDL_PushEvent(&ev);
+                };
+                key(SDL_KEYDOWN);
+                PushMouse(SDL_MOUSEBUTTONDOWN, SDL_BUTTON_LEFT, cx, cy);
+                int done = 0;
+                for (int k = 1; k <= e.steps; ++k) {
+                    const int to = static_cast<int>(std::lround(e.y * k / e.steps));
+                    PushMouse(SDL_MOUSEMOTION, 0, cx, cy + to, 0, to - done);
+                    done = to;
+                }
+                PushMouse(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, cx, cy + done);
+                key(SDL_KEYUP);
+                return;
             }
             case ScriptEvent::Kind::kZoom: {
                 SDL_Event ev{};
@@ -542,13 +770,19 @@ void Viewer::StepScript() {
             case ScriptEvent::Kind::kWait:
                 break;
             case ScriptEvent::Kind::kScreenshot:
-                if (!Screenshot(e.text)) running_ = false;
+            case ScriptEvent::Kind::kScreenshotWindow:
+                if (!Screenshot(e.text, e.kind == ScriptEvent::Kind::kScreenshotWindow))
+                    running_ = false;
+                break;
+            case ScriptEvent::Kind::kDrawing:
+                if (!WriteDrawing(e.text)) running_ = false;
                 break;
             case ScriptEvent::Kind::kPrintView:
                 if (e.text.empty()) {
                     RunCommand(Command::kPrintView);
                 } else if (auto err = WriteFileAtomically(
-                               e.text, viewer::FormatViewStatement(camera_, width_, height_));
+                               e.text, viewer::FormatViewStatement(camera_, width_, height_,
+                                                                   "camera", SectionOptions()));
                            !err.empty()) {
                     std::fprintf(stderr, "quadrix: error: print-view: %s\n", err.c_str());
                     exitCode_ = 1;
@@ -586,40 +820,26 @@ int Viewer::Run() {
         PollFiles();
         StepScript();
     }
+    if (s_.stats) PrintLatency();
     return exitCode_;
 }
 
 int Viewer::Bench() {
-    // A fixed orbit: one full turn about the scene's up axis in N frames, each drawn at full
-    // resolution and shown (render + blit), timed from the first request to the last present.
-    const int n = s_.benchFrames;
-    viewer::Camera cam = camera_;
-    const auto t0 = Clock::now();
-    double slowest = 0;
-    for (int i = 0; i < n; ++i) {
-        cam.Orbit(2.0 * height_ / n, 0, height_);
-        viewer::FrameJob job;
-        job.view = cam.ToView();
-        job.width = width_;
-        job.height = height_;
-        job.engine = engine_;
-        const auto f0 = Clock::now();
-        viewer::FrameOutcome out = s_.worker->RenderNow(job);
-        if (!out.error.empty()) {
-            std::fputs(out.error.c_str(), stderr);
-            return 1;
-        }
-        Upload(out);
-        SDL_Event ev;
-        while (SDL_PollEvent(&ev))
-            if (ev.type == SDL_QUIT) return 0;
-        slowest = std::max(slowest, Since(f0));
+    // The fixed orbit (viewer/bench_orbit.h), each frame shown: render + encode + blit.
+    const viewer::BenchResult r =
+        viewer::RunBenchOrbit(*s_.worker, camera_, width_, height_, engine_, s_.benchFrames, 1,
+                              [&](viewer::FrameOutcome& frame) {
+                                  Upload(frame);
+                                  SDL_Event ev;
+                                  while (SDL_PollEvent(&ev))
+                                      if (ev.type == SDL_QUIT) return false;
+                                  return true;
+                              });
+    if (!r.error.empty()) {
+        std::fputs(r.error.c_str(), stderr);
+        return 1;
     }
-    const double seconds = Since(t0);
-    std::printf(
-        "view bench: %d frames %dx%d engine %s in a window: %.1f frames/s (mean %.2f ms, "
-        "slowest %.2f ms)\n",
-        n, width_, height_, engine_.c_str(), n / seconds, 1e3 * seconds / n, 1e3 * slowest);
+    std::fputs(viewer::FormatBench(r, width_, height_, engine_, "in a window").c_str(), stdout);
     return 0;
 }
 

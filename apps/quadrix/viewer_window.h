@@ -21,7 +21,10 @@ struct ViewerSession {
     std::vector<std::string> files;  // watched for live reload
     std::string name;                // for the title: the first scene file
     const std::vector<viewer::ScriptEvent>* script = nullptr;  // scripted input, or null
-    int benchFrames = 0;  // > 0: play a fixed orbit of this many frames and report frames/s
+    int benchFrames = 0;      // > 0: play a fixed orbit of this many frames and report frames/s
+    int aaSamples = 0;        // anti-aliasing of the still frame (0 = off)
+    bool cancelStale = true;  // abandon a refining frame when the view changes (--no-cancel)
+    bool stats = false;       // print the latency figures at exit (--stats)
 };
 
 // Whether this build has the window (SDL2).

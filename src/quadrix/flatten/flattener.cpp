@@ -52,7 +52,7 @@ constexpr double kInf = HUGE_VAL;
 double SceneScale(const FlatScene& flat, const ViewSetup& view) {
     double s = 0;
     for (const FlatHalfSpace& h : flat.halfSpaces)
-        if (!h.isClip) s = std::fmax(s, HalfSpaceScale(h));
+        if (!h.isClip && h.name != kSectionName) s = std::fmax(s, HalfSpaceScale(h));
     if (view.whh) s = std::fmax(s, *view.whh);
     if (view.whw) s = std::fmax(s, *view.whw);
     s = std::fmax(s, view.d);
@@ -100,6 +100,20 @@ class FlattenerImpl {
             h.name = fmt::format("clip#{}", flat.halfSpaces.size());
             flat.halfSpaces.push_back(std::move(h));
         }
+        // The section plane after them, opaque; for the window fit it is one more final clip
+        // plane (ignored by the fit, like fbp).
+        finalPlanes_ = view_.finalClips;
+        if (options_.section) {
+            FlatHalfSpace h;
+            h.isPlane = true;
+            Plane source = *options_.section;
+            RescaleCoefficients(source);
+            h.plane = source.Transformed(view_.provFromWorld);
+            RescaleCoefficients(h.plane);
+            h.name = kSectionName;
+            finalPlanes_.push_back(h.plane);
+            flat.halfSpaces.push_back(std::move(h));
+        }
         const int nClip = static_cast<int>(flat.halfSpaces.size());
         HierarchyLimits limits;
         limits.clipLiteralsPerBody = nClip;
@@ -120,7 +134,7 @@ class FlattenerImpl {
         bool anySearched = false;
         std::vector<Box3> bodyBoxes = AllBodyBounds(flat, bo, &anySearched);
         std::vector<Box3> fitBoxes =
-            FitSolidBoxes(flat, view_.fitClips, view_.finalClips, view_.perspective ? view_.d : 0.0,
+            FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
                           view_.fitNear, bodyBoxes, bo, &passesEye_);
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).
@@ -156,6 +170,16 @@ class FlattenerImpl {
             diags_.Error(
                 {}, fmt::format("auto-fit margin {} must be in [0, 0.5)", options_.autoFitMargin),
                 {}, "command line");
+            ok = false;
+        }
+        if (options_.section &&
+            (!options_.section->AllFinite() || options_.section->IsZeroNormal())) {
+            const Plane& p = *options_.section;
+            diags_.Error({},
+                         fmt::format("section plane <{} {} {} {}>: the coefficients must be "
+                                     "finite and (A, B, C) not zero",
+                                     p.a, p.b, p.c, p.d),
+                         {}, "command line");
             ok = false;
         }
         return ok;
@@ -304,7 +328,7 @@ class FlattenerImpl {
             probe.solids = flat_.solids;
             std::vector<Plane> fitClips, finalClips;
             for (const Plane& p : view_.fitClips) fitClips.push_back(p.Transformed(dev));
-            for (const Plane& p : view_.finalClips) finalClips.push_back(p.Transformed(dev));
+            for (const Plane& p : finalPlanes_) finalClips.push_back(p.Transformed(dev));
             BoundsOptions bo;
             bo.searchLimit = 1e6 * std::fmax(options_.width, options_.height);
             std::vector<Box3> bodyBoxes = AllBodyBounds(probe, bo, nullptr);
@@ -643,6 +667,8 @@ class FlattenerImpl {
     const FlattenOptions& options_;
     Diagnostics& diags_;
     ViewSetup view_;
+    // The planes cutting every body (view_.finalClips, then the section plane), provisional space.
+    std::vector<Plane> finalPlanes_;
     FlatScene flat_;
     HierarchyResult hierarchy_;
     std::vector<std::string> freeformNames_;  // fit boxes past the solids

@@ -8,6 +8,10 @@
 //     perspective a projective map with the eye at the origin of a left-handed (u, v, n) frame.
 //  3. Clipping: fbp adds a front and a back transparent plane to every body; perspective adds a
 //     near plane (and the plane at infinity's image) so nothing behind the eye survives.
+//     A section plane (FlattenOptions::section) is one more literal of every body, but opaque:
+//     since (A ∪ B) ∩ P = (A ∩ P) ∪ (B ∩ P) and (A − B) ∩ P = (A ∩ P) − (B ∩ P), cutting every
+//     body cuts every CSG solid, and the cut faces are the plane's own, drawn exactly by every
+//     engine. Like fbp, it has no effect on auto-scaling (the window is that of the uncut scene).
 //  4. Window: whh and/or whw give the window on the view plane, centred on vrp (one alone sets
 //     the scale, the other follows from the image's aspect); with neither, the window is fitted
 //     to the extent of the bounded solids (conservative device-space bounds), and unbounded ones
@@ -17,7 +21,8 @@
 //  6. Bounds: every body, CSG node and solid gets conservative device-space bounds.
 //
 // Errors (user tier): unknown view, nothing bounded and no window, a view whose vectors are
-// degenerate (vup parallel to vpn, zero vectors, cop on the view plane), an empty scene.
+// degenerate (vup parallel to vpn, zero vectors, cop on the view plane), an empty scene, a
+// section plane without a normal or with a coefficient that is not finite.
 #pragma once
 
 #include <optional>
@@ -42,7 +47,13 @@ struct FlattenOptions {
     // Lights to shade with instead of the scene's (uq's current light); the default parallel
     // light is added to them when they have none, as to the scene's (Scene::LightsToUse).
     std::optional<std::vector<scene::Light>> lights;
+    // A section (clipping) plane in WORLD coordinates: only the part of the scene where
+    // A x + B y + C z + D <= 0 is kept (a plane statement's inside, docs/language.md §3.1), and
+    // the cut is drawn as a face of each solid it crosses. Its half-space is an opaque plane
+    // named kSectionName (which no scene name can be), shared by every body.
+    std::optional<Plane> section;
 };
+inline constexpr const char* kSectionName = "<section>";
 
 // nullopt (with errors in diags) when the scene cannot be flattened.
 std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,

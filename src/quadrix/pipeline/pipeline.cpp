@@ -21,6 +21,7 @@ ViewRequest PipelineOptions::View() const {
     v.elevation = elevation;
     v.viewsize = viewsize;
     v.rtView = rtView;
+    v.section = section;
     return v;
 }
 

@@ -41,6 +41,8 @@ struct PipelineOptions {
     // viewName. azimuth/elevation in degrees, fitted to the imported model's bounding box.
     std::optional<double> azimuth, elevation, viewsize;
     std::optional<import::RtView> rtView;
+    // A section plane (ViewRequest::section; --section).
+    std::optional<Plane> section;
 
     InputRequest Input() const;
     ViewRequest View() const;

@@ -69,7 +69,7 @@ bool SameView(const ViewRequest& a, const ViewRequest& b) {
     return a.width == b.width && a.height == b.height && a.viewName == b.viewName &&
            a.azimuth == b.azimuth && a.elevation == b.elevation && a.viewsize == b.viewsize &&
            SameSceneView(a.view, b.view) && SameRtView(a.rtView, b.rtView) &&
-           SameLights(a.lights, b.lights);
+           SameLights(a.lights, b.lights) && a.section == b.section;
 }
 
 std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
@@ -145,6 +145,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     fo.viewName = viewName;
     fo.view = view.view;
     fo.lights = view.lights;
+    fo.section = view.section;
     const int errorsBefore = diags.ErrorCount();
     auto flat = quadrix::Flatten(scene_, fo, diags);
     flattenSeconds = SecondsSince(t0);
@@ -191,6 +192,12 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, const Engin
     ComposeMin(frame, other);
 }
 
+bool RenderContext::Execute(const std::function<void()>& work) {
+    bool done = true;
+    arena_->arena.execute([&] { done = cancel_ ? cancel_->Run(work) : (work(), true); });
+    return done;
+}
+
 bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderReport& report,
                            Diagnostics& diags) {
     QUADRIX_CHECK(flatValid_, "RenderContext::Render before a successful Flatten");
@@ -232,24 +239,32 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     const bool drawsSomething =
         (caps.solids && !flat_.solids.empty()) || (caps.freeforms && !flat_.freeforms.empty());
 
-    // A complexity guard that stopped an engine (or the reference engine composing for it) is an
-    // error: no picture rather than a partial one.
-    auto guarded = [&](auto&& draw) {
+    auto cancelled = [&] {
+        report.cancelled = true;
+        report.seconds = SecondsSince(t0);
+        return false;
+    };
+    // Runs a drawing stage: done, cancelled (a newer view), or stopped by a complexity guard of
+    // the engine or of the reference engine composing for it — an error: no picture rather than
+    // a partial one.
+    enum class Outcome { kDone, kCancelled, kStopped };
+    auto guarded = [&](const std::function<void()>& draw) {
         try {
-            arena_->arena.execute(draw);
-            return true;
+            return Execute(draw) ? Outcome::kDone : Outcome::kCancelled;
         } catch (const EngineLimitError& e) {
             diags.Error({}, e.what(), {}, "engine");
-            return false;
+            return Outcome::kStopped;
         }
     };
-    if (!guarded([&] {
+    auto stop = [&](Outcome o) { return o == Outcome::kCancelled ? cancelled() : false; };
+    if (Outcome o = guarded([&] {
             if (drawsSomething || (flat_.solids.empty() && flat_.freeforms.empty()))
                 report.stats = engine->Render(flat_, ro, frame);
             else
                 frame.Reset(flat_.width, flat_.height);
-        }))
-        return false;
+        });
+        o != Outcome::kDone)
+        return stop(o);
 
     // What the engine left out, and why.
     std::vector<UndrawnSolid> undrawn;
@@ -281,7 +296,9 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     if (!undrawn.empty()) {
         std::vector<int> solids;
         for (const UndrawnSolid& u : undrawn) solids.push_back(u.solid);
-        if (!guarded([&] { ComposeReference(solids, request, frame); })) return false;
+        if (Outcome o = guarded([&] { ComposeReference(solids, request, frame); });
+            o != Outcome::kDone)
+            return stop(o);
         report.byReference = undrawn;
         if (caps.solids) {
             std::map<std::string, int> reasons;
@@ -301,10 +318,11 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
         // tolerance (curves at most one pixel apart), composed by depth.
         Frame other(flat_.width, flat_.height);
         isocurve::IsocurveStats st;
-        arena_->arena.execute([&] {
-            st = isocurve::RenderFreeform(isocurve::SceneDrawables(flat_), flat_.projection, {},
-                                          other);
-        });
+        if (!Execute([&] {
+                st = isocurve::RenderFreeform(isocurve::SceneDrawables(flat_), flat_.projection, {},
+                                              other);
+            }))
+            return cancelled();
         if (request.region) CropToRegion(other, *request.region);
         ComposeMin(frame, other);
         report.freeformsByIsocurve = st.surfaces;
@@ -320,7 +338,12 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
     Image image = quadrix::Shade(frame, flat_, options);
     // Edge pixels re-rendered by sub-pixel samples, then the edge lines (shade/antialias.h).
-    if (options.aaSamples > 1) Antialias(frame, flat_, options, image);
+    if (options.aaSamples > 1) {
+        if (cancel_)
+            cancel_->Run([&] { Antialias(frame, flat_, options, image); });
+        else
+            Antialias(frame, flat_, options, image);
+    }
     if (options.edges) DrawEdgeLines(frame, options, image);
     return image;
 }

@@ -23,8 +23,12 @@
 //   5. Write     the outputs (pipeline/output.h): PNG, PNM, .qxf frame dumps, all checked before
 //                any is written.
 // One oneTBB arena, owned here, runs every engine: engines never make their own.
+// Cancellation (pipeline/cancellation.h): with SetCancellation, stages 3 and 4 run their
+// parallel work under it; a cancelled Render returns false with report.cancelled and no error,
+// a cancelled Shade an incomplete image (the caller asks the Cancellation).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -38,6 +42,7 @@
 #include "quadrix/frame/pixel_region.h"
 #include "quadrix/import/rt_view.h"
 #include "quadrix/io/image.h"
+#include "quadrix/pipeline/cancellation.h"
 #include "quadrix/pipeline/inputs.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
@@ -75,6 +80,9 @@ struct ViewRequest {
     std::optional<import::RtView> rtView;
     // Lights to shade with instead of the scene's own (uq's current light, seed 001 §2.3).
     std::optional<std::vector<scene::Light>> lights;
+    // A section plane, world coordinates: the part A x + B y + C z + D <= 0 is kept and the cut
+    // faces drawn (FlattenOptions::section; `quadrix render --section`, the viewer's X key).
+    std::optional<Plane> section;
 };
 
 // Stage 3: which engine and how.
@@ -102,6 +110,7 @@ struct RenderReport {
     int freeformsByIsocurve = 0;            // freeform surfaces drawn by the isocurve drawer
     std::string isocurveSummary;            // one line about them (curves, tolerance)
     double seconds = 0;                     // whole stage, composition included
+    bool cancelled = false;                 // stopped by the Cancellation: the Frame is partial
     // Lines for the user ("note: ..."): printed without --stats, like warnings.
     std::vector<std::string> notes;
     // Counters of the composition (solids_by_engine, solids_by_raycast, freeforms_by_isocurve)
@@ -143,6 +152,10 @@ class RenderContext {
     // Stage 4.
     Image Shade(const Frame& frame, const ShadeOptions& options) const;
 
+    // Not owned; null = nothing can be cancelled. Kept by Read (the viewer's worker sets it once
+    // per context).
+    void SetCancellation(Cancellation* cancellation) { cancel_ = cancellation; }
+
     // Seconds spent by the last Read and Flatten calls.
     double readSeconds = 0, flattenSeconds = 0;
 
@@ -152,6 +165,8 @@ class RenderContext {
     // Draws `solids` of the flat scene with the reference engine and merges them into `frame`.
     void ComposeReference(const std::vector<int>& solids, const EngineRequest& request,
                           Frame& frame);
+    // Runs `work` in the arena, under the cancellation when there is one; false when cancelled.
+    bool Execute(const std::function<void()>& work);
 
     std::unique_ptr<Arena> arena_;
     scene::Scene scene_;
@@ -162,6 +177,7 @@ class RenderContext {
     std::optional<ViewRequest> flatFor_;
     std::string flatViewName_;
     std::map<std::string, std::unique_ptr<Engine>> engines_;
+    Cancellation* cancel_ = nullptr;
 };
 
 // Whether two view requests give the same flat scene.

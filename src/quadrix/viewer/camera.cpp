@@ -126,14 +126,14 @@ scene::View Camera::ToView() const {
     return v;
 }
 
-std::string FormatViewStatement(const Camera& camera, int width, int height,
-                                const std::string& id) {
+std::string FormatViewStatement(const Camera& camera, int width, int height, const std::string& id,
+                                const std::string& renderOptions) {
     const scene::View v = camera.ToView();
     auto vec = [](const char* name, const Vec3& p) {
         return fmt::format(" {} {:.17g} {:.17g} {:.17g}", name, p.x, p.y, p.z);
     };
-    std::string s = fmt::format("{{ quadrix view at {}x{}: quadrix render ... --size {}x{} }}\n",
-                                width, height, width, height);
+    std::string s = fmt::format("{{ quadrix view at {}x{}: quadrix render ... --size {}x{}{} }}\n",
+                                width, height, width, height, renderOptions);
     s += "view " + id + vec("vrp", *v.vrp) + vec("vpn", *v.vpn) + vec("vup", *v.vup);
     s += v.cop ? vec("cop", *v.cop) : vec("dop", *v.dop);
     s += fmt::format(" whh {:.17g};\n", *v.whh);

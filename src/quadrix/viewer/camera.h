@@ -91,9 +91,11 @@ struct Camera {
 };
 
 // The camera as a `view` statement (17 significant digits, so the reader gets the same doubles
-// back), preceded by a comment naming the image size it was shown at.
+// back), preceded by a comment naming the image size it was shown at and `renderOptions` (more
+// options of the `quadrix render` that reproduces it, e.g. ` --section "A B C D"`).
 std::string FormatViewStatement(const Camera& camera, int width, int height,
-                                const std::string& id = "camera");
+                                const std::string& id = "camera",
+                                const std::string& renderOptions = {});
 
 // The camera showing (as nearly as a centred window can) what `view` shows on a width×height
 // image, from the flattened scene of that view (its projection gives the scale). Parallel views

@@ -13,8 +13,14 @@ std::optional<FrameRequest> FrameScheduler::Next() {
     if (inFlight_ || Final()) return std::nullopt;
     FrameRequest r;
     r.generation = generation_;
-    // A reduced frame of this view is shown: refine it. Otherwise the view is new (moving).
-    r.scale = (shown_ && shown_->generation == generation_) ? 1 : MovingScale();
+    if (shown_ && shown_->generation == generation_) {
+        // A frame of this view is shown: refine it (a reduced one to full resolution, a full
+        // one to the anti-aliased one).
+        r.refining = true;
+        r.antialiased = shown_->scale == 1;
+    } else {
+        r.scale = MovingScale();  // the view is new: it moves
+    }
     inFlight_ = r;
     return r;
 }
@@ -22,6 +28,7 @@ std::optional<FrameRequest> FrameScheduler::Next() {
 void FrameScheduler::Delivered(const FrameRequest& request, double seconds) {
     inFlight_.reset();
     shown_ = request;
+    if (request.antialiased) return;
     const double estimate = seconds * request.scale * request.scale;
     fullSeconds_ = fullSeconds_ > 0 ? 0.5 * (fullSeconds_ + estimate) : estimate;
 }

@@ -6,6 +6,8 @@
 #include <future>
 #include <set>
 
+#include "quadrix/draw/drawing.h"
+#include "quadrix/draw/page_file.h"
 #include "quadrix/viewer/edges.h"
 #include "quadrix/viewer/picking.h"
 
@@ -106,6 +108,7 @@ void RenderWorker::Call(std::function<void()> task) {
 
 LoadOutcome RenderWorker::ReadInto(std::unique_ptr<RenderContext>& ctx) {
     auto fresh = std::make_unique<RenderContext>(threads_);
+    fresh->SetCancellation(&cancel_);
     Diagnostics diags;
     LoadOutcome out;
     out.ok = fresh->Read(input_, diags) && !diags.HasErrors();
@@ -119,6 +122,7 @@ LoadOutcome RenderWorker::ReadInto(std::unique_ptr<RenderContext>& ctx) {
     if (out.ok) {
         for (std::string& f : SourceFiles(fresh->Scene())) out.files.push_back(std::move(f));
         ctx = std::move(fresh);
+        frameView_.reset();  // frame_ is the old scene's: never shaded again
     } else {
         // Watch the files of the errors as well: a new `read` may be the broken one.
         for (const Diagnostic& d : diags.Items())
@@ -182,6 +186,7 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     FrameOutcome out;
     out.job = job;
     const auto t0 = std::chrono::steady_clock::now();
+    cancel_.Reset();  // a cancellation was meant for an earlier frame
     if (!ctx_) {
         out.error = "no scene has been read";
         return out;
@@ -191,22 +196,72 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     view.width = std::max(1, (job.width + s - 1) / s);
     view.height = std::max(1, (job.height + s - 1) / s);
     view.view = job.view;
+    view.section = job.section;
     EngineRequest engine;
     engine.engine = job.engine;
     Diagnostics diags;
     RenderReport report;
-    if (!ctx_->Flatten(view, diags) || !ctx_->Render(engine, frame_, report, diags) ||
+    // The anti-aliased stage of the Frame already drawn shades it again; anything else renders.
+    const bool reuse = job.request.antialiased && frameView_ && SameView(*frameView_, view) &&
+                       frameEngine_ == job.engine && frame_.width == view.width &&
+                       frame_.height == view.height;
+    if (!ctx_->Flatten(view, diags) || (!reuse && !ctx_->Render(engine, frame_, report, diags)) ||
         diags.HasErrors()) {
+        frameView_.reset();  // frame_ may be partial
+        if (report.cancelled) {
+            out.cancelled = true;
+            return out;
+        }
         out.error = Printed(diags);
         if (out.error.empty()) out.error = "the frame could not be drawn";
         return out;
     }
+    frameView_ = view;
+    frameEngine_ = job.engine;
     frameScale_ = s;
-    out.image = ctx_->Shade(frame_, ShadeOptions{});
+    ShadeOptions so;
+    if (job.request.antialiased) so.aaSamples = job.aaSamples;
+    out.image = ctx_->Shade(frame_, so);
+    if (cancel_.Cancelled()) {  // the anti-aliasing pass was stopped: a partial image
+        out.image = Image{};
+        out.cancelled = true;
+        return out;
+    }
     if (job.edges) DrawEdges(frame_, out.image);
     out.notes = report.notes;
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
+}
+
+std::string RenderWorker::WriteDrawing(const std::string& path, const scene::View& view, int width,
+                                       int height, const std::optional<Plane>& section,
+                                       const std::string& title) {
+    std::string error;
+    Call([&] {
+        if (!ctx_) {
+            error = "no scene has been read";
+            return;
+        }
+        ViewRequest request;
+        request.width = width;
+        request.height = height;
+        request.view = view;
+        request.section = section;
+        Diagnostics diags;
+        if (!ctx_->Flatten(request, diags) || diags.HasErrors()) {
+            error = Printed(diags);
+            return;
+        }
+        error =
+            draw::WritePageFile(path, draw::SingleViewPage(draw::MakeDrawing(ctx_->Flat()), title));
+    });
+    return error;
+}
+
+std::size_t RenderWorker::BodyCount() {
+    std::size_t n = 0;
+    Call([&] { n = ctx_ ? ctx_->Flat().bodies.size() : 0; });
+    return n;
 }
 
 std::string RenderWorker::InitialCamera(const std::string& viewName, int width, int height,

@@ -4,7 +4,10 @@
 // It owns one RenderContext (pipeline/render_context.h: Read once, then per frame Flatten with
 // ViewRequest::view = the camera's view, Render, Shade). Work comes in two kinds:
 //   - frame jobs: a single slot; submitting replaces a job not yet started, so a superseded view
-//     is never drawn (the frame being drawn is finished: engines cannot be interrupted);
+//     is never drawn; the frame being drawn can be abandoned by CancelFrame (pipeline/
+//     cancellation.h: the engines' tiles not yet started are skipped) and comes back cancelled;
+//     an anti-aliasing job for the view, size, engine and section of the last Frame drawn shades
+//     that Frame again with sub-pixel samples instead of rendering it again;
 //   - calls: small synchronous tasks (the initial camera, a pick) run between frames, before any
 //     waiting frame job, and a reload, which reads into a NEW context and swaps it in only when
 //     the read succeeded: a scene with an error keeps the last good scene (and picture).
@@ -44,7 +47,9 @@ struct FrameJob {
     scene::View view;
     int width = 0, height = 0;  // the full-resolution size; the image is divided by request.scale
     std::string engine = "raycast";
-    bool edges = false;  // show-edges over the shading (viewer/edges.h)
+    bool edges = false;            // show-edges over the shading (viewer/edges.h)
+    std::optional<Plane> section;  // viewer/section.h
+    int aaSamples = 0;  // samples per edge pixel when request.antialiased (shade/antialias.h)
 };
 
 struct FrameOutcome {
@@ -53,6 +58,7 @@ struct FrameOutcome {
     double seconds = 0;
     std::string error;  // the diagnostics when the frame could not be drawn
     std::vector<std::string> notes;
+    bool cancelled = false;  // abandoned by CancelFrame: no image, no error
 };
 
 class RenderWorker {
@@ -72,6 +78,19 @@ class RenderWorker {
     std::optional<FrameOutcome> TakeFrame();
     // Draws a frame now and waits for it (the bench; no job may be pending).
     FrameOutcome RenderNow(const FrameJob& job);
+    // Any thread: abandons the frame being drawn (if any; a frame started later is not
+    // affected).
+    void CancelFrame() { cancel_.Cancel(); }
+
+    // The hidden-line drawing (draw/drawing.h) of `view` at width×height, written to `path`
+    // (.svg, .pdf, .eps by extension) as `quadrix draw` writes it with the same view, size and
+    // section and `title`. Error message or empty.
+    std::string WriteDrawing(const std::string& path, const scene::View& view, int width,
+                             int height, const std::optional<Plane>& section,
+                             const std::string& title);
+    // Bodies of the last flattened scene (the picture defaults depend on it, as quadrix
+    // render's).
+    std::size_t BodyCount();
 
     // The camera for the scene's view `viewName` at width×height and the scene's bounding sphere
     // (falling back to the camera's window when nothing is bounded); a parallel camera's target
@@ -97,6 +116,10 @@ class RenderWorker {
     std::unique_ptr<RenderContext> ctx_;
     Frame frame_;
     int frameScale_ = 1;
+    // What frame_ holds (an anti-aliasing job reuses it): view request and engine.
+    std::optional<ViewRequest> frameView_;
+    std::string frameEngine_;
+    Cancellation cancel_;
     // Shared state, under mutex_.
     std::mutex mutex_;
     std::condition_variable cv_;

@@ -70,6 +70,13 @@ Command CommandForKey(std::string_view keyName, bool shift) {
         {"s", Command::kScreenshot},
         {"h", Command::kHelp},
         {"q", Command::kQuit},
+        {"x", Command::kToggleSection},
+        {"[", Command::kSectionAway},
+        {"]", Command::kSectionToward},
+        {"leftbracket", Command::kSectionAway},
+        {"rightbracket", Command::kSectionToward},
+        {"o", Command::kToggleOverlay},
+        {"d", Command::kDrawing},
         {"escape", Command::kQuit},
         // The keypad's digits, as CAD users reach for them.
         {"keypad 1", Command::kFront},
@@ -83,6 +90,7 @@ Command CommandForKey(std::string_view keyName, bool shift) {
     auto it = kKeys.find(Lower(keyName));
     if (it == kKeys.end()) return Command::kNone;
     if (it->second == Command::kNextEngine && shift) return Command::kPreviousEngine;
+    if (it->second == Command::kToggleSection && shift) return Command::kFlipSection;
     return it->second;
 }
 
@@ -90,7 +98,9 @@ std::string KeyHelp() {
     return "mouse: left-drag orbit, right/middle-drag pan, wheel zoom at the cursor, click pick\n"
            "keys:  1 front  2 back  3 left  4 right  5 top  6 bottom  0/I isometric\n"
            "       P perspective/parallel  L show-edges  R reset  F fit all  V print view\n"
-           "       E/shift-E next/previous engine  S screenshot  H help  Q/Esc quit\n";
+           "       E/shift-E next/previous engine  S screenshot  H help  Q/Esc quit\n"
+           "       X section plane (shift-X other side; [ ] or ctrl-drag move it)  O overlay\n"
+           "       D drawing (SVG of the view, as quadrix draw)\n";
 }
 
 std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const std::string& name,
@@ -111,6 +121,9 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
         {"engine", {Kind::kEngine, 0, 0, 1}},
         {"wait", {Kind::kWait, 0, 0, 0}},
         {"screenshot", {Kind::kScreenshot, 0, 0, 1}},
+        {"screenshot-window", {Kind::kScreenshotWindow, 0, 0, 1}},
+        {"section-drag", {Kind::kSectionDrag, 1, 1, 0}},
+        {"drawing", {Kind::kDrawing, 0, 0, 1}},
         {"print-view", {Kind::kPrintView, 0, 0, 2}},
         {"sleep", {Kind::kSleep, 1, 0, 0}},
         {"wait-reload", {Kind::kWaitReload, 0, 0, 0}},
@@ -135,7 +148,8 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
             diags.Error(
                 at(words[0].column),
                 fmt::format("unknown script event '{}' (orbit, pan, zoom, click, key, "
-                            "engine, wait, screenshot, print-view, sleep, wait-reload, quit)",
+                            "engine, wait, screenshot, screenshot-window, section-drag, drawing, "
+                            "print-view, sleep, wait-reload, quit)",
                             words[0].text),
                 std::string(line), "script");
             continue;
@@ -195,6 +209,17 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
                         continue;
                     }
                     ev.steps = static_cast<int>(v[2]);
+                }
+                break;
+            case Kind::kSectionDrag:
+                ev.y = v[0];
+                if (v.size() > 1) {
+                    if (v[1] < 1 || v[1] > 10000 || v[1] != std::floor(v[1])) {
+                        diags.Error(at(words[2].column), "steps must be a whole number 1..10000",
+                                    std::string(line), "script");
+                        continue;
+                    }
+                    ev.steps = static_cast<int>(v[1]);
                 }
                 break;
             case Kind::kZoom:

@@ -6,6 +6,8 @@
 //   1 front  2 back  3 left  4 right  5 top  6 bottom  0 or I isometric
 //   P perspective/parallel   L show-edges on/off   R reset   F fit all   V print the view   E /
 //   shift-E next/previous engine   S screenshot   H help   Q or Escape quit
+//   X section plane on/off (shift-X: keep the other side)   [ and ] move it away from / toward
+//   the viewer (ctrl-left-drag too)   O overlay on/off   D write the view as an SVG drawing
 //
 // A script (`quadrix view --script FILE`) is a text file of events, one a line, `#` to the end of
 // a line is a comment. Positions and motions are in window pixels.
@@ -17,7 +19,11 @@
 //   key NAME              a key press, e.g. `key 5`, `key P`, `key Escape`
 //   engine NAME           switch to a registered engine (or `next`)
 //   wait                  until the full-resolution frame of the current view is shown
-//   screenshot FILE       wait, then save the window's picture (PNG or PNM by extension)
+//   screenshot FILE       wait, then save the window's picture (PNG or PNM by extension),
+//                         the frame without the overlay
+//   screenshot-window FILE  the same with what the window shows over it (the overlay)
+//   section-drag DY [STEPS]  a ctrl-left-drag by DY pixels: moves the section plane
+//   drawing FILE          wait, then write the view's hidden-line drawing (.svg, .pdf, .eps)
 //   print-view [FILE]     print the view statement (standard output, or written to FILE)
 //   sleep MS              let MS milliseconds of real time pass (file reloads, progressive frames)
 //   wait-reload           until the input files have changed and been read again (successfully
@@ -55,6 +61,12 @@ enum class Command {
     kScreenshot,
     kHelp,
     kQuit,
+    kToggleSection,
+    kFlipSection,
+    kSectionAway,    // [ : the plane moves away from the viewer it was made for (cuts more)
+    kSectionToward,  // ]
+    kToggleOverlay,
+    kDrawing,
 };
 
 // The command of a key (kNone for keys that do nothing).
@@ -72,13 +84,16 @@ struct ScriptEvent {
         kEngine,
         kWait,
         kScreenshot,
+        kScreenshotWindow,
+        kSectionDrag,
+        kDrawing,
         kPrintView,
         kSleep,
         kWaitReload,
         kQuit
     };
     Kind kind = Kind::kWait;
-    double x = 0, y = 0;  // orbit/pan: motion; zoom/click: position (zoom: NaN = centre)
+    double x = 0, y = 0;  // orbit/pan/section-drag: motion; zoom/click: position (NaN = centre)
     double amount = 0;    // zoom: clicks; sleep: milliseconds
     int steps = 1;        // orbit/pan
     std::string text;     // key name, engine name, file name

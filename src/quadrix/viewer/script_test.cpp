@@ -89,6 +89,31 @@ TEST(ViewerScript, KeyTable) {
     EXPECT_EQ(CommandForKey("E", true), Command::kPreviousEngine);
     EXPECT_EQ(CommandForKey("Escape", false), Command::kQuit);
     EXPECT_EQ(CommandForKey("F13", false), Command::kNone);
+    EXPECT_EQ(CommandForKey("X", false), Command::kToggleSection);
+    EXPECT_EQ(CommandForKey("x", true), Command::kFlipSection);
+    EXPECT_EQ(CommandForKey("[", false), Command::kSectionAway);
+    EXPECT_EQ(CommandForKey("]", false), Command::kSectionToward);
+    EXPECT_EQ(CommandForKey("O", false), Command::kToggleOverlay);
+    EXPECT_EQ(CommandForKey("D", false), Command::kDrawing);
+}
+
+TEST(ViewerScript, SectionDragDrawingAndWindowScreenshot) {
+    Diagnostics diags;
+    auto events =
+        ParseScript("section-drag -30 4\nsection-drag 5\ndrawing a.svg\nscreenshot-window w.png\n",
+                    "s.txt", diags);
+    ASSERT_TRUE(events) << diags.Items().size();
+    ASSERT_EQ(events->size(), 4u);
+    EXPECT_EQ((*events)[0].kind, ScriptEvent::Kind::kSectionDrag);
+    EXPECT_EQ((*events)[0].y, -30);
+    EXPECT_EQ((*events)[0].steps, 4);
+    EXPECT_EQ((*events)[1].steps, 1);
+    EXPECT_EQ((*events)[2].kind, ScriptEvent::Kind::kDrawing);
+    EXPECT_EQ((*events)[2].text, "a.svg");
+    EXPECT_EQ((*events)[3].kind, ScriptEvent::Kind::kScreenshotWindow);
+    Diagnostics bad;
+    EXPECT_FALSE(ParseScript("section-drag 1 0.5\n", "s.txt", bad));
+    EXPECT_FALSE(ParseScript("drawing\n", "s.txt", bad));
 }
 
 }  // namespace
