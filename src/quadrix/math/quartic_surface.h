@@ -48,6 +48,8 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/vec.h"
@@ -120,9 +122,10 @@ struct QuarticSurface {
     // A conservative containing-space box of the inside (the local box's 8 corners mapped; the
     // whole space when the map is projective and the box reaches the vanishing plane).
     Box3 SpaceBounds() const;
-    // The 6 planes (<A B C D>, inside <= 0) of the clip box in the containing space: their
-    // intersection contains the inside (a convex superset, used by flatten/bounds).
-    std::array<Vec4, 6> SpaceBoxPlanes() const;
+    // The planes (<A B C D>, inside <= 0) of the clip box in the containing space, 6 faces and,
+    // for a projective localFromSpace, W > 0: their intersection contains the inside (a convex
+    // superset, used by flatten/bounds).
+    std::vector<Vec4> SpaceBoxPlanes() const;
 
     // "torus", "elliptical torus", "general cone": for messages naming the primitive.
     std::string_view KindName() const;

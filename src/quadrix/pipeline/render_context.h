@@ -23,6 +23,8 @@
 // One oneTBB arena, owned here, runs every engine: engines never make their own.
 #pragma once
 
+#include <chrono>
+
 #include <map>
 #include <memory>
 #include <optional>
@@ -144,6 +146,13 @@ class RenderContext {
     Engine* EngineNamed(const std::string& name);
     // Draws `solids` of the flat scene with the reference engine and merges them into `frame`.
     void ComposeReference(const std::vector<int>& solids, Frame& frame);
+    // Render for an engine without the `quartics` capability: it draws the `plain` solids on a
+    // flat scene without quartic half-spaces, raycast draws the `quartic` ones (their first
+    // quartic half-space in firstQuartic, for the message), composed by depth.
+    bool RenderAroundQuartics(const EngineRequest& request, const std::vector<int>& plain,
+                              const std::vector<int>& quartic, const std::vector<int>& firstQuartic,
+                              Frame& frame, RenderReport& report, Diagnostics& diags,
+                              std::chrono::steady_clock::time_point t0);
 
     std::unique_ptr<Arena> arena_;
     scene::Scene scene_;

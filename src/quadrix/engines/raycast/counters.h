@@ -44,6 +44,7 @@ struct Counters {
         kernelScalarPixels += o.kernelScalarPixels;
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
+        literals.quartics += o.literals.quartics;
     }
 };
 

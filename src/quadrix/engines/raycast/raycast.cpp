@@ -158,9 +158,11 @@ class RaycastEngine final : public Engine {
         add("pixel_solids", total.pixelSolids);
         add("depth_early_outs", total.zStops);
         add("body_evaluations", total.bodies);
-        add("literal_evaluations", total.literals.planes + total.literals.quadrics);
+        add("literal_evaluations",
+            total.literals.planes + total.literals.quadrics + total.literals.quartics);
         add("plane_evaluations", total.literals.planes);
         add("quadric_solves", total.literals.quadrics);
+        if (total.literals.quartics) add("quartic_solves", total.literals.quartics);
         add("csg_operations", total.csgOps);
         add("depth_cut_retries", total.cutRetries);
         add("tile_literals_pruned", total.prunedLiterals);
