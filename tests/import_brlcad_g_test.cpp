@@ -393,7 +393,7 @@ TEST(ImportBrlcadG, WriterRefusesWhatItCannotWrite) {
     db.AddPrimitive(p);
     std::string err;
     EXPECT_FALSE(brlcad::WriteG(db, &err));
-    EXPECT_NE(err.find("'bend'"), std::string::npos) << err;
+    EXPECT_NE(err.find("'terrain'"), std::string::npos) << err;
 }
 
 TEST(ImportBrlcadG, V4BinaryIsRefusedClearly) {

@@ -84,6 +84,7 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
     Vec3 x = pts[0].at;
     double od = pts[0].od, id = pts[0].id;
     double prevBendDist = 0;  // tangent distance of the bend that ended at x
+    Vec3 prevPoint = x;       // the pipe point before Pi (x is on the run from it to Pi)
     auto run = [&](const Vec3& to, double od1, double id1) {
         PipePiece r;
         r.kind = PipePiece::Kind::kRun;
@@ -98,8 +99,9 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
             od = p.od, id = p.id;
             continue;
         }
+        const double runLength = Length(p.at - prevPoint);
         if (i + 1 == pts.size()) {
-            if (prevBendDist > Length(toX) * (1 + 1e-9))
+            if (prevBendDist > runLength * (1 + 1e-9))
                 return Fail(
                     fmt::format("the last run (to point {}) is too short for the bend "
                                 "before it",
@@ -121,6 +123,7 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
             run(p.at, p.od, p.id);
             x = p.at, od = p.od, id = p.id;
             prevBendDist = 0;
+            prevPoint = p.at;
             continue;
         }
         if (p.bend < p.od / 2)
@@ -130,7 +133,7 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
                             p.bend, i, p.od / 2));
         if (deflection >= std::numbers::pi * (1 - 1e-9))
             return Fail(fmt::format("the bend at point {} turns through 180°", i));
-        if (prevBendDist + t > Length(toX) * (1 + 1e-9))
+        if (prevBendDist + t > runLength * (1 + 1e-9))
             return Fail(
                 fmt::format("the bends at and before point {} overlap on the run "
                             "between them",
@@ -151,6 +154,7 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
         out.pieces.push_back(b);
         x = e, od = p.od, id = p.id;
         prevBendDist = t;
+        prevPoint = p.at;
     }
     if (out.pieces.empty()) return Fail("all its points coincide");
     out.ok = true;
