@@ -48,7 +48,7 @@ class DummyEngine final : public Engine {
 // The one row that registers an engine.
 const bool kDummyRegistered = RegisterEngine({"dummy-test", "draws nothing (tests composition)",
                                               [] { return std::make_unique<DummyEngine>(); },
-                                              EngineCapabilities{true, false}, true});
+                                              EngineCapabilities{.solids = true, .freeforms = false, .quartics = false}, true});
 
 struct CorpusScene {
     std::string name;
@@ -137,6 +137,12 @@ const std::vector<CorpusScene>& Corpus() {
          "solid sphere ball =at 0 0 0 =r 1;\n"
          "solid cylinder bore =from 0 -1.5 0 =to 0 1.5 0 =r .4;\n"
          "csg ring (ball - bore); view front dop 0 0 -1 whh 1.2 whw 1.2 fbp -.3 .5;"},
+        // Quartics (issue 20): engines other than raycast get them composed from raycast.
+        {"torus_csg",
+         "solid torus ring =r 1.2 .4 =axis 0 1 1;\n"
+         "solid cylinder rod =from -2 0 0 =to 2 0 0 =r .25;\n"
+         "solid sphere ball =at 0 0 0 =r .6 =c 1 0 0;\n"
+         "csg cut (ring - rod); view front dop .3 .4 -1;"},
         {"machined_part",
          "read \"" + quadrix::testing::SourcePath("examples/machined_part.uq") + "\";"},
     };

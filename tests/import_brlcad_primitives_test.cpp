@@ -120,14 +120,60 @@ TEST(ImportBrlcadPrimitives, TgcFormsMatchDefinition) {
     }
 }
 
-TEST(ImportBrlcadPrimitives, QuarticTgcIsReported) {
-    Primitive p;
-    p.type = "tgc";
-    p.H = {0, 0, 5};
-    p.A = {2, 0, 0}, p.B = {0, 1, 0}, p.C = {1, 0, 0}, p.D = {0, 1, 0};  // |A||D| ≠ |B||C|
-    ConvertResult r = ConvertPrimitive(p);
-    EXPECT_EQ(r.status, ConvertResult::Status::kNonQuadric);
-    EXPECT_EQ(r.censusName, "tgc (quartic)");
+// The quartics in random frames: tor, eto and the general (non-similar) tgc, oblique included.
+TEST(ImportBrlcadPrimitives, QuarticsMatchTheirDefinitions) {
+    std::mt19937 rng(20);
+    for (int trial = 0; trial < 4; ++trial) {
+        Vec3 e1, e2, e3;
+        Frame(rng, e1, e2, e3);
+        const Vec3 v{3.0 * trial, -2, 1};
+        {
+            Primitive p;
+            p.type = "tor";
+            p.V = v, p.H = e3 * 3, p.r1 = 4, p.r2 = 1.5;
+            Analytic m = [=](const Vec3& x) {
+                const Vec3 d = x - v;
+                const double z = Dot(d, e3), rho = Length(d - e3 * z);
+                return 1.5 - std::hypot(rho - 4, z);
+            };
+            Compare({"tor", p, m, Around(v, 6)}, 3000, rng);
+        }
+        {
+            // Meridian ellipse tilted in the (radius, axis) plane: C = 2·(cos 30°, sin 30°).
+            const double cr = 2 * std::cos(0.5236), cz = 2 * std::sin(0.5236), rd = 0.8;
+            Primitive p;
+            p.type = "eto";
+            p.V = v, p.N = e3, p.r = 5, p.C = e1 * cr + e3 * cz, p.rd = rd;
+            Analytic m = [=](const Vec3& x) {
+                const Vec3 d = x - v;
+                const double z = Dot(d, e3), rho = Length(d - e3 * z);
+                const double a = rho - 5;  // meridian coordinates about the ellipse's centre
+                const double u = (a * cr + z * cz) / 2, w = (-a * cz + z * cr) / 2;
+                return (1 - std::hypot(u / 2, w / rd)) * rd;
+            };
+            Compare({"eto", p, m, Around(v, 8)}, 3000, rng);
+        }
+        {
+            // Semi-axes 2 → 0.5 along A and 1 → 1.5 along B; H oblique.
+            Primitive p;
+            p.type = "tgc";
+            p.V = v, p.H = e3 * 4 + e1 * 1.0, p.A = e1 * 2, p.B = e2 * 1, p.C = e1 * 0.5,
+            p.D = e2 * 1.5;
+            ConvertResult r = ConvertPrimitive(p);
+            EXPECT_EQ(r.censusName, "tgc (quartic)");
+            Analytic m = [=](const Vec3& x) {
+                const Vec3 d = x - v;
+                const double s = Dot(d, e3) / 4;
+                if (s < 0) return s * 4;
+                if (s > 1) return (1 - s) * 4;
+                const Vec3 q = d - p.H * s;
+                const double ra = 2 - 1.5 * s, rb = 1 + 0.5 * s;
+                const double u = Dot(q, e1) / ra, w = Dot(q, e2) / rb;
+                return std::min({(1 - std::hypot(u, w)) * std::min(ra, rb), s * 4, (1 - s) * 4});
+            };
+            Compare({"tgc (quartic)", p, m, Around(v + p.H * 0.5, 4)}, 3000, rng);
+        }
+    }
 }
 
 // arb8 degeneracies as arb8 records with repeated vertices, against analytic membership and the

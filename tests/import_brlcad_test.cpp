@@ -27,8 +27,9 @@ const char* kSampleDir = "/work/shared/data/brlcad";
 bool BodyContains(const scene::Scope& s, int b, const Vec3& p) {
     for (const scene::Literal& l : s.bodies[b].literals) {
         const scene::HalfSpace& h = s.halfSpaces[l.halfSpace];
-        double v =
-            h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p) : h.quadric.Evaluate(p);
+        double v = h.kind == scene::HalfSpace::Kind::kQuartic ? h.quartic->Evaluate(p)
+                   : h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
+                                                              : h.quadric.Evaluate(p);
         if ((v <= 0) == l.complemented) return false;
     }
     return true;
@@ -306,9 +307,9 @@ TEST(ImportBrlcad, MissingMembersWarnAndAreEmpty) {
 TEST(ImportBrlcad, PrimitivesThatCannotBeDrawnAreErrorsUnlessAllowMissing) {
     std::string text =
         "title {t}\n"
-        "put {t1} tor V {0 0 0} H {0 0 1} r_a 5 r_h 1\n"
-        "put {t2} tor V {0 0 9} H {0 0 1} r_a 5 r_h 1\n"
-        "put {q} tgc V {0 0 0} H {0 0 5} A {2 0 0} B {0 1 0} C {1 0 0} D {0 1 0}\n"
+        "put {t1} superell V {0 0 0} A {5 0 0} B {0 5 0} C {0 0 1} n 1 e 1\n"
+        "put {t2} superell V {0 0 9} A {5 0 0} B {0 5 0} C {0 0 1} n 1 e 1\n"
+        "put {q} dsp file {terra.bin} sm 0 w 256 n 256\n"
         "put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n"
         "put {r} comb region yes tree {u {u {l t1} {l t2}} {u {l q} {l s}}}\n";
     {
@@ -316,21 +317,19 @@ TEST(ImportBrlcad, PrimitivesThatCannotBeDrawnAreErrorsUnlessAllowMissing) {
         allow.allowMissing = true;
         auto im = Import(text, allow);
         ASSERT_TRUE(im->ok) << AllMessages(im->diags);
-        EXPECT_EQ(im->report.skipped,
-                  (std::map<std::string, int>{{"tgc (quartic)", 1}, {"tor", 2}}));
-        EXPECT_NE(AllMessages(im->diags).find("tgc (quartic) ×1, tor ×2"), std::string::npos);
+        EXPECT_EQ(im->report.skipped, (std::map<std::string, int>{{"dsp", 1}, {"superell", 2}}));
+        EXPECT_NE(AllMessages(im->diags).find("dsp ×1, superell ×2"), std::string::npos);
         EXPECT_TRUE(Inside(im->scene, "r", Q(0, 0, 0)));
     }
     {
         auto im = Import(text);
         EXPECT_FALSE(im->ok);
         const std::string all = AllMessages(im->diags);
-        EXPECT_NE(all.find("test.asc:2:1: error: primitive 't1' (tor) cannot be drawn"),
+        EXPECT_NE(all.find("test.asc:2:1: error: primitive 't1' (superell) cannot be drawn"),
                   std::string::npos)
             << all;
-        EXPECT_NE(all.find("test.asc:3:1: error: primitive 't2' (tor)"), std::string::npos);
-        EXPECT_NE(all.find("test.asc:4:1: error: primitive 'q' (tgc (quartic))"),
-                  std::string::npos);
+        EXPECT_NE(all.find("test.asc:3:1: error: primitive 't2' (superell)"), std::string::npos);
+        EXPECT_NE(all.find("test.asc:4:1: error: primitive 'q' (dsp)"), std::string::npos);
         EXPECT_NE(all.find("--allow-missing"), std::string::npos);
         EXPECT_EQ(im->diags.ErrorCount(), 3);
     }
@@ -369,13 +368,13 @@ struct Sample {
 const Sample kSamples[] = {
     {"annual_gift_man.asc", {{"arb8", 41}, {"tgc", 41}, {"ell", 4}}, {}},
     {"arb8_showcase.asc", {{"arb8", 35}}, {}},
-    {"axis.asc", {{"arb8", 11}, {"tgc", 4}, {"ell", 2}, {"tor", 2}}, {{"tor", 2}}},
+    {"axis.asc", {{"arb8", 11}, {"tgc", 4}, {"ell", 2}, {"tor", 2}}, {}},
     {"boolean-ops.asc", {{"arb8", 2}, {"tgc", 1}}, {}},
     {"castle.asc", {{"arb8", 36}, {"tgc", 8}, {"ell", 1}, {"half", 1}}, {}},
     {"chess/chessboard.asc", {{"arb8", 65}, {"tgc", 4}}, {}},
     {"cornell.asc", {{"arb8", 9}, {"ell", 1}}, {}},
     {"cornell-kunigami.asc", {{"arb8", 9}}, {}},
-    {"cray.asc", {{"arb8", 15}, {"tgc", 4}, {"ell", 2}, {"half", 1}, {"tor", 1}}, {{"tor", 1}}},
+    {"cray.asc", {{"arb8", 15}, {"tgc", 4}, {"ell", 2}, {"half", 1}, {"tor", 1}}, {}},
     {"crod.asc", {{"arb8", 7}, {"tgc", 10}}, {}},
     {"cube.asc", {{"tgc", 12}, {"ell", 12}, {"half", 1}}, {}},
     {"demo.asc", {{"arb8", 42}, {"tgc", 74}, {"ell", 2}}, {}},
@@ -384,24 +383,16 @@ const Sample kSamples[] = {
     {"galileo.asc", {{"arb8", 13}, {"tgc", 13}, {"ell", 9}}, {}},
     {"ktank.asc", {{"arb8", 54}, {"tgc", 48}, {"ell", 4}}, {}},
     {"operators.asc", {{"ell", 1}, {"ehy", 1}}, {}},
-    {"truck.asc", {{"arb8", 125}, {"tgc", 41}, {"ell", 5}, {"tor", 11}}, {{"tor", 11}}},
+    {"truck.asc", {{"arb8", 125}, {"tgc", 41}, {"ell", 5}, {"tor", 11}}, {}},
     {"wave.asc", {{"arb8", 3}, {"tgc", 5}, {"ell", 6}}, {}},
-    {"xmp.asc", {{"arb8", 14}, {"tgc", 6}, {"ell", 1}, {"tor", 2}}, {{"tor", 2}}},
+    {"xmp.asc", {{"arb8", 14}, {"tgc", 6}, {"ell", 1}, {"tor", 2}}, {}},
 };
 
 TEST(ImportBrlcadSamples, EveryDatabaseLoadsWithItsCensus) {
     if (!std::filesystem::exists(kSampleDir)) GTEST_SKIP() << "no " << kSampleDir;
     for (const Sample& s : kSamples) {
-        // Tori (truck, axis, cray, xmp) are not drawn yet: without allowMissing they are errors.
-        if (!s.skipped.empty()) {
-            auto strict = Import(ReadAll(std::string(kSampleDir) + "/" + s.file));
-            EXPECT_FALSE(strict->ok) << s.file;
-            EXPECT_NE(AllMessages(strict->diags).find("(tor) cannot be drawn"), std::string::npos)
-                << s.file;
-        }
-        ImportOptions allow;
-        allow.allowMissing = true;
-        auto im = Import(ReadAll(std::string(kSampleDir) + "/" + s.file), allow);
+        // Every primitive of every sample is drawn (tori included): no allowMissing needed.
+        auto im = Import(ReadAll(std::string(kSampleDir) + "/" + s.file));
         EXPECT_TRUE(im->ok) << s.file << "\n" << AllMessages(im->diags);
         EXPECT_EQ(im->report.census, s.census) << s.file << ": " << im->report.CensusText();
         EXPECT_EQ(im->report.skipped, s.skipped) << s.file;
@@ -523,11 +514,8 @@ TEST(ImportBrlcadSamples, RenderedBoundsAgreeWithComputedBounds) {
         PipelineOptions po;
         po.scenePaths = {std::string(kSampleDir) + "/" + f};
         po.width = po.height = 128;
-        po.allowMissing = true;  // the tori of axis, cray, truck and xmp
         // The bounds computed from the file (Quadrix space) by the importer alone.
-        ImportOptions allow;
-        allow.allowMissing = true;
-        auto im = Import(ReadAll(po.scenePaths[0]), allow);
+        auto im = Import(ReadAll(po.scenePaths[0]));
         ASSERT_TRUE(im->ok) << f << AllMessages(im->diags);
         Box3 qb = im->report.bounds;  // Quadrix space: (x, z_model, y_model)
         Box3 mb{{qb.lo.x, qb.lo.z, qb.lo.y}, {qb.hi.x, qb.hi.z, qb.hi.y}};

@@ -66,13 +66,14 @@ TEST(ImportMixed, AzElFitsTheBoundingBoxLikeRt) {
 
 TEST(ImportMixed, RenderCommandFlags) {
     testing::TempDir dir;
-    std::string asc = dir.Write("m.asc",
-                                "title {t}\n"
-                                "put {s} ell V {0 0 0} A {10 0 0} B {0 10 0} C {0 0 10}\n"
-                                "put {t} tor V {0 0 30} H {0 0 1} r_a 10 r_h 2\n"
-                                "put {ball.r} comb region yes tree {l s}\n"
-                                "put {ring.r} comb region yes tree {l t}\n"
-                                "put {all.g} comb region no tree {u {l ball.r} {l ring.r}}\n");
+    std::string asc =
+        dir.Write("m.asc",
+                  "title {t}\n"
+                  "put {s} ell V {0 0 0} A {10 0 0} B {0 10 0} C {0 0 10}\n"
+                  "put {t} superell V {0 0 30} A {10 0 0} B {0 10 0} C {0 0 2} n 1 e 1\n"
+                  "put {ball.r} comb region yes tree {l s}\n"
+                  "put {ring.r} comb region yes tree {l t}\n"
+                  "put {all.g} comb region no tree {u {l ball.r} {l ring.r}}\n");
     std::string out = dir.File("o.png");
     auto run = [&](const std::string& flags) {
         return testing::RunShell(testing::QuadrixBinary() + " render " + asc + " -o " + out +
@@ -80,12 +81,12 @@ TEST(ImportMixed, RenderCommandFlags) {
     };
     auto ok = run("--top all.g --az 30 --el 20 --allow-missing --stats");
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
-    EXPECT_NE(ok.err.find("tor ×1"), std::string::npos) << ok.err;
-    EXPECT_NE(ok.err.find("left out: tor ×1"), std::string::npos) << ok.err;  // --stats
+    EXPECT_NE(ok.err.find("superell ×1"), std::string::npos) << ok.err;
+    EXPECT_NE(ok.err.find("left out: superell ×1"), std::string::npos) << ok.err;  // --stats
     std::filesystem::remove(out);
     auto missing = run("--top all.g --az 30 --el 20");
     EXPECT_EQ(missing.exitCode, 1);
-    EXPECT_NE(missing.err.find("m.asc:3:1: error: primitive 't' (tor) cannot be drawn"),
+    EXPECT_NE(missing.err.find("m.asc:3:1: error: primitive 't' (superell) cannot be drawn"),
               std::string::npos)
         << missing.err;
     EXPECT_FALSE(testing::FileExists(out));

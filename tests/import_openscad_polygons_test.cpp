@@ -30,8 +30,9 @@ bool Inside(const scene::Scene& s, const Vec3& p) {
         if (nd.isLeaf) {
             for (const scene::Literal& l : s.top.bodies[nd.ref.index].literals) {
                 const scene::HalfSpace& h = s.top.halfSpaces[l.halfSpace];
-                double v = h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
-                                                                    : h.quadric.Evaluate(p);
+                double v = h.kind == scene::HalfSpace::Kind::kQuartic ? h.quartic->Evaluate(p)
+                           : h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
+                                                                      : h.quadric.Evaluate(p);
                 if ((v <= 0) == l.complemented) return false;
             }
             return true;
@@ -324,6 +325,31 @@ TEST(ImportOpenScadPolygons, RotateExtrudeWithFnIsOpenScadsPolygonalRing) {
     EXPECT_FALSE(Inside(hex->scene, Q(0, 9.5, 0.5)));  // beyond the apothem 8.66
 }
 
+// rotate_extrude of an exact circle is a torus; a circle scaled into an ellipse, an elliptical
+// torus (BRL-CAD eto); both drawn exactly (quartics), and their top-view area is the annulus.
+TEST(ImportOpenScadPolygons, RotateExtrudedCircleIsATorus) {
+    auto ring = Load("rotate_extrude() translate([5, 0]) circle(r = 1);");
+    ASSERT_TRUE(ring->ok) << Messages(ring->diags);
+    EXPECT_EQ(ring->report.skipped.size(), 0u);
+    auto torus = [](const Vec3& p) { return std::hypot(std::hypot(p.x, p.y) - 5, p.z) - 1; };
+    ExpectSameSolid(
+        ring->scene, {-7, -7, -2}, {7, 7, 2}, 24, [&](const Vec3& p) { return torus(p) <= 0; },
+        [&](const Vec3& p) { return std::fabs(torus(p)) * 0.9; }, "torus");
+    // Mirrored to negative x and stretched 2× in height: (ρ − 5)² + (z/2)² <= 1.
+    auto oval = Load("rotate_extrude() translate([-5, 1]) scale([1, 2]) circle(r = 1);");
+    ASSERT_TRUE(oval->ok) << Messages(oval->diags);
+    auto eto = [](const Vec3& p) {
+        const double u = std::hypot(p.x, p.y) - 5, v = (p.z - 1) / 2;
+        return u * u + v * v - 1;
+    };
+    ExpectSameSolid(
+        oval->scene, {-7, -7, -2}, {7, 7, 4}, 24, [&](const Vec3& p) { return eto(p) <= 0; },
+        [&](const Vec3& p) { return std::fabs(eto(p)) * 0.3; }, "eto");
+    const double area = TopArea("rotate_extrude() translate([5, 0]) circle(r = 1);", 16, 160);
+    const double want = std::numbers::pi * (36 - 16);
+    EXPECT_NEAR(area, want, 0.01 * want);
+}
+
 TEST(ImportOpenScadPolygons, FnSphereIsItsPolyhedron) {
     auto l = Load("sphere(r = 10, $fn = 8);");
     ASSERT_TRUE(l->ok) << Messages(l->diags);
@@ -342,8 +368,8 @@ TEST(ImportOpenScadPolygons, RefusalsArePositionedErrors) {
     const Case cases[] = {
         {"cube(1);\nlinear_extrude(height = 3, twist = 90) square(2);\n",
          "t.scad:2:1: error: linear_extrude with twist"},
-        {"rotate_extrude() translate([5, 0]) circle(r = 1);\n",
-         "t.scad:1:36: error: rotate_extrude of a circle is a torus"},
+        {"rotate_extrude() translate([0.5, 0]) circle(r = 1);\n",
+         "t.scad:1:38: error: rotate_extrude: the circle reaches the rotation axis"},
         {"rotate_extrude() polygon([[-1, 0], [1, 0], [1, 1]]);\n", "crosses the axis"},
         {"polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n",
          "t.scad:1:1: error: polyhedron: "},

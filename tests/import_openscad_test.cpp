@@ -181,8 +181,9 @@ bool Inside(const scene::Scene& s, const Vec3& p) {
         if (nd.isLeaf) {
             for (const scene::Literal& l : s.top.bodies[nd.ref.index].literals) {
                 const scene::HalfSpace& h = s.top.halfSpaces[l.halfSpace];
-                double v = h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
-                                                                    : h.quadric.Evaluate(p);
+                double v = h.kind == scene::HalfSpace::Kind::kQuartic ? h.quartic->Evaluate(p)
+                           : h.kind == scene::HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
+                                                                      : h.quadric.Evaluate(p);
                 if (!(v <= 0)) return false;
             }
             return true;

@@ -20,6 +20,8 @@ struct PovCase {
     int width, height;
     bool perspective = false;
     bool shadows = false;  // both renderers with shadows
+    // No disagreement at all away from our silhouettes (the quartic cases, issue 20).
+    bool exactInterior = false;
     friend void PrintTo(const PovCase& c, std::ostream* os) { *os << c.name; }
 };
 
@@ -80,7 +82,7 @@ TEST_P(PovrayTest, CoverageMatchesExceptOnSilhouettes) {
     RecordProperty("mismatch", std::to_string(mismatch));
     // Silhouette pixels only: at most 1 % of the covered area and no interior disagreement.
     EXPECT_LE(mismatch, std::max<long>(10, covered / 100)) << "covered " << covered;
-    EXPECT_LE(interiorMismatch, 2) << "mismatch " << mismatch;
+    EXPECT_LE(interiorMismatch, c.exactInterior ? 0 : 2) << "mismatch " << mismatch;
 }
 
 // Shaded comparison (issue 17): the exported scene (lights, colors, finishes, background; linear
@@ -176,6 +178,36 @@ const std::string kPerspectiveBalls =
     "body ba (s1); body bb (s2); body rod (c fr bk);\n"
     "csg both ((ba | bb) - rod);\n"
     "view v vrp 0 0 1 cop 0 0 0;\n";
+
+// Quartic solids (math/quartic_surface.h): exported as POV-Ray `torus` or `quartic` (sturm).
+// Views through the hole of a torus, along its equator (rays grazing both tubes), a tilted
+// elliptical torus, a general cone, CSG with quadrics and planes, and perspective.
+const std::string kTorusThroughHole =
+    "text:solid torus ring =r 1.5 .5 =c .8 .6 .3; view v dop .25 .35 -1;";
+const std::string kTorusGrazing =
+    "text:solid torus ring =r 1.5 .5 =axis 0 1 0; view v dop 0 .06 -1;";
+const std::string kEllipticalTorus =
+    "text:solid etorus e =r 1.4 =e .5 0 .4 =d .25 =axis 0 1 .3; view v dop .3 .2 -1;";
+const std::string kGeneralCone =
+    "text:solid tgc g =v 0 -1 0 =h .3 2 0 =a 1.2 0 0 =b 0 0 .4 =top .3 1; view v dop .4 .3 -1;";
+const std::string kQuarticCsg =
+    "text:solid torus ring =r 1.4 .45 =axis 0 1 0;\n"
+    "solid cylinder rod =from -2 0 0 =to 2 0 0 =r .25;\n"
+    "solid halfspace cut =n 1 1 0 =at .2 0 0;\n"
+    "solid sphere ball =at 0 0 0 =r .6;\n"
+    "csg part ((ring - rod) & cut | ball); view v dop .3 .5 -1;";
+const std::string kTorusPerspective =
+    "text:solid torus ring =r 1.5 .5; view eye vrp 0 0 0 cop 1.5 2.5 -5;";
+
+INSTANTIATE_TEST_SUITE_P(
+    Quartics, PovrayTest,
+    ::testing::Values(PovCase{"TorusThroughHole", kTorusThroughHole, 200, 160, false, false, true},
+                      PovCase{"TorusGrazing", kTorusGrazing, 200, 120, false, false, true},
+                      PovCase{"EllipticalTorus", kEllipticalTorus, 200, 160, false, false, true},
+                      PovCase{"GeneralCone", kGeneralCone, 160, 160, false, false, true},
+                      PovCase{"QuarticCsg", kQuarticCsg, 200, 160, false, false, true},
+                      PovCase{"TorusPerspective", kTorusPerspective, 200, 160, true, false, true}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, PovrayTest,

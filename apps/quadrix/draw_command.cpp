@@ -141,6 +141,21 @@ int RunDraw(const DrawArgs& args) {
     request.section = section;
     if (viewNames.empty() && (!context.Flatten(request, diags) || diags.HasErrors()))
         return Fail(diags);
+    // The drawer handles planes and quadrics: a quartic (torus, elliptical torus, general cone)
+    // is refused by name rather than drawn wrong or left out.
+    auto refuseQuartics = [&]() -> bool {
+        for (const FlatHalfSpace& h : context.Flat().halfSpaces)
+            if (h.IsQuartic()) {
+                std::fprintf(stderr,
+                             "quadrix: error: draw: half-space '%s' is a %s (a quartic surface); "
+                             "drawings handle planes and quadrics only (render it with quadrix "
+                             "render)\n",
+                             h.name.c_str(), std::string(h.quartic->KindName()).c_str());
+                return true;
+            }
+        return false;
+    };
+    if (viewNames.empty() && refuseQuartics()) return 1;
     draw::DrawOptions dopt;
     dopt.hidden = args.hidden != "off";
     // The model's file: the first (later ones are usually views or settings for it).
@@ -179,6 +194,7 @@ int RunDraw(const DrawArgs& args) {
             context.Scene().views.pop_back();
             context.SceneChanged();
             if (!ok || diags.HasErrors()) return Fail(diags);
+            if (refuseQuartics()) return 1;
             warnFreeform();
             draw::SheetView v;
             v.name = name;

@@ -65,6 +65,10 @@ struct RenderStats {
 struct EngineCapabilities {
     bool solids = true;      // FlatScene::solids (planes and quadrics, CSG)
     bool freeforms = false;  // FlatScene::freeforms (Bézier/NURBS surfaces)
+    // Quartic half-spaces (math/quartic_surface.h: tori, general cones). Without it the render
+    // context draws every solid that has one with raycast and composes it by depth, and the
+    // engine never sees a quartic half-space (pipeline/render_context.cpp).
+    bool quartics = false;
 };
 
 class Engine {

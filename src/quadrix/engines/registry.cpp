@@ -20,27 +20,27 @@ std::vector<EngineInfo>& Table() {
         {"raycast",
          "exact reference: interval CSG per pixel, tiles and threads",
          MakeRaycastEngine,
-         {.solids = true, .freeforms = false},
+         {.solids = true, .freeforms = false, .quartics = true},
          false},
         {"scanline",
          "the UniQuadrix Resolver, Renderer and Shader (seed 001): conic edges, spans",
          MakeScanlineEngine,
-         {.solids = true, .freeforms = false},
+         {.solids = true, .freeforms = false, .quartics = false},
          false},
         {"pixelpowers",
          "Goldfeather CSG normal form on a simulated Pixel-Powers frame buffer",
          MakePixelPowersEngine,
-         {.solids = true, .freeforms = false},
+         {.solids = true, .freeforms = false, .quartics = false},
          false},
         {"patch",
          "the quadric patch processor (seed 000), float or bit-exact fixed point",
          MakePatchEngine,
-         {.solids = true, .freeforms = false},
+         {.solids = true, .freeforms = false, .quartics = false},
          false},
         {"isocurve",
          "freeform (Bezier/NURBS) surfaces by adaptive isocurves (seed 002)",
          isocurve::MakeIsocurveEngine,
-         {.solids = false, .freeforms = true},
+         {.solids = false, .freeforms = true, .quartics = false},
          false},
     };
     return table;
@@ -88,10 +88,14 @@ std::string EnginesMarkdown() {
         if (!help.empty())
             help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
         s += fmt::format("## `{}`\n\n{}.", e.name, help);
-        s += fmt::format(" Draws {}.\n\n",
+        s += fmt::format(" Draws {}{}.\n\n",
                          e.capabilities.solids && e.capabilities.freeforms ? "solids and freeforms"
                          : e.capabilities.solids ? "solids (freeform surfaces go to isocurve)"
-                                                 : "freeform surfaces (solids go to raycast)");
+                                                 : "freeform surfaces (solids go to raycast)",
+                         !e.capabilities.solids   ? ""
+                         : e.capabilities.quartics ? ", quartic solids (tori, general cones) included"
+                                                   : "; solids with quartic surfaces (tori, general "
+                                                     "cones) go to raycast");
         const OptionSchema& schema = e.make()->Schema();
         s += schema.empty() ? "No options.\n\n" : FormatOptionsMarkdown(schema) + "\n";
     }

@@ -13,7 +13,7 @@ RayEvaluator::RayEvaluator(const FlatScene& scene) : scene_(scene) {
     Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
     halfSpaces_.reserve(scene.halfSpaces.size());
     for (const FlatHalfSpace& hs : scene.halfSpaces) {
-        Vec3 ref = hs.isPlane ? anchor : RayHalfSpace::Centre(hs.quadric).value_or(anchor);
+        Vec3 ref = !hs.IsQuadric() ? anchor : RayHalfSpace::Centre(hs.quadric).value_or(anchor);
         halfSpaces_.push_back(RayHalfSpace::From(hs, ref));
     }
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -90,7 +90,7 @@ bool RayEvaluator::Node(int node, double x, double y, Hit& hit) {
 
 int RayEvaluator::SheetOf(int halfSpace, double t, double x, double y) const {
     const RayHalfSpace& r = Ray(halfSpace);
-    if (r.isPlane) return 0;
+    if (r.isPlane || r.quartic) return 0;
     const double dx = x - r.x0, dy = y - r.y0;
     QuadraticRoots roots =
         SolveQuadratic(r.c, r.hx * dx + r.hy * dy + r.h0,

@@ -12,6 +12,11 @@ namespace quadrix::eval {
 RayHalfSpace RayHalfSpace::From(const FlatHalfSpace& hs, const Vec3& p0) {
     RayHalfSpace r;
     r.isPlane = hs.isPlane;
+    if (hs.IsQuartic()) {
+        r.isPlane = false;
+        r.quartic = hs.quartic;
+        return r;
+    }
     if (hs.isPlane) {
         r.c = hs.plane.c;
         r.px = hs.plane.a;
@@ -126,8 +131,15 @@ void QuadraticSet(double a, double h, double k, double z0, std::int32_t id, RayS
     }
 }
 
-// In place: the closure of the complement of a canonical set of at most two pieces (again at
-// most two). The pieces are read field by field into scalars before any is written (a whole-struct
+// The set of a quartic on the ray through (x, y): at most two pieces with finite ends.
+void QuarticSet(const QuarticSurface& q, double x, double y, std::int32_t id, RaySet& s) {
+    const QuarticLineSet l = q.OnLine(Vec4{x, y, 0, 1}, Vec4{0, 0, 1, 0});
+    for (int i = 0; i < l.count; ++i)
+        Add(s, l.lo[static_cast<std::size_t>(i)], l.hi[static_cast<std::size_t>(i)], id);
+}
+
+// In place: the closure of the complement of a canonical set of at most two pieces (at most
+// three: two only unless both pieces are finite, as a quartic's can be). The pieces are read field by field into scalars before any is written (a whole-struct
 // copy of freshly stored pieces would stall on store-to-load forwarding, the hottest spot of a
 // render before this was written so).
 void Complement(RaySet& s) {
@@ -151,7 +163,10 @@ void Complement(RaySet& s) {
 RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double y, std::int32_t id,
                     LiteralCounters& counters) {
     RaySet inside;
-    if (hs.isPlane) {
+    if (hs.quartic) {
+        ++counters.quartics;
+        QuarticSet(*hs.quartic, x, y, id, inside);
+    } else if (hs.isPlane) {
         ++counters.planes;
         double e = hs.px * x + hs.py * y + hs.pd;
         if (!std::isfinite(e) || !std::isfinite(hs.c)) return inside;  // empty both ways
@@ -169,6 +184,7 @@ RaySet LiteralOnRay(const RayHalfSpace& hs, bool complemented, double x, double 
 }
 
 QuadricOnRect ClassifyQuadric(const RayHalfSpace& hs, double x0, double x1, double y0, double y1) {
+    if (hs.quartic) return QuadricOnRect::kUnknown;
     const double c = hs.c;
     if (!std::isfinite(c) || c == 0) return QuadricOnRect::kUnknown;
     const double hu = 0.5 * (x1 - x0), hv = 0.5 * (y1 - y0);
@@ -426,6 +442,11 @@ __attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
 void QuadricBatch(const RayHalfSpace& hs, bool complemented, std::int32_t tag, int n,
                   const double* xs, const double* ys, double* lo, std::int64_t* loId, double* hi,
                   std::int64_t* hiId, std::uint8_t* flag, LiteralCounters& counters, double* cut) {
+    if (hs.quartic) {  // never batched: the scalar path evaluates it (up to three pieces)
+        for (int p = 0; p < n; ++p)
+            if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
+        return;
+    }
     // A plane (not what this is for), or a c that leaves no pixel to the vectorised pass (c = 0:
     // a cylinder or paraboloid along the rays; non-finite; beyond 2^200): the plain loop.
     if (hs.isPlane || !(std::fabs(hs.c) <= 0x1p200 && hs.c != 0)) {

@@ -16,9 +16,17 @@
 // (C = 0 and A x + B y + D = 0) holds along all of it while its complement holds nowhere.
 // Non-finite coefficients along the ray (NaN, or overflow far from the origin) give the empty set
 // for both H and !H: the body that uses the literal is not drawn there.
+//
+// Quartics (math/quartic_surface.h: torus, elliptical torus, general cone): the set comes from
+// QuarticSurface::OnLine on the homogeneous device line (x, y, 0, 1) + t (0, 0, 1, 0), clipped to
+// the surface's box and solved by the certified root isolation of math/quartic_roots.h: at most
+// two pieces for H, three for !H (a ray through both tubes of a torus). No batch or tile proof
+// applies to them (body_batch.cpp sends their pixels to the scalar path, tile_reduction.cpp never
+// classifies them), so every quartic literal is evaluated by LiteralOnRay.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "quadrix/flatten/flat_scene.h"
@@ -40,6 +48,9 @@ namespace quadrix::eval {
 // size the coefficients already carry.
 struct RayHalfSpace {
     bool isPlane = true;
+    // Set for a quartic (then isPlane is false and the quadric fields are unused).
+    std::shared_ptr<const QuarticSurface> quartic;
+    bool IsQuadric() const { return !isPlane && !quartic; }
     // Plane: P = c t + (px x + py y + pd), not re-centred (no cancellation to avoid).
     // Quadric: as above, with c = C.
     double c = 0;
@@ -61,11 +72,13 @@ struct RayHalfSpace {
 struct LiteralCounters {
     std::uint64_t planes = 0;
     std::uint64_t quadrics = 0;
+    std::uint64_t quartics = 0;
 };
 
-// A literal's set on one ray: at most two pieces, canonical (see interval_list.h).
+// A literal's set on one ray: at most two pieces for planes and quadrics, three for a
+// complemented quartic; canonical (see interval_list.h).
 struct RaySet {
-    Interval piece[2];
+    Interval piece[3];
     int count = 0;
 };
 
@@ -96,7 +109,8 @@ enum : std::uint8_t { kBatchLive = 0, kBatchDead = 1, kBatchScalar = 2 };
 //  - S.count == 1 -> clip by its piece v with exactly these rules:
 //        if (!(lo[p] > v.lo)) { lo[p] = v.lo; loId[p] = v.loId; }
 //        if (!(hi[p] <= v.hi)) { hi[p] = v.hi; hiId[p] = v.hiId; }
-// Pixels whose flag is not kBatchLive are left untouched (all arrays).
+// Pixels whose flag is not kBatchLive are left untouched (all arrays). A quartic marks every live
+// pixel kBatchScalar.
 // counters.quadrics += number of live pixels.
 //
 // Bit-identical to that loop for every input: a vectorised pass does the common case (c ≠ 0, no

@@ -27,6 +27,14 @@ Box3 LiteralBox(const FlatHalfSpace& halfSpace, bool complemented) {
 }
 
 double HalfSpaceScale(const FlatHalfSpace& hs) {
+    if (hs.IsQuartic()) {  // the largest coordinate of its box
+        const Box3 box = hs.quartic->SpaceBounds();
+        double s = 0;
+        for (int i = 0; i < 3; ++i)
+            if (std::isfinite(box.lo[i]) && std::isfinite(box.hi[i]))
+                s = std::fmax(s, std::fmax(std::fabs(box.lo[i]), std::fabs(box.hi[i])));
+        return s;
+    }
     if (hs.isPlane) {
         double n = Length(hs.plane.Normal());
         double s = n > 0 ? std::fabs(hs.plane.d) / n : 0.0;
@@ -140,6 +148,35 @@ std::optional<Box3> PolytopeBox(const std::vector<InsideFn>& shaping, const Box3
 
 Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOptions& options,
                         BoundsStats* stats) {
+    // Quartic literals (math/quartic_surface.h) enter as convex supersets: an uncomplemented one
+    // as the planes of its clip box (and its mapped box), a complemented one not at all (its set
+    // is unbounded; leaving a literal out only enlarges the box).
+    bool anyQuartic = false;
+    for (const BoundLiteral& lit : literals) anyQuartic |= lit.halfSpace->IsQuartic();
+    if (anyQuartic) {
+        std::vector<FlatHalfSpace> planes;
+        planes.reserve(7 * literals.size());  // no reallocation: `kept` points into it
+        std::vector<BoundLiteral> kept;
+        Box3 quarticBox = Box3::Everything();
+        for (const BoundLiteral& lit : literals) {
+            if (!lit.halfSpace->IsQuartic()) {
+                kept.push_back(lit);
+                continue;
+            }
+            if (lit.complemented) continue;
+            const QuarticSurface& q = *lit.halfSpace->quartic;
+            quarticBox = quarticBox.Intersected(q.SpaceBounds());
+            for (const Vec4& p : q.SpaceBoxPlanes()) {
+                FlatHalfSpace h;
+                h.isPlane = true;
+                h.plane = Plane::FromVec4(p);
+                planes.push_back(std::move(h));
+                kept.push_back({&planes.back(), false});
+            }
+        }
+        const Box3 b = IntersectionBounds(kept, options, stats);
+        return b.Empty() ? b : b.Intersected(quarticBox);
+    }
     if (stats) ++stats->bodies;
     std::vector<InsideFn> fns;
     std::vector<Box3> boxes;

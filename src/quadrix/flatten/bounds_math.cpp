@@ -37,6 +37,12 @@ void ComputeEigenBounds(InsideFn& f) {
 InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented) {
     InsideFn f;
     double sign = complemented ? -1.0 : 1.0;
+    if (hs.IsQuartic()) {
+        // Not expected (IntersectionBounds substitutes quartics); conservative: all of space.
+        f.isPlane = true;
+        f.k = -1;
+        return f;
+    }
     if (hs.isPlane) {
         const Plane& p = hs.plane;
         double s = std::fmax(std::fmax(std::fabs(p.a), std::fabs(p.b)),

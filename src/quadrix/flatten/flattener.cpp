@@ -318,7 +318,9 @@ class FlattenerImpl {
             FlatScene probe;
             probe.halfSpaces = flat_.halfSpaces;
             for (FlatHalfSpace& h : probe.halfSpaces) {
-                if (h.isPlane)
+                if (h.IsQuartic())
+                    h.TransformBy(dev);
+                else if (h.isPlane)
                     h.plane = h.plane.Transformed(dev);
                 else
                     h.quadric = h.quadric.Transformed(dev);
@@ -459,7 +461,9 @@ class FlattenerImpl {
         Transform dev =
             Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
         for (FlatHalfSpace& h : flat.halfSpaces) {
-            if (h.isPlane) {
+            if (h.IsQuartic()) {
+                h.TransformBy(dev);
+            } else if (h.isPlane) {
                 h.plane = h.plane.Transformed(dev);
                 RescaleCoefficients(h.plane);
             } else {

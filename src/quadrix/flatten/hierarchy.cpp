@@ -517,8 +517,14 @@ class Walker {
         FlatHalfSpace f;
         f.isPlane = hs.kind == scene::HalfSpace::Kind::kPlane;
         bool finite;
-        // Rescaled before and after the transform (coefficient_scale.h).
-        if (f.isPlane) {
+        // Rescaled before and after the transform (coefficient_scale.h). A quartic keeps its
+        // local frame: only its localFromSpace map composes (no coefficients to rescale).
+        if (hs.kind == scene::HalfSpace::Kind::kQuartic) {
+            QuarticSurface q = *hs.quartic;
+            q.TransformBy(si.t);
+            finite = q.AllFinite();
+            f.SetQuartic(q);
+        } else if (f.isPlane) {
             Plane source = hs.plane;
             RescaleCoefficients(source);
             f.plane = source.Transformed(si.t);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 namespace quadrix {
@@ -9,6 +10,64 @@ namespace quadrix {
 namespace {
 
 std::string Num(double v) { return fmt::format("{:.17g}", v); }
+
+// Polynomials in (x, y, z) of degree <= 4, dense by exponents (for POV-Ray's `quartic`).
+struct Poly3 {
+    std::array<double, 125> c{};
+    static std::size_t Index(int i, int j, int k) { return static_cast<std::size_t>(25 * i + 5 * j + k); }
+    static Poly3 Linear(double a, double b, double cz, double d) {
+        Poly3 p;
+        p.c[Index(1, 0, 0)] = a;
+        p.c[Index(0, 1, 0)] = b;
+        p.c[Index(0, 0, 1)] = cz;
+        p.c[Index(0, 0, 0)] = d;
+        return p;
+    }
+    Poly3 operator*(const Poly3& o) const {
+        Poly3 r;
+        for (int i = 0; i < 5; ++i)
+            for (int j = 0; i + j < 5; ++j)
+                for (int k = 0; i + j + k < 5; ++k) {
+                    const double a = c[Index(i, j, k)];
+                    if (a == 0) continue;
+                    for (int u = 0; i + u < 5; ++u)
+                        for (int v = 0; j + v < 5 && i + u + j + v < 5; ++v)
+                            for (int w = 0; i + j + k + u + v + w < 5; ++w)
+                                r.c[Index(i + u, j + v, k + w)] += a * o.c[Index(u, v, w)];
+                }
+        return r;
+    }
+    Poly3 operator+(const Poly3& o) const {
+        Poly3 r = *this;
+        for (std::size_t i = 0; i < c.size(); ++i) r.c[i] += o.c[i];
+        return r;
+    }
+    Poly3 operator*(double k) const {
+        Poly3 r = *this;
+        for (double& v : r.c) v *= k;
+        return r;
+    }
+};
+
+// F∘L as a polynomial in space coordinates relative to `centre` (x = centre + x'), where L is
+// the quartic's localFromSpace: the local coordinates are linear in x'.
+Poly3 QuarticInSpace(const QuarticSurface& q, const Vec3& centre) {
+    const Mat4& m = q.localFromSpace.Matrix();
+    Poly3 L[4];
+    for (int r = 0; r < 4; ++r)
+        L[r] = Poly3::Linear(m(r, 0), m(r, 1), m(r, 2),
+                             m(r, 0) * centre.x + m(r, 1) * centre.y + m(r, 2) * centre.z + m(r, 3));
+    const std::array<double, 6>& k = q.k;
+    if (q.kind == QuarticSurface::Kind::kGeneralCone) {
+        const Poly3 al = L[3] * k[0] + L[2] * k[1], be = L[3] * k[2] + L[2] * k[3];
+        const Poly3 a2 = al * al, b2 = be * be;
+        return L[0] * L[0] * b2 + L[1] * L[1] * a2 + a2 * b2 * -1.0;
+    }
+    const Poly3 r2 = L[0] * L[0] + L[1] * L[1];
+    const Poly3 E = r2 * k[0] + L[2] * L[2] * k[2] + L[2] * L[3] * k[4] + L[3] * L[3] * k[5];
+    const Poly3 O = L[2] * (2 * k[1]) + L[3] * k[3];
+    return E * E + r2 * O * O * -1.0;
+}
 
 class PovWriter {
   public:
@@ -125,7 +184,9 @@ class PovWriter {
     void HalfSpace(const FlatLiteral& lit, int depth) {
         const FlatHalfSpace& h = scene_.halfSpaces[lit.halfSpace];
         Indent(depth);
-        if (h.isPlane) {
+        if (h.IsQuartic()) {
+            Quartic(*h.quartic);
+        } else if (h.isPlane) {
             double len = Length(h.plane.Normal());
             out_ += fmt::format("plane {{ <{},{},{}>, {}", Num(h.plane.a), Num(h.plane.b),
                                 Num(h.plane.c), Num(len > 0 ? -h.plane.d / len : 0));
@@ -137,6 +198,45 @@ class PovWriter {
                             Num(2 * q.G()), Num(2 * q.H()), Num(2 * q.J()), Num(q.K()));
         }
         out_ += lit.complemented ? " inverse }\n" : " }\n";
+    }
+
+    // A torus under an affine map: POV-Ray's `torus` (in its xz-plane, axis y) with the map as a
+    // `matrix`. Otherwise (elliptical torus, general cone, projective device maps) a `quartic`
+    // of 35 coefficients (x⁴, x³y, x³z, x³, x²y², …, z, 1: exponents of x, then y, then z in
+    // descending order) about the centre of its box, solved with `sturm`, then translated. The
+    // clip box of a general cone is left to its caps (which it must have).
+    void Quartic(const QuarticSurface& q) {
+        const Mat4& inv = q.localFromSpace.Inverse();  // spaceFromLocal
+        const bool affine = inv(3, 0) == 0 && inv(3, 1) == 0 && inv(3, 2) == 0 && inv(3, 3) == 1 &&
+                            q.localFromSpace.Matrix()(3, 0) == 0 &&
+                            q.localFromSpace.Matrix()(3, 1) == 0 &&
+                            q.localFromSpace.Matrix()(3, 2) == 0;
+        if (q.kind == QuarticSurface::Kind::kTorus && affine) {
+            // Local units: R + r = 1 (quartic_surface.cpp). POV's (x, y, z) → local (x, z, y).
+            const double s = q.p[0] + q.p[1];
+            const int col[3] = {0, 2, 1};
+            std::string rows;
+            for (int r = 0; r < 3; ++r)
+                rows += fmt::format("{},{},{}, ", Num(inv(0, col[r])), Num(inv(1, col[r])),
+                                    Num(inv(2, col[r])));
+            out_ += fmt::format("torus {{ {}, {} matrix <{}{},{},{}>", Num(q.p[0] / s),
+                                Num(q.p[1] / s), rows, Num(inv(0, 3)), Num(inv(1, 3)),
+                                Num(inv(2, 3)));
+            return;
+        }
+        const Box3 box = q.SpaceBounds();
+        const Vec3 c = box.Finite() ? box.Center() : Vec3{};
+        Poly3 p = QuarticInSpace(q, c);
+        double mx = 0;
+        for (double v : p.c) mx = std::fmax(mx, std::fabs(v));
+        if (mx > 0) p = p * (1 / mx);
+        std::string coeffs;
+        for (int i = 4; i >= 0; --i)
+            for (int j = 4 - i; j >= 0; --j)
+                for (int k = 4 - i - j; k >= 0; --k)
+                    coeffs += (coeffs.empty() ? "" : ",") + Num(p.c[Poly3::Index(i, j, k)]);
+        out_ += fmt::format("quartic {{ <{}> sturm translate <{},{},{}>", coeffs, Num(c.x),
+                            Num(c.y), Num(c.z));
     }
 
     void Body(int b, int depth) {

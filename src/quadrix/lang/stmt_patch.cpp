@@ -84,6 +84,12 @@ bool ParsePatch(Parser& p, const Token& keyword) {
     std::vector<PatchItem> planes;
     for (const PatchItem& item : items) {
         const scene::HalfSpace& h = scope.halfSpaces[static_cast<std::size_t>(item.halfSpace)];
+        if (h.kind == scene::HalfSpace::Kind::kQuartic) {
+            p.Error(item.loc, fmt::format("'{}' is a {} (a quartic surface): a patch takes one "
+                                          "quadric and planes",
+                                          h.id, h.quartic->KindName()));
+            return true;
+        }
         if (h.kind == scene::HalfSpace::Kind::kQuadric) {
             if (quadric >= 0) {
                 p.Error(item.loc,

@@ -264,6 +264,82 @@ std::optional<SolidShape> BuildHalfSpace(SolidContext& ctx) {
     return model::MakeHalfSpace({0, 0, 0}, n->AsVec3());
 }
 
+// The axis of a torus (=axis, default z), checked non-zero.
+std::optional<Vec3> TorusAxis(SolidContext& ctx) {
+    const Param* a = ctx.Get("axis");
+    if (!a) return Vec3{0, 0, 1};
+    const Vec3 v = a->AsVec3();
+    if (!(Length(v) > 0) || !IsFinite(v)) {
+        ctx.Fail(*a, fmt::format("=axis of the solid {} must be a non-zero vector", ctx.kind.name));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<SolidShape> BuildTorus(SolidContext& ctx) {
+    const Param* r = ctx.Require("r", "its major radius R and tube radius r");
+    auto axis = TorusAxis(ctx);
+    if (!r || !axis || !ctx.Positive(*r, "each radius")) return std::nullopt;
+    if (!(r->values[1] < r->values[0])) {
+        ctx.Fail(*r, fmt::format("the tube radius r ({}) of a torus must be smaller than its "
+                                 "major radius R ({})",
+                                 r->values[1], r->values[0]));
+        return std::nullopt;
+    }
+    std::string why;
+    auto q = QuarticSurface::Torus({0, 0, 0}, *axis, r->values[0], r->values[1], &why);
+    if (!q) {
+        ctx.Fail(*r, fmt::format("the torus cannot be built: {}", why));
+        return std::nullopt;
+    }
+    return model::MakeTorus(*q);
+}
+
+std::optional<SolidShape> BuildEllipticalTorus(SolidContext& ctx) {
+    const Param* r = ctx.Require("r", "its radius of revolution");
+    const Param* c = ctx.Require("e", "the ellipse's semi-axis vector x y z");
+    const Param* d = ctx.Require("d", "the ellipse's other semi-axis length");
+    auto axis = TorusAxis(ctx);
+    if (!r || !c || !d || !axis || !ctx.Positive(*r, "the radius") ||
+        !ctx.Positive(*d, "the semi-axis"))
+        return std::nullopt;
+    if (!(Length(c->AsVec3()) > 0)) {
+        ctx.Fail(*c, "=e of the solid etorus must be a non-zero vector");
+        return std::nullopt;
+    }
+    std::string why;
+    auto q = QuarticSurface::EllipticalTorus({0, 0, 0}, *axis, r->values[0], c->AsVec3(),
+                                             d->values[0], &why);
+    if (!q) {
+        ctx.Fail(*r, fmt::format("the elliptical torus cannot be built: {}", why));
+        return std::nullopt;
+    }
+    return model::MakeEllipticalTorus(*q);
+}
+
+std::optional<SolidShape> BuildGeneralCone(SolidContext& ctx) {
+    const Param* v = ctx.Require("v", "the centre of its base");
+    const Param* h = ctx.Require("h", "its height vector");
+    const Param* a = ctx.Require("a", "the base's first semi-axis vector");
+    const Param* b = ctx.Require("b", "the base's second semi-axis vector");
+    const Param* top = ctx.Require("top", "the top's semi-axis lengths along a and b");
+    if (!v || !h || !a || !b || !top) return std::nullopt;
+    for (double t : top->values)
+        if (!(t >= 0)) {
+            ctx.Fail(*top,
+                     fmt::format("the top semi-axes of the solid tgc must be >= 0, found {}", t));
+            return std::nullopt;
+        }
+    std::string why;
+    auto q = QuarticSurface::GeneralCone(v->AsVec3(), h->AsVec3(), a->AsVec3(), b->AsVec3(),
+                                         top->values[0], top->values[1], &why);
+    if (!q) {
+        ctx.Fail(*h, fmt::format("the general cone cannot be built: {}", why));
+        return std::nullopt;
+    }
+    return model::MakeGeneralCone(*q);
+}
+
 const ParamSpec kAt{"at", kThree, "centre x y z"};
 const ParamSpec kFrom{"from", kThree, "x y z"};
 const ParamSpec kTo{"to", kThree, "x y z"};
@@ -304,6 +380,32 @@ const std::vector<Kind>& Kinds() {
          true,
          true,
          BuildHyperboloid2},
+        {"torus",
+         {kAt, {"r", kTwo, "major radius R and tube radius r"}, {"axis", kThree, "axis x y z"}},
+         true,
+         false,
+         true,
+         BuildTorus},
+        {"etorus",
+         {kAt,
+          {"r", kOne, "the radius of revolution"},
+          {"e", kThree, "the ellipse's semi-axis vector x y z"},
+          {"d", kOne, "the ellipse's other semi-axis"},
+          {"axis", kThree, "axis x y z"}},
+         true,
+         false,
+         true,
+         BuildEllipticalTorus},
+        {"tgc",
+         {{"v", kThree, "base centre x y z"},
+          {"h", kThree, "height vector x y z"},
+          {"a", kThree, "base semi-axis vector x y z"},
+          {"b", kThree, "base semi-axis vector x y z"},
+          {"top", kTwo, "the top's semi-axes along a and b"}},
+         false,
+         true,
+         true,
+         BuildGeneralCone},
         {"halfspace",
          {kAt, {"n", kThree, "outward normal x y z"}},
          true,
@@ -451,7 +553,10 @@ bool ParseSolid(Parser& p, const Token& keyword) {
     if (id.empty()) id = GenerateBaseId(s, kind->name);
     // Check every id before adding anything, so a clash leaves no half-made solid behind.
     for (const model::SolidSurface& surface : placed.surfaces) {
-        if (surface.isPlane ? !surface.plane.AllFinite() : !surface.quadric.AllFinite()) {
+        const bool finite = surface.IsQuartic() ? surface.quartic->AllFinite()
+                            : surface.isPlane       ? surface.plane.AllFinite()
+                                                    : surface.quadric.AllFinite();
+        if (!finite) {
             p.Error(keyword.loc, fmt::format("the solid {} '{}' has coefficients too large to "
                                              "represent",
                                              kind->name, id));
@@ -483,10 +588,12 @@ bool ParseSolid(Parser& p, const Token& keyword) {
         scene::HalfSpace hs;
         hs.id = id + surface.suffix;
         hs.loc = keyword.loc;
-        hs.kind =
-            surface.isPlane ? scene::HalfSpace::Kind::kPlane : scene::HalfSpace::Kind::kQuadric;
+        hs.kind = surface.IsQuartic() ? scene::HalfSpace::Kind::kQuartic
+                  : surface.isPlane   ? scene::HalfSpace::Kind::kPlane
+                                      : scene::HalfSpace::Kind::kQuadric;
         hs.plane = surface.plane;
         hs.quadric = surface.quadric;
+        hs.quartic = surface.quartic;
         bool openCap = surface.isCap && (surface.suffix == "#0" ? flags.open0 : flags.open1);
         hs.transparent = flags.transparent || openCap;
         body.literals.push_back({s.AddHalfSpace(std::move(hs)), false});

@@ -218,3 +218,34 @@ SolidShape MakeHalfSpace(const Vec3& point, const Vec3& n) {
 }
 
 }  // namespace quadrix::model
+
+namespace quadrix::model {
+
+namespace {
+
+SolidSurface QuarticSolidSurface(const QuarticSurface& q) {
+    SolidSurface s;
+    s.SetQuartic(q);
+    return s;
+}
+
+}  // namespace
+
+SolidShape MakeTorus(const QuarticSurface& torus) {
+    SolidShape s;
+    s.surfaces.push_back(QuarticSolidSurface(torus));
+    return s;
+}
+
+SolidShape MakeEllipticalTorus(const QuarticSurface& eto) { return MakeTorus(eto); }
+
+SolidShape MakeGeneralCone(const QuarticSurface& cone) {
+    SolidShape s;
+    s.surfaces.push_back(QuarticSolidSurface(cone));
+    const std::array<Vec4, 2> caps = cone.GeneralConeCaps();
+    s.surfaces.push_back(PlaneSurface("#0", Plane::FromVec4(caps[0]), true));
+    s.surfaces.push_back(PlaneSurface("#1", Plane::FromVec4(caps[1]), true));
+    return s;
+}
+
+}  // namespace quadrix::model

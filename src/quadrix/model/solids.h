@@ -88,4 +88,14 @@ SolidShape MakeHyperboloid2(const AxisFrame& frame, Section s, double gap);
 // The half-space through `point` whose outward normal is `normal`: <n, −n·p> (n as given).
 SolidShape MakeHalfSpace(const Vec3& point, const Vec3& normal);
 
+// Quartic solids (math/quartic_surface.h; valid parameters as QuarticSurface's constructors
+// check them, which return the reason otherwise). The curved surface has suffix "".
+// Torus about `axis` through `center`, major radius R, minor r (0 < r < R).
+SolidShape MakeTorus(const QuarticSurface& torus);
+// Elliptical torus (BRL-CAD eto).
+SolidShape MakeEllipticalTorus(const QuarticSurface& eto);
+// General truncated cone (BRL-CAD tgc, non-similar ends): the quartic "" and its caps "#0" (base,
+// T >= 0) and "#1" (top, T <= 1), as MakeCylinder's.
+SolidShape MakeGeneralCone(const QuarticSurface& cone);
+
 }  // namespace quadrix::model

@@ -63,6 +63,42 @@ FlatScene SubsetOfSolids(const FlatScene& flat, const std::vector<int>& solids) 
     return sub;
 }
 
+// The first quartic half-space that solid `s` uses (math/quartic_surface.h), or -1.
+int FirstQuarticOf(const FlatScene& flat, int s) {
+    std::vector<int> stack{flat.solids[static_cast<std::size_t>(s)].root};
+    while (!stack.empty()) {
+        const int n = stack.back();
+        stack.pop_back();
+        if (n < 0) continue;
+        const FlatCsgNode& node = flat.nodes[static_cast<std::size_t>(n)];
+        if (!node.isLeaf) {
+            stack.insert(stack.end(), node.children.begin(), node.children.end());
+            continue;
+        }
+        if (node.body < 0) continue;
+        for (const FlatLiteral& l : flat.bodies[static_cast<std::size_t>(node.body)].literals)
+            if (flat.halfSpaces[static_cast<std::size_t>(l.halfSpace)].IsQuartic())
+                return l.halfSpace;
+    }
+    return -1;
+}
+
+// The flat scene without any quartic: the solids `solids` only (none of them uses a quartic) and
+// every quartic half-space replaced by a transparent plane that holds nowhere (no body names it
+// any more; indices stay, so Frame ids mean the same). Freeform surfaces are kept.
+FlatScene WithoutQuartics(const FlatScene& flat, const std::vector<int>& solids) {
+    FlatScene sub = SubsetOfSolids(flat, solids);
+    sub.freeforms = flat.freeforms;
+    for (FlatHalfSpace& h : sub.halfSpaces) {
+        if (!h.IsQuartic()) continue;
+        h.quartic.reset();
+        h.isPlane = true;
+        h.plane = Plane{0, 0, 0, 1};
+        h.transparent = true;
+    }
+    return sub;
+}
+
 }  // namespace
 
 bool SameView(const ViewRequest& a, const ViewRequest& b) {
@@ -231,6 +267,19 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
         diags.Error({}, e, {}, "command line");
         return false;
     }
+    if (info->capabilities.solids && !info->capabilities.quartics) {
+        // Solids with a quartic literal (torus, elliptical torus, general cone) are drawn by
+        // raycast and composed by depth; the engine never sees a quartic half-space.
+        std::vector<int> plain, quartic;
+        std::vector<int> firstQuartic;
+        for (std::size_t s = 0; s < flat_.solids.size(); ++s) {
+            const int q = FirstQuarticOf(flat_, static_cast<int>(s));
+            (q >= 0 ? quartic : plain).push_back(static_cast<int>(s));
+            if (q >= 0) firstQuartic.push_back(q);
+        }
+        if (!quartic.empty()) return RenderAroundQuartics(request, plain, quartic, firstQuartic,
+                                                          frame, report, diags, t0);
+    }
     Engine* engine = EngineNamed(request.engine);
     RenderOptions ro;
     ro.engineOptions = request.options;
@@ -331,6 +380,54 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
             "delta {:.3g}; --engine isocurve gives the isocurve options and statistics)",
             st.surfaces, request.engine, st.curves, st.delta);
     }
+    report.seconds = SecondsSince(t0);
+    return true;
+}
+
+bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
+                                         const std::vector<int>& plain,
+                                         const std::vector<int>& quartic,
+                                         const std::vector<int>& firstQuartic, Frame& frame,
+                                         RenderReport& report, Diagnostics& diags,
+                                         std::chrono::steady_clock::time_point t0) {
+    std::vector<UndrawnSolid> undrawn;
+    for (std::size_t k = 0; k < quartic.size(); ++k) {
+        const QuarticSurface& q =
+            *flat_.halfSpaces[static_cast<std::size_t>(firstQuartic[k])].quartic;
+        undrawn.push_back(
+            {quartic[k], fmt::format("a quartic surface ({}) is drawn only by raycast",
+                                     q.KindName())});
+    }
+    if (request.strict) {
+        std::string what;
+        for (std::size_t k = 0; k < undrawn.size() && k < 5; ++k)
+            what += fmt::format("{}  solid '{}': {}", what.empty() ? "" : "\n",
+                                flat_.solids[static_cast<std::size_t>(undrawn[k].solid)].name,
+                                undrawn[k].reason);
+        if (undrawn.size() > 5) what += fmt::format("\n  ... and {} more", undrawn.size() - 5);
+        diags.Error({},
+                    fmt::format("engine '{}' cannot draw the whole scene (strict: nothing is "
+                                "drawn by another engine):\n{}",
+                                request.engine, what),
+                    {}, "engine");
+        return false;
+    }
+    FlatScene kept = std::move(flat_);
+    flat_ = WithoutQuartics(kept, plain);
+    const bool ok = Render(request, frame, report, diags);
+    flat_ = std::move(kept);
+    if (!ok) return false;
+    for (auto& s : frame.solid)
+        if (s != Frame::kNone) s = plain[static_cast<std::size_t>(s)];
+    for (UndrawnSolid& u : report.byReference) u.solid = plain[static_cast<std::size_t>(u.solid)];
+    arena_->arena.execute([&] { ComposeReference(quartic, frame); });
+    report.byReference.insert(report.byReference.end(), undrawn.begin(), undrawn.end());
+    report.notes.push_back(fmt::format(
+        "engine {} cannot draw {} of {} solid{}; drawn by raycast and composed by depth ({} × "
+        "a quartic surface (torus, elliptical torus or general cone) is drawn only by raycast; "
+        "--strict refuses instead)",
+        request.engine, quartic.size(), flat_.solids.size(), flat_.solids.size() == 1 ? "" : "s",
+        quartic.size()));
     report.seconds = SecondsSince(t0);
     return true;
 }

@@ -28,6 +28,7 @@
 // a cancelled Shade an incomplete image (the caller asks the Cancellation).
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -167,6 +168,13 @@ class RenderContext {
                           Frame& frame);
     // Runs `work` in the arena, under the cancellation when there is one; false when cancelled.
     bool Execute(const std::function<void()>& work);
+    // Render for an engine without the `quartics` capability: it draws the `plain` solids on a
+    // flat scene without quartic half-spaces, raycast draws the `quartic` ones (their first
+    // quartic half-space in firstQuartic, for the message), composed by depth.
+    bool RenderAroundQuartics(const EngineRequest& request, const std::vector<int>& plain,
+                              const std::vector<int>& quartic, const std::vector<int>& firstQuartic,
+                              Frame& frame, RenderReport& report, Diagnostics& diags,
+                              std::chrono::steady_clock::time_point t0);
 
     std::unique_ptr<Arena> arena_;
     scene::Scene scene_;

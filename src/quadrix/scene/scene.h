@@ -14,13 +14,16 @@
 // solids under the instance's transform.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quadrix/freeform/surface.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/quadric.h"
+#include "quadrix/math/quartic_surface.h"
 #include "quadrix/scene/source_loc.h"
 
 namespace quadrix::scene {
@@ -53,16 +56,31 @@ struct Finish {
 };
 
 // A half-space bound (HSB), seed 001 §2.1.1: a surface that is drawn (when opaque) and bounds the
-// other surfaces of the bodies that name it.
+// other surfaces of the bodies that name it. A quartic (torus, elliptical torus, general cone;
+// math/quartic_surface.h) is in the scope's object coordinates like the others; MakeQuartic builds
+// one. Code that switches on `kind` must handle kQuartic (never read it as a quadric).
 struct HalfSpace {
-    enum class Kind { kPlane, kQuadric };
+    enum class Kind { kPlane, kQuadric, kQuartic };
     std::string id;
     Kind kind = Kind::kPlane;
-    Plane plane;               // when kind == kPlane
-    Quadric quadric;           // when kind == kQuadric
+    Plane plane;                                    // when kind == kPlane
+    Quadric quadric;                                // when kind == kQuadric
+    std::shared_ptr<const QuarticSurface> quartic;  // when kind == kQuartic
     bool transparent = false;  // =t: bounds others but is not drawn
     SourceLoc loc;
 };
+
+// A quartic half-space (kind kQuartic) with the given id and position.
+inline HalfSpace MakeQuartic(std::string id, const QuarticSurface& q, SourceLoc loc = {},
+                             bool transparent = false) {
+    HalfSpace h;
+    h.id = std::move(id);
+    h.kind = HalfSpace::Kind::kQuartic;
+    h.quartic = std::make_shared<const QuarticSurface>(q);
+    h.transparent = transparent;
+    h.loc = loc;
+    return h;
+}
 
 // One entry of a body's list: a half-space of the same scope, possibly complemented ("!").
 struct Literal {

@@ -63,7 +63,12 @@ bool HitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1) 
 IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complemented, const Vec3& p,
                                          const Vec3& d) {
     IntervalList set;
-    if (h.isPlane) {
+    if (h.IsQuartic()) {
+        // Any direction: the homogeneous line (p, 1) + s (d, 0) (math/quartic_surface.h).
+        const QuarticLineSet l = h.quartic->OnLine(Vec4(p, 1), Vec4(d, 0));
+        for (int i = 0; i < l.count; ++i)
+            set.Append(l.lo[static_cast<std::size_t>(i)], 0, l.hi[static_cast<std::size_t>(i)], 0);
+    } else if (h.isPlane) {
         const Plane& pl = h.plane;
         set = NonPositive(0, 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), pl.Evaluate(p));
     } else {

@@ -38,6 +38,11 @@ void BatchLiteral(const SceneTables& tables, Counters& counters, const double* x
     double* const cut = out.cut;
     const Tag& t = tables.TagOf(tag);
     const RayHalfSpace& hs = tables.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+    if (hs.quartic) {  // a quartic literal: its body goes the scalar way (EvaluateBody)
+        for (int p = 0; p < n; ++p)
+            if (flag[p] == kBatchLive) flag[p] = kBatchScalar;
+        return;
+    }
     if (hs.isPlane && std::isfinite(hs.c) && hs.c != 0) {
         counters.literals.planes += static_cast<std::uint64_t>(n);
         const double px = hs.px, py = hs.py, pd = hs.pd, c = hs.c;

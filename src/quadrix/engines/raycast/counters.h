@@ -42,7 +42,7 @@ struct Counters {
     QUADRIX_RAYCAST_COUNTERS(QUADRIX_COUNTER_FIELD)
 #undef QUADRIX_COUNTER_FIELD
     // Literal evaluations by kind (eval/ray_literal.h), reported as plane_evaluations,
-    // quadric_solves and their sum literal_evaluations.
+    // quadric_solves, quartic_solves (when there are any) and their sum literal_evaluations.
     LiteralCounters literals;
 
     void Add(const Counters& o) {
@@ -51,6 +51,7 @@ struct Counters {
 #undef QUADRIX_COUNTER_ADD
         literals.planes += o.literals.planes;
         literals.quadrics += o.literals.quadrics;
+        literals.quartics += o.literals.quartics;
     }
 
     // Calls f(name, value) for every counter, in the list's order, then the literal counts.
@@ -59,9 +60,10 @@ struct Counters {
 #define QUADRIX_COUNTER_VISIT(field, name) f(name, field);
         QUADRIX_RAYCAST_COUNTERS(QUADRIX_COUNTER_VISIT)
 #undef QUADRIX_COUNTER_VISIT
-        f("literal_evaluations", literals.planes + literals.quadrics);
+        f("literal_evaluations", literals.planes + literals.quadrics + literals.quartics);
         f("plane_evaluations", literals.planes);
         f("quadric_solves", literals.quadrics);
+        if (literals.quartics) f("quartic_solves", literals.quartics);
     }
 };
 

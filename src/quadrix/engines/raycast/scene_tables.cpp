@@ -40,7 +40,7 @@ std::vector<Vec3> SceneTables::ReferencePoints(const FlatScene& scene) {
     std::vector<Vec3> ref;
     ref.reserve(scene.halfSpaces.size());
     for (const FlatHalfSpace& hs : scene.halfSpaces)
-        ref.push_back(hs.isPlane ? anchor : RayHalfSpace::Centre(hs.quadric).value_or(anchor));
+        ref.push_back(!hs.IsQuadric() ? anchor : RayHalfSpace::Centre(hs.quadric).value_or(anchor));
     return ref;
 }
 

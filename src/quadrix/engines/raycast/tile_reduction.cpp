@@ -37,7 +37,7 @@ bool CornerBounds(const SceneTables& tables, bool tileCull, const std::int32_t* 
             } else if (finite) {
                 b.side = (hs.c > 0) != t.complemented ? 1 : -1;  // 1: t <= r, -1: t >= r
             }
-        } else if (!hs.isPlane && tileCull) {
+        } else if (hs.IsQuadric() && tileCull) {  // (quartics: no proof, kept)
             const QuadricOnRect q = ClassifyQuadric(hs, r.x0, r.x1, r.y0, r.y1);
             if (q != QuadricOnRect::kUnknown) {
                 // No ray of the rectangle meets the surface: the literal holds on all of every

@@ -152,7 +152,7 @@ void Tracer::EvaluateBody(std::int32_t body, std::int32_t node, double x, double
         } else {
             RaySet set = LiteralOnRay(hs, t.complemented, x, y, tag, counters_.literals);
             if (set.count == 0) return;
-            if (set.count == 2) {
+            if (set.count >= 2) {  // two pieces (three for a complemented quartic)
                 EvaluateBodyLists(run, set, it + 1, tagsEnd, x, y, slot);
                 return;
             }

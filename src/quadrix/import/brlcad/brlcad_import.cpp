@@ -328,12 +328,9 @@ class Converter {
                 hs.id = fmt::format("{}.{}", p.name, scene_.top.halfSpaces.size());
                 hs.loc = p.loc;
                 hs.transparent = h.transparent;
-                const ShapeHalfSpace placed = Placed(h, *t);
-                hs.kind = placed.isPlane ? scene::HalfSpace::Kind::kPlane
-                                         : scene::HalfSpace::Kind::kQuadric;
-                hs.plane = placed.plane;
-                hs.quadric = placed.quadric;
-                body.literals.push_back({static_cast<int>(scene_.top.halfSpaces.size()), false});
+                SetSceneSurface(Placed(h, *t), hs);
+                body.literals.push_back(
+                    {static_cast<int>(scene_.top.halfSpaces.size()), h.complement});
                 scene_.top.halfSpaces.push_back(std::move(hs));
             }
             e.bodies.push_back(static_cast<int>(scene_.top.bodies.size()));
@@ -342,7 +339,7 @@ class Converter {
         if (cr.shape.unbounded) {
             e.box = Box3::Everything();
         } else {
-            for (const ExtentPiece& piece : cr.shape.extent) e.box.Extend(PieceBox(piece, total));
+            e.box = ShapeBox(cr.shape, total);
         }
         int idx = AddExpr(std::move(e));
         leafCache_[key] = idx;

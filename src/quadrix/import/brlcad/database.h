@@ -22,7 +22,7 @@ namespace quadrix::import::brlcad {
 // One primitive with the parameters of FORMAT.md §2.3 / §3.1 (only those its type uses are set).
 struct Primitive {
     std::string type;  // v5 type name: arb8, arbn, half, ell, tgc, rpc, rhc, epa, ehy, hyp, part,
-                       // or any other name (tor, eto, pipe, dsp, ...), kept for the census
+                       // tor, eto, pipe, bot, or any other name (dsp, ...), kept for the census
     std::string name;
     std::array<Vec3, 8> pts{};  // arb8 vertices 1..8, absolute
     Vec3 V, H, A, B, C, D, N;
@@ -31,6 +31,13 @@ struct Primitive {
     // tor: V, H (unit normal), r1 = r_a (ring radius), r2 = r_h (tube radius).
     // eto: V, N, C, r, rd.
     double rd = 0;
+    // pipe (FORMAT.md §3.1 `V0 O0 I0 R0 V1 ...`): the points in order, each with the outer and
+    // inner diameters and the bend radius used at that point (pipe_solid.h).
+    struct PipePoint {
+        Vec3 at;
+        double od = 0, id = 0, bend = 0;
+    };
+    std::vector<PipePoint> pipe;
     // bot (triangle mesh, FORMAT.md §3.1): vertices, 0-based triangles, mode (1 surface, 2 solid,
     // 3 plate, 4 plate without obliquity), orientation (1 unoriented, 2 counter-clockwise seen
     // from outside, 3 clockwise), and in plate modes one thickness and one "appended" flag

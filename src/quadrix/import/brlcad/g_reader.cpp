@@ -308,6 +308,9 @@ class GReader {
             case 30:
                 ok = Bot(c, o, p);
                 break;
+            case 15:
+                ok = Pipe(c, o, p);
+                break;
             default:  // kept by name for the census; the converter reports it if reached
                 break;
         }
@@ -321,6 +324,18 @@ class GReader {
             double q[4] = {0, 0, 0, 0};
             if (!Doubles(c, o, 4, q)) return false;
             p.planes.push_back(Plane{q[0], q[1], q[2], -q[3]});
+        }
+        return true;
+    }
+
+    // pipe: u32 count, then per point x y z id od bend (g_format.h).
+    bool Pipe(Cursor& c, const RawObject& o, Primitive& p) {
+        std::uint64_t n = 0;
+        if (!c.U(4, n) || n > c.left() / 48) return Fail(o, "pipe: bad point count");
+        for (std::uint64_t i = 0; i < n; ++i) {
+            double q[6] = {0, 0, 0, 0, 0, 0};
+            if (!Doubles(c, o, 6, q)) return false;
+            p.pipe.push_back({{q[0], q[1], q[2]}, q[4], q[3], q[5]});
         }
         return true;
     }

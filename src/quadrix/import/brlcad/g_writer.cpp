@@ -102,6 +102,10 @@ std::optional<std::string> SolidBody(const Primitive& p, std::string* error) {
     } else if (t == "epa" || t == "ehy") {
         b.Vec(p.V), b.Vec(p.H), b.Vec(p.A), b.Double(p.r1), b.Double(p.r2);
         if (t == "ehy") b.Double(p.c);
+    } else if (t == "pipe") {
+        b.U(p.pipe.size(), 4);
+        for (const Primitive::PipePoint& q : p.pipe)
+            b.Vec(q.at), b.Double(q.id), b.Double(q.od), b.Double(q.bend);
     } else if (t == "eto") {
         b.Vec(p.V), b.Vec(p.N), b.Vec(p.C), b.Double(p.r), b.Double(p.rd);
     } else if (t == "hyp") {

@@ -1,5 +1,6 @@
 // BRL-CAD primitives as Quadrix half-spaces; the decompositions are those of FORMAT.md §6.1,
-// written out per primitive below with the local frame each uses.
+// written out per primitive below with the local frame each uses; the quartics (tor, eto, general
+// tgc) are quartic_surface.h's, the pipe is pipe_solid.h's.
 #include "quadrix/import/brlcad/primitives.h"
 
 #include <fmt/format.h>
@@ -7,6 +8,8 @@
 #include <cmath>
 
 #include "quadrix/import/brlcad/mesh_solid.h"
+#include "quadrix/import/brlcad/pipe_solid.h"
+#include "quadrix/math/quartic_surface.h"
 
 namespace quadrix::import::brlcad {
 
@@ -232,6 +235,79 @@ ConvertResult Ell(const Primitive& p) {
     return r;
 }
 
+// A tgc whose end ellipses are not similar (|A|·|D| != |B|·|C|): the quartic general cone
+// (quartic_surface.h) capped by the planes of its end ellipses. Extent: the two end ellipses.
+ConvertResult GeneralTgc(const Primitive& p) {
+    std::string why;
+    auto q = QuarticSurface::GeneralCone(p.V, p.H, p.A, p.B, Length(p.C), Length(p.D), &why);
+    if (!q) {
+        ConvertResult bad = Invalid(p, why);
+        bad.censusName = "tgc (quartic)";
+        return bad;
+    }
+    ConvertResult r;
+    r.censusName = "tgc (quartic)";
+    ShapeHalfSpace cone;
+    cone.SetQuartic(*q);
+    ShapeBody body{cone};
+    for (const Vec4& cap : q->GeneralConeCaps()) {
+        ShapeHalfSpace h;
+        h.plane = Plane::FromVec4(cap);
+        body.push_back(h);
+    }
+    r.shape.bodies.push_back(std::move(body));
+    auto unit = [](const Vec3& u) { return Length(u) > 0 ? Normalize(u) : Vec3{}; };
+    r.shape.extent.push_back({p.V, p.A, p.B, {}});
+    r.shape.extent.push_back({p.V + p.H, unit(p.A) * Length(p.C), unit(p.B) * Length(p.D), {}});
+    return r;
+}
+
+// Torus: centre V, unit axis H, ring radius r1 (r_a), tube radius r2 (r_h). Its hull is the ring
+// circle plus a ball of the tube radius (an exact Minkowski-sum extent).
+ConvertResult Tor(const Primitive& p) {
+    std::string why;
+    auto q = QuarticSurface::Torus(p.V, p.H, p.r1, p.r2, &why);
+    if (!q) return Invalid(p, why);
+    ConvertResult r;
+    ShapeHalfSpace h;
+    h.SetQuartic(*q);
+    r.shape.bodies.push_back({h});
+    const Vec3 n = Normalize(p.H), e1 = AnyPerpendicular(n), e2 = Cross(n, e1);
+    r.shape.extentSums.push_back(
+        {{p.V, e1 * p.r1, e2 * p.r1, {}}, {{}, {p.r2, 0, 0}, {0, p.r2, 0}, {0, 0, p.r2}}});
+    return r;
+}
+
+// Elliptical torus: centre V, axis N, radius of revolution r, meridian ellipse with semi-axis
+// vector C and other semi-axis r_d. Extent: the circle of radius r plus the cylinder (disc ⊕
+// segment) that holds the meridian ellipse's box, a containing sum.
+ConvertResult Eto(const Primitive& p) {
+    std::string why;
+    auto q = QuarticSurface::EllipticalTorus(p.V, p.N, p.r, p.C, p.rd, &why);
+    if (!q) return Invalid(p, why);
+    ConvertResult r;
+    ShapeHalfSpace h;
+    h.SetQuartic(*q);
+    r.shape.bodies.push_back({h});
+    const Vec3 n = Normalize(p.N), e1 = AnyPerpendicular(n), e2 = Cross(n, e1);
+    const double lc = Length(p.C);
+    const double cz = Dot(p.C, n), crho = Length(p.C - n * cz);
+    // The meridian ellipse's half extents along the radius and along the axis.
+    const double er = std::sqrt(crho * crho + p.rd * p.rd * cz * cz / (lc * lc));
+    const double ez = std::sqrt(cz * cz + p.rd * p.rd * crho * crho / (lc * lc));
+    r.shape.extentSums.push_back(
+        {{p.V, e1 * p.r, e2 * p.r, {}}, {{}, e1 * er, e2 * er, {}}, {{}, n * ez, {}, {}}});
+    return r;
+}
+
+ConvertResult Pipe(const Primitive& p) {
+    PipeShape s = PipeToShape(LayOutPipe(p.pipe));
+    if (!s.ok) return Invalid(p, s.problem);
+    ConvertResult r;
+    r.shape = std::move(s.shape);
+    return r;
+}
+
 // Truncated general cone, quadric case (FORMAT.md §6.1): P = V + s H + α A + β B,
 // α² + β² <= (1 + s(k-1))², 0 <= s <= 1, k = |C|/|A| = |D|/|B|.
 ConvertResult Tgc(const Primitive& p) {
@@ -240,15 +316,15 @@ ConvertResult Tgc(const Primitive& p) {
     if (Length(h) == 0) return Invalid(p, "the height vector H is zero");
     if ((la == 0 || lb == 0) && (lc == 0 || ld == 0))
         return Invalid(p, "both end ellipses are degenerate");
+    // C must be parallel to A and D to B, in the same sense (librt's tgc); a zero C or D is a
+    // degenerate end.
+    auto parallel = [](const Vec3& u, const Vec3& w) {
+        const double lu = Length(u), lw = Length(w);
+        return lu == 0 || lw == 0 || Length(u / lu - w / lw) <= 1e-4;
+    };
+    if (!parallel(a, c) || !parallel(b, d)) return Invalid(p, "C must be parallel to A and D to B");
     double ad = la * ld, bc = lb * lc;
-    if (std::fabs(ad - bc) > kTgcRelTol * std::fmax(ad, bc)) {
-        ConvertResult r;
-        r.status = ConvertResult::Status::kNonQuadric;
-        r.censusName = "tgc (quartic)";
-        r.problem =
-            "its end ellipses are not similar, which makes a quartic surface (not drawn yet)";
-        return r;
-    }
+    if (std::fabs(ad - bc) > kTgcRelTol * std::fmax(ad, bc)) return GeneralTgc(p);
     if (la == 0 || lb == 0) {  // apex at the base: describe it from the top end
         v = v + h;
         h = -h;
@@ -258,15 +334,6 @@ ConvertResult Tgc(const Primitive& p) {
         std::swap(lb, ld);
     }
     double k = lc / la;
-    // C and D must be parallel to A and B (same sense) for the cross-sections to be similar.
-    if (Length(c - a * k) > 1e-4 * (lc + la) || Length(d - b * (ld / lb)) > 1e-4 * (ld + lb)) {
-        ConvertResult r;
-        r.status = ConvertResult::Status::kNonQuadric;
-        r.censusName = "tgc (quartic)";
-        r.problem =
-            "its end ellipses are not similar, which makes a quartic surface (not drawn yet)";
-        return r;
-    }
     LocalFrame f(v, a, b, h);
     if (!f.ok()) return Invalid(p, "A, B and H are coplanar");
     ConvertResult r;
@@ -455,12 +522,15 @@ ConvertResult ConvertPrimitive(const Primitive& p) {
         r = Hyp(p);
     else if (t == "part")
         r = Part(p);
+    else if (t == "tor")
+        r = Tor(p);
+    else if (t == "eto")
+        r = Eto(p);
+    else if (t == "pipe")
+        r = Pipe(p);
     else {
         r.status = ConvertResult::Status::kNonQuadric;
-        r.problem = t == "tor"    ? "a torus is a quartic surface (not drawn yet)"
-                    : t == "eto"  ? "an elliptical torus is a quartic surface (not drawn yet)"
-                    : t == "pipe" ? "a pipe's bends are tori, quartic surfaces (not drawn yet)"
-                                  : "this primitive type is not made of quadrics and planes";
+        r.problem = "this primitive type is not made of quadrics, quartics and planes";
     }
     if (r.censusName.empty()) r.censusName = t;
     return r;
@@ -470,8 +540,8 @@ bool ShapeContains(const Shape& shape, const Vec3& p, double tol) {
     for (const ShapeBody& body : shape.bodies) {
         bool in = true;
         for (const ShapeHalfSpace& h : body) {
-            double v = h.isPlane ? h.plane.Evaluate(p) : h.quadric.Evaluate(p);
-            if (!(v <= tol)) {
+            const double v = h.Evaluate(p);
+            if (h.complement ? !(v > -tol) : !(v <= tol)) {
                 in = false;
                 break;
             }
@@ -493,9 +563,42 @@ Box3 PieceBox(const ExtentPiece& piece, const Mat4& m) {
     return box;
 }
 
+Box3 ShapeBox(const Shape& shape, const Mat4& m) {
+    Box3 box;
+    for (const ExtentPiece& piece : shape.extent) box.Extend(PieceBox(piece, m));
+    // A sum's box: the first term placed by m, every later term an offset (its centre a vector).
+    for (const auto& sum : shape.extentSums) {
+        if (sum.empty()) continue;
+        Box3 s = PieceBox(sum[0], m);
+        for (std::size_t i = 1; i < sum.size(); ++i) {
+            const Box3 b = PieceBox(sum[i], m);
+            const Vec3 shift = m.MapVector(sum[i].c) - m.MapPoint(sum[i].c);
+            s.lo = s.lo + b.lo + shift;
+            s.hi = s.hi + b.hi + shift;
+        }
+        box.Extend(s);
+    }
+    return box;
+}
+
+void SetSceneSurface(const ShapeHalfSpace& placed, scene::HalfSpace& hs) {
+    if (placed.IsQuartic()) {
+        hs.kind = scene::HalfSpace::Kind::kQuartic;
+        hs.quartic = placed.quartic;
+    } else if (placed.isPlane) {
+        hs.kind = scene::HalfSpace::Kind::kPlane;
+        hs.plane = placed.plane;
+    } else {
+        hs.kind = scene::HalfSpace::Kind::kQuadric;
+        hs.quadric = placed.quadric;
+    }
+}
+
 ShapeHalfSpace Placed(const ShapeHalfSpace& h, const Transform& t) {
     ShapeHalfSpace out = h;
-    if (h.isPlane) {
+    if (h.IsQuartic()) {
+        out.TransformBy(t);
+    } else if (h.isPlane) {
         Plane pl = h.plane.Transformed(t);
         const double n = Length(pl.Normal());
         if (n > 0) pl = Plane{pl.a / n, pl.b / n, pl.c / n, pl.d / n};

@@ -284,6 +284,16 @@ class V5Reader {
             vec("V", p.V), vec("H", p.H), num("r_a", p.r1), num("r_h", p.r2);
         } else if (type == "eto") {
             vec("V", p.V), vec("N", p.N), vec("C", p.C), num("r", p.r), num("r_d", p.rd);
+        } else if (type == "pipe") {
+            // V<k> {x y z} O<k> od I<k> id R<k> bend, k = 0, 1, ... while V<k> is present.
+            for (int k = 0; ok && kv.count(fmt::format("V{}", k)); ++k) {
+                Primitive::PipePoint pt;
+                const std::string v = fmt::format("V{}", k), o = fmt::format("O{}", k),
+                                  i = fmt::format("I{}", k), r = fmt::format("R{}", k);
+                vec(v.c_str(), pt.at), num(o.c_str(), pt.od), num(i.c_str(), pt.id),
+                    num(r.c_str(), pt.bend);
+                p.pipe.push_back(pt);
+            }
         } else if (type == "bot") {
             ok = Bot(w, kv, what, p);
         } else if (type == "arbn") {

@@ -582,12 +582,9 @@ class Builder {
                 hs.id = fmt::format("{}.{}", n.name, scene_.top.halfSpaces.size());
                 hs.loc = body.loc;
                 hs.transparent = h.transparent;
-                const brlcad::ShapeHalfSpace placed = brlcad::Placed(h, *t);
-                hs.kind = placed.isPlane ? scene::HalfSpace::Kind::kPlane
-                                         : scene::HalfSpace::Kind::kQuadric;
-                hs.plane = placed.plane;
-                hs.quadric = placed.quadric;
-                body.literals.push_back({static_cast<int>(scene_.top.halfSpaces.size()), false});
+                brlcad::SetSceneSurface(brlcad::Placed(h, *t), hs);
+                body.literals.push_back(
+                    {static_cast<int>(scene_.top.halfSpaces.size()), h.complement});
                 scene_.top.halfSpaces.push_back(std::move(hs));
             }
             scene::CsgNode leaf;
@@ -597,9 +594,7 @@ class Builder {
             int li = Add(csg, leaf);
             root = root < 0 ? li : Op(csg, scene::CsgOp::kUnion, root, li);
         }
-        box = Box3{};
-        for (const brlcad::ExtentPiece& piece : cr.shape.extent)
-            box.Extend(brlcad::PieceBox(piece, total));
+        box = brlcad::ShapeBox(cr.shape, total);
         return root;
     }
 
@@ -880,6 +875,43 @@ class Builder {
                                      k, extrusion_->node->name));
     }
 
+    // rotate_extrude of an exact circle (x = radius, y = height in the profile plane): a torus
+    // about the z axis, or an elliptical torus (BRL-CAD eto) when the profile's transforms make
+    // the circle an ellipse; its principal semi-axes u ⊥ v come from the images a, b of the radii
+    // (a cos t + b sin t is extreme at tan 2t = 2a·b / (|a|² − |b|²)). A circle that reaches the
+    // axis is refused (OpenSCAD refuses it too).
+    int RevolvedCircle(scene::Csg& csg, const Node& n, const Mat4& m2, double r,
+                       const std::optional<Paint>& color, Box3& box) {
+        const Vec3 c = m2.MapPoint({0, 0, 0});
+        const Vec3 a = m2.MapPoint({r, 0, 0}) - c, b = m2.MapPoint({0, r, 0}) - c;
+        const double t0 = 0.5 * std::atan2(2 * (a.x * b.x + a.y * b.y),
+                                           a.x * a.x + a.y * a.y - b.x * b.x - b.y * b.y);
+        const Vec3 u = a * std::cos(t0) + b * std::sin(t0), v = b * std::cos(t0) - a * std::sin(t0);
+        const double lu = std::hypot(u.x, u.y), lv = std::hypot(v.x, v.y);
+        const double reach = std::sqrt(u.x * u.x + v.x * v.x);  // the ellipse's radial half extent
+        if (!(std::fabs(c.x) > reach))
+            return Refuse(n,
+                          "rotate_extrude: the circle reaches the rotation axis (OpenSCAD "
+                          "refuses it too); it is left out");
+        brlcad::Primitive p;
+        p.name = n.name;
+        if (std::fabs(lu - lv) <= 1e-12 * std::fmax(lu, lv)) {
+            p.type = "tor";
+            p.V = {0, 0, c.y}, p.H = {0, 0, 1}, p.r1 = std::fabs(c.x), p.r2 = lu;
+        } else {
+            // The semi-axis vector C in the meridian plane through +x (radius x, axis z); a
+            // circle at negative x is the same solid mirrored: flip its radial component.
+            const double sx = c.x < 0 ? -1 : 1;
+            p.type = "eto";
+            p.V = {0, 0, c.y}, p.N = {0, 0, 1}, p.r = std::fabs(c.x), p.C = {sx * u.x, 0, u.y};
+            p.rd = lv;
+        }
+        brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
+        if (cr.status != brlcad::ConvertResult::Status::kOk)
+            return Refuse(n, fmt::format("rotate_extrude: {}; it is left out", cr.problem));
+        return LeafShape(csg, n, cr.shape, extrusion_->outer, color, box);
+    }
+
     // square, circle, polygon → rings in the extrusion plane → the extruded or revolved shape.
     int Profile(scene::Csg& csg, const Node& n, const Mat4& m2, const std::optional<Paint>& color,
                 Box3& box) {
@@ -903,10 +935,7 @@ class Builder {
             if (!(r > 0)) return -1;
             auto sides = scad::PolygonSides(r, SpecialsOf(n));
             if (!sides) {
-                if (e.rotate)
-                    return Refuse(n,
-                                  "rotate_extrude of a circle is a torus (a quartic surface), "
-                                  "which is not drawn yet; it is left out");
+                if (e.rotate) return RevolvedCircle(csg, n, m2, r, color, box);
                 // The exact circle: an elliptic cylinder (or cone, with scale) in the extrusion.
                 const Vec3 c = m2.MapPoint({0, 0, 0});
                 Vec3 a = m2.MapPoint({r, 0, 0}) - c, b = m2.MapPoint({0, r, 0}) - c;
