@@ -79,20 +79,22 @@ TEST(QuarticScene, TorusSeenAlongItsAxisIsAnAnnulus) {
                       return std::fmin(std::fabs(rho(x, y) - 0.7), std::fabs(rho(x, y) - 1.7));
                   }),
               0);
-    // The exact normal: at the middle of the tube (ρ = 1.2) it faces the viewer (−z in world).
-    const std::size_t k = f.Index(100 + 60, 100);
-    ASSERT_NE(f.surface[k], Frame::kNone);
-    EXPECT_NEAR(f.normal[k].z, -1, 1e-9);
-    // At ρ = 1.2 + 0.4 the tube's normal is (0.4, 0, −0.3)/0.5.
-    const std::size_t m = f.Index(100 + 80, 100);
-    EXPECT_NEAR(f.normal[m].x, 0.8, 0.02);
-    EXPECT_NEAR(f.normal[m].z, -0.6, 0.02);
+    // Exact normals: at a tube point seen from −z, (d x/ρ, d y/ρ, −√(r² − d²)) / r with d = ρ − R.
+    for (int i : {160, 180, 130}) {
+        const double x = (i + 0.5 - 100) / kPx, y = (100 - 100 - 0.5) / kPx, rh = rho(x, y);
+        const double d = rh - 1.2, dz = std::sqrt(0.25 - d * d);
+        const std::size_t k = f.Index(i, 100);
+        ASSERT_NE(f.surface[k], Frame::kNone);
+        EXPECT_NEAR(f.normal[k].x, d * x / rh / 0.5, 1e-9) << i;
+        EXPECT_NEAR(f.normal[k].y, d * y / rh / 0.5, 1e-9) << i;
+        EXPECT_NEAR(f.normal[k].z, -dz / 0.5, 1e-9) << i;
+    }
 }
 
 TEST(QuarticScene, TorusSeenSidewaysIsAStadium) {
     // Axis y, seen along z: every point within r of the segment |x| <= R (area 4Rr + πr²).
-    auto run = Render(std::string(kFrontView) + "solid torus ring =r 1.2 .5 =axis 0 1 0;\n",
-                      200, 200);
+    auto run =
+        Render(std::string(kFrontView) + "solid torus ring =r 1.2 .5 =axis 0 1 0;\n", 200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
     auto dist = [](double x, double y) { return std::hypot(std::fmax(std::fabs(x) - 1.2, 0), y); };
     EXPECT_EQ(Misclassified(
@@ -135,9 +137,9 @@ TEST(QuarticScene, TorusMinusCylinderAndTorusCutByAPlane) {
                   half->r.frame,
                   [&](double x, double y) { return rho(x, y) > 0.7 && rho(x, y) < 1.7 && y < 0; },
                   [&](double x, double y) {
-                      return std::fmin(std::fmin(std::fabs(rho(x, y) - 0.7),
-                                                 std::fabs(rho(x, y) - 1.7)),
-                                       std::fabs(y));
+                      return std::fmin(
+                          std::fmin(std::fabs(rho(x, y) - 0.7), std::fabs(rho(x, y) - 1.7)),
+                          std::fabs(y));
                   }),
               0);
 }
@@ -193,14 +195,15 @@ TEST(QuarticScene, GeneralConeSectionsAndCaps) {
 TEST(QuarticScene, EllipticalTorusMatchesItsMeridianEllipse) {
     // Seen along its axis, an eto whose ellipse (semi-axes 0.6 along the radius, 0.3 along the
     // axis) has no tilt is the annulus 1.2 ± 0.6.
-    auto run = Render(std::string(kFrontView) + "solid etorus e =r 1.2 =e .6 0 0 =d .3;\n", 200,
-                      200);
+    auto run =
+        Render(std::string(kFrontView) + "solid etorus e =r 1.2 =e .6 0 0 =d .3;\n", 200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
     auto rho = [](double x, double y) { return std::hypot(x, y); };
-    EXPECT_EQ(Misclassified(
-                  run->r.frame, [&](double x, double y) { return std::fabs(rho(x, y) - 1.2) < 0.6; },
-                  [&](double x, double y) { return std::fabs(std::fabs(rho(x, y) - 1.2) - 0.6); }),
-              0);
+    EXPECT_EQ(
+        Misclassified(
+            run->r.frame, [&](double x, double y) { return std::fabs(rho(x, y) - 1.2) < 0.6; },
+            [&](double x, double y) { return std::fabs(std::fabs(rho(x, y) - 1.2) - 0.6); }),
+        0);
 }
 
 TEST(QuarticScene, OtherEnginesComposeQuarticsFromRaycast) {
@@ -256,8 +259,8 @@ TEST(QuarticScene, BadParametersAreErrorsAtTheirPositions) {
 TEST(QuarticScene, DrawRefusesQuarticsByName) {
     TempDir dir;
     const std::string scene = dir.Write("t.uq", "solid torus ring =r 2 .5;\n");
-    CommandResult r = RunShell(QuadrixBinary() + " draw '" + scene + "' -o '" +
-                               dir.File("t.svg") + "'");
+    CommandResult r =
+        RunShell(QuadrixBinary() + " draw '" + scene + "' -o '" + dir.File("t.svg") + "'");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("torus"), std::string::npos) << r.err;
     EXPECT_FALSE(FileExists(dir.File("t.svg")));

@@ -33,7 +33,8 @@ TEST(MathQuarticRoots, FindsFourSimpleRootsToFullPrecision) {
         std::vector<double> r{u(rng), u(rng), u(rng), u(rng)};
         std::sort(r.begin(), r.end());
         bool separated = true;
-        for (int i = 0; i < 3; ++i) separated &= r[static_cast<std::size_t>(i + 1)] - r[static_cast<std::size_t>(i)] > 1e-3;
+        for (int i = 0; i < 3; ++i)
+            separated &= r[static_cast<std::size_t>(i + 1)] - r[static_cast<std::size_t>(i)] > 1e-3;
         if (!separated) continue;
         std::array<double, 4> got{};
         ASSERT_EQ(SignChangeRoots(FromRoots(r), -1.5, 1.5, got), 4);

@@ -24,7 +24,6 @@
 #pragma once
 
 #include <chrono>
-
 #include <map>
 #include <memory>
 #include <optional>
