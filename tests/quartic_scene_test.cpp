@@ -152,10 +152,22 @@ TEST(QuarticScene, ComplementedTorusInABody) {
                           "body slabbed (slab#x0 slab#x1 slab#y0 slab#y1 slab#z0 slab#z1 !ring);\n",
                       200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
-    // Seen along z the slab covers |x| < 1.9, |y| < .2 whatever the torus inside it does.
-    auto inside = [](double x, double y) { return std::fabs(x) < 1.9 && std::fabs(y) < 0.2; };
-    auto dist = [](double x, double y) {
-        return std::fmin(std::fabs(std::fabs(x) - 1.9), std::fabs(std::fabs(y) - 0.2));
+    // Along z through (x, y) the slab keeps z ∈ [−1, 1], where ρ = √(x² + z²) runs over
+    // [|x|, √(x² + 1)]; the ray sees the body unless that whole range lies in the tube,
+    // |ρ − 1.2| <= w = √(.25 − y²).
+    auto slack = [](double x, double y, int which) {
+        const double w = std::sqrt(0.25 - y * y);
+        return which == 0 ? std::fabs(x) - (1.2 - w) : (1.2 + w) - std::sqrt(x * x + 1);
+    };
+    auto inside = [&](double x, double y) {
+        if (!(std::fabs(x) < 1.9 && std::fabs(y) < 0.2)) return false;
+        return !(slack(x, y, 0) >= 0 && slack(x, y, 1) >= 0);
+    };
+    auto dist = [&](double x, double y) {
+        double d = std::fmin(std::fabs(std::fabs(x) - 1.9), std::fabs(std::fabs(y) - 0.2));
+        if (std::fabs(y) < 0.2)  // the slacks change by at most ~1 per unit (|∂/∂x|, |∂/∂y| <= 1)
+            d = std::fmin(d, std::fmin(std::fabs(slack(x, y, 0)), std::fabs(slack(x, y, 1))));
+        return d;
     };
     EXPECT_EQ(Misclassified(run->r.frame, inside, dist), 0);
     // At x = 0 the tube takes z ∈ [−1.7, −0.7] out of the slab's front: the visible surface is
