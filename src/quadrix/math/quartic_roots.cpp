@@ -48,8 +48,7 @@ double RefineRoot(const Poly& p, const Poly& dp, double a, double b, double fa) 
         const double w = b - a;
         // Converged: a Newton step inside the bracket below ~4 ulps (quadratic convergence, so
         // the root is known to full precision without bisecting the far end down to it).
-        if (next > a && next < b && std::fabs(next - x) <= 1e-15 * (1 + std::fabs(x)))
-            return next;
+        if (next > a && next < b && std::fabs(next - x) <= 1e-15 * (1 + std::fabs(x))) return next;
         if (!(next > a && next < b) || w > 0.5 * width) next = mid;
         width = w;
         if (next == x) break;
