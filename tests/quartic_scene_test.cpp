@@ -281,3 +281,25 @@ TEST(QuarticScene, DrawRefusesQuarticsByName) {
 
 }  // namespace
 }  // namespace quadrix::testing
+
+namespace quadrix::testing {
+namespace {
+
+// The example scene renders, and the composition for an engine without quartics gives the
+// reference picture away from edges.
+TEST(QuarticScene, ExampleSceneRendersAndComposes) {
+    PipelineOptions o;
+    o.scenePaths = {SourcePath("examples/quartics.uq")};
+    o.width = 120;
+    o.height = 80;
+    PipelineResult ref, scan;
+    Diagnostics d;
+    ASSERT_TRUE(RunPipeline(o, ref, d));
+    o.engine = "scanline";
+    ASSERT_TRUE(RunPipeline(o, scan, d));
+    EXPECT_GT(ref.frame.CoveredCount(), 2000u);
+    EXPECT_EQ(CompareFrames(scan.frame, ref.frame, {}).offEdgeDifferences, 0u);
+}
+
+}  // namespace
+}  // namespace quadrix::testing
