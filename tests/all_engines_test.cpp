@@ -46,9 +46,10 @@ class DummyEngine final : public Engine {
 };
 
 // The one row that registers an engine.
-const bool kDummyRegistered = RegisterEngine({"dummy-test", "draws nothing (tests composition)",
-                                              [] { return std::make_unique<DummyEngine>(); },
-                                              EngineCapabilities{.solids = true, .freeforms = false, .quartics = false}, true});
+const bool kDummyRegistered = RegisterEngine(
+    {"dummy-test", "draws nothing (tests composition)",
+     [] { return std::make_unique<DummyEngine>(); },
+     EngineCapabilities{.solids = true, .freeforms = false, .quartics = false}, true});
 
 struct CorpusScene {
     std::string name;

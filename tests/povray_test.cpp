@@ -193,9 +193,9 @@ const std::string kGeneralCone =
 const std::string kQuarticCsg =
     "text:solid torus ring =r 1.4 .45 =axis 0 1 0;\n"
     "solid cylinder rod =from -2 0 0 =to 2 0 0 =r .25;\n"
-    "solid halfspace cut =n 1 1 0 =at .2 0 0;\n"
+    "solid halfspace cut =n 1 1 0 =at .2 0 0; body side (cut);\n"
     "solid sphere ball =at 0 0 0 =r .6;\n"
-    "csg part ((ring - rod) & cut | ball); view v dop .3 .5 -1;";
+    "csg part ((ring - rod) & side | ball); view v dop .3 .5 -1;";
 const std::string kTorusPerspective =
     "text:solid torus ring =r 1.5 .5; view eye vrp 0 0 0 cop 1.5 2.5 -5;";
 

@@ -79,20 +79,22 @@ TEST(QuarticScene, TorusSeenAlongItsAxisIsAnAnnulus) {
                       return std::fmin(std::fabs(rho(x, y) - 0.7), std::fabs(rho(x, y) - 1.7));
                   }),
               0);
-    // The exact normal: at the middle of the tube (ρ = 1.2) it faces the viewer (−z in world).
-    const std::size_t k = f.Index(100 + 60, 100);
-    ASSERT_NE(f.surface[k], Frame::kNone);
-    EXPECT_NEAR(f.normal[k].z, -1, 1e-9);
-    // At ρ = 1.2 + 0.4 the tube's normal is (0.4, 0, −0.3)/0.5.
-    const std::size_t m = f.Index(100 + 80, 100);
-    EXPECT_NEAR(f.normal[m].x, 0.8, 0.02);
-    EXPECT_NEAR(f.normal[m].z, -0.6, 0.02);
+    // Exact normals: at a tube point seen from −z, (d x/ρ, d y/ρ, −√(r² − d²)) / r with d = ρ − R.
+    for (int i : {140, 160, 180}) {
+        const double x = (i + 0.5 - 100) / kPx, y = (100 - 100 - 0.5) / kPx, rh = rho(x, y);
+        const double d = rh - 1.2, dz = std::sqrt(0.25 - d * d);
+        const std::size_t k = f.Index(i, 100);
+        ASSERT_NE(f.surface[k], Frame::kNone);
+        EXPECT_NEAR(f.normal[k].x, d * x / rh / 0.5, 1e-9) << i;
+        EXPECT_NEAR(f.normal[k].y, d * y / rh / 0.5, 1e-9) << i;
+        EXPECT_NEAR(f.normal[k].z, -dz / 0.5, 1e-9) << i;
+    }
 }
 
 TEST(QuarticScene, TorusSeenSidewaysIsAStadium) {
     // Axis y, seen along z: every point within r of the segment |x| <= R (area 4Rr + πr²).
-    auto run = Render(std::string(kFrontView) + "solid torus ring =r 1.2 .5 =axis 0 1 0;\n",
-                      200, 200);
+    auto run =
+        Render(std::string(kFrontView) + "solid torus ring =r 1.2 .5 =axis 0 1 0;\n", 200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
     auto dist = [](double x, double y) { return std::hypot(std::fmax(std::fabs(x) - 1.2, 0), y); };
     EXPECT_EQ(Misclassified(
@@ -135,9 +137,9 @@ TEST(QuarticScene, TorusMinusCylinderAndTorusCutByAPlane) {
                   half->r.frame,
                   [&](double x, double y) { return rho(x, y) > 0.7 && rho(x, y) < 1.7 && y < 0; },
                   [&](double x, double y) {
-                      return std::fmin(std::fmin(std::fabs(rho(x, y) - 0.7),
-                                                 std::fabs(rho(x, y) - 1.7)),
-                                       std::fabs(y));
+                      return std::fmin(
+                          std::fmin(std::fabs(rho(x, y) - 0.7), std::fabs(rho(x, y) - 1.7)),
+                          std::fabs(y));
                   }),
               0);
 }
@@ -147,13 +149,25 @@ TEST(QuarticScene, ComplementedTorusInABody) {
     auto run = Render(std::string(kFrontView) +
                           "solid torus ring =r 1.2 .5 =axis 0 1 0 =hsb;\n"
                           "solid box slab =from -1.9 -.2 -1 =to 1.9 .2 1 =hsb;\n"
-                          "body b (slab#x0 slab#x1 slab#y0 slab#y1 slab#z0 slab#z1 !ring);\n",
+                          "body slabbed (slab#x0 slab#x1 slab#y0 slab#y1 slab#z0 slab#z1 !ring);\n",
                       200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
-    // Seen along z the slab covers |x| < 1.9, |y| < .2 whatever the torus inside it does.
-    auto inside = [](double x, double y) { return std::fabs(x) < 1.9 && std::fabs(y) < 0.2; };
-    auto dist = [](double x, double y) {
-        return std::fmin(std::fabs(std::fabs(x) - 1.9), std::fabs(std::fabs(y) - 0.2));
+    // Along z through (x, y) the slab keeps z ∈ [−1, 1], where ρ = √(x² + z²) runs over
+    // [|x|, √(x² + 1)]; the ray sees the body unless that whole range lies in the tube,
+    // |ρ − 1.2| <= w = √(.25 − y²).
+    auto slack = [](double x, double y, int which) {
+        const double w = std::sqrt(0.25 - y * y);
+        return which == 0 ? std::fabs(x) - (1.2 - w) : (1.2 + w) - std::sqrt(x * x + 1);
+    };
+    auto inside = [&](double x, double y) {
+        if (!(std::fabs(x) < 1.9 && std::fabs(y) < 0.2)) return false;
+        return !(slack(x, y, 0) >= 0 && slack(x, y, 1) >= 0);
+    };
+    auto dist = [&](double x, double y) {
+        double d = std::fmin(std::fabs(std::fabs(x) - 1.9), std::fabs(std::fabs(y) - 0.2));
+        if (std::fabs(y) < 0.2)  // the slacks change by at most ~1 per unit (|∂/∂x|, |∂/∂y| <= 1)
+            d = std::fmin(d, std::fmin(std::fabs(slack(x, y, 0)), std::fabs(slack(x, y, 1))));
+        return d;
     };
     EXPECT_EQ(Misclassified(run->r.frame, inside, dist), 0);
     // At x = 0 the tube takes z ∈ [−1.7, −0.7] out of the slab's front: the visible surface is
@@ -193,14 +207,15 @@ TEST(QuarticScene, GeneralConeSectionsAndCaps) {
 TEST(QuarticScene, EllipticalTorusMatchesItsMeridianEllipse) {
     // Seen along its axis, an eto whose ellipse (semi-axes 0.6 along the radius, 0.3 along the
     // axis) has no tilt is the annulus 1.2 ± 0.6.
-    auto run = Render(std::string(kFrontView) + "solid etorus e =r 1.2 =e .6 0 0 =d .3;\n", 200,
-                      200);
+    auto run =
+        Render(std::string(kFrontView) + "solid etorus e =r 1.2 =e .6 0 0 =d .3;\n", 200, 200);
     ASSERT_TRUE(run->ok) << run->Messages();
     auto rho = [](double x, double y) { return std::hypot(x, y); };
-    EXPECT_EQ(Misclassified(
-                  run->r.frame, [&](double x, double y) { return std::fabs(rho(x, y) - 1.2) < 0.6; },
-                  [&](double x, double y) { return std::fabs(std::fabs(rho(x, y) - 1.2) - 0.6); }),
-              0);
+    EXPECT_EQ(
+        Misclassified(
+            run->r.frame, [&](double x, double y) { return std::fabs(rho(x, y) - 1.2) < 0.6; },
+            [&](double x, double y) { return std::fabs(std::fabs(rho(x, y) - 1.2) - 0.6); }),
+        0);
 }
 
 TEST(QuarticScene, OtherEnginesComposeQuarticsFromRaycast) {
@@ -224,8 +239,9 @@ TEST(QuarticScene, OtherEnginesComposeQuarticsFromRaycast) {
         // --strict refuses, naming the primitive.
         auto strict = Render(text, 60, 60, engine, true);
         EXPECT_FALSE(strict->ok) << engine;
-        if (std::string(engine) != "isocurve")  // (isocurve draws no solid at all)
+        if (std::string(engine) != "isocurve") {  // (isocurve draws no solid at all)
             EXPECT_NE(strict->Messages().find("torus"), std::string::npos) << strict->Messages();
+        }
     }
 }
 
@@ -256,11 +272,33 @@ TEST(QuarticScene, BadParametersAreErrorsAtTheirPositions) {
 TEST(QuarticScene, DrawRefusesQuarticsByName) {
     TempDir dir;
     const std::string scene = dir.Write("t.uq", "solid torus ring =r 2 .5;\n");
-    CommandResult r = RunShell(QuadrixBinary() + " draw '" + scene + "' -o '" +
-                               dir.File("t.svg") + "'");
+    CommandResult r =
+        RunShell(QuadrixBinary() + " draw '" + scene + "' -o '" + dir.File("t.svg") + "'");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("torus"), std::string::npos) << r.err;
     EXPECT_FALSE(FileExists(dir.File("t.svg")));
+}
+
+}  // namespace
+}  // namespace quadrix::testing
+
+namespace quadrix::testing {
+namespace {
+
+// The example scene renders, and the composition for an engine without quartics gives the
+// reference picture away from edges.
+TEST(QuarticScene, ExampleSceneRendersAndComposes) {
+    PipelineOptions o;
+    o.scenePaths = {SourcePath("examples/quartics.uq")};
+    o.width = 120;
+    o.height = 80;
+    PipelineResult ref, scan;
+    Diagnostics d;
+    ASSERT_TRUE(RunPipeline(o, ref, d));
+    o.engine = "scanline";
+    ASSERT_TRUE(RunPipeline(o, scan, d));
+    EXPECT_GT(ref.frame.CoveredCount(), 2000u);
+    EXPECT_EQ(CompareFrames(scan.frame, ref.frame, {}).offEdgeDifferences, 0u);
 }
 
 }  // namespace

@@ -92,10 +92,11 @@ std::string EnginesMarkdown() {
                          e.capabilities.solids && e.capabilities.freeforms ? "solids and freeforms"
                          : e.capabilities.solids ? "solids (freeform surfaces go to isocurve)"
                                                  : "freeform surfaces (solids go to raycast)",
-                         !e.capabilities.solids   ? ""
-                         : e.capabilities.quartics ? ", quartic solids (tori, general cones) included"
-                                                   : "; solids with quartic surfaces (tori, general "
-                                                     "cones) go to raycast");
+                         !e.capabilities.solids ? ""
+                         : e.capabilities.quartics
+                             ? ", quartic solids (tori, general cones) included"
+                             : "; solids with quartic surfaces (tori, general "
+                               "cones) go to raycast");
         const OptionSchema& schema = e.make()->Schema();
         s += schema.empty() ? "No options.\n\n" : FormatOptionsMarkdown(schema) + "\n";
     }

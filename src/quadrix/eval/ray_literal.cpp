@@ -139,9 +139,9 @@ void QuarticSet(const QuarticSurface& q, double x, double y, std::int32_t id, Ra
 }
 
 // In place: the closure of the complement of a canonical set of at most two pieces (at most
-// three: two only unless both pieces are finite, as a quartic's can be). The pieces are read field by field into scalars before any is written (a whole-struct
-// copy of freshly stored pieces would stall on store-to-load forwarding, the hottest spot of a
-// render before this was written so).
+// three: two only unless both pieces are finite, as a quartic's can be). The pieces are read field
+// by field into scalars before any is written (a whole-struct copy of freshly stored pieces would
+// stall on store-to-load forwarding, the hottest spot of a render before this was written so).
 void Complement(RaySet& s) {
     const int n = s.count;
     const double lo0 = s.piece[0].lo, hi0 = s.piece[0].hi, lo1 = s.piece[1].lo;

@@ -14,7 +14,9 @@ std::string Num(double v) { return fmt::format("{:.17g}", v); }
 // Polynomials in (x, y, z) of degree <= 4, dense by exponents (for POV-Ray's `quartic`).
 struct Poly3 {
     std::array<double, 125> c{};
-    static std::size_t Index(int i, int j, int k) { return static_cast<std::size_t>(25 * i + 5 * j + k); }
+    static std::size_t Index(int i, int j, int k) {
+        return static_cast<std::size_t>(25 * i + 5 * j + k);
+    }
     static Poly3 Linear(double a, double b, double cz, double d) {
         Poly3 p;
         p.c[Index(1, 0, 0)] = a;
@@ -55,8 +57,9 @@ Poly3 QuarticInSpace(const QuarticSurface& q, const Vec3& centre) {
     const Mat4& m = q.localFromSpace.Matrix();
     Poly3 L[4];
     for (int r = 0; r < 4; ++r)
-        L[r] = Poly3::Linear(m(r, 0), m(r, 1), m(r, 2),
-                             m(r, 0) * centre.x + m(r, 1) * centre.y + m(r, 2) * centre.z + m(r, 3));
+        L[r] =
+            Poly3::Linear(m(r, 0), m(r, 1), m(r, 2),
+                          m(r, 0) * centre.x + m(r, 1) * centre.y + m(r, 2) * centre.z + m(r, 3));
     const std::array<double, 6>& k = q.k;
     if (q.kind == QuarticSurface::Kind::kGeneralCone) {
         const Poly3 al = L[3] * k[0] + L[2] * k[1], be = L[3] * k[2] + L[2] * k[3];
@@ -219,9 +222,9 @@ class PovWriter {
             for (int r = 0; r < 3; ++r)
                 rows += fmt::format("{},{},{}, ", Num(inv(0, col[r])), Num(inv(1, col[r])),
                                     Num(inv(2, col[r])));
-            out_ += fmt::format("torus {{ {}, {} matrix <{}{},{},{}>", Num(q.p[0] / s),
-                                Num(q.p[1] / s), rows, Num(inv(0, 3)), Num(inv(1, 3)),
-                                Num(inv(2, 3)));
+            out_ +=
+                fmt::format("torus {{ {}, {} matrix <{}{},{},{}>", Num(q.p[0] / s), Num(q.p[1] / s),
+                            rows, Num(inv(0, 3)), Num(inv(1, 3)), Num(inv(2, 3)));
             return;
         }
         const Box3 box = q.SpaceBounds();

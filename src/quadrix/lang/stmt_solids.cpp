@@ -554,8 +554,8 @@ bool ParseSolid(Parser& p, const Token& keyword) {
     // Check every id before adding anything, so a clash leaves no half-made solid behind.
     for (const model::SolidSurface& surface : placed.surfaces) {
         const bool finite = surface.IsQuartic() ? surface.quartic->AllFinite()
-                            : surface.isPlane       ? surface.plane.AllFinite()
-                                                    : surface.quadric.AllFinite();
+                            : surface.isPlane   ? surface.plane.AllFinite()
+                                                : surface.quadric.AllFinite();
         if (!finite) {
             p.Error(keyword.loc, fmt::format("the solid {} '{}' has coefficients too large to "
                                              "represent",

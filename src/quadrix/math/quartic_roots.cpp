@@ -28,7 +28,8 @@ bool Negative(double v) { return v < 0; }
 
 // The root of p in the bracket [a, b] where p(a) and p(b) have opposite signs (neither 0):
 // Newton steps kept inside the bracket, a bisection whenever Newton leaves it or fails to halve
-// the bracket, until the bracket cannot shrink (adjacent doubles) or p vanishes.
+// the bracket, until a Newton step inside the bracket is below ~4 ulps, the bracket cannot shrink
+// (adjacent doubles) or p vanishes.
 double RefineRoot(const Poly& p, const Poly& dp, double a, double b, double fa) {
     const bool aNeg = Negative(fa);
     double x = 0.5 * (a + b);
@@ -45,6 +46,9 @@ double RefineRoot(const Poly& p, const Poly& dp, double a, double b, double fa) 
         const double d = dp.Eval(x);
         double next = (d != 0 && std::isfinite(d)) ? x - fx / d : mid;
         const double w = b - a;
+        // Converged: a Newton step inside the bracket below ~4 ulps (quadratic convergence, so
+        // the root is known to full precision without bisecting the far end down to it).
+        if (next > a && next < b && std::fabs(next - x) <= 1e-15 * (1 + std::fabs(x))) return next;
         if (!(next > a && next < b) || w > 0.5 * width) next = mid;
         width = w;
         if (next == x) break;

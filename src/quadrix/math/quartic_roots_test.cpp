@@ -26,6 +26,22 @@ std::array<double, 5> FromRoots(const std::vector<double>& roots, double k = 1) 
     return c;
 }
 
+// The error a root of FromRoots(roots) may carry: its coefficients are rounded sums of products
+// of the roots, so each is off by a few ulps of the same sum of absolute products, i.e. of the
+// coefficients of ∏(s + |r_j|); over |p'(r)| (the root's condition), plus an ulp of r.
+double RootTolerance(const std::vector<double>& roots, double r) {
+    std::vector<double> neg;
+    for (double v : roots) neg.push_back(-std::fabs(v));
+    const std::array<double, 5> c = FromRoots(roots), a = FromRoots(neg);
+    double mag = 0, d = 0, pw = 1;
+    for (int i = 0; i <= 4; ++i) {
+        mag += a[static_cast<std::size_t>(i)] * std::fabs(pw);
+        if (i < 4) d += (i + 1) * c[static_cast<std::size_t>(i + 1)] * pw;
+        pw *= r;
+    }
+    return 16 * 1.1e-16 * mag / std::fabs(d) + 4e-16 * (1 + std::fabs(r));
+}
+
 TEST(MathQuarticRoots, FindsFourSimpleRootsToFullPrecision) {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -33,12 +49,13 @@ TEST(MathQuarticRoots, FindsFourSimpleRootsToFullPrecision) {
         std::vector<double> r{u(rng), u(rng), u(rng), u(rng)};
         std::sort(r.begin(), r.end());
         bool separated = true;
-        for (int i = 0; i < 3; ++i) separated &= r[static_cast<std::size_t>(i + 1)] - r[static_cast<std::size_t>(i)] > 1e-3;
+        for (int i = 0; i < 3; ++i)
+            separated &= r[static_cast<std::size_t>(i + 1)] - r[static_cast<std::size_t>(i)] > 1e-3;
         if (!separated) continue;
         std::array<double, 4> got{};
-        ASSERT_EQ(SignChangeRoots(FromRoots(r), -1.5, 1.5, got), 4);
-        for (int i = 0; i < 4; ++i)
-            EXPECT_NEAR(got[static_cast<std::size_t>(i)], r[static_cast<std::size_t>(i)], 1e-12);
+        const std::array<double, 5> c = FromRoots(r);
+        ASSERT_EQ(SignChangeRoots(c, -1.5, 1.5, got), 4);
+        for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(got[i], r[i], RootTolerance(r, r[i]));
     }
 }
 
@@ -65,13 +82,15 @@ TEST(MathQuarticRoots, DoubleRootGivesNoPointInterval) {
 TEST(MathQuarticRoots, NearlyDoubleRootsAreSeparated) {
     // Two roots 1e-7 apart (a ray grazing a torus): the sign change is found, bracketed.
     std::array<double, 3> lo{}, hi{};
-    const int n = NonPositiveSet(FromRoots({0.2, 0.2 + 1e-7, 0.6, 0.8}), -1, 1, lo, hi);
+    const std::vector<double> roots{0.2, 0.2 + 1e-7, 0.6, 0.8};
+    const std::array<double, 5> c = FromRoots(roots);
+    const int n = NonPositiveSet(c, -1, 1, lo, hi);
     ASSERT_EQ(n, 2);
-    EXPECT_NEAR(lo[0], 0.2, 1e-12);
-    EXPECT_NEAR(hi[0], 0.2 + 1e-7, 1e-12);
+    EXPECT_NEAR(lo[0], 0.2, RootTolerance(roots, 0.2));
+    EXPECT_NEAR(hi[0], 0.2 + 1e-7, RootTolerance(roots, 0.2 + 1e-7));
     EXPECT_LT(lo[0], hi[0]);
-    EXPECT_NEAR(lo[1], 0.6, 1e-12);
-    EXPECT_NEAR(hi[1], 0.8, 1e-12);
+    EXPECT_NEAR(lo[1], 0.6, RootTolerance(roots, 0.6));
+    EXPECT_NEAR(hi[1], 0.8, RootTolerance(roots, 0.8));
 }
 
 TEST(MathQuarticRoots, SetTouchesTheEndsAndLowerDegrees) {

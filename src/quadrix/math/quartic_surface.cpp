@@ -13,9 +13,7 @@ namespace {
 using Q2 = std::array<double, 3>;
 using Q4 = std::array<double, 5>;
 
-Q2 Mul(double a0, double a1, double b0, double b1) {
-    return {a0 * b0, a0 * b1 + a1 * b0, a1 * b1};
-}
+Q2 Mul(double a0, double a1, double b0, double b1) { return {a0 * b0, a0 * b1 + a1 * b0, a1 * b1}; }
 Q2 Add(const Q2& a, const Q2& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 Q2 Scale(double k, const Q2& a) { return {k * a[0], k * a[1], k * a[2]}; }
 Q4 Mul(const Q2& a, const Q2& b) {
@@ -91,8 +89,9 @@ std::optional<QuarticSurface> QuarticSurface::EllipticalTorus(const Vec3& V, con
     const double wr = std::sqrt(crl * crl + d * d * cz * cz / (c * c));
     const double wz = std::sqrt(cz * cz + d * d * crl * crl / (c * c));
     if (!(r > wr)) {
-        Fail(why, "the ellipse reaches the axis (the radius of revolution must exceed the "
-                  "ellipse's extent across it)");
+        Fail(why,
+             "the ellipse reaches the axis (the radius of revolution must exceed the "
+             "ellipse's extent across it)");
         return std::nullopt;
     }
     QuarticSurface q;
@@ -121,9 +120,8 @@ std::optional<QuarticSurface> QuarticSurface::Torus(const Vec3& center, const Ve
         return std::nullopt;
     }
     const Vec3 w = Length(axis) > 0 ? Normalize(axis) : axis;
-    std::optional<QuarticSurface> q =
-        EllipticalTorus(center, axis, R, Perpendicular(Length(w) > 0 ? w : Vec3{0, 0, 1}) * r, r,
-                        why);
+    std::optional<QuarticSurface> q = EllipticalTorus(
+        center, axis, R, Perpendicular(Length(w) > 0 ? w : Vec3{0, 0, 1}) * r, r, why);
     if (!q) return q;
     q->kind = Kind::kTorus;
     q->p = {R, r, 0, 0, 0};
@@ -133,8 +131,7 @@ std::optional<QuarticSurface> QuarticSurface::Torus(const Vec3& center, const Ve
 std::optional<QuarticSurface> QuarticSurface::GeneralCone(const Vec3& V, const Vec3& H,
                                                           const Vec3& A, const Vec3& B, double c,
                                                           double d, std::string* why) {
-    if (!IsFinite(V) || !IsFinite(H) || !IsFinite(A) || !IsFinite(B) || !Finite(c) ||
-        !Finite(d)) {
+    if (!IsFinite(V) || !IsFinite(H) || !IsFinite(A) || !IsFinite(B) || !Finite(c) || !Finite(d)) {
         Fail(why, "non-finite parameter");
         return std::nullopt;
     }
@@ -247,12 +244,14 @@ Vec4 QuarticSurface::HomogeneousGradient(const Vec3& p) const {
     // Covector pulled back: gᵀ M.
     Vec4 out;
     for (int c = 0; c < 4; ++c)
-        out[static_cast<std::size_t>(c)] = g.x * m(0, c) + g.y * m(1, c) + g.z * m(2, c) +
-                                           g.w * m(3, c);
+        out[static_cast<std::size_t>(c)] =
+            g.x * m(0, c) + g.y * m(1, c) + g.z * m(2, c) + g.w * m(3, c);
     return out;
 }
 
-void QuarticSurface::TransformBy(const Transform& t) { localFromSpace = localFromSpace * t.Inverted(); }
+void QuarticSurface::TransformBy(const Transform& t) {
+    localFromSpace = localFromSpace * t.Inverted();
+}
 
 bool QuarticSurface::AllFinite() const {
     for (double v : k)
@@ -331,7 +330,8 @@ Box3 QuarticSurface::SpaceBounds() const {
     const Mat4& inv = localFromSpace.Inverse();
     Box3 b;
     for (int c = 0; c < 8; ++c) {
-        const Vec4 l{(c & 1) ? localBox.hi.x : localBox.lo.x, (c & 2) ? localBox.hi.y : localBox.lo.y,
+        const Vec4 l{(c & 1) ? localBox.hi.x : localBox.lo.x,
+                     (c & 2) ? localBox.hi.y : localBox.lo.y,
                      (c & 4) ? localBox.hi.z : localBox.lo.z, 1};
         const Vec4 s = inv * l;
         if (!(s.w > 0) || !std::isfinite(s.x + s.y + s.z)) return Box3::Everything();
@@ -365,9 +365,12 @@ std::vector<Vec4> QuarticSurface::SpaceBoxPlanes() const {
 
 std::string_view QuarticSurface::KindName() const {
     switch (kind) {
-        case Kind::kTorus: return "torus";
-        case Kind::kEllipticalTorus: return "elliptical torus";
-        case Kind::kGeneralCone: return "general cone";
+        case Kind::kTorus:
+            return "torus";
+        case Kind::kEllipticalTorus:
+            return "elliptical torus";
+        case Kind::kGeneralCone:
+            return "general cone";
     }
     return "quartic";
 }

@@ -95,8 +95,8 @@ struct QuarticSurface {
     // top semi-axes C ∥ A and D ∥ B given by their lengths c, d (>= 0, not both ends degenerate).
     // The cone must be capped: GeneralConeCaps gives the planes T >= 0 and T <= 1.
     static std::optional<QuarticSurface> GeneralCone(const Vec3& V, const Vec3& H, const Vec3& A,
-                                                      const Vec3& B, double c, double d,
-                                                      std::string* why = nullptr);
+                                                     const Vec3& B, double c, double d,
+                                                     std::string* why = nullptr);
     // The caps of a general cone in the containing space, as plane coefficients <A B C D>
     // (inside <= 0): [0] is −T <= 0 (the base), [1] is T − 1 <= 0 (the top).
     std::array<Vec4, 2> GeneralConeCaps() const;

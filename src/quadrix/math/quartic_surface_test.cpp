@@ -104,8 +104,8 @@ TEST(MathQuarticSurface, ProjectiveMapKeepsTheLineParameter) {
 TEST(MathQuarticSurface, EllipticalTorusContainsItsEllipse) {
     // Ellipse centred at ρ = 5, semi-axis 2 tilted 30° from the radius, other semi-axis 1.
     const double c30 = std::cos(M_PI / 6), s30 = std::sin(M_PI / 6);
-    const auto e = QuarticSurface::EllipticalTorus({0, 0, 0}, {0, 0, 2}, 5, {2 * c30, 0, 2 * s30},
-                                                   1);
+    const auto e =
+        QuarticSurface::EllipticalTorus({0, 0, 0}, {0, 0, 2}, 5, {2 * c30, 0, 2 * s30}, 1);
     ASSERT_TRUE(e);
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> u(-1.2, 1.2), phi(0, 2 * M_PI);

@@ -277,8 +277,9 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
             (q >= 0 ? quartic : plain).push_back(static_cast<int>(s));
             if (q >= 0) firstQuartic.push_back(q);
         }
-        if (!quartic.empty()) return RenderAroundQuartics(request, plain, quartic, firstQuartic,
-                                                          frame, report, diags, t0);
+        if (!quartic.empty())
+            return RenderAroundQuartics(request, plain, quartic, firstQuartic, frame, report, diags,
+                                        t0);
     }
     Engine* engine = EngineNamed(request.engine);
     RenderOptions ro;
@@ -395,8 +396,8 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
         const QuarticSurface& q =
             *flat_.halfSpaces[static_cast<std::size_t>(firstQuartic[k])].quartic;
         undrawn.push_back(
-            {quartic[k], fmt::format("a quartic surface ({}) is drawn only by raycast",
-                                     q.KindName())});
+            {quartic[k],
+             fmt::format("a quartic surface ({}) is drawn only by raycast", q.KindName())});
     }
     if (request.strict) {
         std::string what;

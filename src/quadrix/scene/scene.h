@@ -66,7 +66,7 @@ struct HalfSpace {
     Plane plane;                                    // when kind == kPlane
     Quadric quadric;                                // when kind == kQuadric
     std::shared_ptr<const QuarticSurface> quartic;  // when kind == kQuartic
-    bool transparent = false;  // =t: bounds others but is not drawn
+    bool transparent = false;                       // =t: bounds others but is not drawn
     SourceLoc loc;
 };
 
