@@ -421,7 +421,16 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
     for (auto& s : frame.solid)
         if (s != Frame::kNone) s = plain[static_cast<std::size_t>(s)];
     for (UndrawnSolid& u : report.byReference) u.solid = plain[static_cast<std::size_t>(u.solid)];
-    arena_->arena.execute([&] { ComposeReference(quartic, frame); });
+    try {
+        if (!Execute([&] { ComposeReference(quartic, request, frame); })) {
+            report.cancelled = true;
+            report.seconds = SecondsSince(t0);
+            return false;
+        }
+    } catch (const EngineLimitError& e) {
+        diags.Error({}, e.what(), {}, "engine");
+        return false;
+    }
     report.byReference.insert(report.byReference.end(), undrawn.begin(), undrawn.end());
     report.notes.push_back(fmt::format(
         "engine {} cannot draw {} of {} solid{}; drawn by raycast and composed by depth ({} × "
