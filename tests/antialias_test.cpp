@@ -234,7 +234,9 @@ TEST(SampleTracer, BoxTreesChangeNoSampleAndNoShadow) {
             const raycast::Sample s = indexed.Trace(i + 0.5, j + 0.5);
             ASSERT_EQ(s.surface, r.frame.surface[k]) << i << "," << j;
             ASSERT_EQ(s.solid, r.frame.solid[k]) << i << "," << j;
-            if (s.Covered()) ASSERT_EQ(s.depth, r.frame.depth[k]) << i << "," << j;
+            if (s.Covered()) {
+                ASSERT_EQ(s.depth, r.frame.depth[k]) << i << "," << j;
+            }
             covered += s.Covered();
             const raycast::Sample a = indexed.Trace(i + 0.37, j + 0.81),
                                   b = plain.Trace(i + 0.37, j + 0.81);

@@ -107,7 +107,9 @@ TEST(PerspectiveShadows, TheDeviceRayIsTheImageOfTheWorldSegmentInFrontOfTheEye)
             const double t = Dot(xw - pw, toLight) / Dot(toLight, toLight);
             EXPECT_LT(Length(pw + toLight * t - xw), 1e-6 * (1 + Length(xw - pw))) << i;
             EXPECT_GT(t, 0) << i;
-            if (light.w != 0) EXPECT_LT(t, 1 + 1e-9) << i;
+            if (light.w != 0) {
+                EXPECT_LT(t, 1 + 1e-9) << i;
+            }
             EXPECT_GT(Dot(xw - kEyeV, n), 0) << i;
         }
     }
@@ -153,7 +155,7 @@ TEST(PerspectiveShadows, TheBallsShadowMatchesTheAnalyticOutlineAndAParallelView
             }
         EXPECT_EQ(wrong, 0) << l.what;
         EXPECT_EQ(parWrong, 0) << l.what;
-        EXPECT_GT(inShadow, 100) << l.what;
+        EXPECT_GT(inShadow, 10) << l.what;
         EXPECT_GT(lit, 1000) << l.what;
     }
 }

@@ -75,16 +75,18 @@ TEST(BoxTree, QueriesVisitEveryItemWhoseBoxPasses) {
             std::set<std::int32_t> column;
             tree.Column(p.x, p.y, [&](std::int32_t k) { column.insert(k); });
             for (int k = 0; k < n; ++k)
-                if (ColumnHits(boxes[static_cast<std::size_t>(k)], p.x, p.y))
+                if (ColumnHits(boxes[static_cast<std::size_t>(k)], p.x, p.y)) {
                     EXPECT_TRUE(column.count(k)) << n << " " << q << " " << k;
+                }
         }
         // Sparse boxes: the tree visits far fewer than all (the pre-filter is worth it).
-        if (n == 600) EXPECT_LT(visitedTotal, 300u * 600 / 5) << passedTotal;
+        if (n == 600) {
+            EXPECT_LT(visitedTotal, 300u * 600 / 5) << passedTotal;
+        }
     }
 }
 
 TEST(BoxTree, ASegmentQueryStopsWhenAVisitSaysSo) {
-    std::mt19937 rng(4);
     const std::vector<Box3> boxes(50, Box3{{-1, -1, -1}, {1, 1, 1}});
     const BoxTree tree(boxes);
     int visits = 0;

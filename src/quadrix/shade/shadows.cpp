@@ -119,7 +119,12 @@ IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complement
 IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
-        IntervalList acc = IntervalList::All(), tmp;
+        // The fold starts from the window (s0, s1) rather than the whole line: every node's set is
+        // then its exact set ∩ (s0, s1) (∩ distributes over ∪, ∩ and −), all that Blocked looks
+        // at, and a body the segment leaves at once (a surface facing the light) empties after a
+        // few literals, so a difference skips its subtrahends.
+        IntervalList acc, tmp;
+        acc.Append(s0, Interval::kNoId, s1, Interval::kNoId);
         for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(node.body)].literals) {
             Intersection(acc,
                          LiteralOnLine(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)],

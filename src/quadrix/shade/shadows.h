@@ -87,8 +87,8 @@ class ShadowTester {
                                       const Vec3& d);
 
   private:
-    // The node's set on the line; exact on (s0, s1), where children whose boxes the segment
-    // misses are taken as ∅.
+    // The node's set on the line, clipped to [s0, s1] (the bodies' folds start from it); children
+    // whose boxes the segment misses are taken as ∅.
     IntervalList Node(int node, const Vec3& p, const Vec3& d, double s0, double s1) const;
     // acc folded (by the node's union or difference) with the set of each child the segment may
     // meet: children 0, 1, ... of a union, 1, 2, ... of a difference (acc = the minuend's set).
