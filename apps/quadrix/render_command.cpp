@@ -386,9 +386,8 @@ int RunRender(const RenderArgs& args) {
         ShadeOptions so;
         so.fast = args.fast;
         // The picture defaults (docs/shading.md): shadows where the scene declares lights, and
-        // anti-aliasing, both only for scenes of at most kPictureDefaultBodies bodies: their
-        // rays visit the CSG trees without the engine's spatial pruning, which makes a union of
-        // thousands of spheres take minutes (asked for explicitly, they are still done).
+        // anti-aliasing, both only for scenes of at most kPictureDefaultBodies bodies (asked for
+        // explicitly, they are still done).
         const bool small = ctx.Flat().bodies.size() <= kPictureDefaultBodies;
         const bool defaultShadows = !args.shadows && !args.noShadows && DeclaresLights(ctx.Flat());
         const bool defaultAa = args.aa == "default" && aaSamples > 1;
