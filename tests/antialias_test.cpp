@@ -10,6 +10,7 @@
 // bound).
 #include "quadrix/shade/antialias.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/shader.h"
+#include "quadrix/shade/shadows.h"
 #include "test_util.h"
 
 namespace quadrix::testing {
@@ -189,6 +191,75 @@ TEST(SampleTracer, EqualsTheRaycastEngineAtPixelCentres) {
             }
         EXPECT_GT(covered, 500) << path;
     }
+}
+
+// Wide CSG nodes and many solids (the box trees of sample_tracer.h and shadows.h): a union of 40
+// spheres minus 12, and 30 loose spheres.
+std::string WideScene() {
+    std::string t;
+    auto sphere = [&](const std::string& id, double x, double y, double z, double r) {
+        t += fmt::format("quadric {} <1 1 1 0 0 0 {} {} {} {}>; body b{} ({});\n", id, -x, -y, -z,
+                         x * x + y * y + z * z - r * r, id, id);
+    };
+    for (int i = 0; i < 40; ++i)
+        sphere(fmt::format("u{}", i), 3 * std::sin(i * 1.7), 3 * std::cos(i * 2.3),
+               std::sin(i * 0.9), 0.9);
+    for (int j = 0; j < 12; ++j)
+        sphere(fmt::format("h{}", j), 3 * std::cos(j * 1.1), 3 * std::sin(j * 1.9), -0.8, 0.6);
+    for (int k = 0; k < 30; ++k)
+        sphere(fmt::format("f{}", k), 7 + 2 * std::sin(k * 0.7), 4 * std::cos(k * 1.3),
+               2 * std::sin(k * 2.1), 0.5);
+    t += "csg lump ((";
+    for (int i = 0; i < 40; ++i) t += fmt::format("{}bu{}", i ? " | " : "", i);
+    t += ")";
+    for (int j = 0; j < 12; ++j) t += fmt::format(" - bh{}", j);
+    t += ");\nlight .2; light .8 .3 1 -.5;\nview v dop .2 .3 -1;\n";
+    return t;
+}
+
+// The box trees change no sample and no shadow: the tracer with and without them gives the same
+// samples bit for bit (pixel centres: the engine's pixels; and points between them), and the
+// shadow tester the same answers.
+TEST(SampleTracer, BoxTreesChangeNoSampleAndNoShadow) {
+    PipelineResult r = Render(WideScene(), 120, 90);
+    std::size_t wide = 0;
+    for (const FlatCsgNode& n : r.flat.nodes) wide += !n.isLeaf && n.children.size() > 8;
+    ASSERT_GE(wide, 2u);  // the union, and the difference's 12 subtrahends
+    ASSERT_GT(r.flat.solids.size(), 30u);
+    const raycast::SampleTracer indexed(r.flat), plain(r.flat, false);
+    int covered = 0;
+    for (int j = 0; j < r.frame.height; ++j)
+        for (int i = 0; i < r.frame.width; ++i) {
+            const std::size_t k = r.frame.Index(i, j);
+            const raycast::Sample s = indexed.Trace(i + 0.5, j + 0.5);
+            ASSERT_EQ(s.surface, r.frame.surface[k]) << i << "," << j;
+            ASSERT_EQ(s.solid, r.frame.solid[k]) << i << "," << j;
+            if (s.Covered()) {
+                ASSERT_EQ(s.depth, r.frame.depth[k]) << i << "," << j;
+            }
+            covered += s.Covered();
+            const raycast::Sample a = indexed.Trace(i + 0.37, j + 0.81),
+                                  b = plain.Trace(i + 0.37, j + 0.81);
+            ASSERT_EQ(a.surface, b.surface) << i << "," << j;
+            ASSERT_EQ(a.body, b.body) << i << "," << j;
+            ASSERT_EQ(a.solid, b.solid) << i << "," << j;
+            ASSERT_EQ(a.depth, b.depth) << i << "," << j;
+        }
+    EXPECT_GT(covered, 1500);
+    const ShadowTester shadowIndexed(r.flat), shadowPlain(r.flat, false);
+    const Vec3 toLight = r.flat.projection.deviceFromWorld.MapVector({.3, 1, -.5});
+    int blocked = 0, lit = 0;
+    for (int j = 0; j < r.frame.height; j += 2)
+        for (int i = 0; i < r.frame.width; i += 2) {
+            const std::size_t k = r.frame.Index(i, j);
+            if (r.frame.surface[k] == Frame::kNone) continue;
+            const Vec3 p{i + 0.5, j + 0.5, r.frame.depth[k]};
+            const bool a = shadowIndexed.Blocked(p, toLight, HUGE_VAL);
+            ASSERT_EQ(a, shadowPlain.Blocked(p, toLight, HUGE_VAL)) << i << "," << j;
+            (a ? blocked : lit) += 1;
+        }
+    EXPECT_GT(blocked, 30);
+    EXPECT_GT(lit, 30);
 }
 
 // Anti-aliasing changes edge pixels only, and only towards their samples' mean.

@@ -8,6 +8,7 @@
 
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/shade/antialias.h"
 #include "quadrix/shade/shader.h"
 #include "test_util.h"
 
@@ -158,6 +159,73 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
     RecordProperty("worst", std::to_string(worst));
     EXPECT_LE(off, compared / 100) << off << " of " << compared << " pixels differ by more than 8 "
                                    << "levels (worst " << worst << ")";
+}
+
+// Both renderers anti-aliased (issue 17's acceptance): POV-Ray supersamples every pixel that
+// differs from a neighbour (+A0.0) on a 4 × 4 grid (method 1, +R4, no jitter: 16 samples, equal
+// weights), Quadrix re-renders its edge pixels with 16 stratified samples and the box filter
+// (--aa 16). Every pixel is compared now, edges included: at least 99 % must agree within 8 levels.
+//
+// Run on the quick cases only (POV-Ray's supersampling costs seconds on the larger ones); measured
+// once on all of them (docs/shading.md): every case passes except StackOfBundlesShadows, 1.08 %
+// off, at shadow boundaries, which are not edges of the Frame and so are not resampled.
+TEST_P(PovrayTest, AntialiasedPicturesMatchEverywhere) {
+    if (!HaveProgram("povray")) GTEST_SKIP() << "povray is not installed";
+    const PovCase& c = GetParam();
+    if (c.perspective) GTEST_SKIP() << "POV-Ray shades the export with device-space normals";
+    const std::string name = c.name;
+    if (name != "Tube" && name != "CylinderMinusCylinder" && name != "LitScene" &&
+        name != "LitSceneShadows" && name != "DefaultRigColors")
+        GTEST_SKIP() << "the anti-aliased comparison runs on the quick cases only";
+    TempDir dir;
+    std::string scenePath = c.scene.rfind("text:", 0) == 0
+                                ? dir.Write("scene.uq", c.scene.substr(5))
+                                : SourcePath(c.scene);
+    std::string size = fmt::format("{}x{}", c.width, c.height);
+    CommandResult e =
+        RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " + size + " -o '" +
+                 dir.File("s.pov") + "'" + (c.shadows ? " --shadows" : ""));
+    ASSERT_EQ(e.exitCode, 0) << e.err;
+    CommandResult p =
+        RunShell(fmt::format("cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} +A0.0 +AM1 +R4 -J +FP -D "
+                             "-V -GA +WT2 File_Gamma=sRGB",
+                             dir.path(), c.width, c.height));
+    ASSERT_EQ(p.exitCode, 0) << p.err;
+    Image pov;
+    ASSERT_TRUE(ReadPnm(dir.File("s.ppm"), pov));
+    ASSERT_EQ(pov.channels, 3);
+
+    PipelineOptions o;
+    o.scenePaths = {scenePath};
+    o.width = c.width;
+    o.height = c.height;
+    PipelineResult r;
+    Diagnostics d;
+    ASSERT_TRUE(RunPipeline(o, r, d));
+    ShadeOptions so;
+    so.shadows = c.shadows;
+    so.aaSamples = 16;
+    Image ours = Shade(r.frame, r.flat, so);
+    Antialias(r.frame, r.flat, so, ours);
+    const std::vector<std::uint8_t> srgb = EncodeSrgb8(ours);
+    long off = 0;
+    int worst = 0;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            int diff = 0;
+            for (int k = 0; k < 3; ++k) {
+                const int q = srgb[(static_cast<std::size_t>(y) * c.width + x) * ours.channels +
+                                   (ours.channels == 3 ? k : 0)];
+                diff = std::max(diff, std::abs(q - pov.At(x, y)[k]));
+            }
+            worst = std::max(worst, diff);
+            off += diff > 8;
+        }
+    const long all = static_cast<long>(c.width) * c.height;
+    RecordProperty("off_by_more_than_8", std::to_string(off));
+    RecordProperty("worst", std::to_string(worst));
+    EXPECT_LE(off, all / 100) << off << " of " << all << " pixels differ by more than 8 levels "
+                              << "(worst " << worst << ")";
 }
 
 // Parallel, ambient, point and colored lights, a background and two finishes.

@@ -16,6 +16,7 @@
 #include "quadrix/math/srgb.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/scene/css_colors.h"
+#include "quadrix/shade/antialias.h"
 #include "quadrix/shade/shader.h"
 #include "test_util.h"
 
@@ -77,6 +78,65 @@ TEST(Shading, NoExampleRendersACoveredPixelEqualToTheBackground) {
                                << " covered pixels have the background's value";
     }
     EXPECT_GE(rendered, 10);
+}
+
+// The picture defaults of quadrix render (shadows and --aa 4) never touch the background: every
+// pixel whose 3 × 3 neighbourhood the Frame does not cover is exactly the background (its row's
+// value of a gradient), byte and linear value, and with anti-aliasing off every uncovered pixel
+// is; and shadows never make a covered pixel the background's value.
+TEST(Shading, ShadowsAndAntialiasingNeverDarkenTheBackground) {
+    int scenes = 0;
+    for (const std::string& path : SceneFiles()) {
+        PipelineOptions o;
+        o.scenePaths = {path};
+        o.width = 96;
+        o.height = 72;
+        PipelineResult r;
+        Diagnostics d;
+        if (!RunPipeline(o, r, d)) continue;
+        ++scenes;
+        for (int aa : {0, 4}) {
+            ShadeOptions so;
+            so.shadows = true;
+            so.aaSamples = aa;
+            so.forceColor = true;
+            Image img = Shade(r.frame, r.flat, so);
+            Antialias(r.frame, r.flat, so, img);
+            const PixelShader shader(r.frame, r.flat, so);
+            long background = 0, wrong = 0, hidden = 0;
+            for (int y = 0; y < img.height; ++y)
+                for (int x = 0; x < img.width; ++x) {
+                    const std::uint8_t* p = img.At(x, y);
+                    const float* f = &img.linear[static_cast<std::size_t>(p - img.pixels.data())];
+                    const scene::Color bg = shader.Background(y, img.height);
+                    const double want[3] = {bg.r, bg.g, bg.b};
+                    bool same = true;
+                    for (int k = 0; k < 3; ++k) same &= f[k] == static_cast<float>(want[k]);
+                    if (r.frame.Covered(x, y)) {
+                        bool sameByte = true;
+                        for (int k = 0; k < 3; ++k)
+                            sameByte &=
+                                p[k] == static_cast<std::uint8_t>(std::lround(want[k] * 255));
+                        hidden += sameByte;
+                        continue;
+                    }
+                    bool near = false;
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            const int u = x + dx, v = y + dy;
+                            if (u >= 0 && v >= 0 && u < img.width && v < img.height)
+                                near |= r.frame.Covered(u, v);
+                        }
+                    if (aa && near) continue;
+                    ++background;
+                    wrong += !same;
+                }
+            EXPECT_GT(background, 0) << path;
+            EXPECT_EQ(wrong, 0) << path << " --aa " << aa;
+            EXPECT_EQ(hidden, 0) << path << " --aa " << aa;
+        }
+    }
+    EXPECT_GE(scenes, 10);
 }
 
 // The code blocks of docs/language.md.

@@ -147,7 +147,7 @@ AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const Shade
             if (near[k]) edges[k] &= static_cast<std::uint8_t>(~kEdgePixel);
     }
     const PixelShader shader(frame, scene, options);
-    const raycast::SampleTracer tracer(scene);
+    const raycast::SampleTracer tracer(scene, options.spatialIndex);
     if (image.linear.size() != image.pixels.size()) {
         image.linear.resize(image.pixels.size());
         for (std::size_t k = 0; k < image.pixels.size(); ++k)

@@ -100,9 +100,9 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
       model_(options.fast ? ShadingModel::kFast : options.model),
       reflection_(model_ == ShadingModel::kFast ? ShadingModel::kLambert : model_),
       viewer_(scene.projection),
-      needPoint_(NeedsPoint(scene, model_)),
-      shadows_(options.shadows && !scene.projection.perspective),
-      shadowTester_(scene),
+      needPoint_(NeedsPoint(scene, model_) || (options.shadows && scene.projection.perspective)),
+      shadows_(options.shadows),
+      shadowTester_(scene, options.spatialIndex),
       deviceFromWorld_(scene.projection.deviceFromWorld.Matrix()),
       color_(AnyColor(scene, options)) {
     for (const scene::Light& l : scene.lights) fixedLight_.push_back(IncidentLight(l, {}));
@@ -152,11 +152,14 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     ShadowTest inShadow;
     if (shadows_) {
         const Vec3 p{x, y, depth};
+        // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
+        // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
         inShadow = [&, p](std::size_t k, const Incident& in) {
             const scene::Light& l = scene_.lights[k];
-            if (l.kind == scene::Light::Kind::kParallel)
-                return shadowTester_.Blocked(p, deviceFromWorld_.MapVector(in.toLight), HUGE_VAL);
-            return shadowTester_.Blocked(p, deviceFromWorld_.MapPoint(l.position) - p, 1.0);
+            const Vec4 light = l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0)
+                                                                       : Vec4(l.position, 1.0);
+            const DeviceRay ray = DeviceShadowRay(deviceFromWorld_, light, p, point);
+            return shadowTester_.Blocked(p, ray.d, ray.sMax);
         };
     }
     const PhongTerms t =

@@ -51,9 +51,12 @@ struct ShadeOptions {
     std::optional<scene::Color> background;  // overrides the scene's background
     bool forceColor = false;                 // RGB output even when every solid is white
     // Shadows from every parallel, point and spot light by shadow rays through the CSG
-    // (shadows.h). Off by default: existing pictures stay as they were. Parallel projections
-    // only; ignored for perspective views.
+    // (shadows.h), under parallel and perspective views. Off by default here (quadrix render
+    // turns it on for scenes that declare lights).
     bool shadows = false;
+    // The box trees of the shadow and sample rays (math/box_tree.h); false only to measure
+    // their gain (bench/): the picture is the same.
+    bool spatialIndex = true;
     // Finish defaults of kPhong and kBlinnPhong (seed 000's post-shading unit).
     double phongDiffuse = 0.8, phongSpecular = 0.4, phongShininess = 24;
     // Anti-aliasing (antialias.h), applied by RenderContext::Shade after Shade(): samples per

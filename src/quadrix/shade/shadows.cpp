@@ -1,6 +1,7 @@
 #include "quadrix/shade/shadows.h"
 
 #include <cmath>
+#include <utility>
 
 #include "quadrix/math/quadratic.h"
 
@@ -41,24 +42,60 @@ IntervalList NonPositive(double a, double h, double c) {
 }
 
 bool HitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1) {
-    // Slab test; NaN or empty boxes are not culled (conservative).
-    for (int k = 0; k < 3; ++k) {
-        const double lo = b.lo[k], hi = b.hi[k];
-        if (!(lo <= hi)) return true;
-        if (d[k] == 0) {
-            if (p[k] < lo || p[k] > hi) return false;
-            continue;
-        }
-        double t0 = (lo - p[k]) / d[k], t1 = (hi - p[k]) / d[k];
-        if (t0 > t1) std::swap(t0, t1);
-        s0 = std::fmax(s0, t0);
-        s1 = std::fmin(s1, t1);
-        if (s0 > s1) return false;
-    }
-    return true;
+    return BoxTree::SegmentHitsBox(b, p, d, s0, s1);
 }
 
 }  // namespace
+
+DeviceRay DeviceShadowRay(const Mat4& deviceFromWorld, const Vec4& lightWorld, const Vec3& p,
+                          const Vec3& pWorld) {
+    Vec4 h = deviceFromWorld * lightWorld;
+    const Vec4 row3{deviceFromWorld.m[3][0], deviceFromWorld.m[3][1], deviceFromWorld.m[3][2],
+                    deviceFromWorld.m[3][3]};
+    if (Dot(row3, Vec4(pWorld, 1.0)) < 0) h = -h;  // w_p > 0 on the same map
+    if (h.w > 0) return {Dehomogenize(h) - p, 1.0};
+    if (h.w == 0) return {h.xyz(), HUGE_VAL};
+    return {h.xyz() - p * h.w, HUGE_VAL};
+}
+
+ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex) : scene_(scene) {
+    std::vector<Box3> boxes;
+    for (const FlatSolid& solid : scene.solids)
+        boxes.push_back(scene.nodes[static_cast<std::size_t>(solid.root)].bounds);
+    solids_ = BoxTree(boxes, spatialIndex);
+    wideOf_.assign(scene.nodes.size(), -1);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        const FlatCsgNode& node = scene.nodes[n];
+        if (node.isLeaf || node.children.size() <= kWideNode ||
+            node.op == scene::CsgOp::kIntersection)
+            continue;
+        // A difference's tree is over its subtrahends (children 1, 2, ...): item k = child k + 1.
+        const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
+        boxes.clear();
+        for (std::size_t c = from; c < node.children.size(); ++c)
+            boxes.push_back(scene.nodes[static_cast<std::size_t>(node.children[c])].bounds);
+        wideOf_[n] = static_cast<std::int32_t>(wide_.size());
+        wide_.emplace_back(boxes, spatialIndex);
+    }
+}
+
+IntervalList ShadowTester::Wide(const FlatCsgNode& node, const BoxTree& tree, IntervalList acc,
+                                const Vec3& p, const Vec3& d, double s0, double s1) const {
+    const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
+    IntervalList tmp;
+    tree.Segment(p, d, s0, s1, [&](std::int32_t k) {
+        const int c = node.children[from + static_cast<std::size_t>(k)];
+        if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
+        const IntervalList child = Node(c, p, d, s0, s1);
+        if (node.op == scene::CsgOp::kUnion)
+            Union(acc, child, tmp);
+        else
+            Difference(acc, child, tmp);
+        std::swap(acc, tmp);
+        return node.op == scene::CsgOp::kDifference && acc.empty();
+    });
+    return acc;
+}
 
 IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complemented, const Vec3& p,
                                          const Vec3& d) {
@@ -87,7 +124,12 @@ IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complement
 IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
-        IntervalList acc = IntervalList::All(), tmp;
+        // The fold starts from the window (s0, s1) rather than the whole line: every node's set is
+        // then its exact set ∩ (s0, s1) (∩ distributes over ∪, ∩ and −), all that Blocked looks
+        // at, and a body the segment leaves at once (a surface facing the light) empties after a
+        // few literals, so a difference skips its subtrahends.
+        IntervalList acc, tmp;
+        acc.Append(s0, Interval::kNoId, s1, Interval::kNoId);
         for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(node.body)].literals) {
             Intersection(acc,
                          LiteralOnLine(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)],
@@ -97,6 +139,18 @@ IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, 
             if (acc.empty()) break;
         }
         return acc;
+    }
+    const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
+    if (wide >= 0) {
+        IntervalList acc;
+        if (node.op == scene::CsgOp::kDifference) {
+            const int c = node.children[0];
+            if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1))
+                return acc;
+            acc = Node(c, p, d, s0, s1);
+            if (acc.empty()) return acc;
+        }
+        return Wide(node, wide_[static_cast<std::size_t>(wide)], std::move(acc), p, d, s0, s1);
     }
     IntervalList acc, tmp;
     bool first = true;
@@ -137,13 +191,14 @@ bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     const double len = Length(d);
     if (!(len > 0)) return false;
     const double s0 = 1e-4 / len;
-    for (const FlatSolid& solid : scene_.solids) {
+    return solids_.Segment(p, d, s0, sMax, [&](std::int32_t k) {
+        const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(k)];
         const FlatCsgNode& root = scene_.nodes[static_cast<std::size_t>(solid.root)];
-        if (!HitsBox(root.bounds, p, d, s0, sMax)) continue;
+        if (!HitsBox(root.bounds, p, d, s0, sMax)) return false;
         for (const Interval& i : Node(solid.root, p, d, s0, sMax))
             if (i.hi > s0 && i.lo < sMax) return true;
-    }
-    return false;
+        return false;
+    });
 }
 
 }  // namespace quadrix

@@ -14,23 +14,70 @@
 // set meets s in (ε, sMax). ε = 1e-4 pixel along the ray keeps a surface from shadowing itself
 // where the ray leaves it (the set's end at s ≈ 0 carries the rounding of the hit point).
 //
-// Limits: parallel projections only (the device map of a perspective view is projective, so a
-// world segment toward a light at infinity is not a device segment; Shade() skips shadows there);
-// only solids the Flattener kept (those whose bounds meet the image) cast shadows; every solid is
-// tested per shadow ray behind a bounding-box test, and so is every CSG node (no spatial index),
-// so the cost grows with the number of solids.
+// The segment toward a light in device space (DeviceShadowRay): the device map M is projective
+// under perspective, and a projective map sends lines to lines, so the world segment from the
+// surface point P toward the light is still a device segment or half-line, with one care: where it
+// crosses the eye plane (device w = 0) the image passes through infinity. In homogeneous
+// coordinates the world segment is { a·(P, 1) + b·H : a, b >= 0 }, H = (L, 1) for a point or spot
+// light at L and (D, 0) for a parallel light toward D (the light itself is a = 0). With
+// M (P, 1) = w_p (p, 1), w_p > 0 (negate M's image H' = M H otherwise: the same projective map),
+// and H' = (h, h_w), the image of a point of the segment is
+//     x(u) = (w_p p + u h) / (w_p + u h_w),   u = b / a in [0, ∞],
+// which is in front of the eye (on P's side of w = 0) while w_p + u h_w > 0. Hence:
+//   h_w > 0  (a point light in front of the eye plane): x = p + s (l − p), l = h / h_w the light's
+//            device image, s = u h_w / (w_p + u h_w) in [0, 1): the segment from p to l;
+//   h_w = 0  (a parallel light under a parallel view, or a light on the eye plane): x = p + s h,
+//            s = u / w_p in [0, ∞): a half-line along the device vector h;
+//   h_w < 0  (a point light behind the eye plane, or under perspective a parallel light that
+//            shines from behind the viewer): x = p + s (h − h_w p), s = u / (w_p + u h_w) in
+//            [0, ∞) as u runs from 0 to the crossing w_p / −h_w: the half-line from p AWAY from
+//            the light's image (h / h_w, which is the image of the part behind the eye).
+// Under perspective a parallel light with D·n > 0 (from beyond the scene) has h_w > 0 and l its
+// vanishing point, on the far plane z = d. The part of the world segment behind the eye plane has
+// no device image in front of the eye; nothing there is drawn (the Flattener clips everything
+// behind the eye), so it casts no shadow. Under a parallel view M is affine: h_w = 1 for point
+// lights (d = l − p, sMax = 1) and 0 for parallel lights (d = M D, sMax = ∞), bit for bit what
+// the parallel-only shadows computed before.
+//
+// Acceleration (math/box_tree.h): a box tree over the solids' bounds finds the solids a shadow
+// segment may meet, and one over the children of every wide CSG node (a union, or a difference's
+// subtrahends, of more than kWideNode children) the children it may meet; the others are ∅ on the
+// segment. The per-literal evaluation is untouched; only which literals are evaluated changes.
+// A shadow ray's answer does not depend on the order of a union or of the subtrahends.
+//
+// Limits: only solids the Flattener kept (those whose bounds meet the image and lie in front of
+// the eye) cast shadows.
 #pragma once
 
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/math/box_tree.h"
 #include "quadrix/math/interval_list.h"
+#include "quadrix/math/mat4.h"
 
 namespace quadrix {
 
+// A shadow ray in device space: the light is unblocked when no solid meets p + s·d for s in
+// (ε/|d|, sMax).
+struct DeviceRay {
+    Vec3 d;
+    double sMax = HUGE_VAL;
+};
+
+// The device ray from the visible point p (device; pWorld is the same point in world space) toward
+// a light given homogeneously in world space: (position, 1) or (direction toward it, 0), under the
+// device map deviceFromWorld (see above). d = 0 when the light's image coincides with p.
+DeviceRay DeviceShadowRay(const Mat4& deviceFromWorld, const Vec4& lightWorld, const Vec3& p,
+                          const Vec3& pWorld);
+
 class ShadowTester {
   public:
-    explicit ShadowTester(const FlatScene& scene) : scene_(scene) {}
+    // spatialIndex = false: no box trees, every solid and child is box-tested per ray (the
+    // benchmark's "before"; the answers are the same).
+    explicit ShadowTester(const FlatScene& scene, bool spatialIndex = true);
+    // Nodes with more children than this get a box tree over them.
+    static constexpr std::size_t kWideNode = 8;
 
     // True when a solid's set meets p + s·d for some s in (ε/|d|, sMax), p and d in device space.
     bool Blocked(const Vec3& p, const Vec3& d, double sMax) const;
@@ -40,10 +87,17 @@ class ShadowTester {
                                       const Vec3& d);
 
   private:
-    // The node's set on the line; exact on (s0, s1), where children whose boxes the segment
-    // misses are taken as ∅.
+    // The node's set on the line, clipped to [s0, s1] (the bodies' folds start from it); children
+    // whose boxes the segment misses are taken as ∅.
     IntervalList Node(int node, const Vec3& p, const Vec3& d, double s0, double s1) const;
+    // acc folded (by the node's union or difference) with the set of each child the segment may
+    // meet: children 0, 1, ... of a union, 1, 2, ... of a difference (acc = the minuend's set).
+    IntervalList Wide(const FlatCsgNode& node, const BoxTree& tree, IntervalList acc, const Vec3& p,
+                      const Vec3& d, double s0, double s1) const;
     const FlatScene& scene_;
+    BoxTree solids_;                    // over scene_.solids[k].bounds
+    std::vector<BoxTree> wide_;         // trees of the wide nodes
+    std::vector<std::int32_t> wideOf_;  // node → index into wide_, or -1
 };
 
 }  // namespace quadrix

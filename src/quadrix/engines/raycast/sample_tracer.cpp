@@ -7,7 +7,8 @@
 
 namespace quadrix::raycast {
 
-SampleTracer::SampleTracer(const FlatScene& scene) : scene_(scene), tables_(scene) {
+SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex)
+    : scene_(scene), tables_(scene) {
     byDepth_.resize(scene.solids.size());
     for (std::size_t s = 0; s < byDepth_.size(); ++s) byDepth_[s] = static_cast<std::int32_t>(s);
     std::stable_sort(byDepth_.begin(), byDepth_.end(), [&](std::int32_t a, std::int32_t b) {
@@ -15,6 +16,26 @@ SampleTracer::SampleTracer(const FlatScene& scene) : scene_(scene), tables_(scen
                scene.solids[static_cast<std::size_t>(b)].bounds.lo.z;
     });
     for (const FlatSolid& solid : scene.solids) maxDepth_ = std::max(maxDepth_, Depth(solid.root));
+    rank_.resize(byDepth_.size());
+    for (std::size_t r = 0; r < byDepth_.size(); ++r)
+        rank_[static_cast<std::size_t>(byDepth_[r])] = static_cast<std::int32_t>(r);
+    std::vector<Box3> boxes;
+    for (const FlatSolid& solid : scene.solids) boxes.push_back(solid.bounds);
+    solidTree_ = BoxTree(boxes, spatialIndex);
+    wideOf_.assign(scene.nodes.size(), -1);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        const FlatCsgNode& node = scene.nodes[n];
+        if (node.isLeaf || node.children.size() <= kWideNode ||
+            node.op == scene::CsgOp::kIntersection)
+            continue;
+        // A difference's tree is over its subtrahends: item k = child k + 1.
+        const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
+        boxes.clear();
+        for (std::size_t c = from; c < node.children.size(); ++c)
+            boxes.push_back(scene.nodes[static_cast<std::size_t>(node.children[c])].bounds);
+        wideOf_[n] = static_cast<std::int32_t>(wide_.size());
+        wide_.emplace_back(boxes, spatialIndex);
+    }
 }
 
 int SampleTracer::Depth(std::int32_t n) const {
@@ -66,8 +87,35 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
         }
         return;
     }
+    // The children to fold: all of them, or for a wide node the first of a difference and those
+    // its tree finds, in their order in the node. The wide node's list is a range [base, end) of
+    // s.hits, a stack: the children's own lists go above it and are popped when they return; read
+    // by index (pushes may reallocate).
+    const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
+    std::vector<std::int32_t>& hits = s.hits;
+    const std::size_t base = hits.size();
+    struct Pop {
+        std::vector<std::int32_t>& v;
+        std::size_t size;
+        ~Pop() { v.resize(size); }
+    } pop{hits, base};
+    std::size_t count = node.children.size();
+    if (wide >= 0) {
+        const std::int32_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
+        if (from) hits.push_back(0);
+        wide_[static_cast<std::size_t>(wide)].Column(
+            x, y, [&](std::int32_t k) { hits.push_back(k + from); });
+        std::sort(hits.begin() + static_cast<std::ptrdiff_t>(base) + from, hits.end());
+        count = hits.size() - base;
+        if (count == 0) return;  // a union met by no child: ∅
+    }
+    auto child = [&](std::size_t i) {
+        return wide >= 0 ? node.children[static_cast<std::size_t>(hits[base + i])]
+                         : node.children[i];
+    };
     bool first = true;
-    for (int c : node.children) {
+    for (std::size_t i = 0; i < count; ++i) {
+        const int c = child(i);
         const Box3& cb = scene_.nodes[static_cast<std::size_t>(c)].bounds;
         // A child whose bounds miss the ray is ∅ there (bounds are conservative).
         const bool misses = x < cb.lo.x || x > cb.hi.x || y < cb.lo.y || y > cb.hi.y;
@@ -107,7 +155,14 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
 Sample SampleTracer::Trace(double x, double y, SampleScratch& scratch) const {
     double bestT = HUGE_VAL;
     std::int32_t bestTag = -1, bestSolid = -1;
-    for (std::int32_t s : byDepth_) {
+    // The solids whose bounds may contain (x, y), in byDepth_ order.
+    std::vector<std::int32_t>& met = scratch.solids;
+    met.clear();
+    solidTree_.Column(x, y,
+                      [&](std::int32_t k) { met.push_back(rank_[static_cast<std::size_t>(k)]); });
+    std::sort(met.begin(), met.end());
+    for (std::int32_t r : met) {
+        const std::int32_t s = byDepth_[static_cast<std::size_t>(r)];
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(s)];
         if (bestT < solid.bounds.lo.z) break;  // strictly: a tie may go to a lower index
         if (x < solid.bounds.lo.x || x > solid.bounds.hi.x || y < solid.bounds.lo.y ||

@@ -13,6 +13,14 @@
 // a pixel centre a sample equals the engine's pixel (SampleTracer tests), and elsewhere it is the
 // exact picture at that point. Solids are visited by nearest depth behind an (x, y) bounds test.
 //
+// Acceleration (math/box_tree.h): a box tree over the solids' (x, y) bounds gives the solids
+// whose bounds contain the sample, visited in the same nearest-depth order as before; one over
+// the children of each wide CSG node (a union, or a difference's subtrahends, of more than
+// kWideNode children) gives the children whose bounds contain it, folded in their order in the
+// node, as before. Skipped children were ∅ on the ray (A ∪ ∅ = A − ∅ = A, and Union(∅, B) = B
+// exactly), so a sample is bit for bit what it was without the trees; the literal evaluation
+// (LiteralOnRay) is untouched.
+//
 // Freeform surfaces are not traced (the isocurve drawer draws them, not raycast): a sample sees
 // only the quadric solids.
 #pragma once
@@ -22,6 +30,7 @@
 
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/math/box_tree.h"
 #include "quadrix/math/interval_list.h"
 #include "quadrix/math/vec.h"
 
@@ -45,11 +54,17 @@ struct SampleScratch {
     explicit SampleScratch(const SampleTracer& tracer);
     std::vector<IntervalList> lists;
     std::vector<IntervalList*> slots;
+    // Children of the wide nodes being folded, met by the sample (a stack, sample_tracer.cpp);
+    // the solids met by the sample.
+    std::vector<std::int32_t> hits;
+    std::vector<std::int32_t> solids;
 };
 
 class SampleTracer {
   public:
-    explicit SampleTracer(const FlatScene& scene);
+    // spatialIndex = false: no box trees, every solid and child is bounds-tested per sample (the
+    // benchmark's "before"; the samples are the same).
+    explicit SampleTracer(const FlatScene& scene, bool spatialIndex = true);
 
     // The visible point of the ray through device (x, y). Thread-safe with one scratch per
     // thread.
@@ -59,6 +74,8 @@ class SampleTracer {
         return Trace(x, y, scratch);
     }
     int MaxDepth() const { return maxDepth_; }
+    // Nodes with more children than this get a box tree over them.
+    static constexpr std::size_t kWideNode = 8;
 
   private:
     // *scratch.slots[slot] = the set of node n on the ray through (x, y).
@@ -68,6 +85,10 @@ class SampleTracer {
     const FlatScene& scene_;
     SceneTables tables_;
     std::vector<std::int32_t> byDepth_;  // solid indices by nearest device depth (bounds.lo.z)
+    std::vector<std::int32_t> rank_;     // solid index → its position in byDepth_
+    BoxTree solidTree_;                  // over the solids' bounds
+    std::vector<BoxTree> wide_;          // trees of the wide nodes
+    std::vector<std::int32_t> wideOf_;   // node → index into wide_, or -1
     int maxDepth_ = 0;
 };
 

@@ -1,0 +1,94 @@
+#include "quadrix/math/box_tree.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace quadrix {
+
+namespace {
+
+// Every coordinate ordered (lo <= hi, no NaN): the box can be culled.
+bool Ordered(const Box3& b) {
+    for (int k = 0; k < 3; ++k)
+        if (!(b.lo[k] <= b.hi[k])) return false;
+    return true;
+}
+
+// A point to sort by: the box's centre, with an infinite side replaced by the finite one (0 when
+// both are infinite). Only the tree's quality depends on it.
+Vec3 Centre(const Box3& b) {
+    Vec3 c;
+    for (int k = 0; k < 3; ++k) {
+        const double lo = b.lo[k], hi = b.hi[k];
+        if (std::isfinite(lo) && std::isfinite(hi))
+            c[k] = 0.5 * lo + 0.5 * hi;
+        else if (std::isfinite(lo))
+            c[k] = lo;
+        else if (std::isfinite(hi))
+            c[k] = hi;
+        else
+            c[k] = 0;
+    }
+    return c;
+}
+
+}  // namespace
+
+BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size()) {
+    std::vector<std::int32_t> items;
+    std::vector<Vec3> centres(boxes.size());
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+        if (index && Ordered(boxes[k])) {
+            items.push_back(static_cast<std::int32_t>(k));
+            centres[k] = Centre(boxes[k]);
+        } else {
+            always_.push_back(static_cast<std::int32_t>(k));
+        }
+    }
+    if (items.empty()) return;
+    nodes_.reserve(2 * (items.size() / kLeafSize + 1));
+    nodes_.emplace_back();
+    order_.reserve(items.size());
+    Build(0, items, 0, items.size(), boxes, centres);
+}
+
+// Fills node `self` (already allocated) with items[lo, hi).
+void BoxTree::Build(std::int32_t self, std::vector<std::int32_t>& items, std::size_t lo,
+                    std::size_t hi, const std::vector<Box3>& boxes,
+                    const std::vector<Vec3>& centres) {
+    Box3 box, spread;
+    for (std::size_t i = lo; i < hi; ++i) {
+        const auto k = static_cast<std::size_t>(items[i]);
+        box.Extend(boxes[k]);
+        spread.Extend(centres[k]);
+    }
+    nodes_[static_cast<std::size_t>(self)].box = box;
+    if (hi - lo <= static_cast<std::size_t>(kLeafSize)) {
+        nodes_[static_cast<std::size_t>(self)].first = static_cast<std::int32_t>(order_.size());
+        nodes_[static_cast<std::size_t>(self)].count = static_cast<std::int32_t>(hi - lo);
+        order_.insert(order_.end(), items.begin() + static_cast<std::ptrdiff_t>(lo),
+                      items.begin() + static_cast<std::ptrdiff_t>(hi));
+        return;
+    }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (spread.hi[k] - spread.lo[k] > spread.hi[axis] - spread.lo[axis]) axis = k;
+    const std::size_t mid = lo + (hi - lo) / 2;
+    std::nth_element(items.begin() + static_cast<std::ptrdiff_t>(lo),
+                     items.begin() + static_cast<std::ptrdiff_t>(mid),
+                     items.begin() + static_cast<std::ptrdiff_t>(hi),
+                     [&](std::int32_t a, std::int32_t b) {
+                         const double ca = centres[static_cast<std::size_t>(a)][axis];
+                         const double cb = centres[static_cast<std::size_t>(b)][axis];
+                         return ca < cb || (ca == cb && a < b);
+                     });
+    const auto left = static_cast<std::int32_t>(nodes_.size());
+    nodes_.emplace_back();
+    nodes_.emplace_back();
+    nodes_[static_cast<std::size_t>(self)].first = left;
+    nodes_[static_cast<std::size_t>(self)].count = 0;
+    Build(left, items, lo, mid, boxes, centres);
+    Build(left + 1, items, mid, hi, boxes, centres);
+}
+
+}  // namespace quadrix

@@ -1,0 +1,132 @@
+// A bounding-volume hierarchy over a list of boxes: which items' boxes may a segment or a column
+// meet? Used by the rays that walk the CSG trees outside the engines' tiles — shadow rays
+// (shade/shadows.h, segments in any direction) and anti-aliasing samples (engines/raycast/
+// sample_tracer.h, columns along z) — over the solids of a scene and over the children of wide
+// CSG nodes (a union of 10,000 spheres is one node with 10,000 children).
+//
+// Structure: a binary tree in one array, built top-down by splitting the items at the median of
+// their box centres along the axis where the centres spread most, down to leaves of at most
+// kLeafSize items; each node's box is the union of its items' boxes. Items are referred to by
+// their index in the list given to the constructor; a leaf's items are a range of `order_`.
+//
+// The queries are conservative pre-filters: they visit (at least) every item whose own box
+// passes the test, and the caller applies its own test to each visited item. Boxes with a
+// coordinate that is NaN or lo > hi (empty, or unknown) are never culled: such items are visited
+// by every query. Infinite coordinates are fine (an unbounded solid's box). The node tests are
+// monotone in the box (a box containing another passes whenever the smaller one passes, with the
+// same floating-point operations), so nothing an item's own test would accept is skipped.
+//
+// Order: items are visited in tree order, not index order; a caller whose result depends on the
+// order (the sample tracer folds children left to right) sorts what it collects.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "quadrix/math/vec.h"
+
+namespace quadrix {
+
+class BoxTree {
+  public:
+    static constexpr int kLeafSize = 4;
+
+    BoxTree() = default;
+    // index = false builds no tree: every query visits every item (the benchmark's "before").
+    explicit BoxTree(const std::vector<Box3>& boxes, bool index = true);
+
+    std::size_t size() const { return count_; }
+
+    // Calls visit(k) (k: item index) for the items whose box the segment p + s·d, s in [s0, s1],
+    // may meet; visit returns true to stop the query. Returns true when a visit stopped it.
+    template <class Visit>
+    bool Segment(const Vec3& p, const Vec3& d, double s0, double s1, Visit&& visit) const;
+
+    // Calls visit(k) for the items whose box's (x, y) projection may contain (x, y) (closed).
+    template <class Visit>
+    void Column(double x, double y, Visit&& visit) const;
+
+    // The slab test of one box against a segment (used by the tree and by its callers).
+    static bool SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1);
+
+  private:
+    struct Node {
+        Box3 box;
+        // Inner node: children at `first` and `first + 1` of nodes_ (count = 0). Leaf: items
+        // order_[first .. first + count).
+        std::int32_t first = 0, count = 0;
+    };
+    void Build(std::int32_t self, std::vector<std::int32_t>& items, std::size_t lo, std::size_t hi,
+               const std::vector<Box3>& boxes, const std::vector<Vec3>& centres);
+
+    std::size_t count_ = 0;
+    std::vector<Node> nodes_;             // nodes_[0] is the root (when any item is bounded)
+    std::vector<std::int32_t> order_;     // the items of the leaves
+    std::vector<std::int32_t> always_;    // items whose boxes are never culled
+    static constexpr int kMaxDepth = 64;  // the median split gives depth <= log2(n) + 1
+};
+
+inline bool BoxTree::SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0,
+                                    double s1) {
+    // Slab test; NaN or empty boxes are not culled (conservative).
+    for (int k = 0; k < 3; ++k) {
+        const double lo = b.lo[k], hi = b.hi[k];
+        if (!(lo <= hi)) return true;
+        if (d[k] == 0) {
+            if (p[k] < lo || p[k] > hi) return false;
+            continue;
+        }
+        double t0 = (lo - p[k]) / d[k], t1 = (hi - p[k]) / d[k];
+        if (t0 > t1) std::swap(t0, t1);
+        s0 = std::fmax(s0, t0);
+        s1 = std::fmin(s1, t1);
+        if (s0 > s1) return false;
+    }
+    return true;
+}
+
+template <class Visit>
+bool BoxTree::Segment(const Vec3& p, const Vec3& d, double s0, double s1, Visit&& visit) const {
+    for (std::int32_t k : always_)
+        if (visit(k)) return true;
+    if (nodes_.empty()) return false;
+    std::int32_t stack[kMaxDepth + 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+        if (!SegmentHitsBox(n.box, p, d, s0, s1)) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first;
+            stack[top++] = n.first + 1;
+            continue;
+        }
+        for (std::int32_t i = n.first; i < n.first + n.count; ++i)
+            if (visit(order_[static_cast<std::size_t>(i)])) return true;
+    }
+    return false;
+}
+
+template <class Visit>
+void BoxTree::Column(double x, double y, Visit&& visit) const {
+    for (std::int32_t k : always_) visit(k);
+    if (nodes_.empty()) return;
+    std::int32_t stack[kMaxDepth + 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+        if (x < n.box.lo.x || x > n.box.hi.x || y < n.box.lo.y || y > n.box.hi.y) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first;
+            stack[top++] = n.first + 1;
+            continue;
+        }
+        for (std::int32_t i = n.first; i < n.first + n.count; ++i)
+            visit(order_[static_cast<std::size_t>(i)]);
+    }
+}
+
+}  // namespace quadrix
