@@ -3,8 +3,8 @@
 //   - shadows, when the scene declares a light that can cast one (not the default rig);
 //   - anti-aliasing, kDefaultAaSamples samples per edge pixel (box filter);
 // both only for scenes of at most kPictureDefaultBodies bodies (the cost of their rays, which the
-// box trees of math/box_tree.h bound); asked for explicitly they are still done. They depend on the flat scene (its lights
-// and bodies), so they are applied after flattening, frame by frame.
+// box trees of math/box_tree.h bound); asked for explicitly they are still done. They depend on the
+// flat scene (its lights and bodies), so they are applied after flattening, frame by frame.
 #pragma once
 
 #include <cstddef>
