@@ -166,17 +166,15 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
 // weights), Quadrix re-renders its edge pixels with 16 stratified samples and the box filter
 // (--aa 16). Every pixel is compared now, edges included: at least 99 % must agree within 8 levels.
 //
-// Run on the quick cases only (POV-Ray's supersampling costs seconds on the larger ones); measured
-// once on all of them (docs/shading.md): every case passes except StackOfBundlesShadows, 1.08 %
-// off, at shadow boundaries, which are not edges of the Frame and so are not resampled.
-TEST_P(PovrayTest, AntialiasedPicturesMatchEverywhere) {
+// Instantiated on the quick parallel-view cases only (POV-Ray's supersampling costs seconds on the
+// larger ones; perspective exports are shaded with device-space normals); measured once on all of
+// them (docs/shading.md): every case passes except StackOfBundlesShadows, 1.08 % off, at shadow
+// boundaries, which are not edges of the Frame and so are not resampled.
+class PovrayAntialiasedTest : public ::testing::TestWithParam<PovCase> {};
+
+TEST_P(PovrayAntialiasedTest, PicturesMatchEverywhere) {
     if (!HaveProgram("povray")) GTEST_SKIP() << "povray is not installed";
     const PovCase& c = GetParam();
-    if (c.perspective) GTEST_SKIP() << "POV-Ray shades the export with device-space normals";
-    const std::string name = c.name;
-    if (name != "Tube" && name != "CylinderMinusCylinder" && name != "LitScene" &&
-        name != "LitSceneShadows" && name != "DefaultRigColors")
-        GTEST_SKIP() << "the anti-aliased comparison runs on the quick cases only";
     TempDir dir;
     std::string scenePath = c.scene.rfind("text:", 0) == 0
                                 ? dir.Write("scene.uq", c.scene.substr(5))
@@ -293,6 +291,17 @@ INSTANTIATE_TEST_SUITE_P(
         PovCase{"MaterialsShadows", "examples/materials.uq", 240, 180, false, true},
         PovCase{"StackOfBundlesShadows", "examples/stack_of_bundles.uq", 200, 200, false, true},
         PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240, false, true}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+INSTANTIATE_TEST_SUITE_P(
+    Quick, PovrayAntialiasedTest,
+    ::testing::Values(PovCase{"Tube", "examples/tube.uq", 160, 120},
+                      PovCase{"CylinderMinusCylinder", "examples/cylinder_minus_cylinder.uq", 200,
+                              160},
+                      PovCase{"LitScene", kLitScene, 240, 160},
+                      PovCase{"DefaultRigColors", kDefaultRigColors, 240, 160},
+                      PovCase{"LitSceneShadows", kLitScene, 240, 160, false, true},
+                      PovCase{"TorusThroughHole", kTorusThroughHole, 200, 160, false, false, true}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
