@@ -291,6 +291,63 @@ TEST(Antialias, InteriorPixelsAreNotResampled) {
     EXPECT_LT(edgePixels, 160u * 120u / 4);
 }
 
+// A shadow's boundary is not an edge of the Frame (one surface of one body on both sides), but
+// with shadows on its pixels are resampled too (MarkShadingJumps): on a flat floor under one
+// parallel light, a pixel is fully lit, fully shadowed, or — only next to the shadow's boundary —
+// in between. Without resampling there would be no pixel in between.
+TEST(Antialias, ShadowBoundariesAreResampled) {
+    PipelineResult r = Render(
+        "solid box floor =at 0 -1 0 =size 8 .2 8; solid sphere ball =at 0 .5 0 =r .8;\n"
+        "light .2; light sun .8 .6 1 .3;\n"
+        "view v vrp 0 -1 0 cop 0 20 -.01 whh 3.5;\n",
+        96, 96);
+    ShadeOptions so;
+    so.shadows = true;
+    const Image plain = Shade(r.frame, r.flat, so);
+    so.aaSamples = 16;
+    Image aa = Shade(r.frame, r.flat, so);
+    Antialias(r.frame, r.flat, so, aa);
+    // The floor's two values in the plain picture: lit and shadowed.
+    const std::int32_t floorBody = r.frame.body[r.frame.Index(2, 2)];
+    ASSERT_GE(floorBody, 0);
+    std::set<float> values;
+    for (std::size_t k = 0; k < r.frame.body.size(); ++k)
+        if (r.frame.body[k] == floorBody &&
+            r.frame.surface[k] == r.frame.surface[r.frame.Index(2, 2)])
+            values.insert(plain.linear[k]);
+    ASSERT_EQ(values.size(), 2u) << "the floor is lit or shadowed, nothing else";
+    const float shadowed = *values.begin(), lit = *values.rbegin();
+    ASSERT_LT(shadowed, lit);
+    std::size_t between = 0, boundary = 0;
+    for (int j = 1; j + 1 < 96; ++j)
+        for (int i = 1; i + 1 < 96; ++i) {
+            const std::size_t k = r.frame.Index(i, j);
+            if (r.frame.body[k] != floorBody) continue;
+            bool nearBoundary = false, nearOther = false;
+            for (int d = 0; d < 4; ++d) {
+                const std::size_t n =
+                    r.frame.Index(i + (d == 0) - (d == 1), j + (d == 2) - (d == 3));
+                if (r.frame.body[n] != floorBody)
+                    nearOther = true;
+                else if (plain.linear[n] != plain.linear[k])
+                    nearBoundary = true;
+            }
+            if (nearOther) continue;
+            const float v = aa.linear[k];
+            EXPECT_GE(v, shadowed - 1e-6f);
+            EXPECT_LE(v, lit + 1e-6f);
+            if (!nearBoundary) {
+                // Away from the boundary (and from the ball's silhouette) nothing changes.
+                EXPECT_EQ(v, plain.linear[k]) << i << "," << j;
+                continue;
+            }
+            ++boundary;
+            between += v > shadowed + 1e-6f && v < lit - 1e-6f;
+        }
+    EXPECT_GT(boundary, 20u);
+    EXPECT_GT(between, boundary / 3) << between << " of " << boundary;
+}
+
 // Edge lines: one pixel wide, on the covered side of a silhouette, and every silhouette pixel.
 TEST(EdgeLines, TheDiscsOutlineIsOnePixelWide) {
     PipelineResult r = Render(kDisc, 64, 64);

@@ -97,6 +97,42 @@ std::vector<std::uint8_t> FindEdges(const Frame& f) {
     return e;
 }
 
+void MarkShadingJumps(const Frame& f, const Image& image, std::vector<std::uint8_t>& e) {
+    const int w = f.width, h = f.height;
+    if (image.width != w || image.height != h) return;
+    const bool lin = image.linear.size() == image.pixels.size();
+    const int ch = image.channels;
+    auto value = [&](std::size_t k, int c) {
+        const std::size_t i = k * static_cast<std::size_t>(ch) + static_cast<std::size_t>(c);
+        return lin ? static_cast<double>(image.linear[i]) : image.pixels[i] / 255.0;
+    };
+    std::vector<double> lum(e.size());
+    for (std::size_t k = 0; k < lum.size(); ++k)
+        lum[k] = ch >= 3 ? 0.2126 * value(k, 0) + 0.7152 * value(k, 1) + 0.0722 * value(k, 2)
+                         : value(k, 0);
+    // A pair on one surface of one body whose brightness jumps: a shadow's boundary (the jump
+    // test of depths, on luminance, with a floor of one 8-bit level).
+    auto test = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
+        if (f.surface[a] < 0 || f.surface[a] != f.surface[b] || f.body[a] != f.body[b]) return;
+        const double d = std::fabs(lum[b] - lum[a]);
+        const double slope = std::max(std::fabs(lum[a] - lum[a2]), std::fabs(lum[b2] - lum[b]));
+        if (d > 4 * slope + 1.0 / 255) {
+            e[a] |= kEdgePixel;
+            e[b] |= kEdgePixel;
+        }
+    };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x + 1 < w; ++x) {
+            const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
+            test(a, b, x > 0 ? f.Index(x - 1, y) : a, x + 2 < w ? f.Index(x + 2, y) : b);
+        }
+    for (int y = 0; y + 1 < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
+            test(a, b, y > 0 ? f.Index(x, y - 1) : a, y + 2 < h ? f.Index(x, y + 2) : b);
+        }
+}
+
 bool ValidAaSamples(int samples) {
     return samples == 0 || samples == 1 || samples == 4 || samples == 16 || samples == 64;
 }
@@ -130,6 +166,7 @@ AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const Shade
     if (options.aaSamples < 2 || frame.width == 0 || frame.height == 0) return stats;
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<std::uint8_t> edges = FindEdges(frame);
+    if (options.shadows) MarkShadingJumps(frame, image, edges);
     // Keep away from freeform surfaces: no point tracer for them.
     const auto firstFreeform = static_cast<std::int32_t>(scene.halfSpaces.size());
     if (!scene.freeforms.empty()) {

@@ -11,6 +11,10 @@
 //    always separates its centre from a 4-neighbour's (the edge is at distance < ½·√2 from the
 //    centre, and some axis neighbour lies at signed distance ≥ max(|nx|, |ny|) ≥ ½·√2 across
 //    the edge's normal n), so only features thinner than a pixel that touch no centre are missed.
+//    With shadows on, a pair on one surface of one body whose shaded brightness jumps (the same
+//    test on luminance, with a floor of one 8-bit level) is a pair of edge pixels too: a shadow's
+//    boundary is not an edge of the Frame, but its samples are exact like any other (shadow rays
+//    from each sample's own point).
 //    Pixels near freeform surfaces (drawn by isocurves, which cannot be traced at a point) are
 //    left as they are.
 // 2. Samples. An edge pixel (i, j) is re-rendered at N sub-pixel positions (i + u, j + v) by the
@@ -48,6 +52,9 @@ constexpr double kCreaseDegrees = 20;
 // to the background is the nearer one).
 constexpr std::uint8_t kEdgePixel = 1, kEdgeLine = 2;
 std::vector<std::uint8_t> FindEdges(const Frame& frame);
+// Adds kEdgePixel to the pairs of 4-neighbours of one surface and body whose brightness in the
+// shaded `image` jumps (shadow boundaries; see the file comment).
+void MarkShadingJumps(const Frame& frame, const Image& image, std::vector<std::uint8_t>& edges);
 
 // The N = k·k sub-pixel positions (u, v) in [0, 1)² of pixel (i, j) (see the file comment).
 struct SubPixel {
