@@ -228,6 +228,25 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, const Engin
     ComposeMin(frame, other);
 }
 
+void RenderContext::StrictRefusal(const std::string& engine,
+                                  const std::vector<UndrawnSolid>& undrawn, std::size_t freeforms,
+                                  Diagnostics& diags) const {
+    // One line (diagnostics are one line each): the first five solids, then a count.
+    std::string what;
+    for (std::size_t k = 0; k < undrawn.size() && k < 5; ++k)
+        what += fmt::format("{}solid '{}': {}", what.empty() ? "" : "; ",
+                            flat_.solids[static_cast<std::size_t>(undrawn[k].solid)].name,
+                            undrawn[k].reason);
+    if (undrawn.size() > 5) what += fmt::format("; ... and {} more", undrawn.size() - 5);
+    if (freeforms > 0)
+        what += fmt::format("{}{} freeform surface(s)", what.empty() ? "" : "; ", freeforms);
+    diags.Error({},
+                fmt::format("engine '{}' cannot draw the whole scene (strict: nothing is drawn by "
+                            "another engine): {}",
+                            engine, what),
+                {}, "engine");
+}
+
 bool RenderContext::Execute(const std::function<void()>& work) {
     bool done = true;
     arena_->arena.execute([&] { done = cancel_ ? cancel_->Run(work) : (work(), true); });
@@ -327,20 +346,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     }
     const bool freeformsLeft = !caps.freeforms && !flat_.freeforms.empty();
     if (request.strict && (!undrawn.empty() || freeformsLeft)) {
-        std::string what;
-        for (std::size_t k = 0; k < undrawn.size() && k < 5; ++k)
-            what += fmt::format("{}  solid '{}': {}", what.empty() ? "" : "\n",
-                                flat_.solids[static_cast<std::size_t>(undrawn[k].solid)].name,
-                                undrawn[k].reason);
-        if (undrawn.size() > 5) what += fmt::format("\n  ... and {} more", undrawn.size() - 5);
-        if (freeformsLeft)
-            what += fmt::format("{}  {} freeform surface(s)", what.empty() ? "" : "\n",
-                                flat_.freeforms.size());
-        diags.Error({},
-                    fmt::format("engine '{}' cannot draw the whole scene (strict: nothing is "
-                                "drawn by another engine):\n{}",
-                                request.engine, what),
-                    {}, "engine");
+        StrictRefusal(request.engine, undrawn, freeformsLeft ? flat_.freeforms.size() : 0, diags);
         return false;
     }
     if (!undrawn.empty()) {
@@ -400,17 +406,7 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
              fmt::format("a quartic surface ({}) is drawn only by raycast", q.KindName())});
     }
     if (request.strict) {
-        std::string what;
-        for (std::size_t k = 0; k < undrawn.size() && k < 5; ++k)
-            what += fmt::format("{}  solid '{}': {}", what.empty() ? "" : "\n",
-                                flat_.solids[static_cast<std::size_t>(undrawn[k].solid)].name,
-                                undrawn[k].reason);
-        if (undrawn.size() > 5) what += fmt::format("\n  ... and {} more", undrawn.size() - 5);
-        diags.Error({},
-                    fmt::format("engine '{}' cannot draw the whole scene (strict: nothing is "
-                                "drawn by another engine):\n{}",
-                                request.engine, what),
-                    {}, "engine");
+        StrictRefusal(request.engine, undrawn, 0, diags);
         return false;
     }
     FlatScene kept = std::move(flat_);

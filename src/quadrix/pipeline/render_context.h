@@ -168,6 +168,9 @@ class RenderContext {
                           Frame& frame);
     // Runs `work` in the arena, under the cancellation when there is one; false when cancelled.
     bool Execute(const std::function<void()>& work);
+    // The --strict error naming what the engine could not draw (undrawn solids, freeforms).
+    void StrictRefusal(const std::string& engine, const std::vector<UndrawnSolid>& undrawn,
+                       std::size_t freeforms, Diagnostics& diags) const;
     // Render for an engine without the `quartics` capability: it draws the `plain` solids on a
     // flat scene without quartic half-spaces, raycast draws the `quartic` ones (their first
     // quartic half-space in firstQuartic, for the message), composed by depth.
