@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/math/quadratic.h"
 
 namespace quadrix {
@@ -63,20 +64,9 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex) : scene_(s
     for (const FlatSolid& solid : scene.solids)
         boxes.push_back(scene.nodes[static_cast<std::size_t>(solid.root)].bounds);
     solids_ = BoxTree(boxes, spatialIndex);
-    wideOf_.assign(scene.nodes.size(), -1);
-    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
-        const FlatCsgNode& node = scene.nodes[n];
-        if (node.isLeaf || node.children.size() <= kWideNode ||
-            node.op == scene::CsgOp::kIntersection)
-            continue;
-        // A difference's tree is over its subtrahends (children 1, 2, ...): item k = child k + 1.
-        const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
-        boxes.clear();
-        for (std::size_t c = from; c < node.children.size(); ++c)
-            boxes.push_back(scene.nodes[static_cast<std::size_t>(node.children[c])].bounds);
-        wideOf_[n] = static_cast<std::int32_t>(wide_.size());
-        wide_.emplace_back(boxes, spatialIndex);
-    }
+    WideNodeTrees wide = WideNodeTrees::Build(scene, spatialIndex);
+    wide_ = std::move(wide.trees);
+    wideOf_ = std::move(wide.of);
 }
 
 IntervalList ShadowTester::Wide(const FlatCsgNode& node, const BoxTree& tree, IntervalList acc,

@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/math/box_tree.h"
 #include "quadrix/math/interval_list.h"
 #include "quadrix/math/mat4.h"
@@ -77,7 +78,7 @@ class ShadowTester {
     // benchmark's "before"; the answers are the same).
     explicit ShadowTester(const FlatScene& scene, bool spatialIndex = true);
     // Nodes with more children than this get a box tree over them.
-    static constexpr std::size_t kWideNode = 8;
+    static constexpr std::size_t kWideNode = WideNodeTrees::kWideNode;
 
     // True when a solid's set meets p + s·d for some s in (ε/|d|, sMax), p and d in device space.
     bool Blocked(const Vec3& p, const Vec3& d, double sMax) const;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "quadrix/engines/raycast/eval_names.h"
+#include "quadrix/flatten/wide_node_trees.h"
 
 namespace quadrix::raycast {
 
@@ -22,20 +23,9 @@ SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex)
     std::vector<Box3> boxes;
     for (const FlatSolid& solid : scene.solids) boxes.push_back(solid.bounds);
     solidTree_ = BoxTree(boxes, spatialIndex);
-    wideOf_.assign(scene.nodes.size(), -1);
-    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
-        const FlatCsgNode& node = scene.nodes[n];
-        if (node.isLeaf || node.children.size() <= kWideNode ||
-            node.op == scene::CsgOp::kIntersection)
-            continue;
-        // A difference's tree is over its subtrahends: item k = child k + 1.
-        const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
-        boxes.clear();
-        for (std::size_t c = from; c < node.children.size(); ++c)
-            boxes.push_back(scene.nodes[static_cast<std::size_t>(node.children[c])].bounds);
-        wideOf_[n] = static_cast<std::int32_t>(wide_.size());
-        wide_.emplace_back(boxes, spatialIndex);
-    }
+    WideNodeTrees wide = WideNodeTrees::Build(scene, spatialIndex);
+    wide_ = std::move(wide.trees);
+    wideOf_ = std::move(wide.of);
 }
 
 int SampleTracer::Depth(std::int32_t n) const {

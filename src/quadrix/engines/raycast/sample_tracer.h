@@ -30,6 +30,7 @@
 
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/math/box_tree.h"
 #include "quadrix/math/interval_list.h"
 #include "quadrix/math/vec.h"
@@ -75,7 +76,7 @@ class SampleTracer {
     }
     int MaxDepth() const { return maxDepth_; }
     // Nodes with more children than this get a box tree over them.
-    static constexpr std::size_t kWideNode = 8;
+    static constexpr std::size_t kWideNode = WideNodeTrees::kWideNode;
 
   private:
     // *scratch.slots[slot] = the set of node n on the ray through (x, y).
