@@ -4,19 +4,22 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS="${JOBS:-$(nproc)}"
+phase() { echo "== $* (at ${SECONDS} s)"; }
 
-echo "== Formatting (.clang-format; scripts/check-format.sh)"
+phase "Formatting (.clang-format; scripts/check-format.sh)"
 bash scripts/check-format.sh
 
-echo "== Release build (-Werror)"
+phase "Release build (-Werror)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DQUADRIX_WERROR=ON
 cmake --build build -j "$JOBS"
+phase "Release tests"
 ctest --test-dir build --output-on-failure -j "$JOBS"
 
-echo "== ASan+UBSan build"
+phase "ASan+UBSan build"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DQUADRIX_WERROR=ON \
       -DQUADRIX_SANITIZE=ON -DQUADRIX_BUILD_BENCH=OFF
 cmake --build build-asan -j "$JOBS"
+phase "ASan+UBSan tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" ctest --test-dir build-asan --output-on-failure -j "$JOBS"
 # Fuzzing (libFuzzer; tests/fuzz_reader/README.md, tests/fuzz_importers/README.md): the language
@@ -25,6 +28,6 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
 # is for long runs (FUZZ_TARGETS="reader v4 v5 comgeom openscad freeform pipeline").
 read -r -a fuzz_targets <<< "${FUZZ_TARGETS:-reader v4 v5 comgeom openscad freeform}"
 fuzz_seconds="${FUZZ_SECONDS:-60}"
-echo "== Fuzzing (libFuzzer, ${fuzz_targets[*]}: $fuzz_seconds s each, ${FUZZ_JOBS:-2} at a time)"
+phase "Fuzzing (libFuzzer, ${fuzz_targets[*]}: $fuzz_seconds s each, ${FUZZ_JOBS:-2} at a time)"
 FUZZ_JOBS="${FUZZ_JOBS:-2}" bash tests/fuzz_importers/run.sh "$fuzz_seconds" "${fuzz_targets[@]}"
-echo "== all tests passed"
+phase "all tests passed"

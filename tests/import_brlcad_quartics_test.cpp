@@ -235,7 +235,7 @@ TEST(ImportBrlcadPipe, VolumeAndJoints) {
     brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
     ASSERT_EQ(cr.status, brlcad::ConvertResult::Status::kOk) << cr.problem;
     ASSERT_EQ(cr.shape.bodies.size(), 3u);
-    const brlcad::Shape& shape = cr.shape;
+    const Shape& shape = cr.shape;
     const double frustum = kPi * 12 / 3 * (4 + 6 + 9) - kPi * 12 / 3 * 1;  // ro 2→3, ri 0→1
     const double bend = kPi * (9 - 1) * 8 * (kPi / 2);
     const double run2 = kPi * (9 - 1) * 12;
@@ -245,7 +245,7 @@ TEST(ImportBrlcadPipe, VolumeAndJoints) {
     for (double x = -3 + h / 2; x < 24; x += h)
         for (double y = -4 + h / 2; y < 21; y += h)
             for (double z = -3.2 + h / 2; z < 3.2; z += h)
-                if (brlcad::ShapeContains(shape, {x, y, z})) vol += h * h * h;
+                if (ShapeContains(shape, {x, y, z})) vol += h * h * h;
     EXPECT_NEAR(vol, want, 0.005 * want) << "analytic " << want;
     // Joint planes x = 12 (run → bend) and y = 8 (bend → run): no crack, no overlap.
     for (int k = 0; k < 24; ++k) {
@@ -254,15 +254,13 @@ TEST(ImportBrlcadPipe, VolumeAndJoints) {
             const double u = rad * std::cos(phi), v = rad * std::sin(phi);
             const bool wall = rad > 1 && rad < 3;
             for (double eps : {-1e-7, 1e-7}) {
-                EXPECT_EQ(brlcad::ShapeContains(shape, {12 + eps, u, v}), wall)
-                    << rad << " " << phi;
-                EXPECT_EQ(brlcad::ShapeContains(shape, {20 + u, 8 + eps, v}), wall)
-                    << rad << " " << phi;
+                EXPECT_EQ(ShapeContains(shape, {12 + eps, u, v}), wall) << rad << " " << phi;
+                EXPECT_EQ(ShapeContains(shape, {20 + u, 8 + eps, v}), wall) << rad << " " << phi;
             }
         }
     }
     // The box covers the pipe and is tight where the runs end (x = −2 at the solid start).
-    const Box3 box = brlcad::ShapeBox(shape, Mat4::Identity());
+    const Box3 box = ShapeBox(shape, Mat4::Identity());
     EXPECT_NEAR(box.lo.x, 0, 2 + 1e-9);
     EXPECT_GE(box.hi.x, 23 - 1e-9);
     EXPECT_NEAR(box.hi.x, 23, 0.05 * 8);

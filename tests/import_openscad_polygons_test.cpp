@@ -11,10 +11,10 @@
 #include <numbers>
 #include <random>
 
-#include "quadrix/import/brlcad/mesh_solid.h"
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/import/openscad/polygon_solids.h"
 #include "quadrix/import/rt_view.h"
+#include "quadrix/import/shapes/mesh_solid.h"
 #include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
@@ -244,7 +244,7 @@ TEST(ImportOpenScadPolygons, NonConvexMeshDecomposesExactly) {
     faces.push_back({6, 7, 8});
     faces.push_back({6, 9, 10});
     faces.push_back({6, 10, 11});
-    brlcad::MeshSolid m = brlcad::MeshToSolid(v, faces);
+    MeshSolid m = MeshToSolid(v, faces);
     ASSERT_TRUE(m.ok) << m.problem;
     EXPECT_FALSE(m.convex);
     EXPECT_GE(m.shape.bodies.size(), 2u);
@@ -256,12 +256,12 @@ TEST(ImportOpenScadPolygons, NonConvexMeshDecomposesExactly) {
         bool in = ((p.x >= 0 && p.x <= 10 && p.y >= 0 && p.y <= 2) ||
                    (p.x >= 0 && p.x <= 2 && p.y >= 0 && p.y <= 8)) &&
                   p.z >= 0 && p.z <= 3;
-        wrong += brlcad::ShapeContains(m.shape, p) != in;
+        wrong += ShapeContains(m.shape, p) != in;
     }
     EXPECT_EQ(wrong, 0);
     // An open mesh (one face removed) bounds nothing: refused with a reason.
     faces.pop_back();
-    brlcad::MeshSolid open = brlcad::MeshToSolid(v, faces);
+    MeshSolid open = MeshToSolid(v, faces);
     EXPECT_FALSE(open.ok);
     EXPECT_NE(open.problem.find("bounds no solid"), std::string::npos) << open.problem;
 }

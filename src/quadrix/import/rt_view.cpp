@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "quadrix/import/brlcad/readers.h"
+#include "quadrix/import/text_map.h"
 
 namespace quadrix::import {
 
@@ -89,7 +89,7 @@ scene::View MakeAzElView(double azimuth, double elevation, const Box3& modelBox,
 
 std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string& file,
                                         Diagnostics& diags) {
-    brlcad::TextMap map(text, file);
+    TextMap map(text, file);
     RtView rt;
     bool haveSize = false, haveEye = false, haveRot = false;
     std::size_t i = 0;

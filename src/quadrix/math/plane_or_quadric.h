@@ -2,7 +2,7 @@
 // quartic (quartic_surface.h: torus, elliptical torus, general cone), the inside being where the
 // function is <= 0 (seed 001 §2.1.1). The one value type shared by the flat scene
 // (FlatHalfSpace), the modeling front end (model::SolidSurface), the BRL-CAD/OpenSCAD primitives
-// (import::brlcad::ShapeHalfSpace) and the scanline Resolver's oriented literals; each adds its own
+// (import::ShapeHalfSpace) and the scanline Resolver's oriented literals; each adds its own
 // attributes by deriving from it.
 //
 // Quartics. `quartic` is set (and isPlane false) for a quartic surface; `quadric` is then unused

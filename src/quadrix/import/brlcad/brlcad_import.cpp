@@ -17,20 +17,6 @@ namespace quadrix::import {
 
 using namespace brlcad;
 
-std::string ImportReport::CensusText() const {
-    std::string s;
-    for (const auto& [type, n] : census)
-        s += fmt::format("{}{} {}", s.empty() ? "" : ", ", type, n);
-    return s.empty() ? "no primitives" : s;
-}
-
-std::string ImportReport::SkippedText() const {
-    std::string s;
-    for (const auto& [type, n] : skipped)
-        s += fmt::format("{}{} ×{}", s.empty() ? "" : ", ", type, n);
-    return s;
-}
-
 namespace {
 
 // Limits that keep a hostile or exploding file from exhausting memory.

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "quadrix/import/brlcad/mesh_solid.h"
 #include "quadrix/import/brlcad/pipe_solid.h"
+#include "quadrix/import/shapes/mesh_solid.h"
 #include "quadrix/math/quartic_surface.h"
 
 namespace quadrix::import::brlcad {
@@ -534,83 +534,6 @@ ConvertResult ConvertPrimitive(const Primitive& p) {
     }
     if (r.censusName.empty()) r.censusName = t;
     return r;
-}
-
-bool ShapeContains(const Shape& shape, const Vec3& p, double tol) {
-    for (const ShapeBody& body : shape.bodies) {
-        bool in = true;
-        for (const ShapeHalfSpace& h : body) {
-            const double v = h.Evaluate(p);
-            if (h.complement ? !(v > -tol) : !(v <= tol)) {
-                in = false;
-                break;
-            }
-        }
-        if (in) return true;
-    }
-    return false;
-}
-
-Box3 PieceBox(const ExtentPiece& piece, const Mat4& m) {
-    Vec3 c = m.MapPoint(piece.c);
-    Vec3 a = m.MapVector(piece.a), b = m.MapVector(piece.b), d = m.MapVector(piece.d);
-    Box3 box;
-    for (std::size_t i = 0; i < 3; ++i) {
-        double e = std::sqrt(a[i] * a[i] + b[i] * b[i] + d[i] * d[i]);
-        box.lo[i] = c[i] - e;
-        box.hi[i] = c[i] + e;
-    }
-    return box;
-}
-
-Box3 ShapeBox(const Shape& shape, const Mat4& m) {
-    Box3 box;
-    for (const ExtentPiece& piece : shape.extent) box.Extend(PieceBox(piece, m));
-    // A sum's box: the first term placed by m, every later term an offset (its centre a vector).
-    for (const auto& sum : shape.extentSums) {
-        if (sum.empty()) continue;
-        Box3 s = PieceBox(sum[0], m);
-        for (std::size_t i = 1; i < sum.size(); ++i) {
-            const Box3 b = PieceBox(sum[i], m);
-            const Vec3 shift = m.MapVector(sum[i].c) - m.MapPoint(sum[i].c);
-            s.lo = s.lo + b.lo + shift;
-            s.hi = s.hi + b.hi + shift;
-        }
-        box.Extend(s);
-    }
-    return box;
-}
-
-void SetSceneSurface(const ShapeHalfSpace& placed, scene::HalfSpace& hs) {
-    if (placed.IsQuartic()) {
-        hs.kind = scene::HalfSpace::Kind::kQuartic;
-        hs.quartic = placed.quartic;
-    } else if (placed.isPlane) {
-        hs.kind = scene::HalfSpace::Kind::kPlane;
-        hs.plane = placed.plane;
-    } else {
-        hs.kind = scene::HalfSpace::Kind::kQuadric;
-        hs.quadric = placed.quadric;
-    }
-}
-
-ShapeHalfSpace Placed(const ShapeHalfSpace& h, const Transform& t) {
-    ShapeHalfSpace out = h;
-    if (h.IsQuartic()) {
-        out.TransformBy(t);
-    } else if (h.isPlane) {
-        Plane pl = h.plane.Transformed(t);
-        const double n = Length(pl.Normal());
-        if (n > 0) pl = Plane{pl.a / n, pl.b / n, pl.c / n, pl.d / n};
-        out.plane = pl;
-    } else {
-        Quadric q = h.quadric.Transformed(t);
-        const double s = q.MaxAbs();
-        if (s > 0)
-            for (double& k : q.k) k /= s;
-        out.quadric = q;
-    }
-    return out;
 }
 
 }  // namespace quadrix::import::brlcad

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "quadrix/import/brlcad/database.h"
+#include "quadrix/import/text_map.h"
 #include "quadrix/scene/diagnostics.h"
 
 namespace quadrix::import::brlcad {
@@ -36,19 +37,5 @@ struct GiftMember {
 };
 // + and - bind tighter than u; the first operator counts as a union (FORMAT.md §2.4).
 void BuildGiftTree(Combination& comb, const std::vector<GiftMember>& members);
-
-// Line/column bookkeeping shared by the readers.
-class TextMap {
-  public:
-    TextMap(std::string_view text, const std::string& file);
-    SourceLoc At(std::size_t offset) const;
-    std::string LineText(std::size_t offset) const;
-    std::string_view text() const { return text_; }
-
-  private:
-    std::string_view text_;
-    std::shared_ptr<const std::string> file_;
-    std::vector<std::size_t> lineStarts_;
-};
 
 }  // namespace quadrix::import::brlcad

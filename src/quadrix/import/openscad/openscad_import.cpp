@@ -23,11 +23,11 @@
 #include <map>
 #include <optional>
 
-#include "quadrix/import/brlcad/mesh_solid.h"
 #include "quadrix/import/brlcad/primitives.h"
-#include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/model_space.h"
 #include "quadrix/import/openscad/polygon_solids.h"
+#include "quadrix/import/shapes/mesh_solid.h"
+#include "quadrix/import/text_map.h"
 #include "quadrix/math/srgb.h"
 #include "quadrix/scene/css_colors.h"
 
@@ -66,8 +66,7 @@ struct Node {
 
 class Parser {
   public:
-    Parser(const brlcad::TextMap& map, Diagnostics& diags)
-        : map_(map), t_(map.text()), diags_(diags) {}
+    Parser(const TextMap& map, Diagnostics& diags) : map_(map), t_(map.text()), diags_(diags) {}
 
     bool Run(std::vector<Node>& out) {
         // A UTF-8 byte order mark (editors on Windows write one) is not text; OpenSCAD skips it.
@@ -281,7 +280,7 @@ class Parser {
         return true;
     }
 
-    const brlcad::TextMap& map_;
+    const TextMap& map_;
     std::string_view t_;
     Diagnostics& diags_;
     std::size_t i_ = 0;
@@ -314,7 +313,7 @@ Mat4 AxisRotation(const Vec3& axis, double deg) {
 
 class Builder {
   public:
-    Builder(const brlcad::TextMap& map, const ImportOptions& options, scene::Scene& scene,
+    Builder(const TextMap& map, const ImportOptions& options, scene::Scene& scene,
             Diagnostics& diags, ImportReport& report)
         : map_(map), options_(options), scene_(scene), diags_(diags), report_(report) {}
 
@@ -553,10 +552,10 @@ class Builder {
         return LeafShape(csg, n, cr.shape, m, color, box);
     }
 
-    int LeafShape(scene::Csg& csg, const Node& n, const brlcad::Shape& shape, const Mat4& m,
+    int LeafShape(scene::Csg& csg, const Node& n, const Shape& shape, const Mat4& m,
                   const std::optional<Paint>& color, Box3& box) {
         struct {
-            const brlcad::Shape& shape;
+            const Shape& shape;
         } cr{shape};
         Mat4 total = QuadrixFromZUp() * m;
         auto t = Transform::FromMatrix(total);
@@ -568,7 +567,7 @@ class Builder {
             return -1;
         }
         int root = -1;
-        for (const brlcad::ShapeBody& sb : cr.shape.bodies) {
+        for (const ShapeBody& sb : cr.shape.bodies) {
             scene::Body body;
             body.id = csg.id;
             body.loc = map_.At(n.offset);
@@ -577,12 +576,12 @@ class Builder {
                 body.color = color->color;
                 body.finish.opacity = color->alpha;
             }
-            for (const brlcad::ShapeHalfSpace& h : sb) {
+            for (const ShapeHalfSpace& h : sb) {
                 scene::HalfSpace hs;
                 hs.id = fmt::format("{}.{}", n.name, scene_.top.halfSpaces.size());
                 hs.loc = body.loc;
                 hs.transparent = h.transparent;
-                brlcad::SetSceneSurface(brlcad::Placed(h, *t), hs);
+                SetSceneSurface(Placed(h, *t), hs);
                 body.literals.push_back(
                     {static_cast<int>(scene_.top.halfSpaces.size()), h.complement});
                 scene_.top.halfSpaces.push_back(std::move(hs));
@@ -594,7 +593,7 @@ class Builder {
             int li = Add(csg, leaf);
             root = root < 0 ? li : Op(csg, scene::CsgOp::kUnion, root, li);
         }
-        box = brlcad::ShapeBox(cr.shape, total);
+        box = ShapeBox(cr.shape, total);
         return root;
     }
 
@@ -796,7 +795,7 @@ class Builder {
                   "vertex-index lists");
             return -1;
         }
-        brlcad::MeshSolid ms = brlcad::MeshToSolid(v, f);
+        MeshSolid ms = MeshToSolid(v, f);
         if (!ms.ok) return Refuse(n, fmt::format("polyhedron: {}; it is left out", ms.problem));
         return LeafShape(csg, n, ms.shape, m, color, box);
     }
@@ -996,7 +995,7 @@ class Builder {
                          box);
     }
 
-    const brlcad::TextMap& map_;
+    const TextMap& map_;
     const ImportOptions& options_;
     scene::Scene& scene_;
     Diagnostics& diags_;
@@ -1019,7 +1018,7 @@ class Builder {
 bool ImportOpenScad(std::string_view text, const std::string& file, const ImportOptions& options,
                     scene::Scene& scene, Diagnostics& diags, ImportReport& report) {
     report.format = "OpenSCAD CSG";
-    brlcad::TextMap map(text, file);
+    TextMap map(text, file);
     std::vector<Node> nodes;
     int errorsBefore = diags.ErrorCount();
     if (!Parser(map, diags).Run(nodes)) return false;
@@ -1033,7 +1032,7 @@ bool ImportOpenScad(std::string_view text, const std::string& file, const Import
 }
 
 bool ParsesAsOpenScadSubset(std::string_view text, const std::string& file, Diagnostics& diags) {
-    brlcad::TextMap map(text, file);
+    TextMap map(text, file);
     std::vector<Node> nodes;
     return Parser(map, diags).Run(nodes);
 }

@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "quadrix/import/brlcad/brlcad_import.h"
+#include "quadrix/import/import_report.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 

@@ -4,15 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "quadrix/import/brlcad/mesh_solid.h"
+#include "quadrix/import/shapes/mesh_solid.h"
 
 namespace quadrix::import::scad {
 
 namespace {
 
-using brlcad::Shape;
-using brlcad::ShapeBody;
-using brlcad::ShapeHalfSpace;
 
 ShapeHalfSpace PlaneHs(double a, double b, double c, double d) {
     ShapeHalfSpace h;
@@ -153,7 +150,7 @@ std::optional<Shape> PolygonalSphere(double r, int n) {
             const int j1 = (j + 1) % n;
             faces.push_back({i * n + j, (i + 1) * n + j, (i + 1) * n + j1, i * n + j1});
         }
-    brlcad::MeshSolid m = brlcad::MeshToSolid(v, faces);
+    MeshSolid m = MeshToSolid(v, faces);
     if (!m.ok) return std::nullopt;
     return std::move(m.shape);
 }

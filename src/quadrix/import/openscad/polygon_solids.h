@@ -1,4 +1,4 @@
-// OpenSCAD's polygonal solids as exact plane/quadric Shapes (brlcad/primitives.h): what a model
+// OpenSCAD's polygonal solids as exact plane/quadric Shapes (shapes/shape.h): what a model
 // gets when $fn makes a circle a polygon, and the extrusions of 2D polygons.
 //
 // Fragments. OpenSCAD draws a circle of radius r with n = get_fragments_from_r(r) sides:
@@ -38,7 +38,7 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/import/brlcad/primitives.h"
+#include "quadrix/import/shapes/shape.h"
 
 namespace quadrix::import::scad {
 
@@ -70,14 +70,14 @@ std::vector<Trapezoid> Trapezoids(const std::vector<Ring>& rings);
 Ring RegularPolygon(double r, int n);
 
 // Polyhedral forms of the round primitives, in the primitive's own coordinates.
-brlcad::Shape PolygonalCylinder(double r1, double r2, double z0, double h, int n);
-std::optional<brlcad::Shape> PolygonalSphere(double r, int n);
+Shape PolygonalCylinder(double r1, double r2, double z0, double h, int n);
+std::optional<Shape> PolygonalSphere(double r, int n);
 
 // Extrusions; an empty optional with *problem set when the profile cannot be used.
-brlcad::Shape LinearExtrude(const std::vector<Ring>& rings, double z0, double h, double scale);
+Shape LinearExtrude(const std::vector<Ring>& rings, double z0, double h, double scale);
 // rotate_extrude: exact (cones) unless `specials` make its circle an n-gon (PolygonSides of the
 // profile's largest radius), then n planar wedges as OpenSCAD draws them.
-std::optional<brlcad::Shape> RotateExtrude(const std::vector<Ring>& rings, const Specials& specials,
-                                           std::string* problem);
+std::optional<Shape> RotateExtrude(const std::vector<Ring>& rings, const Specials& specials,
+                                   std::string* problem);
 
 }  // namespace quadrix::import::scad

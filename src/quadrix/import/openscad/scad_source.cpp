@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/openscad/openscad_import.h"
 #include "quadrix/import/openscad/openscad_program.h"
+#include "quadrix/import/text_map.h"
 
 namespace quadrix::import {
 
@@ -127,7 +127,7 @@ class PositionMap {
     }
 
   private:
-    brlcad::TextMap scadMap_;
+    TextMap scadMap_;
     std::string_view csg_;
     std::string csgLabel_;
     std::map<std::string, std::vector<std::size_t>> calls_;

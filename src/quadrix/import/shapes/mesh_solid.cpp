@@ -1,5 +1,5 @@
 // Closed mesh → union of convex plane bodies; the method is described in mesh_solid.h.
-#include "quadrix/import/brlcad/mesh_solid.h"
+#include "quadrix/import/shapes/mesh_solid.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <map>
 #include <queue>
 
-namespace quadrix::import::brlcad {
+namespace quadrix::import {
 
 namespace {
 
@@ -348,4 +348,4 @@ MeshSolid PlatesToSolid(const std::vector<Vec3>& v, const std::vector<std::array
     return r;
 }
 
-}  // namespace quadrix::import::brlcad
+}  // namespace quadrix::import

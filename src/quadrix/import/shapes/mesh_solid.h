@@ -1,5 +1,5 @@
 // A closed polygon mesh (BRL-CAD bot, OpenSCAD polyhedron) → the exact solid it bounds, as a union
-// of convex bodies of planes (a Shape of primitives.h), with no approximation.
+// of convex bodies of planes (a Shape of shape.h), with no approximation.
 //
 // Method. A closed mesh is the intersection of its face planes only when it is convex, so:
 //   1. The faces are oriented consistently (a breadth-first walk across shared edges; a face
@@ -24,10 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "quadrix/import/brlcad/primitives.h"
+#include "quadrix/import/shapes/shape.h"
 #include "quadrix/math/vec.h"
 
-namespace quadrix::import::brlcad {
+namespace quadrix::import {
 
 struct MeshSolid {
     bool ok = false;
@@ -48,4 +48,4 @@ MeshSolid PlatesToSolid(const std::vector<Vec3>& vertices,
                         const std::vector<std::array<int, 3>>& faces,
                         const std::vector<double>& thickness);
 
-}  // namespace quadrix::import::brlcad
+}  // namespace quadrix::import

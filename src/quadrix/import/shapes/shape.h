@@ -1,0 +1,57 @@
+// Exact shapes shared by the importers (BRL-CAD primitives, OpenSCAD primitives and meshes): a
+// Shape is a union of bodies, each body an intersection of planes, quadrics and quartics (inside
+// <= 0; a literal may be complemented), in the primitive's own coordinates, plus "extent pieces"
+// that bound it exactly under any affine map.
+//
+// Extents: every shape lists pieces, ellipsoids c + a·α + b·β + d·γ with α²+β²+γ² <= 1 (an ellipse
+// when d = 0, a point when all are 0), whose convex hull has the same bounding box as the shape.
+// Under an affine map a piece stays a piece, so the box of a transformed shape is exact as well:
+// c_i ± sqrt(a_i² + b_i² + d_i²). A torus is not the hull of ellipsoids but a Minkowski sum (its
+// ring circle plus a ball); `extentSums` lists such sums of pieces, whose box is the sum of the
+// pieces' boxes (exact for the torus; for an elliptical torus or a pipe bend a containing sum).
+#pragma once
+
+#include <vector>
+
+#include "quadrix/math/mat4.h"
+#include "quadrix/math/plane_or_quadric.h"
+#include "quadrix/math/quadric.h"
+#include "quadrix/scene/scene.h"
+
+namespace quadrix::import {
+
+struct ShapeHalfSpace : PlaneOrQuadric {
+    bool transparent = false;  // a helper plane that never touches the solid's boundary
+    bool complement = false;   // the body uses the outside (a pipe's bore): literal "!"
+};
+using ShapeBody = std::vector<ShapeHalfSpace>;
+
+struct ExtentPiece {
+    Vec3 c, a, b, d;
+};
+
+struct Shape {
+    std::vector<ShapeBody> bodies;  // union
+    std::vector<ExtentPiece> extent;
+    std::vector<std::vector<ExtentPiece>> extentSums;  // Minkowski sums of pieces (torus, eto)
+    bool unbounded = false;                            // half-spaces
+};
+
+// The half-space moved by the placement `t` into the scene, as the scene model keeps imported
+// half-spaces: a plane with a unit normal, a quadric scaled so that its largest coefficient is ±1
+// (both without changing the set). Shared by the BRL-CAD and OpenSCAD importers.
+ShapeHalfSpace Placed(const ShapeHalfSpace& h, const Transform& t);
+
+// True when p is inside the shape (some body has every half-space <= tol).
+bool ShapeContains(const Shape& shape, const Vec3& p, double tol = 0);
+
+// Box of a piece after the affine map M (normalised so that M(3,3) = 1 and row 3 = 0 0 0 1).
+Box3 PieceBox(const ExtentPiece& piece, const Mat4& m);
+// Box of a bounded shape after M: its pieces and its sums of pieces.
+Box3 ShapeBox(const Shape& shape, const Mat4& m);
+
+// The kind and surface of a placed half-space copied into a scene half-space (plane, quadric or
+// quartic); the caller sets id, position and transparency. Shared by both importers.
+void SetSceneSurface(const ShapeHalfSpace& placed, scene::HalfSpace& hs);
+
+}  // namespace quadrix::import
