@@ -10,7 +10,6 @@ namespace quadrix::import::scad {
 
 namespace {
 
-
 ShapeHalfSpace PlaneHs(double a, double b, double c, double d) {
     ShapeHalfSpace h;
     h.isPlane = true;
