@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,9 +14,12 @@
 #include "quadrix/batch/job_renderer.h"
 #include "quadrix/batch/output_clashes.h"
 #include "quadrix/batch/run.h"
+#include "quadrix/batch/sort_first.h"
 #include "quadrix/batch/view_list.h"
 #include "quadrix/io/exr.h"
 #include "quadrix/io/output_check.h"
+#include "quadrix/shade/picture_defaults.h"
+#include "quadrix/shade/row_shading.h"
 
 namespace quadrix::batch {
 namespace {
@@ -289,6 +293,67 @@ TEST(BatchJobFile, OutputsThatClashAreFoundWithBothPositions) {
                                        "{\"input\": \"a.uq\", \"output\": \"" + d + "y.png\"}\n",
                                    "j"))
             .empty());
+}
+
+// Sort-first shading (shade/row_shading.h): each part of the picture's rows, shaded from a Frame
+// that is right only on those rows and the two rows around them (the rest overwritten with
+// another picture's pixels), gives the same bytes and linear values as shading the whole Frame —
+// with shadows, anti-aliasing (whose edge and shadow-boundary tests look two pixels away) and
+// edge lines.
+TEST(BatchSortFirst, RowsShadedFromTheirHaloAreTheWholePicturesBits) {
+    RenderContext ctx(1), other(1);
+    Diagnostics d;
+    InputRequest in;
+    in.paths = {std::string(QUADRIX_SOURCE_DIR) + "/examples/machined_part.uq"};
+    ASSERT_TRUE(ctx.Read(in, d));
+    ASSERT_TRUE(other.Read(in, d));
+    ViewRequest v;
+    v.width = 90;
+    v.height = 75;  // 4 full bands of 16 and a short one of 11
+    ASSERT_TRUE(ctx.Flatten(v, d));
+    v.azimuth = 100;  // another view: the pixels outside a part's rows are wrong, not empty
+    ASSERT_TRUE(other.Flatten(v, d));
+    Frame whole, wrong;
+    RenderReport rep;
+    EngineRequest engine;
+    ASSERT_TRUE(ctx.Render(engine, whole, rep, d));
+    ASSERT_TRUE(other.Render(engine, wrong, rep, d));
+    for (const bool edges : {false, true}) {
+        ShadeOptions so;
+        so.shadows = true;
+        so.aaSamples = 4;
+        so.edges = edges;
+        so.linear = !edges;
+        ASSERT_TRUE(DeclaresLights(ctx.Flat()));
+        const Image reference = ctx.Shade(whole, so);
+        Image assembled(reference.width, reference.height, reference.channels);
+        assembled.linear.assign(reference.linear.size(), -1.0f);
+        for (int part = 0; part < 3; ++part) {
+            const std::vector<RowSpan> rows = SortFirstRows(90, 75, part, 3);
+            const std::vector<std::uint8_t> kinds = RowKinds(rows, 75);
+            Frame partial = wrong;
+            const PixelRegion keep{[&] {
+                std::vector<PixelRect> r;
+                for (int y = 0; y < 75; ++y)
+                    if (kinds[static_cast<std::size_t>(y)] != 0) r.push_back({0, y, 90, y + 1});
+                return r;
+            }()};
+            CopyRegion(partial, whole, keep);
+            const Image mine = ShadeRows(partial, ctx.Flat(), so, rows);
+            ASSERT_EQ(mine.linear.size(), reference.linear.size());
+            const std::size_t row = 90 * static_cast<std::size_t>(mine.channels);
+            for (const RowSpan& s : rows)
+                for (int y = s.y0; y < s.y1; ++y) {
+                    std::copy_n(mine.pixels.begin() + y * row, row,
+                                assembled.pixels.begin() + y * row);
+                    if (!mine.linear.empty())
+                        std::copy_n(mine.linear.begin() + y * row, row,
+                                    assembled.linear.begin() + y * row);
+                }
+        }
+        EXPECT_EQ(assembled.pixels, reference.pixels) << "edges " << edges;
+        EXPECT_EQ(assembled.linear, reference.linear) << "edges " << edges;
+    }
 }
 
 // What a resumed run accepts as done (io/output_check.h): whole files of the job's size.
