@@ -723,6 +723,29 @@ std::vector<BadInput> FrontEndRows() {
                  eyeInside),
         batchRow("BatchDumpFrameIsTheOutput", job(", \"dump_frame\": \"out.png\""),
                  R"(cannot write 'out\.png'.*same file)", sphere),
+        // "aa" takes what render's --aa takes ("default" too); a spelling it refuses is an error.
+        batchRow("BatchBadAa", job(", \"aa\": \"Default\""),
+                 R"(jobs\.jsonl:1: "aa" must be "off", "default", 4, 16 or 64, found "Default")",
+                 sphere),
+        // Outputs two jobs, or two outputs of one job, would both write: refused before anything
+        // is rendered, both positions named.
+        batchRow("BatchTwoJobsOneOutput", job("") + job(""),
+                 R"(jobs\.jsonl:2: "output" writes 'out\.png', which job 0 \(jobs\.jsonl:1\), )"
+                 R"("output", writes too)",
+                 sphere),
+        batchRow("BatchFrameOfAnAnimationIsAStill",
+                 "{\"inputs\": [\"main.uq\"], \"output\": \"f_%d.png\", \"size\": \"16x16\", "
+                 "\"frames\": 3}\n# a still picture over frame 2\n"
+                 "{\"inputs\": [\"main.uq\"], \"output\": \"f_2.png\", \"size\": \"16x16\"}\n",
+                 R"(jobs\.jsonl:3: "output" writes 'f_2\.png', which job 0 \(jobs\.jsonl:1\), )"
+                 R"("output", frame 2, writes too)",
+                 sphere),
+        batchRow("BatchDumpOfAFrameIsItsPicture",
+                 "{\"inputs\": [\"main.uq\"], \"output\": \"f.qxf\", \"dump_frame\": "
+                 "\"f_%04d.qxf\", \"size\": \"16x16\", \"frames\": 2}\n",
+                 R"(jobs\.jsonl:1: "dump_frame", frame 0, writes 'f_0000\.qxf', which this )"
+                 R"(job's "output", frame 0, writes too)",
+                 sphere),
         row("BatchNoJobs", {{"jobs.jsonl", "# nothing\n"}}, "batch jobs.jsonl",
             R"(error: the job file 'jobs\.jsonl' has no job)"),
         row("BatchJobFileIsDevZero", {}, "batch /dev/zero", R"(error.*larger than 256 MiB)"),

@@ -42,9 +42,28 @@ void AddAnimationOptions(CLI::App& cmd, RenderArgs& args) {
                    "(several views between `start N;` and `end;`)");
 }
 
-bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
-                       Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer) {
+namespace {
+// Whether the outputs (or --stats, which counts the covered pixels) need the whole Frame on the
+// writing rank, not only the shaded picture.
+bool NeedsFrame(const RenderArgs& args, const OutputRequest& outputs) {
+    ImageFormat format;
+    PnmKind pnm;
+    const bool frameFormat = OutputFormat(outputs, format, pnm) &&
+                             (format == ImageFormat::kFrameDump || format == ImageFormat::kExr);
+    return frameFormat || !outputs.dumpFrame.empty() || !outputs.exr.empty() || args.stats;
+}
+}  // namespace
+
+bool RenderMaybeShared(const RenderArgs& args, const OutputRequest& outputs, RenderContext& ctx,
+                       const EngineRequest& engine, const ShadeOptions* shade, Frame& frame,
+                       std::optional<Image>& image, RenderReport& report, Diagnostics& diags,
+                       bool& writer) {
     writer = !(args.sortLast || args.sortFirst) || batch::MpiRank() == 0;
+    if (args.sortFirst && shade) {
+        image.emplace();
+        return batch::RenderShadeSortFirst(ctx, engine, *shade, NeedsFrame(args, outputs), frame,
+                                           *image, report, diags);
+    }
     if (args.sortFirst) return batch::RenderSortFirst(ctx, engine, frame, report, diags);
     if (args.sortLast) return batch::RenderSortLast(ctx, engine, frame, report, diags);
     return ctx.Render(engine, frame, report, diags);

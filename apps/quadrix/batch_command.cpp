@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "quadrix/batch/job_file.h"
+#include "quadrix/batch/output_clashes.h"
 #include "quadrix/batch/run.h"
 #include "quadrix/io/bounded_read.h"
 
@@ -38,6 +39,21 @@ int RunBatch(const BatchArgs& args) {
                      args.jobFile.c_str());
         return 1;
     }
+    // Outputs that two jobs (or two outputs of one job) share: refused before anything is
+    // rendered (batch/output_clashes.h). Every rank finds the same; rank 0 says it.
+    const std::vector<std::string> clashes = batch::OutputClashes(jobs);
+    const bool speaker = batch::MpiRank() == 0;
+    if (!clashes.empty()) {
+        if (speaker) {
+            for (const std::string& c : clashes)
+                std::fprintf(stderr, "quadrix: error: %s\n", c.c_str());
+            std::fprintf(stderr, "quadrix batch: nothing rendered\n");
+        }
+        return 1;
+    }
+    if (speaker)
+        for (const batch::JobEntry& e : jobs)
+            for (const std::string& w : e.warnings) std::fprintf(stderr, "%s\n", w.c_str());
     batch::RunOptions ro;
     ro.threads = args.threads;
     ro.skipExisting = !args.restart;

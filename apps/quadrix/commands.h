@@ -167,10 +167,13 @@ void AddBatchCommand(CLI::App& app, BatchArgs& args);
 int RunBatch(const BatchArgs& args);
 void AddAnimationOptions(CLI::App& cmd, RenderArgs& args);
 // Stage 3 of `render` with --sort-last (the solids shared among MPI ranks) or --sort-first (the
-// pixels); sets `writer` false
-// on the ranks that do not write the picture.
-bool RenderMaybeShared(const RenderArgs& args, RenderContext& ctx, const EngineRequest& engine,
-                       Frame& frame, RenderReport& report, Diagnostics& diags, bool& writer);
+// pixels); sets `writer` false on the ranks that do not write the picture. With --sort-first the
+// ranks shade their rows too (stage 4, with `shade` when the outputs need an image) and `image`
+// is the gathered picture; otherwise `image` is left empty for the caller to shade.
+bool RenderMaybeShared(const RenderArgs& args, const OutputRequest& outputs, RenderContext& ctx,
+                       const EngineRequest& engine, const ShadeOptions* shade, Frame& frame,
+                       std::optional<Image>& image, RenderReport& report, Diagnostics& diags,
+                       bool& writer);
 int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const EngineRequest& engine,
                  const ShadeOptions& shade, const PictureDefaults& picture,
                  const OutputRequest& outputs);

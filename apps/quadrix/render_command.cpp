@@ -259,8 +259,26 @@ int RunRender(const RenderArgs& args) {
     bool writer = true;  // false on the MPI ranks of --sort-last other than rank 0
     bool ok = ctx.Read(po.Input(), diags);
     if (ok && camera.Any()) ok = ApplyCamera(ctx, camera, view, diags);
-    ok = ok && ctx.Flatten(view, diags) &&
-         RenderMaybeShared(args, ctx, engine, frame, report, diags, writer);
+    ok = ok && ctx.Flatten(view, diags);
+    ShadeOptions so;
+    std::string defaultsNote;
+    if (ok) {
+        so.fast = args.fast;
+        // The picture defaults (shade/picture_defaults.h, docs/shading.md): shadows where the
+        // scene declares lights, and anti-aliasing, for scenes of at most kPictureDefaultBodies
+        // bodies.
+        so.shadows = args.shadows;
+        so.aaSamples = args.aa == "default" ? 0 : aaSamples;
+        defaultsNote = ApplyPictureDefaults(ctx.Flat(), PictureRequest(args), so);
+        so.aaMitchell = args.aaFilter == "mitchell";
+        so.edges = args.edges;
+        if (args.phong) so.model = ShadingModel::kPhong;
+        so.linear = NeedsLinear(outputs);  // 8-bit files are encoded from the 8-bit pixels
+    }
+    // With --sort-first the ranks shade their own rows (batch/sort_first.h): `image` comes back.
+    std::optional<Image> image;
+    ok = ok && RenderMaybeShared(args, outputs, ctx, engine, NeedsImage(outputs) ? &so : nullptr,
+                                 frame, image, report, diags, writer);
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; no image written\n", diags.ErrorCount(),
@@ -274,22 +292,10 @@ int RunRender(const RenderArgs& args) {
     if (!writer) return 0;
 
     auto t0 = std::chrono::steady_clock::now();
-    std::optional<Image> image;
     if (NeedsImage(outputs)) {
-        ShadeOptions so;
-        so.fast = args.fast;
-        // The picture defaults (shade/picture_defaults.h, docs/shading.md): shadows where the
-        // scene declares lights, and anti-aliasing, for scenes of at most kPictureDefaultBodies
-        // bodies.
-        so.shadows = args.shadows;
-        so.aaSamples = args.aa == "default" ? 0 : aaSamples;
-        if (auto note = ApplyPictureDefaults(ctx.Flat(), PictureRequest(args), so); !note.empty())
-            std::fprintf(stderr, "quadrix: note: %s\n", note.c_str());
-        so.aaMitchell = args.aaFilter == "mitchell";
-        so.edges = args.edges;
-        if (args.phong) so.model = ShadingModel::kPhong;
-        so.linear = NeedsLinear(outputs);  // 8-bit files are encoded from the 8-bit pixels
-        image = ctx.Shade(frame, so);
+        if (!defaultsNote.empty())
+            std::fprintf(stderr, "quadrix: note: %s\n", defaultsNote.c_str());
+        if (!image) image = ctx.Shade(frame, so);
     }
     const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);
     const double writeSeconds =

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,10 +12,14 @@
 #include "quadrix/batch/job.h"
 #include "quadrix/batch/job_file.h"
 #include "quadrix/batch/job_renderer.h"
+#include "quadrix/batch/output_clashes.h"
 #include "quadrix/batch/run.h"
+#include "quadrix/batch/sort_first.h"
 #include "quadrix/batch/view_list.h"
 #include "quadrix/io/exr.h"
 #include "quadrix/io/output_check.h"
+#include "quadrix/shade/picture_defaults.h"
+#include "quadrix/shade/row_shading.h"
 
 namespace quadrix::batch {
 namespace {
@@ -192,6 +197,163 @@ TEST(BatchJobFile, PictureDefaultsAndExr) {
         EXPECT_TRUE(jobs[4].job.shade.linear);
     }
     EXPECT_NE(jobs[5].error.find("not a .exr file"), std::string::npos) << jobs[5].error;
+}
+
+// "aa" takes what render's --aa takes, with its meaning: "default" is the picture default
+// (decided frame by frame, shade/picture_defaults.h); "off", 0 and 1 turn it off.
+TEST(BatchJobFile, AaTakesWhatRenderTakes) {
+    const std::string text =
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": \"default\"}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": \"4\"}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": 0}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": \"1\"}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": \"Default\"}\n"
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"aa\": true}\n";
+    auto jobs = ParseJobFile(text, "j");
+    ASSERT_EQ(jobs.size(), 6u);
+    EXPECT_EQ(jobs[0].error, "");
+    EXPECT_TRUE(jobs[0].job.picture.antialiasing);  // as a job without "aa"
+    EXPECT_EQ(jobs[0].job.shade.aaSamples, 0);
+    EXPECT_EQ(jobs[1].error, "");
+    EXPECT_FALSE(jobs[1].job.picture.antialiasing);
+    EXPECT_EQ(jobs[1].job.shade.aaSamples, 4);
+    for (int k : {2, 3}) {
+        EXPECT_EQ(jobs[k].error, "") << k;
+        EXPECT_FALSE(jobs[k].job.picture.antialiasing) << k;
+        EXPECT_EQ(jobs[k].job.shade.aaSamples, 0) << k;
+    }
+    EXPECT_EQ(jobs[4].error,
+              "j:5: \"aa\" must be \"off\", \"default\", 4, 16 or 64, found \"Default\"");
+    EXPECT_EQ(jobs[5].error, "j:6: \"aa\" must be \"off\", \"default\", 4, 16 or 64");
+}
+
+// "top" with only UniQuadrix inputs does what `quadrix render x.uq --top NAME` does: the scene is
+// drawn whole, with a warning — here positioned at the key. With an importer's file it stays.
+TEST(BatchJobFile, TopOnUniQuadrixInputsWarnsAtTheKey) {
+    const std::string text =
+        "{\"input\": \"a.uq\", \"output\": \"a.png\", \"top\": [\"all\"]}\n"
+        "{\"inputs\": [\"a.uq\", \"m.g\"], \"output\": \"b.png\", \"top\": \"all\"}\n"
+        "{\"output\": \"c.png\", \"top\"  : [\"x\"], \"inputs\": [\"A.UQ\", \"b.uq\"]}\n";
+    auto jobs = ParseJobFile(text, "jobs.jsonl");
+    ASSERT_EQ(jobs.size(), 3u);
+    for (const JobEntry& e : jobs) EXPECT_EQ(e.error, "");
+    ASSERT_EQ(jobs[0].warnings.size(), 1u);
+    EXPECT_EQ(jobs[0].warnings[0].rfind("jobs.jsonl:1:38: warning: \"top\" has no effect", 0), 0u)
+        << jobs[0].warnings[0];
+    EXPECT_TRUE(jobs[0].job.input.topObjects.empty());
+    EXPECT_TRUE(jobs[1].warnings.empty());
+    EXPECT_EQ(jobs[1].job.input.topObjects, std::vector<std::string>{"all"});
+    ASSERT_EQ(jobs[2].warnings.size(), 1u);
+    EXPECT_EQ(jobs[2].warnings[0].rfind("jobs.jsonl:3:21: warning:", 0), 0u) << jobs[2].warnings[0];
+}
+
+// Two jobs, or two outputs of one job, that write one file (for some frame) are found before
+// anything is rendered, each named with its position.
+TEST(BatchJobFile, OutputsThatClashAreFoundWithBothPositions) {
+    Dir dir;
+    const std::string d = dir.File("");
+    const std::string text =
+        "{\"input\": \"a.uq\", \"output\": \"" + d + "a.png\"}\n" +    // 1
+        "{\"input\": \"b.uq\", \"output\": \"" + d + "./a.png\"}\n" +  // 2: job 0's
+        "{\"input\": \"a.uq\", \"output\": \"" + d + "t_%02d.png\", \"frames\": 3}\n" +  // 3
+        "# the frames 3..5 of another animation do not meet frames 0..2\n" +
+        "{\"input\": \"a.uq\", \"output\": \"" + d +
+        "t_%02d.png\", \"frames\": 6, \"frame_range\": \"3:5\"}\n" +    // 5
+        "{\"input\": \"a.uq\", \"output\": \"" + d + "t_01.png\"}\n" +  // 6: job 2's frame 1
+        "{\"input\": \"a.uq\", \"output\": \"" + d + "f.qxf\", \"dump_frame\": \"" + d +
+        "f_%04d.qxf\", \"frames\": 2}\n" +  // 7: within itself
+        "{\"input\": \"a.uq\", \"output\": \"" + d + "a.png\", \"colour\": 1}\n";  // 8: invalid
+    auto jobs = ParseJobFile(text, "jobs.jsonl");
+    ASSERT_EQ(jobs.size(), 7u);
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(jobs[k].error, "") << k;
+    EXPECT_EQ(jobs[1].line, 2);
+    EXPECT_EQ(jobs[5].line, 7);
+    const std::vector<std::string> clashes = OutputClashes(jobs);
+    ASSERT_EQ(clashes.size(), 4u);
+    EXPECT_EQ(clashes[0], "jobs.jsonl:2: \"output\" writes '" + d +
+                              "./a.png', which job 0 (jobs.jsonl:1), \"output\", writes too: the "
+                              "outputs of a batch must be different files");
+    EXPECT_EQ(clashes[1].rfind("jobs.jsonl:6: \"output\" writes '" + d +
+                                   "t_01.png', which job 2 (jobs.jsonl:3), \"output\", frame 1, "
+                                   "writes too",
+                               0),
+              0u)
+        << clashes[1];
+    // Frame k of the picture is f_000k.qxf, which the job's own dump of frame k writes too.
+    EXPECT_EQ(clashes[2].rfind("jobs.jsonl:7: \"dump_frame\", frame 0, writes '" + d +
+                                   "f_0000.qxf', which this job's \"output\", frame 0, writes too",
+                               0),
+              0u)
+        << clashes[2];
+    EXPECT_NE(clashes[3].find("frame 1"), std::string::npos) << clashes[3];
+    // A limit on the messages, and no clash in a file without one.
+    EXPECT_EQ(OutputClashes(jobs, 1).back(), "... and 3 more");
+    EXPECT_TRUE(
+        OutputClashes(ParseJobFile("{\"input\": \"a.uq\", \"output\": \"" + d + "x.png\"}\n" +
+                                       "{\"input\": \"a.uq\", \"output\": \"" + d + "y.png\"}\n",
+                                   "j"))
+            .empty());
+}
+
+// Sort-first shading (shade/row_shading.h): each part of the picture's rows, shaded from a Frame
+// that is right only on those rows and the two rows around them (the rest overwritten with
+// another picture's pixels), gives the same bytes and linear values as shading the whole Frame —
+// with shadows, anti-aliasing (whose edge and shadow-boundary tests look two pixels away) and
+// edge lines.
+TEST(BatchSortFirst, RowsShadedFromTheirHaloAreTheWholePicturesBits) {
+    RenderContext ctx(1), other(1);
+    Diagnostics d;
+    InputRequest in;
+    in.paths = {std::string(QUADRIX_SOURCE_DIR) + "/examples/machined_part.uq"};
+    ASSERT_TRUE(ctx.Read(in, d));
+    ASSERT_TRUE(other.Read(in, d));
+    ViewRequest v;
+    v.width = 90;
+    v.height = 75;  // 4 full bands of 16 and a short one of 11
+    ASSERT_TRUE(ctx.Flatten(v, d));
+    v.azimuth = 100;  // another view: the pixels outside a part's rows are wrong, not empty
+    ASSERT_TRUE(other.Flatten(v, d));
+    Frame whole, wrong;
+    RenderReport rep;
+    EngineRequest engine;
+    ASSERT_TRUE(ctx.Render(engine, whole, rep, d));
+    ASSERT_TRUE(other.Render(engine, wrong, rep, d));
+    for (const bool edges : {false, true}) {
+        ShadeOptions so;
+        so.shadows = true;
+        so.aaSamples = 4;
+        so.edges = edges;
+        so.linear = !edges;
+        ASSERT_TRUE(DeclaresLights(ctx.Flat()));
+        const Image reference = ctx.Shade(whole, so);
+        Image assembled(reference.width, reference.height, reference.channels);
+        assembled.linear.assign(reference.linear.size(), -1.0f);
+        for (int part = 0; part < 3; ++part) {
+            const std::vector<RowSpan> rows = SortFirstRows(90, 75, part, 3);
+            const std::vector<std::uint8_t> kinds = RowKinds(rows, 75);
+            Frame partial = wrong;
+            const PixelRegion keep{[&] {
+                std::vector<PixelRect> r;
+                for (int y = 0; y < 75; ++y)
+                    if (kinds[static_cast<std::size_t>(y)] != 0) r.push_back({0, y, 90, y + 1});
+                return r;
+            }()};
+            CopyRegion(partial, whole, keep);
+            const Image mine = ShadeRows(partial, ctx.Flat(), so, rows);
+            ASSERT_EQ(mine.linear.size(), reference.linear.size());
+            const std::size_t row = 90 * static_cast<std::size_t>(mine.channels);
+            for (const RowSpan& s : rows)
+                for (int y = s.y0; y < s.y1; ++y) {
+                    std::copy_n(mine.pixels.begin() + y * row, row,
+                                assembled.pixels.begin() + y * row);
+                    if (!mine.linear.empty())
+                        std::copy_n(mine.linear.begin() + y * row, row,
+                                    assembled.linear.begin() + y * row);
+                }
+        }
+        EXPECT_EQ(assembled.pixels, reference.pixels) << "edges " << edges;
+        EXPECT_EQ(assembled.linear, reference.linear) << "edges " << edges;
+    }
 }
 
 // What a resumed run accepts as done (io/output_check.h): whole files of the job's size.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -127,13 +128,19 @@ std::string JobFromJson(const json& j, Job& job) {
         job.picture.shadows = false;
     }
     if (j.contains("aa")) {
+        // What render's --aa accepts, with its meaning (shade/picture_defaults.h): "default" is
+        // the picture default, decided frame by frame; anything else is asked for as given.
         const json& aa = j["aa"];
-        if (!aa.is_string() && !aa.is_number_integer())
-            return "\"aa\" must be \"off\", 4, 16 or 64";
+        const std::string expected = "\"aa\" must be \"off\", \"default\", 4, 16 or 64";
+        if (!aa.is_string() && !aa.is_number_integer()) return expected;
         const std::string text = aa.is_string() ? aa.get<std::string>() : aa.dump();
-        if (ParseAaSamples(text, job.shade.aaSamples).size() || text == "default")
-            return fmt::format("\"aa\" must be \"off\", 4, 16 or 64, found {}", aa.dump());
-        job.picture.antialiasing = false;
+        int samples = 0;
+        if (!ParseAaSamples(text, samples).empty())
+            return fmt::format("{}, found {}", expected, aa.dump());
+        if (text != "default") {
+            job.shade.aaSamples = samples;
+            job.picture.antialiasing = false;
+        }
     }
     if (!(e = flag("png16", png16)).empty()) return e;
     if (!(e = flag("strict", job.input.strict)).empty()) return e;
@@ -176,6 +183,35 @@ std::string JobFromJson(const json& j, Job& job) {
     if (auto c = RenderContext::CheckEngine(job.engine); !c.empty()) return c;
     if (auto c = CheckOutputs(job.output); !c.empty()) return c;
     return CheckJob(job);
+}
+
+// `quadrix render x.uq --top NAME` warns that --top has no effect (no BRL-CAD or OpenSCAD file
+// was given) and draws the scene: so does a job whose "top" names objects while every input is a
+// UniQuadrix file by its name. The pipeline's own warning (which speaks of --top, and which a
+// batch would give once per frame as a note) is then not given: the job's objects are cleared.
+// Inputs told apart by their text (no known extension) are left to the pipeline's warning.
+std::string TopWithoutImports(Job& job) {
+    if (job.input.topObjects.empty()) return {};
+    for (const std::string& path : job.input.paths) {
+        std::string lower = path;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (!lower.ends_with(".uq")) return {};
+    }
+    job.input.topObjects.clear();
+    return "\"top\" has no effect: no BRL-CAD or OpenSCAD file among the inputs (the scene is "
+           "drawn whole, as `quadrix render` does with --top)";
+}
+
+// The column (from 1) of the key `key` in a JSON line: its quoted name followed by a ':'; 1 when
+// it is not found as written (escapes).
+std::size_t KeyColumn(std::string_view row, const std::string& key) {
+    const std::string quoted = "\"" + key + "\"";
+    for (std::size_t at = row.find(quoted); at != std::string_view::npos;
+         at = row.find(quoted, at + 1)) {
+        const std::size_t next = row.find_first_not_of(" \t", at + quoted.size());
+        if (next != std::string_view::npos && row[next] == ':') return at + 1;
+    }
+    return 1;
 }
 
 }  // namespace
@@ -258,11 +294,16 @@ std::vector<JobEntry> ParseJobFile(std::string_view text, const std::string& fil
         if (first == std::string_view::npos || row[first] == '#') continue;
         JobEntry entry;
         entry.job.label = fmt::format("job {} ({}:{})", jobs.size(), file, line);
+        entry.file = file;
+        entry.line = line;
         json j;
         if (std::string e = ParseJsonRow(row, j); !e.empty()) {
             entry.error = fmt::format("{}:{}:{}", file, line, e);
         } else if (std::string e = JobFromJson(j, entry.job); !e.empty()) {
             entry.error = fmt::format("{}:{}: {}", file, line, e);
+        } else if (std::string w = TopWithoutImports(entry.job); !w.empty()) {
+            entry.warnings.push_back(
+                fmt::format("{}:{}:{}: warning: {}", file, line, KeyColumn(row, "top"), w));
         }
         jobs.push_back(std::move(entry));
     }

@@ -32,6 +32,11 @@ namespace quadrix::batch {
 struct JobEntry {
     Job job;
     std::string error;  // set: the entry is invalid and fails without rendering
+    // Warnings about the entry itself ("FILE:LINE:COLUMN: warning: ..."), printed once before the
+    // run; the job still runs.
+    std::vector<std::string> warnings;
+    std::string file;  // where the entry was written (job files; empty for a command line)
+    int line = 0;
 };
 
 struct RunOptions {

@@ -19,15 +19,25 @@ PixelRegion SortFirstRegion(int width, int height, int rank, int ranks) {
     return InterleavedBands(width, height, rank, ranks, kSortFirstBandRows);
 }
 
+std::vector<RowSpan> SortFirstRows(int width, int height, int rank, int ranks) {
+    std::vector<RowSpan> rows;
+    for (const PixelRect& r : SortFirstRegion(width, height, rank, ranks).rects)
+        if (!r.Empty()) rows.push_back({r.y0, r.y1});
+    return rows;
+}
+
 #ifdef QUADRIX_HAVE_MPI
 namespace {
 
 constexpr std::size_t kPiece = std::size_t{256} << 20;
 constexpr std::size_t kPixelBytes = sizeof(double) + sizeof(Vec3) + 3 * sizeof(std::int32_t);  // 60
+constexpr int kFrameTag = 8, kHaloTag = 9, kImageTag = 10;
 
-// The region's row runs inside the frame: (first pixel index, count), in order.
-std::vector<std::pair<std::size_t, std::size_t>> Runs(const Frame& f, const PixelRegion& region) {
-    std::vector<std::pair<std::size_t, std::size_t>> runs;
+using Runs = std::vector<std::pair<std::size_t, std::size_t>>;  // (first pixel index, count)
+
+// The region's row runs inside the frame, in order.
+Runs RunsOf(const Frame& f, const PixelRegion& region) {
+    Runs runs;
     for (const PixelRect& r : region.rects) {
         const int x0 = std::max(r.x0, 0), x1 = std::min(r.x1, f.width);
         if (x0 >= x1) continue;
@@ -37,10 +47,24 @@ std::vector<std::pair<std::size_t, std::size_t>> Runs(const Frame& f, const Pixe
     return runs;
 }
 
-// The region's pixels, array by array (depth, normal, surface, body, solid), packed or unpacked.
+// Whole rows `rows` (ascending) of a picture `width` wide as runs.
+Runs RowRuns(const std::vector<int>& rows, int width) {
+    Runs runs;
+    for (int y : rows)
+        runs.emplace_back(static_cast<std::size_t>(y) * static_cast<std::size_t>(width),
+                          static_cast<std::size_t>(width));
+    return runs;
+}
+
+std::size_t PixelCount(const Runs& runs) {
+    std::size_t n = 0;
+    for (const auto& r : runs) n += r.second;
+    return n;
+}
+
+// The runs' pixels, array by array (depth, normal, surface, body, solid), packed or unpacked.
 template <bool kPack>
-void Transfer(std::conditional_t<kPack, const Frame, Frame>& f,
-              const std::vector<std::pair<std::size_t, std::size_t>>& runs, char* buffer) {
+void Transfer(std::conditional_t<kPack, const Frame, Frame>& f, const Runs& runs, char* buffer) {
     auto move = [&](auto& array) {
         using T = typename std::remove_reference_t<decltype(array)>::value_type;
         for (const auto& [at, n] : runs) {
@@ -58,10 +82,144 @@ void Transfer(std::conditional_t<kPack, const Frame, Frame>& f,
     move(f.solid);
 }
 
-std::size_t PixelCount(const std::vector<std::pair<std::size_t, std::size_t>>& runs) {
-    std::size_t n = 0;
-    for (const auto& r : runs) n += r.second;
-    return n;
+// The runs' image pixels: the 8-bit values, then Image::linear when the image has it.
+std::size_t ImageBytes(const Image& image, const Runs& runs) {
+    const std::size_t values = PixelCount(runs) * static_cast<std::size_t>(image.channels);
+    const bool linear = image.linear.size() == image.pixels.size();
+    return values * (1 + (linear ? sizeof(float) : 0));
+}
+template <bool kPack>
+void TransferImage(std::conditional_t<kPack, const Image, Image>& image, const Runs& runs,
+                   char* buffer) {
+    const std::size_t ch = static_cast<std::size_t>(image.channels);
+    auto move = [&](auto& array) {
+        using T = typename std::remove_reference_t<decltype(array)>::value_type;
+        for (const auto& [at, n] : runs) {
+            if constexpr (kPack)
+                std::memcpy(buffer, array.data() + at * ch, n * ch * sizeof(T));
+            else
+                std::memcpy(array.data() + at * ch, buffer, n * ch * sizeof(T));
+            buffer += n * ch * sizeof(T);
+        }
+    };
+    move(image.pixels);
+    if (image.linear.size() == image.pixels.size()) move(image.linear);
+}
+
+// Posts the sends or receives of `bytes` bytes at `data` in pieces MPI's int counts can hold.
+void Post(bool send, char* data, std::size_t bytes, int peer, int tag,
+          std::vector<MPI_Request>& requests) {
+    for (std::size_t at = 0; at < bytes; at += kPiece) {
+        const int n = static_cast<int>(std::min(kPiece, bytes - at));
+        MPI_Request r;
+        if (send)
+            MPI_Isend(data + at, n, MPI_BYTE, peer, tag, MPI_COMM_WORLD, &r);
+        else
+            MPI_Irecv(data + at, n, MPI_BYTE, peer, tag, MPI_COMM_WORLD, &r);
+        requests.push_back(r);
+    }
+}
+
+// The rows of `from`'s bands that `to` reads around its own (its kRowHalo rows), ascending.
+std::vector<int> HaloRows(int width, int height, int from, int to, int ranks) {
+    const std::vector<std::uint8_t> kinds =
+        RowKinds(SortFirstRows(width, height, to, ranks), height);
+    std::vector<int> rows;
+    for (int y = 0; y < height; ++y)
+        if (kinds[static_cast<std::size_t>(y)] == kRowHalo &&
+            (y / kSortFirstBandRows) % ranks == from)
+            rows.push_back(y);
+    return rows;
+}
+
+// Fills the Frame rows around this rank's bands (kShadeHaloRows each side) from the ranks that
+// drew them, and sends them the rows of this rank's bands that they read: peer to peer, all
+// messages posted at once.
+void ExchangeHalo(Frame& frame, int rank, int ranks) {
+    std::vector<std::vector<char>> out(static_cast<std::size_t>(ranks)),
+        in(static_cast<std::size_t>(ranks));
+    std::vector<Runs> inRuns(static_cast<std::size_t>(ranks));
+    std::vector<MPI_Request> requests;
+    for (int peer = 0; peer < ranks; ++peer) {
+        if (peer == rank) continue;
+        const auto p = static_cast<std::size_t>(peer);
+        const Runs send =
+            RowRuns(HaloRows(frame.width, frame.height, rank, peer, ranks), frame.width);
+        out[p].resize(PixelCount(send) * kPixelBytes);
+        Transfer<true>(frame, send, out[p].data());
+        Post(true, out[p].data(), out[p].size(), peer, kHaloTag, requests);
+        inRuns[p] = RowRuns(HaloRows(frame.width, frame.height, peer, rank, ranks), frame.width);
+        in[p].resize(PixelCount(inRuns[p]) * kPixelBytes);
+        Post(false, in[p].data(), in[p].size(), peer, kHaloTag, requests);
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    for (int peer = 0; peer < ranks; ++peer)
+        if (peer != rank)
+            Transfer<false>(frame, inRuns[static_cast<std::size_t>(peer)],
+                            in[static_cast<std::size_t>(peer)].data());
+}
+
+// Every rank's bands of the Frame into rank 0's.
+void GatherFrame(Frame& frame, int rank, int ranks) {
+    const int width = frame.width, height = frame.height;
+    if (rank != 0) {
+        const Runs runs = RunsOf(frame, SortFirstRegion(width, height, rank, ranks));
+        std::vector<char> buffer(PixelCount(runs) * kPixelBytes);
+        Transfer<true>(frame, runs, buffer.data());
+        std::vector<MPI_Request> requests;
+        Post(true, buffer.data(), buffer.size(), 0, kFrameTag, requests);
+        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        return;
+    }
+    for (int r = 1; r < ranks; ++r) {
+        const Runs runs = RunsOf(frame, SortFirstRegion(width, height, r, ranks));
+        std::vector<char> buffer(PixelCount(runs) * kPixelBytes);
+        std::vector<MPI_Request> requests;
+        Post(false, buffer.data(), buffer.size(), r, kFrameTag, requests);
+        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        Transfer<false>(frame, runs, buffer.data());
+    }
+}
+
+// Every rank's shaded rows into rank 0's image.
+void GatherImage(Image& image, int rank, int ranks) {
+    const int width = image.width, height = image.height;
+    auto runsOf = [&](int r) {
+        Runs runs;
+        for (const RowSpan& s : SortFirstRows(width, height, r, ranks))
+            for (int y = s.y0; y < s.y1; ++y)
+                runs.emplace_back(static_cast<std::size_t>(y) * static_cast<std::size_t>(width),
+                                  static_cast<std::size_t>(width));
+        return runs;
+    };
+    if (rank != 0) {
+        const Runs runs = runsOf(rank);
+        std::vector<char> buffer(ImageBytes(image, runs));
+        TransferImage<true>(image, runs, buffer.data());
+        std::vector<MPI_Request> requests;
+        Post(true, buffer.data(), buffer.size(), 0, kImageTag, requests);
+        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        return;
+    }
+    for (int r = 1; r < ranks; ++r) {
+        const Runs runs = runsOf(r);
+        std::vector<char> buffer(ImageBytes(image, runs));
+        std::vector<MPI_Request> requests;
+        Post(false, buffer.data(), buffer.size(), r, kImageTag, requests);
+        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        TransferImage<false>(image, runs, buffer.data());
+    }
+}
+
+// Every rank draws its bands; false on every rank when one failed.
+bool DrawBands(RenderContext& ctx, const EngineRequest& engine, Frame& frame, RenderReport& report,
+               Diagnostics& diags, int rank, int ranks) {
+    EngineRequest mine = engine;
+    mine.region = SortFirstRegion(ctx.Flat().width, ctx.Flat().height, rank, ranks);
+    int ok = ctx.Render(mine, frame, report, diags) ? 1 : 0;
+    int all = 0;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return all != 0;
 }
 
 }  // namespace
@@ -73,33 +231,37 @@ bool RenderSortFirst(RenderContext& ctx, const EngineRequest& engine, Frame& fra
     if (ranks <= 1) return ctx.Render(engine, frame, report, diags);
 #ifdef QUADRIX_HAVE_MPI
     const int rank = MpiRank();
-    const int width = ctx.Flat().width, height = ctx.Flat().height;
-    EngineRequest mine = engine;
-    mine.region = SortFirstRegion(width, height, rank, ranks);
-    int ok = ctx.Render(mine, frame, report, diags) ? 1 : 0;
-    int all = 0;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    if (!all) return false;
-    if (rank != 0) {
-        const auto runs = Runs(frame, *mine.region);
-        std::vector<char> buffer(PixelCount(runs) * kPixelBytes);
-        Transfer<true>(frame, runs, buffer.data());
-        for (std::size_t at = 0; at < buffer.size(); at += kPiece)
-            MPI_Send(buffer.data() + at, static_cast<int>(std::min(kPiece, buffer.size() - at)),
-                     MPI_BYTE, 0, 8, MPI_COMM_WORLD);
-        return true;
-    }
-    for (int r = 1; r < ranks; ++r) {
-        const auto runs = Runs(frame, SortFirstRegion(width, height, r, ranks));
-        std::vector<char> buffer(PixelCount(runs) * kPixelBytes);
-        for (std::size_t at = 0; at < buffer.size(); at += kPiece)
-            MPI_Recv(buffer.data() + at, static_cast<int>(std::min(kPiece, buffer.size() - at)),
-                     MPI_BYTE, r, 8, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        Transfer<false>(frame, runs, buffer.data());
-    }
+    if (!DrawBands(ctx, engine, frame, report, diags, rank, ranks)) return false;
+    GatherFrame(frame, rank, ranks);
     return true;
 #else
     return ctx.Render(engine, frame, report, diags);
+#endif
+}
+
+bool RenderShadeSortFirst(RenderContext& ctx, const EngineRequest& engine,
+                          const ShadeOptions& shade, bool needFrame, Frame& frame, Image& image,
+                          RenderReport& report, Diagnostics& diags) {
+    const int ranks = MpiSize();
+    const bool fast = shade.fast || shade.model == ShadingModel::kFast;
+    if (ranks <= 1 || fast) {
+        // The fast model's mean normals are the whole picture's: rank 0 shades the gathered Frame.
+        if (!RenderSortFirst(ctx, engine, frame, report, diags)) return false;
+        if (MpiRank() == 0) image = ctx.Shade(frame, shade);
+        return true;
+    }
+#ifdef QUADRIX_HAVE_MPI
+    const int rank = MpiRank();
+    if (!DrawBands(ctx, engine, frame, report, diags, rank, ranks)) return false;
+    ExchangeHalo(frame, rank, ranks);
+    // The shading of RenderContext::Shade, on this rank's rows (shade/row_shading.h).
+    image =
+        ShadeRows(frame, ctx.Flat(), shade, SortFirstRows(frame.width, frame.height, rank, ranks));
+    if (needFrame) GatherFrame(frame, rank, ranks);
+    GatherImage(image, rank, ranks);
+    return true;
+#else
+    return false;
 #endif
 }
 

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
+#include "quadrix/shade/row_shading.h"
 
 namespace quadrix {
 
@@ -73,12 +74,25 @@ double Mitchell1(double x) {
 
 double Clamp01(double v) { return v > 0 ? (v < 1 ? v : 1.0) : 0.0; }
 
-}  // namespace
+// Whether row y gets its edge bits: a shaded row (row_shading.h; every row when `rows` is empty).
+bool Shaded(const std::vector<std::uint8_t>& rows, int y) {
+    return rows.empty() || rows[static_cast<std::size_t>(y)] == kRowShaded;
+}
+// Whether the pair of rows (y, y + 1) touches a shaded row.
+bool PairShaded(const std::vector<std::uint8_t>& rows, int y) {
+    return Shaded(rows, y) || Shaded(rows, y + 1);
+}
+// Whether row y is read at all (shaded, or in the halo around shaded rows).
+bool Read(const std::vector<std::uint8_t>& rows, int y) {
+    return rows.empty() || rows[static_cast<std::size_t>(y)] != 0;
+}
 
-std::vector<std::uint8_t> FindEdges(const Frame& f) {
+// FindEdges on the shaded rows of `rows` (the bits of the other rows are incomplete).
+std::vector<std::uint8_t> FindEdgesOn(const Frame& f, const std::vector<std::uint8_t>& rows) {
     const int w = f.width, h = f.height;
     std::vector<std::uint8_t> e(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
     for (int y = 0; y < h; ++y) {
+        if (!Shaded(rows, y)) continue;
         for (int x = 0; x + 1 < w; ++x) {
             const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
             const std::size_t a2 = x > 0 ? f.Index(x - 1, y) : a;
@@ -87,6 +101,7 @@ std::vector<std::uint8_t> FindEdges(const Frame& f) {
         }
     }
     for (int y = 0; y + 1 < h; ++y) {
+        if (!PairShaded(rows, y)) continue;
         for (int x = 0; x < w; ++x) {
             const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
             const std::size_t a2 = y > 0 ? f.Index(x, y - 1) : a;
@@ -97,7 +112,9 @@ std::vector<std::uint8_t> FindEdges(const Frame& f) {
     return e;
 }
 
-void MarkShadingJumps(const Frame& f, const Image& image, std::vector<std::uint8_t>& e) {
+// MarkShadingJumps on the shaded rows of `rows`; the image is read on the halo rows too.
+void MarkShadingJumpsOn(const Frame& f, const Image& image, std::vector<std::uint8_t>& e,
+                        const std::vector<std::uint8_t>& rows) {
     const int w = f.width, h = f.height;
     if (image.width != w || image.height != h) return;
     const bool lin = image.linear.size() == image.pixels.size();
@@ -107,9 +124,13 @@ void MarkShadingJumps(const Frame& f, const Image& image, std::vector<std::uint8
         return lin ? static_cast<double>(image.linear[i]) : image.pixels[i] / 255.0;
     };
     std::vector<double> lum(e.size());
-    for (std::size_t k = 0; k < lum.size(); ++k)
-        lum[k] = ch >= 3 ? 0.2126 * value(k, 0) + 0.7152 * value(k, 1) + 0.0722 * value(k, 2)
-                         : value(k, 0);
+    for (int y = 0; y < h; ++y) {
+        if (!Read(rows, y)) continue;
+        const std::size_t end = f.Index(0, y) + static_cast<std::size_t>(w);
+        for (std::size_t k = f.Index(0, y); k < end; ++k)
+            lum[k] = ch >= 3 ? 0.2126 * value(k, 0) + 0.7152 * value(k, 1) + 0.0722 * value(k, 2)
+                             : value(k, 0);
+    }
     // A pair on one surface of one body whose brightness jumps: a shadow's boundary (the jump
     // test of depths, on luminance, with a floor of one 8-bit level).
     auto test = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
@@ -121,16 +142,28 @@ void MarkShadingJumps(const Frame& f, const Image& image, std::vector<std::uint8
             e[b] |= kEdgePixel;
         }
     };
-    for (int y = 0; y < h; ++y)
+    for (int y = 0; y < h; ++y) {
+        if (!Shaded(rows, y)) continue;
         for (int x = 0; x + 1 < w; ++x) {
             const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
             test(a, b, x > 0 ? f.Index(x - 1, y) : a, x + 2 < w ? f.Index(x + 2, y) : b);
         }
-    for (int y = 0; y + 1 < h; ++y)
+    }
+    for (int y = 0; y + 1 < h; ++y) {
+        if (!PairShaded(rows, y)) continue;
         for (int x = 0; x < w; ++x) {
             const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
             test(a, b, y > 0 ? f.Index(x, y - 1) : a, y + 2 < h ? f.Index(x, y + 2) : b);
         }
+    }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> FindEdges(const Frame& frame) { return FindEdgesOn(frame, {}); }
+
+void MarkShadingJumps(const Frame& frame, const Image& image, std::vector<std::uint8_t>& edges) {
+    MarkShadingJumpsOn(frame, image, edges, {});
 }
 
 bool ValidAaSamples(int samples) {
@@ -162,16 +195,23 @@ std::vector<SubPixel> SamplePositions(int samples, int i, int j) {
 
 AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
                          Image& image) {
+    return AntialiasRowKinds(frame, scene, options, image, {});
+}
+
+AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
+                                 const ShadeOptions& options, Image& image,
+                                 const std::vector<std::uint8_t>& rows) {
     AntialiasStats stats;
     if (options.aaSamples < 2 || frame.width == 0 || frame.height == 0) return stats;
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<std::uint8_t> edges = FindEdges(frame);
-    if (options.shadows) MarkShadingJumps(frame, image, edges);
+    std::vector<std::uint8_t> edges = FindEdgesOn(frame, rows);
+    if (options.shadows) MarkShadingJumpsOn(frame, image, edges, rows);
     // Keep away from freeform surfaces: no point tracer for them.
     const auto firstFreeform = static_cast<std::int32_t>(scene.halfSpaces.size());
     if (!scene.freeforms.empty()) {
         std::vector<std::uint8_t> near(edges.size(), 0);
-        for (int y = 0; y < frame.height; ++y)
+        for (int y = 0; y < frame.height; ++y) {
+            if (!Read(rows, y)) continue;
             for (int x = 0; x < frame.width; ++x)
                 if (frame.surface[frame.Index(x, y)] >= firstFreeform)
                     for (int dy = -1; dy <= 1; ++dy)
@@ -180,6 +220,7 @@ AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const Shade
                             if (u >= 0 && v >= 0 && u < frame.width && v < frame.height)
                                 near[frame.Index(u, v)] = 1;
                         }
+        }
         for (std::size_t k = 0; k < edges.size(); ++k)
             if (near[k]) edges[k] &= static_cast<std::uint8_t>(~kEdgePixel);
     }
@@ -192,10 +233,11 @@ AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const Shade
     }
     std::atomic<std::size_t> count{0};
     tbb::parallel_for(
-        tbb::blocked_range<int>(0, frame.height, 4), [&](const tbb::blocked_range<int>& rows) {
+        tbb::blocked_range<int>(0, frame.height, 4), [&](const tbb::blocked_range<int>& span) {
             std::size_t local = 0;
             raycast::SampleScratch scratch(tracer);
-            for (int y = rows.begin(); y < rows.end(); ++y) {
+            for (int y = span.begin(); y < span.end(); ++y) {
+                if (!Shaded(rows, y)) continue;
                 const scene::Color background = shader.Background(y, frame.height);
                 for (int x = 0; x < frame.width; ++x) {
                     if (!(edges[frame.Index(x, y)] & kEdgePixel)) continue;
@@ -227,10 +269,15 @@ AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const Shade
 }
 
 std::size_t DrawEdgeLines(const Frame& frame, const ShadeOptions& options, Image& image) {
-    const std::vector<std::uint8_t> edges = FindEdges(frame);
+    return DrawEdgeLinesRowKinds(frame, options, image, {});
+}
+
+std::size_t DrawEdgeLinesRowKinds(const Frame& frame, const ShadeOptions& options, Image& image,
+                                  const std::vector<std::uint8_t>& rows) {
+    const std::vector<std::uint8_t> edges = FindEdgesOn(frame, rows);
     std::size_t n = 0;
     for (int y = 0; y < frame.height; ++y)
-        for (int x = 0; x < frame.width; ++x)
+        for (int x = 0; x < frame.width && Shaded(rows, y); ++x)
             if (edges[frame.Index(x, y)] & kEdgeLine) {
                 StorePixel(image, x, y, options.edgeColor);
                 ++n;

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "quadrix/shade/phong.h"
+#include "quadrix/shade/row_shading.h"
 #include "quadrix/shade/shadows.h"
 
 namespace quadrix {
@@ -195,15 +196,24 @@ void StorePixel(Image& image, int x, int y, const scene::Color& c) {
 }
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
+    return ShadeRowKinds(frame, scene, options, {});
+}
+
+Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
+                    const std::vector<std::uint8_t>& kinds) {
     const PixelShader shader(frame, scene, options);
     Image image(frame.width, frame.height, shader.Color() ? 3 : 1);
     if (options.linear) image.linear.assign(image.pixels.size(), 0.0f);
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
     // is the same for any thread count. A row's material lookups are cached while the
-    // (surface, body) pair repeats.
+    // (surface, body) pair repeats. Only some rows (row_shading.h): those, and the rows around
+    // them when the anti-aliasing's shadow-boundary test reads their shading.
+    const std::uint8_t wanted =
+        options.aaSamples > 1 && options.shadows ? kRowShaded | kRowHalo : kRowShaded;
     auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
         PixelShader::MaterialCache cache;
         for (int y = rows.begin(); y < rows.end(); ++y) {
+            if (!kinds.empty() && !(kinds[static_cast<std::size_t>(y)] & wanted)) continue;
             const scene::Color background = shader.Background(y, frame.height);
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);

@@ -1,0 +1,36 @@
+#include "quadrix/shade/row_shading.h"
+
+#include <algorithm>
+
+#include "quadrix/util/check.h"
+
+namespace quadrix {
+
+std::vector<std::uint8_t> RowKinds(const std::vector<RowSpan>& spans, int height) {
+    if (spans.empty()) return {};
+    std::vector<std::uint8_t> kinds(static_cast<std::size_t>(std::max(height, 0)), 0);
+    for (const RowSpan& s : spans)
+        for (int y = std::max(s.y0 - kShadeHaloRows, 0);
+             y < std::min(s.y1 + kShadeHaloRows, height); ++y)
+            kinds[static_cast<std::size_t>(y)] = kRowHalo;
+    for (const RowSpan& s : spans)
+        for (int y = std::max(s.y0, 0); y < std::min(s.y1, height); ++y)
+            kinds[static_cast<std::size_t>(y)] = kRowShaded;
+    return kinds;
+}
+
+Image ShadeRows(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
+                const std::vector<RowSpan>& spans) {
+    QUADRIX_CHECK(!options.fast && options.model != ShadingModel::kFast,
+                  "the fast model shades the whole Frame (its mean normals)");
+    // An empty list of spans shades nothing (RowKinds would read it as every row).
+    const std::vector<std::uint8_t> rows =
+        spans.empty() ? std::vector<std::uint8_t>(static_cast<std::size_t>(frame.height), 0)
+                      : RowKinds(spans, frame.height);
+    Image image = ShadeRowKinds(frame, scene, options, rows);
+    if (options.aaSamples > 1) AntialiasRowKinds(frame, scene, options, image, rows);
+    if (options.edges) DrawEdgeLinesRowKinds(frame, options, image, rows);
+    return image;
+}
+
+}  // namespace quadrix
