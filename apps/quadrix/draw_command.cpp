@@ -46,10 +46,12 @@ void PrintStats(const std::string& view, const draw::DrawStats& s) {
     std::fprintf(stderr,
                  "draw %s: %d candidate curves (%d lines, %d conics, %d silhouettes, %d "
                  "quartic branches; %d tangent pairs skipped), %d boundary pieces, %d strokes, "
-                 "%lld ray tests, %d visibility changes, %.1f ms\n",
+                 "%lld ray tests, %d visibility changes, %.1f ms (curves %.1f, trim %.1f, "
+                 "visibility %.1f, strokes %.1f)\n",
                  view.c_str(), s.candidates, s.lines, s.conics, s.silhouettes, s.quartics,
                  s.tangentPairs, s.pieces, s.strokes, s.rayTests, s.visibilityChanges,
-                 s.seconds * 1e3);
+                 s.seconds * 1e3, s.curveSeconds * 1e3, s.trimSeconds * 1e3,
+                 s.visibilitySeconds * 1e3, s.strokeSeconds * 1e3);
 }
 
 }  // namespace
