@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "draw_sheet.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/engines/isocurve/render.h"
@@ -689,6 +690,8 @@ int main(int argc, char** argv) {
         md += ViewerOrbitTable({FromFile("machined_part", sourceDir + "/examples/machined_part.uq"),
                                 SpheresMinusCylinder(1000)},
                                1280, 720, quick ? 12 : 36, threads);
+    if (only.empty() || std::string("draw").find(only) != std::string::npos)
+        md += DrawSheetTable(sourceDir, quadrixBin, outDir, quick ? 3 : reps);
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".md") << md;
     std::ofstream(outDir + "/results_" + std::string(stamp) + ".csv") << csv;
     std::ofstream(outDir + "/latest.md") << md;

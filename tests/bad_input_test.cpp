@@ -775,6 +775,12 @@ std::vector<BadInput> FrontEndRows() {
             R"(main\.uq:2:1: error: the eye of view 'v')"),
         row("DrawOutputIsTheScene", {{"main.uq", sphere}}, "draw main.uq -o main.svg",
             R"(cannot write.*input)", "ln main.uq main.svg"),
+        // A freeform surface the drawer cannot draw: an error at its definition, not a drawing
+        // silently without it (--allow-missing draws the rest; DrawCommand.Freeform*).
+        row("DrawFreeformSurface",
+            {{"main.uq", sphere + "bezier sq 1 1 < -1 -1 0  1 -1 0  -1 1 0  1 1 0 >;\n"}},
+            "draw main.uq -o out.svg --views front,iso",
+            R"(main\.uq:3:1: error: freeform surface 'sq' cannot be drawn)"),
         row("ExportBrokenScene", {{"main.uq", broken}}, "export --to pov main.uq -o out.pov",
             R"(main\.uq:1:9: error)"),
         row("ExportOutputIsTheScene", {{"main.uq", sphere}}, "export --to pov main.uq -o main.uq",

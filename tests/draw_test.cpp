@@ -13,6 +13,7 @@
 #include "quadrix/draw/drawing.h"
 #include "quadrix/draw/page.h"
 #include "quadrix/draw/svg_writer.h"
+#include "quadrix/draw/undrawable.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "test_util.h"
 
@@ -603,6 +604,57 @@ TEST(DrawCommand, WritesSvgPdfEpsAndRefusesUnknownFormats) {
                                   dir.File("v.svg") + "' --views front,sideways");
     EXPECT_EQ(view.exitCode, 2);
     EXPECT_FALSE(testing::FileExists(dir.File("v.svg")));
+}
+
+// Freeform surfaces are not drawn (docs/drawings.md): `quadrix draw` stops with an error at the
+// surface's definition, for a single view and a sheet, and writes nothing; --allow-missing draws
+// the quadric solids with a warning naming what was left out.
+TEST(DrawCommand, FreeformSurfaceIsAnErrorUnlessAllowMissing) {
+    testing::TempDir dir;
+    const std::string scene = dir.Write("mixed.uq",
+                                        "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n"
+                                        "  bezier sq 1 1 < -1 -1 3  1 -1 3  -1 1 3  1 1 3 >;\n"
+                                        "bezier sq2 1 1 < -1 -1 4  1 -1 4  -1 1 4  1 1 4 >;\n");
+    for (const char* views : {"", " --views front,iso"}) {
+        const std::string out = dir.File("m.svg");
+        const std::string cmd =
+            testing::QuadrixBinary() + " draw '" + scene + "' -o '" + out + "'" + views;
+        auto r = testing::RunShell(cmd);
+        EXPECT_EQ(r.exitCode, 1) << views;
+        EXPECT_NE(r.err.find("mixed.uq:3:3: error: freeform surface 'sq' (and 1 more freeform "
+                             "surface) cannot be drawn"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("--allow-missing"), std::string::npos) << r.err;
+        EXPECT_FALSE(testing::FileExists(out)) << views;
+        auto ok = testing::RunShell(cmd + " --allow-missing");
+        EXPECT_EQ(ok.exitCode, 0) << ok.err;
+        EXPECT_NE(ok.err.find("mixed.uq:3:3: warning: freeform surface 'sq' (and 1 more freeform "
+                              "surface) left out of the drawing"),
+                  std::string::npos)
+            << ok.err;
+        // The sphere is still drawn: its outline circle.
+        EXPECT_FALSE(Ellipses(ReadText(out)).empty()) << views;
+        std::remove(out.c_str());
+    }
+}
+
+// The check itself (draw/undrawable.h), as every drawing front end calls it.
+TEST(DrawUndrawable, FreeformsNeedAllowMissingAndQuadricScenesPass) {
+    FlatScene plain, mixed;
+    ASSERT_TRUE(Flat("quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);", 100, 100, plain));
+    ASSERT_TRUE(
+        Flat("quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);\n"
+             "bezier sq 1 1 < -1 -1 3  1 -1 3  -1 1 3  1 1 3 >;",
+             100, 100, mixed));
+    Diagnostics d1, d2, d3;
+    EXPECT_TRUE(draw::CheckDrawable(plain, false, d1));
+    EXPECT_EQ(d1.ErrorCount() + d1.WarningCount(), 0);
+    EXPECT_FALSE(draw::CheckDrawable(mixed, false, d2));
+    EXPECT_EQ(d2.ErrorCount(), 1);
+    EXPECT_TRUE(draw::CheckDrawable(mixed, true, d3));
+    EXPECT_EQ(d3.ErrorCount(), 0);
+    EXPECT_EQ(d3.WarningCount(), 1);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "quadrix/draw/drawing.h"
 #include "quadrix/draw/page_file.h"
 #include "quadrix/draw/sheet.h"
+#include "quadrix/draw/undrawable.h"
 #include "quadrix/frame/image_limits.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/pipeline/section_plane.h"
@@ -46,10 +47,12 @@ void PrintStats(const std::string& view, const draw::DrawStats& s) {
     std::fprintf(stderr,
                  "draw %s: %d candidate curves (%d lines, %d conics, %d silhouettes, %d "
                  "quartic branches; %d tangent pairs skipped), %d boundary pieces, %d strokes, "
-                 "%lld ray tests, %d visibility changes, %.1f ms\n",
+                 "%lld ray tests, %d visibility changes, %.1f ms (curves %.1f, trim %.1f, "
+                 "visibility %.1f, strokes %.1f)\n",
                  view.c_str(), s.candidates, s.lines, s.conics, s.silhouettes, s.quartics,
                  s.tangentPairs, s.pieces, s.strokes, s.rayTests, s.visibilityChanges,
-                 s.seconds * 1e3);
+                 s.seconds * 1e3, s.curveSeconds * 1e3, s.trimSeconds * 1e3,
+                 s.visibilitySeconds * 1e3, s.strokeSeconds * 1e3);
 }
 
 }  // namespace
@@ -80,6 +83,9 @@ void AddDrawCommand(CLI::App& app, DrawArgs& args) {
     cmd->add_option("--section", args.section,
                     "Section plane \"A B C D\": keep A x + B y + C z + D <= 0, as quadrix "
                     "render --section");
+    cmd->add_flag("--allow-missing", args.allowMissing,
+                  "Draw without what the drawer cannot draw (freeform surfaces; imported "
+                  "primitives that cannot be drawn): a warning instead of an error");
     cmd->add_flag("--stats", args.stats, "Print curve counts and times to standard error");
 }
 
@@ -133,6 +139,7 @@ int RunDraw(const DrawArgs& args) {
     RenderContext context(1);
     InputRequest input;
     input.paths = args.scenes;
+    input.allowMissing = args.allowMissing;
     if (!context.Read(input, diags) || diags.HasErrors()) return Fail(diags);
     ViewRequest request;
     request.width = width;
@@ -142,37 +149,16 @@ int RunDraw(const DrawArgs& args) {
     if (viewNames.empty() && (!context.Flatten(request, diags) || diags.HasErrors()))
         return Fail(diags);
     // The drawer handles planes and quadrics: a quartic (torus, elliptical torus, general cone)
-    // is refused by name rather than drawn wrong or left out.
-    auto refuseQuartics = [&]() -> bool {
-        for (const FlatHalfSpace& h : context.Flat().halfSpaces)
-            if (h.IsQuartic()) {
-                std::fprintf(stderr,
-                             "quadrix: error: draw: half-space '%s' is a %s (a quartic surface); "
-                             "drawings handle planes and quadrics only (render it with quadrix "
-                             "render)\n",
-                             h.name.c_str(), std::string(h.quartic->KindName()).c_str());
-                return true;
-            }
-        return false;
-    };
-    if (viewNames.empty() && refuseQuartics()) return 1;
+    // is refused by name, and a freeform surface too unless --allow-missing (draw/undrawable.h),
+    // rather than drawn wrong or left out.
+    if (viewNames.empty() && !draw::CheckDrawable(context.Flat(), args.allowMissing, diags))
+        return Fail(diags);
     draw::DrawOptions dopt;
     dopt.hidden = args.hidden != "off";
     // The model's file: the first (later ones are usually views or settings for it).
     const std::string title = args.scenes.empty() ? "" : args.scenes.front();
     draw::Page page;
-    bool warnedFreeform = false;
-    auto warnFreeform = [&] {
-        if (warnedFreeform || context.Flat().freeforms.empty()) return;
-        warnedFreeform = true;
-        diags.Warning({},
-                      fmt::format("{} freeform surface(s) not drawn (the drawer handles planes "
-                                  "and quadrics)",
-                                  context.Flat().freeforms.size()),
-                      {}, "draw");
-    };
     if (viewNames.empty()) {
-        warnFreeform();
         draw::Drawing d = draw::MakeDrawing(context.Flat(), dopt);
         if (args.stats) PrintStats(context.Flat().viewName, d.stats);
         page = draw::SingleViewPage(d, title);
@@ -194,8 +180,9 @@ int RunDraw(const DrawArgs& args) {
             context.Scene().views.pop_back();
             context.SceneChanged();
             if (!ok || diags.HasErrors()) return Fail(diags);
-            if (refuseQuartics()) return 1;
-            warnFreeform();
+            // Every view flattens the same solids: one check (and one warning) is enough.
+            if (views.empty() && !draw::CheckDrawable(context.Flat(), args.allowMissing, diags))
+                return Fail(diags);
             draw::SheetView v;
             v.name = name;
             v.drawing = draw::MakeDrawing(context.Flat(), dopt);

@@ -158,20 +158,30 @@ Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options) {
     d.height = scene.height;
     const Box3 box = SceneBox(scene);
     if (box.Empty()) return d;
+    auto lap = [last = start]() mutable {
+        const auto now = std::chrono::steady_clock::now();
+        const double s = std::chrono::duration<double>(now - last).count();
+        last = now;
+        return s;
+    };
     const Surfaces surfaces = ClassifySurfaces(scene, box);
     ExtractionCounters ec;
     const std::vector<Curve3> curves = ExtractCurves(scene, surfaces, box, ec);
+    d.stats.curveSeconds = lap();
     SceneProbe probe(scene);
     const std::vector<CurvePiece> trimmed = TrimToBoundary(scene, surfaces, probe, curves);
+    d.stats.trimSeconds = lap();
     VisibilityCounters vc;
     std::vector<CurvePiece> pieces =
         SplitByVisibility(curves, trimmed, probe, options.visibilityStep, vc);
+    d.stats.visibilitySeconds = lap();
     MergeWrapAround(curves, pieces);
     for (const CurvePiece& p : pieces) {
         if (!p.visible && !options.hidden) continue;
         d.strokes.push_back(
             ToStroke(curves[static_cast<std::size_t>(p.curve)], p, options.chordTolerance));
     }
+    d.stats.strokeSeconds = lap();
     d.stats.candidates = static_cast<int>(curves.size());
     d.stats.pieces = static_cast<int>(trimmed.size());
     d.stats.strokes = static_cast<int>(d.strokes.size());

@@ -50,7 +50,10 @@ struct DrawStats {
     int lines = 0, conics = 0, silhouettes = 0, quartics = 0, tangentPairs = 0;
     long long rayTests = 0;
     int visibilityChanges = 0;
-    double seconds = 0;
+    double seconds = 0;  // the whole of MakeDrawing, the sum of the phases below
+    // Phases: candidate curves (surfaces and their pairs), trimming to the solids' boundary,
+    // visibility (ray tests and bisection), strokes (2-D output).
+    double curveSeconds = 0, trimSeconds = 0, visibilitySeconds = 0, strokeSeconds = 0;
 };
 
 struct Drawing {

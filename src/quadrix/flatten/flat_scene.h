@@ -69,6 +69,7 @@ struct FlatFreeform {
     scene::Color color;         // resolved like a body's
     std::string name;
     scene::Finish finish;  // resolved like a body's
+    SourceLoc loc;         // where it was defined (for messages)
 };
 
 // How the world was projected; the shader needs it to express normals in world space.

@@ -269,6 +269,7 @@ class Walker {
             ff.color = f.color ? *f.color : color ? *color : Color{};
             ff.finish = scene::Finish::Over(f.finish, finish);
             ff.name = si.path + f.id;
+            ff.loc = f.loc;
             out_.freeforms.push_back(std::move(ff));
         }
         for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i) {
