@@ -2,11 +2,16 @@
 //
 // For every scene and image size it measures, side by side in the same run:
 //   * each Quadrix engine in process: frame time after one warm-up render, median of several;
-//   * the whole `quadrix render` process (read, flatten, render, shade, PNG), median;
-//   * POV-Ray 3.7 on the exported scene (`quadrix export --to pov`, no antialiasing, 2 threads),
-//     whole process, alternating with the Quadrix process runs so both see the same machine state;
+//   * the whole `quadrix render` process (read, flatten, render, shade, PNG), median, with the
+//     picture defaults (anti-aliasing, shadows) and with `--aa off`, and its phases (start-up,
+//     read, flatten, render, shade, encode, write, exit: io/phase_times.h);
+//   * POV-Ray 3.7 on the exported scene (`quadrix export --to pov`, 2 threads), whole process,
+//     without anti-aliasing and (at 1280×720) with it, alternating with the Quadrix process runs
+//     so both see the same machine state;
 // and writes a Markdown table with ratios and a CSV to the output directory. Nothing is asserted:
-// benchmarks report, they do not fail on time.
+// benchmarks report, they do not fail on time. Every in-process frame, shading and anti-aliasing
+// goes through the render context (pipeline/render_context.h), the one render path: the suite
+// assembles no stages itself.
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <malloc.h>
@@ -35,8 +40,11 @@
 #include "quadrix/engines/engine.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/engines/isocurve/render.h"
+#include "quadrix/engines/registry.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/antialias.h"
+#include "quadrix/shade/picture_defaults.h"
 #include "scenes.h"
 #include "viewer_orbit.h"
 
@@ -68,32 +76,79 @@ struct ProcessRun {
     double seconds = 0;
     double peakMiB = 0;
     int exitCode = -1;
+    long long startNs = 0, endNs = 0;  // steady clock before posix_spawn and after wait4
 };
 
-// Runs argv with stdout/stderr to /dev/null; wall time and the child's peak RSS.
-ProcessRun Spawn(const std::vector<std::string>& argv) {
+long long SteadyNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+// Runs argv with stdout to /dev/null and stderr to `stderrPath` (/dev/null when empty); wall
+// time and the child's peak RSS. `env` entries (NAME=VALUE) are added to the environment.
+ProcessRun Spawn(const std::vector<std::string>& argv, const std::string& stderrPath = "",
+                 const std::vector<std::string>& env = {}) {
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
+    std::vector<char*> envp;
+    for (char** e = environ; *e; ++e) envp.push_back(*e);
+    for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+    envp.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2,
+                                     stderrPath.empty() ? "/dev/null" : stderrPath.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ProcessRun r;
-    auto t0 = std::chrono::steady_clock::now();
+    r.startNs = SteadyNs();
     pid_t pid;
-    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) != 0) {
+    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data()) != 0) {
         posix_spawn_file_actions_destroy(&actions);
         return r;
     }
     int status = 0;
     struct rusage usage {};
     wait4(pid, &status, 0, &usage);
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.endNs = SteadyNs();
+    r.seconds = 1e-9 * static_cast<double>(r.endNs - r.startNs);
     r.peakMiB = usage.ru_maxrss / 1024.0;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     posix_spawn_file_actions_destroy(&actions);
     return r;
+}
+
+// The phases of one `quadrix render` process (ms), from the line QUADRIX_PHASE_TIMES makes it
+// print (io/phase_times.h) and the suite's own clock readings around the spawn: start-up (spawn →
+// main: exec, the dynamic loader, static initialisers), cli (main → the render command), read,
+// flatten, render, shade (anti-aliasing included), encode, write (temporary file, fsync,
+// rename, and the --stats report when asked), exit (the last mark → reaped: freeing, unmapping, the
+// kernel's teardown). Empty when the line is missing.
+const std::vector<std::string> kPhases = {"start-up", "cli",    "read",  "flatten", "render",
+                                          "shade",    "encode", "write", "exit"};
+std::vector<double> ParsePhases(const std::string& stderrPath, const ProcessRun& run) {
+    std::ifstream in(stderrPath);
+    std::map<std::string, long long> mark;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("quadrix phases:", 0) != 0) continue;
+        std::istringstream words(line.substr(15));
+        for (std::string w; words >> w;)
+            if (auto eq = w.find('='); eq != std::string::npos)
+                mark[w.substr(0, eq)] = std::atoll(w.c_str() + eq + 1);
+    }
+    for (const char* need : {"main", "start", "read", "flatten", "render", "exit"})
+        if (!mark.count(need)) return {};
+    if (!mark.count("shade")) mark["shade"] = mark["render"];
+    if (!mark.count("encode")) mark["encode"] = mark["shade"];
+    const long long points[] = {run.startNs,     mark["main"],   mark["start"], mark["read"],
+                                mark["flatten"], mark["render"], mark["shade"], mark["encode"],
+                                mark["exit"],    run.endNs};
+    std::vector<double> ms;
+    for (std::size_t i = 0; i + 1 < std::size(points); ++i)
+        ms.push_back(1e-6 * static_cast<double>(points[i + 1] - points[i]));
+    return ms;
 }
 
 // A spawned child's peak resident set (wait4's ru_maxrss) starts from the high-water mark of the
@@ -128,6 +183,41 @@ struct Size {
     int w, h;
 };
 
+// Reads and flattens a scene file for one image size in the render context (the one render path,
+// pipeline/render_context.h), as `quadrix render FILE --size WxH` does. false (diagnostics
+// printed) when the scene has errors.
+bool Prepare(RenderContext& ctx, const std::string& path, Size size) {
+    PipelineOptions po;
+    po.scenePaths = {path};
+    po.width = size.w;
+    po.height = size.h;
+    Diagnostics diags;
+    const bool ok = ctx.Read(po.Input(), diags) && ctx.Flatten(po.View(), diags);
+    if (!ok || diags.HasErrors()) {
+        diags.Print(stderr);
+        return false;
+    }
+    return true;
+}
+
+// One frame of `engine` through the context (composition included); milliseconds, or -1 when the
+// context refuses (diagnostics printed).
+double RenderMs(RenderContext& ctx, const EngineRequest& request, Frame& frame,
+                RenderReport* reportOut = nullptr) {
+    RenderReport report;
+    Diagnostics diags;
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = ctx.Render(request, frame, report, diags);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!ok) {
+        diags.Print(stderr);
+        return -1;
+    }
+    if (reportOut) *reportOut = std::move(report);
+    return ms;
+}
+
 struct Row {
     std::string scene;
     int primitives = 0;
@@ -136,12 +226,27 @@ struct Row {
     // Per engine: percentage of pixels whose coverage differs from raycast's (the exact
     // reference); an engine that skips what it cannot draw shows it here instead of looking fast.
     std::vector<double> engineDiffPct;
+    // Per engine: solids the context gave to raycast because the engine cannot draw them
+    // (composition, pipeline/render_context.h); its frame time includes raycast's share.
+    std::vector<std::size_t> engineComposed;
     double flattenMs = 0;
-    double quadrixProcessMs = 0, quadrixPeakMiB = 0;
-    double povProcessMs = 0, povPeakMiB = 0;
+    // `quadrix render` with the picture defaults (shade/picture_defaults.h) and with --aa off.
+    double quadrixProcessMs = 0, quadrixPeakMiB = 0, quadrixNoAaMs = 0;
+    bool defaultAa = false, defaultShadows = false;  // what the defaults gave this scene
+    std::vector<double> phasesMs;                    // medians per kPhases, default picture
+    // POV-Ray without anti-aliasing (every size) and with it (+A0.3 +AM1 +R2 -J, 1280×720 only).
+    double povProcessMs = 0, povPeakMiB = 0, povAaMs = 0;
+    bool povTimedOut = false;
+    // --baseline: another quadrix binary (e.g. the build before a change), timed in the same
+    // rounds as this one, picture defaults, and its phases when it prints them.
+    double baselineMs = 0;
+    std::vector<double> baselinePhasesMs;
     double benchFloorMiB = 0;  // the suite's own resident set when the processes ran
     bool povOk = false;
 };
+
+// POV-Ray runs longer than this are stopped (timeout(1)); the ratio is then a lower bound.
+constexpr int kPovTimeLimitSeconds = 600;
 
 std::string Ratio(double slow, double fast) {
     if (slow <= 0 || fast <= 0) return "–";
@@ -158,19 +263,21 @@ std::string IsocurveTable(const std::string& sourceDir, int reps) {
         "| model | patches | gap px | δ (world) | curves | extraction ms | drawing ms "
         "| pixels drawn | redundancy |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const char* model : {"teapot", "teacup", "teaspoon"}) {
+        // The scene read and flattened by the render context; the drawer's two phases
+        // (extraction, drawing) are timed apart here, which the context's Render does not show.
         PipelineOptions po;
         po.sceneText = fmt::format(
             "patches m \"{}/src/quadrix/import/freeform/testdata/newell/{}.txt\" newell =rx -90;\n"
             "view v dop .5 .8 -1;\n",
             sourceDir, model);
         po.width = po.height = 1024;
-        PipelineResult pr;
+        RenderContext ctx;
         Diagnostics diags;
-        if (!ReadAndFlatten(po, pr, diags)) {
+        if (!ctx.Read(po.Input(), diags) || !ctx.Flatten(po.View(), diags)) {
             diags.Print(stderr);
             continue;
         }
-        const auto drawables = isocurve::SceneDrawables(pr.flat);
+        const auto drawables = isocurve::SceneDrawables(ctx.Flat());
         for (double gap : {4.0, 2.0, 1.0, 0.5}) {
             isocurve::IsocurveOptions o;
             o.pixelSpacing = gap;
@@ -178,7 +285,7 @@ std::string IsocurveTable(const std::string& sourceDir, int reps) {
             isocurve::IsocurveStats st;
             for (int i = 0; i < reps; ++i) {
                 Frame frame(1024, 1024);
-                st = isocurve::RenderFreeform(drawables, pr.flat.projection, o, frame);
+                st = isocurve::RenderFreeform(drawables, ctx.Flat().projection, o, frame);
                 ex.push_back(st.extractSeconds * 1e3);
                 dr.push_back(st.drawSeconds * 1e3);
             }
@@ -203,28 +310,30 @@ std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::str
         "|---|---|---|---|---|---|\n";
     for (const BenchScene& scene : scenes) {
         if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
-        PipelineOptions po;
-        po.scenePaths = {outDir + "/scenes/" + scene.name + ".uq"};
-        po.width = 1280;
-        po.height = 720;
-        PipelineResult pr;
-        Diagnostics diags;
-        if (!RunPipeline(po, pr, diags) || pr.flat.bodies.size() > 256) continue;
-        auto engine = MakeEngine("raycast");
+        RenderContext ctx;
+        if (!Prepare(ctx, outDir + "/scenes/" + scene.name + ".uq", {1280, 720}) ||
+            ctx.Flat().bodies.size() > 256)
+            continue;
+        const EngineRequest raycast;
         auto timed = [&](int samples, std::size_t* edges) {
             std::vector<double> ms;
             for (int i = 0; i < reps; ++i) {
                 const auto t0 = std::chrono::steady_clock::now();
                 Frame frame;
-                engine->Render(pr.flat, RenderOptions{}, frame);
+                RenderMs(ctx, raycast, frame);
                 ShadeOptions so;
                 so.aaSamples = samples;
-                Image img = Shade(frame, pr.flat, so);
-                const AntialiasStats st = Antialias(frame, pr.flat, so, img);
-                if (edges) *edges = st.edgePixels;
+                Image img = ctx.Shade(frame, so);
                 ms.push_back(
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                         .count());
+                if (edges) {  // the pixels Antialias re-renders (shade/antialias.h), counted
+                    ShadeOptions plain;
+                    std::vector<std::uint8_t> marked = FindEdges(frame);
+                    MarkShadingJumps(frame, ctx.Shade(frame, plain), marked);
+                    *edges = static_cast<std::size_t>(
+                        std::count_if(marked.begin(), marked.end(), [](auto m) { return m != 0; }));
+                }
             }
             return Median(ms);
         };
@@ -257,24 +366,15 @@ std::string RayIndexTable(const std::vector<BenchScene>& scenes, const std::stri
         if (scene.name.find("spheres") == std::string::npos &&
             scene.name.find("machined") == std::string::npos)
             continue;
-        PipelineOptions po;
-        po.scenePaths = {outDir + "/scenes/" + scene.name + ".uq"};
-        po.width = 640;
-        po.height = 360;
-        PipelineResult pr;
-        Diagnostics diags;
-        if (!RunPipeline(po, pr, diags)) continue;
-        auto engine = MakeEngine("raycast");
+        RenderContext ctx;
+        // Above kPictureDefaultBodies (100,000 spheres) the rays without trees take many minutes.
+        if (!Prepare(ctx, outDir + "/scenes/" + scene.name + ".uq", {640, 360}) ||
+            ctx.Flat().bodies.size() > kPictureDefaultBodies)
+            continue;
         Frame frame;
         std::vector<double> frameMs;
-        for (int i = 0; i < reps; ++i) {
-            const auto t0 = std::chrono::steady_clock::now();
-            engine->Render(pr.flat, RenderOptions{}, frame);
-            frameMs.push_back(
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                    .count());
-        }
-        const bool big = pr.flat.bodies.size() > 2000;
+        for (int i = 0; i < reps; ++i) frameMs.push_back(RenderMs(ctx, EngineRequest{}, frame));
+        const bool big = ctx.Flat().bodies.size() > 2000;
         auto timed = [&](bool shadows, int aa, bool index) {
             std::vector<double> ms;
             for (int i = 0; i < (big && !index ? 1 : reps); ++i) {
@@ -283,8 +383,7 @@ std::string RayIndexTable(const std::vector<BenchScene>& scenes, const std::stri
                 so.shadows = shadows;
                 so.aaSamples = aa;
                 so.spatialIndex = index;
-                Image img = Shade(frame, pr.flat, so);
-                Antialias(frame, pr.flat, so, img);
+                Image img = ctx.Shade(frame, so);
                 ms.push_back(
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                         .count());
@@ -297,9 +396,61 @@ std::string RayIndexTable(const std::vector<BenchScene>& scenes, const std::stri
         out += fmt::format(
             "| {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f}× | {:.1f} | {:.1f} | {:.1f}× "
             "|\n",
-            scene.name, pr.flat.bodies.size(), Median(frameMs), plain, sOff, sOn, sOff / sOn, aOff,
-            aOn, aOff / aOn);
+            scene.name, ctx.Flat().bodies.size(), Median(frameMs), plain, sOff, sOn, sOff / sOn,
+            aOff, aOn, aOff / aOn);
         std::fprintf(stderr, "ray index %s done\n", scene.name.c_str());
+    }
+    return out;
+}
+
+// Issue 24 item 6: where the time of a whole `quadrix render SCENE --size WxH -o x.png` process
+// goes (picture defaults), phase by phase (median of the runs; ParsePhases says what each is).
+std::string PhaseTable(const std::vector<Row>& rows, const std::string& machine) {
+    std::string out = fmt::format(
+        "\n## Whole process, phase by phase (`quadrix render … -o x.png`, picture defaults, "
+        "median ms)\n\nMachine: {}. start-up = spawn → main (exec, dynamic loader, static "
+        "initialisers); cli = main → the render command; shade includes anti-aliasing and "
+        "shadows; write = temporary file, fsync, rename; exit = the last mark → reaped (io/"
+        "phase_times.h).\n\n| scene | size |",
+        machine);
+    for (const std::string& ph : kPhases) out += " " + ph + " |";
+    out += " sum | process |\n|---|---|";
+    for (std::size_t k = 0; k < kPhases.size(); ++k) out += "---|";
+    out += "---|---|\n";
+    for (const Row& r : rows) {
+        if (r.phasesMs.size() != kPhases.size()) continue;
+        out += fmt::format("| {} | {}×{} |", r.scene, r.size.w, r.size.h);
+        double sum = 0;
+        for (double ms : r.phasesMs) {
+            out += fmt::format(" {:.2f} |", ms);
+            sum += ms;
+        }
+        out += fmt::format(" {:.1f} | {:.1f} |\n", sum, r.quadrixProcessMs);
+    }
+    return out;
+}
+
+// --baseline: the same processes by the other binary, in the same rounds (before → after).
+std::string BaselineTable(const std::vector<Row>& rows, const std::string& before,
+                          const std::string& after) {
+    std::string out = fmt::format(
+        "\n## Before ({}) and after ({}), whole process, picture defaults (median ms, same "
+        "rounds)\n\n| scene | size | before | after | before / after |",
+        before, after);
+    for (const std::string& ph : kPhases) out += " " + ph + " before → after |";
+    out += "\n|---|---|---|---|---|";
+    for (std::size_t k = 0; k < kPhases.size(); ++k) out += "---|";
+    out += "\n";
+    for (const Row& r : rows) {
+        if (r.baselineMs <= 0) continue;
+        out += fmt::format("| {} | {}×{} | {:.1f} | {:.1f} | {} |", r.scene, r.size.w, r.size.h,
+                           r.baselineMs, r.quadrixProcessMs,
+                           fmt::format("{:.2f}×", r.baselineMs / r.quadrixProcessMs));
+        for (std::size_t k = 0; k < kPhases.size(); ++k)
+            out += k < r.baselinePhasesMs.size() && k < r.phasesMs.size()
+                       ? fmt::format(" {:.2f} → {:.2f} |", r.baselinePhasesMs[k], r.phasesMs[k])
+                       : std::string(" – |");
+        out += "\n";
     }
     return out;
 }
@@ -392,12 +543,16 @@ int main(int argc, char** argv) {
     using namespace quadrix::bench;
     CLI::App app{"Quadrix benchmark suite (issue 8): engines vs each other and vs POV-Ray"};
     std::string outDir = "bench/results", quadrixBin = "build/quadrix", sourceDir = ".";
+    std::string baselineBin;
     bool quick = false, noPov = false, noProcess = false;
     int reps = 5, povReps = 3, threads = 0;
     std::string sizeList;
     std::string only, engineList;
     app.add_option("--out", outDir, "Directory for results and generated scenes");
     app.add_option("--quadrix", quadrixBin, "The quadrix binary to time as a whole process");
+    app.add_option("--baseline", baselineBin,
+                   "Another quadrix binary (before a change) timed in the same rounds: a "
+                   "before/after table");
     app.add_option("--source", sourceDir, "Source tree (for examples/)");
     app.add_flag("--quick", quick, "Small subset: one size, fewer repetitions");
     app.add_flag("--no-pov", noPov, "Do not run POV-Ray");
@@ -428,7 +583,7 @@ int main(int argc, char** argv) {
             return 2;
         }
         const std::string engineName = opt.substr(0, colon);
-        if (!MakeEngine(engineName)) {
+        if (!FindEngine(engineName)) {
             std::fprintf(stderr, "error: --engine-opt '%s': no engine '%s'\n", opt.c_str(),
                          engineName.c_str());
             return 2;
@@ -436,9 +591,10 @@ int main(int argc, char** argv) {
         optionsOf[engineName][opt.substr(colon + 1, eq - colon - 1)] = opt.substr(eq + 1);
     }
     for (const auto& [engineName, options] : optionsOf) {
-        RenderOptions ro;
-        ro.engineOptions = options;
-        if (std::string err = MakeEngine(engineName)->ValidateOptions(ro); !err.empty()) {
+        EngineRequest request;
+        request.engine = engineName;
+        request.options = options;
+        if (std::string err = RenderContext::CheckEngine(request); !err.empty()) {
             std::fprintf(stderr, "error: %s\n", err.c_str());
             return 2;
         }
@@ -456,12 +612,13 @@ int main(int argc, char** argv) {
         SpheresMinusCylinder(1000),
         SpheresMinusCylinder(10000),
         SpheresMinusCylinder(10000, /*distributed=*/true),
+        SpheresMinusCylinder(100000),
         SumOfProductsExplosion(8),
         SumOfProductsExplosion(16),
         SumOfProductsExplosion(32),
         SumOfProductsExplosion(64),
     };
-    std::vector<Size> sizes = {{512, 512}, {1280, 720}, {1920, 1080}};
+    std::vector<Size> sizes = {{512, 512}, {1280, 720}, {1920, 1080}, {3840, 2160}};
     if (quick) {
         sizes = {{1280, 720}};
         reps = std::min(reps, 3);
@@ -495,6 +652,7 @@ int main(int argc, char** argv) {
         while (e > 0 && std::isdigit(static_cast<unsigned char>(name[e - 1]))) --e;
         return name.substr(0, e);
     };
+    const std::string phaseLog = outDir + "/scenes/phases.log";
     for (const BenchScene& scene : scenes) {
         if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
         std::string scenePath = outDir + "/scenes/" + scene.name + ".uq";
@@ -505,28 +663,29 @@ int main(int argc, char** argv) {
             row.primitives = scene.primitives;
             row.size = size;
             std::fprintf(stderr, "%-22s %4dx%-4d ", scene.name.c_str(), size.w, size.h);
+            // Above 1920×1080 (the 4K case) only raycast is timed in process: the other engines'
+            // growth with pixels is measured up to 1080p.
+            const bool huge = static_cast<long>(size.w) * size.h > 1920L * 1080L;
 
-            // In process: read + flatten once, then each engine warm. (A block: its frames and
-            // scene are freed before the processes are spawned; see ResetPeakRss.)
+            // In process, through the render context: read + flatten once, then each engine
+            // warm. (A block: its frames and scene are freed before the processes are spawned;
+            // see ResetPeakRss.)
             {
-                PipelineOptions po;
-                po.scenePaths = {scenePath};
-                po.width = size.w;
-                po.height = size.h;
-                PipelineResult pr;
-                Diagnostics diags;
-                if (!RunPipeline(po, pr, diags)) {
-                    diags.Print(stderr);
-                    continue;
-                }
-                row.flattenMs = pr.flattenSeconds * 1e3;
+                RenderContext ctx(threads);
+                if (!Prepare(ctx, scenePath, size)) continue;
+                row.flattenMs = ctx.flattenSeconds * 1e3;
+                ShadeOptions defaults;  // what `quadrix render` gives this scene unasked
+                ApplyPictureDefaults(ctx.Flat(), PictureDefaults{}, defaults);
+                row.defaultAa = defaults.aaSamples > 1;
+                row.defaultShadows = defaults.shadows;
                 Frame reference;
                 for (const std::string& name : EngineNames()) {
                     // An engine that took over 10 s for a frame of this scene at a smaller size is
                     // not run at the larger ones (reported as skipped), so the suite ends.
                     const bool unselected =
-                        !engineList.empty() &&
-                        ("," + engineList + ",").find("," + name + ",") == std::string::npos;
+                        (huge && name != "raycast") ||
+                        (!engineList.empty() &&
+                         ("," + engineList + ",").find("," + name + ",") == std::string::npos);
                     // An engine whose frame on the family's previous, smaller member at this size,
                     // scaled linearly by the primitive count, would exceed 10 s is not started: a
                     // frame cannot be interrupted, and scanline or pixelpowers on 10,000 spheres
@@ -544,19 +703,23 @@ int main(int argc, char** argv) {
                         if (!unselected) lastOfFamily[famKey] = {scene.primitives, -1.0};
                         row.engineMs.emplace_back(name, unselected ? -2.0 : -1.0);
                         row.engineDiffPct.push_back(0.0);
+                        row.engineComposed.push_back(0);
                         continue;
                     }
-                    auto engine = MakeEngine(name);
-                    RenderOptions ro;
-                    ro.threads = threads;
+                    EngineRequest request;
+                    request.engine = name;
                     if (auto it = optionsOf.find(name); it != optionsOf.end())
-                        ro.engineOptions = it->second;
+                        request.options = it->second;
                     Frame frame;
-                    const auto tw = std::chrono::steady_clock::now();
-                    engine->Render(pr.flat, ro, frame);  // warm-up
-                    const double warmMs = std::chrono::duration<double, std::milli>(
-                                              std::chrono::steady_clock::now() - tw)
-                                              .count();
+                    RenderReport report;
+                    const double warmMs = RenderMs(ctx, request, frame, &report);  // warm-up
+                    if (warmMs < 0) {  // refused (reported): shown as skipped
+                        row.engineMs.emplace_back(name, -1.0);
+                        row.engineDiffPct.push_back(0.0);
+                        row.engineComposed.push_back(0);
+                        continue;
+                    }
+                    row.engineComposed.push_back(report.byReference.size());
                     if (name == "raycast") reference = frame;
                     std::size_t differ = 0;
                     for (std::size_t i = 0;
@@ -573,57 +736,105 @@ int main(int argc, char** argv) {
                     // suite stays within minutes; its time is still a warm frame.
                     const int engineReps = warmMs > 2000 ? 1 : reps;
                     if (warmMs > 10000) tooSlow.insert(scene.name + "/" + name);
-                    for (int i = 0; i < engineReps; ++i) {
-                        auto t0 = std::chrono::steady_clock::now();
-                        engine->Render(pr.flat, ro, frame);
-                        ms.push_back(std::chrono::duration<double, std::milli>(
-                                         std::chrono::steady_clock::now() - t0)
-                                         .count());
-                    }
+                    for (int i = 0; i < engineReps; ++i)
+                        ms.push_back(RenderMs(ctx, request, frame));
                     row.engineMs.emplace_back(name, Median(ms));
                     lastOfFamily[famKey] = {scene.primitives, Median(ms)};
                 }
             }
             row.benchFloorMiB = ResetPeakRss();
 
-            // Whole processes, Quadrix and POV-Ray alternating.
+            // Whole processes, Quadrix and POV-Ray alternating. POV-Ray gets the scene exported
+            // with shadows when Quadrix's picture defaults give it shadows.
             std::string sizeArg = fmt::format("{}x{}", size.w, size.h);
             std::string png = outDir + "/scenes/" + scene.name + ".png";
             std::string pov = outDir + "/scenes/" + scene.name + ".pov";
-            if (havePov) {
-                ProcessRun ex = Spawn(
-                    {quadrixBin, "export", "--to", "pov", scenePath, "--size", sizeArg, "-o", pov});
-                row.povOk = ex.exitCode == 0;
+            // POV-Ray at 4K only up to 1,000 primitives (10,000 spheres take minutes at 1080p).
+            if (havePov && !(huge && scene.primitives > 1000)) {
+                std::vector<std::string> ex = {quadrixBin, "export", "--to", "pov", scenePath,
+                                               "--size",   sizeArg,  "-o",   pov};
+                if (row.defaultShadows) ex.push_back("--shadows");
+                row.povOk = Spawn(ex).exitCode == 0;
             }
-            std::vector<double> qMs, pMs;
+            // With anti-aliasing, POV-Ray runs at 1280×720 only, where the defaults give Quadrix
+            // anti-aliasing: supersampling 2×2 (+AM1 +R2, the 4 samples of --aa 4) where a pixel
+            // differs from a neighbour by more than POV-Ray's default threshold (+A0.3).
+            const bool povAa = row.povOk && row.defaultAa && size.w == 1280 && size.h == 720;
+            std::vector<double> qMs, qPlainMs, pMs, pAaMs;
+            std::vector<std::vector<double>> phases(kPhases.size()), basePhases(kPhases.size());
+            std::vector<double> baseMs;
             int rounds = noProcess ? 0 : std::max(reps, havePov ? povReps : 0);
+            auto runPov = [&](bool aa, std::vector<double>& into) {
+                std::vector<std::string> argv = {
+                    "timeout",
+                    std::to_string(kPovTimeLimitSeconds),
+                    "povray",
+                    "+I" + pov,
+                    "+O" + outDir + "/scenes/" + scene.name + "_pov.png",
+                    fmt::format("+W{}", size.w),
+                    fmt::format("+H{}", size.h)};
+                if (aa) {
+                    for (const char* a : {"+A0.3", "+AM1", "+R2", "-J"}) argv.push_back(a);
+                } else {
+                    argv.push_back("-A");
+                }
+                for (const char* a : {"-D", "-V", "-GA", "+WT2"}) argv.push_back(a);
+                ProcessRun p = Spawn(argv);
+                if (p.exitCode == 0) {
+                    into.push_back(p.seconds * 1e3);
+                    row.povPeakMiB = std::max(row.povPeakMiB, p.peakMiB);
+                } else if (p.exitCode == 124) {
+                    row.povTimedOut = true;
+                }
+            };
             for (int i = 0; i < rounds; ++i) {
                 if (i < reps) {
                     ProcessRun q =
-                        Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png});
+                        Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png},
+                              phaseLog, {"QUADRIX_PHASE_TIMES=1"});
                     if (q.exitCode == 0) {
                         qMs.push_back(q.seconds * 1e3);
                         row.quadrixPeakMiB = std::max(row.quadrixPeakMiB, q.peakMiB);
+                        const std::vector<double> ph = ParsePhases(phaseLog, q);
+                        for (std::size_t k = 0; k < ph.size(); ++k) phases[k].push_back(ph[k]);
+                    }
+                    if (!baselineBin.empty()) {
+                        ProcessRun b =
+                            Spawn({baselineBin, "render", scenePath, "--size", sizeArg, "-o", png},
+                                  phaseLog, {"QUADRIX_PHASE_TIMES=1"});
+                        if (b.exitCode == 0) {
+                            baseMs.push_back(b.seconds * 1e3);
+                            const std::vector<double> ph = ParsePhases(phaseLog, b);
+                            for (std::size_t k = 0; k < ph.size(); ++k)
+                                basePhases[k].push_back(ph[k]);
+                        }
+                    }
+                    if (row.defaultAa) {
+                        ProcessRun plain = Spawn({quadrixBin, "render", scenePath, "--size",
+                                                  sizeArg, "--aa", "off", "-o", png});
+                        if (plain.exitCode == 0) qPlainMs.push_back(plain.seconds * 1e3);
                     }
                 }
-                // POV-Ray at 10,000 primitives takes a minute a run: one run is enough there.
+                // POV-Ray at 10,000 primitives takes minutes a run: one run is enough there.
                 bool slow = scene.primitives > 5000;
-                if (row.povOk && i < (slow ? 1 : povReps)) {
-                    ProcessRun p = Spawn({"povray", "+I" + pov,
-                                          "+O" + outDir + "/scenes/" + scene.name + "_pov.png",
-                                          fmt::format("+W{}", size.w), fmt::format("+H{}", size.h),
-                                          "-A", "-D", "-V", "-GA", "+WT2"});
-                    if (p.exitCode == 0) {
-                        pMs.push_back(p.seconds * 1e3);
-                        row.povPeakMiB = std::max(row.povPeakMiB, p.peakMiB);
-                    }
+                if (row.povOk && !row.povTimedOut && i < (slow ? 1 : povReps)) {
+                    runPov(false, pMs);
+                    if (povAa && !row.povTimedOut) runPov(true, pAaMs);
                 }
             }
             row.quadrixProcessMs = Median(qMs);
+            row.quadrixNoAaMs = row.defaultAa ? Median(qPlainMs) : row.quadrixProcessMs;
+            if (!phases[0].empty())
+                for (const auto& p : phases) row.phasesMs.push_back(Median(p));
+            row.baselineMs = Median(baseMs);
+            if (!basePhases[0].empty())
+                for (const auto& p : basePhases) row.baselinePhasesMs.push_back(Median(p));
             row.povProcessMs = Median(pMs);
-            std::fprintf(stderr, "engine %.1f ms  process %.1f ms  povray %.1f ms\n",
-                         row.engineMs.empty() ? 0.0 : row.engineMs[0].second, row.quadrixProcessMs,
-                         row.povProcessMs);
+            row.povAaMs = Median(pAaMs);
+            std::fprintf(
+                stderr, "engine %.1f ms  process %.1f ms (--aa off %.1f)  povray %.1f ms%s\n",
+                row.engineMs.empty() ? 0.0 : row.engineMs[0].second, row.quadrixProcessMs,
+                row.quadrixNoAaMs, row.povProcessMs, row.povTimedOut ? " (timed out)" : "");
             rows.push_back(row);
         }
     }
@@ -641,23 +852,44 @@ int main(int argc, char** argv) {
         "set "
         "(floor) only says the process stayed below it (see ResetPeakRss). An engine time "
         "marked (≠ p %) "
-        "comes from a frame whose coverage differs from raycast's on p % of the pixels: that "
-        "engine does not draw the whole scene (e.g. `patch` skips CSG solids).\n\n";
+        "comes from a frame whose coverage differs from raycast's on p % of the pixels; one "
+        "marked (+k by raycast) includes the k solids the render context gave to raycast "
+        "because the engine cannot draw them (composition). Quadrix processes run with the "
+        "picture defaults (anti-aliasing --aa 4 and shadows, for scenes of at most 20,000 "
+        "bodies) and with `--aa off`; POV-Ray runs on the scene exported with shadows where the "
+        "defaults give them, with `-A`, and at 1280×720 also with anti-aliasing (+A0.3 +AM1 +R2 "
+        "-J: 2×2 samples where a pixel differs from a neighbour). ratio = POV-Ray -A / Quadrix "
+        "--aa off; AA ratio = POV-Ray anti-aliased / Quadrix defaults. A POV-Ray run is stopped "
+        "after 600 s (then \"> 600 s\" and the ratio is a lower bound). Above 1920×1080 only "
+        "raycast is timed in process, and POV-Ray only up to 1,000 primitives.\n\n";
     md += "| scene | prims | size | flatten ms |";
     for (const auto& e : EngineNames()) md += fmt::format(" {} frame ms |", e);
     md +=
-        " quadrix process ms | povray process ms | ratio | quadrix peak MiB | povray peak MiB | "
-        "floor MiB |\n|---|---|---|---|";
+        " quadrix process ms (defaults) | quadrix --aa off ms | povray -A ms | ratio | povray AA "
+        "ms | AA ratio | quadrix peak MiB | povray peak MiB | floor MiB |\n|---|---|---|---|";
     for (std::size_t i = 0; i < EngineNames().size(); ++i) md += "---|";
-    md += "---|---|---|---|---|---|\n";
+    md += "---|---|---|---|---|---|---|---|---|\n";
     std::string csv = "scene,primitives,width,height,flatten_ms";
     for (const auto& e : EngineNames()) csv += "," + e + "_frame_ms";
-    csv += ",quadrix_process_ms,povray_process_ms,quadrix_peak_mib,povray_peak_mib,machine\n";
+    csv +=
+        ",quadrix_process_ms,quadrix_noaa_process_ms,povray_process_ms,povray_aa_process_ms,"
+        "quadrix_peak_mib,povray_peak_mib";
+    for (const std::string& ph : kPhases) csv += ",phase_" + ph + "_ms";
+    csv += ",machine\n";
     std::string machineCsv = machine;  // one CSV field: quoted, inner quotes doubled
     for (std::size_t q = machineCsv.find('"'); q != std::string::npos;
          q = machineCsv.find('"', q + 2))
         machineCsv.insert(q, 1, '"');
     machineCsv = "\"" + machineCsv + "\"";
+    auto povCell = [](const Row& r, double ms) {
+        return ms > 0 ? fmt::format("{:.1f}", ms)
+                      : (r.povTimedOut ? fmt::format("> {} s", kPovTimeLimitSeconds) : "–");
+    };
+    auto ratioCell = [](const Row& r, double pov, double quadrix) {
+        if (pov <= 0 && r.povTimedOut && quadrix > 0)
+            return fmt::format("≥ {:.0f}×", kPovTimeLimitSeconds * 1e3 / quadrix);
+        return Ratio(pov, quadrix);
+    };
     for (const Row& r : rows) {
         md += fmt::format("| {} | {} | {}×{} | {:.1f} |", r.scene, r.primitives, r.size.w, r.size.h,
                           r.flattenMs);
@@ -665,22 +897,32 @@ int main(int argc, char** argv) {
                            r.flattenMs);
         for (std::size_t e = 0; e < r.engineMs.size(); ++e) {
             const double ms = r.engineMs[e].second, diff = r.engineDiffPct[e];
+            const std::size_t composed = r.engineComposed[e];
             // Coverage differing on more than 0.5 % of the pixels (more than silhouette
             // rounding): the engine did not draw the whole scene, so its time is not comparable.
             md += ms == -2.0   ? std::string(" – |")
                   : ms < 0     ? std::string(" skipped (> 10 s, measured or predicted) |")
                   : diff > 0.5 ? fmt::format(" {:.1f} (≠{:.0f} %) |", ms, diff)
+                  : composed   ? fmt::format(" {:.1f} (+{} by raycast) |", ms, composed)
                                : fmt::format(" {:.1f} |", ms);
             csv += fmt::format(",{:.3f}", ms);
         }
-        md += fmt::format(" {:.1f} | {} | {} | {:.0f} | {} | {:.0f} |\n", r.quadrixProcessMs,
-                          r.povProcessMs > 0 ? fmt::format("{:.1f}", r.povProcessMs) : "–",
-                          Ratio(r.povProcessMs, r.quadrixProcessMs), r.quadrixPeakMiB,
-                          r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–",
-                          r.benchFloorMiB);
-        csv += fmt::format(",{:.3f},{:.3f},{:.1f},{:.1f},{}\n", r.quadrixProcessMs, r.povProcessMs,
-                           r.quadrixPeakMiB, r.povPeakMiB, machineCsv);
+        md += fmt::format(
+            " {:.1f} | {} | {} | {} | {} | {} | {:.0f} | {} | {:.0f} |\n", r.quadrixProcessMs,
+            r.defaultAa ? fmt::format("{:.1f}", r.quadrixNoAaMs) : "(no default AA)",
+            povCell(r, r.povProcessMs), ratioCell(r, r.povProcessMs, r.quadrixNoAaMs),
+            r.povAaMs > 0 ? fmt::format("{:.1f}", r.povAaMs) : "–",
+            Ratio(r.povAaMs, r.quadrixProcessMs), r.quadrixPeakMiB,
+            r.povPeakMiB > 0 ? fmt::format("{:.0f}", r.povPeakMiB) : "–", r.benchFloorMiB);
+        csv +=
+            fmt::format(",{:.3f},{:.3f},{:.3f},{:.3f},{:.1f},{:.1f}", r.quadrixProcessMs,
+                        r.quadrixNoAaMs, r.povProcessMs, r.povAaMs, r.quadrixPeakMiB, r.povPeakMiB);
+        for (std::size_t k = 0; k < kPhases.size(); ++k)
+            csv += fmt::format(",{:.3f}", k < r.phasesMs.size() ? r.phasesMs[k] : 0.0);
+        csv += "," + machineCsv + "\n";
     }
+    md += PhaseTable(rows, machine);
+    if (!baselineBin.empty()) md += BaselineTable(rows, baselineBin, quadrixBin);
     md += Scaling(rows);
     md += AntialiasTable(scenes, outDir, only, quick ? 1 : 3);
     md += RayIndexTable(scenes, outDir, only, quick ? 1 : 3);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "quadrix/io/phase_times.h"
 
 namespace {
 
@@ -162,6 +163,7 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    quadrix::MarkPhase("main");  // io/phase_times.h (QUADRIX_PHASE_TIMES)
     // Allocation failure anywhere is a clear error with a non-zero exit, not SIGABRT
     // (docs/output.md "Limits"). Output files in the making are removed by their destructors
     // while the exception unwinds.

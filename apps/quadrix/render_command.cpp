@@ -12,6 +12,7 @@
 #include "quadrix/frame/memory_budget.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/io/output_file.h"
+#include "quadrix/io/phase_times.h"
 #include "quadrix/io/time_limit.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/camera.h"
@@ -128,6 +129,8 @@ PictureDefaults PictureRequest(const RenderArgs& args) {
 #define QUADRIX_RENDER_FAST_EXIT 1
 #endif
 int FinishRender(const RenderArgs& args, int code) {
+    MarkPhase("exit");  // the benchmark's phase table (io/phase_times.h); nothing unless asked
+    PrintPhaseTimes();
     // Not under an MPI launcher: MPI must be finalised at exit (batch/run.h).
     if (!QUADRIX_RENDER_FAST_EXIT || !args.exitWhenDone || PendingOutputFiles() != 0 ||
         batch::UnderMpiLauncher())
@@ -139,6 +142,7 @@ int FinishRender(const RenderArgs& args, int code) {
 }  // namespace
 
 int RunRender(const RenderArgs& args) {
+    MarkPhase("start");
     if (!args.maxMemory.empty()) {
         std::size_t bytes = 0;
         if (!ParseByteSize(args.maxMemory, bytes)) {
@@ -258,8 +262,10 @@ int RunRender(const RenderArgs& args) {
     ViewRequest view = po.View();
     bool writer = true;  // false on the MPI ranks of --sort-last other than rank 0
     bool ok = ctx.Read(po.Input(), diags);
+    MarkPhase("read");
     if (ok && camera.Any()) ok = ApplyCamera(ctx, camera, view, diags);
     ok = ok && ctx.Flatten(view, diags);
+    MarkPhase("flatten");
     ShadeOptions so;
     std::string defaultsNote;
     if (ok) {
@@ -279,6 +285,7 @@ int RunRender(const RenderArgs& args) {
     std::optional<Image> image;
     ok = ok && RenderMaybeShared(args, outputs, ctx, engine, NeedsImage(outputs) ? &so : nullptr,
                                  frame, image, report, diags, writer);
+    MarkPhase("render");
     diags.Print(stderr);
     if (!ok || diags.HasErrors()) {
         std::fprintf(stderr, "quadrix: %d error%s; no image written\n", diags.ErrorCount(),
@@ -296,8 +303,10 @@ int RunRender(const RenderArgs& args) {
         if (!defaultsNote.empty())
             std::fprintf(stderr, "quadrix: note: %s\n", defaultsNote.c_str());
         if (!image) image = ctx.Shade(frame, so);
+        MarkPhase("shade");
     }
     const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);
+    MarkPhase("write");
     const double writeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!error.empty()) {

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <vector>
 
+#include "quadrix/io/phase_times.h"
+
 namespace quadrix {
 
 namespace {
@@ -98,6 +100,7 @@ std::string EncodePng(const PngRaster& r, std::FILE* out) {
         const int y0 = k * rowsPerStrip, y1 = std::min(r.height, y0 + rowsPerStrip);
         CompressStrip(r, rowBytes, y0, y1, k + 1 == strips, s[static_cast<std::size_t>(k)]);
     });
+    MarkPhase("encode");  // io/phase_times.h: what follows is the file's writing
     uLong adler = 1;
     for (const Strip& x : s) {
         if (!x.ok) return "PNG encoding failed (zlib)";

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "quadrix/io/phase_times.h"
 #include "quadrix/io/png_encoder.h"
 #include "quadrix/math/srgb.h"
 
@@ -237,6 +238,7 @@ std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
                           EncodeSrgbRow(source.pixels.data() + r.begin(),
                                         encoded.data() + r.begin(), r.size());
                       });
+    MarkPhase("encode");  // io/phase_times.h
     if (std::fflush(f.stream()) != 0) return fmt::format("cannot write '{}'", f.path());
     const int fd = fileno(f.stream());
     iovec v[2] = {{header, static_cast<std::size_t>(h)}, {encoded.data(), encoded.size()}};
