@@ -18,11 +18,6 @@
 //      left, B0 is exact and we stop (10,000 spheres: ~5 ms).
 //  (a') A body of planes only (at most 16): the box of its vertices, enumerated over triples of
 //      its planes and the search region's faces (exact; bounds.cpp PolytopeBox).
-//  (a'') A body of one quadric and at most 16 planes (with BoundsOptions::criticalPoints): the box
-//      of the feasible critical points of x, y and z over the active sets {quadric}, {quadric,
-//      plane}, {quadric, 2 planes}, {3 planes} and the apex (bounds_critical.cpp), widened by
-//      1e-7; ~30 µs, where (b1) takes ~1 ms. It declines (and (b1) decides) wherever rounding
-//      could matter.
 //  (b1) The convex relaxation (bounds_relaxation.cpp): planes, positive semidefinite quadrics
 //      (ellipsoids, cylinders, paraboloids) and "nappes" (one nappe of a cone or the inside of one
 //      sheet of a two-sheet hyperboloid: convex, and proven to contain the body by a separating
@@ -88,22 +83,15 @@ struct BoundsOptions {
     // Stage (a') for bodies of at most 16 planes: the box of the polytope's vertices (exact, far
     // cheaper than the relaxation); off only to compare the two in tests.
     bool polytopeVertices = true;
-    // Stage (a'') for bodies of one quadric and at most 16 planes (capped cylinders and cones,
-    // ellipsoids cut by planes): the box of the critical points (bounds_critical.cpp), exact up
-    // to a 1e-7 widening, ~30× cheaper than the relaxation. Off by default: its boxes differ from
-    // the relaxation's in the last digits, so the Flattener uses it only where no box decides
-    // the picture's window (flattener.cpp).
-    bool criticalPoints = false;
 };
 
 struct BoundsStats {
-    std::int64_t bodies = 0;              // bodies bounded
-    std::int64_t analyticOnly = 0;        // bodies whose analytic box was exact (no search)
-    std::int64_t convexSolves = 0;        // convex-relaxation extremes certified (one per side)
-    std::int64_t boxesPopped = 0;         // branch-and-bound boxes popped, over all directions
-    std::int64_t boxesTested = 0;         // boxes classified against literals
-    std::int64_t budgetExhausted = 0;     // directions that stopped on the box budget
-    std::int64_t criticalPointBoxes = 0;  // bodies bounded by stage (a'')
+    std::int64_t bodies = 0;           // bodies bounded
+    std::int64_t analyticOnly = 0;     // bodies whose analytic box was exact (no search)
+    std::int64_t convexSolves = 0;     // convex-relaxation extremes certified (one per side)
+    std::int64_t boxesPopped = 0;      // branch-and-bound boxes popped, over all directions
+    std::int64_t boxesTested = 0;      // boxes classified against literals
+    std::int64_t budgetExhausted = 0;  // directions that stopped on the box budget
 };
 
 struct BoundLiteral {

@@ -5,7 +5,6 @@
 
 #include <cstdint>
 #include <limits>
-#include <optional>
 #include <vector>
 
 #include "quadrix/flatten/bounds.h"
@@ -78,12 +77,6 @@ struct Nappe {
     Vec3 vecs[3];                // unit eigenvectors
 };
 Nappe DetectNappe(const InsideFn& f);
-
-// Stage (a''), see bounds_critical.cpp: the box of a body of one quadric and at most 16 planes
-// (after B0's reduction) from the critical points of the coordinates on it; nullopt when the
-// stage does not apply or cannot be sure (then the relaxation decides).
-std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const Box3& b0,
-                                     const BoundsOptions& options);
 
 // Stage (b1), see bounds_relaxation.cpp. The constraints are planes, positive semidefinite
 // quadrics and nappes (nappes[i].ok for those), for the set intersected with `region`.

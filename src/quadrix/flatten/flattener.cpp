@@ -131,12 +131,6 @@ class FlattenerImpl {
 
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_);
-        // With a window given (whh/whw: rt views, the viewer's camera) no box decides the scale
-        // or the centre of the picture, so bodies of one quadric and planes take the
-        // critical-point stage (bounds.h (a'')): its boxes are as tight up to 1e-7, and the
-        // engines' results do not depend on the last digits of conservative boxes. Auto-fitted
-        // views keep the relaxation's boxes, whose digits the window is made of.
-        bo.criticalPoints = view_.whh || view_.whw;
         bool anySearched = false;
         std::vector<Box3> bodyBoxes = AllBodyBounds(flat, bo, &anySearched);
         std::vector<Box3> fitBoxes =
