@@ -120,6 +120,13 @@ void Post(bool send, char* data, std::size_t bytes, int peer, int tag,
     }
 }
 
+// One whole message of `buffer` to or from `peer`, waited for.
+void Exchange(bool send, std::vector<char>& buffer, int peer, int tag) {
+    std::vector<MPI_Request> requests;
+    Post(send, buffer.data(), buffer.size(), peer, tag, requests);
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
 // The rows of `from`'s bands that `to` reads around its own (its kRowHalo rows), ascending.
 std::vector<int> HaloRows(int width, int height, int from, int to, int ranks) {
     const std::vector<std::uint8_t> kinds =
@@ -166,17 +173,13 @@ void GatherFrame(Frame& frame, int rank, int ranks) {
         const Runs runs = RunsOf(frame, SortFirstRegion(width, height, rank, ranks));
         std::vector<char> buffer(PixelCount(runs) * kPixelBytes);
         Transfer<true>(frame, runs, buffer.data());
-        std::vector<MPI_Request> requests;
-        Post(true, buffer.data(), buffer.size(), 0, kFrameTag, requests);
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        Exchange(true, buffer, 0, kFrameTag);
         return;
     }
     for (int r = 1; r < ranks; ++r) {
         const Runs runs = RunsOf(frame, SortFirstRegion(width, height, r, ranks));
         std::vector<char> buffer(PixelCount(runs) * kPixelBytes);
-        std::vector<MPI_Request> requests;
-        Post(false, buffer.data(), buffer.size(), r, kFrameTag, requests);
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        Exchange(false, buffer, r, kFrameTag);
         Transfer<false>(frame, runs, buffer.data());
     }
 }
@@ -196,17 +199,13 @@ void GatherImage(Image& image, int rank, int ranks) {
         const Runs runs = runsOf(rank);
         std::vector<char> buffer(ImageBytes(image, runs));
         TransferImage<true>(image, runs, buffer.data());
-        std::vector<MPI_Request> requests;
-        Post(true, buffer.data(), buffer.size(), 0, kImageTag, requests);
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        Exchange(true, buffer, 0, kImageTag);
         return;
     }
     for (int r = 1; r < ranks; ++r) {
         const Runs runs = runsOf(r);
         std::vector<char> buffer(ImageBytes(image, runs));
-        std::vector<MPI_Request> requests;
-        Post(false, buffer.data(), buffer.size(), r, kImageTag, requests);
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        Exchange(false, buffer, r, kImageTag);
         TransferImage<false>(image, runs, buffer.data());
     }
 }
