@@ -5,8 +5,8 @@
 //     defined (file:line:column), unless `allowMissing` (--allow-missing, as `quadrix render`
 //     and `quadrix export` take it for imported primitives): then a warning with the count, and
 //     the drawing shows the quadric solids only.
-// Every front end that draws (`quadrix draw`, uq's `device svg:FILE`, the viewer's D key) calls
-// it on the flat scene of each view.
+// `quadrix draw` calls it on the flat scene of each view. uq's `device svg:FILE` and the viewer's
+// D key do not call it yet (issue 19: still to do), so there freeform surfaces are left out.
 #pragma once
 
 #include "quadrix/flatten/flat_scene.h"
