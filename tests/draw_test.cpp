@@ -188,7 +188,9 @@ view front dop 0 0 -1;
 // whose dihedral angle falls to zero along the ellipse is still an edge, and the Frame's ids
 // alternate along it), and STRONG edges (3°) must be drawn (a tangent join — the slot's flat side
 // meeting its round bottom — changes ids with a normal jump of about a degree per pixel of
-// curvature; the drawer draws no tangent edges).
+// curvature). Tangent edges (thin strokes, Stroke::tangent) are where a surface id changes with no
+// normal jump: no Frame edge by definition, so they are not sampled here; their own tests are in
+// tests/draw_tangent_edges_test.cpp.
 struct FrameEdges {
     int w = 0, h = 0;
     std::vector<unsigned char> horiz, vert;  // pair (i, j)–(i+1, j) and (i, j)–(i, j+1)
@@ -254,7 +256,7 @@ struct Sample : draw::Point2 {
 std::vector<Sample> VisibleSamples(const Drawing& d, double spacing) {
     std::vector<Sample> out;
     for (const Stroke& s : d.strokes) {
-        if (!s.visible) continue;
+        if (!s.visible || s.tangent) continue;
         std::vector<draw::Point2> pts;
         if (s.kind == StrokeKind::kEllipseArc) {
             for (int i = 0; i <= 4096; ++i)
