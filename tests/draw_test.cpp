@@ -557,6 +557,32 @@ TEST(DrawDegenerate, ConeApexSideOnAndEndOn) {
     EXPECT_EQ(arcs, 1);  // the base circle
 }
 
+// Edges seen edge-on: a cylinder seen from the side, so the circles of its caps lie in planes that
+// contain the rays. Each cap's image is a segment across the outline's full width (its ends the
+// images of the circle's extreme points), not a flattened ellipse or nothing: once visible (the
+// near half of the circle) and once hidden (the far half, behind the cylinder), both whole.
+TEST(DrawDegenerate, CircleSeenEdgeOnIsOneSegment) {
+    FlatScene f;
+    ASSERT_TRUE(Flat(std::string(kCylinderZ) + "view side dop 1 0 0;", 400, 300, f));
+    const Drawing d = draw::MakeDrawing(f);
+    for (double z : {-5.0, 5.0}) {
+        const Vec3 a = Dev(f, {0, 2, z}), b = Dev(f, {0, -2, z});
+        int visible = 0, hidden = 0;
+        for (const Stroke& s : d.strokes) {
+            if (s.source != draw::CurveKind::kEllipse) continue;
+            EXPECT_EQ(s.kind, StrokeKind::kSegment);
+            const auto& p = s.points;
+            const bool ab = std::hypot(p[0].x - a.x, p[0].y - a.y) < 1e-6 &&
+                            std::hypot(p[1].x - b.x, p[1].y - b.y) < 1e-6;
+            const bool ba = std::hypot(p[0].x - b.x, p[0].y - b.y) < 1e-6 &&
+                            std::hypot(p[1].x - a.x, p[1].y - a.y) < 1e-6;
+            if (ab || ba) (s.visible ? visible : hidden) += 1;
+        }
+        EXPECT_EQ(visible, 1) << "cap at z = " << z;
+        EXPECT_EQ(hidden, 1) << "cap at z = " << z;
+    }
+}
+
 // Tangent surfaces: a sphere resting on a plate and a second sphere touching the first. Touching
 // points make no edges; each sphere's outline is one whole visible circle where nothing hides it.
 TEST(DrawDegenerate, TangentSpheresAndPlate) {

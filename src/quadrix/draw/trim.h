@@ -36,8 +36,9 @@
 // round bottom where the slot's floor plane passes too; the hemisphere's circle is both
 // plane ∩ sphere and plane ∩ cylinder): one keeps it — the curve of the two faces' surfaces
 // when one of them is a plane (the double line is extracted in closed form), else (two
-// quadrics, whose tangent curve is not traced) a curve on the lower-numbered face's surface. Anything else (one face on both sides, a cusp where a cylinder rests on a
-// plane) is no edge, as before.
+// quadrics, whose tangent curve is not traced) a curve on the lower-numbered face's surface.
+// Anything else (one face on both sides, a cusp where a cylinder rests on a plane) is no edge, as
+// before.
 #pragma once
 
 #include <cstdint>
