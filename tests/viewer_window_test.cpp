@@ -206,6 +206,54 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
     EXPECT_EQ(svg, Slurp(dir.File("d.svg")));
 }
 
+// The drawing key refuses what quadrix draw refuses (pipeline/drawing_output.h): on the teapot
+// scene the script's drawing is an error at the patches' statement, on standard error and in the
+// window's overlay, and no file is written; with --allow-missing the drawing of the rest is
+// written with a warning.
+TEST(ViewerWindow, DrawingKeyRefusesFreeformSurfacesUnlessAllowMissing) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string script =
+        dir.Write("events.txt", "screenshot-window " + dir.File("before.ppm") + "\ndrawing " +
+                                    dir.File("a.svg") + "\nscreenshot-window " +
+                                    dir.File("after.ppm") + "\n");
+    const std::string scene = SourcePath("examples/teapot_on_table.uq");
+    const std::string view = kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() +
+                             " view '" + scene + "' --size 160x120 --aa 1 --script '" + script +
+                             "'";
+    const CommandResult refused = RunShell(view);
+    EXPECT_EQ(refused.exitCode, 1);
+    EXPECT_NE(refused.err.find("teapot_on_table.uq:5:1: error: freeform surface 'teapot[0]'"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(FileExists(dir.File("a.svg")));
+    // The script goes on (and the exit status says a drawing failed); the message is in the
+    // overlay: the window's pixels change, in the overlay's box at the top-left corner only.
+    Image before, after;
+    ASSERT_TRUE(ReadPnm(dir.File("before.ppm"), before));
+    ASSERT_TRUE(ReadPnm(dir.File("after.ppm"), after));
+    ASSERT_EQ(after.pixels.size(), before.pixels.size());
+    int differ = 0, outside = 0;
+    for (int y = 0; y < after.height; ++y)
+        for (int x = 0; x < after.width * 3; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * after.width * 3 + x;
+            if (after.pixels[i] == before.pixels[i]) continue;
+            ++differ;
+            outside += y > 50;
+        }
+    EXPECT_GT(differ, 50);
+    EXPECT_EQ(outside, 0);
+    const CommandResult allowed = RunShell(view + " --allow-missing");
+    EXPECT_EQ(allowed.exitCode, 0) << allowed.err;
+    EXPECT_NE(allowed.err.find("teapot_on_table.uq:5:1: warning: freeform surface 'teapot[0]'"),
+              std::string::npos)
+        << allowed.err;
+    Image shown;
+    ASSERT_TRUE(ReadPnm(dir.File("after.ppm"), shown));
+    EXPECT_NE(shown.pixels, before.pixels);  // the warning in the overlay
+    EXPECT_NE(Slurp(dir.File("a.svg")).find("<ellipse"), std::string::npos);
+}
+
 TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {
     const std::string scene = SourcePath("examples/tube.uq");
     const CommandResult noDisplay =

@@ -140,7 +140,8 @@ struct DrawArgs {
     std::string sheet = "A4";
     std::string projection = "third";
     std::string hidden = "dashed";
-    std::string section;        // --section "A B C D", as quadrix render's
+    std::string tangentEdges = "thin";  // --tangent-edges thin|off|on
+    std::string section;                // --section "A B C D", as quadrix render's
     bool allowMissing = false;  // --allow-missing: freeform surfaces left out with a warning
     bool stats = false;
 };

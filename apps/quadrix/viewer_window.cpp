@@ -138,7 +138,8 @@ class Viewer {
     int shownScale_ = 1;
     bool shownAntialiased_ = false;
     double shownSeconds_ = 0;
-    std::string error_;  // the current reload/frame error, for the title
+    std::string error_;          // the current reload/frame error, for the title
+    std::string drawingNotice_;  // the last drawing's first diagnostic, until the view changes
     std::string lastNote_;
     // Mouse (and ctrl, held for section drags).
     int dragButton_ = 0, downX_ = 0, downY_ = 0;
@@ -211,6 +212,7 @@ void Viewer::Title() {
 }
 
 void Viewer::Changed() {
+    drawingNotice_.clear();
     scheduler_.ViewChanged();
     if (!pendingChange_) pendingChange_.emplace(scheduler_.Generation(), Clock::now());
     if (s_.cancelStale && !cancelSent_ && scheduler_.StaleRefinementInFlight()) {
@@ -229,6 +231,7 @@ std::vector<std::string> Viewer::OverlayLines() const {
     if (section_.on) a += "  section";
     std::vector<std::string> lines = {a};
     if (!error_.empty()) lines.push_back("error: " + error_);
+    if (!drawingNotice_.empty()) lines.push_back(drawingNotice_);
     lines.push_back("H help  X section  [ ] move it  D drawing  V view  O overlay  Q quit");
     return lines;
 }
@@ -264,10 +267,16 @@ void Viewer::MoveSection(double pixels) {
 }
 
 bool Viewer::WriteDrawing(const std::string& path) {
-    const std::string e = s_.worker->WriteDrawing(path, camera_.ToView(), width_, height_,
-                                                  section_.ToPlane(), s_.name);
-    if (!e.empty()) {
-        std::fprintf(stderr, "quadrix: error: drawing %s: %s\n", path.c_str(), e.c_str());
+    const viewer::DrawingOutcome d = s_.worker->WriteDrawing(path, camera_.ToView(), width_,
+                                                             height_, section_.ToPlane(), s_.name);
+    // What was refused or left out (freeform surfaces, draw/undrawable.h) is said on standard
+    // error and in the window's overlay until the view changes, never passed over.
+    std::fputs(d.messages.c_str(), stderr);
+    drawingNotice_ = d.first.empty() ? std::string() : "drawing: " + d.first;
+    Title();
+    if (renderer_) Present(nullptr);
+    if (!d.ok) {
+        std::fprintf(stderr, "quadrix: error: drawing %s not written\n", path.c_str());
         exitCode_ = 1;
         return false;
     }
@@ -775,7 +784,9 @@ void Viewer::StepScript() {
                     running_ = false;
                 break;
             case ScriptEvent::Kind::kDrawing:
-                if (!WriteDrawing(e.text)) running_ = false;
+                // A failed drawing is reported (the exit status too), and the script goes on:
+                // what the window shows about it can be looked at.
+                WriteDrawing(e.text);
                 break;
             case ScriptEvent::Kind::kPrintView:
                 if (e.text.empty()) {
