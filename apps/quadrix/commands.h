@@ -58,6 +58,7 @@ struct RenderArgs : SceneViewArgs {
     std::string aaFilter = "box";
     bool edges = false;
     std::string section;  // --section "A B C D" (pipeline/section_plane.h); empty = none
+    bool hatch = false;   // --hatch: hatch the section's cut faces (shade/section_hatch.h)
     bool stats = false;
     bool json = false;  // --stats --json
     int threads = 0;

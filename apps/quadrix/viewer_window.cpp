@@ -98,8 +98,9 @@ class Viewer {
     // The overlay's lines for the current state, and its texture made again when they changed.
     std::vector<std::string> OverlayLines() const;
     void UpdateOverlay();
-    // The section plane as `quadrix render` options (empty when off).
-    std::string SectionOptions() const;
+    // The section plane as `quadrix render` options (empty when off), with --hatch when its
+    // faces are hatched unless `drawing` (quadrix draw's options).
+    std::string SectionOptions(bool drawing = false) const;
     void MoveSection(double pixels);  // along its normal, by `pixels` of the window's scale
     bool WriteDrawing(const std::string& path);
     void PrintLatency() const;
@@ -122,6 +123,7 @@ class Viewer {
     bool edges_ = false;
     bool overlayOn_ = true;
     viewer::SectionPlane section_;
+    bool hatch_ = true;  // the section's cut faces hatched (C), on with the plane
     std::vector<std::string> engines_;
     viewer::FrameScheduler scheduler_;
     viewer::FileWatch watch_;
@@ -202,7 +204,7 @@ void Viewer::Title() {
     if (shownSeconds_ > 0) t += fmt::format(" — {:.1f} ms", 1e3 * shownSeconds_);
     t += camera_.perspective ? " — perspective" : " — parallel";
     if (edges_) t += " — edges";
-    if (section_.on) t += " — section";
+    if (section_.on) t += hatch_ ? " — section (hatched)" : " — section";
     if (!error_.empty())
         t += " — ERROR " + error_;
     else
@@ -228,11 +230,12 @@ std::vector<std::string> Viewer::OverlayLines() const {
     if (shownAntialiased_) a += fmt::format("  aa {}", s_.aaSamples);
     a += camera_.perspective ? "  perspective" : "  parallel";
     if (edges_) a += "  edges";
-    if (section_.on) a += "  section";
+    if (section_.on) a += hatch_ ? "  section hatched" : "  section";
     std::vector<std::string> lines = {a};
     if (!error_.empty()) lines.push_back("error: " + error_);
     if (!drawingNotice_.empty()) lines.push_back(drawingNotice_);
-    lines.push_back("H help  X section  [ ] move it  D drawing  V view  O overlay  Q quit");
+    lines.push_back(
+        "H help  X section  [ ] move it  C hatch  D drawing  V view  O overlay  Q quit");
     return lines;
 }
 
@@ -255,9 +258,11 @@ void Viewer::UpdateOverlay() {
     SDL_UpdateTexture(overlayTexture_, nullptr, overlay_.rgba.data(), overlay_.width * 4);
 }
 
-std::string Viewer::SectionOptions() const {
+std::string Viewer::SectionOptions(bool drawing) const {
     const std::optional<Plane> p = section_.ToPlane();
-    return p ? fmt::format(" --section \"{}\"", FormatSectionPlane(*p)) : std::string();
+    if (!p) return {};
+    return fmt::format(" --section \"{}\"{}", FormatSectionPlane(*p),
+                       hatch_ && !drawing ? " --hatch" : "");
 }
 
 void Viewer::MoveSection(double pixels) {
@@ -283,7 +288,7 @@ bool Viewer::WriteDrawing(const std::string& path) {
     std::fprintf(stderr,
                  "quadrix: drawing %s: the view below, drawn as `quadrix draw %s VIEW.uq --size "
                  "%dx%d%s -o %s`\n",
-                 path.c_str(), s_.name.c_str(), width_, height_, SectionOptions().c_str(),
+                 path.c_str(), s_.name.c_str(), width_, height_, SectionOptions(true).c_str(),
                  path.c_str());
     std::fputs(
         viewer::FormatViewStatement(camera_, width_, height_, "camera", SectionOptions()).c_str(),
@@ -395,6 +400,7 @@ void Viewer::PumpWorker() {
             job.engine = engine_;
             job.edges = edges_;
             job.section = section_.ToPlane();
+            job.hatch = hatch_;
             job.aaSamples = s_.aaSamples;
             cancelSent_ = false;
             s_.worker->Submit(job);
@@ -553,6 +559,10 @@ void Viewer::RunCommand(Command c) {
         case Command::kSectionToward:
             // A twentieth of the window's height a press.
             MoveSection((c == Command::kSectionToward ? 1 : -1) * height_ / 20.0);
+            break;
+        case Command::kToggleHatch:
+            hatch_ = !hatch_;
+            if (section_.on) Changed();
             break;
         case Command::kToggleOverlay:
             overlayOn_ = !overlayOn_;

@@ -1,5 +1,6 @@
 #include "quadrix/viewer/render_worker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -7,6 +8,7 @@
 #include <set>
 
 #include "quadrix/pipeline/drawing_output.h"
+#include "quadrix/shade/section_hatch.h"
 #include "quadrix/viewer/edges.h"
 #include "quadrix/viewer/picking.h"
 
@@ -220,6 +222,10 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     frameScale_ = s;
     ShadeOptions so;
     if (job.request.antialiased) so.aaSamples = job.aaSamples;
+    // A reduced frame keeps the world spacing of the full one (the same lines, while moving),
+    // down to 3 of its pixels.
+    so.hatch = job.hatch && job.section.has_value();
+    so.hatchSpacing = std::max(kHatchSpacingPixels / s, 3.0);
     out.image = ctx_->Shade(frame_, so);
     if (cancel_.Cancelled()) {  // the anti-aliasing pass was stopped: a partial image
         out.image = Image{};

@@ -56,6 +56,7 @@ struct FrameJob {
     std::string engine = "raycast";
     bool edges = false;            // show-edges over the shading (viewer/edges.h)
     std::optional<Plane> section;  // viewer/section.h
+    bool hatch = false;            // hatch the section's cut faces (shade/section_hatch.h)
     int aaSamples = 0;  // samples per edge pixel when request.antialiased (shade/antialias.h)
 };
 
