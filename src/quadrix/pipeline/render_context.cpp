@@ -111,8 +111,10 @@ bool SameView(const ViewRequest& a, const ViewRequest& b) {
 
 std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
     std::vector<std::pair<std::string, double>> c;
-    c.emplace_back("freeforms_by_isocurve", freeformsByIsocurve);
-    c.emplace_back("solids_by_raycast", static_cast<double>(byReference.size()));
+    CounterValues composition(kCompositionCounters);
+    composition.Set(kFreeformsByIsocurve, freeformsByIsocurve);
+    composition.Set(kSolidsByRaycast, byReference.size());
+    composition.AppendTo(c);
     c.insert(c.end(), stats.counters.begin(), stats.counters.end());
     return c;
 }
