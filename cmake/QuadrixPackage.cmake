@@ -23,7 +23,12 @@ target_include_directories(quadrix_shared PUBLIC
 target_compile_features(quadrix_shared PUBLIC cxx_std_20)
 target_link_libraries(quadrix_shared PRIVATE quadrix_lib quadrix_flags)
 target_link_options(quadrix_shared PRIVATE
-  "LINKER:--version-script=${PROJECT_SOURCE_DIR}/cmake/quadrix.map" "LINKER:--no-undefined")
+  "LINKER:--version-script=${PROJECT_SOURCE_DIR}/cmake/quadrix.map")
+# Every symbol resolved at link time, except under clang's sanitizers: their runtime is linked
+# into the executables only (the test programs), which provide it to the library when loaded.
+if(NOT (QUADRIX_SANITIZE AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang"))
+  target_link_options(quadrix_shared PRIVATE "LINKER:--no-undefined")
+endif()
 set_target_properties(quadrix_shared PROPERTIES
   OUTPUT_NAME quadrix
   EXPORT_NAME quadrix

@@ -50,7 +50,7 @@ void CheckDiagnostics(bool ok, const Diagnostics& diags, const char* who) {
     }
 }
 
-void ImportBrlcadText(std::string_view text) {
+[[maybe_unused]] void ImportBrlcadText(std::string_view text) {
     scene::Scene scene;
     Diagnostics diags;
     import::ImportOptions options;
@@ -61,7 +61,7 @@ void ImportBrlcadText(std::string_view text) {
 }
 
 #if QUADRIX_FUZZ_TARGET <= 3
-void FuzzBrlcad(std::string_view text) {
+[[maybe_unused]] void FuzzBrlcad(std::string_view text) {
     import::brlcad::Database db;
     Diagnostics diags;
     bool ok;
@@ -78,7 +78,7 @@ void FuzzBrlcad(std::string_view text) {
 #endif
 
 #if QUADRIX_FUZZ_TARGET == 4
-void FuzzOpenScad(std::string_view text) {
+[[maybe_unused]] void FuzzOpenScad(std::string_view text) {
     scene::Scene scene;
     Diagnostics diags;
     import::ImportOptions options;
@@ -90,7 +90,7 @@ void FuzzOpenScad(std::string_view text) {
 #endif
 
 #if QUADRIX_FUZZ_TARGET == 5
-void FuzzFreeform(std::uint8_t selector, std::string_view text) {
+[[maybe_unused]] void FuzzFreeform(std::uint8_t selector, std::string_view text) {
     static const import::FreeformFormat kFormats[4] = {
         import::FreeformFormat::kNewell, import::FreeformFormat::kBpt,
         import::FreeformFormat::kGeomview, import::FreeformFormat::kObj};
@@ -105,7 +105,7 @@ void FuzzFreeform(std::uint8_t selector, std::string_view text) {
 #if QUADRIX_FUZZ_TARGET == 6
 // The whole pipeline on a file of the chosen format, written in the working directory (run.sh
 // runs the targets in a scratch directory).
-void FuzzPipeline(std::uint8_t selector, std::string_view text) {
+[[maybe_unused]] void FuzzPipeline(std::uint8_t selector, std::string_view text) {
     static const char* kNames[5] = {"fuzz.uq", "fuzz.asc", "fuzz.scad", "fuzz.obj", "fuzz.bpt"};
     static const char* kEngines[4] = {"raycast", "scanline", "pixelpowers", "patch"};
     const std::string path = kNames[selector % 5];
