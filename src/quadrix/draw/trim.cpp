@@ -175,6 +175,26 @@ bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c
     return !onlyA && !onlyB;
 }
 
+namespace {
+
+// A closed curve without breaks, classified by the majority of OnBoundary at t = π (its
+// midpoint) and at the golden sections. Its midpoint is a point of symmetry (an ellipse's vertex),
+// which is where it may touch a surface it does not cross (a tangency the breaks miss), and one
+// sample there would classify the whole curve by the tangency (gallery/name: a cap ellipse
+// tangent to the next tube was drawn whole, or not, depending on the last bits of the bounds).
+bool WholeCurveOnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c,
+                          double eps, bool shared) {
+    constexpr double kGolden = 0.381966011250105;  // (3 - √5) / 2
+    const double t0 = c.t0, t1 = c.t1;
+    const bool mid = OnBoundary(scene, probe, c, 0.5 * (t0 + t1), eps, shared);
+    if (!mid) return false;
+    const bool a = OnBoundary(scene, probe, c, t0 + kGolden * (t1 - t0), eps, shared);
+    if (a) return true;
+    return OnBoundary(scene, probe, c, t1 - kGolden * (t1 - t0), eps, shared);
+}
+
+}  // namespace
+
 std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& surfaces,
                                        const SceneProbe& probe, const std::vector<Curve3>& curves) {
     std::vector<CurvePiece> out;
@@ -201,7 +221,10 @@ std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& s
         std::size_t first = out.size();
         for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
             if (!(ts[i + 1] - ts[i] > minLen)) continue;
-            if (!OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps, shared)) continue;
+            const bool whole = c.Closed() && ts.size() == 2;
+            if (!(whole ? WholeCurveOnBoundary(scene, probe, c, eps, shared)
+                        : OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps, shared)))
+                continue;
             if (out.size() > first &&
                 (out.back().t1 == ts[i] || ProjectedLength(c, out.back().t1, ts[i]) < kSliver)) {
                 out.back().t1 = ts[i + 1];  // consecutive pieces merge, tiny gaps close
