@@ -177,11 +177,12 @@ bool OnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c
 
 namespace {
 
-// A closed curve without breaks, classified by the majority of OnBoundary at t = π (its
-// midpoint) and at the golden sections. Its midpoint is a point of symmetry (an ellipse's vertex),
-// which is where it may touch a surface it does not cross (a tangency the breaks miss), and one
-// sample there would classify the whole curve by the tangency (gallery/name: a cap ellipse
-// tangent to the next tube was drawn whole, or not, depending on the last bits of the bounds).
+// A closed curve without breaks: an edge when OnBoundary says so at t = π (its midpoint) and at
+// one of its two golden sections (a midpoint that says "not an edge" is kept as it was). Its
+// midpoint is a point of symmetry (an ellipse's vertex), which is where it may touch a surface it
+// does not cross (a tangency the breaks miss), and one sample there would classify the whole
+// curve by the tangency (gallery/name: a tube's cap ellipse tangent to the next tube was drawn
+// whole, or not, depending on the last bits of the bounds).
 bool WholeCurveOnBoundary(const FlatScene& scene, const SceneProbe& probe, const Curve3& c,
                           double eps, bool shared) {
     constexpr double kGolden = 0.381966011250105;  // (3 - √5) / 2
