@@ -54,7 +54,13 @@ namespace quadrix::bounds_detail {
 namespace {
 
 constexpr std::size_t kMaxPlanes = 16;
-constexpr double kFeasible = 1e-9;  // relative residual of a kept candidate
+// A candidate is kept when every constraint holds at it to within its rounding (1024 eps of the
+// terms' magnitude, room for the conditioning of the solves) or, where the region is bounded by
+// B0 or the cylinder bootstrap (not by the search limit), to within 1e-9 of its diameter in
+// distance (value / |gradient|). Not a relative residual: a thin cylinder far from the origin
+// has terms ~M² and a value ~r² on its axis, so a residual of 1e-9 M² accepts points many radii
+// away (and a candidate beyond the body on the region's face declares it unbounded).
+constexpr double kRounding = 1024 * kEps, kFeasible = 1e-9;
 // Certified side vs candidate, relative to size + |coordinate|: a missed candidate or a wrong
 // multiplier leaves gaps of percents; what is left is the certificate's rounding allowance. That
 // allowance is the precision of the literal itself: a quadric far from the origin (device space)
@@ -98,8 +104,12 @@ class CriticalPoints {
   public:
     // cons: the literals then the region's six faces (CandidateExtreme's order); `quadric` the
     // index of the quadric; artificial[j]: constraint j is a face at the search limit.
-    CriticalPoints(std::vector<InsideFn> cons, int quadric, std::vector<char> artificial)
-        : cons_(std::move(cons)), artificial_(std::move(artificial)), quadric_(quadric) {
+    CriticalPoints(std::vector<InsideFn> cons, int quadric, std::vector<char> artificial,
+                   double diameter)
+        : cons_(std::move(cons)),
+          artificial_(std::move(artificial)),
+          quadric_(quadric),
+          diameter_(diameter) {
         for (std::size_t j = 0; j < cons_.size(); ++j)
             if (cons_[j].isPlane) planes_.push_back(static_cast<int>(j));
     }
@@ -130,14 +140,15 @@ class CriticalPoints {
   private:
     Vec3 Normal(int j) const { return {2 * cons_[j].b[0], 2 * cons_[j].b[1], 2 * cons_[j].b[2]}; }
 
-    // A point x; kept when every constraint holds to kFeasible of its terms' magnitude.
+    // A point x; kept when every constraint holds at it (kRounding, kFeasible).
     void Consider(const Vec3& x) {
         if (!Finite(x)) return;
         const double p[3] = {x.x, x.y, x.z};
         bool onArtificial = false;
         for (std::size_t j = 0; j < cons_.size(); ++j) {
             const Local l = EvaluateLocal(cons_[j], p);
-            const double tol = kFeasible * (l.mag + 1e-300);
+            const double grad = std::sqrt(l.g[0] * l.g[0] + l.g[1] * l.g[1] + l.g[2] * l.g[2]);
+            const double tol = std::fmax(kRounding * l.mag, kFeasible * grad * diameter_);
             if (!(l.v <= tol)) return;
             onArtificial |= artificial_[j] && l.v >= -tol;
         }
@@ -222,7 +233,7 @@ class CriticalPoints {
         if (!Solve3(Row(q.a, 0), Row(q.a, 1), Row(q.a, 2), -q.b[0], -q.b[1], -q.b[2], c)) return;
         const double p[3] = {c.x, c.y, c.z};
         const Local l = EvaluateLocal(q, p);
-        if (std::fabs(l.v) <= kFeasible * (l.mag + 1e-300)) Consider(c);
+        if (std::fabs(l.v) <= kRounding * l.mag + 1e-300) Consider(c);
     }
 
     // λ >= 0 over the (at most kMaxSurrogate) constraints most nearly active at x, fitted to e
@@ -260,6 +271,7 @@ class CriticalPoints {
     std::vector<char> artificial_;
     std::vector<int> planes_;
     int quadric_;
+    double diameter_;  // of the region
     bool unbounded_ = false;
     std::size_t count_ = 0;
     Vec3 sum_;
@@ -402,7 +414,11 @@ std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const
             cons.push_back(p);
             artificial.push_back(sign > 0 ? !(b0.hi[i] < outer.hi[i]) : !(b0.lo[i] > outer.lo[i]));
         }
-    CriticalPoints points(std::move(cons), quadric, std::move(artificial));
+    // The distance tolerance only where the region is not the search limit's (for a cone: B0).
+    bool bounded = true;
+    for (int i = 0; i < 3; ++i) bounded &= outer.hi[i] < limit || b0.hi[i] < limit;
+    CriticalPoints points(std::move(cons), quadric, std::move(artificial),
+                          bounded ? Length(region.Size()) : 0.0);
     CandidateExtreme extremes[6];
     Vec3 interior;
     if (!points.Run(extremes, interior)) return std::nullopt;
