@@ -25,9 +25,12 @@
 //      critical points on a plane's conic and on the quadric: each a linear solve and one
 //      quadratic); the best feasible one per side, with KKT multipliers fitted there, goes through
 //      the weak-duality certificate of (b1) below, so the box is rigorous whatever the rounding
-//      of the enumeration. Declines (the next stages decide) when a certified side is more than
-//      1e-9 × (size + |coordinate|) beyond its candidate, when the body is unbounded or has no
-//      feasible candidate. ~10-20 µs a body, where (b1) takes ~1 ms.
+//      of the enumeration (a capped cylinder's search region is first cut to a ball proven to
+//      hold it: the certificate's allowance for a cylinder's rounding-level negative eigenvalue
+//      grows with the ball's radius squared). Declines (the next stages decide) when a certified
+//      side is more than 1e-7 × (size + |coordinate|) from its candidate (1e-5 for a nappe), when
+//      the body is unbounded or has no feasible candidate. ~10-20 µs a body, where (b1) takes
+//      ~1 ms.
 //  (b1) The convex relaxation (bounds_relaxation.cpp): planes, positive semidefinite quadrics
 //      (ellipsoids, cylinders, paraboloids) and "nappes" (one nappe of a cone or the inside of one
 //      sheet of a two-sheet hyperboloid: convex, and proven to contain the body by a separating

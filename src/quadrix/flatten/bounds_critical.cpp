@@ -9,7 +9,8 @@
 // The set. S = {f <= 0} ∩ {p_j <= 0} ∩ R, where f is a positive semidefinite quadric (ellipsoid,
 // elliptic cylinder, paraboloid) or a nappe (one nappe of a cone or of a two-sheet hyperboloid,
 // bounds_internal.h), the p_j are planes and R is the search region (B0's faces where they are
-// finite, else the faces at ±searchLimit). S is convex and compact, so the maximum of e·x
+// finite, else the faces at ±searchLimit, cut for a capped cylinder to the box of a ball proven
+// to hold it: CylinderBootstrap below). S is convex and compact, so the maximum of e·x
 // (e = ±e_i) is attained, at a point where e = Σ λ_j ∇g_j over the active constraints g_j with
 // λ >= 0 (KKT; the planes and a convex quadric satisfy Slater's condition when S has an interior).
 // With one quadric f and planes the active sets give finitely many isolated candidates, each from
@@ -23,8 +24,8 @@
 //                    when the apex is an extreme).
 // Critical points that are not isolated (a generator of a cylinder ⊥ e, a face ⊥ e) form sets on
 // which e·x is constant; their ends are candidates of a larger active set, so they are skipped.
-// The candidates satisfying every constraint (relative residual <= 1e-9) are kept; per side the
-// best one is the candidate extreme x̂.
+// The candidates satisfying every constraint (to rounding, or to 1e-9 of the region in distance:
+// kFeasible) are kept; per side the best one is the candidate extreme x̂.
 //
 // The certificate. Rounding in the solves, a tolerance in the feasibility test or a missed
 // candidate must not make the box too small, so the box is not the candidates' box: x̂ with
@@ -32,11 +33,12 @@
 // through the relaxation's Lagrangian bound (CertifyExtremes, bounds_relaxation.cpp), which holds
 // for ANY x̂ and λ >= 0, with rounding allowances. The enumeration only has to be right for the
 // bound to be tight; to keep boxes as tight as the relaxation's, the stage declines (nullopt: the
-// later stages decide) when a certified side lies more than 1e-9 × (size + |coordinate|) beyond
-// its candidate (a candidate was missed, or the KKT multipliers do not exist, as at an apex).
-// It also declines when
+// later stages decide) when a certified side lies more than 1e-7 × (size + |coordinate|) from its
+// candidate, 1e-5 for a nappe (kTight: a candidate was missed, or the KKT multipliers do not
+// exist, as at an apex). It also declines when
 //   - the body has no quadric, two or more, a non-convex one, or more than 16 planes;
-//   - a feasible candidate lies on a face at the search limit (S is unbounded);
+//   - a feasible candidate lies on a face of R that is not B0's (S is unbounded, or it leaves
+//     the bootstrap box, which would be a bug: then the later stages decide safely);
 //   - no candidate is feasible (empty or flat sets: the relaxation proves emptiness);
 //   - a nappe is not separated from its twin by one of the planes (the certificate's supporting
 //     plane needs it; capped cones are separated by their small-end cap).
