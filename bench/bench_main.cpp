@@ -45,6 +45,7 @@
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/antialias.h"
 #include "quadrix/shade/picture_defaults.h"
+#include "quadrix/shade/section_hatch.h"
 #include "scenes.h"
 #include "viewer_orbit.h"
 
@@ -347,6 +348,55 @@ std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::str
         std::fprintf(stderr, "antialias %s done\n", scene.name.c_str());
     }
     return out;
+}
+
+// Issue 18: the cost of hatching the section's cut faces (shade/section_hatch.h) at 1280×720:
+// the machined part seen obliquely, cut by the plane through its centre facing the view (as the
+// viewer's X makes it); one raycast Frame, shaded plain and with --hatch, and the hatch step
+// alone (median of `reps`).
+std::string HatchTable(const std::string& sourceDir, int reps) {
+    RenderContext ctx;
+    PipelineOptions po;
+    po.scenePaths = {sourceDir + "/examples/machined_part.uq"};
+    po.width = 1280;
+    po.height = 720;
+    // The scene's view's dop (.9 1.1 -1.3) points toward the viewer: the plane through the
+    // part's centre (0 10 0) facing it keeps the far side.
+    const Vec3 n = Normalize(Vec3{0.9, 1.1, -1.3});
+    po.section = Plane{n.x, n.y, n.z, -10 * n.y};
+    Diagnostics diags;
+    if (!ctx.Read(po.Input(), diags) || !ctx.Flatten(po.View(), diags)) {
+        diags.Print(stderr);
+        return {};
+    }
+    Frame frame;
+    RenderMs(ctx, EngineRequest{}, frame);
+    std::size_t cap = 0;
+    for (auto id : frame.surface) cap += id == ctx.Flat().sectionHalfSpace;
+    auto timed = [&](auto&& f) {
+        std::vector<double> ms;
+        for (int i = 0; i < reps; ++i) {
+            const auto t0 = std::chrono::steady_clock::now();
+            f();
+            ms.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count());
+        }
+        return Median(ms);
+    };
+    ShadeOptions plain, hatched;
+    hatched.hatch = true;
+    Image image = ctx.Shade(frame, plain);
+    std::size_t lines = 0;
+    const double a = timed([&] { image = ctx.Shade(frame, plain); });
+    const double b = timed([&] { image = ctx.Shade(frame, hatched); });
+    const double c = timed([&] { lines = HatchSection(frame, ctx.Flat(), hatched, image); });
+    std::fprintf(stderr, "hatch done\n");
+    return fmt::format(
+        "\n## Section hatching cost (machined part, 1280×720, raycast frame, median)\n\n"
+        "| cut pixels | hatch pixels | shade ms | shade + hatch ms | hatch alone ms |\n"
+        "|---|---|---|---|---|\n| {} | {} | {:.2f} | {:.2f} ({:.2f}×) | {:.2f} |\n",
+        cap, lines, a, b, b / a, c);
 }
 
 // The box trees of the shadow and sample rays (math/box_tree.h): shading with shadows, and
@@ -926,6 +976,8 @@ int main(int argc, char** argv) {
     md += Scaling(rows);
     md += AntialiasTable(scenes, outDir, only, quick ? 1 : 3);
     md += RayIndexTable(scenes, outDir, only, quick ? 1 : 3);
+    if (only.empty() || std::string("hatch").find(only) != std::string::npos)
+        md += HatchTable(sourceDir, quick ? 5 : 21);
     if (only.empty() || std::string("isocurve").find(only) != std::string::npos)
         md += IsocurveTable(sourceDir, quick ? 1 : 3);
     if (only.empty() || std::string("viewer").find(only) != std::string::npos)

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -46,10 +47,13 @@ class DummyEngine final : public Engine {
 };
 
 // The one row that registers an engine.
-const bool kDummyRegistered = RegisterEngine(
-    {"dummy-test", "draws nothing (tests composition)",
-     [] { return std::make_unique<DummyEngine>(); },
-     EngineCapabilities{.solids = true, .freeforms = false, .quartics = false}, true});
+const bool kDummyRegistered =
+    RegisterEngine({"dummy-test",
+                    "draws nothing (tests composition)",
+                    [] { return std::make_unique<DummyEngine>(); },
+                    EngineCapabilities{.solids = true, .freeforms = false, .quartics = false},
+                    {},
+                    true});
 
 struct CorpusScene {
     std::string name;
@@ -220,6 +224,18 @@ TEST_P(AllEngines, MatchesRaycastThroughTheRenderContext) {
     ASSERT_NE(info, nullptr);
     if (!info->capabilities.solids) {
         EXPECT_EQ(report.byReference.size(), ctx.Flat().solids.size());
+    }
+    // Every counter of the report is declared, by the engine's row or by the composition, once.
+    std::vector<std::string> seen;
+    for (const auto& [name, value] : report.Counters()) {
+        EXPECT_TRUE(IsDeclared(info->counters, name) || IsDeclared(kCompositionCounters, name))
+            << c.engine << " reports the undeclared counter '" << name << "'";
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), name), 0) << c.engine << ": " << name;
+        seen.push_back(name);
+    }
+    if (!info->hidden && info->capabilities.solids) {  // isocurve has no freeform here to draw
+        EXPECT_GT(seen.size(), std::size(kCompositionCounters))
+            << c.engine << " reports no counter";
     }
 }
 

@@ -188,7 +188,9 @@ view front dop 0 0 -1;
 // whose dihedral angle falls to zero along the ellipse is still an edge, and the Frame's ids
 // alternate along it), and STRONG edges (3°) must be drawn (a tangent join — the slot's flat side
 // meeting its round bottom — changes ids with a normal jump of about a degree per pixel of
-// curvature; the drawer draws no tangent edges).
+// curvature). Tangent edges (thin strokes, Stroke::tangent) are where a surface id changes with no
+// normal jump: no Frame edge by definition, so they are not sampled here; their own tests are in
+// tests/draw_tangent_edges_test.cpp.
 struct FrameEdges {
     int w = 0, h = 0;
     std::vector<unsigned char> horiz, vert;  // pair (i, j)–(i+1, j) and (i, j)–(i, j+1)
@@ -254,7 +256,7 @@ struct Sample : draw::Point2 {
 std::vector<Sample> VisibleSamples(const Drawing& d, double spacing) {
     std::vector<Sample> out;
     for (const Stroke& s : d.strokes) {
-        if (!s.visible) continue;
+        if (!s.visible || s.tangent) continue;
         std::vector<draw::Point2> pts;
         if (s.kind == StrokeKind::kEllipseArc) {
             for (int i = 0; i <= 4096; ++i)
@@ -553,6 +555,32 @@ TEST(DrawDegenerate, ConeApexSideOnAndEndOn) {
     int arcs = 0;
     for (const Stroke& s : de.strokes) arcs += s.kind == StrokeKind::kEllipseArc && s.visible;
     EXPECT_EQ(arcs, 1);  // the base circle
+}
+
+// Edges seen edge-on: a cylinder seen from the side, so the circles of its caps lie in planes that
+// contain the rays. Each cap's image is a segment across the outline's full width (its ends the
+// images of the circle's extreme points), not a flattened ellipse or nothing: once visible (the
+// near half of the circle) and once hidden (the far half, behind the cylinder), both whole.
+TEST(DrawDegenerate, CircleSeenEdgeOnIsOneSegment) {
+    FlatScene f;
+    ASSERT_TRUE(Flat(std::string(kCylinderZ) + "view side dop 1 0 0;", 400, 300, f));
+    const Drawing d = draw::MakeDrawing(f);
+    for (double z : {-5.0, 5.0}) {
+        const Vec3 a = Dev(f, {0, 2, z}), b = Dev(f, {0, -2, z});
+        int visible = 0, hidden = 0;
+        for (const Stroke& s : d.strokes) {
+            if (s.source != draw::CurveKind::kEllipse) continue;
+            EXPECT_EQ(s.kind, StrokeKind::kSegment);
+            const auto& p = s.points;
+            const bool ab = std::hypot(p[0].x - a.x, p[0].y - a.y) < 1e-6 &&
+                            std::hypot(p[1].x - b.x, p[1].y - b.y) < 1e-6;
+            const bool ba = std::hypot(p[0].x - b.x, p[0].y - b.y) < 1e-6 &&
+                            std::hypot(p[1].x - a.x, p[1].y - a.y) < 1e-6;
+            if (ab || ba) (s.visible ? visible : hidden) += 1;
+        }
+        EXPECT_EQ(visible, 1) << "cap at z = " << z;
+        EXPECT_EQ(hidden, 1) << "cap at z = " << z;
+    }
 }
 
 // Tangent surfaces: a sphere resting on a plate and a second sphere touching the first. Touching

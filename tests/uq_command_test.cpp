@@ -315,5 +315,33 @@ TEST(UqOptions, TerminalDevicePreviewsOnStandardOutput) {
     }
 }
 
+// device svg:FILE refuses what quadrix draw refuses (pipeline/drawing_output.h): the teapot's
+// freeform patches are an error at their statement and no file is written; --allow-missing draws
+// the table, the ball and the cup with a warning naming what was left out.
+TEST(UqOptions, SvgDeviceRefusesFreeformSurfacesUnlessAllowMissing) {
+    TempDir dir;
+    const std::string scene = SourcePath("examples/teapot_on_table.uq");
+    const CommandResult refused = Uq(dir, "uq -d svg:part.svg '" + scene + "'");
+    EXPECT_EQ(refused.exitCode, 1);
+    EXPECT_NE(refused.err.find("teapot_on_table.uq:5:1: error: freeform surface 'teapot[0]' (and "
+                               "31 more freeform surfaces) cannot be drawn"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(FileExists(dir.File("part.svg")));
+    const CommandResult allowed = Uq(dir, "uq --allow-missing -d svg:part.svg '" + scene + "'");
+    EXPECT_EQ(allowed.exitCode, 0) << allowed.err;
+    EXPECT_NE(allowed.err.find("teapot_on_table.uq:5:1: warning: freeform surface 'teapot[0]'"),
+              std::string::npos)
+        << allowed.err;
+    const std::string svg = Slurp(dir.File("part.svg"));
+    EXPECT_NE(svg.find("<ellipse"), std::string::npos);  // the ball's outline, the cup's rims
+    // The same strokes as quadrix draw --allow-missing of the scene at uq's png size (512x512).
+    const CommandResult draw = RunShell(QuadrixBinary() + " draw --allow-missing --size 512x512 '" +
+                                        scene + "' -o '" + dir.File("draw.svg") + "'");
+    ASSERT_EQ(draw.exitCode, 0) << draw.err;
+    auto body = [](const std::string& t) { return t.substr(t.find("<rect")); };
+    EXPECT_EQ(body(svg), body(Slurp(dir.File("draw.svg"))));
+}
+
 }  // namespace
 }  // namespace quadrix::testing

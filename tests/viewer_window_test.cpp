@@ -5,11 +5,16 @@
 // writes for them.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
 
+#include "quadrix/frame/frame.h"
+#include "quadrix/io/writers.h"
+#include "quadrix/pipeline/section_plane.h"
 #include "test_util.h"
 
 namespace quadrix::testing {
@@ -174,7 +179,8 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
         EXPECT_TRUE(ReadPnm(out, im)) << out;
         return im;
     };
-    const Image cut = render("--section '" + section + "'", dir.File("cut.ppm"));
+    // The window hatches the cut faces (C would turn it off): render --hatch.
+    const Image cut = render("--section '" + section + "' --hatch", dir.File("cut.ppm"));
     const Image whole = render("", dir.File("whole.ppm"));
     Image shot, window, plain;
     ASSERT_TRUE(ReadPnm(dir.File("a.ppm"), shot));
@@ -204,6 +210,124 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
     const std::string svg = Slurp(dir.File("a.svg"));
     EXPECT_NE(svg.find("<svg"), std::string::npos);
     EXPECT_EQ(svg, Slurp(dir.File("d.svg")));
+}
+
+// The drawing key refuses what quadrix draw refuses (pipeline/drawing_output.h): on the teapot
+// scene the script's drawing is an error at the patches' statement, on standard error and in the
+// window's overlay, and no file is written; with --allow-missing the drawing of the rest is
+// written with a warning.
+TEST(ViewerWindow, DrawingKeyRefusesFreeformSurfacesUnlessAllowMissing) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string script =
+        dir.Write("events.txt", "screenshot-window " + dir.File("before.ppm") + "\ndrawing " +
+                                    dir.File("a.svg") + "\nscreenshot-window " +
+                                    dir.File("after.ppm") + "\n");
+    const std::string scene = SourcePath("examples/teapot_on_table.uq");
+    const std::string view = kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() +
+                             " view '" + scene + "' --size 160x120 --aa 1 --script '" + script +
+                             "'";
+    const CommandResult refused = RunShell(view);
+    EXPECT_EQ(refused.exitCode, 1);
+    EXPECT_NE(refused.err.find("teapot_on_table.uq:5:1: error: freeform surface 'teapot[0]'"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(FileExists(dir.File("a.svg")));
+    // The script goes on (and the exit status says a drawing failed); the message is in the
+    // overlay: the window's pixels change, in the overlay's box at the top-left corner only.
+    Image before, after;
+    ASSERT_TRUE(ReadPnm(dir.File("before.ppm"), before));
+    ASSERT_TRUE(ReadPnm(dir.File("after.ppm"), after));
+    ASSERT_EQ(after.pixels.size(), before.pixels.size());
+    int differ = 0, outside = 0;
+    for (int y = 0; y < after.height; ++y)
+        for (int x = 0; x < after.width * 3; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * after.width * 3 + x;
+            if (after.pixels[i] == before.pixels[i]) continue;
+            ++differ;
+            outside += y > 50;
+        }
+    EXPECT_GT(differ, 50);
+    EXPECT_EQ(outside, 0);
+    const CommandResult allowed = RunShell(view + " --allow-missing");
+    EXPECT_EQ(allowed.exitCode, 0) << allowed.err;
+    EXPECT_NE(allowed.err.find("teapot_on_table.uq:5:1: warning: freeform surface 'teapot[0]'"),
+              std::string::npos)
+        << allowed.err;
+    Image shown;
+    ASSERT_TRUE(ReadPnm(dir.File("after.ppm"), shown));
+    EXPECT_NE(shown.pixels, before.pixels);  // the warning in the overlay
+    EXPECT_NE(Slurp(dir.File("a.svg")).find("<ellipse"), std::string::npos);
+}
+
+// Hatching (C; on with the section plane): the still frame is `quadrix render --section
+// --hatch` of the printed view, pixel for pixel; the hatch lines are black and lie on the cut
+// faces only (the Frame's pixels of the section plane: its normal is the plane's); C turns them
+// off, giving `quadrix render --section`.
+TEST(ViewerWindow, SectionHatchingLiesOnTheCutOnlyAndTogglesWithC) {
+    if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
+    TempDir dir;
+    const std::string script =
+        dir.Write("events.txt", "orbit 40 -25\nkey X\norbit -50 15\nscreenshot " +
+                                    dir.File("h.ppm") + "\nprint-view " + dir.File("h.uq") +
+                                    "\nkey C\nscreenshot " + dir.File("p.ppm") + "\nquit\n");
+    const std::string scene = SourcePath("examples/machined_part.uq");
+    const CommandResult run =
+        RunShell(kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
+                 scene + "' --size 240x180 --script '" + script + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const std::string viewText = Slurp(dir.File("h.uq"));
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(viewText, m, std::regex("--section \"([^\"]+)\" --hatch")))
+        << viewText;
+    const std::string section = m[1];
+    auto render = [&](const std::string& extra, const std::string& out) {
+        const CommandResult r =
+            RunShell(QuadrixBinary() + " render '" + scene + "' '" + dir.File("h.uq") +
+                     "' --size 240x180 --aa 4 " + "--no-shadows --section '" + section + "' " +
+                     extra + " -o '" + out + "'");
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        Image im;
+        EXPECT_TRUE(ReadPnm(out, im)) << out;
+        return im;
+    };
+    const Image hatched =
+        render("--hatch --dump-frame '" + dir.File("f.qxf") + "'", dir.File("r.ppm"));
+    const Image plain = render("", dir.File("rp.ppm"));
+    Image shotHatched, shotPlain;
+    ASSERT_TRUE(ReadPnm(dir.File("h.ppm"), shotHatched));
+    ASSERT_TRUE(ReadPnm(dir.File("p.ppm"), shotPlain));
+    EXPECT_EQ(shotHatched.pixels, hatched.pixels);  // the same picture as render --hatch
+    EXPECT_EQ(shotPlain.pixels, plain.pixels);      // C: as render --section alone
+    // The cut's pixels: the surface id whose every pixel has the plane's normal.
+    Frame frame;
+    ASSERT_EQ(ReadFrameDump(dir.File("f.qxf"), frame), "");
+    Plane p;
+    ASSERT_EQ(ParseSectionPlane(section, p), "");
+    const Vec3 n = Normalize(p.Normal());
+    std::map<int, std::pair<int, int>> perSurface;  // id → (pixels, pixels with the normal)
+    for (std::size_t i = 0; i < frame.surface.size(); ++i) {
+        if (frame.surface[i] == Frame::kNone) continue;
+        auto& c = perSurface[frame.surface[i]];
+        ++c.first;
+        c.second += std::fabs(Dot(frame.normal[i], n)) > 1 - 1e-9;
+    }
+    int cut = Frame::kNone, cutPixels = 0;
+    for (const auto& [id, c] : perSurface)
+        if (c.first == c.second && c.first > cutPixels) cut = id, cutPixels = c.first;
+    ASSERT_GT(cutPixels, 1000);
+    int lines = 0;
+    for (std::size_t i = 0; i < frame.surface.size(); ++i) {
+        const bool changed = hatched.pixels[3 * i] != plain.pixels[3 * i] ||
+                             hatched.pixels[3 * i + 1] != plain.pixels[3 * i + 1] ||
+                             hatched.pixels[3 * i + 2] != plain.pixels[3 * i + 2];
+        if (!changed) continue;
+        ++lines;
+        EXPECT_EQ(frame.surface[i], cut) << "a hatch pixel outside the cut: " << i;
+        EXPECT_EQ(hatched.pixels[3 * i] + hatched.pixels[3 * i + 1] + hatched.pixels[3 * i + 2], 0);
+    }
+    EXPECT_GT(lines, cutPixels / 20);
+    EXPECT_LT(lines, cutPixels / 3);
 }
 
 TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {

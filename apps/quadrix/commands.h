@@ -58,6 +58,7 @@ struct RenderArgs : SceneViewArgs {
     std::string aaFilter = "box";
     bool edges = false;
     std::string section;  // --section "A B C D" (pipeline/section_plane.h); empty = none
+    bool hatch = false;   // --hatch: hatch the section's cut faces (shade/section_hatch.h)
     bool stats = false;
     bool json = false;  // --stats --json
     int threads = 0;
@@ -140,7 +141,8 @@ struct DrawArgs {
     std::string sheet = "A4";
     std::string projection = "third";
     std::string hidden = "dashed";
-    std::string section;        // --section "A B C D", as quadrix render's
+    std::string tangentEdges = "thin";  // --tangent-edges thin|off|on
+    std::string section;                // --section "A B C D", as quadrix render's
     bool allowMissing = false;  // --allow-missing: freeform surfaces left out with a warning
     bool stats = false;
 };

@@ -4,11 +4,10 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "quadrix/draw/drawing.h"
 #include "quadrix/draw/page_file.h"
 #include "quadrix/draw/sheet.h"
-#include "quadrix/draw/undrawable.h"
 #include "quadrix/frame/image_limits.h"
+#include "quadrix/pipeline/drawing_output.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/pipeline/section_plane.h"
 
@@ -31,11 +30,6 @@ std::vector<std::string> SplitComma(const std::string& s) {
     return out;
 }
 
-double PixelsPerUnit(const FlatScene& flat) {
-    const Mat4& m = flat.projection.deviceFromWorld.Matrix();
-    return std::sqrt(m(0, 0) * m(0, 0) + m(1, 0) * m(1, 0) + m(2, 0) * m(2, 0));
-}
-
 int Fail(Diagnostics& diags) {
     diags.Print(stderr);
     std::fprintf(stderr, "quadrix: %d error%s; nothing written\n", diags.ErrorCount(),
@@ -46,13 +40,19 @@ int Fail(Diagnostics& diags) {
 void PrintStats(const std::string& view, const draw::DrawStats& s) {
     std::fprintf(stderr,
                  "draw %s: %d candidate curves (%d lines, %d conics, %d silhouettes, %d "
-                 "quartic branches; %d tangent pairs skipped), %d boundary pieces, %d strokes, "
-                 "%lld ray tests, %d visibility changes, %.1f ms (curves %.1f, trim %.1f, "
-                 "visibility %.1f, strokes %.1f)\n",
+                 "quartic branches, %d tangent lines), %d boundary pieces (%d tangent edges), "
+                 "%d strokes, %lld ray tests, %d visibility changes, %.1f ms (curves %.1f, trim "
+                 "%.1f, visibility %.1f, strokes %.1f)\n",
                  view.c_str(), s.candidates, s.lines, s.conics, s.silhouettes, s.quartics,
-                 s.tangentPairs, s.pieces, s.strokes, s.rayTests, s.visibilityChanges,
-                 s.seconds * 1e3, s.curveSeconds * 1e3, s.trimSeconds * 1e3,
+                 s.tangentPairs, s.pieces, s.tangentPieces, s.strokes, s.rayTests,
+                 s.visibilityChanges, s.seconds * 1e3, s.curveSeconds * 1e3, s.trimSeconds * 1e3,
                  s.visibilitySeconds * 1e3, s.strokeSeconds * 1e3);
+}
+
+draw::TangentEdges ParseTangentEdges(const std::string& s) {
+    if (s == "off") return draw::TangentEdges::kOff;
+    if (s == "on") return draw::TangentEdges::kOn;
+    return draw::TangentEdges::kThin;
 }
 
 }  // namespace
@@ -79,6 +79,11 @@ void AddDrawCommand(CLI::App& app, DrawArgs& args) {
         ->capture_default_str();
     cmd->add_option("--hidden", args.hidden, "Hidden lines: dashed or off")
         ->check(CLI::IsMember({"dashed", "off"}))
+        ->capture_default_str();
+    cmd->add_option("--tangent-edges", args.tangentEdges,
+                    "Tangent edges (smooth joins of two faces): thin lines, off, or on (drawn "
+                    "as edges)")
+        ->check(CLI::IsMember({"thin", "off", "on"}))
         ->capture_default_str();
     cmd->add_option("--section", args.section,
                     "Section plane \"A B C D\": keep A x + B y + C z + D <= 0, as quadrix "
@@ -133,83 +138,38 @@ int RunDraw(const DrawArgs& args) {
         }
         section = p;
     }
-    // Stages 1 and 2 of the render context (pipeline/render_context.h); the drawer takes the
-    // flat scene where an engine would.
+    // Stage 1 of the render context (pipeline/render_context.h); flattening, the refusal of
+    // what cannot be drawn, drawing and writing are the path every front end shares
+    // (pipeline/drawing_output.h).
     Diagnostics diags;
     RenderContext context(1);
     InputRequest input;
     input.paths = args.scenes;
     input.allowMissing = args.allowMissing;
     if (!context.Read(input, diags) || diags.HasErrors()) return Fail(diags);
-    ViewRequest request;
-    request.width = width;
-    request.height = height;
-    request.viewName = args.view;
-    request.section = section;
-    if (viewNames.empty() && (!context.Flatten(request, diags) || diags.HasErrors()))
-        return Fail(diags);
-    // The drawer handles planes and quadrics: a quartic (torus, elliptical torus, general cone)
-    // is refused by name, and a freeform surface too unless --allow-missing (draw/undrawable.h),
-    // rather than drawn wrong or left out.
-    if (viewNames.empty() && !draw::CheckDrawable(context.Flat(), args.allowMissing, diags))
-        return Fail(diags);
-    draw::DrawOptions dopt;
-    dopt.hidden = args.hidden != "off";
+    DrawingRequest request;
+    request.view.width = width;
+    request.view.height = height;
+    request.view.viewName = args.view;
+    request.view.section = section;
+    request.sheetViews = viewNames;
+    request.options.hidden = args.hidden != "off";
+    request.options.tangentEdges = ParseTangentEdges(args.tangentEdges);
+    request.allowMissing = args.allowMissing;
     // The model's file: the first (later ones are usually views or settings for it).
-    const std::string title = args.scenes.empty() ? "" : args.scenes.front();
-    draw::Page page;
-    if (viewNames.empty()) {
-        draw::Drawing d = draw::MakeDrawing(context.Flat(), dopt);
-        if (args.stats) PrintStats(context.Flat().viewName, d.stats);
-        page = draw::SingleViewPage(d, title);
-    } else {
-        std::vector<draw::SheetView> views;
-        double total = 0;
-        for (const std::string& name : viewNames) {
-            scene::View sv;
-            draw::StandardView(name, sv);
-            sv.id = "draw#" + sv.id;
-            context.Scene().views.push_back(sv);
-            context.SceneChanged();
-            ViewRequest vr;
-            vr.width = 1000;
-            vr.height = 1000;
-            vr.viewName = sv.id;
-            vr.section = section;
-            const bool ok = context.Flatten(vr, diags);
-            context.Scene().views.pop_back();
-            context.SceneChanged();
-            if (!ok || diags.HasErrors()) return Fail(diags);
-            // Every view flattens the same solids: one check (and one warning) is enough.
-            if (views.empty() && !draw::CheckDrawable(context.Flat(), args.allowMissing, diags))
-                return Fail(diags);
-            draw::SheetView v;
-            v.name = name;
-            v.drawing = draw::MakeDrawing(context.Flat(), dopt);
-            v.pixelsPerUnit = PixelsPerUnit(context.Flat());
-            total += v.drawing.stats.seconds;
-            if (args.stats) PrintStats(name, v.drawing.stats);
-            views.push_back(std::move(v));
-        }
-        draw::SheetOptions so;
-        draw::SheetSizeByName(args.sheet, so.size);
-        so.firstAngle = args.projection == "first";
-        so.fileName = title;
-        std::string scaleText;
-        page = draw::LayoutSheet(std::move(views), so, &scaleText);
-        if (args.stats)
+    request.title = args.scenes.empty() ? "" : args.scenes.front();
+    draw::SheetSizeByName(args.sheet, request.sheet.size);
+    request.sheet.firstAngle = args.projection == "first";
+    request.sheet.fileName = request.title;
+    DrawingReport report;
+    if (!WriteDrawingFile(context, request, args.output, diags, &report)) return Fail(diags);
+    if (args.stats) {
+        for (const auto& [name, stats] : report.views) PrintStats(name, stats);
+        if (!viewNames.empty())
             std::fprintf(stderr, "draw sheet: %zu views, scale %s, %.1f ms drawing\n",
-                         viewNames.size(), scaleText.c_str(), total * 1e3);
+                         viewNames.size(), report.scaleText.c_str(), report.seconds * 1e3);
     }
-    if (page.strokes.empty())
-        diags.Warning({}, "the drawing is empty: no edge or outline of the solids lies in the view",
-                      {}, "draw");
     diags.Print(stderr);
-    const std::string err = draw::WritePageFile(args.output, page);
-    if (!err.empty()) {
-        std::fprintf(stderr, "quadrix: error: %s\n", err.c_str());
-        return 1;
-    }
     return 0;
 }
 

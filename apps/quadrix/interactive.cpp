@@ -17,10 +17,6 @@
 #include <editline/readline.h>
 #endif
 
-#include "quadrix/draw/cairo_writer.h"
-#include "quadrix/draw/drawing.h"
-#include "quadrix/draw/page.h"
-#include "quadrix/draw/svg_writer.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/io/bounded_read.h"
@@ -28,6 +24,7 @@
 #include "quadrix/lang/input_files.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/source.h"
+#include "quadrix/pipeline/drawing_output.h"
 #include "quadrix/shade/shader.h"
 #include "uq_help.h"
 
@@ -651,8 +648,8 @@ std::vector<scene::Light> UqSession::CurrentLights() const {
     return lights;
 }
 
-bool UqSession::FlattenCurrent(const std::string& view, const device::DeviceInfo& info) {
-    auto t0 = std::chrono::steady_clock::now();
+ViewRequest UqSession::CurrentViewRequest(const std::string& view,
+                                          const device::DeviceInfo& info) const {
     ViewRequest request;
     request.width = info.width;
     request.height = info.height;
@@ -660,8 +657,13 @@ bool UqSession::FlattenCurrent(const std::string& view, const device::DeviceInfo
     // Passed in, never swapped into the scene; none declared: the Flattener's default rig.
     if (std::vector<scene::Light> lights = CurrentLights(); !lights.empty())
         request.lights = std::move(lights);
+    return request;
+}
+
+bool UqSession::FlattenCurrent(const std::string& view, const device::DeviceInfo& info) {
+    auto t0 = std::chrono::steady_clock::now();
     ctx_.SceneChanged();  // the reader may have added statements since
-    if (!ctx_.Flatten(request, diags_)) return false;
+    if (!ctx_.Flatten(CurrentViewRequest(view, info), diags_)) return false;
     const FlatScene& flat = ctx_.Flat();
     Trace(
         fmt::format("flattener: {} solids, {} bodies, {} half-spaces in device space, {} "
@@ -761,20 +763,21 @@ bool UqSession::ShowDrawing(const std::string& view, const std::string& path,
         FlushDiagnostics(false);
         return false;
     }
-    draw::DrawOptions options;
-    const draw::Drawing drawing = draw::MakeDrawing(ctx_.Flat(), options);
-    const draw::Page page = draw::SingleViewPage(drawing, ctx_.Flat().viewName);
-    error = format == "svg" ? draw::WriteSvg(target, page)
-                            : draw::WriteCairo(target, page,
-                                               format == "pdf" ? draw::CairoFormat::kPdf
-                                                               : draw::CairoFormat::kEps);
-    if (!error.empty()) {
-        diags_.Error(loc, error, {}, "device");
+    // The path quadrix draw and the viewer take (pipeline/drawing_output.h): what cannot be
+    // drawn is refused (freeform surfaces unless --allow-missing), nothing half written.
+    DrawingRequest request;
+    request.view = CurrentViewRequest(view, raster->Info());
+    request.allowMissing = settings.allowMissing;
+    request.title = ctx_.Flat().viewName;
+    request.loc = loc;
+    DrawingReport report;
+    if (!WriteDrawingFile(ctx_, request, target, diags_, &report)) {
         FlushDiagnostics(false);
         return false;
     }
+    FlushDiagnostics(false);  // a warning: freeform surfaces left out
     Trace(fmt::format("device {}: hidden-line drawing, {} strokes; wrote {}; {:.4f} s", format,
-                      page.strokes.size(), target, SecondsSince(t0)));
+                      report.strokes, target, SecondsSince(t0)));
     if (settings.keep) Message("drawing file: " + target);
     return true;
 }

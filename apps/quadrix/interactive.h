@@ -53,6 +53,9 @@ struct UqSettings {
     int deltaMax = 0;                 // -sd; 0 = device default
     std::string engine = "raycast";
     std::map<std::string, std::string> engineOptions;  // --engine-opt KEY=VALUE
+    // --allow-missing: the drawing devices (svg:, pdf:, eps:) leave freeform surfaces out with a
+    // warning instead of refusing the scene, as quadrix draw --allow-missing does.
+    bool allowMissing = false;
 };
 
 // A source of input lines for the interactive mode.
@@ -150,6 +153,8 @@ class UqSession : public lang::CommandHandler {
     std::vector<scene::Light> CurrentLights() const;
     // Flattens the scene in the render context for `view` under the current lights; false after
     // errors.
+    // The view request of a show on the device `info` describes (size, view, current lights).
+    ViewRequest CurrentViewRequest(const std::string& view, const device::DeviceInfo& info) const;
     bool FlattenCurrent(const std::string& view, const device::DeviceInfo& info);
     std::string NextKeptPath(const std::string& path);
     void Trace(const std::string& line);

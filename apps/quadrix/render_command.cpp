@@ -81,6 +81,9 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     cmd->add_option("--section", args.section,
                     "Section plane \"A B C D\" (world coordinates): keep the part where "
                     "A x + B y + C z + D <= 0 and draw the cut faces (docs/viewer.md)");
+    cmd->add_flag("--hatch", args.hatch,
+                  "With --section: hatch the cut faces with 45-degree lines fixed to the plane, "
+                  "alternating direction from solid to solid (docs/viewer.md)");
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_flag("--json", args.json,
                   "With --stats: the statistics as one JSON object on standard output");
@@ -198,6 +201,11 @@ int RunRender(const RenderArgs& args) {
         }
         po.section = section;
     }
+    if (args.hatch && args.section.empty()) {
+        std::fprintf(stderr,
+                     "quadrix: error: --hatch: there is no section to hatch (give --section)\n");
+        return 2;
+    }
     CameraRequest camera;
     if (auto e = SceneViewOptions(args, po, camera, diags); !e.empty()) {
         diags.Print(stderr);
@@ -252,6 +260,7 @@ int RunRender(const RenderArgs& args) {
         so.linear = NeedsLinear(outputs);
         so.aaMitchell = args.aaFilter == "mitchell";
         so.edges = args.edges;
+        so.hatch = args.hatch;
         if (args.phong) so.model = ShadingModel::kPhong;
         return RunAnimation(args, po, engine, so, PictureRequest(args), outputs);
     }
@@ -278,6 +287,7 @@ int RunRender(const RenderArgs& args) {
         defaultsNote = ApplyPictureDefaults(ctx.Flat(), PictureRequest(args), so);
         so.aaMitchell = args.aaFilter == "mitchell";
         so.edges = args.edges;
+        so.hatch = args.hatch;
         if (args.phong) so.model = ShadingModel::kPhong;
         so.linear = NeedsLinear(outputs);  // 8-bit files are encoded from the 8-bit pixels
     }

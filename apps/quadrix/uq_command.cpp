@@ -54,6 +54,8 @@ constexpr const char* kUsage =
     "  -x          do not draw a picture after the last file\n"
     "  --engine NAME       rendering engine (default raycast), as quadrix render's\n"
     "  --engine-opt K=V    engine-specific setting (repeatable), as quadrix render's\n"
+    "  --allow-missing     the svg, pdf and eps devices draw without the freeform surfaces\n"
+    "                      (a warning instead of an error), as quadrix draw --allow-missing\n"
     "  --version   print the version\n"
     "  -h, --help  this text\n"
     "See docs/uq-compat.md for the matching quadrix render options.\n";
@@ -80,7 +82,8 @@ struct Action {
         kNoTrace,
         kView,
         kEngine,
-        kEngineOpt
+        kEngineOpt,
+        kAllowMissing
     };
     Kind kind;
     std::string text;
@@ -118,6 +121,10 @@ std::string ParseArgs(const std::vector<std::string>& args, Plan& plan) {
         }
         if (a == "--version") {
             plan.version = true;
+            continue;
+        }
+        if (a == "--allow-missing") {
+            add(Kind::kAllowMissing);
             continue;
         }
         // --engine NAME / --engine=NAME and --engine-opt KEY=VALUE, as quadrix render's.
@@ -428,6 +435,9 @@ int RunUq(const std::vector<std::string>& args) {
                 break;
             case Kind::kEngine:
                 session.settings.engine = a.text;
+                break;
+            case Kind::kAllowMissing:
+                session.settings.allowMissing = true;
                 break;
             case Kind::kEngineOpt: {
                 const auto eq = a.text.find('=');

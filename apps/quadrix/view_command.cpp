@@ -58,7 +58,9 @@ void AddViewCommand(CLI::App& app, ViewArgs& args) {
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_flag("--allow-missing", args.allowMissing,
-                  "Draw an imported model without the primitives that cannot be drawn");
+                  "Draw an imported model without the primitives that cannot be drawn, and the "
+                  "drawing key's drawing without the freeform surfaces (a warning, not an "
+                  "error)");
     cmd->footer(viewer::KeyHelp());
 }
 

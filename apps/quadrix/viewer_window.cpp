@@ -98,8 +98,9 @@ class Viewer {
     // The overlay's lines for the current state, and its texture made again when they changed.
     std::vector<std::string> OverlayLines() const;
     void UpdateOverlay();
-    // The section plane as `quadrix render` options (empty when off).
-    std::string SectionOptions() const;
+    // The section plane as `quadrix render` options (empty when off), with --hatch when its
+    // faces are hatched unless `drawing` (quadrix draw's options).
+    std::string SectionOptions(bool drawing = false) const;
     void MoveSection(double pixels);  // along its normal, by `pixels` of the window's scale
     bool WriteDrawing(const std::string& path);
     void PrintLatency() const;
@@ -122,6 +123,7 @@ class Viewer {
     bool edges_ = false;
     bool overlayOn_ = true;
     viewer::SectionPlane section_;
+    bool hatch_ = true;  // the section's cut faces hatched (C), on with the plane
     std::vector<std::string> engines_;
     viewer::FrameScheduler scheduler_;
     viewer::FileWatch watch_;
@@ -138,7 +140,8 @@ class Viewer {
     int shownScale_ = 1;
     bool shownAntialiased_ = false;
     double shownSeconds_ = 0;
-    std::string error_;  // the current reload/frame error, for the title
+    std::string error_;          // the current reload/frame error, for the title
+    std::string drawingNotice_;  // the last drawing's first diagnostic, until the view changes
     std::string lastNote_;
     // Mouse (and ctrl, held for section drags).
     int dragButton_ = 0, downX_ = 0, downY_ = 0;
@@ -201,7 +204,7 @@ void Viewer::Title() {
     if (shownSeconds_ > 0) t += fmt::format(" — {:.1f} ms", 1e3 * shownSeconds_);
     t += camera_.perspective ? " — perspective" : " — parallel";
     if (edges_) t += " — edges";
-    if (section_.on) t += " — section";
+    if (section_.on) t += hatch_ ? " — section (hatched)" : " — section";
     if (!error_.empty())
         t += " — ERROR " + error_;
     else
@@ -211,6 +214,7 @@ void Viewer::Title() {
 }
 
 void Viewer::Changed() {
+    drawingNotice_.clear();
     scheduler_.ViewChanged();
     if (!pendingChange_) pendingChange_.emplace(scheduler_.Generation(), Clock::now());
     if (s_.cancelStale && !cancelSent_ && scheduler_.StaleRefinementInFlight()) {
@@ -226,10 +230,12 @@ std::vector<std::string> Viewer::OverlayLines() const {
     if (shownAntialiased_) a += fmt::format("  aa {}", s_.aaSamples);
     a += camera_.perspective ? "  perspective" : "  parallel";
     if (edges_) a += "  edges";
-    if (section_.on) a += "  section";
+    if (section_.on) a += hatch_ ? "  section hatched" : "  section";
     std::vector<std::string> lines = {a};
     if (!error_.empty()) lines.push_back("error: " + error_);
-    lines.push_back("H help  X section  [ ] move it  D drawing  V view  O overlay  Q quit");
+    if (!drawingNotice_.empty()) lines.push_back(drawingNotice_);
+    lines.push_back(
+        "H help  X section  [ ] move it  C hatch  D drawing  V view  O overlay  Q quit");
     return lines;
 }
 
@@ -252,9 +258,11 @@ void Viewer::UpdateOverlay() {
     SDL_UpdateTexture(overlayTexture_, nullptr, overlay_.rgba.data(), overlay_.width * 4);
 }
 
-std::string Viewer::SectionOptions() const {
+std::string Viewer::SectionOptions(bool drawing) const {
     const std::optional<Plane> p = section_.ToPlane();
-    return p ? fmt::format(" --section \"{}\"", FormatSectionPlane(*p)) : std::string();
+    if (!p) return {};
+    return fmt::format(" --section \"{}\"{}", FormatSectionPlane(*p),
+                       hatch_ && !drawing ? " --hatch" : "");
 }
 
 void Viewer::MoveSection(double pixels) {
@@ -264,17 +272,23 @@ void Viewer::MoveSection(double pixels) {
 }
 
 bool Viewer::WriteDrawing(const std::string& path) {
-    const std::string e = s_.worker->WriteDrawing(path, camera_.ToView(), width_, height_,
-                                                  section_.ToPlane(), s_.name);
-    if (!e.empty()) {
-        std::fprintf(stderr, "quadrix: error: drawing %s: %s\n", path.c_str(), e.c_str());
+    const viewer::DrawingOutcome d = s_.worker->WriteDrawing(path, camera_.ToView(), width_,
+                                                             height_, section_.ToPlane(), s_.name);
+    // What was refused or left out (freeform surfaces, draw/undrawable.h) is said on standard
+    // error and in the window's overlay until the view changes, never passed over.
+    std::fputs(d.messages.c_str(), stderr);
+    drawingNotice_ = d.first.empty() ? std::string() : "drawing: " + d.first;
+    Title();
+    if (renderer_) Present(nullptr);
+    if (!d.ok) {
+        std::fprintf(stderr, "quadrix: error: drawing %s not written\n", path.c_str());
         exitCode_ = 1;
         return false;
     }
     std::fprintf(stderr,
                  "quadrix: drawing %s: the view below, drawn as `quadrix draw %s VIEW.uq --size "
                  "%dx%d%s -o %s`\n",
-                 path.c_str(), s_.name.c_str(), width_, height_, SectionOptions().c_str(),
+                 path.c_str(), s_.name.c_str(), width_, height_, SectionOptions(true).c_str(),
                  path.c_str());
     std::fputs(
         viewer::FormatViewStatement(camera_, width_, height_, "camera", SectionOptions()).c_str(),
@@ -386,6 +400,7 @@ void Viewer::PumpWorker() {
             job.engine = engine_;
             job.edges = edges_;
             job.section = section_.ToPlane();
+            job.hatch = hatch_;
             job.aaSamples = s_.aaSamples;
             cancelSent_ = false;
             s_.worker->Submit(job);
@@ -544,6 +559,10 @@ void Viewer::RunCommand(Command c) {
         case Command::kSectionToward:
             // A twentieth of the window's height a press.
             MoveSection((c == Command::kSectionToward ? 1 : -1) * height_ / 20.0);
+            break;
+        case Command::kToggleHatch:
+            hatch_ = !hatch_;
+            if (section_.on) Changed();
             break;
         case Command::kToggleOverlay:
             overlayOn_ = !overlayOn_;
@@ -775,7 +794,9 @@ void Viewer::StepScript() {
                     running_ = false;
                 break;
             case ScriptEvent::Kind::kDrawing:
-                if (!WriteDrawing(e.text)) running_ = false;
+                // A failed drawing is reported (the exit status too), and the script goes on:
+                // what the window shows about it can be looked at.
+                WriteDrawing(e.text);
                 break;
             case ScriptEvent::Kind::kPrintView:
                 if (e.text.empty()) {

@@ -25,9 +25,15 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 build="${FUZZ_IMPORTERS_BUILD_DIR:-$root/build-fuzz-importers}"
 samples="${QUADRIX_SAMPLE_DIR:-/work/shared/data}"
+# FUZZ_PREBUILT=1: $build is the main tree's sanitizer build configured with -DQUADRIX_FUZZ=ON
+# (cmake/QuadrixFuzz.cmake; scripts/test.sh), which holds every target, the reader's included:
+# nothing is configured here, the targets are only brought up to date.
+prebuilt="${FUZZ_PREBUILT:-0}"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-CC=clang CXX=clang++ cmake -S "$here" -B "$build" -G Ninja "${launcher[@]}" >/dev/null
+if [ "$prebuilt" != 1 ]; then
+    CC=clang CXX=clang++ cmake -S "$here" -B "$build" -G Ninja "${launcher[@]}" >/dev/null
+fi
 jobs="${FUZZ_JOBS:-1}"
 reader=0
 built=()
@@ -39,8 +45,11 @@ for t in "${targets[@]}"; do
            exit 2 ;;
     esac
 done
+if [ "$prebuilt" = 1 ] && [ "$reader" = 1 ]; then built+=(reader_fuzzer); fi
 if [ ${#built[@]} -gt 0 ]; then ninja -C "$build" -j "${JOBS:-2}" "${built[@]}"; fi
-if [ "$reader" = 1 ]; then FUZZ_BUILD_ONLY=1 bash "$root/tests/fuzz_reader/run.sh"; fi
+if [ "$reader" = 1 ] && [ "$prebuilt" != 1 ]; then FUZZ_BUILD_ONLY=1 bash "$root/tests/fuzz_reader/run.sh"; fi
+reader_env=()
+if [ "$prebuilt" = 1 ]; then reader_env=(FUZZ_BUILD_DIR="$build"); fi
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -64,7 +73,7 @@ fuzz_one() {
     if [ "$t" = reader ]; then
         local rc=0
         echo "== reader (tests/fuzz_reader/run.sh), $seconds s"
-        FUZZ_NO_BUILD=1 bash "$root/tests/fuzz_reader/run.sh" "$seconds" > "$work/raw-reader" 2>&1 || rc=$?
+        env "${reader_env[@]}" FUZZ_NO_BUILD=1 bash "$root/tests/fuzz_reader/run.sh" "$seconds" > "$work/raw-reader" 2>&1 || rc=$?
         grep -E "^(#[0-9]+ *DONE|stat::number_of_executed_units|INFO: seed)|ERROR|SUMMARY|violated|artifact" \
             "$work/raw-reader" || true
         if [ "$rc" != 0 ]; then tail -40 "$work/raw-reader"; echo "reader: findings in $root/tests/fuzz_reader/findings" >&2; fi

@@ -53,11 +53,14 @@ void Paint(cairo_t* cr, const Page& page, bool visibleOnly) {
         cairo_set_dash(cr, nullptr, 0, 0);
         cairo_set_source_rgb(cr, 0, 0, 0);
     }
-    for (int pass = 0; pass < 2; ++pass) {
-        const CurveRole role = pass == 0 ? CurveRole::kEdge : CurveRole::kSilhouette;
-        cairo_set_line_width(cr, pass == 0 ? st.edge : st.silhouette);
+    // Thin tangent edges, then edges, then silhouettes (the order of svg_writer.cpp).
+    for (int pass = 0; pass < 3; ++pass) {
+        const CurveRole role = pass < 2 ? CurveRole::kEdge : CurveRole::kSilhouette;
+        cairo_set_line_width(cr, pass == 0 ? st.tangent : (pass == 1 ? st.edge : st.silhouette));
         for (const Stroke& s : page.strokes) {
-            if (!s.visible || s.role != role) continue;
+            if (!s.visible || s.role != role ||
+                (role == CurveRole::kEdge && s.tangent != (pass == 0)))
+                continue;
             StrokePath(cr, s);
             cairo_stroke(cr);
         }

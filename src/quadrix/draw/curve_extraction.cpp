@@ -136,11 +136,11 @@ std::vector<Curve3> ExtractCurves(const FlatScene& scene, const Surfaces& surfac
                 const Quadric& q = A.isPlane ? B.quadric : A.quadric;
                 bool tangent = false;
                 found = PlaneQuadricCurves(p, q, both, &tangent);
-                if (tangent) {
+                // A double line: kept as a candidate tangent edge (trim.h decides).
+                if (tangent)
                     ++counters.tangentPairs;
-                    found.clear();
-                }
-                counters.conics += static_cast<int>(found.size());
+                else
+                    counters.conics += static_cast<int>(found.size());
             } else {
                 found = TraceQuadricQuadric(A.quadric, B.quadric, both);
                 counters.quartics += static_cast<int>(found.size());

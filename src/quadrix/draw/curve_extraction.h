@@ -8,8 +8,8 @@
 //  2. Edges: for every pair of representatives whose boxes overlap, and at least one of which is
 //     opaque, their intersection: plane–plane lines (conic_section.h PlanePlaneLine),
 //     plane–quadric conics (PlaneQuadricCurves) and quadric–quadric curves (quartic_trace.h).
-//     Pairs that are tangent along a whole line (a double line) are smooth joins, not edges, and
-//     give nothing (docs/drawings.md "What is drawn").
+//     Pairs that are tangent along a whole line (a double line) give that line, counted apart
+//     (tangentPairs): trimming decides whether it is a tangent edge (trim.h) or nothing.
 //  3. Silhouettes: every opaque quadric ∩ its limb plane F x + E y + C z + J = 0 (seed 001
 //     (4.11)). A quadric independent of z (a cylinder seen along its axis) has no limb plane: its
 //     outline is the circle (or conic) its end faces draw, so it gives no silhouette.

@@ -28,9 +28,10 @@ void Flatten(const Curve3& c, double t0, double t1, double tol, std::vector<Poin
     Flatten(c, 0.5 * (t0 + t1), t1, tol, out, depth + 1);
 }
 
-Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol) {
+Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol, bool thinTangent) {
     Stroke s;
     s.role = c.role;
+    s.tangent = p.tangent && thinTangent;
     s.source = c.kind;
     s.visible = p.visible;
     s.surfaceA = c.surfaceA;
@@ -115,10 +116,11 @@ void MergeWrapAround(const std::vector<Curve3>& curves, std::vector<CurvePiece>&
         std::vector<CurvePiece> solid;
         for (const CurvePiece& p : group) {
             const bool sliver = ProjectedLength(c, p.t0, p.t1) < kSliver;
-            if (sliver && !solid.empty() && solid.back().t1 == p.t0) {
+            const bool joins =
+                !solid.empty() && solid.back().t1 == p.t0 && solid.back().tangent == p.tangent;
+            if (sliver && joins) {
                 solid.back().t1 = p.t1;
-            } else if (!solid.empty() && solid.back().t1 == p.t0 &&
-                       ProjectedLength(c, solid.back().t0, solid.back().t1) < kSliver) {
+            } else if (joins && ProjectedLength(c, solid.back().t0, solid.back().t1) < kSliver) {
                 const double t0 = solid.back().t0;
                 solid.back() = p;
                 solid.back().t0 = t0;
@@ -128,13 +130,15 @@ void MergeWrapAround(const std::vector<Curve3>& curves, std::vector<CurvePiece>&
         }
         std::vector<CurvePiece> merged;
         for (const CurvePiece& p : solid) {
-            if (!merged.empty() && merged.back().t1 == p.t0 && merged.back().visible == p.visible)
+            if (!merged.empty() && merged.back().t1 == p.t0 && merged.back().visible == p.visible &&
+                merged.back().tangent == p.tangent)
                 merged.back().t1 = p.t1;
             else
                 merged.push_back(p);
         }
         if (c.Closed() && merged.size() > 1 && merged.front().t0 == c.t0 &&
-            merged.back().t1 == c.t1 && merged.front().visible == merged.back().visible) {
+            merged.back().t1 == c.t1 && merged.front().visible == merged.back().visible &&
+            merged.front().tangent == merged.back().tangent) {
             merged.back().t1 = merged.front().t1 + (c.t1 - c.t0);
             merged.erase(merged.begin());
         }
@@ -169,7 +173,8 @@ Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options) {
     const std::vector<Curve3> curves = ExtractCurves(scene, surfaces, box, ec);
     d.stats.curveSeconds = lap();
     SceneProbe probe(scene);
-    const std::vector<CurvePiece> trimmed = TrimToBoundary(scene, surfaces, probe, curves);
+    const std::vector<CurvePiece> trimmed =
+        TrimToBoundary(scene, surfaces, probe, curves, options.tangentEdges != TangentEdges::kOff);
     d.stats.trimSeconds = lap();
     VisibilityCounters vc;
     std::vector<CurvePiece> pieces =
@@ -178,8 +183,9 @@ Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options) {
     MergeWrapAround(curves, pieces);
     for (const CurvePiece& p : pieces) {
         if (!p.visible && !options.hidden) continue;
-        d.strokes.push_back(
-            ToStroke(curves[static_cast<std::size_t>(p.curve)], p, options.chordTolerance));
+        d.strokes.push_back(ToStroke(curves[static_cast<std::size_t>(p.curve)], p,
+                                     options.chordTolerance,
+                                     options.tangentEdges == TangentEdges::kThin));
     }
     d.stats.strokeSeconds = lap();
     d.stats.candidates = static_cast<int>(curves.size());
@@ -190,6 +196,7 @@ Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options) {
     d.stats.silhouettes = ec.silhouettes;
     d.stats.quartics = ec.quartics;
     d.stats.tangentPairs = ec.tangentPairs;
+    for (const CurvePiece& p : trimmed) d.stats.tangentPieces += p.tangent;
     d.stats.rayTests = vc.rayTests;
     d.stats.visibilityChanges = vc.changes;
     d.stats.seconds =

@@ -10,6 +10,7 @@
 // the same view exactly.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,7 @@ struct Stroke {
     CurveRole role = CurveRole::kEdge;
     CurveKind source = CurveKind::kLine;
     bool visible = true;
+    bool tangent = false;  // a tangent edge drawn thin (TangentEdges::kThin)
     int surfaceA = -1, surfaceB = -1;
     // kEllipseArc: P(θ) = c + U cos θ + V sin θ for θ from a0 to a1 (a1 > a0; a1 − a0 = 2π is the
     // whole ellipse). U, V are conjugate semi-diameters (the image of the 3-D ones).
@@ -39,15 +41,24 @@ struct Stroke {
     Point2 ArcPoint(double t) const;
 };
 
+// Tangent edges, where two faces meet without a crease (trim.h): drawn with a thin line (what
+// drafting practice does by default), left out, or drawn as ordinary edges.
+enum class TangentEdges : std::uint8_t { kThin, kOff, kOn };
+
 struct DrawOptions {
     double visibilityStep = 0.5;   // device px between ray tests along a curve
     double chordTolerance = 0.01;  // device px: polylines of non-elliptic curves
     bool hidden = true;            // compute (and keep) hidden pieces
+    TangentEdges tangentEdges = TangentEdges::kThin;
 };
 
 struct DrawStats {
     int candidates = 0, pieces = 0, strokes = 0;
+    // tangentPairs: plane–quadric pairs tangent along a line (double lines); tangentPieces:
+    // boundary pieces that are tangent edges (0 under TangentEdges::kOff, which
+    // drops them while trimming).
     int lines = 0, conics = 0, silhouettes = 0, quartics = 0, tangentPairs = 0;
+    int tangentPieces = 0;
     long long rayTests = 0;
     int visibilityChanges = 0;
     double seconds = 0;  // the whole of MakeDrawing, the sum of the phases below

@@ -16,7 +16,8 @@ struct LineStyle {
     double edge = 1.1;        // visible edges
     double hidden = 0.7;      // hidden lines (dashed)
     double dash = 5, gap = 3;
-    double frame = 0.5;  // sheet border and title block
+    double frame = 0.5;     // sheet border and title block
+    double tangent = 0.45;  // visible tangent edges (Stroke::tangent), thinner than edges
 };
 
 struct PageText {

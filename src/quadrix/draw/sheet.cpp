@@ -100,7 +100,7 @@ Page LayoutSheet(std::vector<SheetView> views, const SheetOptions& options,
     page.width = options.size.width;
     page.height = options.size.height;
     page.title = options.fileName;
-    page.style = LineStyle{0.5, 0.35, 0.25, 2.0, 1.2, 0.5};
+    page.style = LineStyle{0.5, 0.35, 0.25, 2.0, 1.2, 0.5, 0.15};
     const double margin = 10, titleH = 24, titleW = 110;
     const double gx0 = margin, gy0 = margin, gx1 = page.width - margin;
     const double gy1 = page.height - margin - titleH;

@@ -105,6 +105,7 @@ std::string SvgDocument(const Page& page) {
         "stroke-linejoin: round; }\n";
     out += fmt::format("  .silhouette {{ stroke-width: {}; }}\n", Num(st.silhouette));
     out += fmt::format("  .edge {{ stroke-width: {}; }}\n", Num(st.edge));
+    out += fmt::format("  .tangent {{ stroke-width: {}; }}\n", Num(st.tangent));
     out += fmt::format("  .hidden {{ stroke-width: {}; stroke-dasharray: {} {}; stroke: #444; }}\n",
                        Num(st.hidden), Num(st.dash), Num(st.gap));
     out += fmt::format("  .frame {{ stroke-width: {}; }}\n", Num(st.frame));
@@ -117,7 +118,8 @@ std::string SvgDocument(const Page& page) {
         if (!s.visible) StrokeElement(s, "hidden", out);
     out += "</g>\n<g id=\"edges\">\n";
     for (const Stroke& s : page.strokes)
-        if (s.visible && s.role == CurveRole::kEdge) StrokeElement(s, "edge", out);
+        if (s.visible && s.role == CurveRole::kEdge)
+            StrokeElement(s, s.tangent ? "tangent" : "edge", out);
     out += "</g>\n<g id=\"silhouettes\">\n";
     for (const Stroke& s : page.strokes)
         if (s.visible && s.role == CurveRole::kSilhouette) StrokeElement(s, "silhouette", out);

@@ -6,7 +6,8 @@
 // is ill-conditioned near π. Numbers are written with 17 significant digits (round-trip exact).
 // Cairo's SVG surface, by contrast, writes every arc as cubic Béziers.
 //
-// Hidden strokes are drawn first (class "hidden", dashed), then visible edges, then silhouettes.
+// Hidden strokes are drawn first (class "hidden", dashed), then visible edges (class "tangent",
+// thin, for tangent edges), then silhouettes.
 #pragma once
 
 #include <string>

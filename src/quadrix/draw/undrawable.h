@@ -5,8 +5,10 @@
 //     defined (file:line:column), unless `allowMissing` (--allow-missing, as `quadrix render`
 //     and `quadrix export` take it for imported primitives): then a warning with the count, and
 //     the drawing shows the quadric solids only.
-// `quadrix draw` calls it on the flat scene of each view. uq's `device svg:FILE` and the viewer's
-// D key do not call it yet (issue 19: still to do), so there freeform surfaces are left out.
+// Every front end that writes a drawing calls it through pipeline/drawing_output.h, on the flat
+// scene of the (first) view: `quadrix draw` (--allow-missing), uq's `device svg:FILE`, `pdf:`,
+// `eps:` (quadrix uq --allow-missing) and the viewer's D key (quadrix view --allow-missing; the
+// message also appears in the window's overlay).
 #pragma once
 
 #include "quadrix/flatten/flat_scene.h"

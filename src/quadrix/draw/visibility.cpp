@@ -50,14 +50,14 @@ std::vector<CurvePiece> SplitByVisibility(const std::vector<Curve3>& curves,
                     }
                 }
                 const double cut = 0.5 * (lo + hi);
-                out.push_back({piece.curve, start, cut, vPrev});
+                out.push_back({piece.curve, start, cut, vPrev, piece.tangent});
                 ++counters.changes;
                 start = cut;
                 vPrev = v;
             }
             tPrev = t;
         }
-        out.push_back({piece.curve, start, piece.t1, vPrev});
+        out.push_back({piece.curve, start, piece.t1, vPrev, piece.tangent});
     }
     return out;
 }

@@ -4,10 +4,15 @@
 
 #include <cctype>
 
+#include "quadrix/engines/isocurve/counters.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
+#include "quadrix/engines/patch/counters.h"
 #include "quadrix/engines/patch/patch_engine.h"
+#include "quadrix/engines/pixelpowers/counters.h"
 #include "quadrix/engines/pixelpowers/pixelpowers_engine.h"
+#include "quadrix/engines/raycast/counters.h"
 #include "quadrix/engines/raycast/raycast.h"
+#include "quadrix/engines/scanline/counters.h"
 #include "quadrix/engines/scanline/scanline_engine.h"
 
 namespace quadrix {
@@ -15,32 +20,37 @@ namespace quadrix {
 namespace {
 
 std::vector<EngineInfo>& Table() {
-    // One row per engine: name, help, factory, capabilities.
+    // One row per engine: name, help, factory, capabilities, counters.
     static std::vector<EngineInfo> table{
         {"raycast",
          "exact reference: interval CSG per pixel, tiles and threads",
          MakeRaycastEngine,
          {.solids = true, .freeforms = false, .quartics = true},
+         raycast::kRaycastCounters,
          false},
         {"scanline",
          "the UniQuadrix Resolver, Renderer and Shader (seed 001): conic edges, spans",
          MakeScanlineEngine,
          {.solids = true, .freeforms = false, .quartics = false},
+         scanline::kScanlineCounters,
          false},
         {"pixelpowers",
          "Goldfeather CSG normal form on a simulated Pixel-Powers frame buffer",
          MakePixelPowersEngine,
          {.solids = true, .freeforms = false, .quartics = false},
+         pixelpowers::kPixelPowersCounters,
          false},
         {"patch",
          "the quadric patch processor (seed 000), float or bit-exact fixed point",
          MakePatchEngine,
          {.solids = true, .freeforms = false, .quartics = false},
+         patch::kPatchCounters,
          false},
         {"isocurve",
          "freeform (Bezier/NURBS) surfaces by adaptive isocurves (seed 002)",
          isocurve::MakeIsocurveEngine,
          {.solids = false, .freeforms = true, .quartics = false},
+         isocurve::kIsocurveCounters,
          false},
     };
     return table;
@@ -80,6 +90,21 @@ std::string EnginesHelp() {
     return s;
 }
 
+namespace {
+
+// The counters of `--stats` (and `--stats --json`) as a collapsed Markdown table.
+std::string CountersMarkdown(std::span<const CounterDecl> counters) {
+    if (counters.empty()) return "";
+    std::string s = fmt::format(
+        "<details><summary>Counters in <code>--stats</code> ({})</summary>\n\n"
+        "| counter | what it counts |\n|---|---|\n",
+        counters.size());
+    for (const CounterDecl& c : counters) s += fmt::format("| `{}` | {} |\n", c.name, c.meaning);
+    return s + "\n</details>\n\n";
+}
+
+}  // namespace
+
 std::string EnginesMarkdown() {
     std::string s;
     for (const EngineInfo& e : Table()) {
@@ -99,6 +124,7 @@ std::string EnginesMarkdown() {
                                "cones) go to raycast");
         const OptionSchema& schema = e.make()->Schema();
         s += schema.empty() ? "No options.\n\n" : FormatOptionsMarkdown(schema) + "\n";
+        s += CountersMarkdown(e.counters);
     }
     return s;
 }

@@ -2,17 +2,20 @@
 // row here (or, for a test, one RegisterEngine call): the CLI's --engine, `quadrix render --help`,
 // docs/engines.md, the viewer's engine switch and the all-engines test all read this table.
 //
-// Row: name, one line of help, the factory, the option schema (engines/options.h) and the
-// capabilities (engines/engine.h). The built-in rows are in registry.cpp, in the order they are
-// listed to users; raycast, the exact reference, is first.
+// Row: name, one line of help, the factory, the option schema (engines/options.h), the
+// capabilities (engines/engine.h) and the declared counters (engines/counters.h). The built-in rows
+// are in registry.cpp, in the order they are listed to users; raycast, the exact reference, is
+// first.
 #pragma once
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "quadrix/engines/counters.h"
 #include "quadrix/engines/engine.h"
 
 namespace quadrix {
@@ -22,6 +25,9 @@ struct EngineInfo {
     std::string help;  // one line
     std::function<std::unique_ptr<Engine>()> make;
     EngineCapabilities capabilities;
+    // Every counter the engine reports in RenderStats::counters, declared once in the engine's
+    // counters.h (engines/counters.h); `quadrix engines` and docs/engines.md list them.
+    std::span<const CounterDecl> counters;
     // True for engines that exist for tests and must not be offered to users (dummy engines).
     bool hidden = false;
 };

@@ -6,6 +6,7 @@
 #endif
 
 #include "quadrix/math/quadratic.h"
+#include "quadrix/util/target_clones.h"
 
 namespace quadrix::eval {
 
@@ -302,7 +303,7 @@ void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t t
 // project builds with -ffp-contract=off and no fast-math), so the bits are the same; the √ is a
 // separate pass with SSE2 intrinsics because std::sqrt's errno handling stops the vectoriser.
 template <bool kFlip>
-__attribute__((target_clones("avx2", "default"))) int QuadricBatchFast(
+QUADRIX_TARGET_CLONES_TEMPLATE int QuadricBatchFast(
     const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n, const double* __restrict xs,
     const double* __restrict ys, double* __restrict lo, std::int64_t* __restrict loId,
     double* __restrict hi, std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,

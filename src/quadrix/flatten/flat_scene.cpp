@@ -42,6 +42,10 @@ std::string FlatScene::Validate() const {
     if (width < 0 || height < 0) return bad("negative size");
     const int nh = static_cast<int>(halfSpaces.size()), nb = static_cast<int>(bodies.size()),
               nn = static_cast<int>(nodes.size()), ns = static_cast<int>(solids.size());
+    if (sectionHalfSpace < -1 || sectionHalfSpace >= nh ||
+        (sectionHalfSpace >= 0 &&
+         (!section || !halfSpaces[static_cast<std::size_t>(sectionHalfSpace)].isPlane)))
+        return bad("section half-space " + std::to_string(sectionHalfSpace));
     for (int b = 0; b < nb; ++b) {
         const FlatBody& body = bodies[static_cast<std::size_t>(b)];
         for (const FlatLiteral& l : body.literals)

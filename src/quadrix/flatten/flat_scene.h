@@ -10,6 +10,7 @@
 // 10,000 children, not a 10,000-deep chain.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,11 @@ struct FlatScene {
     // `background` statement; ShadeOptions may override it.
     scene::Color background{0, 0, 0}, backgroundBottom{0, 0, 0};
     Projection projection;
+    // The section plane (FlattenOptions::section) exactly as given, in WORLD coordinates, and its
+    // half-space (named kSectionName, device space); -1 without one. The shader's hatching of the
+    // cut faces (shade/section_hatch.h) is anchored to this plane, not to its device image.
+    std::optional<Plane> section;
+    int sectionHalfSpace = -1;
     std::string viewName;
     // One tolerance for the scene, in device units of depth (see docs/engines.md): used for
     // ties between coincident surfaces.

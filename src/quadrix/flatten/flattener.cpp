@@ -111,6 +111,8 @@ class FlattenerImpl {
             h.plane = source.Transformed(view_.provFromWorld);
             RescaleCoefficients(h.plane);
             h.name = kSectionName;
+            flat.section = *options_.section;
+            flat.sectionHalfSpace = static_cast<int>(flat.halfSpaces.size());
             finalPlanes_.push_back(h.plane);
             flat.halfSpaces.push_back(std::move(h));
         }
@@ -532,6 +534,11 @@ class FlattenerImpl {
             ns.root = CopyNode(flat, s.root, solidIndex, out, hsMap, nodeMap);
             out.solids.push_back(std::move(ns));
         }
+        // The section's half-space is a literal of every body, renumbered with the first one
+        // (none when no solid is left).
+        out.section = flat.section;
+        if (flat.sectionHalfSpace >= 0)
+            out.sectionHalfSpace = hsMap[static_cast<std::size_t>(flat.sectionHalfSpace)];
         flat_ = std::move(out);
     }
 

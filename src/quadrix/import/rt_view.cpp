@@ -74,7 +74,7 @@ scene::View MakeAzElView(double azimuth, double elevation, const Box3& modelBox,
         v.front.reset();  // the eye is outside the model's bounding sphere
     } else {
         // No imported model box: direction only; the Flattener fits the window to the scene.
-        Vec3 x, y, z;
+        Vec3 y, z;
         for (int k = 0; k < 3; ++k) {
             y[k] = rt.viewrot.m[1][k];
             z[k] = rt.viewrot.m[2][k];

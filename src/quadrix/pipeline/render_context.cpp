@@ -11,6 +11,7 @@
 #include "quadrix/frame/image_limits.h"
 #include "quadrix/lang/reader.h"
 #include "quadrix/shade/antialias.h"
+#include "quadrix/shade/section_hatch.h"
 #include "quadrix/util/check.h"
 
 namespace quadrix {
@@ -110,8 +111,10 @@ bool SameView(const ViewRequest& a, const ViewRequest& b) {
 
 std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
     std::vector<std::pair<std::string, double>> c;
-    c.emplace_back("freeforms_by_isocurve", freeformsByIsocurve);
-    c.emplace_back("solids_by_raycast", static_cast<double>(byReference.size()));
+    CounterValues composition(kCompositionCounters);
+    composition.Set(kFreeformsByIsocurve, freeformsByIsocurve);
+    composition.Set(kSolidsByRaycast, byReference.size());
+    composition.AppendTo(c);
     c.insert(c.end(), stats.counters.begin(), stats.counters.end());
     return c;
 }
@@ -440,13 +443,15 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
 
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
     Image image = quadrix::Shade(frame, flat_, options);
-    // Edge pixels re-rendered by sub-pixel samples, then the edge lines (shade/antialias.h).
+    // Edge pixels re-rendered by sub-pixel samples, the section's hatching
+    // (shade/section_hatch.h), then the edge lines (shade/antialias.h).
     if (options.aaSamples > 1) {
         if (cancel_)
             cancel_->Run([&] { Antialias(frame, flat_, options, image); });
         else
             Antialias(frame, flat_, options, image);
     }
+    if (options.hatch) HatchSection(frame, flat_, options, image);
     if (options.edges) DrawEdgeLines(frame, options, image);
     return image;
 }

@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/engines/counters.h"
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/flatten/flattener.h"
@@ -114,10 +115,18 @@ struct RenderReport {
     bool cancelled = false;                 // stopped by the Cancellation: the Frame is partial
     // Lines for the user ("note: ..."): printed without --stats, like warnings.
     std::vector<std::string> notes;
-    // Counters of the composition (solids_by_engine, solids_by_raycast, freeforms_by_isocurve)
-    // followed by the engine's own.
+    // Counters of the composition (kCompositionCounters) followed by the engine's own.
     std::vector<std::pair<std::string, double>> Counters() const;
 };
+
+// The counters the composition adds to every report, declared once (engines/counters.h).
+#define QUADRIX_COMPOSITION_COUNTERS(X)                            \
+    X(kFreeformsByIsocurve, "freeforms_by_isocurve",               \
+      "freeform surfaces the isocurve drawer drew for the engine") \
+    X(kSolidsByRaycast, "solids_by_raycast", "solids raycast drew for the engine (by depth)")
+enum CompositionCounter : std::size_t { QUADRIX_COMPOSITION_COUNTERS(QUADRIX_COUNTER_ID) };
+inline constexpr CounterDecl kCompositionCounters[] = {
+    QUADRIX_COMPOSITION_COUNTERS(QUADRIX_COUNTER_DECL)};
 
 class RenderContext {
   public:

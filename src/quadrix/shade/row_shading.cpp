@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "quadrix/shade/section_hatch.h"
 #include "quadrix/util/check.h"
 
 namespace quadrix {
@@ -29,6 +30,7 @@ Image ShadeRows(const Frame& frame, const FlatScene& scene, const ShadeOptions& 
                       : RowKinds(spans, frame.height);
     Image image = ShadeRowKinds(frame, scene, options, rows);
     if (options.aaSamples > 1) AntialiasRowKinds(frame, scene, options, image, rows);
+    if (options.hatch) HatchSectionRowKinds(frame, scene, options, image, rows);
     if (options.edges) DrawEdgeLinesRowKinds(frame, options, image, rows);
     return image;
 }

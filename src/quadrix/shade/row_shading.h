@@ -37,8 +37,8 @@ constexpr std::uint8_t kRowShaded = 2, kRowHalo = 1;
 std::vector<std::uint8_t> RowKinds(const std::vector<RowSpan>& spans, int height);
 
 // What RenderContext::Shade does (Shade, then Antialias when options.aaSamples > 1, then
-// DrawEdgeLines when options.edges), on the rows of `spans` only. options must not ask for the
-// fast model.
+// HatchSection when options.hatch, then DrawEdgeLines when options.edges), on the rows of `spans`
+// only. options must not ask for the fast model.
 Image ShadeRows(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
                 const std::vector<RowSpan>& spans);
 

@@ -66,6 +66,12 @@ struct ShadeOptions {
     // Silhouette and crease lines from the Frame (antialias.h DrawEdgeLines), over the shading.
     bool edges = false;
     scene::Color edgeColor{0, 0, 0};
+    // Hatch lines on the section plane's cut faces (section_hatch.h), applied by
+    // RenderContext::Shade after the anti-aliasing and before the edge lines: their target
+    // spacing in pixels (the world spacing is a power of two near it) and their colour.
+    bool hatch = false;
+    double hatchSpacing = 8;
+    scene::Color hatchColor{0, 0, 0};
     // Fill Image::linear (the unquantised values). Only 16-bit PNG output and the precise 8-bit
     // encoding read it; a front end that writes 8-bit files may turn it off (11 MB less to write
     // at 1280×720).

@@ -1,13 +1,14 @@
 #include "quadrix/viewer/render_worker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <future>
 #include <set>
 
-#include "quadrix/draw/drawing.h"
-#include "quadrix/draw/page_file.h"
+#include "quadrix/pipeline/drawing_output.h"
+#include "quadrix/shade/section_hatch.h"
 #include "quadrix/viewer/edges.h"
 #include "quadrix/viewer/picking.h"
 
@@ -221,6 +222,10 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     frameScale_ = s;
     ShadeOptions so;
     if (job.request.antialiased) so.aaSamples = job.aaSamples;
+    // A reduced frame keeps the world spacing of the full one (the same lines, while moving),
+    // down to 3 of its pixels.
+    so.hatch = job.hatch && job.section.has_value();
+    so.hatchSpacing = std::max(kHatchSpacingPixels / s, 3.0);
     out.image = ctx_->Shade(frame_, so);
     if (cancel_.Cancelled()) {  // the anti-aliasing pass was stopped: a partial image
         out.image = Image{};
@@ -233,29 +238,29 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     return out;
 }
 
-std::string RenderWorker::WriteDrawing(const std::string& path, const scene::View& view, int width,
-                                       int height, const std::optional<Plane>& section,
-                                       const std::string& title) {
-    std::string error;
+DrawingOutcome RenderWorker::WriteDrawing(const std::string& path, const scene::View& view,
+                                          int width, int height,
+                                          const std::optional<Plane>& section,
+                                          const std::string& title) {
+    DrawingOutcome out;
     Call([&] {
         if (!ctx_) {
-            error = "no scene has been read";
+            out.messages = out.first = "quadrix: error: no scene has been read\n";
             return;
         }
-        ViewRequest request;
-        request.width = width;
-        request.height = height;
-        request.view = view;
-        request.section = section;
+        DrawingRequest request;
+        request.view.width = width;
+        request.view.height = height;
+        request.view.view = view;
+        request.view.section = section;
+        request.allowMissing = input_.allowMissing;
+        request.title = title;
         Diagnostics diags;
-        if (!ctx_->Flatten(request, diags) || diags.HasErrors()) {
-            error = Printed(diags);
-            return;
-        }
-        error =
-            draw::WritePageFile(path, draw::SingleViewPage(draw::MakeDrawing(ctx_->Flat()), title));
+        out.ok = WriteDrawingFile(*ctx_, request, path, diags);
+        out.messages = Printed(diags);
+        if (!diags.Items().empty()) out.first = diags.Items().front().Format(false);
     });
-    return error;
+    return out;
 }
 
 std::size_t RenderWorker::BodyCount() {

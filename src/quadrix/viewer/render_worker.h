@@ -42,6 +42,13 @@ struct LoadOutcome {
         files;  // what to watch: the inputs and every file statements came from
 };
 
+// A drawing written (or not) by WriteDrawing.
+struct DrawingOutcome {
+    bool ok = false;
+    std::string messages;  // the diagnostics as printed (errors, or warnings of what was left out)
+    std::string first;  // "file:line:col: error: message" of the first diagnostic, for the window
+};
+
 struct FrameJob {
     FrameRequest request;
     scene::View view;
@@ -49,6 +56,7 @@ struct FrameJob {
     std::string engine = "raycast";
     bool edges = false;            // show-edges over the shading (viewer/edges.h)
     std::optional<Plane> section;  // viewer/section.h
+    bool hatch = false;            // hatch the section's cut faces (shade/section_hatch.h)
     int aaSamples = 0;  // samples per edge pixel when request.antialiased (shade/antialias.h)
 };
 
@@ -82,12 +90,13 @@ class RenderWorker {
     // affected).
     void CancelFrame() { cancel_.Cancel(); }
 
-    // The hidden-line drawing (draw/drawing.h) of `view` at width×height, written to `path`
-    // (.svg, .pdf, .eps by extension) as `quadrix draw` writes it with the same view, size and
-    // section and `title`. Error message or empty.
-    std::string WriteDrawing(const std::string& path, const scene::View& view, int width,
-                             int height, const std::optional<Plane>& section,
-                             const std::string& title);
+    // The hidden-line drawing of `view` at width×height, written to `path` (.svg, .pdf, .eps by
+    // extension) by the path `quadrix draw` takes (pipeline/drawing_output.h), with the same
+    // view, size, section and `title`: what cannot be drawn is refused as there (freeform
+    // surfaces unless the input's allowMissing, --allow-missing).
+    DrawingOutcome WriteDrawing(const std::string& path, const scene::View& view, int width,
+                                int height, const std::optional<Plane>& section,
+                                const std::string& title);
     // Bodies of the last flattened scene (the picture defaults depend on it, as quadrix
     // render's).
     std::size_t BodyCount();

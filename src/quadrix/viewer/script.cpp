@@ -76,6 +76,7 @@ Command CommandForKey(std::string_view keyName, bool shift) {
         {"leftbracket", Command::kSectionAway},
         {"rightbracket", Command::kSectionToward},
         {"o", Command::kToggleOverlay},
+        {"c", Command::kToggleHatch},
         {"d", Command::kDrawing},
         {"escape", Command::kQuit},
         // The keypad's digits, as CAD users reach for them.
@@ -99,7 +100,8 @@ std::string KeyHelp() {
            "keys:  1 front  2 back  3 left  4 right  5 top  6 bottom  0/I isometric\n"
            "       P perspective/parallel  L show-edges  R reset  F fit all  V print view\n"
            "       E/shift-E next/previous engine  S screenshot  H help  Q/Esc quit\n"
-           "       X section plane (shift-X other side; [ ] or ctrl-drag move it)  O overlay\n"
+           "       X section plane (shift-X other side; [ ] or ctrl-drag move it)\n"
+           "       C hatch the cut faces on/off  O overlay\n"
            "       D drawing (SVG of the view, as quadrix draw)\n";
 }
 

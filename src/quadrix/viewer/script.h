@@ -7,7 +7,8 @@
 //   P perspective/parallel   L show-edges on/off   R reset   F fit all   V print the view   E /
 //   shift-E next/previous engine   S screenshot   H help   Q or Escape quit
 //   X section plane on/off (shift-X: keep the other side)   [ and ] move it away from / toward
-//   the viewer (ctrl-left-drag too)   O overlay on/off   D write the view as an SVG drawing
+//   the viewer (ctrl-left-drag too)   C hatching of its cut faces on/off (on at the start)
+//   O overlay on/off   D write the view as an SVG drawing
 //
 // A script (`quadrix view --script FILE`) is a text file of events, one a line, `#` to the end of
 // a line is a comment. Positions and motions are in window pixels.
@@ -66,6 +67,7 @@ enum class Command {
     kSectionAway,    // [ : the plane moves away from the viewer it was made for (cuts more)
     kSectionToward,  // ]
     kToggleOverlay,
+    kToggleHatch,
     kDrawing,
 };
 

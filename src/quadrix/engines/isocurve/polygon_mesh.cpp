@@ -81,7 +81,8 @@ std::pair<int, int> GridForTolerance(const BezierSurface& patch, double toleranc
 PolygonMesh MeshForTolerance(const freeform::Surface& surface, double tolerance) {
     PolygonMesh mesh;
     for (const BezierSurface& p : surface.Patches().Patches()) {
-        auto [nu, nv] = GridForTolerance(p, tolerance);
+        const auto [nu, nv] = GridForTolerance(p, tolerance);
+        const int columns = nu + 1;  // a lambda may not capture a structured binding (clang 14)
         std::uint32_t base = static_cast<std::uint32_t>(mesh.vertices.size());
         for (int j = 0; j <= nv; ++j) {
             // One isocurve per grid row, evaluated along u in power form (dense reference meshes
@@ -94,7 +95,7 @@ PolygonMesh MeshForTolerance(const freeform::Surface& surface, double tolerance)
                                                      : Vec3{c[0], c[1], c[2]});
             }
         }
-        auto at = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (nu + 1) + i); };
+        auto at = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * columns + i); };
         for (int j = 0; j < nv; ++j)
             for (int i = 0; i < nu; ++i) {
                 mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});

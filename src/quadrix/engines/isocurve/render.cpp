@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "quadrix/engines/isocurve/counters.h"
+
 namespace quadrix::isocurve {
 
 namespace {
@@ -201,21 +203,22 @@ std::string ParseIsocurveOptions(const std::map<std::string, std::string>& value
 
 void FillRenderStats(const IsocurveStats& s, RenderStats& out) {
     out.seconds += s.extractSeconds + s.drawSeconds;
-    auto add = [&](const char* name, double v) { out.counters.emplace_back(name, v); };
-    add("isocurve.surfaces", s.surfaces);
-    add("isocurve.delta", s.delta);
-    add("isocurve.thickness", s.thickness);
-    add("isocurve.curves", s.curves);
-    add("isocurve.length", s.length);
-    add("isocurve.crossings", s.crossings);
-    add("isocurve.unresolved", s.unresolved);
-    add("isocurve.samples", static_cast<double>(s.raster.samples));
-    add("isocurve.pixels_drawn", static_cast<double>(s.raster.pixelsDrawn));
-    add("isocurve.pixels_distinct", static_cast<double>(s.raster.distinctPixels));
-    add("isocurve.pixels_multiple", static_cast<double>(s.raster.multiplyDrawn));
-    add("isocurve.redundancy", s.raster.Redundancy());
-    add("isocurve.extract_seconds", s.extractSeconds);
-    add("isocurve.draw_seconds", s.drawSeconds);
+    CounterValues counters(kIsocurveCounters);
+    counters.Set(kIsocurveSurfaces, s.surfaces);
+    counters.Set(kIsocurveDelta, s.delta);
+    counters.Set(kIsocurveThickness, s.thickness);
+    counters.Set(kIsocurveCurves, s.curves);
+    counters.Set(kIsocurveLength, s.length);
+    counters.Set(kIsocurveCrossings, s.crossings);
+    counters.Set(kIsocurveUnresolved, s.unresolved);
+    counters.Set(kIsocurveSamples, static_cast<double>(s.raster.samples));
+    counters.Set(kIsocurvePixelsDrawn, static_cast<double>(s.raster.pixelsDrawn));
+    counters.Set(kIsocurvePixelsDistinct, static_cast<double>(s.raster.distinctPixels));
+    counters.Set(kIsocurvePixelsMultiple, static_cast<double>(s.raster.multiplyDrawn));
+    counters.Set(kIsocurveRedundancy, s.raster.Redundancy());
+    counters.Set(kIsocurveExtractSeconds, s.extractSeconds);
+    counters.Set(kIsocurveDrawSeconds, s.drawSeconds);
+    counters.AppendTo(out.counters);
     out.report += FormatIsocurveStats(s);
 }
 

@@ -12,6 +12,7 @@
 #include <map>
 
 #include "quadrix/engines/patch/cost_model.h"
+#include "quadrix/engines/patch/counters.h"
 #include "quadrix/engines/patch/float_engine.h"
 #include "quadrix/engines/patch/host_setup.h"
 #include "quadrix/engines/patch/integer_reference.h"
@@ -327,28 +328,28 @@ RenderStats PatchEngine::Draw(const FlatScene& scene, const EngineOptions& optio
 
     // Statistics.
     const CostModel cost = ComputeCost(st.widths);
-    auto& c = stats.counters;
-    c.push_back({"patches", static_cast<double>(patches.size())});
-    c.push_back({"bodies drawn open", static_cast<double>(drawnOpen)});
-    c.push_back({"redundant planes dropped", static_cast<double>(planesDropped)});
-    c.push_back({"csg solids skipped", static_cast<double>(csgSkipped)});
+    CounterValues counters(patch::kPatchCounters);
+    counters.Set(patch::kPatches, patches.size());
+    counters.Set(patch::kBodiesDrawnOpen, drawnOpen);
+    counters.Set(patch::kRedundantPlanesDropped, planesDropped);
+    counters.Set(patch::kCsgSolidsSkipped, csgSkipped);
     std::int64_t notDrawable = 0;
     for (const auto& [why, count] : rejected) {
-        c.push_back(
-            {"bodies skipped: " + std::string(RejectionName(why)), static_cast<double>(count)});
+        counters.Set(patch::kSkippedEmpty + (static_cast<std::size_t>(why) -
+                                             static_cast<std::size_t>(Rejection::kEmpty)),
+                     count);
         if (why != Rejection::kEmpty && why != Rejection::kInvisible) notDrawable += count;
     }
-    c.push_back({"window pixels", static_cast<double>(bs.flt.windowPixels)});
-    c.push_back({"surface pixels",
-                 static_cast<double>(st.fixed ? bs.fixedSurfacePixels : bs.flt.surfacePixels)});
-    c.push_back({"cycles", static_cast<double>(timing.cycles)});
-    c.push_back({"streamed cycles", static_cast<double>(timing.streamedCycles)});
-    c.push_back({"estimated seconds", timing.Seconds()});
-    c.push_back({"transistors", static_cast<double>(cost.Total())});
-    if (st.fixed && st.verify)
-        c.push_back({"reference mismatches", static_cast<double>(bs.verifyMismatch)});
-    if (st.fixed && st.compare) c.push_back({"max depth error lsb", bs.maxErrorLsb});
-    if (st.fixed) c.push_back({"depth ulp", depthUlp});
+    counters.Set(patch::kWindowPixels, bs.flt.windowPixels);
+    counters.Set(patch::kSurfacePixels, st.fixed ? bs.fixedSurfacePixels : bs.flt.surfacePixels);
+    counters.Set(patch::kCycles, timing.cycles);
+    counters.Set(patch::kStreamedCycles, timing.streamedCycles);
+    counters.Set(patch::kEstimatedSeconds, timing.Seconds());
+    counters.Set(patch::kTransistors, cost.Total());
+    if (st.fixed && st.verify) counters.Set(patch::kReferenceMismatches, bs.verifyMismatch);
+    if (st.fixed && st.compare) counters.Set(patch::kMaxDepthErrorLsb, bs.maxErrorLsb);
+    if (st.fixed) counters.Set(patch::kDepthUlp, depthUlp);
+    counters.AppendTo(stats.counters);
 
     std::string& r = stats.report;
     r += fmt::format("Engine patch (seed 000, quadric patch processor), mode={}\n",

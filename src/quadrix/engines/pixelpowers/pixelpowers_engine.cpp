@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "quadrix/engines/pixelpowers/compiler.h"
+#include "quadrix/engines/pixelpowers/counters.h"
 #include "quadrix/engines/pixelpowers/machine.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/frame/compare.h"
@@ -129,59 +130,58 @@ class PixelPowersEngine final : public Engine {
         auto t2 = std::chrono::steady_clock::now();
         stats.seconds = std::chrono::duration<double>(t2 - start).count();
 
-        auto add = [&](const char* name, double v) { stats.counters.emplace_back(name, v); };
-        auto count = [&](const char* name, std::uint64_t v) { add(name, static_cast<double>(v)); };
+        CounterValues counters(kPixelPowersCounters);
         const csg::NormalFormStats& nf = cs.normalForm;
-        add("exact_mode", st.compile.mode == DepthMode::kExact ? 1 : 0);
-        add("paper_shading", st.compile.paperShading ? 1 : 0);
-        count("primitives", cs.primitives);
-        count("half_spaces", cs.halfSpaces);
-        count("tree_primitives", nf.treePrimitives);
-        count("tree_operators", nf.treeOperators);
-        count("products", nf.products);
-        count("product_factors", nf.factors);
-        count("pruned_products", nf.prunedProducts);
-        count("pruned_factors", nf.prunedFactors + nf.prunedSubtrahends);
-        count("terms", cs.terms);
-        count("pruned_terms", cs.prunedTerms);
-        count("pruned_parings", cs.prunedParings);
-        count("patches", cs.patches);
-        count("pruned_patches", cs.prunedPatches);
-        count("opcodes", program.Opcodes());
-        count("equations", program.Equations());
-        add("estimated_ms_10mhz",
-            static_cast<double>(program.Equations()) * kMicrosecondsPerEquation / 1000.0);
+        counters.Set(kExactMode, st.compile.mode == DepthMode::kExact ? 1 : 0);
+        counters.Set(kPaperShading, st.compile.paperShading ? 1 : 0);
+        counters.Set(kPrimitives, cs.primitives);
+        counters.Set(kHalfSpaces, cs.halfSpaces);
+        counters.Set(kTreePrimitives, nf.treePrimitives);
+        counters.Set(kTreeOperators, nf.treeOperators);
+        counters.Set(kProducts, nf.products);
+        counters.Set(kProductFactors, nf.factors);
+        counters.Set(kPrunedProducts, nf.prunedProducts);
+        counters.Set(kPrunedFactors, nf.prunedFactors + nf.prunedSubtrahends);
+        counters.Set(kTerms, cs.terms);
+        counters.Set(kPrunedTerms, cs.prunedTerms);
+        counters.Set(kPrunedParings, cs.prunedParings);
+        counters.Set(kPatches, cs.patches);
+        counters.Set(kPrunedPatches, cs.prunedPatches);
+        counters.Set(kOpcodes, program.Opcodes());
+        counters.Set(kEquations, program.Equations());
+        counters.Set(kEstimatedMs10mhz,
+                     static_cast<double>(program.Equations()) * kMicrosecondsPerEquation / 1000.0);
         if (st.compile.mode == DepthMode::kApprox) {
-            count("strips", cs.strips);
-            count("strip_sheets_capped", cs.stripsCapped);
-            count("extended_fallbacks", cs.extendedFallbacks);
+            counters.Set(kStrips, cs.strips);
+            counters.Set(kStripSheetsCapped, cs.stripsCapped);
+            counters.Set(kExtendedFallbacks, cs.extendedFallbacks);
         }
         if (st.compile.paperShading) {
-            count("shaded_patches", cs.shadedPatches);
-            count("shading_fallbacks", cs.shadingFallbacks);
-            add("shading_sqrt_bound", cs.shadingSqrtBound);
-            add("shading_denominator_spread", cs.shadingDenominatorSpread);
+            counters.Set(kShadedPatches, cs.shadedPatches);
+            counters.Set(kShadingFallbacks, cs.shadingFallbacks);
+            counters.Set(kShadingSqrtBound, cs.shadingSqrtBound);
+            counters.Set(kShadingDenominatorSpread, cs.shadingDenominatorSpread);
         }
         if (program.depthStep > 0) {
-            count("depth_bits", static_cast<std::uint64_t>(program.depthBits));
-            add("depth_step", program.depthStep);
-            add("depth_origin", program.depthOrigin);
+            counters.Set(kDepthBits, static_cast<std::uint64_t>(program.depthBits));
+            counters.Set(kDepthStep, program.depthStep);
+            counters.Set(kDepthOrigin, program.depthOrigin);
         }
-        count("tiles", mc.tiles);
-        count("block_runs", mc.blockRuns);
-        count("blocks_abandoned", mc.blocksAbandoned);
-        count("instructions_executed", mc.instructions);
-        count("pixel_operations", mc.pixelOps);
-        count("root_solves", mc.rootSolves);
-        count("z_writes", mc.writes);
-        count("covered_pixels", frame.CoveredCount());
-        count("bits_per_pixel_paper", kPaperBits);
-        count("bits_per_pixel_simulated",
-              static_cast<std::uint64_t>(kSimulatedBits +
-                                         (st.compile.paperShading ? kNormalBits : 0)));
-        add("compile_seconds", std::chrono::duration<double>(t1 - t0).count());
-        add("machine_seconds", std::chrono::duration<double>(t2 - t1).count());
-        count("solids_not_drawn", cs.errors.size());
+        counters.Set(kTiles, mc.tiles);
+        counters.Set(kBlockRuns, mc.blockRuns);
+        counters.Set(kBlocksAbandoned, mc.blocksAbandoned);
+        counters.Set(kInstructionsExecuted, mc.instructions);
+        counters.Set(kPixelOperations, mc.pixelOps);
+        counters.Set(kRootSolves, mc.rootSolves);
+        counters.Set(kZWrites, mc.writes);
+        counters.Set(kCoveredPixels, frame.CoveredCount());
+        counters.Set(kBitsPerPixelPaper, kPaperBits);
+        counters.Set(kBitsPerPixelSimulated,
+                     static_cast<std::uint64_t>(kSimulatedBits +
+                                                (st.compile.paperShading ? kNormalBits : 0)));
+        counters.Set(kCompileSeconds, std::chrono::duration<double>(t1 - t0).count());
+        counters.Set(kMachineSeconds, std::chrono::duration<double>(t2 - t1).count());
+        counters.Set(kSolidsNotDrawn, cs.errors.size());
 
         // Table 1 names a part; ours is the solid's name, or the number of solids.
         std::string part = scene.solids.size() == 1
@@ -244,17 +244,17 @@ class PixelPowersEngine final : public Engine {
             std::uint64_t union_ = a.coveredBoth + a.onlyA + a.onlyReference;
             double same = a.coveredBoth ? static_cast<double>(a.sameSolid) / a.coveredBoth : 1.0;
             const double mean = a.meanDepthError, meanI = a.meanIntensityError;
-            count("cmp_covered_both", a.coveredBoth);
-            count("cmp_covered_only_here", a.onlyA);
-            count("cmp_covered_only_raycast", a.onlyReference);
-            add("cmp_same_solid_share", same);
-            add("cmp_depth_error_max", a.maxDepthError);
-            add("cmp_depth_error_mean", mean);
-            add("cmp_depth_error_p999", a.p999DepthError);
-            count("cmp_depth_error_over_tolerance", a.depthOverTolerance);
-            add("cmp_intensity_error_max", a.maxIntensityError);
-            add("cmp_intensity_error_mean", meanI);
-            add("cmp_intensity_error_p99", a.p99IntensityError);
+            counters.Set(kCmpCoveredBoth, a.coveredBoth);
+            counters.Set(kCmpCoveredOnlyHere, a.onlyA);
+            counters.Set(kCmpCoveredOnlyRaycast, a.onlyReference);
+            counters.Set(kCmpSameSolidShare, same);
+            counters.Set(kCmpDepthErrorMax, a.maxDepthError);
+            counters.Set(kCmpDepthErrorMean, mean);
+            counters.Set(kCmpDepthErrorP999, a.p999DepthError);
+            counters.Set(kCmpDepthErrorOverTolerance, a.depthOverTolerance);
+            counters.Set(kCmpIntensityErrorMax, a.maxIntensityError);
+            counters.Set(kCmpIntensityErrorMean, meanI);
+            counters.Set(kCmpIntensityErrorP99, a.p99IntensityError);
             std::snprintf(
                 line, sizeof line,
                 "vs raycast: %llu covered pixels, %.4f%% same solid, coverage differs on "
@@ -273,6 +273,7 @@ class PixelPowersEngine final : public Engine {
                           255 * a.p99IntensityError, 255 * meanI);
             report += line;
         }
+        counters.AppendTo(stats.counters);
         stats.report = report;
         return stats;
     }

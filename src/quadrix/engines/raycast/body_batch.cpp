@@ -4,6 +4,7 @@
 
 #include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/math/interval_list.h"
+#include "quadrix/util/target_clones.h"
 
 namespace quadrix::raycast {
 namespace {
@@ -15,10 +16,11 @@ namespace {
 // division and comparisons, no FMA contraction).
 // kNear: a near bound (t >= r) into lo/loId; else a far bound (t <= r) into hi/hiId.
 template <bool kNear>
-__attribute__((target_clones("avx2", "default"))) void PlaneBatch(
-    int n, const double* xs, const double* ys, double px, double py, double pd, double c,
-    std::int64_t tag, double* __restrict bound, std::int64_t* __restrict boundId,
-    double* __restrict bad) {
+QUADRIX_TARGET_CLONES_TEMPLATE void PlaneBatch(int n, const double* xs, const double* ys, double px,
+                                               double py, double pd, double c, std::int64_t tag,
+                                               double* __restrict bound,
+                                               std::int64_t* __restrict boundId,
+                                               double* __restrict bad) {
     for (int p = 0; p < n; ++p) {
         const double r = -(px * xs[p] + py * ys[p] + pd) / c;
         bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;

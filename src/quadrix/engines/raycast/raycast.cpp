@@ -179,12 +179,11 @@ class RaycastEngine final : public Engine {
         RenderStats stats;
         stats.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        auto add = [&](const char* name, std::uint64_t v) {
-            stats.counters.emplace_back(name, static_cast<double>(v));
-        };
-        add("solids", full.solids.size());
-        add("program_nodes", full.nodes.size());
-        total.ForEach(add);
+        CounterValues counters(kRaycastCounters);
+        counters.Set(CounterId::solids, full.solids.size());
+        counters.Set(CounterId::programNodes, full.nodes.size());
+        total.Record(counters);
+        counters.AppendTo(stats.counters);
         return stats;
     }
 };

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/engines/scanline/counters.h"
 #include "quadrix/engines/scanline/overlap_guard.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/engines/scanline/resolver.h"
@@ -210,82 +211,78 @@ class ScanlineEngine final : public Engine {
         const auto t2 = Clock::now();
 
         stats.seconds = Seconds(t0, t2);
-        auto add = [&](const char* name, double v) { stats.counters.emplace_back(name, v); };
+        CounterValues counters(kScanlineCounters);
         std::uint64_t perPixelBodies = 0;
         for (std::size_t b = 0; b < pixelBody.size(); ++b) perPixelBodies += pixelBody[b];
-        add("bodies", static_cast<double>(bodiesToResolve.size()));
-        add("hsbs_planar", static_cast<double>(rc.planarHsbs));
-        add("hsbs_quadric", static_cast<double>(rc.quadricHsbs));
-        add("show_faces", static_cast<double>(rc.faces));
-        for (int t = 0; t < 6; ++t)
-            stats.counters.emplace_back(
-                std::string("ilines_") + ToString(static_cast<ILineType>(t)),
-                static_cast<double>(rc.ilines[t]));
-        add("ivertices_calculated", static_cast<double>(rc.verticesCalculated));
-        add("ivertices_kept", static_cast<double>(rc.verticesKept));
-        for (int t = 0; t < 4; ++t)
-            stats.counters.emplace_back(
-                std::string("ivertices_") + ToString(static_cast<IVertexType>(t)),
-                static_cast<double>(rc.verticesByType[t]));
-        add("show_edges_linear", static_cast<double>(rc.edgesLinear));
-        add("show_edges_horizontal", static_cast<double>(rc.edgesHorizontal));
-        add("show_edges_conic", static_cast<double>(rc.edgesConic));
-        add("per_pixel_bodies", static_cast<double>(perPixelBodies));
-        add("csg_solids", static_cast<double>(csgUnits));
-        add("csg_pixels", static_cast<double>(c.csgPixels));
-        add("csg_template_bodies", static_cast<double>(c.csgTemplateBodies));
-        add("csg_template_reuses", static_cast<double>(c.csgTemplateReuses));
-        add("csg_exact_fallback_pixels", static_cast<double>(c.csgFallbackPixels));
-        add("edges_started", static_cast<double>(c.edgesStarted));
-        add("edge_swaps", static_cast<double>(c.edgeSwaps));
-        add("spans", static_cast<double>(c.spans));
-        add("empty_spans", static_cast<double>(c.emptySpans));
-        add("face_inserts", static_cast<double>(c.faceInserts));
-        add("depth_calculations", static_cast<double>(c.depthCalcs));
-        add("tie_breaks", static_cast<double>(c.tieBreaks));
-        add("span_sample_evaluations", static_cast<double>(c.sampleEvaluations));
-        add("row_side_evaluations", static_cast<double>(c.sideEvaluations));
-        add("exact_pixels", static_cast<double>(c.exactPixels));
-        add("root_fallback_pixels", static_cast<double>(c.rootFallbackPixels));
-        add("per_pixel_unit_evaluations", static_cast<double>(c.perPixelUnitPixels));
-        add("intensity_calculations", static_cast<double>(c.normals));
-        add("pixels", static_cast<double>(width) * height);
-        add("covered_pixels", static_cast<double>(c.covered));
-        add("face_stack_bodies", static_cast<double>(settings.faceStacks ? stackBodies : 0));
-        add("face_stack_inserts", static_cast<double>(c.stackInserts));
-        add("face_stack_deletes", static_cast<double>(c.stackDeletes));
-        add("face_stack_max_depth", static_cast<double>(c.stackMaxDepth));
-        add("face_stack_mean_depth",
-            c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0);
-        add("face_stack_spans", static_cast<double>(c.stackSpans));
-        add("face_stack_seed_evaluations", static_cast<double>(c.stackSeedEvaluations));
-        add("face_stack_tie_breaks", static_cast<double>(c.stackTieBreaks));
-        add("face_stack_corrections", static_cast<double>(c.stackCorrections));
-        add("face_stack_repairs", static_cast<double>(c.stackRepairs));
-        add("face_stack_closed_row_faces", static_cast<double>(c.closedRowFaces));
-        add("face_stack_order_corrections", static_cast<double>(c.stackOrderCorrections));
-        add("face_stack_swap_updates", static_cast<double>(c.stackSwapUpdates));
-        add("face_stack_derivations", static_cast<double>(c.stackDerivations));
-        add("face_stack_derivations_changed", static_cast<double>(c.stackDerivationsChanged));
-        add("face_stack_derive_inserts", static_cast<double>(c.stackDeriveInserts));
-        add("face_stack_derive_deletes", static_cast<double>(c.stackDeriveDeletes));
-        add("face_stack_vertices", static_cast<double>(c.stackVertices));
-        add("face_stack_vertex_recursions", static_cast<double>(c.stackVertexRecursions));
-        add("face_stack_deletion_swaps", static_cast<double>(c.stackDeletionSwaps));
-        add("face_stack_vertex_fallbacks", static_cast<double>(c.stackVertexFallbacks));
-        add("face_stack_rebuilds", static_cast<double>(c.stackRebuilds));
-        add("interpenetration_pixels", static_cast<double>(c.interpenetrationPixels));
-        add("overlap_max_depth", static_cast<double>(overlap.maxDepth));
-        add("overlap_solids_to_raycast", static_cast<double>(overlap.solids.size()));
-        add("solids_to_raycast", static_cast<double>(stats.undrawn.size()));
+        counters.Set(kBodies, static_cast<double>(bodiesToResolve.size()));
+        counters.Set(kHsbsPlanar, static_cast<double>(rc.planarHsbs));
+        counters.Set(kHsbsQuadric, static_cast<double>(rc.quadricHsbs));
+        counters.Set(kShowFaces, static_cast<double>(rc.faces));
+        for (std::size_t t = 0; t < 6; ++t) counters.Set(kIlinesNoexist + t, rc.ilines[t]);
+        counters.Set(kIverticesCalculated, static_cast<double>(rc.verticesCalculated));
+        counters.Set(kIverticesKept, static_cast<double>(rc.verticesKept));
+        for (std::size_t t = 0; t < 4; ++t)
+            counters.Set(kIverticesHextrm + t, rc.verticesByType[t]);
+        counters.Set(kShowEdgesLinear, static_cast<double>(rc.edgesLinear));
+        counters.Set(kShowEdgesHorizontal, static_cast<double>(rc.edgesHorizontal));
+        counters.Set(kShowEdgesConic, static_cast<double>(rc.edgesConic));
+        counters.Set(kPerPixelBodies, static_cast<double>(perPixelBodies));
+        counters.Set(kCsgSolids, static_cast<double>(csgUnits));
+        counters.Set(kCsgPixels, static_cast<double>(c.csgPixels));
+        counters.Set(kCsgTemplateBodies, static_cast<double>(c.csgTemplateBodies));
+        counters.Set(kCsgTemplateReuses, static_cast<double>(c.csgTemplateReuses));
+        counters.Set(kCsgExactFallbackPixels, static_cast<double>(c.csgFallbackPixels));
+        counters.Set(kEdgesStarted, static_cast<double>(c.edgesStarted));
+        counters.Set(kEdgeSwaps, static_cast<double>(c.edgeSwaps));
+        counters.Set(kSpans, static_cast<double>(c.spans));
+        counters.Set(kEmptySpans, static_cast<double>(c.emptySpans));
+        counters.Set(kFaceInserts, static_cast<double>(c.faceInserts));
+        counters.Set(kDepthCalculations, static_cast<double>(c.depthCalcs));
+        counters.Set(kTieBreaks, static_cast<double>(c.tieBreaks));
+        counters.Set(kSpanSampleEvaluations, static_cast<double>(c.sampleEvaluations));
+        counters.Set(kRowSideEvaluations, static_cast<double>(c.sideEvaluations));
+        counters.Set(kExactPixels, static_cast<double>(c.exactPixels));
+        counters.Set(kRootFallbackPixels, static_cast<double>(c.rootFallbackPixels));
+        counters.Set(kPerPixelUnitEvaluations, static_cast<double>(c.perPixelUnitPixels));
+        counters.Set(kIntensityCalculations, static_cast<double>(c.normals));
+        counters.Set(kPixels, static_cast<double>(width) * height);
+        counters.Set(kCoveredPixels, static_cast<double>(c.covered));
+        counters.Set(kFaceStackBodies, static_cast<double>(settings.faceStacks ? stackBodies : 0));
+        counters.Set(kFaceStackInserts, static_cast<double>(c.stackInserts));
+        counters.Set(kFaceStackDeletes, static_cast<double>(c.stackDeletes));
+        counters.Set(kFaceStackMaxDepth, static_cast<double>(c.stackMaxDepth));
+        counters.Set(kFaceStackMeanDepth,
+                     c.stackSpans ? static_cast<double>(c.stackDepthSum) / c.stackSpans : 0.0);
+        counters.Set(kFaceStackSpans, static_cast<double>(c.stackSpans));
+        counters.Set(kFaceStackSeedEvaluations, static_cast<double>(c.stackSeedEvaluations));
+        counters.Set(kFaceStackTieBreaks, static_cast<double>(c.stackTieBreaks));
+        counters.Set(kFaceStackCorrections, static_cast<double>(c.stackCorrections));
+        counters.Set(kFaceStackRepairs, static_cast<double>(c.stackRepairs));
+        counters.Set(kFaceStackClosedRowFaces, static_cast<double>(c.closedRowFaces));
+        counters.Set(kFaceStackOrderCorrections, static_cast<double>(c.stackOrderCorrections));
+        counters.Set(kFaceStackSwapUpdates, static_cast<double>(c.stackSwapUpdates));
+        counters.Set(kFaceStackDerivations, static_cast<double>(c.stackDerivations));
+        counters.Set(kFaceStackDerivationsChanged, static_cast<double>(c.stackDerivationsChanged));
+        counters.Set(kFaceStackDeriveInserts, static_cast<double>(c.stackDeriveInserts));
+        counters.Set(kFaceStackDeriveDeletes, static_cast<double>(c.stackDeriveDeletes));
+        counters.Set(kFaceStackVertices, static_cast<double>(c.stackVertices));
+        counters.Set(kFaceStackVertexRecursions, static_cast<double>(c.stackVertexRecursions));
+        counters.Set(kFaceStackDeletionSwaps, static_cast<double>(c.stackDeletionSwaps));
+        counters.Set(kFaceStackVertexFallbacks, static_cast<double>(c.stackVertexFallbacks));
+        counters.Set(kFaceStackRebuilds, static_cast<double>(c.stackRebuilds));
+        counters.Set(kInterpenetrationPixels, static_cast<double>(c.interpenetrationPixels));
+        counters.Set(kOverlapMaxDepth, static_cast<double>(overlap.maxDepth));
+        counters.Set(kOverlapSolidsToRaycast, static_cast<double>(overlap.solids.size()));
+        counters.Set(kSolidsToRaycast, static_cast<double>(stats.undrawn.size()));
         if (settings.verify) {
-            add("verify_spans", static_cast<double>(c.verifySpans));
-            add("verify_mismatch_spans", static_cast<double>(c.verifyMismatchSpans));
-            add("verify_body_faces", static_cast<double>(c.verifyBodies));
-            add("verify_body_face_mismatches", static_cast<double>(c.verifyBodyMismatches));
+            counters.Set(kVerifySpans, static_cast<double>(c.verifySpans));
+            counters.Set(kVerifyMismatchSpans, static_cast<double>(c.verifyMismatchSpans));
+            counters.Set(kVerifyBodyFaces, static_cast<double>(c.verifyBodies));
+            counters.Set(kVerifyBodyFaceMismatches, static_cast<double>(c.verifyBodyMismatches));
         }
-        add("resolver_seconds", Seconds(t0, t1));
-        add("renderer_shader_seconds", Seconds(t1, t2));
+        counters.Set(kResolverSeconds, Seconds(t0, t1));
+        counters.Set(kRendererShaderSeconds, Seconds(t1, t2));
+        counters.AppendTo(stats.counters);
 
         // The paper's tables (7.1–7.3), one row for this image; the report formats them.
         using C = StatsCell;

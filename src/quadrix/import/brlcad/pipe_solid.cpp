@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "quadrix/import/shapes/local_frame.h"
 #include "quadrix/math/quartic_surface.h"
 
 namespace quadrix::import::brlcad {
@@ -18,11 +19,6 @@ namespace {
 constexpr double kSamePoint = 1e-9;
 // |n1 × n2| below this: collinear (no bend).
 constexpr double kCollinear = 1e-12;
-
-Vec3 AnyPerpendicular(const Vec3& h) {
-    Vec3 t = std::fabs(h.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    return Normalize(Cross(h, t));
-}
 
 // The right circular cone (a cylinder when r0 = r1) about the segment a → b, radius r0 at a and r1
 // at b: |d|² − (d·t)² − (r0 + g d·t)² <= 0 with d = P − a, t = unit(b − a), g = (r1 − r0)/|b − a|.

@@ -23,10 +23,13 @@
 #include <map>
 #include <optional>
 
-#include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/model_space.h"
 #include "quadrix/import/openscad/polygon_solids.h"
+#include "quadrix/import/shapes/ellipsoid.h"
+#include "quadrix/import/shapes/hexahedron.h"
 #include "quadrix/import/shapes/mesh_solid.h"
+#include "quadrix/import/shapes/torus.h"
+#include "quadrix/import/shapes/truncated_cone.h"
 #include "quadrix/import/text_map.h"
 #include "quadrix/math/srgb.h"
 #include "quadrix/scene/css_colors.h"
@@ -352,7 +355,7 @@ class Builder {
         else
             diags_.Warning(map_.At(n.offset), message, map_.LineText(n.offset));
     }
-    // A statement that is not drawn: an error unless --allow-missing (brlcad_import.h).
+    // A statement that is not drawn: an error unless --allow-missing (import_report.h).
     void Missing(const Node& n, const std::string& message) {
         if (options_.MissingIsError())
             diags_.Error(map_.At(n.offset),
@@ -545,11 +548,11 @@ class Builder {
         return std::nullopt;
     }
 
-    int Leaf(scene::Csg& csg, const Node& n, const brlcad::Primitive& p, const Mat4& m,
+    // A leaf built by a shape builder (import/shapes/); a refused one (zero sizes) draws nothing.
+    int Leaf(scene::Csg& csg, const Node& n, const ShapeResult& s, const Mat4& m,
              const std::optional<Paint>& color, Box3& box) {
-        brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
-        if (cr.status != brlcad::ConvertResult::Status::kOk) return -1;  // zero sizes: nothing
-        return LeafShape(csg, n, cr.shape, m, color, box);
+        if (!s.ok) return -1;
+        return LeafShape(csg, n, s.shape, m, color, box);
     }
 
     int LeafShape(scene::Csg& csg, const Node& n, const Shape& shape, const Mat4& m,
@@ -601,19 +604,15 @@ class Builder {
         box = Box3{};
         if (n.dropped || failed_) return -1;
         const std::string& k = n.name;
-        brlcad::Primitive p;
-        p.name = k;
         if (k == "sphere") {
             ++report_.census[k];
             double r = Num(n, "r", 0).value_or(1);
             if (auto d = Num(n, "d", -1)) r = *d / 2;
             if (!Positive(n, "r", r)) return -1;
-            p.type = "ell";
-            p.A = {r, 0, 0}, p.B = {0, r, 0}, p.C = {0, 0, r};
             if (auto sides = scad::PolygonSides(r, SpecialsOf(n)); sides && r > 0)
                 if (auto shape = scad::PolygonalSphere(r, *sides))
                     return LeafShape(csg, n, *shape, m, color, box);
-            return Leaf(csg, n, p, m, color, box);
+            return Leaf(csg, n, SphereShape({0, 0, 0}, r), m, color, box);
         }
         if (k == "cube") {
             ++report_.census[k];
@@ -623,11 +622,7 @@ class Builder {
                 return -1;
             Vec3 lo = Flag(n, "center", 1) ? s * -0.5 : Vec3{};
             Vec3 hi = lo + s;
-            p.type = "arb8";
-            p.pts = {Vec3{lo.x, lo.y, lo.z}, Vec3{hi.x, lo.y, lo.z}, Vec3{hi.x, hi.y, lo.z},
-                     Vec3{lo.x, hi.y, lo.z}, Vec3{lo.x, lo.y, hi.z}, Vec3{hi.x, lo.y, hi.z},
-                     Vec3{hi.x, hi.y, hi.z}, Vec3{lo.x, hi.y, hi.z}};
-            return Leaf(csg, n, p, m, color, box);
+            return Leaf(csg, n, BoxShape(lo, hi), m, color, box);
         }
         if (k == "cylinder") {
             ++report_.census[k];
@@ -646,14 +641,13 @@ class Builder {
                 return -1;
             }
             double z0 = Flag(n, "center", 3) ? -h / 2 : 0;
-            p.type = "tgc";
-            p.V = {0, 0, z0}, p.H = {0, 0, h};
-            p.A = {r1, 0, 0}, p.B = {0, r1, 0}, p.C = {r2, 0, 0}, p.D = {0, r2, 0};
             if (auto sides = scad::PolygonSides(std::fmax(r1, r2), SpecialsOf(n));
                 sides && h > 0 && std::fmax(r1, r2) > 0)
                 return LeafShape(csg, n, scad::PolygonalCylinder(r1, r2, z0, h, *sides), m, color,
                                  box);
-            return Leaf(csg, n, p, m, color, box);
+            const ConeShape cone = TruncatedConeShape({0, 0, z0}, {0, 0, h}, {r1, 0, 0}, {0, r1, 0},
+                                                      {r2, 0, 0}, {0, r2, 0});
+            return Leaf(csg, n, cone, m, color, box);
         }
         if (k == "polyhedron") return Polyhedron(csg, n, m, color, box);
         if (k == "linear_extrude" || k == "rotate_extrude") return Extrude(csg, n, m, color, box);
@@ -715,7 +709,7 @@ class Builder {
         return acc;
     }
 
-    // --- $fn/$fa/$fs, polyhedron and extrusions (polygon_solids.h, brlcad/mesh_solid.h) ---
+    // --- $fn/$fa/$fs, polyhedron and extrusions (polygon_solids.h, shapes/mesh_solid.h) ---
 
     // The specials of a scope: the enclosing ones overridden by the scope's assignments (the last
     // assignment of a name holds for the whole scope, as in OpenSCAD).
@@ -875,7 +869,7 @@ class Builder {
     }
 
     // rotate_extrude of an exact circle (x = radius, y = height in the profile plane): a torus
-    // about the z axis, or an elliptical torus (BRL-CAD eto) when the profile's transforms make
+    // about the z axis, or an elliptical torus (shapes/torus.h) when the profile's transforms make
     // the circle an ellipse; its principal semi-axes u ⊥ v come from the images a, b of the radii
     // (a cos t + b sin t is extreme at tan 2t = 2a·b / (|a|² − |b|²)). A circle that reaches the
     // axis is refused (OpenSCAD refuses it too).
@@ -892,23 +886,18 @@ class Builder {
             return Refuse(n,
                           "rotate_extrude: the circle reaches the rotation axis (OpenSCAD "
                           "refuses it too); it is left out");
-        brlcad::Primitive p;
-        p.name = n.name;
+        ShapeResult s;
         if (std::fabs(lu - lv) <= 1e-12 * std::fmax(lu, lv)) {
-            p.type = "tor";
-            p.V = {0, 0, c.y}, p.H = {0, 0, 1}, p.r1 = std::fabs(c.x), p.r2 = lu;
+            s = TorusShape({0, 0, c.y}, {0, 0, 1}, std::fabs(c.x), lu);
         } else {
             // The semi-axis vector C in the meridian plane through +x (radius x, axis z); a
             // circle at negative x is the same solid mirrored: flip its radial component.
             const double sx = c.x < 0 ? -1 : 1;
-            p.type = "eto";
-            p.V = {0, 0, c.y}, p.N = {0, 0, 1}, p.r = std::fabs(c.x), p.C = {sx * u.x, 0, u.y};
-            p.rd = lv;
+            s = EllipticalTorusShape({0, 0, c.y}, {0, 0, 1}, std::fabs(c.x), {sx * u.x, 0, u.y},
+                                     lv);
         }
-        brlcad::ConvertResult cr = brlcad::ConvertPrimitive(p);
-        if (cr.status != brlcad::ConvertResult::Status::kOk)
-            return Refuse(n, fmt::format("rotate_extrude: {}; it is left out", cr.problem));
-        return LeafShape(csg, n, cr.shape, extrusion_->outer, color, box);
+        if (!s.ok) return Refuse(n, fmt::format("rotate_extrude: {}; it is left out", s.problem));
+        return LeafShape(csg, n, s.shape, extrusion_->outer, color, box);
     }
 
     // square, circle, polygon → rings in the extrusion plane → the extruded or revolved shape.
@@ -939,13 +928,10 @@ class Builder {
                 const Vec3 c = m2.MapPoint({0, 0, 0});
                 Vec3 a = m2.MapPoint({r, 0, 0}) - c, b = m2.MapPoint({0, r, 0}) - c;
                 a.z = b.z = 0;
-                brlcad::Primitive p;
-                p.type = "tgc";
-                p.name = k;
-                p.V = {c.x, c.y, e.z0};
-                p.H = {c.x * (e.scale - 1), c.y * (e.scale - 1), e.h};
-                p.A = a, p.B = b, p.C = a * e.scale, p.D = b * e.scale;
-                return Leaf(csg, n, p, e.outer, color, box);
+                const ConeShape cone = TruncatedConeShape(
+                    {c.x, c.y, e.z0}, {c.x * (e.scale - 1), c.y * (e.scale - 1), e.h}, a, b,
+                    a * e.scale, b * e.scale);
+                return Leaf(csg, n, cone, e.outer, color, box);
             }
             scad::Ring ring;
             for (const scad::Pt2& q : scad::RegularPolygon(r, *sides)) ring.push_back(at(q.x, q.y));

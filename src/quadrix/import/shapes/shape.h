@@ -9,8 +9,16 @@
 // c_i ± sqrt(a_i² + b_i² + d_i²). A torus is not the hull of ellipsoids but a Minkowski sum (its
 // ring circle plus a ball); `extentSums` lists such sums of pieces, whose box is the sum of the
 // pieces' boxes (exact for the torus; for an elliptical torus or a pipe bend a containing sum).
+//
+// Builders. The primitives that both importers draw are built by format-neutral functions, one
+// concept a file, each stating its maths: ellipsoid.h (ellipsoids and spheres), hexahedron.h
+// (boxes and BRL-CAD's arb8 family), truncated_cone.h (cylinders, cones, the quartic general
+// cone), torus.h (torus, elliptical torus), mesh_solid.h (closed meshes); they write their
+// quadrics in the local frames of local_frame.h. brlcad/primitives.h adapts BRL-CAD's records to
+// them, openscad/openscad_import.cpp calls them directly.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "quadrix/math/mat4.h"
@@ -35,6 +43,14 @@ struct Shape {
     std::vector<ExtentPiece> extent;
     std::vector<std::vector<ExtentPiece>> extentSums;  // Minkowski sums of pieces (torus, eto)
     bool unbounded = false;                            // half-spaces
+};
+
+// What a shape builder returns: the shape, or (ok false) why its parameters bound no solid, in
+// words fit for a diagnostic ("the semi-axes A, B, C are degenerate").
+struct ShapeResult {
+    bool ok = false;
+    std::string problem;  // !ok
+    Shape shape;          // ok
 };
 
 // The half-space moved by the placement `t` into the scene, as the scene model keeps imported
