@@ -245,6 +245,29 @@ BoundaryKind OnBoundary(const FlatScene& scene, const SceneProbe& probe, const C
     return !onlyA && !onlyB ? BoundaryKind::kEdge : BoundaryKind::kNone;
 }
 
+namespace {
+
+// A closed curve without breaks: classified as at t = π (its midpoint) when one of its two
+// golden sections is on the boundary too, else not at all (a midpoint off the boundary is kept
+// as it was). Its midpoint is a point of symmetry (an ellipse's vertex), which is where it may
+// touch a surface it does not cross (a tangency the breaks miss), and one sample there would
+// classify the whole curve by the tangency (gallery/name: a tube's cap ellipse tangent to the
+// next tube was drawn whole, or not, depending on the last bits of the bounds).
+BoundaryKind WholeCurveKind(const FlatScene& scene, const SceneProbe& probe, const Curve3& c,
+                            double eps, const std::vector<int>& shared) {
+    constexpr double kGolden = 0.381966011250105;  // (3 - √5) / 2
+    const double t0 = c.t0, t1 = c.t1;
+    const BoundaryKind mid = OnBoundary(scene, probe, c, 0.5 * (t0 + t1), eps, shared);
+    if (mid == BoundaryKind::kNone) return mid;
+    if (OnBoundary(scene, probe, c, t0 + kGolden * (t1 - t0), eps, shared) != BoundaryKind::kNone)
+        return mid;
+    if (OnBoundary(scene, probe, c, t1 - kGolden * (t1 - t0), eps, shared) != BoundaryKind::kNone)
+        return mid;
+    return BoundaryKind::kNone;
+}
+
+}  // namespace
+
 std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& surfaces,
                                        const SceneProbe& probe, const std::vector<Curve3>& curves,
                                        bool keepTangent) {
@@ -273,7 +296,9 @@ std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& s
         for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
             if (!(ts[i + 1] - ts[i] > minLen)) continue;
             const BoundaryKind kind =
-                OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps, shared);
+                c.Closed() && ts.size() == 2
+                    ? WholeCurveKind(scene, probe, c, eps, shared)
+                    : OnBoundary(scene, probe, c, 0.5 * (ts[i] + ts[i + 1]), eps, shared);
             if (kind == BoundaryKind::kNone) continue;
             const bool tangent = kind == BoundaryKind::kTangent;
             if (!keepTangent && tangent) continue;

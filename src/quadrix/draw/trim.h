@@ -8,7 +8,10 @@
 // missing a double root is harmless.
 //
 // Classification of each piece between breaks, at its midpoint p (exact point predicates on
-// offset points, SceneProbe::Inside):
+// offset points, SceneProbe::Inside); a closed curve without breaks is kept only when its
+// midpoint and one of its two golden-section points are on the boundary (its midpoint, t = π, is
+// a point of symmetry, where it may touch a surface it does not cross: a tangency the breaks
+// miss, which one sample would take for the whole curve):
 //   - an edge of surfaces A and B: with gradients gA, gB at p, the four points p + d(sA, sB) with
 //     gA·d = sA |gA| ε, gB·d = sB |gB| ε (d in the span of the gradients, sA, sB = ±1) sample the
 //     four wedges around the curve. The curve is an edge when membership depends on both signs

@@ -1,5 +1,6 @@
 // Conservative bounds of bodies and CSG trees; the method is described in bounds.h. The
-// stages live in bounds_math.cpp (a), bounds_relaxation.cpp (b1) and bounds_search.cpp (b2).
+// stages live in bounds_math.cpp (a), bounds_critical.cpp (a''), bounds_relaxation.cpp (b1) and
+// bounds_search.cpp (b2).
 #include "quadrix/flatten/bounds.h"
 
 #include <cmath>
@@ -236,6 +237,11 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     if (options.polytopeVertices)
         if (auto box = PolytopeBox(shaping, b0, options)) {
             if (stats) ++stats->analyticOnly;
+            return *box;
+        }
+    if (options.criticalPoints)
+        if (auto box = CriticalPointBox(shaping, b0, options)) {
+            if (stats) ++stats->criticalPointBoxes;
             return *box;
         }
     Box3 work = b0;

@@ -18,6 +18,19 @@
 //      left, B0 is exact and we stop (10,000 spheres: ~5 ms).
 //  (a') A body of planes only (at most 16): the box of its vertices, enumerated over triples of
 //      its planes and the search region's faces (exact; bounds.cpp PolytopeBox).
+//  (a'') A body of ONE convex quadric (positive semidefinite, or a nappe separated from its twin
+//      by one of the planes) and at most 16 planes: capped and mitered cylinders and cones,
+//      ellipsoids cut by planes (bounds_critical.cpp). The extremes of ±x, ±y, ±z over the body
+//      are among finitely many critical points (three planes; a two-plane edge ∩ the quadric; the
+//      critical points on a plane's conic and on the quadric: each a linear solve and one
+//      quadratic); the best feasible one per side, with KKT multipliers fitted there, goes through
+//      the weak-duality certificate of (b1) below, so the box is rigorous whatever the rounding
+//      of the enumeration (a capped cylinder's search region is first cut to a ball proven to
+//      hold it: the certificate's allowance for a cylinder's rounding-level negative eigenvalue
+//      grows with the ball's radius squared). Declines (the next stages decide) when a certified
+//      side is more than 1e-7 × (size + |coordinate|) from its candidate (1e-5 for a nappe), when
+//      the body is unbounded or has no feasible candidate. ~10-20 µs a body, where (b1) takes
+//      ~1 ms.
 //  (b1) The convex relaxation (bounds_relaxation.cpp): planes, positive semidefinite quadrics
 //      (ellipsoids, cylinders, paraboloids) and "nappes" (one nappe of a cone or the inside of one
 //      sheet of a two-sheet hyperboloid: convex, and proven to contain the body by a separating
@@ -83,15 +96,19 @@ struct BoundsOptions {
     // Stage (a') for bodies of at most 16 planes: the box of the polytope's vertices (exact, far
     // cheaper than the relaxation); off only to compare the two in tests.
     bool polytopeVertices = true;
+    // Stage (a'') for bodies of one convex quadric and at most 16 planes (bounds_critical.cpp);
+    // off only to compare it with the relaxation in tests.
+    bool criticalPoints = true;
 };
 
 struct BoundsStats {
-    std::int64_t bodies = 0;           // bodies bounded
-    std::int64_t analyticOnly = 0;     // bodies whose analytic box was exact (no search)
-    std::int64_t convexSolves = 0;     // convex-relaxation extremes certified (one per side)
-    std::int64_t boxesPopped = 0;      // branch-and-bound boxes popped, over all directions
-    std::int64_t boxesTested = 0;      // boxes classified against literals
-    std::int64_t budgetExhausted = 0;  // directions that stopped on the box budget
+    std::int64_t bodies = 0;              // bodies bounded
+    std::int64_t analyticOnly = 0;        // bodies whose analytic box was exact (no search)
+    std::int64_t convexSolves = 0;        // convex-relaxation extremes certified (one per side)
+    std::int64_t boxesPopped = 0;         // branch-and-bound boxes popped, over all directions
+    std::int64_t boxesTested = 0;         // boxes classified against literals
+    std::int64_t budgetExhausted = 0;     // directions that stopped on the box budget
+    std::int64_t criticalPointBoxes = 0;  // bodies bounded by stage (a'')
 };
 
 struct BoundLiteral {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "quadrix/flatten/bounds.h"
@@ -96,6 +97,27 @@ inline constexpr std::size_t kWorkingSetThreshold = 128;
 RelaxationOutcome BoundByWorkingSetRelaxation(const std::vector<const InsideFn*>& fns,
                                               const std::vector<Nappe>& nappes, const Box3& region,
                                               Box3& work, BoundsStats* stats);
+
+// Stage (a''), see bounds_critical.cpp: the certified box of a body of one convex quadric (or a
+// nappe) and planes from the critical points of the coordinates; nullopt when the stage does not
+// apply or cannot certify a tight box (then the relaxation decides).
+std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const Box3& b0,
+                                     const BoundsOptions& options);
+
+// A candidate extreme point of one side and its Lagrange multipliers, indexed like the
+// constraints of a relaxation over `fns` and a region: the literals, then the region's faces
+// x_i >= lo_i, x_i <= hi_i for i = 0, 1, 2 (in that order).
+struct CandidateExtreme {
+    Vec3 x;
+    std::vector<double> lambda;
+};
+// The weak-duality certificate of the relaxation (bounds_relaxation.cpp) applied to given
+// extreme points of the six sides: shrinks `work` to the certified box, or returns false (work
+// unchanged) when a side could not be certified or a nappe is not separated from its twin by a
+// plane. `interior` is a point of the body (it orients the nappes).
+bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<Nappe>& nappes,
+                     const Box3& region, const Vec3& interior, const CandidateExtreme extremes[6],
+                     Box3& work);
 
 // Stage (b2), see bounds_search.cpp: refines the sides selected by sides[2·axis + (sign > 0)];
 // false when the set is proven empty.

@@ -250,6 +250,17 @@ class ConvexRelaxation {
         return bound;
     }
 
+    // The certificate of a given point and multipliers (indexed like the constraints: the
+    // literals, then the region's faces as listed in the constructor) with the ball around the
+    // region, or around `ball` when given (which must be known to contain the set).
+    double CertifyAt(const double e[3], const Vec3& x, const std::vector<double>& lambda,
+                     const Box3* ball) const {
+        const double p[3] = {x.x, x.y, x.z};
+        if (!ball) return Certify(e, p, lambda, centre_, radius_);
+        const double radius = 0.5 * Length(ball->Size()) * (1 + 1e-9) + 1e-300;
+        return Certify(e, p, lambda, ball->Center(), radius);
+    }
+
     // The certificate of the last Maximize for this side, with the ball around a smaller
     // region known to contain the set (the box found so far): no new iterations, and the
     // allowances that grow with the ball shrink.
@@ -769,6 +780,50 @@ RelaxationOutcome BoundByConvexRelaxation(const std::vector<const InsideFn*>& fn
         }
     }
     return out;
+}
+
+bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<Nappe>& nappes,
+                     const Box3& region, const Vec3& interior, const CandidateExtreme extremes[6],
+                     Box3& work) {
+    ConvexRelaxation relaxation(fns, nappes, region);
+    // A nappe's certificate is its supporting plane, valid only when the body lies in the nappe
+    // its axis points to: orient by the interior point, and require a separating plane (the
+    // cheap proof; the LP of VerifyNappeSides is the relaxation's business).
+    relaxation.OrientNappes(interior);
+    for (std::size_t i = 0; i < nappes.size(); ++i)
+        if (nappes[i].ok && !relaxation.SeparatedByPlane(i)) return false;
+    // Pass 0 with the ball around the region, then (as BoundByConvexRelaxation does) with balls
+    // around the box certified so far while it keeps shrinking: the allowances grow with the ball
+    // (a cylinder's rounding-level negative eigenvalue costs ~ eps·R²), so from a search region
+    // 1e12 wide the box shrinks 1e11 → 1e9 → 1e4 → exact in about five passes of six
+    // certificates each.
+    constexpr int kMaxPasses = 12;
+    Box3 box = work;
+    double previous = kInf;
+    for (int pass = 0; pass < kMaxPasses; ++pass) {
+        const Box3 ball = box.Intersected(region);
+        const double size = Length(ball.Size());
+        if (pass > 0 && !(size < 0.99 * previous)) break;
+        previous = pass > 0 ? size : Length(region.Size());
+        for (int side = 0; side < 6; ++side) {
+            const int axis = side / 2;
+            double e[3] = {0, 0, 0};
+            e[axis] = side % 2 ? 1 : -1;
+            const CandidateExtreme& c = extremes[side];
+            const double bound = relaxation.CertifyAt(e, c.x, c.lambda, pass ? &ball : nullptr);
+            if (!std::isfinite(bound)) {
+                if (pass == 0) return false;
+                continue;
+            }
+            if (side % 2)
+                box.hi[axis] = std::fmin(box.hi[axis], bound);
+            else
+                box.lo[axis] = std::fmax(box.lo[axis], -bound);
+        }
+        if (box.Empty()) return false;
+    }
+    work = box;
+    return true;
 }
 
 }  // namespace quadrix::bounds_detail
