@@ -14,6 +14,7 @@
 #include <string>
 
 #include "quadrix/scene/diagnostics.h"
+#include "quadrix/util/sanitizers.h"
 #include "test_util.h"
 
 namespace quadrix::testing {
@@ -393,7 +394,7 @@ std::vector<BadInput> HardeningRows() {
 // Rows that need `ulimit -v`: AddressSanitizer reserves terabytes of address space and cannot
 // even start under it, so the sanitizer build leaves them out.
 std::vector<BadInput> AddressLimitRows() {
-#ifdef __SANITIZE_ADDRESS__
+#if QUADRIX_ASAN
     return {};
 #else
     const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";

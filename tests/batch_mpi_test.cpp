@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "quadrix/util/sanitizers.h"
 #include "test_util.h"
 
 namespace quadrix::testing {
@@ -251,7 +252,7 @@ TEST(BatchMpi, SortFirstRowsShadedByTheirRanksAreByteIdenticalToOneProcess) {
 // four processes in Release on the 2-core machine. Not registered under the sanitizers
 // (QUADRIX_SANITIZE: ASan's shadow memory and its 5–20× slow-down make it 8 GB and minutes); the
 // 96×72 and 120×150 cases above cover the same code there.
-#if !defined(__SANITIZE_ADDRESS__)
+#if !QUADRIX_ASAN
 TEST(BatchMpi, SortFirst8KIsByteIdenticalToOneProcess) {
     if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
     TempDir dir;

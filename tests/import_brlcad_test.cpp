@@ -16,6 +16,7 @@
 #include "quadrix/import/rt_view.h"
 #include "quadrix/pipeline/inputs.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "quadrix/util/sanitizers.h"
 
 namespace quadrix::import {
 namespace {
@@ -658,7 +659,7 @@ void OnSmallStack(const std::function<void()>& f) {
     // times larger (the importer's walk of the accepted depth is still recursive), so the
     // sanitizer build gives the same depth a proportionally larger stack; the Release build
     // checks the real 1 MiB.
-#if defined(__SANITIZE_ADDRESS__)
+#if QUADRIX_ASAN
     pthread_attr_setstacksize(&attr, std::size_t{8} << 20);
 #else
     pthread_attr_setstacksize(&attr, std::size_t{1} << 20);
