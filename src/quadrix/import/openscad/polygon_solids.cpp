@@ -38,9 +38,13 @@ struct Edge {
 
 int Fragments(double r, const Specials& s) {
     if (r < 1e-5) return 3;
-    if (s.fn > 0) return std::max(static_cast<int>(s.fn), 3);
+    // Clamped before the conversion: $fn = 1e80 (or a huge r / $fs) is far past any polygon
+    // (kMaxPolygonSides) and must not overflow the int (fuzz_openscad finding).
+    constexpr double kMaxFragments = 1e9;
+    if (s.fn > 0) return std::max(static_cast<int>(std::min(s.fn, kMaxFragments)), 3);
     const double fa = s.fa > 0 ? s.fa : 12, fs = s.fs > 0 ? s.fs : 2;
-    return static_cast<int>(std::ceil(std::max(std::min(360.0 / fa, r * 2 * M_PI / fs), 5.0)));
+    const double n = std::ceil(std::max(std::min(360.0 / fa, r * 2 * M_PI / fs), 5.0));
+    return static_cast<int>(std::min(n, kMaxFragments));
 }
 
 std::optional<int> PolygonSides(double r, const Specials& s) {
