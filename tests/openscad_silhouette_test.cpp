@@ -124,7 +124,7 @@ TEST(OpenScadSilhouettes, SameShapeAsOpenScadsOwnPng) {
     }
     script += "wait\n";
     const std::string sh = dir.Write("openscad.sh", script);
-    auto r = RunShell("timeout 120 xvfb-run -a sh " + sh);
+    auto r = testing::RunUnderXvfb(sh);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const Model& m : kModels) {
         SCOPED_TRACE(m.name);

@@ -34,6 +34,26 @@ CommandResult RunShell(const std::string& commandLine) {
     return r;
 }
 
+CommandResult RunUnderXvfb(const std::string& script, const std::string& prefix,
+                           const std::string& env) {
+    const std::string marker = "[xvfb-run script exit status ";
+    const std::string wrapped =
+        "sh -c 'sh \"$0\"; echo \"" + marker + "$?]\" >&2' '" + script + "'";
+    CommandResult run;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        run = RunShell(prefix + env + "timeout 120 xvfb-run -a " + wrapped +
+                       (prefix.empty() ? "" : "; s=$?; wait; exit $s"));
+        const std::size_t at = run.err.rfind(marker);
+        if (at != std::string::npos) {
+            run.exitCode = std::atoi(run.err.c_str() + at + marker.size());
+            run.err.erase(at, run.err.find('\n', at) - at + 1);
+            return run;
+        }
+        if (run.err.find("Xvfb failed to start") == std::string::npos) break;
+    }
+    return run;  // no status line: the script did not end by itself (timeout, signal)
+}
+
 std::string QuadrixBinary() { return std::string("'") + QUADRIX_BINARY + "'"; }
 
 std::string SourcePath(const std::string& relative) {

@@ -18,6 +18,15 @@ struct CommandResult {
 // Runs a shell command line; captures both streams.
 CommandResult RunShell(const std::string& commandLine);
 
+// Runs the shell script `script` (a file) with a display server of its own (`xvfb-run -a`),
+// after `prefix` (e.g. a background editor, whose end is waited for) in the same shell; env
+// assignments may lead the prefix-free part through `env`. The exit status is the script's,
+// read from a line printed after it, not xvfb-run's: that one is 5 when its clean-up of the
+// server's temporary directory fails after the script has ended. When the server could not be
+// started (two `-a` runs racing for one display number), the run is tried once more.
+CommandResult RunUnderXvfb(const std::string& script, const std::string& prefix = "",
+                           const std::string& env = "");
+
 // The quadrix binary built with the tests, quoted for the shell.
 std::string QuadrixBinary();
 // Path of a file under the source tree (e.g. "examples/tube.uq").

@@ -36,6 +36,12 @@ std::string WindowUnavailable() {
     return {};
 }
 
+// `quadrix view ARGS` in a window of its own (test_util.h), after `prefix` (a background editor).
+CommandResult RunInWindow(TempDir& dir, const std::string& args, const std::string& prefix = "") {
+    return RunUnderXvfb(dir.Write("window.sh", QuadrixBinary() + " view " + args + "\n"), prefix,
+                        kNoSystemLeakCheck);
+}
+
 TEST(ViewerWindow, ScriptedSessionMatchesRenderOfThePrintedViews) {
     if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
     TempDir dir;
@@ -63,8 +69,7 @@ TEST(ViewerWindow, ScriptedSessionMatchesRenderOfThePrintedViews) {
                                              "quit\n");
     const std::string scene = SourcePath("examples/machined_part.uq");
     const CommandResult run =
-        RunShell(kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
-                 scene + "' --size 320x240 --script '" + script + "'");
+        RunInWindow(dir, "'" + scene + "' --size 320x240 --script '" + script + "'");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_NE(run.out.find("pick 160 120: solid part body part"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("machined_part.uq:"), std::string::npos) << run.out;  // source line
@@ -122,9 +127,8 @@ TEST(ViewerWindow, ReloadKeepsTheLastGoodPictureOnErrorThenDrawsTheFix) {
                                "printf 'quadric ball <1 1 1 0 0 0 0 0 0 -2.25>;\\nbody thing "
                                "<ball>;\\n' > '" +
                                scene + "') & ";
-    const CommandResult run = RunShell(
-        editor + kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
-        scene + "' --size 160x120 --script '" + script + "'; s=$?; wait; exit $s");
+    const CommandResult run =
+        RunInWindow(dir, "'" + scene + "' --size 160x120 --script '" + script + "'", editor);
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_NE(run.err.find(scene + ":3:18: error:"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("keeping the last good picture"), std::string::npos) << run.err;
@@ -162,8 +166,7 @@ TEST(ViewerWindow, SectionOverlayAndDrawingMatchTheCommandLine) {
                           "\nkey O\nscreenshot-window " + dir.File("w2.ppm") + "\n");
     const std::string scene = SourcePath("examples/machined_part.uq");
     const CommandResult run =
-        RunShell(kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
-                 scene + "' --size 240x180 --stats --script '" + script + "'");
+        RunInWindow(dir, "'" + scene + "' --size 240x180 --stats --script '" + script + "'");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_NE(run.err.find("latency from an input event"), std::string::npos) << run.err;
     std::smatch m;
@@ -224,11 +227,9 @@ TEST(ViewerWindow, DrawingKeyRefusesFreeformSurfacesUnlessAllowMissing) {
                                     dir.File("a.svg") + "\nscreenshot-window " +
                                     dir.File("after.ppm") + "\n");
     const std::string scene = SourcePath("examples/teapot_on_table.uq");
-    const std::string view = kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() +
-                             " view '" + scene + "' --size 160x120 --aa 1 --script '" + script +
-                             "'";
-    const CommandResult refused = RunShell(view);
-    EXPECT_EQ(refused.exitCode, 1);
+    const std::string view = "'" + scene + "' --size 160x120 --aa 1 --script '" + script + "'";
+    const CommandResult refused = RunInWindow(dir, view);
+    EXPECT_EQ(refused.exitCode, 1) << refused.err;
     EXPECT_NE(refused.err.find("teapot_on_table.uq:5:1: error: freeform surface 'teapot[0]'"),
               std::string::npos)
         << refused.err;
@@ -249,7 +250,7 @@ TEST(ViewerWindow, DrawingKeyRefusesFreeformSurfacesUnlessAllowMissing) {
         }
     EXPECT_GT(differ, 50);
     EXPECT_EQ(outside, 0);
-    const CommandResult allowed = RunShell(view + " --allow-missing");
+    const CommandResult allowed = RunInWindow(dir, view + " --allow-missing");
     EXPECT_EQ(allowed.exitCode, 0) << allowed.err;
     EXPECT_NE(allowed.err.find("teapot_on_table.uq:5:1: warning: freeform surface 'teapot[0]'"),
               std::string::npos)
@@ -273,8 +274,7 @@ TEST(ViewerWindow, SectionHatchingLiesOnTheCutOnlyAndTogglesWithC) {
                                     "\nkey C\nscreenshot " + dir.File("p.ppm") + "\nquit\n");
     const std::string scene = SourcePath("examples/machined_part.uq");
     const CommandResult run =
-        RunShell(kNoSystemLeakCheck + "timeout 120 xvfb-run -a " + QuadrixBinary() + " view '" +
-                 scene + "' --size 240x180 --script '" + script + "'");
+        RunInWindow(dir, "'" + scene + "' --size 240x180 --script '" + script + "'");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const std::string viewText = Slurp(dir.File("h.uq"));
     std::smatch m;
