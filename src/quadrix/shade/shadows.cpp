@@ -1,7 +1,9 @@
 #include "quadrix/shade/shadows.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/math/quadratic.h"
@@ -12,24 +14,26 @@ namespace {
 
 constexpr double kInf = HUGE_VAL;
 
-// Where a·s² + 2h·s + c <= 0 (regularised).
-IntervalList NonPositive(double a, double h, double c) {
+// Where a·s² + 2h·s + c <= 0 (regularised), into `out` (cleared first).
+void NonPositive(double a, double h, double c, IntervalList& out) {
     const QuadraticRoots r = SolveQuadratic(a, h, c);
-    IntervalList out;
+    out.clear();
     switch (r.kind) {
         case RootKind::kAll:
-            return IntervalList::All();
+            out.Append(-kInf, Interval::kNoId, kInf, Interval::kNoId);
+            return;
         case RootKind::kNone:
         case RootKind::kDouble:
             // No sign change: the sign of a (of c when a = 0, h = 0).
-            if (a < 0 || (a == 0 && h == 0 && c <= 0)) return IntervalList::All();
-            return out;
+            if (a < 0 || (a == 0 && h == 0 && c <= 0))
+                out.Append(-kInf, Interval::kNoId, kInf, Interval::kNoId);
+            return;
         case RootKind::kSingle:
             if (h > 0)
                 out.Append(-kInf, Interval::kNoId, r.t0, 0);
             else
                 out.Append(r.t0, 0, kInf, Interval::kNoId);
-            return out;
+            return;
         case RootKind::kTwo:
             if (a > 0) {
                 out.Append(r.t0, 0, r.t1, 0);
@@ -37,9 +41,69 @@ IntervalList NonPositive(double a, double h, double c) {
                 out.Append(-kInf, Interval::kNoId, r.t0, 0);
                 out.Append(r.t1, 0, kInf, Interval::kNoId);
             }
-            return out;
+            return;
     }
-    return out;
+}
+
+// The set of a half-space literal on the line, into `set`; `tmp` is scratch.
+void LiteralInto(const FlatHalfSpace& h, bool complemented, const Vec3& p, const Vec3& d,
+                 IntervalList& set, IntervalList& tmp) {
+    IntervalList& raw = complemented ? tmp : set;
+    if (h.IsQuartic()) {
+        // Any direction: the homogeneous line (p, 1) + s (d, 0) (math/quartic_surface.h).
+        const QuarticLineSet l = h.quartic->OnLine(Vec4(p, 1), Vec4(d, 0));
+        raw.clear();
+        for (int i = 0; i < l.count; ++i)
+            raw.Append(l.lo[static_cast<std::size_t>(i)], 0, l.hi[static_cast<std::size_t>(i)], 0);
+    } else if (h.isPlane) {
+        const Plane& pl = h.plane;
+        NonPositive(0, 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), pl.Evaluate(p), raw);
+    } else {
+        const Quadric& q = h.quadric;
+        const double a = q.A() * d.x * d.x + q.B() * d.y * d.y + q.C() * d.z * d.z +
+                         2 * (q.D() * d.x * d.y + q.E() * d.y * d.z + q.F() * d.x * d.z);
+        const double hh = 0.5 * Dot(q.Gradient(p), d);
+        NonPositive(a, hh, q.Evaluate(p), raw);
+    }
+    if (complemented) Complement(tmp, set);
+}
+
+// The interval lists of one thread's shadow rays, reused from ray to ray (no ray allocates once
+// warm): a node evaluated at slot k leaves its set in *slots[k] and uses slots k+1, k+2, ...
+// below it (a child's set at k+1, the fold's output at k+2, taken only after the child
+// returned; a body's literal at k+1 and k+2 and its fold's output at k+3). Results move between
+// slots by swapping pointers.
+struct ShadowScratch {
+    std::vector<IntervalList> lists;
+    std::vector<IntervalList*> slots;
+    void Reserve(std::size_t n) {
+        if (slots.size() >= n) return;
+        lists = std::vector<IntervalList>(n);
+        slots.resize(n);
+        for (std::size_t i = 0; i < n; ++i) slots[i] = &lists[i];
+    }
+};
+
+ShadowScratch& ThreadScratch(std::size_t slots) {
+    thread_local ShadowScratch scratch;
+    scratch.Reserve(slots);
+    return scratch;
+}
+
+// Union, intersection or difference of *slots[k] with *slots[k+1], left in *slots[k].
+void Fold(scene::CsgOp op, std::vector<IntervalList*>& slots, std::size_t k) {
+    switch (op) {
+        case scene::CsgOp::kUnion:
+            Union(*slots[k], *slots[k + 1], *slots[k + 2]);
+            break;
+        case scene::CsgOp::kIntersection:
+            Intersection(*slots[k], *slots[k + 1], *slots[k + 2]);
+            break;
+        case scene::CsgOp::kDifference:
+            Difference(*slots[k], *slots[k + 1], *slots[k + 2]);
+            break;
+    }
+    std::swap(slots[k], slots[k + 2]);
 }
 
 bool HitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1) {
@@ -67,83 +131,79 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex) : scene_(s
     WideNodeTrees wide = WideNodeTrees::Build(scene, spatialIndex);
     wide_ = std::move(wide.trees);
     wideOf_ = std::move(wide.of);
+    // The deepest node below a root (the root at depth 0), without recursion: a node's depth is
+    // its parent's + 1, walked from every root.
+    std::vector<std::pair<std::int32_t, int>> stack;
+    for (const FlatSolid& solid : scene.solids) stack.emplace_back(solid.root, 0);
+    while (!stack.empty()) {
+        const auto [n, depth] = stack.back();
+        stack.pop_back();
+        maxDepth_ = std::max(maxDepth_, depth);
+        const FlatCsgNode& node = scene.nodes[static_cast<std::size_t>(n)];
+        if (!node.isLeaf)
+            for (int c : node.children) stack.emplace_back(c, depth + 1);
+    }
 }
 
-IntervalList ShadowTester::Wide(const FlatCsgNode& node, const BoxTree& tree, IntervalList acc,
-                                const Vec3& p, const Vec3& d, double s0, double s1) const {
+void ShadowTester::Wide(const FlatCsgNode& node, const BoxTree& tree, const Vec3& p, const Vec3& d,
+                        double s0, double s1, std::vector<IntervalList*>& slots, std::size_t k,
+                        bool anyHit) const {
     const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
-    IntervalList tmp;
-    tree.Segment(p, d, s0, s1, [&](std::int32_t k) {
-        const int c = node.children[from + static_cast<std::size_t>(k)];
+    const bool union_ = node.op == scene::CsgOp::kUnion;
+    tree.Segment(p, d, s0, s1, [&](std::int32_t i) {
+        const int c = node.children[from + static_cast<std::size_t>(i)];
         if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
-        const IntervalList child = Node(c, p, d, s0, s1);
-        if (node.op == scene::CsgOp::kUnion)
-            Union(acc, child, tmp);
-        else
-            Difference(acc, child, tmp);
-        std::swap(acc, tmp);
-        return node.op == scene::CsgOp::kDifference && acc.empty();
+        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_);
+        Fold(node.op, slots, k);
+        // A union asked only whether it meets the segment is answered by its first child that
+        // does; a difference whose minuend is used up stays empty.
+        return union_ ? anyHit && !slots[k]->empty() : slots[k]->empty();
     });
-    return acc;
 }
 
 IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complemented, const Vec3& p,
                                          const Vec3& d) {
-    IntervalList set;
-    if (h.IsQuartic()) {
-        // Any direction: the homogeneous line (p, 1) + s (d, 0) (math/quartic_surface.h).
-        const QuarticLineSet l = h.quartic->OnLine(Vec4(p, 1), Vec4(d, 0));
-        for (int i = 0; i < l.count; ++i)
-            set.Append(l.lo[static_cast<std::size_t>(i)], 0, l.hi[static_cast<std::size_t>(i)], 0);
-    } else if (h.isPlane) {
-        const Plane& pl = h.plane;
-        set = NonPositive(0, 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), pl.Evaluate(p));
-    } else {
-        const Quadric& q = h.quadric;
-        const double a = q.A() * d.x * d.x + q.B() * d.y * d.y + q.C() * d.z * d.z +
-                         2 * (q.D() * d.x * d.y + q.E() * d.y * d.z + q.F() * d.x * d.z);
-        const double hh = 0.5 * Dot(q.Gradient(p), d);
-        set = NonPositive(a, hh, q.Evaluate(p));
-    }
-    if (!complemented) return set;
-    IntervalList out;
-    Complement(set, out);
-    return out;
+    IntervalList set, tmp;
+    LiteralInto(h, complemented, p, d, set, tmp);
+    return set;
 }
 
-IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1) const {
+void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1,
+                        std::vector<IntervalList*>& slots, std::size_t k, bool anyHit) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
         // The fold starts from the window (s0, s1) rather than the whole line: every node's set is
         // then its exact set ∩ (s0, s1) (∩ distributes over ∪, ∩ and −), all that Blocked looks
         // at, and a body the segment leaves at once (a surface facing the light) empties after a
         // few literals, so a difference skips its subtrahends.
-        IntervalList acc, tmp;
-        acc.Append(s0, Interval::kNoId, s1, Interval::kNoId);
+        slots[k]->clear();
+        slots[k]->Append(s0, Interval::kNoId, s1, Interval::kNoId);
         for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(node.body)].literals) {
-            Intersection(acc,
-                         LiteralOnLine(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)],
-                                       l.complemented, p, d),
-                         tmp);
-            std::swap(acc, tmp);
-            if (acc.empty()) break;
+            LiteralInto(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)], l.complemented, p,
+                        d, *slots[k + 1], *slots[k + 2]);
+            Intersection(*slots[k], *slots[k + 1], *slots[k + 3]);
+            std::swap(slots[k], slots[k + 3]);
+            if (slots[k]->empty()) break;
         }
-        return acc;
+        return;
     }
+    const bool union_ = node.op == scene::CsgOp::kUnion;
+    // anyHit: the caller only asks whether the set is empty, so a union may stop at its first
+    // child that meets the segment (its set is then not the whole union's, but not empty).
     const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
     if (wide >= 0) {
-        IntervalList acc;
+        slots[k]->clear();
         if (node.op == scene::CsgOp::kDifference) {
             const int c = node.children[0];
-            if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1))
-                return acc;
-            acc = Node(c, p, d, s0, s1);
-            if (acc.empty()) return acc;
+            if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return;
+            Node(c, p, d, s0, s1, slots, k, false);
+            if (slots[k]->empty()) return;
         }
-        return Wide(node, wide_[static_cast<std::size_t>(wide)], std::move(acc), p, d, s0, s1);
+        Wide(node, wide_[static_cast<std::size_t>(wide)], p, d, s0, s1, slots, k, anyHit);
+        return;
     }
-    IntervalList acc, tmp;
     bool first = true;
+    slots[k]->clear();
     for (int c : node.children) {
         // A child whose box the segment misses is ∅ on it (boxes are conservative), which is all
         // that matters here: the answer only looks at (s0, s1).
@@ -151,42 +211,36 @@ IntervalList ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, 
             !HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1);
         if (first) {
             first = false;
-            if (!misses) acc = Node(c, p, d, s0, s1);
-            if (acc.empty() && node.op != scene::CsgOp::kUnion) return acc;
+            if (!misses) Node(c, p, d, s0, s1, slots, k, anyHit && union_);
+            if (slots[k]->empty() ? !union_ : union_ && anyHit) return;
             continue;
         }
         if (misses) {
-            if (node.op == scene::CsgOp::kIntersection) return {};
+            if (node.op == scene::CsgOp::kIntersection) {
+                slots[k]->clear();
+                return;
+            }
             continue;  // A ∪ ∅ = A − ∅ = A
         }
-        const IntervalList child = Node(c, p, d, s0, s1);
-        switch (node.op) {
-            case scene::CsgOp::kUnion:
-                Union(acc, child, tmp);
-                break;
-            case scene::CsgOp::kIntersection:
-                Intersection(acc, child, tmp);
-                break;
-            case scene::CsgOp::kDifference:
-                Difference(acc, child, tmp);
-                break;
-        }
-        std::swap(acc, tmp);
-        if (acc.empty() && node.op != scene::CsgOp::kUnion) return acc;
+        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_);
+        Fold(node.op, slots, k);
+        if (slots[k]->empty() ? !union_ : union_ && anyHit) return;
     }
-    return acc;
 }
 
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     const double len = Length(d);
     if (!(len > 0)) return false;
     const double s0 = 1e-4 / len;
-    return solids_.Segment(p, d, s0, sMax, [&](std::int32_t k) {
-        const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(k)];
+    std::vector<IntervalList*>& slots =
+        ThreadScratch(static_cast<std::size_t>(maxDepth_) + 4).slots;
+    return solids_.Segment(p, d, s0, sMax, [&](std::int32_t i) {
+        const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(i)];
         const FlatCsgNode& root = scene_.nodes[static_cast<std::size_t>(solid.root)];
         if (!HitsBox(root.bounds, p, d, s0, sMax)) return false;
-        for (const Interval& i : Node(solid.root, p, d, s0, sMax))
-            if (i.hi > s0 && i.lo < sMax) return true;
+        Node(solid.root, p, d, s0, sMax, slots, 0, true);
+        for (const Interval& in : *slots[0])
+            if (in.hi > s0 && in.lo < sMax) return true;
         return false;
     });
 }

@@ -88,17 +88,22 @@ class ShadowTester {
                                       const Vec3& d);
 
   private:
-    // The node's set on the line, clipped to [s0, s1] (the bodies' folds start from it); children
-    // whose boxes the segment misses are taken as ∅.
-    IntervalList Node(int node, const Vec3& p, const Vec3& d, double s0, double s1) const;
-    // acc folded (by the node's union or difference) with the set of each child the segment may
-    // meet: children 0, 1, ... of a union, 1, 2, ... of a difference (acc = the minuend's set).
-    IntervalList Wide(const FlatCsgNode& node, const BoxTree& tree, IntervalList acc, const Vec3& p,
-                      const Vec3& d, double s0, double s1) const;
+    // The node's set on the line, clipped to [s0, s1] (the bodies' folds start from it), left in
+    // *slots[k]; slots k+1, ... are its scratch (shadows.cpp). Children whose boxes the segment
+    // misses are taken as ∅. With anyHit only the set's emptiness matters: a union stops at its
+    // first child that meets the segment.
+    void Node(int node, const Vec3& p, const Vec3& d, double s0, double s1,
+              std::vector<IntervalList*>& slots, std::size_t k, bool anyHit) const;
+    // *slots[k] (the minuend's set for a difference, else empty) folded by the node's union or
+    // difference with the set of each child the segment may meet: children 0, 1, ... of a
+    // union, 1, 2, ... of a difference.
+    void Wide(const FlatCsgNode& node, const BoxTree& tree, const Vec3& p, const Vec3& d, double s0,
+              double s1, std::vector<IntervalList*>& slots, std::size_t k, bool anyHit) const;
     const FlatScene& scene_;
     BoxTree solids_;                    // over scene_.solids[k].bounds
     std::vector<BoxTree> wide_;         // trees of the wide nodes
     std::vector<std::int32_t> wideOf_;  // node → index into wide_, or -1
+    int maxDepth_ = 0;                  // the deepest node below a solid's root (root: 0)
 };
 
 }  // namespace quadrix
