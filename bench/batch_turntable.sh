@@ -102,19 +102,33 @@ big_same="-"
 dump_same="-"
 # The big picture as PNG only (the picture defaults: shadows, anti-aliasing): with --sort-first
 # each rank draws and shades its bands and rank 0 only assembles and writes (batch/sort_first.h).
-t0=$(now)
-"$Q" render "$SCENE" -o "$OUT/big_one.png" --size "$BIG" 2>/dev/null
-t1=$(now)
-big_one=$(echo "$t1 - $t0" | bc)
-rows+=("| one picture at $BIG, one process | $(rate 1 "$big_one") |")
-if command -v mpirun >/dev/null; then
+# Each run's wall time and its CPU time (user + system of every process it waited for, the
+# ranks included): on a machine with fewer cores than ranks × threads the wall time says little
+# about sort-first, the CPU time says what it costs in all (per-rank costs that are not shared).
+cpu() { python3 -c "import sys; u,s=open(sys.argv[1]).read().split(); print(f'{float(u)+float(s):.2f}')" "$1"; }
+timed() {  # timed OUTVAR COMMAND...: wall seconds into OUTVAR, CPU seconds into OUTVAR_cpu
+    local var=$1
+    shift
+    local t0 t1
     t0=$(now)
-    mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/big_mpi.png" --size "$BIG" \
-        --sort-first 2>/dev/null
+    /usr/bin/time -f "%U %S" -o "$OUT/time.txt" "$@" 2>/dev/null
     t1=$(now)
-    big_mpi=$(echo "$t1 - $t0" | bc)
-    rows+=("| one picture at $BIG, \`mpirun -np 2 --sort-first\` ($(python3 -c "print(f'{$big_one / $big_mpi:.2f}')")× one process's speed) | $(rate 1 "$big_mpi") |")
-    cmp -s "$OUT/big_one.png" "$OUT/big_mpi.png" && big_same=yes || big_same=no
+    printf -v "$var" '%s' "$(echo "$t1 - $t0" | bc)"
+    printf -v "${var}_cpu" '%s' "$(cpu "$OUT/time.txt")"
+}
+timed big_one "$Q" render "$SCENE" -o "$OUT/big_one.png" --size "$BIG"
+rows+=("| one picture at $BIG, one process (CPU $big_one_cpu s) | $(rate 1 "$big_one") |")
+timed big_one1 "$Q" render "$SCENE" -o "$OUT/big_one1.png" --size "$BIG" --threads 1
+rows+=("| the same, one process, \`--threads 1\` (CPU $big_one1_cpu s) | $(rate 1 "$big_one1") |")
+if command -v mpirun >/dev/null; then
+    timed big_mpi mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/big_mpi.png" \
+        --size "$BIG" --sort-first
+    rows+=("| one picture at $BIG, \`mpirun -np 2 --sort-first\` ($(python3 -c "print(f'{$big_one / $big_mpi:.2f}')")× one process's speed; CPU $big_mpi_cpu s) | $(rate 1 "$big_mpi") |")
+    timed big_mpi1 mpirun --oversubscribe -np 2 "$Q" render "$SCENE" -o "$OUT/big_mpi1.png" \
+        --size "$BIG" --sort-first --threads 1
+    rows+=("| the same, \`mpirun -np 2 --sort-first --threads 1\` ($(python3 -c "print(f'{$big_one / $big_mpi1:.2f}')")× one process's speed; CPU $big_mpi1_cpu s, $(python3 -c "print(f'{$big_mpi1_cpu / $big_one1_cpu:.2f}')")× one thread's) | $(rate 1 "$big_mpi1") |")
+    cmp -s "$OUT/big_one.png" "$OUT/big_mpi.png" && cmp -s "$OUT/big_one.png" "$OUT/big_mpi1.png" \
+        && big_same=yes || big_same=no
     # The Frame too (a .qxf text dump, untimed, at a quarter of the size: the dump is ~40 bytes
     # of text a pixel).
     DUMP=${DUMP:-960x540}

@@ -475,6 +475,32 @@ TEST(RenderContextComposition, RegionsOfEveryEngineAssembleTheWholePictureBitFor
         Frame got;
         ASSERT_TRUE(ctx.Render(r, got, report, diags)) << e.name;
         EXPECT_FALSE(got.Covered(125, 30)) << e.name << ": outside the region is background";
+
+        // regionOnly (sort-first): the region's pixels are the same bits; outside it the Frame
+        // is left as it was, by raycast (which skips the work there) entirely. The Frame starts
+        // as a marker: depth 7, surface 12345.
+        r.regionOnly = true;
+        r.region = InterleavedBands(300, 60, 1, 3, 8);
+        Frame marked(300, 60);
+        std::fill(marked.depth.begin(), marked.depth.end(), 7.0);
+        std::fill(marked.surface.begin(), marked.surface.end(), 12345);
+        ASSERT_TRUE(ctx.Render(r, marked, report, diags)) << e.name;
+        Frame inRegion(300, 60), expected(300, 60);
+        CopyRegion(inRegion, marked, *r.region);
+        CopyRegion(expected, whole, *r.region);
+        EXPECT_TRUE(SameBits(inRegion, expected)) << e.name << ": regionOnly";
+        if (e.name == "raycast") {
+            std::size_t untouched = 0, outside = 0;
+            for (int y = 0; y < 60; ++y)
+                for (int x = 0; x < 300; ++x) {
+                    if (r.region->Contains(x, y)) continue;
+                    ++outside;
+                    const std::size_t i = marked.Index(x, y);
+                    untouched += marked.depth[i] == 7.0 && marked.surface[i] == 12345;
+                }
+            EXPECT_EQ(untouched, outside) << "raycast wrote outside its region";
+            EXPECT_EQ(outside, 300u * 40u);
+        }
     }
 }
 

@@ -315,7 +315,8 @@ int RunRender(const RenderArgs& args) {
         if (!image) image = ctx.Shade(frame, so);
         MarkPhase("shade");
     }
-    const std::string error = WriteOutputs(outputs, frame, image ? &*image : nullptr);
+    std::string error;  // the encoders' parallel loops on the context's threads (--threads)
+    ctx.InArena([&] { error = WriteOutputs(outputs, frame, image ? &*image : nullptr); });
     MarkPhase("write");
     const double writeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -214,7 +214,17 @@ void GatherImage(Image& image, int rank, int ranks) {
 bool DrawBands(RenderContext& ctx, const EngineRequest& engine, Frame& frame, RenderReport& report,
                Diagnostics& diags, int rank, int ranks) {
     EngineRequest mine = engine;
-    mine.region = SortFirstRegion(ctx.Flat().width, ctx.Flat().height, rank, ranks);
+    const int width = std::max(ctx.Flat().width, 0), height = std::max(ctx.Flat().height, 0);
+    mine.region = SortFirstRegion(width, height, rank, ranks);
+    // A Frame of the picture's size of which this rank writes only its bands (and the halo and,
+    // on rank 0, the gathered bands): the engine leaves the rest unwritten (regionOnly), and
+    // small pages keep its memory untouched there (frame.h AdviseSmallPages), so a rank faults
+    // in about 1/N of the Frame, not all of it.
+    mine.regionOnly = true;
+    if (frame.width != width || frame.height != height) {
+        frame.ResizeForOverwrite(width, height);
+        AdviseSmallPages(frame);
+    }
     int ok = ctx.Render(mine, frame, report, diags) ? 1 : 0;
     int all = 0;
     MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
@@ -254,8 +264,10 @@ bool RenderShadeSortFirst(RenderContext& ctx, const EngineRequest& engine,
     if (!DrawBands(ctx, engine, frame, report, diags, rank, ranks)) return false;
     ExchangeHalo(frame, rank, ranks);
     // The shading of RenderContext::Shade, on this rank's rows (shade/row_shading.h).
-    image =
-        ShadeRows(frame, ctx.Flat(), shade, SortFirstRows(frame.width, frame.height, rank, ranks));
+    ctx.InArena([&] {
+        image = ShadeRows(frame, ctx.Flat(), shade,
+                          SortFirstRows(frame.width, frame.height, rank, ranks));
+    });
     if (needFrame) GatherFrame(frame, rank, ranks);
     GatherImage(image, rank, ranks);
     return true;

@@ -38,7 +38,7 @@ RenderStats Engine::Render(const FlatScene& scene, const RenderOptions& options,
         stats = Draw(scene, parsed, frame);
     }
     region_ = nullptr;
-    if (options.region) CropToRegion(frame, *options.region);
+    if (options.region && !options.regionOnly) CropToRegion(frame, *options.region);
     return stats;
 }
 

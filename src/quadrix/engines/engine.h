@@ -12,8 +12,9 @@
 //
 // Regions: RenderOptions::region asks for part of the picture (frame/pixel_region.h, sort-first
 // rendering). The Frame keeps the scene's full size; Render sets every pixel outside the region
-// to background after Draw, so an engine may ignore the region (draw everything, cropped) or use
-// Region() to skip the work outside it, which must not change a pixel inside it.
+// to background after Draw (unless RenderOptions::regionOnly), so an engine may ignore the region
+// (draw everything, cropped) or use Region() to skip the work outside it, which must not change a
+// pixel inside it.
 #pragma once
 
 #include <map>
@@ -38,6 +39,11 @@ struct RenderOptions {
     std::map<std::string, std::string> engineOptions;
     // Only these pixels (see the header comment); unset = the whole picture.
     std::optional<PixelRegion> region;
+    // With a region: the pixels outside it are left as the engine left them (unspecified; an
+    // engine that skips its work there never writes them), instead of being made background.
+    // For callers that read the region only (sort-first): a fresh Frame's pages outside it are
+    // then not touched.
+    bool regionOnly = false;
 };
 
 // A solid the engine did not draw at all (no pixel of it is in the Frame), and why. The render

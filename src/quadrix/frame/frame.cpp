@@ -34,6 +34,26 @@ void FreeFrameBytes(void* p, std::size_t bytes) {
     if (p) munmap(p, RoundUp(bytes));
 }
 
+namespace {
+template <class Array>
+void AdviseSmall(Array& a) {
+    const std::size_t bytes = a.size() * sizeof(typename Array::value_type);
+#ifdef MADV_NOHUGEPAGE
+    if (bytes >= kFrameHugeBytes) madvise(a.data(), RoundUp(bytes), MADV_NOHUGEPAGE);
+#else
+    (void)bytes;
+#endif
+}
+}  // namespace
+
+void AdviseSmallPages(Frame& frame) {
+    AdviseSmall(frame.depth);
+    AdviseSmall(frame.normal);
+    AdviseSmall(frame.surface);
+    AdviseSmall(frame.body);
+    AdviseSmall(frame.solid);
+}
+
 void ComposeMin(Frame& into, const Frame& other) {
     for (std::size_t i = 0; i < into.depth.size() && i < other.depth.size(); ++i)
         into.Offer(i, other.depth[i], other.normal[i], other.surface[i], other.body[i],

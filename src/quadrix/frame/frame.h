@@ -141,4 +141,10 @@ struct Frame {
 // Per-pixel minimum of two Frames of the same size (the union of their solids).
 void ComposeMin(Frame& into, const Frame& other);
 
+// Asks for small (4 KiB) pages on the Frame's mapped arrays (those of kFrameHugeBytes and more)
+// where their memory is not yet touched: for a Frame of which one process writes only some rows
+// (sort-first, batch/sort_first.h), whose 2 MiB pages would each hold rows of every rank and so
+// be faulted in whole by each. Advice only: the memory is the same.
+void AdviseSmallPages(Frame& frame);
+
 }  // namespace quadrix

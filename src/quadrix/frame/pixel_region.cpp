@@ -90,4 +90,12 @@ void CopyRegion(Frame& into, const Frame& from, const PixelRegion& region) {
         }
 }
 
+void ComposeMinInRegion(Frame& into, const Frame& other, const PixelRegion& region) {
+    for (int y = 0; y < into.height; ++y)
+        for (const auto& [a, b] : RowSpans(region, y, into.width))
+            for (std::size_t i = into.Index(a, y), e = into.Index(b, y); i < e; ++i)
+                into.Offer(i, other.depth[i], other.normal[i], other.surface[i], other.body[i],
+                           other.solid[i]);
+}
+
 }  // namespace quadrix

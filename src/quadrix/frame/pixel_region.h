@@ -47,4 +47,7 @@ void CropToRegion(Frame& frame, const PixelRegion& region);
 // Copies the pixels of `region` from `from` into `into` (Frames of the same size).
 void CopyRegion(Frame& into, const Frame& from, const PixelRegion& region);
 
+// ComposeMin (frame.h) on the pixels of `region` only (Frames of the same size).
+void ComposeMinInRegion(Frame& into, const Frame& other, const PixelRegion& region);
+
 }  // namespace quadrix

@@ -213,6 +213,19 @@ Engine* RenderContext::EngineNamed(const std::string& name) {
     return engines_.emplace(name, info->make()).first->second.get();
 }
 
+namespace {
+
+// ComposeMin over the request's pixels: with regionOnly, the region's alone (outside it both
+// Frames are unspecified).
+void ComposeMinOf(Frame& frame, const Frame& other, const EngineRequest& request) {
+    if (request.region && request.regionOnly)
+        ComposeMinInRegion(frame, other, *request.region);
+    else
+        ComposeMin(frame, other);
+}
+
+}  // namespace
+
 void RenderContext::ComposeReference(const std::vector<int>& solids, const EngineRequest& request,
                                      Frame& frame) {
     Engine* reference = EngineNamed(std::string(kReferenceEngine));
@@ -220,6 +233,7 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, const Engin
     Frame other;
     RenderOptions ro;
     ro.region = request.region;
+    ro.regionOnly = request.regionOnly;
     if (solids.size() == flat_.solids.size()) {
         reference->Render(flat_, ro, other);
     } else {
@@ -228,7 +242,7 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, const Engin
         for (auto& s : other.solid)
             if (s != Frame::kNone) s = solids[static_cast<std::size_t>(s)];
     }
-    ComposeMin(frame, other);
+    ComposeMinOf(frame, other, request);
 }
 
 void RenderContext::StrictRefusal(const std::string& engine,
@@ -307,6 +321,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     RenderOptions ro;
     ro.engineOptions = request.options;
     ro.region = request.region;
+    ro.regionOnly = request.regionOnly;
     const EngineCapabilities caps = info->capabilities;
     const bool drawsSomething =
         (caps.solids && !flat_.solids.empty()) || (caps.freeforms && !flat_.freeforms.empty());
@@ -382,8 +397,8 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
                                               other);
             }))
             return cancelled();
-        if (request.region) CropToRegion(other, *request.region);
-        ComposeMin(frame, other);
+        if (request.region && !request.regionOnly) CropToRegion(other, *request.region);
+        ComposeMinOf(frame, other, request);
         report.freeformsByIsocurve = st.surfaces;
         report.isocurveSummary = fmt::format(
             "freeform surfaces: {} drawn by adaptive isocurves after engine '{}' ({} curves, "
@@ -441,7 +456,17 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
     return true;
 }
 
+void RenderContext::InArena(const std::function<void()>& work) const {
+    arena_->arena.execute(work);
+}
+
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
+    Image image;
+    InArena([&] { image = ShadeInArena(frame, options); });
+    return image;
+}
+
+Image RenderContext::ShadeInArena(const Frame& frame, const ShadeOptions& options) const {
     Image image = quadrix::Shade(frame, flat_, options);
     // Edge pixels re-rendered by sub-pixel samples, the section's hatching
     // (shade/section_hatch.h), then the edge lines (shade/antialias.h).

@@ -100,8 +100,11 @@ struct EngineRequest {
     bool shareFreeforms = true;
     // Sort-first distributed rendering (batch/sort_first.h): when set, only these pixels are
     // drawn (by the engine, the reference engine and the isocurve drawer alike); every pixel
-    // outside is background (frame/pixel_region.h).
+    // outside is background (frame/pixel_region.h), or, with regionOnly, unspecified: for a
+    // caller that reads only the region, whose Frame's pages outside it are then not touched
+    // by an engine that skips its work there (raycast).
     std::optional<PixelRegion> region;
+    bool regionOnly = false;
 };
 
 // How the picture was made: the engine's own statistics and what composition added.
@@ -159,8 +162,13 @@ class RenderContext {
     // so a typo fails at once). Error message or empty.
     static std::string CheckEngine(const EngineRequest& request);
 
-    // Stage 4.
+    // Stage 4, in the context's arena (its threads, as stage 3).
     Image Shade(const Frame& frame, const ShadeOptions& options) const;
+
+    // Runs `work` in the context's arena, so that its parallel loops use the context's threads
+    // (`--threads`) and no others: the front ends' own shading of rows (sort-first) and the
+    // encoding of the outputs.
+    void InArena(const std::function<void()>& work) const;
 
     // Not owned; null = nothing can be cancelled. Kept by Read (the viewer's worker sets it once
     // per context).
@@ -172,6 +180,7 @@ class RenderContext {
   private:
     struct Arena;
     Engine* EngineNamed(const std::string& name);
+    Image ShadeInArena(const Frame& frame, const ShadeOptions& options) const;
     // Draws `solids` of the flat scene with the reference engine and merges them into `frame`.
     void ComposeReference(const std::vector<int>& solids, const EngineRequest& request,
                           Frame& frame);

@@ -133,7 +133,15 @@ class RaycastEngine final : public Engine {
             if (block.solids.empty()) {
                 workers.local().counters.pixels +=
                     static_cast<std::uint64_t>((bx1 - bx0) * (by1 - by0));
-                FillBackground(frame, bx0, by0, bx1, by1);
+                if (!region) {
+                    FillBackground(frame, bx0, by0, bx1, by1);
+                    return;
+                }
+                for (const PixelRect& r : region->rects) {  // only the region's pixels
+                    const int x0 = std::max(r.x0, bx0), y0 = std::max(r.y0, by0);
+                    const int x1 = std::min(r.x1, bx1), y1 = std::min(r.y1, by1);
+                    if (x0 < x1 && y0 < y1) FillBackground(frame, x0, y0, x1, y1);
+                }
                 return;
             }
             tbb::parallel_for(
