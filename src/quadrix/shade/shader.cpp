@@ -103,10 +103,12 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
       viewer_(scene.projection),
       needPoint_(NeedsPoint(scene, model_) || (options.shadows && scene.projection.perspective)),
       shadows_(options.shadows),
-      shadowTester_(scene, options.spatialIndex),
       deviceFromWorld_(scene.projection.deviceFromWorld.Matrix()),
       color_(AnyColor(scene, options)) {
     for (const scene::Light& l : scene.lights) fixedLight_.push_back(IncidentLight(l, {}));
+    // The shadow rays' box trees only when there are shadows (at 100,000 bodies they take as long
+    // as reading the scene).
+    if (shadows_) shadowTester_.emplace(scene, options.spatialIndex);
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     if (model_ == ShadingModel::kFast) {
         for (std::size_t i = 0; i < frame.surface.size(); ++i)
@@ -160,7 +162,7 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
             const Vec4 light = l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0)
                                                                        : Vec4(l.position, 1.0);
             const DeviceRay ray = DeviceShadowRay(deviceFromWorld_, light, p, point);
-            return shadowTester_.Blocked(p, ray.d, ray.sMax);
+            return shadowTester_->Blocked(p, ray.d, ray.sMax);
         };
     }
     const PhongTerms t =

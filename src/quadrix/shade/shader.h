@@ -103,7 +103,7 @@ class PixelShader {
     ShadingModel model_, reflection_;
     ViewerGeometry viewer_;
     bool needPoint_, shadows_;
-    ShadowTester shadowTester_;
+    std::optional<ShadowTester> shadowTester_;  // with shadows only
     Mat4 deviceFromWorld_;
     bool color_;
     std::vector<Incident> fixedLight_;
