@@ -249,9 +249,9 @@ TEST(BatchMpi, SortFirstRowsShadedByTheirRanksAreByteIdenticalToOneProcess) {
 // Issue 22 item 4, the tiled 8K picture: 7680×4320 over three ranks, byte-identical to one
 // process. Two spheres, raycast, no anti-aliasing or shadows: the cost is the pixels' (each rank's
 // Frame has the picture's size, 1.5 GB, of which it touches its own rows: a third; the one
-// process touches all of it), 3–8 s for the four processes in Release on the 2-core machine. Not registered under the sanitizers
-// (QUADRIX_SANITIZE: ASan's shadow memory and its 5–20× slow-down make it 8 GB and minutes); the
-// 96×72 and 120×150 cases above cover the same code there.
+// process touches all of it), 3–8 s for the four processes in Release on the 2-core machine. Not
+// registered under the sanitizers (QUADRIX_SANITIZE: ASan's shadow memory and its 5–20× slow-down
+// make it 8 GB and minutes); the 96×72 and 120×150 cases above cover the same code there.
 #if !QUADRIX_ASAN
 TEST(BatchMpi, SortFirst8KIsByteIdenticalToOneProcess) {
     if (Mpirun().empty()) GTEST_SKIP() << "Quadrix was built without MPI (QUADRIX_MPI)";
