@@ -369,6 +369,75 @@ TEST(RenderContextComposition, SameViewIsNotFlattenedTwice) {
     EXPECT_FALSE(ctx.LastFlattenReused());
 }
 
+// What a view change invalidates (issue 16): the world stage (the hierarchy walk) is kept across
+// views, sizes, perspective and a section plane, and the view stage alone then gives the very same
+// flat scene and frame as a fresh one-shot Flatten; a scene change walks the hierarchy again.
+TEST(RenderContextComposition, WorldStageIsKeptAcrossViews) {
+    const std::string text =
+        "definition row; quadric ball <1 1 1 0 0 0 0 0 0 -1>; plane cut <0 1 0 -0.5>;"
+        "body capped <ball cut>; enddef;"
+        "array balls (row =tx -4 =ty 1) 4 =tx 2.5;"
+        "solid box slab =from -6 -2 -3 =to 6 -1 3; solid cylinder drill =from -5 -3 0 =to -5 1 0 "
+        "=r 0.5; csg plate (slab - drill);"
+        "view front dop 0 0 -1; view persp cop 6 -8 -20 vrp 0 0 0;";
+    RenderContext ctx;
+    Diagnostics diags;
+    InputRequest in;
+    in.text = text;
+    ASSERT_TRUE(ctx.Read(in, diags))
+        << (diags.Items().empty() ? std::string() : diags.Items()[0].Format());
+    std::vector<ViewRequest> views = {Size(64, 48, "front"), Size(80, 40, "persp"),
+                                      Size(64, 48, "front")};
+    views[2].section = Plane{0.3, 0, 1, -0.2};
+    ViewRequest camera = Size(50, 50);
+    camera.view = *ctx.Scene().ViewToUse("persp");
+    camera.view->id = "camera";
+    camera.view->cop = Vec3{-10, 4, -20};
+    views.push_back(camera);
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        SCOPED_TRACE(i);
+        ASSERT_TRUE(ctx.Flatten(views[i], diags))
+            << (diags.Items().empty() ? std::string() : diags.Items()[0].Format());
+        EXPECT_FALSE(ctx.LastFlattenReused());
+        EXPECT_EQ(ctx.LastFlattenReusedWorld(), i > 0);
+        EXPECT_EQ(ctx.worldFlattens, 1);
+        Frame kept;
+        RenderReport report;
+        ASSERT_TRUE(ctx.Render(Request("raycast"), kept, report, diags));
+        EXPECT_GT(kept.CoveredCount(), 100u);
+
+        RenderContext fresh;
+        ASSERT_TRUE(fresh.Read(in, diags) && fresh.Flatten(views[i], diags));
+        const FlatScene& a = ctx.Flat();
+        const FlatScene& b = fresh.Flat();
+        ASSERT_EQ(a.halfSpaces.size(), b.halfSpaces.size());
+        ASSERT_EQ(a.bodies.size(), b.bodies.size());
+        for (std::size_t h = 0; h < a.halfSpaces.size(); ++h) {
+            const FlatHalfSpace& x = a.halfSpaces[h];
+            const FlatHalfSpace& y = b.halfSpaces[h];
+            ASSERT_EQ(x.isPlane, y.isPlane);
+            ASSERT_EQ(x.name, y.name);
+            if (x.isPlane)
+                EXPECT_EQ(std::memcmp(&x.plane, &y.plane, sizeof x.plane), 0) << x.name;
+            else
+                EXPECT_EQ(std::memcmp(&x.quadric, &y.quadric, sizeof x.quadric), 0) << x.name;
+        }
+        for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+            EXPECT_EQ(std::memcmp(&a.bodies[k].bounds, &b.bodies[k].bounds, sizeof(Box3)), 0);
+            ASSERT_EQ(a.bodies[k].literals.size(), b.bodies[k].literals.size());
+            for (std::size_t l = 0; l < a.bodies[k].literals.size(); ++l)
+                EXPECT_EQ(a.bodies[k].literals[l].halfSpace, b.bodies[k].literals[l].halfSpace);
+        }
+        Frame oneShot;
+        ASSERT_TRUE(fresh.Render(Request("raycast"), oneShot, report, diags));
+        EXPECT_EQ(FirstBitDifference(kept, oneShot), "");
+    }
+    ctx.SceneChanged();
+    ASSERT_TRUE(ctx.Flatten(views[0], diags));
+    EXPECT_FALSE(ctx.LastFlattenReusedWorld());
+    EXPECT_EQ(ctx.worldFlattens, 2);
+}
+
 // A view given directly (the viewer's camera) draws the same frame as the same view written in the
 // scene, and a changed camera flattens again.
 TEST(RenderContextComposition, DirectViewMatchesTheSceneView) {

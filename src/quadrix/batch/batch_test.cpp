@@ -448,9 +448,32 @@ TEST(BatchJobRenderer, ClockSceneIsReadPerFrameAndMatchesSingleRenders) {
     for (int f = 0; f < 3; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
     EXPECT_EQ(r.reads, 3);
     EXPECT_EQ(r.flattens, 3);
+    EXPECT_EQ(r.GeometryFlattens(), 3);  // the geometry moves with the clock
     EXPECT_NE(Bytes(dir.File("m_0000.ppm")), Bytes(dir.File("m_0002.ppm")));  // the ball moved
     for (int f = 0; f < 3; ++f)
         EXPECT_EQ(Bytes(dir.File("m_000" + std::to_string(f) + ".ppm")),
+                  RenderAlone(job, f, dir.File("ref.ppm")))
+            << f;
+}
+
+// A clock only in the view (an animated camera): the scene is read per frame for its view, but
+// its geometry is flattened once; every frame equals its single render.
+TEST(BatchJobRenderer, CameraClockKeepsTheGeometry) {
+    Dir dir;
+    Job job = MakeJob(dir.Write("c.uq",
+                                "solid box cube =from -1 -1 -1 =to 1 1 1 =c .3 .6 .9;\n"
+                                "solid sphere ball =at 1 1 1 =r .6 =c .9 .5 .2;\n"
+                                "view cam vrp 0 0 0 dop (clock) .4 -1 whw 5;\n"),
+                      dir.File("c.ppm"));
+    job.frames = 3;
+    JobRenderer r(1);
+    for (int f = 0; f < 3; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
+    EXPECT_EQ(r.reads, 3);
+    EXPECT_EQ(r.flattens, 3);
+    EXPECT_EQ(r.GeometryFlattens(), 1);
+    EXPECT_NE(Bytes(dir.File("c_0000.ppm")), Bytes(dir.File("c_0002.ppm")));  // the camera moved
+    for (int f = 0; f < 3; ++f)
+        EXPECT_EQ(Bytes(dir.File("c_000" + std::to_string(f) + ".ppm")),
                   RenderAlone(job, f, dir.File("ref.ppm")))
             << f;
 }
@@ -470,7 +493,8 @@ TEST(BatchJobRenderer, TurntableOrbitsTheBoundsAndKeepsOneRead) {
     JobRenderer r(1);
     for (int f = 0; f < 4; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
     EXPECT_EQ(r.reads, 1);
-    EXPECT_EQ(r.flattens, 4);  // one per frame (the bounds probe is not a frame)
+    EXPECT_EQ(r.flattens, 4);            // one per frame (the bounds probe is not a frame)
+    EXPECT_EQ(r.GeometryFlattens(), 1);  // the views alone change
     // The world box: the rod x,z in [-1,1], y in [-1,2]; the arm reaches x = 3.
     RenderContext ctx(1);
     Diagnostics d;

@@ -99,7 +99,9 @@ bool JobRenderer::Load(const Job& job, int jobId, double clock, FrameResult& r) 
     InputRequest in = job.input;
     in.clock = clock;
     const auto t0 = std::chrono::steady_clock::now();
-    loadedOk_ = ctx_.Read(in, diags);
+    // The same job at another clock: the context keeps the geometry when only views use it.
+    loadedOk_ =
+        loadedJob_ == jobId && loadedOk_ ? ctx_.ReadAtClock(clock, diags) : ctx_.Read(in, diags);
     r.read = true;
     ++reads;
     worldBox_.reset();

@@ -1,9 +1,12 @@
 // Renders the frames of jobs through one RenderContext (pipeline/render_context.h), keeping what
 // can be kept between frames (issue 22: "read and flattened once per distinct geometry"):
 //   - the scene is read once per job; a scene that uses `clock` (Scene::usesClock) is read again
-//     for each frame whose clock differs, since its geometry depends on it;
+//     for each frame whose clock differs; when the clock is only in its view statements (an
+//     animated camera) the geometry is the same and its world stage is kept
+//     (RenderContext::ReadAtClock), so the geometry is flattened once per job;
 //   - the flat scene is reused by the context when the next frame has the same view (a still
-//     animation of a clock-free scene renders from one flattening);
+//     animation of a clock-free scene renders from one flattening); another view (a turntable,
+//     a view list) runs only the view stage of the flattener;
 //   - a turntable orbits the centre of the scene's world bounds (SceneWorldBounds) at a fixed
 //     distance and window, so the part keeps its size from frame to frame.
 // Each frame is written through pipeline/output.h (an OutputFile each: temporary file + rename),
@@ -48,8 +51,11 @@ class JobRenderer {
     // skipExisting, a frame whose every output file exists is not rendered (result.skipped).
     FrameResult Render(const Job& job, int jobId, int frame, bool skipExisting = false);
 
-    // Times the scene was read and flattened (tests and the summary).
+    // Times the scene was read and flattened for a view (tests and the summary).
     int reads = 0, flattens = 0;
+    // Times the geometry was flattened (the render context's world stage, kept across views and
+    // across clocks that only move the camera).
+    int GeometryFlattens() const { return ctx_.worldFlattens; }
 
   private:
     bool Load(const Job& job, int jobId, double clock, FrameResult& r);

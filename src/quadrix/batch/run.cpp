@@ -43,7 +43,7 @@ std::vector<Unit> Units(const std::vector<JobEntry>& jobs) {
 
 // What one rank did: counts and the first error of each job it saw fail.
 struct RankTally {
-    int rendered = 0, skipped = 0, failed = 0, reads = 0, flattens = 0;
+    int rendered = 0, skipped = 0, failed = 0, reads = 0, flattens = 0, geometryFlattens = 0;
     double frameSeconds = 0, minFrame = 1e300, maxFrame = 0;
     std::map<int, std::string> failures;  // job → first error
 };
@@ -102,6 +102,7 @@ RankTally RenderUnits(const std::vector<JobEntry>& jobs, const std::vector<Unit>
     }
     t.reads = renderer.reads;
     t.flattens = renderer.flattens;
+    t.geometryFlattens = renderer.GeometryFlattens();
     return t;
 }
 
@@ -120,6 +121,7 @@ Summary Summed(const std::vector<JobEntry>& jobs, const std::vector<RankTally>& 
         s.failed += t.failed;
         s.reads += t.reads;
         s.flattens += t.flattens;
+        s.geometryFlattens += t.geometryFlattens;
         s.frameSeconds += t.frameSeconds;
         s.minFrame = std::min(s.minFrame, t.minFrame);
         s.maxFrame = std::max(s.maxFrame, t.maxFrame);
@@ -163,6 +165,7 @@ nlohmann::json TallyJson(const RankTally& t) {
     j["failed"] = t.failed;
     j["reads"] = t.reads;
     j["flattens"] = t.flattens;
+    j["geometry_flattens"] = t.geometryFlattens;
     j["frame_s"] = t.frameSeconds;
     j["min_s"] = t.minFrame;
     j["max_s"] = t.maxFrame;
@@ -179,6 +182,7 @@ RankTally TallyFromJson(const nlohmann::json& j) {
     t.failed = j["failed"];
     t.reads = j["reads"];
     t.flattens = j["flattens"];
+    t.geometryFlattens = j["geometry_flattens"];
     t.frameSeconds = j["frame_s"];
     t.minFrame = j["min_s"];
     t.maxFrame = j["max_s"];
@@ -312,7 +316,8 @@ std::string Summary::Text() const {
     if (rendered > 0)
         s += fmt::format("; per frame {:.2f} ms mean, {:.2f} min, {:.2f} max",
                          1e3 * frameSeconds / rendered, 1e3 * minFrame, 1e3 * maxFrame);
-    s += fmt::format("; scene read {} time{}, flattened {} time{}", reads, reads == 1 ? "" : "s",
+    s += fmt::format("; scene read {} time{}, geometry flattened {} time{}, views {} time{}", reads,
+                     reads == 1 ? "" : "s", geometryFlattens, geometryFlattens == 1 ? "" : "s",
                      flattens, flattens == 1 ? "" : "s");
     if (ranks > 1) s += fmt::format("; {} MPI ranks", ranks);
     return s;
@@ -334,6 +339,7 @@ std::string Summary::Json() const {
     j["max_frame_s"] = maxFrame;
     j["reads"] = reads;
     j["flattens"] = flattens;
+    j["geometry_flattens"] = geometryFlattens;
     j["ranks"] = ranks;
     j["failures"] = failures;
     return j.dump();

@@ -51,7 +51,9 @@ struct RunOptions {
 struct Summary {
     int jobs = 0, failedJobs = 0;
     int frames = 0, rendered = 0, skipped = 0, failed = 0;
-    int reads = 0, flattens = 0;  // over every rank
+    // Over every rank: reads of the scene, flattens of a view (the view stage), and runs of the
+    // world stage (the geometry: flattener.h FlattenWorld).
+    int reads = 0, flattens = 0, geometryFlattens = 0;
     int ranks = 1;
     double seconds = 0;       // wall clock of the whole run
     double frameSeconds = 0;  // sum of the rendered frames' times (all ranks)

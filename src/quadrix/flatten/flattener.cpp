@@ -61,8 +61,10 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view) {
 
 class FlattenerImpl {
   public:
-    FlattenerImpl(const scene::Scene& scene, const FlattenOptions& options, Diagnostics& diags)
-        : scene_(scene), options_(options), diags_(diags) {}
+    // `world` is the kept world stage (copied from), or `ownWorld` one to consume (moved from).
+    FlattenerImpl(const scene::Scene& scene, const FlattenOptions& options, Diagnostics& diags,
+                  const WorldScene* world, WorldScene* ownWorld)
+        : scene_(scene), options_(options), diags_(diags), world_(world), ownWorld_(ownWorld) {}
 
     std::optional<FlatScene> Run() {
         if (!CheckOptions()) return std::nullopt;
@@ -117,10 +119,7 @@ class FlattenerImpl {
             flat.halfSpaces.push_back(std::move(h));
         }
         const int nClip = static_cast<int>(flat.halfSpaces.size());
-        HierarchyLimits limits;
-        limits.clipLiteralsPerBody = nClip;
-        if (!FlattenHierarchy(scene_, view_.provFromWorld, limits, flat, hierarchy_, diags_))
-            return std::nullopt;
+        if (!PlaceWorld(nClip)) return std::nullopt;
         if (flat.solids.empty() && flat.freeforms.empty()) {
             diags_.Error({},
                          "nothing to draw: the scene has no body, instance or csg solid "
@@ -159,6 +158,70 @@ class FlattenerImpl {
     }
 
   private:
+    // The world stage into provisional space, after the nClip shared planes already in
+    // flat_.halfSpaces: every half-space mapped by provFromWorld and rescaled (as the walk maps
+    // and rescales from object to world space), every literal shifted by nClip. false with an
+    // error when a half-space's coefficients overflow under the view.
+    bool PlaceWorld(int nClip) {
+        if (!world_ && !ownWorld_) {  // one-shot: the world stage here, where its errors belong
+            std::optional<WorldScene> made = FlattenWorld(scene_, diags_);
+            if (!made) return false;
+            madeWorld_ = std::move(*made);
+            ownWorld_ = &madeWorld_;
+        }
+        FlatScene& flat = flat_;
+        const bool own = ownWorld_ != nullptr;
+        const WorldScene& world = own ? *ownWorld_ : *world_;
+        FlatScene& ownFlat = own ? ownWorld_->flat : flat;  // only used when own
+        const std::size_t nWorld = world.flat.halfSpaces.size();
+        flat.halfSpaces.reserve(nClip + nWorld);
+        for (std::size_t i = 0; i < nWorld; ++i) {
+            flat.halfSpaces.push_back(own ? std::move(ownFlat.halfSpaces[i])
+                                          : world.flat.halfSpaces[i]);
+            FlatHalfSpace& h = flat.halfSpaces.back();
+            bool finite;
+            if (h.IsQuartic()) {
+                h.TransformBy(view_.provFromWorld);
+                finite = h.quartic->AllFinite();
+            } else if (h.isPlane) {
+                h.plane = h.plane.Transformed(view_.provFromWorld);
+                RescaleCoefficients(h.plane);
+                finite = h.plane.AllFinite();
+            } else {
+                h.quadric = h.quadric.Transformed(view_.provFromWorld);
+                RescaleCoefficients(h.quadric);
+                finite = h.quadric.AllFinite();
+            }
+            if (!finite) {
+                diags_.Error(i < world.hierarchy.halfSpaceLocs.size()
+                                 ? world.hierarchy.halfSpaceLocs[i]
+                                 : SourceLoc{},
+                             fmt::format("half-space '{}' has non-finite coefficients after its "
+                                         "transforms and the view transformation",
+                                         h.name));
+                return false;
+            }
+        }
+        if (own) {
+            flat.bodies = std::move(ownFlat.bodies);
+            flat.nodes = std::move(ownFlat.nodes);
+            flat.solids = std::move(ownFlat.solids);
+            flat.freeforms = std::move(ownFlat.freeforms);
+            hierarchy_ = std::move(ownWorld_->hierarchy);
+        } else {
+            flat.bodies = world.flat.bodies;
+            flat.nodes = world.flat.nodes;
+            flat.solids = world.flat.solids;
+            flat.freeforms = world.flat.freeforms;
+            hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
+            hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
+        }
+        if (nClip > 0)
+            for (FlatBody& b : flat.bodies)
+                for (FlatLiteral& l : b.literals) l.halfSpace += nClip;
+        return true;
+    }
+
     bool CheckOptions() {
         bool ok = true;
         if (options_.width < 1 || options_.height < 1) {
@@ -677,6 +740,9 @@ class FlattenerImpl {
     const scene::Scene& scene_;
     const FlattenOptions& options_;
     Diagnostics& diags_;
+    const WorldScene* world_;
+    WorldScene* ownWorld_;
+    WorldScene madeWorld_;  // the world stage of a one-shot Flatten
     ViewSetup view_;
     // The planes cutting every body (view_.finalClips, then the section plane), provisional space.
     std::vector<Plane> finalPlanes_;
@@ -689,9 +755,23 @@ class FlattenerImpl {
 
 }  // namespace
 
+std::optional<WorldScene> FlattenWorld(const scene::Scene& scene, Diagnostics& diags) {
+    WorldScene world;
+    HierarchyLimits limits;
+    limits.clipLiteralsPerBody = kMostClipLiteralsPerBody;
+    if (!FlattenHierarchy(scene, Transform{}, limits, world.flat, world.hierarchy, diags))
+        return std::nullopt;
+    return world;
+}
+
+std::optional<FlatScene> FlattenView(const scene::Scene& scene, const WorldScene& world,
+                                     const FlattenOptions& options, Diagnostics& diags) {
+    return FlattenerImpl(scene, options, diags, &world, nullptr).Run();
+}
+
 std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,
                                  Diagnostics& diags) {
-    return FlattenerImpl(scene, options, diags).Run();
+    return FlattenerImpl(scene, options, diags, nullptr, nullptr).Run();
 }
 
 }  // namespace quadrix

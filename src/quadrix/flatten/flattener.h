@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/flatten/hierarchy.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 
@@ -55,8 +56,32 @@ struct FlattenOptions {
 };
 inline constexpr const char* kSectionName = "<section>";
 
-// nullopt (with errors in diags) when the scene cannot be flattened.
+// nullopt (with errors in diags) when the scene cannot be flattened. The same as FlattenView of
+// FlattenWorld: one-shot callers need not keep the world stage.
 std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,
                                  Diagnostics& diags);
+
+// The two stages, for callers that draw one scene from many views (the render context: the
+// viewer's next frame, an animation's next camera, a turntable). What a view change invalidates
+// is the view stage only:
+//   FlattenWorld  step 1, independent of the view, image size, lights and section: the walk of
+//                 definitions, instances, arrays and CSG (hierarchy.h) with every half-space in
+//                 WORLD coordinates (rescaled, coefficient_scale.h); no clip planes, no bounds.
+//   FlattenView   steps 2-6 on a kept WorldScene: each half-space mapped once more by the view's
+//                 provisional map (and rescaled), the clip and section planes put in front, the
+//                 bounds, the window fit, the device map and the culling.
+// Flatten(scene, options) is exactly FlattenView(scene, FlattenWorld(scene), options): the two
+// roads give the same bits. The literal guard (HierarchyLimits::maxLiterals) is applied in the
+// world stage with the most clip literals any view appends (kMostClipLiteralsPerBody).
+struct WorldScene {
+    // halfSpaces, bodies (literals index halfSpaces; bounds unset), nodes, solids and freeforms.
+    FlatScene flat;
+    HierarchyResult hierarchy;  // source locations (halfSpaceLocs: per world half-space)
+};
+inline constexpr int kMostClipLiteralsPerBody = 3;  // front/near, back/far, section
+
+std::optional<WorldScene> FlattenWorld(const scene::Scene& scene, Diagnostics& diags);
+std::optional<FlatScene> FlattenView(const scene::Scene& scene, const WorldScene& world,
+                                     const FlattenOptions& options, Diagnostics& diags);
 
 }  // namespace quadrix

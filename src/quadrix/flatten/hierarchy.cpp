@@ -547,6 +547,7 @@ class Walker {
             return -1;
         }
         out_.halfSpaces.push_back(std::move(f));
+        result_.halfSpaceLocs.push_back(hs.loc);
         si.hsMap[local] = static_cast<int>(out_.halfSpaces.size()) - 1;
         return si.hsMap[local];
     }

@@ -49,6 +49,8 @@ struct HierarchyResult {
     std::vector<SourceLoc> bodyLocs;   // per FlatBody: its body statement
     std::vector<SourceLoc> solidLocs;  // per FlatSolid: its body or csg statement
     std::vector<bool> solidIsCsg;      // per FlatSolid: drawn from a csg statement
+    // Per FlatHalfSpace appended by the walk: its half-space statement.
+    std::vector<SourceLoc> halfSpaceLocs;
 };
 
 // Appends the drawn solids of `scene` to `out` (halfSpaces, bodies, nodes, solids), transformed

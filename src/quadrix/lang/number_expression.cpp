@@ -34,6 +34,7 @@ bool Parser::PeekIsNumber() {
 
 std::optional<double> Parser::ClockValue() {
     state_.usesClock = true;
+    if (state_.viewDepth == 0) state_.usesClockOutsideViews = true;
     return state_.options.clock;
 }
 

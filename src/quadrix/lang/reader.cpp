@@ -29,6 +29,7 @@ bool Reader::ReadText(std::string_view text, const std::string& name) {
 }
 
 bool Reader::UsesClock() const { return impl_->state.usesClock; }
+bool Reader::UsesClockOutsideViews() const { return impl_->state.usesClockOutsideViews; }
 
 bool ReadSceneFiles(const std::vector<std::string>& paths, scene::Scene& scene, Diagnostics& diags,
                     ReadOptions options) {

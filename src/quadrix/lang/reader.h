@@ -63,6 +63,9 @@ class Reader {
     // Whether some number read so far was written with `clock` (docs/language.md §3.14): the
     // scene then depends on ReadOptions::clock, and an animation reads it again per frame.
     bool UsesClock() const;
+    // Whether `clock` was used outside view statements (the scene's geometry, lights or
+    // background depend on it); false when the clock only moves the camera.
+    bool UsesClockOutsideViews() const;
 
   private:
     struct Impl;

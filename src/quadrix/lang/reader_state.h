@@ -87,6 +87,12 @@ class ReaderState {
     bool aborted = false;
     // Some number was written with `clock` (number_expression.cpp): the scene depends on it.
     bool usesClock = false;
+    // ... outside view statements (the geometry, lights or background depend on it). View
+    // parameters are read with viewDepth > 0: a scene whose `clock` is only in its views has
+    // the same geometry at every clock (an animated camera), so an animation keeps its world
+    // stage (flattener.h) from frame to frame.
+    bool usesClockOutsideViews = false;
+    int viewDepth = 0;
     // Statements read by this reader, over all its inputs. Beyond kMaxStatements reading stops
     // with a message: an endless generated input must not grow the scene until memory runs out.
     long long statementCount = 0;

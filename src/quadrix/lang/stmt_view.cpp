@@ -176,8 +176,12 @@ bool ParseViewParams(Parser& p, scene::View& view, bool redef, const char* state
                      bool& valuesOk) {
     ParamState st;
     int errors = p.State().diags.ErrorCount();
-    while (p.PeekIs(TokenKind::kKeyword) && IsViewParameter(p.Peek().keyword))
-        if (!ParseOneParam(p, view, st, redef)) return false;
+    ++p.State().viewDepth;  // `clock` here animates the camera, not the geometry
+    bool ok = true;
+    while (ok && p.PeekIs(TokenKind::kKeyword) && IsViewParameter(p.Peek().keyword))
+        ok = ParseOneParam(p, view, st, redef);
+    --p.State().viewDepth;
+    if (!ok) return false;
     if (view.vpn && view.vup && Cross(*view.vpn, *view.vup) == Vec3{0, 0, 0})
         p.Error(st.vupLoc.line ? st.vupLoc : view.loc,
                 "vup is parallel to vpn: the view has no "

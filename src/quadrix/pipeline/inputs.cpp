@@ -144,6 +144,7 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
                         {}, "command line");
     }
     report.usesClock = uq && uq->UsesClock();
+    report.clockOutsideViews = uq && uq->UsesClockOutsideViews();
     return !diags.HasErrors();
 }
 

@@ -42,6 +42,9 @@ struct InputReport {
     // A UniQuadrix input wrote a number with `clock` (docs/language.md §3.14): the scene depends
     // on InputOptions::clock.
     bool usesClock = false;
+    // ... outside view statements: the geometry may differ from clock to clock (false when the
+    // clock only moves the camera).
+    bool clockOutsideViews = false;
 };
 
 // Reads every path ("-" = standard input, always UniQuadrix) into `scene`. Returns false when

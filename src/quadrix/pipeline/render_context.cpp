@@ -131,13 +131,14 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     const auto t0 = std::chrono::steady_clock::now();
     scene_ = scene::Scene{};
     inputs_ = InputReport{};
-    flatValid_ = false;
+    flatValid_ = worldValid_ = false;
     if (request.paths.empty()) {
         lang::ReadOptions ro;
         ro.clock = request.clock;
         lang::Reader reader(scene_, diags, ro);
         reader.ReadText(request.text, request.textName);
         inputs_.usesClock = reader.UsesClock();
+        inputs_.clockOutsideViews = reader.UsesClockOutsideViews();
     } else {
         // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
         InputOptions io;
@@ -148,7 +149,20 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
         ReadSceneInputs(request.paths, io, scene_, diags, inputs_);
     }
     readSeconds = SecondsSince(t0);
+    lastInput_ = request;
     return !diags.HasErrors();
+}
+
+bool RenderContext::ReadAtClock(double clock, Diagnostics& diags) {
+    const bool cameraOnly = worldValid_ && !inputs_.clockOutsideViews;
+    InputRequest request = lastInput_;
+    request.clock = clock;
+    const int errorsBefore = diags.ErrorCount();
+    if (!Read(request, diags) || diags.ErrorCount() != errorsBefore) return false;
+    // The geometry read at this clock is the kept one when neither reading used the clock
+    // outside views (Read invalidated it; world_ still holds it).
+    if (cameraOnly && !inputs_.clockOutsideViews) worldValid_ = true;
+    return true;
 }
 
 bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
@@ -186,7 +200,18 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     fo.lights = view.lights;
     fo.section = view.section;
     const int errorsBefore = diags.ErrorCount();
-    auto flat = quadrix::Flatten(scene_, fo, diags);
+    lastReusedWorld_ = worldValid_;
+    if (!worldValid_) {
+        std::optional<WorldScene> world = FlattenWorld(scene_, diags);
+        ++worldFlattens;
+        if (!world || diags.ErrorCount() != errorsBefore) {
+            flattenSeconds = SecondsSince(t0);
+            return false;
+        }
+        world_ = std::move(*world);
+        worldValid_ = true;
+    }
+    auto flat = FlattenView(scene_, world_, fo, diags);
     flattenSeconds = SecondsSince(t0);
     if (!flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);

@@ -8,8 +8,10 @@
 //   2. Flatten   the scene for one view and image size (FlattenOptions, lights passed in, never
 //                swapped into the scene). The flat scene is kept: asking again for the same view,
 //                size and lights costs nothing, so re-rendering (another engine, the viewer's next
-//                frame of a still view) does not flatten again. A scene change or another view
-//                flattens again (the Flattener folds the view into every half-space).
+//                frame of a still view) does not flatten again. The world stage (flattener.h:
+//                the hierarchy walk into world space) is kept too: another view, size, light or
+//                section runs only the view stage (projection, bounds, window fit); a scene
+//                change (Read, SceneChanged) runs both again.
 //   3. Render    the requested engine (a registry row, engines/registry.h) draws what it can into
 //                the Frame; what it cannot — solids it reports undrawn, or all solids for an
 //                engine without that capability — the reference engine (raycast) draws into a
@@ -141,11 +143,15 @@ class RenderContext {
 
     // Stage 1. Replaces the scene. false with errors in diags.
     bool Read(const InputRequest& request, Diagnostics& diags);
+    // Stage 1 again, the last Read's request at another `clock` (an animation's next frame).
+    // When both the last and this reading found `clock` only in view statements (the camera
+    // moves, the geometry does not: Inputs().clockOutsideViews), the world stage is kept.
+    bool ReadAtClock(double clock, Diagnostics& diags);
     // The scene, for front ends that build it statement by statement (uq's prompt). Call
     // SceneChanged() after changing it so that the next Flatten does not reuse a stale result.
     scene::Scene& Scene() { return scene_; }
     const scene::Scene& Scene() const { return scene_; }
-    void SceneChanged() { flatValid_ = false; }
+    void SceneChanged() { flatValid_ = worldValid_ = false; }
     const InputReport& Inputs() const { return inputs_; }
 
     // Stage 2. false with errors in diags. Reuses the kept flat scene when nothing changed.
@@ -153,6 +159,11 @@ class RenderContext {
     const FlatScene& Flat() const { return flat_; }
     // Whether the last Flatten call reused the kept result (for tests and --stats).
     bool LastFlattenReused() const { return lastReused_; }
+    // Whether the last Flatten call that flattened reused the kept world stage (flattener.h:
+    // FlattenWorld), i.e. redid only what the view change invalidates.
+    bool LastFlattenReusedWorld() const { return lastReusedWorld_; }
+    // Times the world stage was run since construction (tests, batch summaries).
+    int worldFlattens = 0;
 
     // Stage 3 on the last flattened scene. false with errors in diags (unknown engine, bad
     // options, or — strict — something the engine cannot draw). `frame` is resized.
@@ -200,8 +211,11 @@ class RenderContext {
     std::unique_ptr<Arena> arena_;
     scene::Scene scene_;
     InputReport inputs_;
+    InputRequest lastInput_;  // what the last Read read (ReadAtClock)
     FlatScene flat_;
     bool flatValid_ = false, lastReused_ = false;
+    WorldScene world_;  // the kept world stage, valid with worldValid_
+    bool worldValid_ = false, lastReusedWorld_ = false;
     // The request the kept flat scene was made for (lights and view as given).
     std::optional<ViewRequest> flatFor_;
     std::string flatViewName_;
