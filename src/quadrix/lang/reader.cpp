@@ -30,6 +30,10 @@ bool Reader::ReadText(std::string_view text, const std::string& name) {
 
 bool Reader::UsesClock() const { return impl_->state.usesClock; }
 
+void Reader::Resume() { impl_->state.aborted = false; }
+
+ReaderState& Reader::State() { return impl_->state; }
+
 bool ReadSceneFiles(const std::vector<std::string>& paths, scene::Scene& scene, Diagnostics& diags,
                     ReadOptions options) {
     Reader reader(scene, diags, options);

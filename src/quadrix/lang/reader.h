@@ -25,6 +25,8 @@
 
 namespace quadrix::lang {
 
+class ReaderState;
+
 // An interactive-mode statement (seed 001 §2.3).
 struct Command {
     enum class Kind { kRedefLight, kRedefView, kDevice, kShow, kQuit, kNakedRead };
@@ -63,8 +65,16 @@ class Reader {
     // Whether some number read so far was written with `clock` (docs/language.md §3.14): the
     // scene then depends on ReadOptions::clock, and an animation reads it again per frame.
     bool UsesClock() const;
+    // Reading stops everywhere after too many errors or statements; a session that reports and
+    // clears its diagnostics between inputs resumes reading with the next one by calling this.
+    void Resume();
+    // Lines typed at a prompt are read by an IncrementalReader on this Reader
+    // (incremental_reader.h).
 
   private:
+    friend class IncrementalReader;
+    ReaderState& State();
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
