@@ -7,6 +7,7 @@
 #include <string>
 
 #include "quadrix/engines/engine_test_util.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/pipeline/stats_report.h"
 #include "test_util.h"
@@ -49,66 +50,26 @@ SceneRun Render(const std::string& text, const std::string& path, const std::str
     return run;
 }
 
-// How two frames differ. "Edge" pixels are those with an 8-neighbour whose raycast surface
-// differs from their own: a coverage or id difference is acceptable only there (silhouettes and
-// intersection curves, where a ray grazes a surface and one rounding decides).
-struct Diff {
-    std::size_t covered = 0, coveredBoth = 0, sameSolid = 0, sameSurface = 0;
-    std::size_t coverageDiffers = 0, coverageDiffersOffEdge = 0;
-    std::size_t depthMismatch = 0;  // same surface but different depth (exact mode: none)
-    double maxDepthError = 0;
-};
-
-Diff Compare(const Frame& a, const Frame& ref) {
-    Diff d;
-    auto edge = [&](int x, int y) {
-        std::int32_t s = ref.surface[ref.Index(x, y)];
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                int u = x + dx, v = y + dy;
-                if (u < 0 || v < 0 || u >= ref.width || v >= ref.height) continue;
-                if (ref.surface[ref.Index(u, v)] != s) return true;
-            }
-        return false;
-    };
-    for (int y = 0; y < ref.height; ++y) {
-        for (int x = 0; x < ref.width; ++x) {
-            std::size_t i = ref.Index(x, y);
-            bool ca = a.surface[i] != Frame::kNone, cr = ref.surface[i] != Frame::kNone;
-            d.covered += ca || cr;
-            if (ca != cr) {
-                ++d.coverageDiffers;
-                d.coverageDiffersOffEdge += !edge(x, y);
-                continue;
-            }
-            if (!ca) continue;
-            ++d.coveredBoth;
-            d.sameSolid += a.solid[i] == ref.solid[i];
-            if (a.surface[i] == ref.surface[i]) {
-                ++d.sameSurface;
-                double e = std::fabs(a.depth[i] - ref.depth[i]);
-                d.maxDepthError = std::fmax(d.maxDepthError, e);
-                d.depthMismatch += a.depth[i] != ref.depth[i];
-            }
-        }
-    }
-    return d;
-}
-
 void ExpectExactAgreement(const std::string& text, const std::string& path) {
     SceneRun ref = Render(text, path, "raycast");
     SceneRun pp = Render(text, path, "pixelpowers");
     ASSERT_TRUE(ref.ok) << ref.errors;
     ASSERT_TRUE(pp.ok) << pp.errors;
-    Diff d = Compare(pp.result.frame, ref.result.frame);
+    // The one comparison (frame/compare.h); a depth tolerance of 0 counts every depth that
+    // differs at all.
+    CompareOptions exact;
+    exact.depthTolerance = 0;
+    const FrameComparison d = CompareFrames(pp.result.frame, ref.result.frame, exact);
     ASSERT_GT(d.coveredBoth, 500u) << "scene should cover a good part of the image";
-    // Acceptance: same solid on >= 99.5 % of covered pixels, coverage differing only on edges.
+    // Acceptance: same solid on >= 99.5 % of covered pixels, coverage differing only on edges
+    // (silhouettes and intersection curves, where a ray grazes a surface and one rounding
+    // decides).
     EXPECT_GE(static_cast<double>(d.sameSolid), 0.995 * static_cast<double>(d.coveredBoth));
     EXPECT_GE(static_cast<double>(d.sameSurface), 0.995 * static_cast<double>(d.coveredBoth));
-    EXPECT_EQ(d.coverageDiffersOffEdge, 0u);
+    EXPECT_EQ(d.offEdgeCoverageDifferences, 0u) << d.Summary();
     // The extended machine solves each literal with raycast's own routine and re-centring point
     // (compiler.h RaycastReferencePoint), so equal surfaces give bit-equal depths.
-    EXPECT_EQ(d.depthMismatch, 0u) << "max depth error " << d.maxDepthError;
+    EXPECT_EQ(d.depthOverTolerance, 0u) << "max depth error " << d.maxDepthError;
 }
 
 TEST(PixelPowersScenes, TwoCylinderUnion) {

@@ -21,9 +21,6 @@
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/io/output_file.h"
-#include "quadrix/lang/input_files.h"
-#include "quadrix/lang/parser.h"
-#include "quadrix/lang/source.h"
 #include "quadrix/pipeline/drawing_output.h"
 #include "quadrix/shade/shader.h"
 #include "uq_help.h"
@@ -169,74 +166,6 @@ std::unique_ptr<LineInput> MakeLineInput(std::FILE* in, std::FILE* promptOut) {
     return std::make_unique<PlainLineInput>(in, promptOut, !terminal);
 }
 
-// One interactive input (the prompt, or a nested `read;`): a source that grows by the statements
-// typed, its parser (kept across lines, so definitions span statements and positions count
-// lines), and the text typed but not yet given to the parser.
-struct UqSession::FeedLevel {
-    lang::Source source{kInteractiveName, std::string()};
-    std::unique_ptr<lang::Parser> parser;
-    std::string held;       // an unfinished statement
-    bool skipping = false;  // after an error, up to the next ';'
-    bool quit = false;
-    bool dead = false;  // nested too deep: reads nothing
-};
-
-namespace {
-
-// Where the text from `from` stops: the first word (outside comments), the end of the first
-// statement (after its ';', outside comments and "strings"; npos if none), and whether the text
-// ends inside a comment.
-struct Scan {
-    std::string firstWord;
-    std::size_t wordEnd = std::string::npos;
-    std::size_t end = std::string::npos;
-    bool openComment = false;
-};
-Scan ScanStatement(const std::string& text) {
-    Scan scan;
-    int depth = 0;
-    bool inString = false, wordDone = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (inString) {
-            if (c == '"' || c == '\n') inString = false;
-            continue;
-        }
-        if (depth > 0) {
-            depth += c == '{' ? 1 : c == '}' ? -1 : 0;
-            continue;
-        }
-        if (c == '{') {
-            ++depth;
-            wordDone = wordDone || !scan.firstWord.empty();
-            continue;
-        }
-        if (c == ';') {
-            scan.end = i + 1;
-            if (!scan.firstWord.empty() && scan.wordEnd == std::string::npos) scan.wordEnd = i;
-            return scan;
-        }
-        if (c == '"') inString = true;
-        const bool wordChar = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '#' ||
-                              c == '?' || c == '.';
-        if (!wordDone && wordChar) {
-            scan.firstWord += c;
-        } else if (!scan.firstWord.empty() && !wordDone) {
-            wordDone = true;
-            scan.wordEnd = i;
-        } else if (!wordDone && !std::isspace(static_cast<unsigned char>(c))) {
-            wordDone = true;  // the statement starts with punctuation
-            scan.firstWord = std::string(1, c);
-            scan.wordEnd = i + 1;
-        }
-    }
-    scan.openComment = depth > 0;
-    if (!scan.firstWord.empty() && scan.wordEnd == std::string::npos) scan.wordEnd = text.size();
-    return scan;
-}
-
-}  // namespace
-
 bool IsVectorDeviceSpec(const std::string& spec, std::string& path, std::string& format,
                         std::string& error) {
     const std::size_t colon = spec.find(':');
@@ -256,7 +185,7 @@ bool IsVectorDeviceSpec(const std::string& spec, std::string& path, std::string&
 UqSession::UqSession() {
     lang::ReadOptions options;
     options.commands = this;
-    state_ = std::make_unique<lang::ReaderState>(scene_, diags_, options);
+    reader_ = std::make_unique<lang::Reader>(scene_, diags_, options);
 }
 
 UqSession::~UqSession() = default;
@@ -357,8 +286,8 @@ void UqSession::SyncCurrent() {
 
 void UqSession::ReadFile(const std::string& path) {
     auto t0 = std::chrono::steady_clock::now();
-    state_->aborted = false;
-    lang::ReadTopLevelFile(*state_, path);
+    reader_->Resume();
+    reader_->ReadFile(path);
     FlushDiagnostics(true);
     SyncCurrent();
     TraceRead(path == "-" ? "standard input" : path, SecondsSince(t0));
@@ -366,8 +295,8 @@ void UqSession::ReadFile(const std::string& path) {
 
 void UqSession::ReadStatements(const std::string& text) {
     auto t0 = std::chrono::steady_clock::now();
-    state_->aborted = false;
-    lang::ReadTopLevelText(*state_, text, "<-c>");
+    reader_->Resume();
+    reader_->ReadText(text, "<-c>");
     FlushDiagnostics(true);
     SyncCurrent();
     TraceRead("-c statements", SecondsSince(t0));
@@ -378,30 +307,35 @@ void UqSession::BeginFeed() {
     SyncCurrent();
     ++interactiveDepth_;
     wasInteractive_ = true;
-    state_->aborted = false;
-    auto level = std::make_unique<FeedLevel>();
-    if (static_cast<int>(state_->includeStack.size()) > state_->options.maxIncludeDepth) {
-        diags_.Error({}, "interactive mode nested too deep", {}, "parser");
-        level->dead = true;
-    } else {
-        state_->includeStack.push_back(
-            {fmt::format("<interactive {}>", interactiveDepth_), kInteractiveName});
-        level->parser = std::make_unique<lang::Parser>(*state_, level->source);
-    }
-    levels_.push_back(std::move(level));
+    lang::IncrementalReader::Hooks hooks;
+    hooks.ownWord = [](const std::string& word) { return IsHelpWord(word); };
+    hooks.runOwn = [this](const std::string&, const std::string& afterWord) {
+        std::string topic = afterWord;
+        if (auto semi = topic.find(';'); semi != std::string::npos) topic.erase(semi);
+        Message(HelpText(FirstWord(topic)));
+    };
+    hooks.afterStatement = [this](const std::string& statement, int errors) {
+        AfterStatement(statement, errors);
+    };
+    levels_.push_back(
+        std::make_unique<lang::IncrementalReader>(*reader_, std::move(hooks), kInteractiveName));
     FlushDiagnostics(false);
+}
+
+void UqSession::AfterStatement(const std::string& statement, int errors) {
+    FlushDiagnostics(levels_.size() == 1);
+    SyncCurrent();
+    // The reply to a read statement (§2.3 session: "uq> read scenefile;" → "no user errors").
+    std::string rest;
+    const std::string word = FirstWord(statement, &rest);
+    if ((word == "read" || word == "include") && !Blank(rest.substr(0, rest.find(';'))))
+        Message(errors == 0 ? "no user errors" : fmt::format("user errors: {}", errors));
 }
 
 void UqSession::EndFeed() {
     if (levels_.empty()) return;
-    FeedLevel& level = *levels_.back();
-    if (!level.dead) {
-        // An unfinished statement at the end of input is read as it is (its error reported).
-        if (!level.quit && !level.skipping && !Blank(level.held)) RunText(level, level.held);
-        level.parser->Finish();
-        state_->includeStack.pop_back();
-        FlushDiagnostics(false);
-    }
+    levels_.back()->Finish();
+    FlushDiagnostics(false);
     levels_.pop_back();
     SyncCurrent();
     --interactiveDepth_;
@@ -409,101 +343,31 @@ void UqSession::EndFeed() {
 
 std::string UqSession::Prompt() const {
     if (levels_.empty()) return "uq> ";
-    const FeedLevel& level = *levels_.back();
-    if (level.skipping) return {};  // skipping to the next ';' after an error (§2.3)
-    return Blank(level.held) ? "uq> " : "...> ";
-}
-
-bool UqSession::RunText(FeedLevel& level, const std::string& text) {
-    const int errorsBefore = totalErrors_;
-    level.source.Append(text);
-    const bool more = level.parser->RunAvailable();
-    FlushDiagnostics(levels_.size() == 1);
-    SyncCurrent();
-    // The reply to a read statement (§2.3 session: "uq> read scenefile;" → "no user errors").
-    std::string rest;
-    const std::string word = FirstWord(text, &rest);
-    if ((word == "read" || word == "include") && !Blank(rest.substr(0, rest.find(';')))) {
-        const int newErrors = totalErrors_ - errorsBefore;
-        Message(newErrors == 0 ? "no user errors" : fmt::format("user errors: {}", newErrors));
+    switch (levels_.back()->Where()) {
+        case lang::IncrementalReader::Position::kSkipping:
+            return {};  // skipping to the next ';' after an error (§2.3)
+        case lang::IncrementalReader::Position::kInsideStatement:
+            return "...> ";
+        case lang::IncrementalReader::Position::kBetweenStatements:
+            break;
     }
-    if (!more) level.quit = true;
-    return more;
-}
-
-void UqSession::ProcessHeld(FeedLevel& level, FeedResult& result) {
-    while (!level.quit) {
-        const Scan scan = ScanStatement(level.held);
-        if (scan.firstWord.empty() && scan.end == std::string::npos) {
-            // Only blanks and whole comments: handed over so that positions keep counting.
-            if (!scan.openComment) {
-                level.source.Append(level.held);
-                level.parser->SkipInput(level.source.Size());
-                level.held.clear();
-            }
-            return;
-        }
-        if (IsHelpWord(Lower(scan.firstWord))) {
-            // The session's own statement; its ';' may be left out at the end of the line.
-            const std::size_t end = scan.end == std::string::npos ? level.held.size() : scan.end;
-            const std::string statement = level.held.substr(0, end);
-            std::string topic = statement.substr(scan.wordEnd);
-            if (auto semi = topic.find(';'); semi != std::string::npos) topic.erase(semi);
-            topic = FirstWord(topic);
-            level.source.Append(statement);
-            level.parser->SkipInput(level.source.Size());
-            level.held.erase(0, end);
-            result.statements.push_back(statement);
-            Message(HelpText(topic));
-            continue;
-        }
-        if (scan.end != std::string::npos) {
-            const std::string statement = level.held.substr(0, scan.end);
-            level.held.erase(0, scan.end);
-            result.statements.push_back(statement);
-            if (!RunText(level, statement)) return;
-            continue;
-        }
-        if (scan.openComment || IsStatementWord(scan.firstWord)) return;  // continues
-        // Not a statement: the parser reports it now (not at some later ';'), and the rest of it
-        // is skipped up to the next ';' or the next line that starts a statement.
-        RunText(level, level.held);
-        level.held.clear();
-        level.skipping = true;
-        return;
-    }
+    return "uq> ";
 }
 
 UqSession::FeedResult UqSession::Feed(const std::string& line) {
     FeedResult result;
     if (levels_.empty()) BeginFeed();
-    FeedLevel& level = *levels_.back();
-    if (level.dead || level.quit) {
+    lang::IncrementalReader& level = *levels_.back();
+    if (level.Ended()) {
         result.quit = true;
         return result;
     }
     FeedResult* outer = collecting_;
     collecting_ = &result;
-    std::string text = line + "\n";
-    if (level.skipping) {
-        const Scan scan = ScanStatement(text);
-        if (!IsStatementWord(scan.firstWord) && !IsHelpWord(Lower(scan.firstWord))) {
-            const std::size_t end = scan.end == std::string::npos ? text.size() : scan.end;
-            level.source.Append(text.substr(0, end));
-            level.parser->SkipInput(level.source.Size());
-            text.erase(0, end);
-            level.skipping = scan.end == std::string::npos;
-        } else {
-            level.skipping = false;
-        }
-    }
-    if (!level.skipping) {
-        level.held += text;
-        ProcessHeld(level, result);
-    }
+    result.statements = level.Feed(line);
     FlushDiagnostics(false);
     SyncCurrent();
-    result.quit = level.quit;
+    result.quit = level.Ended();
     collecting_ = outer;
     return result;
 }

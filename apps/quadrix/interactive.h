@@ -5,12 +5,12 @@
 // Interactive mode: statements are read a line at a time after the prompt "uq> " and run as soon
 // as their ';' is typed. Lines go through Feed(line), the one entry point the prompt, the tests
 // and the viewer share: it runs the statements the line completes and returns their diagnostics.
-// The parser only ever sees complete statements, so an error inside one never reaches past its
-// ';'. A line that does not start a statement (a misspelt keyword) is reported at once; the input
-// after it is skipped to the next ';' with no prompt (§2.3), except that a line starting with a
-// statement keyword ends the skip, so the next valid statement is never lost (issue 21: `help`
-// then `solid sphere s =r 1;` used to lose the sphere). `help [WORD]` (with or without ';') is
-// the session's own statement: keywords, syntax, the current view/light/device, the ids.
+// The lines are read by the reader's public incremental face (lang/incremental_reader.h:
+// statements across lines, errors at the fed line, a misspelt keyword reported at once and the
+// input after it skipped to the next ';' with no prompt, §2.3, unless a line starts a statement;
+// issue 21: `help` then `solid sphere s =r 1;` used to lose the sphere). `help [WORD]` (with or
+// without ';') is the session's own statement (the reader's own-statement hook): keywords,
+// syntax, the current view/light/device, the ids.
 // Diagnostics for what was just typed are printed before the next prompt. With a terminal on
 // standard input, lines are edited with libedit (history, tab completion of keywords and ids);
 // otherwise they are read plainly, so scripts can drive a session through a pipe.
@@ -35,8 +35,8 @@
 
 #include "quadrix/device/device.h"
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/lang/incremental_reader.h"
 #include "quadrix/lang/reader.h"
-#include "quadrix/lang/reader_state.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
@@ -134,12 +134,11 @@ class UqSession : public lang::CommandHandler {
     bool OnCommand(const lang::Command& command, scene::Scene& scene, Diagnostics& diags) override;
 
   private:
-    struct FeedLevel;
+    // Starts an interactive input: an IncrementalReader on the session's Reader.
     void BeginFeed();
-    // Gives complete statements (and skipped text) of the level's held text to its parser.
-    void ProcessHeld(FeedLevel& level, FeedResult& result);
-    // Appends `text` to the level's source and runs the statements in it; false after quit.
-    bool RunText(FeedLevel& level, const std::string& text);
+    // After each statement read at the prompt: diagnostics printed, current objects updated,
+    // the reply to a read statement.
+    void AfterStatement(const std::string& statement, int errors);
     // Prints diagnostics added since the last flush and counts them; clears the list when
     // `boundary` (no statement is half read, so no parser holds an error count).
     void FlushDiagnostics(bool boundary);
@@ -165,10 +164,10 @@ class UqSession : public lang::CommandHandler {
     RenderContext ctx_;
     scene::Scene& scene_ = ctx_.Scene();
     Diagnostics diags_;
-    std::unique_ptr<lang::ReaderState> state_;
+    std::unique_ptr<lang::Reader> reader_;
     std::unique_ptr<LineInput> input_;
-    std::vector<std::unique_ptr<FeedLevel>> levels_;  // interactive inputs, innermost last
-    FeedResult* collecting_ = nullptr;                // the Feed in progress
+    std::vector<std::unique_ptr<lang::IncrementalReader>> levels_;  // innermost last
+    FeedResult* collecting_ = nullptr;                              // the Feed in progress
     std::FILE* err_ = stderr;
     std::FILE* out_ = stdout;
     std::FILE* trace_ = nullptr;

@@ -56,9 +56,6 @@ void CholeskySolve(const double l[3][3], int m, const double* rhs, double* x);
 // Stage (a) for one inside function. `centre` receives the ellipsoid's centre when there is one.
 Box3 AnalyticBox(const InsideFn& f, Vec3* centre, bool* hasCentre);
 
-// Solves the k×k system m x = r (k <= 3); false when (nearly) singular.
-bool SolveSmall(int k, double m[3][3], double r[3], double x[3]);
-
 // Non-negative multipliers (at most 3 non-zero) minimising |Σ λ_i g_i - t|; false when no
 // support of at least minSupport members has positive multipliers.
 inline constexpr int kMaxSurrogate = 4;

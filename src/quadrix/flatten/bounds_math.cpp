@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "quadrix/flatten/bounds_internal.h"
+#include "quadrix/math/dense_solve.h"
 #include "quadrix/math/symmetric_eigen.h"
 
 namespace quadrix::bounds_detail {
@@ -244,30 +245,6 @@ Box3 AnalyticBox(const InsideFn& f, Vec3* centre, bool* hasCentre) {
     return box;
 }
 
-// Solves the k×k system m x = r (k <= 3) by Gaussian elimination with partial pivoting; false
-// when (nearly) singular.
-bool SolveSmall(int k, double m[3][3], double r[3], double x[3]) {
-    for (int col = 0; col < k; ++col) {
-        int piv = col;
-        for (int i = col + 1; i < k; ++i)
-            if (std::fabs(m[i][col]) > std::fabs(m[piv][col])) piv = i;
-        if (!(std::fabs(m[piv][col]) > 1e-12)) return false;
-        for (int j = 0; j < k; ++j) std::swap(m[piv][j], m[col][j]);
-        std::swap(r[piv], r[col]);
-        for (int i = col + 1; i < k; ++i) {
-            double f = m[i][col] / m[col][col];
-            for (int j = col; j < k; ++j) m[i][j] -= f * m[col][j];
-            r[i] -= f * r[col];
-        }
-    }
-    for (int i = k - 1; i >= 0; --i) {
-        double s = r[i];
-        for (int j = i + 1; j < k; ++j) s -= m[i][j] * x[j];
-        x[i] = s / m[i][i];
-    }
-    return true;
-}
-
 // Non-negative multipliers λ (at most 3 non-zero, by Carathéodory in R³) minimising
 // |Σ λ_i g_i - t| over the given gradients (n <= kMaxSurrogate), by enumerating supports.
 // Returns false when no support of at least minSupport members has positive multipliers.
@@ -297,7 +274,7 @@ bool NonNegativeCombination(int n, const double g[][3], const double t[3], doubl
                 m[i][j] = gi[0] * gj[0] + gi[1] * gj[1] + gi[2] * gj[2];
             }
         }
-        if (!SolveSmall(k, m, r, x)) continue;
+        if (!SolveDense(k, m, r, x, 1e-12)) continue;
         bool positive = true;
         for (int i = 0; i < k; ++i) positive &= x[i] > 0;
         if (!positive) continue;
@@ -323,14 +300,14 @@ Nappe DetectNappe(const InsideFn& f) {
     double big = std::fmax(std::fabs(vals[0]), std::fabs(vals[2]));
     // Exactly one clearly negative eigenvalue, the others clearly positive.
     if (!(big > 0) || !(vals[0] < -1e-9 * big) || !(vals[1] > 1e-9 * big)) return n;
-    // The apex -A⁻¹b does not depend on the scale of f: solve with A / big (SolveSmall's pivot
-    // threshold is absolute, and a quadric far from the origin has a tiny A).
+    // The apex -A⁻¹b does not depend on the scale of f: solve with A / big (the pivot threshold
+    // is absolute, and a quadric far from the origin has a tiny A).
     double m[3][3], r[3], apex[3];
     for (int i = 0; i < 3; ++i) {
         r[i] = -f.b[i] / big;
         for (int j = 0; j < 3; ++j) m[i][j] = f.a[i][j] / big;
     }
-    if (!SolveSmall(3, m, r, apex)) return n;
+    if (!SolveDense(3, m, r, apex, 1e-12)) return n;
     Local at = EvaluateLocal(f, apex);
     // R = -f(apex) <= 0 up to rounding: a cone (0) or a hyperboloid of two sheets (< 0).
     double rValue = -at.v, tolerance = 64 * kEps * at.mag;

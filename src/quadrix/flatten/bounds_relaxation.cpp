@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "quadrix/flatten/bounds_internal.h"
+#include "quadrix/math/dense_solve.h"
 
 namespace quadrix::bounds_detail {
 
@@ -333,7 +334,8 @@ class ConvexRelaxation {
                 for (int c = 0; c < dim; ++c) h[r][c] = jac[r][c];
                 rhs[r] = -f[r];
             }
-            if (SolveDense(dim, h, rhs, delta, 1e-13)) {
+            // Refused when a pivot is below 1e-13 of the largest entry (numerically singular).
+            if (SolveDense(dim, h, rhs, delta, 1e-13 * MaxAbsEntry(dim, h))) {
                 for (int j = 0; j < 3; ++j) x[j] += delta[j];
                 for (int a = 0; a < k; ++a) lam[a] += delta[3 + a];
                 continue;
@@ -359,37 +361,6 @@ class ConvexRelaxation {
             out[act[a]] = lam[a];
         }
         return IsFinite(Vec3{x[0], x[1], x[2]});
-    }
-
-    // Gaussian elimination with partial pivoting; false when a pivot is below
-    // relPivot × the largest entry (numerically singular) or not finite.
-    static bool SolveDense(int n, double h[6][6], double r[6], double x[6], double relPivot = 0) {
-        double big = 0;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) big = std::fmax(big, std::fabs(h[i][j]));
-        for (int col = 0; col < n; ++col) {
-            int piv = col;
-            for (int i = col + 1; i < n; ++i)
-                if (std::fabs(h[i][col]) > std::fabs(h[piv][col])) piv = i;
-            if (!(std::fabs(h[piv][col]) > relPivot * big) || !std::isfinite(h[piv][col]))
-                return false;
-            if (piv != col) {
-                for (int j = 0; j < n; ++j) std::swap(h[piv][j], h[col][j]);
-                std::swap(r[piv], r[col]);
-            }
-            for (int i = col + 1; i < n; ++i) {
-                double f = h[i][col] / h[col][col];
-                for (int j = col; j < n; ++j) h[i][j] -= f * h[col][j];
-                r[i] -= f * r[col];
-            }
-        }
-        for (int i = n - 1; i >= 0; --i) {
-            double s = r[i];
-            for (int j = i + 1; j < n; ++j) s -= h[i][j] * x[j];
-            x[i] = s / h[i][i];
-            if (!std::isfinite(x[i])) return false;
-        }
-        return true;
     }
 
     // Newton iterations on -t e·x - Σ log(-f_i(x)) from a strictly feasible x.
@@ -498,32 +469,11 @@ class ConvexRelaxation {
         return false;
     }
 
-    // Solves H step = -grad (n = 3 or 4) by Gaussian elimination with partial pivoting.
-    static bool SolveNewton(int n, double h[4][4], const double grad[4], double step[4]) {
+    // Solves H step = -grad (n = 3 or 4; math/dense_solve.h), refusing zero pivots only.
+    static bool SolveNewton(int n, double (&h)[4][4], const double grad[4], double step[4]) {
         double r[4];
         for (int i = 0; i < n; ++i) r[i] = -grad[i];
-        for (int col = 0; col < n; ++col) {
-            int piv = col;
-            for (int i = col + 1; i < n; ++i)
-                if (std::fabs(h[i][col]) > std::fabs(h[piv][col])) piv = i;
-            if (!(std::fabs(h[piv][col]) > 0) || !std::isfinite(h[piv][col])) return false;
-            if (piv != col) {
-                for (int j = 0; j < n; ++j) std::swap(h[piv][j], h[col][j]);
-                std::swap(r[piv], r[col]);
-            }
-            for (int i = col + 1; i < n; ++i) {
-                double f = h[i][col] / h[col][col];
-                for (int j = col; j < n; ++j) h[i][j] -= f * h[col][j];
-                r[i] -= f * r[col];
-            }
-        }
-        for (int i = n - 1; i >= 0; --i) {
-            double s = r[i];
-            for (int j = i + 1; j < n; ++j) s -= h[i][j] * step[j];
-            step[i] = s / h[i][i];
-            if (!std::isfinite(step[i])) return false;
-        }
-        return true;
+        return SolveDense(n, h, r, step);
     }
 
     // A point of the closed nappe on the side fixed for it, near x: x itself, or x with its

@@ -58,16 +58,22 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
     }
     std::vector<double> errors, intensityErrors;
     double sum = 0, intensitySum = 0;
+    double depthLo = HUGE_VAL, depthHi = -HUGE_VAL;
     for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
             const std::size_t i = ref.Index(x, y);
             const bool ca = a.surface[i] != Frame::kNone, cr = ref.surface[i] != Frame::kNone;
             const bool differs = ca != cr || (ca && a.surface[i] != ref.surface[i]);
+            if (cr) {
+                depthLo = std::fmin(depthLo, ref.depth[i]);
+                depthHi = std::fmax(depthHi, ref.depth[i]);
+            }
             if (ca && cr) {
                 ++c.coveredBoth;
                 c.sameSolid += a.solid[i] == ref.solid[i];
                 if (a.surface[i] == ref.surface[i]) {
                     ++c.sameSurface;
+                    c.sameSurfaceOtherBody += a.body[i] != ref.body[i];
                     const double e = std::fabs(a.depth[i] - ref.depth[i]);
                     c.maxDepthError = std::fmax(c.maxDepthError, e);
                     c.depthOverTolerance += e > options.depthTolerance;
@@ -92,6 +98,7 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
             }
             if (differs && !OnEdge(ref, x, y)) {
                 ++c.offEdgeDifferences;
+                c.offEdgeCoverageDifferences += ca != cr;
                 if (c.firstDifference.empty())
                     c.firstDifference = fmt::format(
                         "pixel ({}, {}): surface {} vs {}, solid {} vs {}, depth {:.17g} vs "
@@ -100,6 +107,7 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
                         ref.depth[i]);
             }
         }
+    if (depthHi > depthLo) c.referenceDepthRange = depthHi - depthLo;
     if (!errors.empty()) {
         c.meanDepthError = sum / static_cast<double>(errors.size());
         const auto k = static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(errors.size() - 1));

@@ -23,12 +23,17 @@ struct FrameComparison {
     bool sizeMismatch = false;
     std::uint64_t coveredBoth = 0, onlyA = 0, onlyReference = 0;
     std::uint64_t sameSurface = 0, sameSolid = 0;
-    std::uint64_t surfaceDiffers = 0;      // covered in both, different surface id
-    std::uint64_t offEdgeDifferences = 0;  // coverage or surface differs away from any edge
+    std::uint64_t surfaceDiffers = 0;              // covered in both, different surface id
+    std::uint64_t sameSurfaceOtherBody = 0;        // same surface id, different body id
+    std::uint64_t offEdgeDifferences = 0;          // coverage or surface differs away from any edge
+    std::uint64_t offEdgeCoverageDifferences = 0;  // of those, covered in one frame only
     std::uint64_t depthOverTolerance =
         0;  // same surface, |Δz| above CompareOptions::depthTolerance
     double maxDepthError = 0, meanDepthError = 0, p999DepthError = 0;
     double maxNormalErrorDegrees = 0;
+    // Largest minus smallest depth over the reference's covered pixels (0 when fewer than two):
+    // the scale of depth tolerances relative to the scene.
+    double referenceDepthRange = 0;
     // Shading error on same-surface pixels, when CompareOptions::intensity is given:
     // |intensity(normal in A) − intensity(normal in the reference)|.
     double maxIntensityError = 0, meanIntensityError = 0, p99IntensityError = 0;
@@ -36,6 +41,8 @@ struct FrameComparison {
 
     // Share of pixels covered in both that show the same surface (1 when none are).
     double SameSurfaceShare() const;
+    // Pixels whose surface id differs, coverage included (onlyA + onlyReference + surfaceDiffers).
+    std::uint64_t SurfaceMismatches() const { return onlyA + onlyReference + surfaceDiffers; }
     // A few lines for people.
     std::string Summary() const;
 };

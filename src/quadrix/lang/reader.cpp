@@ -31,6 +31,10 @@ bool Reader::ReadText(std::string_view text, const std::string& name) {
 bool Reader::UsesClock() const { return impl_->state.usesClock; }
 bool Reader::UsesClockOutsideViews() const { return impl_->state.usesClockOutsideViews; }
 
+void Reader::Resume() { impl_->state.aborted = false; }
+
+ReaderState& Reader::State() { return impl_->state; }
+
 bool ReadSceneFiles(const std::vector<std::string>& paths, scene::Scene& scene, Diagnostics& diags,
                     ReadOptions options) {
     Reader reader(scene, diags, options);

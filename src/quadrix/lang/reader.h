@@ -25,6 +25,8 @@
 
 namespace quadrix::lang {
 
+class ReaderState;
+
 // An interactive-mode statement (seed 001 §2.3).
 struct Command {
     enum class Kind { kRedefLight, kRedefView, kDevice, kShow, kQuit, kNakedRead };
@@ -66,8 +68,16 @@ class Reader {
     // Whether `clock` was used outside view statements (the scene's geometry, lights or
     // background depend on it); false when the clock only moves the camera.
     bool UsesClockOutsideViews() const;
+    // Reading stops everywhere after too many errors or statements; a session that reports and
+    // clears its diagnostics between inputs resumes reading with the next one by calling this.
+    void Resume();
+    // Lines typed at a prompt are read by an IncrementalReader on this Reader
+    // (incremental_reader.h).
 
   private:
+    friend class IncrementalReader;
+    ReaderState& State();
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -2,8 +2,8 @@
 // point toward a light blocked by a solid of the scene?
 //
 // The shadow ray is a device-space line p + s·d in an arbitrary direction (not along z as the
-// engines' rays), so each literal is evaluated along it directly, the same way raycast does along
-// z (engines/raycast/ray_literal.h):
+// engines' rays), so each literal is evaluated along it directly, the same way the shared exact
+// evaluator does along z (eval/ray_literal.h):
 //   plane    P(p + s d) = (n·d) s + P(p)
 //   quadric  Q(p + s d) = (dᵀA d) s² + 2 ((A p + b)·d) s + Q(p)      (A, b: quadric.h)
 // solved by SolveQuadratic (math/quadratic.h); the literal's set is where the polynomial is <= 0

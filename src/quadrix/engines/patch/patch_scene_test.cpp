@@ -4,11 +4,13 @@
 // conversion must absorb: they are transparent and usually redundant).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "quadrix/engines/patch/patch_engine.h"
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/flatten/flattener.h"
+#include "quadrix/frame/compare.h"
 #include "quadrix/lang/reader.h"
 
 namespace quadrix {
@@ -61,30 +63,22 @@ Rendered Render(const std::string& view) {
     return r;
 }
 
+// patch against raycast through the one comparison (frame/compare.h): pixels agree when both
+// the surface and the body are the same; there, depths within 1e-6 of raycast's depth range and
+// normals within acos(1 - 1e-6) (unit normals whose dot product exceeds 1 - 1e-6).
 void ExpectAgreement(const Rendered& r) {
-    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
-    for (std::size_t i = 0; i < r.ray.depth.size(); ++i)
-        if (r.ray.surface[i] != Frame::kNone) {
-            zlo = std::min(zlo, r.ray.depth[i]);
-            zhi = std::max(zhi, r.ray.depth[i]);
-        }
     ASSERT_GT(r.ray.CoveredCount(), 500u);
-    std::size_t differ = 0, agree = 0;
-    for (std::size_t i = 0; i < r.ray.depth.size(); ++i) {
-        if (r.ray.body[i] != r.patch.body[i] || r.ray.surface[i] != r.patch.surface[i]) {
-            ++differ;
-            continue;
-        }
-        if (r.ray.surface[i] == Frame::kNone) continue;
-        ++agree;
-        EXPECT_LE(std::fabs(r.ray.depth[i] - r.patch.depth[i]), 1e-6 * (zhi - zlo));
-        EXPECT_GT(Dot(r.ray.normal[i], r.patch.normal[i]), 1 - 1e-6);
-    }
+    const FrameComparison c = CompareFrames(r.patch, r.ray);
+    const std::uint64_t differ = c.SurfaceMismatches() + c.sameSurfaceOtherBody;
+    const std::uint64_t agree = c.sameSurface - c.sameSurfaceOtherBody;
+    EXPECT_LE(c.maxDepthError, 1e-6 * c.referenceDepthRange) << c.Summary();
+    EXPECT_LT(c.maxNormalErrorDegrees, std::acos(1 - 1e-6) * 180 / M_PI) << c.Summary();
     double dropped = 0;
     for (const auto& [k, v] : r.stats.counters)
         if (k == "redundant planes dropped") dropped = v;
-    std::printf("[patch] scene: %zu pixels agree, %zu differ, %g redundant planes dropped\n", agree,
-                differ, dropped);
+    std::printf("[patch] scene: %llu pixels agree, %llu differ, %g redundant planes dropped\n",
+                static_cast<unsigned long long>(agree), static_cast<unsigned long long>(differ),
+                dropped);
     EXPECT_LT(differ, agree / 50);  // silhouette pixels only
 }
 

@@ -43,38 +43,23 @@ std::array<double, 10> TurnedEllipsoid(const Vec3& c, double rx, double ry, doub
     return q;
 }
 
-// Surface-id mismatches between two frames, and the largest depth difference where the ids
-// agree, relative to the depth range of `ref`.
-struct Diff {
-    std::size_t covered = 0, mismatches = 0;
-    double depthError = 0;
-};
-Diff Compare(const Frame& ref, const Frame& got) {
-    Diff d;
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (double z : ref.depth)
-        if (std::isfinite(z)) lo = std::min(lo, z), hi = std::max(hi, z);
-    const double range = hi > lo ? hi - lo : 1;
-    for (std::size_t i = 0; i < ref.depth.size(); ++i) {
-        d.covered += ref.surface[i] != Frame::kNone;
-        if (ref.surface[i] != got.surface[i]) {
-            ++d.mismatches;
-        } else if (ref.surface[i] != Frame::kNone) {
-            d.depthError = std::max(d.depthError, std::fabs(ref.depth[i] - got.depth[i]) / range);
-        }
-    }
-    return d;
+// The scale of the depth tolerances: the reference's depth range (1 for a flat or empty frame).
+double DepthScale(const FrameComparison& c) {
+    return c.referenceDepthRange > 0 ? c.referenceDepthRange : 1;
 }
 
-// scanline (default: carried face stacks) against raycast: at most `allowed` pixels with another
-// surface (silhouette pixels where a traced crossing and the per-pixel solve round differently)
-// and depths within 1e-6 of the range.
+// scanline (default: carried face stacks) against raycast through the one comparison
+// (frame/compare.h): at most `allowed` pixels with another surface, coverage included
+// (silhouette pixels where a traced crossing and the per-pixel solve round differently), and
+// depths within 1e-6 of the range where the surfaces agree.
 void ExpectRaycastFrame(const Frame& ref, const Frame& got, std::size_t allowed,
                         const std::string& what) {
-    const Diff d = Compare(ref, got);
-    EXPECT_GT(d.covered, 0u) << what;
-    EXPECT_LE(d.mismatches, allowed) << what << ": " << d.mismatches << " of " << d.covered;
-    EXPECT_LE(d.depthError, 1e-6) << what;
+    const FrameComparison d = CompareFrames(got, ref);
+    const std::uint64_t covered = d.coveredBoth + d.onlyReference;
+    EXPECT_GT(covered, 0u) << what;
+    EXPECT_LE(d.SurfaceMismatches(), allowed)
+        << what << ": " << d.SurfaceMismatches() << " of " << covered;
+    EXPECT_LE(d.maxDepthError / DepthScale(d), 1e-6) << what;
 }
 
 PipelineResult RunScene(const std::string& path, int w, int h, const char* engine,
@@ -471,9 +456,9 @@ TEST(ScanlineCsgPruning, ManySpheresAgreeWithTheFullTreeAndRaycast) {
         const std::string what = std::to_string(n) + " spheres";
         // The same surfaces as the full tree per pixel; depths differ only by the rounding of the
         // span shader's incremental conics.
-        const Diff full = Compare(pixels.frame, spans.frame);
-        EXPECT_EQ(full.mismatches, 0u) << what;
-        EXPECT_LE(full.depthError, 1e-9) << what;
+        const FrameComparison full = CompareFrames(spans.frame, pixels.frame);
+        EXPECT_EQ(full.SurfaceMismatches(), 0u) << what;
+        EXPECT_LE(full.maxDepthError / DepthScale(full), 1e-9) << what;
         ExpectRaycastFrame(ray.frame, spans.frame, 0, what);
         EXPECT_GT(ray.frame.CoveredCount(), 1000u) << what;
         EXPECT_EQ(Counter(spans.stats, "csg_exact_fallback_pixels"), 0) << what;

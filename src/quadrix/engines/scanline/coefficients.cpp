@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "quadrix/math/dense_solve.h"
+
 namespace quadrix::scanline {
 
 Line2 LineOfPlanes(const Plane& p1, const Plane& p2) {
@@ -44,32 +46,14 @@ Conic2 LimbConic(const Quadric& q) {
 bool LimbExists(const Quadric& q) { return q.C() > 0; }
 
 std::optional<Vec3> IntersectThreePlanes(const Plane& p1, const Plane& p2, const Plane& p3) {
-    double m[3][4] = {
-        {p1.a, p1.b, p1.c, -p1.d}, {p2.a, p2.b, p2.c, -p2.d}, {p3.a, p3.b, p3.c, -p3.d}};
-    double scale = 0;
-    for (auto& row : m)
-        for (int k = 0; k < 3; ++k) scale = std::max(scale, std::fabs(row[k]));
-    if (scale == 0) return std::nullopt;
-    for (int col = 0; col < 3; ++col) {
-        int pivot = col;
-        for (int r = col + 1; r < 3; ++r)
-            if (std::fabs(m[r][col]) > std::fabs(m[pivot][col])) pivot = r;
-        // Zero test: a pivot within the elimination's rounding (a few ulps of the scale) means the
-        // planes share a line or are parallel.
-        if (std::fabs(m[pivot][col]) <= 64 * kUnit * scale) return std::nullopt;
-        if (pivot != col)
-            for (int k = 0; k < 4; ++k) std::swap(m[pivot][k], m[col][k]);
-        for (int r = col + 1; r < 3; ++r) {
-            double f = m[r][col] / m[col][col];
-            for (int k = col; k < 4; ++k) m[r][k] -= f * m[col][k];
-        }
-    }
-    double z = m[2][3] / m[2][2];
-    double y = (m[1][3] - m[1][2] * z) / m[1][1];
-    double x = (m[0][3] - m[0][2] * z - m[0][1] * y) / m[0][0];
-    Vec3 v{x, y, z};
-    if (!IsFinite(v)) return std::nullopt;
-    return v;
+    double m[3][3] = {{p1.a, p1.b, p1.c}, {p2.a, p2.b, p2.c}, {p3.a, p3.b, p3.c}};
+    double r[3] = {-p1.d, -p2.d, -p3.d}, x[3];
+    // Zero test: a pivot within the elimination's rounding (a few ulps of the largest
+    // coefficient) means the planes share a line or are parallel (all coefficients zero too).
+    // x = (r0 − m02 z − m01 y) / m00: the decreasing order of back substitution.
+    if (!SolveDense(3, m, r, x, 64 * kUnit * MaxAbsEntry(3, m), BackOrder::kDecreasing))
+        return std::nullopt;
+    return Vec3{x[0], x[1], x[2]};
 }
 
 Quadratic1 LineConicInX(const Line2& l, const Conic2& c) {

@@ -65,8 +65,9 @@ Conic2 LimbConic(const Quadric& q);
 // quadric with C_q ≠ 0 (a spherical hole, C_q < 0, has a silhouette too).
 bool LimbExists(const Quadric& q);
 
-// §4.5.8 The point where three planes meet, by Gauss elimination with partial pivoting;
-// nullopt when the system is singular (pivot below the zero test's error estimate).
+// §4.5.8 The point where three planes meet, by Gauss elimination with partial pivoting
+// (math/dense_solve.h); nullopt when the system is singular (pivot below the zero test's error
+// estimate).
 std::optional<Vec3> IntersectThreePlanes(const Plane& p1, const Plane& p2, const Plane& p3);
 
 // (4.15) y eliminated from line and conic: a quadratic in x (use when |b_l| > |a_l|).
