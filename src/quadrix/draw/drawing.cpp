@@ -107,15 +107,16 @@ bool Near(const Point2& a, const Point2& b, double tol) {
     return std::fabs(a.x - b.x) <= tol && std::fabs(a.y - b.y) <= tol;
 }
 
-// Strokes that draw the same line twice — the same visibility, the same ends (either way round)
-// and the same midpoint within 1e-6 px — are written once: the heavier one is kept (silhouette
-// over edge over tangent edge). Distinct 3-D curves have one image when they lie behind each other
-// along the rays: the machined part's holes at z = ±12 seen from the front draw their hidden
-// outline rulings on the same lines. Returns how many were dropped.
+// Strokes that draw the same line twice — the same ends (either way round) and the same midpoint
+// within 1e-6 px — are written once: the one that takes precedence is kept (drafting practice:
+// visible over hidden, then silhouette over edge over tangent edge). Distinct 3-D curves have one
+// image when they lie behind each other along the rays: the machined part's holes at z = ±12 seen
+// from the front draw their hidden outline rulings on the same lines. Returns how many were
+// dropped.
 int RemoveDuplicates(std::vector<Stroke>& strokes) {
     constexpr double kTol = 1e-6;
     auto weight = [](const Stroke& s) {
-        return s.role == CurveRole::kSilhouette ? 2 : (s.tangent ? 0 : 1);
+        return (s.visible ? 10 : 0) + (s.role == CurveRole::kSilhouette ? 2 : (s.tangent ? 0 : 1));
     };
     struct Key {
         Point2 lo, hi, mid;
@@ -137,7 +138,7 @@ int RemoveDuplicates(std::vector<Stroke>& strokes) {
              ++j) {
             const Key &a = keys[i], &b = keys[j];
             const Stroke &sa = strokes[a.index], &sb = strokes[b.index];
-            if (drop[b.index] || sa.visible != sb.visible) continue;
+            if (drop[b.index]) continue;
             // Ends may be sorted differently when they are within the tolerance in x.
             const bool ends = (Near(a.lo, b.lo, kTol) && Near(a.hi, b.hi, kTol)) ||
                               (Near(a.lo, b.hi, kTol) && Near(a.hi, b.lo, kTol));
