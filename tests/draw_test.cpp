@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -15,6 +17,7 @@
 #include "quadrix/draw/svg_writer.h"
 #include "quadrix/draw/undrawable.h"
 #include "quadrix/pipeline/pipeline.h"
+#include "svg_raster.h"
 #include "test_util.h"
 
 namespace quadrix {
@@ -109,6 +112,110 @@ TEST(Draw, CylinderCapSeenObliquelyIsOneExactEllipse) {
     EXPECT_EQ(silhouettes, 2);  // the two outline rulings
 }
 
+// Points of the cubic Béziers of an SVG shape (Q already raised to C by the reader), evaluated
+// in double precision (not through Cairo, whose paths are fixed point).
+std::vector<draw::Point2> BezierPoints(const testing::SvgShape& s, int perCubic) {
+    std::vector<draw::Point2> out;
+    testing::SvgPoint cur;
+    for (const testing::SvgOp& op : s.ops) {
+        if (op.kind == testing::SvgOp::kCubic) {
+            for (int k = 0; k <= perCubic; ++k) {
+                const double u = static_cast<double>(k) / perCubic, w = 1 - u;
+                const double b0 = w * w * w, b1 = 3 * w * w * u, b2 = 3 * w * u * u, b3 = u * u * u;
+                out.push_back({b0 * cur.x + b1 * op.p[0].x + b2 * op.p[1].x + b3 * op.p[2].x,
+                               b0 * cur.y + b1 * op.p[0].y + b2 * op.p[1].y + b3 * op.p[2].y});
+            }
+            cur = op.p[2];
+        } else if (op.kind != testing::SvgOp::kArc) {
+            cur = op.p[0];
+        }
+    }
+    return out;
+}
+
+// A cone x² + z² <= y² (y > 0) seen from the front, cut by a plane facing the viewer: parallel
+// to the axis, z = −1/2, the cut face's edge is the hyperbola y² − x² = 1/4; parallel to a
+// generator, z = y − 1, it is the parabola y = (x² + 1)/2. The SVG is read back: the parabola
+// is one exact quadratic Bézier `Q` (points on the analytic curve to 1e-9 px), the hyperbola cubic
+// Béziers `C` within the tolerance (0.05 px by default, 0.001 px asked), fewer for the larger one.
+TEST(Draw, ParabolaIsOneExactQuadraticAndHyperbolaCubicsWithinTheTolerance) {
+    const std::string cone =
+        "quadric k <1 -1 1 0 0 0 0 0 0 0>; plane lo <0 -1 0 0.5>; plane hi <0 1 0 -2>;\n";
+    struct Case {
+        const char* cut;
+        const char* svgCommand;  // the command the conic must be written with
+        double (*residual)(double x, double y, double& grad);
+    };
+    const Case cases[] = {
+        {"plane cut <0 0 -1 -0.5>;", " C ",
+         [](double x, double y, double& g) {
+             g = 2 * std::hypot(x, y);
+             return y * y - x * x - 0.25;
+         }},
+        {"plane cut <0 1 -1 -1>;", " Q ",
+         [](double x, double y, double& g) {
+             g = std::hypot(x, 1.0);
+             return y - (x * x + 1) / 2;
+         }},
+    };
+    for (const Case& c : cases) {
+        FlatScene f;
+        ASSERT_TRUE(
+            Flat(cone + c.cut + "\nbody piece <k lo hi cut>; view front dop 0 0 -1;", 400, 400, f));
+        const Drawing d = draw::MakeDrawing(f);
+        // Device → world in the plane of the view: device = o + x·ex + y·ey.
+        const Vec3 o = Dev(f, {0, 0, 0}), ex = Dev(f, {1, 0, 0}) - o, ey = Dev(f, {0, 1, 0}) - o;
+        const double det = ex.x * ey.y - ex.y * ey.x, ppu = PixelsPerUnit(f);
+        for (double tol : {0.05, 0.001}) {
+            draw::Page page = draw::SingleViewPage(d, "cone", tol);
+            const std::string text = draw::SvgDocument(page);
+            const testing::SvgDrawing svg = testing::ReadSvgDrawing(text);
+            ASSERT_TRUE(svg.errors.empty());
+            int conics = 0;
+            for (std::size_t i = 0; i < page.strokes.size(); ++i) {
+                const Stroke& s = page.strokes[i];
+                if (s.kind != StrokeKind::kHyperbolaArc && s.kind != StrokeKind::kParabolaArc)
+                    continue;
+                ++conics;
+                EXPECT_EQ(s.kind == StrokeKind::kParabolaArc, std::string(c.svgCommand) == " Q ");
+            }
+            ASSERT_EQ(conics, 1) << c.cut;
+            const bool parabola = std::string(c.svgCommand) == " Q ";
+            // The shape whose Béziers lie on the cut's conic.
+            int checked = 0;
+            double worst = 0;
+            for (const testing::SvgShape& sh : svg.shapes) {
+                bool cubic = false;
+                for (const auto& op : sh.ops) cubic = cubic || op.kind == testing::SvgOp::kCubic;
+                if (!cubic) continue;
+                ++checked;
+                for (const draw::Point2& p : BezierPoints(sh, 64)) {
+                    const double dx = p.x - o.x, dy = p.y - o.y;
+                    const double x = (dx * ey.y - dy * ey.x) / det;
+                    const double y = (ex.x * dy - ex.y * dx) / det;
+                    double g = 0;
+                    const double r = c.residual(x, y, g);
+                    worst = std::fmax(worst, std::fabs(r) / g * ppu);  // device px
+                }
+            }
+            EXPECT_EQ(checked, 1) << c.cut;
+            if (parabola) {
+                EXPECT_LT(worst, 1e-9) << "exact quadratic Bézier";
+                EXPECT_NE(text.find(" Q "), std::string::npos);
+            } else {
+                EXPECT_LE(worst, tol) << "tolerance " << tol;
+                EXPECT_GT(worst, 0);  // an approximation, measured
+                std::size_t n = 0;
+                for (std::size_t k = text.find(" C "); k != std::string::npos;
+                     k = text.find(" C ", k + 1))
+                    ++n;
+                std::printf("hyperbola, tolerance %g px: %zu cubics, farthest %.2e px\n", tol, n,
+                            worst);
+            }
+        }
+    }
+}
+
 // Pieces of strokes that are segments at device x ≈ `x`, as (y0, y1, visible) sorted by y.
 struct Span {
     double y0, y1;
@@ -196,6 +303,28 @@ struct FrameEdges {
     std::vector<unsigned char> horiz, vert;  // pair (i, j)–(i+1, j) and (i, j)–(i, j+1)
 };
 
+// Whether two half-spaces have the same surface: coefficients proportional (either sign).
+bool SameSurface(const FlatHalfSpace& p, const FlatHalfSpace& q) {
+    if (p.isPlane != q.isPlane || p.IsQuartic() || q.IsQuartic()) return false;
+    auto coefficients = [](const FlatHalfSpace& h) {
+        std::array<double, 10> k{};
+        if (h.isPlane)
+            k = {h.plane.a, h.plane.b, h.plane.c, h.plane.d, 0, 0, 0, 0, 0, 0};
+        else
+            k = h.quadric.k;
+        std::size_t big = 0;
+        for (std::size_t i = 1; i < k.size(); ++i)
+            if (std::fabs(k[i]) > std::fabs(k[big])) big = i;
+        const double pivot = k[big];
+        for (double& v : k) v = pivot != 0 ? v / pivot : 0;
+        return k;
+    };
+    const auto kp = coefficients(p), kq = coefficients(q);
+    for (std::size_t i = 0; i < kp.size(); ++i)
+        if (std::fabs(kp[i] - kq[i]) > 1e-9) return false;
+    return true;
+}
+
 FrameEdges EdgesOf(const Frame& fr, const FlatScene& flat, double creaseDegrees) {
     FrameEdges e;
     e.w = fr.width;
@@ -206,17 +335,14 @@ FrameEdges EdgesOf(const Frame& fr, const FlatScene& flat, double creaseDegrees)
         const bool ba = fr.surface[a] == Frame::kNone, bb = fr.surface[b] == Frame::kNone;
         if (ba || bb) return ba != bb;
         if (fr.surface[a] == fr.surface[b]) return false;
-        // Different half-spaces with one surface (coincident faces of different bodies): the
-        // point seen at b lies on a's surface (within 0.01 px), so no edge separates them.
-        auto onSurface = [&](std::size_t from, std::size_t to) {
-            const FlatHalfSpace& h = flat.halfSpaces[static_cast<std::size_t>(fr.surface[from])];
-            const Vec3 q{static_cast<double>(to % static_cast<std::size_t>(fr.width)) + 0.5,
-                         static_cast<double>(to / static_cast<std::size_t>(fr.width)) + 0.5,
-                         fr.depth[to]};
-            const double g = Length(h.isPlane ? h.plane.Normal() : h.quadric.Gradient(q));
-            return g > 0 && std::fabs(h.Evaluate(q)) <= 0.01 * g;
-        };
-        if (onSurface(a, b) && onSurface(b, a)) return false;
+        // Different half-spaces with one surface (coincident faces of different bodies, the
+        // coefficients proportional to 1e-9): no edge separates them. (A test of whether each
+        // pixel's point lies on the other's surface would also hide true creases of small
+        // dihedral angle: at 2° a point 0.3 px from the crease is within 0.01 px of the other
+        // surface — the clover knot's mitres.)
+        if (SameSurface(flat.halfSpaces[static_cast<std::size_t>(fr.surface[a])],
+                        flat.halfSpaces[static_cast<std::size_t>(fr.surface[b])]))
+            return false;
         return Dot(fr.normal[a], fr.normal[b]) < std::cos(creaseDegrees * M_PI / 180) ||
                std::fabs(fr.depth[a] - fr.depth[b]) > 2;
     };
@@ -249,74 +375,104 @@ double DistanceToFrameEdge(const FrameEdges& e, double x, double y) {
     return best;
 }
 
-struct Sample : draw::Point2 {
-    const Stroke* stroke = nullptr;
+// The drawing as written: the SVG file read back (tests/svg_raster.h) — its visible curves
+// (groups "edges" and "silhouettes"; tangent edges aside, see above) flattened by Cairo and
+// sampled every 0.25 px, and the same shapes stroked at their written widths onto an alpha image
+// of the render's size.
+struct FileSample {
+    double x = 0, y = 0;
+    const testing::SvgShape* shape = nullptr;
+    bool nearVertex = false;  // within 1 px of an end of a visible curve
 };
 
-std::vector<Sample> VisibleSamples(const Drawing& d, double spacing) {
-    std::vector<Sample> out;
-    for (const Stroke& s : d.strokes) {
-        if (!s.visible || s.tangent) continue;
-        std::vector<draw::Point2> pts;
-        if (s.kind == StrokeKind::kEllipseArc) {
-            for (int i = 0; i <= 4096; ++i)
-                pts.push_back(s.ArcPoint(s.a0 + (s.a1 - s.a0) * i / 4096));
-        } else {
-            pts = s.points;
+bool IsVisibleCurve(const testing::SvgShape& s) {
+    return (s.group == "edges" || s.group == "silhouettes") && s.cls != "tangent";
+}
+
+std::vector<FileSample> SampleFile(const testing::SvgDrawing& svg, double spacing) {
+    std::vector<FileSample> out;
+    std::vector<draw::Point2> ends;
+    std::vector<std::pair<const testing::SvgShape*, std::vector<testing::SvgPoint>>> lines;
+    for (const testing::SvgShape& s : svg.shapes) {
+        if (!IsVisibleCurve(s)) continue;
+        for (auto& pl : testing::FlattenShape(s, 1e-3)) {
+            if (pl.empty()) continue;
+            // A closed curve (a whole ellipse) has no vertex.
+            const bool closed =
+                std::hypot(pl.front().x - pl.back().x, pl.front().y - pl.back().y) < 1e-9;
+            if (!closed) {
+                ends.push_back({pl.front().x, pl.front().y});
+                ends.push_back({pl.back().x, pl.back().y});
+            }
+            lines.emplace_back(&s, std::move(pl));
         }
+    }
+    for (const auto& [shape, pts] : lines) {
+        auto add = [&](double x, double y) {
+            FileSample q;
+            q.x = x;
+            q.y = y;
+            q.shape = shape;
+            for (const draw::Point2& e : ends)
+                if (std::hypot(e.x - x, e.y - y) <= 1) q.nearVertex = true;
+            out.push_back(q);
+        };
         for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
             const double len = std::hypot(pts[i + 1].x - pts[i].x, pts[i + 1].y - pts[i].y);
             const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
-            for (int k = 0; k < n; ++k) {
-                Sample q;
-                q.x = pts[i].x + (pts[i + 1].x - pts[i].x) * k / n;
-                q.y = pts[i].y + (pts[i + 1].y - pts[i].y) * k / n;
-                q.stroke = &s;
-                out.push_back(q);
-            }
+            for (int k = 0; k < n; ++k)
+                add(pts[i].x + (pts[i + 1].x - pts[i].x) * k / n,
+                    pts[i].y + (pts[i + 1].y - pts[i].y) * k / n);
         }
-        if (!pts.empty()) {
-            Sample q;
-            q.x = pts.back().x;
-            q.y = pts.back().y;
-            q.stroke = &s;
-            out.push_back(q);
-        }
+        add(pts.back().x, pts.back().y);
     }
     return out;
 }
 
 struct EdgeAgreement {
-    double curveNearEdge = 0;  // share of visible curve samples within 0.5 px of a Frame edge
-    double edgeCovered = 0;  // share of Frame edge pairs (in runs > 3 px) within 0.75 px of a curve
-    int samples = 0, edgePairs = 0;
-    double farthest = 0;  // px, largest distance of a visible curve sample from a Frame edge
+    int samples = 0;            // visible curve samples away from the image border
+    int far = 0;                // of them, farther than 0.5 px from a Frame edge (vertices: 1 px)
+    double farthest = 0;        // px, largest distance of a sample away from vertices
+    double farthestVertex = 0;  // px, largest distance of a sample within 1 px of a vertex
+    int edgePairs = 0;          // strong Frame edge pairs in runs longer than 3 px
+    int uncovered = 0;          // of them, with less than half a pixel of ink on both sides
 };
 
-EdgeAgreement Compare(const Frame& fr, const FlatScene& flat, const Drawing& d) {
+EdgeAgreement Compare(const Frame& fr, const FlatScene& flat, const testing::SvgDrawing& svg) {
     const FrameEdges weak = EdgesOf(fr, flat, 0.25);
     const FrameEdges e = EdgesOf(fr, flat, 3);
+    const bool debug = std::getenv("QUADRIX_DRAW_DEBUG") != nullptr;
     EdgeAgreement a;
-    const auto samples = VisibleSamples(d, 0.25);
     // Curve samples → Frame edges (away from the image border, where the Frame ends).
-    int near = 0, counted = 0;
-    std::vector<std::vector<draw::Point2>> grid(static_cast<std::size_t>(e.w * e.h));
-    for (const Sample& p : samples) {
+    for (const FileSample& p : SampleFile(svg, 0.25)) {
         if (p.x < 1.5 || p.y < 1.5 || p.x > e.w - 1.5 || p.y > e.h - 1.5) continue;
-        grid[static_cast<std::size_t>(static_cast<int>(p.y) * e.w + static_cast<int>(p.x))]
-            .push_back(p);
-        ++counted;
+        ++a.samples;
         const double dist = DistanceToFrameEdge(weak, p.x, p.y);
-        near += dist <= 0.5 + 1e-9;
-        a.farthest = std::fmax(a.farthest, dist);
-        if (dist > 0.5 + 1e-9 && std::getenv("QUADRIX_DRAW_DEBUG"))
-            std::printf("  far sample (%.3f, %.3f): %.3f px, stroke %s %s surfaces %d %d\n", p.x,
-                        p.y, dist, draw::ToString(p.stroke->source),
-                        p.stroke->role == CurveRole::kSilhouette ? "silhouette" : "edge",
-                        p.stroke->surfaceA, p.stroke->surfaceB);
+        double& worst = p.nearVertex ? a.farthestVertex : a.farthest;
+        worst = std::fmax(worst, dist);
+        const bool bad = dist > (p.nearVertex ? 1.0 : 0.5) + 1e-9;
+        a.far += bad;
+        if (bad && debug) {
+            // The largest normal jump and the surface ids between neighbouring pixels nearby.
+            double jump = 0;
+            std::string ids;
+            for (int j = static_cast<int>(p.y) - 1; j <= static_cast<int>(p.y) + 1; ++j)
+                for (int i = static_cast<int>(p.x) - 1; i <= static_cast<int>(p.x) + 1; ++i) {
+                    const std::size_t q = static_cast<std::size_t>(j * e.w + i);
+                    if (i + 1 >= e.w || fr.surface[q] == Frame::kNone ||
+                        fr.surface[q + 1] == Frame::kNone || fr.surface[q] == fr.surface[q + 1])
+                        continue;
+                    jump = std::fmax(jump, std::acos(std::clamp(Dot(fr.normal[q], fr.normal[q + 1]),
+                                                                -1.0, 1.0)));
+                    ids = std::to_string(fr.surface[q]) + "/" + std::to_string(fr.surface[q + 1]);
+                }
+            std::printf(
+                "  far sample (%.3f, %.3f): %.3f px, %s %s%s; nearby id change %s, "
+                "normal jump %.3f deg\n",
+                p.x, p.y, dist, p.shape->group.c_str(), p.shape->cls.c_str(),
+                p.nearVertex ? " (vertex)" : "", ids.c_str(), jump * 180 / M_PI);
+        }
     }
-    a.samples = counted;
-    a.curveNearEdge = counted ? static_cast<double>(near) / counted : 1;
     // Frame edges in runs longer than 3 px: components of edge pixels (8-connected) of > 3.
     std::vector<int> comp(static_cast<std::size_t>(e.w * e.h), -1);
     std::vector<int> size;
@@ -347,32 +503,26 @@ EdgeAgreement Compare(const Frame& fr, const FlatScene& flat, const Drawing& d) 
                     }
             }
         }
-    auto nearCurve = [&](double x, double y) {
-        for (int j = static_cast<int>(y) - 1; j <= static_cast<int>(y) + 1; ++j)
-            for (int i = static_cast<int>(x) - 1; i <= static_cast<int>(x) + 1; ++i) {
-                if (i < 0 || j < 0 || i >= e.w || j >= e.h) continue;
-                for (const draw::Point2& p : grid[static_cast<std::size_t>(j * e.w + i)])
-                    if (std::hypot(p.x - x, p.y - y) <= 0.75) return true;
-            }
-        return false;
-    };
-    int pairs = 0, covered = 0;
+    // Frame edges → ink: the edge between pixels p and q is covered when the rasterised visible
+    // curves cover at least half of p or of q (a curve through the boundary between their
+    // centres passes within 0.5 px of one of them, and a 1.1 px stroke covers at least ~55 % of
+    // that pixel).
+    const std::vector<double> ink = testing::RasteriseShapes(svg, e.w, e.h, IsVisibleCurve);
     for (int j = 2; j < e.h - 2; ++j)
         for (int i = 2; i < e.w - 2; ++i) {
             const std::size_t p = static_cast<std::size_t>(j * e.w + i);
             if (comp[p] < 0 || size[static_cast<std::size_t>(comp[p])] <= 3) continue;
             for (int k = 0; k < 2; ++k) {
                 if (!(k == 0 ? e.horiz[p] : e.vert[p])) continue;
-                const double x = i + (k == 0 ? 1.0 : 0.5), y = j + (k == 0 ? 0.5 : 1.0);
-                ++pairs;
-                const bool ok = nearCurve(x, y);
-                covered += ok;
-                if (!ok && std::getenv("QUADRIX_DRAW_DEBUG"))
-                    std::printf("  uncovered Frame edge at (%.1f, %.1f)\n", x, y);
+                const std::size_t q = k == 0 ? p + 1 : p + static_cast<std::size_t>(e.w);
+                ++a.edgePairs;
+                const bool ok = std::fmax(ink[p], ink[q]) >= 0.5;
+                a.uncovered += !ok;
+                if (!ok && debug)
+                    std::printf("  uncovered Frame edge at (%.1f, %.1f), ink %.2f %.2f\n",
+                                i + (k == 0 ? 1.0 : 0.5), j + (k == 0 ? 0.5 : 1.0), ink[p], ink[q]);
             }
         }
-    a.edgePairs = pairs;
-    a.edgeCovered = pairs ? static_cast<double>(covered) / pairs : 1;
     return a;
 }
 
@@ -385,15 +535,24 @@ std::string ReadText(const std::string& path) {
 
 struct EdgeCase {
     std::string name, scene, view;
-    // Share of visible curve samples required near a Frame edge, and the largest distance
-    // allowed (see the test).
-    double nearShare = 0.99;
-    double farthest = 1.0;
     std::string path = {};  // read this file instead of `scene` (scenes that include others)
+    // Far samples allowed (share of the samples) and the largest distance then, for the cases
+    // explained where they are set; 0 elsewhere.
+    double farShare = 0;
+    double farthest = 0;
 };
+
+void PrintTo(const EdgeCase& c, std::ostream* os) { *os << c.name; }
 
 class DrawAgainstFrame : public ::testing::TestWithParam<EdgeCase> {};
 
+// The issue's acceptance test: the SVG written by the real writer, read back and rasterised at
+// the render size, against the edges of raycast's Frame of the same view. Every visible curve
+// sample must lie within 0.5 px of a Frame edge — within 1 px of a vertex (an end of a visible
+// curve), where the nearest pair of differing pixel centres can be 0.8 px from an exact corner —
+// and every strong Frame edge in a run longer than 3 px must be inked. Nothing else is excluded
+// but the 1.5 px band along the image border, hidden lines (not in the Frame) and tangent edges
+// (no Frame edge by definition; tests/draw_tangent_edges_test.cpp).
 TEST_P(DrawAgainstFrame, VisibleCurvesAreFrameEdgesAndFrameEdgesAreDrawn) {
     const EdgeCase& c = GetParam();
     PipelineOptions o;
@@ -407,21 +566,26 @@ TEST_P(DrawAgainstFrame, VisibleCurvesAreFrameEdgesAndFrameEdgesAreDrawn) {
     PipelineResult r;
     Diagnostics diags;
     ASSERT_TRUE(RunPipeline(o, r, diags)) << (diags.Print(stderr), "");
-    const Drawing d = draw::MakeDrawing(r.flat);
-    const EdgeAgreement a = Compare(r.frame, r.flat, d);
+    ASSERT_TRUE(draw::CheckDrawable(r.flat, false, diags)) << (diags.Print(stderr), "");
+    const Drawing d = draw::MakeDrawing(draw::DrawableSubset(r.flat));
+    testing::TempDir dir;
+    const std::string file = dir.File(c.name + ".svg");
+    ASSERT_EQ(draw::WriteSvg(file, draw::SingleViewPage(d, c.name)), "");
+    const testing::SvgDrawing svg = testing::ReadSvgDrawing(ReadText(file));
+    for (const std::string& err : svg.errors) ADD_FAILURE() << err;
+    ASSERT_EQ(svg.width, o.width);
+    ASSERT_EQ(svg.height, o.height);
+    const EdgeAgreement a = Compare(r.frame, r.flat, svg);
     std::printf(
-        "[ %s ] %d samples, %.4f near a Frame edge (farthest %.3f px); %d edge pairs, %.4f "
-        "covered\n",
-        c.name.c_str(), a.samples, a.curveNearEdge, a.farthest, a.edgePairs, a.edgeCovered);
+        "[ %s ] %d samples, %d far (farthest %.3f px, %.3f px at vertices); %d edge pairs, %d "
+        "uncovered\n",
+        c.name.c_str(), a.samples, a.far, a.farthest, a.farthestVertex, a.edgePairs, a.uncovered);
     EXPECT_GT(a.samples, 100);
-    // Measured: 0.998–1.000 of the samples, the far ones within a quarter pixel of a vertex
-    // (QUADRIX_DRAW_DEBUG=1 lists them): at a convex corner the nearest pair of differing pixel
-    // centres can be up to ~0.8 px away although the drawn corner is exact. 1 % is left for that;
-    // nothing may be farther than one pixel (except the sub-pixel cases below).
-    EXPECT_GE(a.curveNearEdge, c.nearShare);
-    EXPECT_LE(a.farthest, c.farthest);
-    // Measured: 1.000 everywhere.
-    EXPECT_GE(a.edgeCovered, 0.99);
+    EXPECT_LE(a.far, c.farShare * a.samples) << "QUADRIX_DRAW_DEBUG=1 lists them";
+    if (a.far > 0) {
+        EXPECT_LE(std::fmax(a.farthest, a.farthestVertex), c.farthest);
+    }
+    EXPECT_EQ(a.uncovered, 0) << "QUADRIX_DRAW_DEBUG=1 lists them";
 }
 
 std::vector<EdgeCase> EdgeCases() {
@@ -445,22 +609,35 @@ std::vector<EdgeCase> EdgeCases() {
         "body tube <cy cr cl>;\n"  // (y − 4)² + z² <= 1 along x
         "csg s (cone | tube);\n";
     std::vector<EdgeCase> cases;
-    for (const char* f : {"bundle_of_tubes", "cylinder_minus_cylinder", "stack_of_bundles", "tube",
-                          "gallery/gear", "gallery/solids", "gallery/clover_knot",
-                          "gallery/hilbert3", "gallery/triangles", "gallery/name"}) {
+    // Every example but quartics.uq (tori and a general cone: quartic surfaces, refused by the
+    // drawer, DrawCommand.QuarticSurfaceIsAnErrorUnlessAllowMissing) and teapot_on_table.uq
+    // (Bézier patches: freeform surfaces, refused, DrawCommand.FreeformSurface...); the
+    // machined part is in the fixed cases below, in its own view and the four sheet views.
+    for (const char* f :
+         {"bundle_of_tubes", "cylinder_minus_cylinder", "materials", "stack_of_bundles", "tube",
+          "gallery/gear", "gallery/solids", "gallery/clover_knot", "gallery/hilbert3",
+          "gallery/triangles", "gallery/name"}) {
         std::string name = f;
         std::replace(name.begin(), name.end(), '/', '_');
-        // Scenes of tubes as separate overlapping bodies: where the bore of one tube is
-        // partly filled by its neighbours, the visible crescent of the bore ends in tips
-        // thinner than a pixel, which the drawing shows and the Frame cannot (samples there
-        // lie up to ~2 px from the nearest Frame edge; 0.8–1.7 % of the samples). clover_knot:
-        // 0.75 % of the samples up to 1.4 px, not yet explained (docs/drawings.md). Held to
-        // 98 % and 2.5 px; every Frame edge must still be drawn.
+        EdgeCase ec{name, "", "", testing::SourcePath(std::string("examples/") + f + ".uq")};
         const std::string n = f;
-        const bool subPixel =
-            n == "bundle_of_tubes" || n == "stack_of_bundles" || n == "gallery/clover_knot";
-        cases.push_back({name, "", "", subPixel ? 0.98 : 0.99, subPixel ? 2.5 : 1.0,
-                         testing::SourcePath(std::string("examples/") + f + ".uq")});
+        if (n == "bundle_of_tubes" || n == "stack_of_bundles") {
+            // Tubes as separate overlapping bodies: where the bore of one tube is partly filled
+            // by its neighbours, the visible crescent of the bore ends in tips thinner than a
+            // pixel, which the drawing shows (exactly) and the Frame cannot: no pixel centre
+            // falls in the tip. Measured: 35 of 15,202 and 57 of 15,361 samples (0.23 %,
+            // 0.37 %), up to 1.8 and 2.3 px from a Frame edge, all in crescent tips
+            // (QUADRIX_DRAW_DEBUG=1). Allowed: 0.5 % up to 2.5 px.
+            ec.farShare = 0.005;
+            ec.farthest = 2.5;
+        } else if (n == "gallery/hilbert3") {
+            // One sample of 41,246 at 0.523 px, on a crease of 9° between two tubes' faces away
+            // from any vertex: not explained yet (docs/drawings.md). Allowed: 1 in 10,000 up
+            // to 0.6 px.
+            ec.farShare = 1e-4;
+            ec.farthest = 0.6;
+        }
+        cases.push_back(ec);
     }
     std::vector<EdgeCase> fixed = {
         {"part_own_view", part, ""},
@@ -485,8 +662,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DrawAgainstFrame, ::testing::ValuesIn(EdgeCases
 // ---- Degenerate cases: no crash, sensible output. ----
 
 // A box seen exactly from the front: its side faces are edge-on and their depth edges are seen
-// end-on (points): the drawing is the four visible edges of the front face (the back face's,
-// coincident with them, are hidden).
+// end-on (points): the drawing is the four visible edges of the front face. The back face's
+// edges lie behind them on the same lines: hidden, and not drawn, since a visible line takes
+// precedence over a hidden one on the same place.
 TEST(DrawDegenerate, BoxSeenFaceOnHasFourVisibleEdges) {
     FlatScene f;
     ASSERT_TRUE(
@@ -498,7 +676,8 @@ TEST(DrawDegenerate, BoxSeenFaceOnHasFourVisibleEdges) {
     int visible = 0, hidden = 0;
     for (const Stroke& s : d.strokes) (s.visible ? visible : hidden) += 1;
     EXPECT_EQ(visible, 4);
-    EXPECT_EQ(hidden, 4);
+    EXPECT_EQ(hidden, 0);
+    EXPECT_EQ(d.stats.duplicates, 4);
 }
 
 // Two boxes sharing a face, united: the shared face is inside the union, and the line where it
@@ -559,8 +738,10 @@ TEST(DrawDegenerate, ConeApexSideOnAndEndOn) {
 
 // Edges seen edge-on: a cylinder seen from the side, so the circles of its caps lie in planes that
 // contain the rays. Each cap's image is a segment across the outline's full width (its ends the
-// images of the circle's extreme points), not a flattened ellipse or nothing: once visible (the
-// near half of the circle) and once hidden (the far half, behind the cylinder), both whole.
+// images of the circle's extreme points), not a flattened ellipse or nothing: visible and whole
+// (the near half of the circle). The far half, hidden behind the cylinder, has the same image
+// and is not drawn (a visible line takes precedence over a hidden one): one stroke dropped per
+// cap.
 TEST(DrawDegenerate, CircleSeenEdgeOnIsOneSegment) {
     FlatScene f;
     ASSERT_TRUE(Flat(std::string(kCylinderZ) + "view side dop 1 0 0;", 400, 300, f));
@@ -579,8 +760,9 @@ TEST(DrawDegenerate, CircleSeenEdgeOnIsOneSegment) {
             if (ab || ba) (s.visible ? visible : hidden) += 1;
         }
         EXPECT_EQ(visible, 1) << "cap at z = " << z;
-        EXPECT_EQ(hidden, 1) << "cap at z = " << z;
+        EXPECT_EQ(hidden, 0) << "cap at z = " << z;
     }
+    EXPECT_GE(d.stats.duplicates, 2);
 }
 
 // Tangent surfaces: a sphere resting on a plate and a second sphere touching the first. Touching
@@ -665,6 +847,104 @@ TEST(DrawCommand, FreeformSurfaceIsAnErrorUnlessAllowMissing) {
         EXPECT_FALSE(Ellipses(ReadText(out)).empty()) << views;
         std::remove(out.c_str());
     }
+}
+
+// Quartic surfaces are not drawn either: an error at the statement of the first one, with its
+// kind ("a torus", "an elliptical torus"); --allow-missing draws the solids without quartics
+// with a warning.
+TEST(DrawCommand, QuarticSurfaceIsAnErrorUnlessAllowMissing) {
+    testing::TempDir dir;
+    const std::string quartics = testing::SourcePath("examples/quartics.uq");
+    const std::string out = dir.File("q.svg");
+    const std::string cmd = testing::QuadrixBinary() + " draw '" + quartics + "' -o '" + out + "'";
+    auto r = testing::RunShell(cmd);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("quartics.uq:8:1: error: half-space 'frame' is an elliptical torus (a "
+                         "quartic surface) (and 2 more quartic half-spaces)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(testing::FileExists(out));
+    auto ok = testing::RunShell(cmd + " --allow-missing");
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    EXPECT_NE(ok.err.find("quartics.uq:8:1: warning: half-space 'frame' is an elliptical torus"),
+              std::string::npos)
+        << ok.err;
+    EXPECT_NE(ok.err.find("3 solids using quartics left out of the drawing"), std::string::npos)
+        << ok.err;
+    // The rod (a cylinder seen obliquely: its cap ellipses) and the floor are drawn.
+    const std::string svg = ReadText(out);
+    EXPECT_FALSE(Ellipses(svg).empty());
+    EXPECT_NE(svg.find("<path class=\"edge\""), std::string::npos);
+    const std::string et = dir.Write("et.uq",
+                                     "quadric s <1 1 1 0 0 0 0 0 0 -1>; body ball (s);\n"
+                                     "  solid torus e =at 3 0 0 =r 1 .3;\n");
+    auto e = testing::RunShell(testing::QuadrixBinary() + " draw '" + et + "' -o '" +
+                               dir.File("e.svg") + "'");
+    EXPECT_EQ(e.exitCode, 1);
+    EXPECT_NE(e.err.find("et.uq:2:3: error: half-space 'e' is a torus"), std::string::npos)
+        << e.err;
+}
+
+// Sheet options are never ignored: --sheet, --projection or --scale without --views draw the
+// standard sheet (front, top, right, iso); --scale sets the title block's scale (a warning when
+// the views do not fit); with --view (one view of the scene) they are an error.
+TEST(DrawCommand, SheetOptionsWithoutViewsDrawTheStandardSheet) {
+    testing::TempDir dir;
+    const std::string part = testing::SourcePath("examples/machined_part.uq");
+    const std::string base = testing::QuadrixBinary() + " draw '" + part + "' -o '";
+    auto a3 = testing::RunShell(base + dir.File("a3.svg") + "' --sheet A3 --projection first");
+    ASSERT_EQ(a3.exitCode, 0) << a3.err;
+    const std::string sheet = ReadText(dir.File("a3.svg"));
+    EXPECT_NE(sheet.find("width=\"420mm\""), std::string::npos);
+    for (const char* v : {">front<", ">top<", ">right<", ">iso<"})
+        EXPECT_NE(sheet.find(v), std::string::npos) << v;
+    EXPECT_NE(sheet.find("first-angle projection"), std::string::npos);
+    auto one = testing::RunShell(base + dir.File("s1.svg") + "' --scale 1:1");
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    EXPECT_NE(ReadText(dir.File("s1.svg")).find("scale 1:1 "), std::string::npos);
+    EXPECT_EQ(one.err.find("do not fit"), std::string::npos) << one.err;
+    auto big = testing::RunShell(base + dir.File("s5.svg") + "' --views front,top --scale 5");
+    ASSERT_EQ(big.exitCode, 0) << big.err;
+    EXPECT_NE(ReadText(dir.File("s5.svg")).find("scale 5:1 "), std::string::npos);
+    EXPECT_NE(big.err.find("warning: at scale 5:1 the views do not fit their cells on A4"),
+              std::string::npos)
+        << big.err;
+    for (const char* bad : {"' --view three_quarter --sheet A3", "' --scale 1:0", "' --scale half",
+                            "' --tolerance 0", "' --tolerance x"}) {
+        auto r = testing::RunShell(base + dir.File("bad.svg") + bad);
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
+        EXPECT_FALSE(testing::FileExists(dir.File("bad.svg"))) << bad;
+    }
+}
+
+// The four-view sheet of the machined part: seen from the front, the holes at z = ±12 lie behind
+// each other, so their hidden outlines coincide on the page, and hidden edges lie under visible
+// ones; each line is written once (no two elements draw the same path), a visible one in
+// preference to a hidden one.
+TEST(DrawCommand, CoincidentLinesAreWrittenOnce) {
+    testing::TempDir dir;
+    const std::string out = dir.File("sheet.svg");
+    auto r = testing::RunShell(testing::QuadrixBinary() + " draw '" +
+                               testing::SourcePath("examples/machined_part.uq") + "' -o '" + out +
+                               "' --views front,top,right,iso --stats");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string svg = ReadText(out);
+    // Whatever the class: a hidden line on a visible one is not drawn either.
+    std::map<std::string, int> seen;
+    const std::regex el(R"re(<(path|ellipse) class="\w+" ([^>]*)>)re");
+    int elements = 0;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), el); it != std::sregex_iterator();
+         ++it, ++elements) {
+        const int n = ++seen[(*it)[2]];
+        EXPECT_EQ(n, 1) << "written twice: " << (*it)[0];
+    }
+    EXPECT_GT(elements, 100);
+    // The statistics count what was dropped (the front view's coincident hole outlines).
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"re(draw front: [^
+]*\((\d+) coincident strokes)re")))
+        << r.err;
+    EXPECT_GT(std::stoi(m[1]), 0);
 }
 
 // The check itself (draw/undrawable.h), as every drawing front end calls it.

@@ -138,8 +138,12 @@ struct DrawArgs {
     std::string size = "800x600";
     std::string view;
     std::string views;  // comma-separated standard views for a sheet
-    std::string sheet = "A4";
-    std::string projection = "third";
+    // Sheet options; empty = not given (A4, third angle, the largest standard scale that fits).
+    // Any of them without --views asks for the standard sheet, front,top,right,iso.
+    std::string sheet;
+    std::string projection;
+    std::string scale;      // "1:2", "2:1" or a number (paper units per world unit)
+    std::string tolerance;  // --tolerance: px on a single view, mm on a sheet; empty = default
     std::string hidden = "dashed";
     std::string tangentEdges = "thin";  // --tangent-edges thin|off|on
     std::string section;                // --section "A B C D", as quadrix render's

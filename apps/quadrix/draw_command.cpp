@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "quadrix/draw/page_file.h"
@@ -41,10 +43,11 @@ void PrintStats(const std::string& view, const draw::DrawStats& s) {
     std::fprintf(stderr,
                  "draw %s: %d candidate curves (%d lines, %d conics, %d silhouettes, %d "
                  "quartic branches, %d tangent lines), %d boundary pieces (%d tangent edges), "
-                 "%d strokes, %lld ray tests, %d visibility changes, %.1f ms (curves %.1f, trim "
+                 "%d strokes (%d coincident strokes dropped), %lld ray tests, %d visibility "
+                 "changes, %.1f ms (curves %.1f, trim "
                  "%.1f, visibility %.1f, strokes %.1f)\n",
                  view.c_str(), s.candidates, s.lines, s.conics, s.silhouettes, s.quartics,
-                 s.tangentPairs, s.pieces, s.tangentPieces, s.strokes, s.rayTests,
+                 s.tangentPairs, s.pieces, s.tangentPieces, s.strokes, s.duplicates, s.rayTests,
                  s.visibilityChanges, s.seconds * 1e3, s.curveSeconds * 1e3, s.trimSeconds * 1e3,
                  s.visibilitySeconds * 1e3, s.strokeSeconds * 1e3);
 }
@@ -71,12 +74,19 @@ void AddDrawCommand(CLI::App& app, DrawArgs& args) {
     cmd->add_option("--views", args.views,
                     "Standard views on one sheet, e.g. front,top,right,iso (also left, back, "
                     "bottom)");
-    cmd->add_option("--sheet", args.sheet, "Sheet size for --views")
-        ->check(CLI::IsMember({"A4", "A3", "letter", "a4", "a3", "Letter"}))
-        ->capture_default_str();
-    cmd->add_option("--projection", args.projection, "Arrangement of --views")
-        ->check(CLI::IsMember({"first", "third"}))
-        ->capture_default_str();
+    cmd->add_option("--sheet", args.sheet,
+                    "Sheet size for --views (default A4); without --views, the standard sheet "
+                    "front,top,right,iso")
+        ->check(CLI::IsMember({"A4", "A3", "letter", "a4", "a3", "Letter"}));
+    cmd->add_option("--projection", args.projection,
+                    "Arrangement of --views, first or third angle (default third)")
+        ->check(CLI::IsMember({"first", "third"}));
+    cmd->add_option("--scale", args.scale,
+                    "Sheet scale A:B (1:2, 2:1) or a number (A:1), instead of the largest "
+                    "standard scale that fits");
+    cmd->add_option("--tolerance", args.tolerance,
+                    "Largest distance of the Béziers written for conics that have no exact form "
+                    "(px on a single view, default 0.05; mm on a sheet, default 0.01)");
     cmd->add_option("--hidden", args.hidden, "Hidden lines: dashed or off")
         ->check(CLI::IsMember({"dashed", "off"}))
         ->capture_default_str();
@@ -110,10 +120,46 @@ int RunDraw(const DrawArgs& args) {
         std::fprintf(stderr, "quadrix: error: --size: %s\n", e.c_str());
         return 2;
     }
-    const std::vector<std::string> viewNames = SplitComma(args.views);
+    std::vector<std::string> viewNames = SplitComma(args.views);
+    // Sheet options without --views ask for a sheet: the standard four views (what a drawing
+    // sheet shows), never silently a single view.
+    const bool sheetOption = !args.sheet.empty() || !args.projection.empty() || !args.scale.empty();
+    if (viewNames.empty() && sheetOption) {
+        if (!args.view.empty()) {
+            std::fprintf(stderr,
+                         "quadrix: error: --sheet, --projection and --scale lay out a sheet of "
+                         "standard views (--views); they cannot be combined with --view\n");
+            return 2;
+        }
+        viewNames = {"front", "top", "right", "iso"};
+    }
     if (!viewNames.empty() && !args.view.empty()) {
         std::fprintf(stderr, "quadrix: error: --view and --views cannot be combined\n");
         return 2;
+    }
+    double scale = 0;
+    if (!args.scale.empty())
+        if (auto e = draw::ParseScale(args.scale, scale); !e.empty()) {
+            std::fprintf(stderr, "quadrix: error: --scale: %s\n", e.c_str());
+            return 2;
+        }
+    double tolerance = viewNames.empty() ? 0.05 : 0.01;
+    if (!args.tolerance.empty()) {
+        std::size_t used = 0;
+        double t = 0;
+        try {
+            t = std::stod(args.tolerance, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used != args.tolerance.size() || !(t >= 1e-6 && t <= 100)) {
+            std::fprintf(stderr,
+                         "quadrix: error: --tolerance: '%s' is not a distance between 1e-6 and "
+                         "100 (px on a single view, mm on a sheet)\n",
+                         args.tolerance.c_str());
+            return 2;
+        }
+        tolerance = t;
     }
     if (viewNames.size() > 4) {
         std::fprintf(stderr, "quadrix: error: --views takes at most four views\n");
@@ -158,9 +204,12 @@ int RunDraw(const DrawArgs& args) {
     request.allowMissing = args.allowMissing;
     // The model's file: the first (later ones are usually views or settings for it).
     request.title = args.scenes.empty() ? "" : args.scenes.front();
-    draw::SheetSizeByName(args.sheet, request.sheet.size);
+    draw::SheetSizeByName(args.sheet.empty() ? "A4" : args.sheet, request.sheet.size);
     request.sheet.firstAngle = args.projection == "first";
     request.sheet.fileName = request.title;
+    request.sheet.scale = scale;
+    request.sheet.tolerance = tolerance;
+    request.tolerance = tolerance;
     DrawingReport report;
     if (!WriteDrawingFile(context, request, args.output, diags, &report)) return Fail(diags);
     if (args.stats) {

@@ -12,9 +12,22 @@ namespace quadrix::draw {
 
 namespace {
 
-void StrokePath(cairo_t* cr, const Stroke& s) {
+void StrokePath(cairo_t* cr, const Stroke& s, double tolerance) {
     cairo_new_path(cr);
-    if (s.kind == StrokeKind::kEllipseArc) {
+    if (s.kind == StrokeKind::kParabolaArc) {
+        // The exact quadratic Bézier (svg_writer.cpp), raised to a cubic (exact too).
+        const Point2 p0 = s.ArcPoint(s.a0), p1 = s.ArcPoint(s.a1), d0 = s.ArcTangent(s.a0);
+        const double h = 0.5 * (s.a1 - s.a0);
+        const Point2 q{p0.x + h * d0.x, p0.y + h * d0.y};
+        cairo_move_to(cr, p0.x, p0.y);
+        cairo_curve_to(cr, p0.x + 2 * (q.x - p0.x) / 3, p0.y + 2 * (q.y - p0.y) / 3,
+                       p1.x + 2 * (q.x - p1.x) / 3, p1.y + 2 * (q.y - p1.y) / 3, p1.x, p1.y);
+    } else if (s.kind == StrokeKind::kHyperbolaArc) {
+        const std::vector<Point2> p = ConicToCubics(s, tolerance);
+        cairo_move_to(cr, p[0].x, p[0].y);
+        for (std::size_t i = 1; i + 2 < p.size(); i += 3)
+            cairo_curve_to(cr, p[i].x, p[i].y, p[i + 1].x, p[i + 1].y, p[i + 2].x, p[i + 2].y);
+    } else if (s.kind == StrokeKind::kEllipseArc) {
         cairo_save(cr);
         cairo_matrix_t m;
         cairo_matrix_init(&m, s.U.x, s.U.y, s.V.x, s.V.y, s.c.x, s.c.y);
@@ -47,7 +60,7 @@ void Paint(cairo_t* cr, const Page& page, bool visibleOnly) {
         cairo_set_source_rgb(cr, 0.27, 0.27, 0.27);
         for (const Stroke& s : page.strokes) {
             if (s.visible) continue;
-            StrokePath(cr, s);
+            StrokePath(cr, s, page.tolerance);
             cairo_stroke(cr);
         }
         cairo_set_dash(cr, nullptr, 0, 0);
@@ -61,7 +74,7 @@ void Paint(cairo_t* cr, const Page& page, bool visibleOnly) {
             if (!s.visible || s.role != role ||
                 (role == CurveRole::kEdge && s.tangent != (pass == 0)))
                 continue;
-            StrokePath(cr, s);
+            StrokePath(cr, s, page.tolerance);
             cairo_stroke(cr);
         }
     }

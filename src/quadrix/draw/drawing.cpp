@@ -1,5 +1,6 @@
 #include "quadrix/draw/drawing.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -14,21 +15,7 @@ namespace {
 
 Point2 XY(const Vec3& p) { return {p.x, p.y}; }
 
-// Adaptive polyline of c on [t0, t1]: halves until the midpoint of each chord is within `tol`
-// of the curve's midpoint (in projection), at least 8 chords.
-void Flatten(const Curve3& c, double t0, double t1, double tol, std::vector<Point2>& out,
-             int depth) {
-    const Vec3 a = c.At(t0), b = c.At(t1), m = c.At(0.5 * (t0 + t1));
-    const double dx = 0.5 * (a.x + b.x) - m.x, dy = 0.5 * (a.y + b.y) - m.y;
-    if (depth >= 3 && (std::hypot(dx, dy) <= tol || depth > 24)) {
-        out.push_back(XY(b));
-        return;
-    }
-    Flatten(c, t0, 0.5 * (t0 + t1), tol, out, depth + 1);
-    Flatten(c, 0.5 * (t0 + t1), t1, tol, out, depth + 1);
-}
-
-Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol, bool thinTangent) {
+Stroke ToStroke(const Curve3& c, const CurvePiece& p, bool thinTangent) {
     Stroke s;
     s.role = c.role;
     s.tangent = p.tangent && thinTangent;
@@ -87,16 +74,89 @@ Stroke ToStroke(const Curve3& c, const CurvePiece& p, double tol, bool thinTange
             return s;
         }
     }
-    s.kind = StrokeKind::kPolyline;
-    if (c.kind == CurveKind::kPolyline) {
-        s.points.push_back(XY(c.At(p.t0)));
-        for (double k = std::floor(p.t0) + 1; k < p.t1; k += 1) s.points.push_back(XY(c.At(k)));
-        s.points.push_back(XY(c.At(p.t1)));
+    if (c.kind == CurveKind::kHyperbola || c.kind == CurveKind::kParabola) {
+        // The image of X(t) = o + u f(t) + v g(t) is c + U f(t) + V g(t) with the same f, g:
+        // kept in closed form for the writers (exact `Q` for a parabola, Béziers within the
+        // page's tolerance for a hyperbola).
+        s.kind =
+            c.kind == CurveKind::kHyperbola ? StrokeKind::kHyperbolaArc : StrokeKind::kParabolaArc;
+        s.c = XY(c.o);
+        s.U = XY(c.u);
+        s.V = XY(c.v);
+        s.a0 = p.t0;
+        s.a1 = p.t1;
         return s;
     }
+    s.kind = StrokeKind::kPolyline;
     s.points.push_back(XY(c.At(p.t0)));
-    Flatten(c, p.t0, p.t1, tol, s.points, 0);
+    for (double k = std::floor(p.t0) + 1; k < p.t1; k += 1) s.points.push_back(XY(c.At(k)));
+    s.points.push_back(XY(c.At(p.t1)));
     return s;
+}
+
+Point2 StartOf(const Stroke& s) { return s.IsConicArc() ? s.ArcPoint(s.a0) : s.points.front(); }
+Point2 EndOf(const Stroke& s) { return s.IsConicArc() ? s.ArcPoint(s.a1) : s.points.back(); }
+Point2 MidOf(const Stroke& s) {
+    if (s.IsConicArc()) return s.ArcPoint(0.5 * (s.a0 + s.a1));
+    if (s.points.size() == 2)
+        return {0.5 * (s.points[0].x + s.points[1].x), 0.5 * (s.points[0].y + s.points[1].y)};
+    return s.points[s.points.size() / 2];
+}
+
+bool Near(const Point2& a, const Point2& b, double tol) {
+    return std::fabs(a.x - b.x) <= tol && std::fabs(a.y - b.y) <= tol;
+}
+
+// Strokes that draw the same line twice — the same ends (either way round) and the same midpoint
+// within 1e-6 px — are written once: the one that takes precedence is kept (drafting practice:
+// visible over hidden, then silhouette over edge over tangent edge). Distinct 3-D curves have one
+// image when they lie behind each other along the rays: the machined part's holes at z = ±12 seen
+// from the front draw their hidden outline rulings on the same lines. Returns how many were
+// dropped.
+int RemoveDuplicates(std::vector<Stroke>& strokes) {
+    constexpr double kTol = 1e-6;
+    auto weight = [](const Stroke& s) {
+        return (s.visible ? 10 : 0) + (s.role == CurveRole::kSilhouette ? 2 : (s.tangent ? 0 : 1));
+    };
+    struct Key {
+        Point2 lo, hi, mid;
+        std::size_t index;
+    };
+    std::vector<Key> keys;
+    keys.reserve(strokes.size());
+    for (std::size_t i = 0; i < strokes.size(); ++i) {
+        Point2 a = StartOf(strokes[i]), b = EndOf(strokes[i]);
+        if (b.x < a.x || (b.x == a.x && b.y < a.y)) std::swap(a, b);
+        keys.push_back({a, b, MidOf(strokes[i]), i});
+    }
+    std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) { return a.lo.x < b.lo.x; });
+    std::vector<char> drop(strokes.size(), 0);
+    int dropped = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (drop[keys[i].index]) continue;
+        for (std::size_t j = i + 1; j < keys.size() && keys[j].lo.x - keys[i].lo.x <= 2 * kTol;
+             ++j) {
+            const Key &a = keys[i], &b = keys[j];
+            const Stroke &sa = strokes[a.index], &sb = strokes[b.index];
+            if (drop[b.index]) continue;
+            // Ends may be sorted differently when they are within the tolerance in x.
+            const bool ends = (Near(a.lo, b.lo, kTol) && Near(a.hi, b.hi, kTol)) ||
+                              (Near(a.lo, b.hi, kTol) && Near(a.hi, b.lo, kTol));
+            if (!ends || !Near(a.mid, b.mid, kTol)) continue;
+            const std::size_t loser = weight(sb) > weight(sa) ? a.index : b.index;
+            drop[loser] = 1;
+            ++dropped;
+            if (loser == a.index) break;
+        }
+    }
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < strokes.size(); ++i)
+        if (!drop[i]) {
+            if (k != i) strokes[k] = std::move(strokes[i]);  // (a self-move empties a vector)
+            ++k;
+        }
+    strokes.resize(k);
+    return dropped;
 }
 
 // Pieces of a closed curve that meet across θ = 0 = 2π with the same visibility become one.
@@ -151,8 +211,33 @@ void MergeWrapAround(const std::vector<Curve3>& curves, std::vector<CurvePiece>&
 }  // namespace
 
 Point2 Stroke::ArcPoint(double t) const {
-    const double ct = std::cos(t), st = std::sin(t);
-    return {c.x + U.x * ct + V.x * st, c.y + U.y * ct + V.y * st};
+    double f = 0, g = 0;
+    if (kind == StrokeKind::kHyperbolaArc) {
+        f = std::cosh(t);
+        g = std::sinh(t);
+    } else if (kind == StrokeKind::kParabolaArc) {
+        f = t;
+        g = t * t;
+    } else {
+        f = std::cos(t);
+        g = std::sin(t);
+    }
+    return {c.x + U.x * f + V.x * g, c.y + U.y * f + V.y * g};
+}
+
+Point2 Stroke::ArcTangent(double t) const {
+    double f = 0, g = 0;
+    if (kind == StrokeKind::kHyperbolaArc) {
+        f = std::sinh(t);
+        g = std::cosh(t);
+    } else if (kind == StrokeKind::kParabolaArc) {
+        f = 1;
+        g = 2 * t;
+    } else {
+        f = -std::sin(t);
+        g = std::cos(t);
+    }
+    return {U.x * f + V.x * g, U.y * f + V.y * g};
 }
 
 Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options) {
@@ -184,9 +269,9 @@ Drawing MakeDrawing(const FlatScene& scene, const DrawOptions& options) {
     for (const CurvePiece& p : pieces) {
         if (!p.visible && !options.hidden) continue;
         d.strokes.push_back(ToStroke(curves[static_cast<std::size_t>(p.curve)], p,
-                                     options.chordTolerance,
                                      options.tangentEdges == TangentEdges::kThin));
     }
+    d.stats.duplicates = RemoveDuplicates(d.strokes);
     d.stats.strokeSeconds = lap();
     d.stats.candidates = static_cast<int>(curves.size());
     d.stats.pieces = static_cast<int>(trimmed.size());

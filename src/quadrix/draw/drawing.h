@@ -4,7 +4,10 @@
 //   quartics)
 //   2. trim.h              pieces that lie on the solids' boundary after CSG
 //   3. visibility.h        split where visibility changes (ray casts + bisection)
-//   4. here                pieces as 2-D strokes: exact elliptical arcs, segments, polylines
+//   4. here                pieces as 2-D strokes: segments, elliptical, hyperbolic and parabolic
+//                          arcs in closed form, polylines (traced quartics); coincident strokes
+//                          (the same piece of line drawn twice, e.g. by two curves carried by one
+//                          line) are written once
 // and the writers (svg_writer.h, cairo_writer.h) take the strokes. Coordinates of strokes are
 // device pixels (x right, y down), the same as the Frame's, so a drawing overlays the render of
 // the same view exactly.
@@ -24,7 +27,13 @@ struct Point2 {
     double x = 0, y = 0;
 };
 
-enum class StrokeKind : std::uint8_t { kSegment, kEllipseArc, kPolyline };
+enum class StrokeKind : std::uint8_t {
+    kSegment,
+    kEllipseArc,
+    kHyperbolaArc,
+    kParabolaArc,
+    kPolyline
+};
 
 struct Stroke {
     StrokeKind kind = StrokeKind::kSegment;
@@ -33,12 +42,21 @@ struct Stroke {
     bool visible = true;
     bool tangent = false;  // a tangent edge drawn thin (TangentEdges::kThin)
     int surfaceA = -1, surfaceB = -1;
-    // kEllipseArc: P(θ) = c + U cos θ + V sin θ for θ from a0 to a1 (a1 > a0; a1 − a0 = 2π is the
-    // whole ellipse). U, V are conjugate semi-diameters (the image of the 3-D ones).
+    // The conic arcs, P(θ) for θ from a0 to a1 (a1 > a0), in closed form (the writers turn them
+    // into exact SVG `A` and `Q` commands, or cubic Béziers within the page's tolerance):
+    //   kEllipseArc    P(θ) = c + U cos θ + V sin θ (a1 − a0 = 2π is the whole ellipse; U, V are
+    //                  conjugate semi-diameters, the image of the 3-D ones)
+    //   kHyperbolaArc  P(θ) = c + U cosh θ + V sinh θ
+    //   kParabolaArc   P(θ) = c + U θ + V θ²
     Point2 c, U, V;
     double a0 = 0, a1 = 0;
-    std::vector<Point2> points;  // kSegment (two) and kPolyline
-    Point2 ArcPoint(double t) const;
+    std::vector<Point2> points;         // kSegment (two) and kPolyline
+    Point2 ArcPoint(double t) const;    // the conic arcs
+    Point2 ArcTangent(double t) const;  // dP/dθ
+    bool IsConicArc() const {
+        return kind == StrokeKind::kEllipseArc || kind == StrokeKind::kHyperbolaArc ||
+               kind == StrokeKind::kParabolaArc;
+    }
 };
 
 // Tangent edges, where two faces meet without a crease (trim.h): drawn with a thin line (what
@@ -46,9 +64,8 @@ struct Stroke {
 enum class TangentEdges : std::uint8_t { kThin, kOff, kOn };
 
 struct DrawOptions {
-    double visibilityStep = 0.5;   // device px between ray tests along a curve
-    double chordTolerance = 0.01;  // device px: polylines of non-elliptic curves
-    bool hidden = true;            // compute (and keep) hidden pieces
+    double visibilityStep = 0.5;  // device px between ray tests along a curve
+    bool hidden = true;           // compute (and keep) hidden pieces
     TangentEdges tangentEdges = TangentEdges::kThin;
 };
 
@@ -59,6 +76,7 @@ struct DrawStats {
     // drops them while trimming).
     int lines = 0, conics = 0, silhouettes = 0, quartics = 0, tangentPairs = 0;
     int tangentPieces = 0;
+    int duplicates = 0;  // strokes dropped because another stroke draws the same line
     long long rayTests = 0;
     int visibilityChanges = 0;
     double seconds = 0;  // the whole of MakeDrawing, the sum of the phases below

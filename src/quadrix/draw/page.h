@@ -38,9 +38,20 @@ struct Page {
     std::vector<PageText> texts;
     LineStyle style;
     std::string title;  // document title (SVG <title>, PDF metadata)
+    // Largest distance (page units) allowed between a conic arc and the cubic Béziers written
+    // for it where the format has no exact form (hyperbolic arcs in SVG; every conic in PDF/EPS,
+    // through Cairo): `quadrix draw --tolerance`, default 0.05 px on a single view and 0.01 mm
+    // on a sheet. Parabolic arcs are exact quadratic Béziers in SVG and elliptical arcs exact
+    // `A` commands, whatever the tolerance.
+    double tolerance = 0.05;
 };
 
+// A cubic Bézier chain for a conic arc: p0 then three points (two controls and the end) per
+// piece, with at most `tolerance` between each piece and the arc (checked at 16 points per
+// piece; pieces are halved until they pass). Ends and tangents are the arc's exactly.
+std::vector<Point2> ConicToCubics(const Stroke& s, double tolerance);
+
 // A single-view page: the drawing in device pixels.
-Page SingleViewPage(const Drawing& d, const std::string& title);
+Page SingleViewPage(const Drawing& d, const std::string& title, double tolerance = 0.05);
 
 }  // namespace quadrix::draw

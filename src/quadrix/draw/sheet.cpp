@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <string>
 
 namespace quadrix::draw {
 
@@ -30,7 +31,7 @@ struct Bounds2 {
 Bounds2 BoundsOf(const Drawing& d) {
     Bounds2 b;
     for (const Stroke& s : d.strokes) {
-        if (s.kind == StrokeKind::kEllipseArc) {
+        if (s.IsConicArc()) {
             for (int i = 0; i <= 64; ++i) b.Add(s.ArcPoint(s.a0 + (s.a1 - s.a0) * i / 64));
         } else {
             for (const Point2& p : s.points) b.Add(p);
@@ -43,12 +44,37 @@ Bounds2 BoundsOf(const Drawing& d) {
 constexpr std::array<double, 16> kScales = {10,  5,   4,    2,    1,    0.5,  0.4,   0.25,
                                             0.2, 0.1, 0.05, 0.04, 0.02, 0.01, 0.005, 0.001};
 
+}  // namespace
+
 std::string ScaleText(double s) {
     if (s >= 1) return fmt::format("{:g}:1", s);
     return fmt::format("1:{:g}", 1 / s);
 }
 
-}  // namespace
+std::string ParseScale(const std::string& text, double& out) {
+    auto number = [](const std::string& t, double& v) {
+        if (t.empty()) return false;
+        std::size_t used = 0;
+        try {
+            v = std::stod(t, &used);
+        } catch (...) {
+            return false;
+        }
+        return used == t.size() && std::isfinite(v) && v > 0;
+    };
+    const std::size_t colon = text.find(':');
+    double a = 0, b = 1;
+    const bool ok = colon == std::string::npos
+                        ? number(text, a)
+                        : number(text.substr(0, colon), a) && number(text.substr(colon + 1), b);
+    if (!ok)
+        return "'" + text +
+               "' is not a scale: give A:B (A mm of paper for B units of the model, e.g. 1:2 or "
+               "2:1) or a positive number (A:1)";
+    out = a / b;
+    if (!(out >= 1e-6 && out <= 1e6)) return "scale '" + text + "' is out of range";
+    return {};
+}
 
 bool SheetSizeByName(const std::string& name, SheetSize& out) {
     const std::string n = Lower(name);
@@ -93,14 +119,15 @@ bool StandardView(const std::string& name, scene::View& out) {
     return true;
 }
 
-Page LayoutSheet(std::vector<SheetView> views, const SheetOptions& options,
-                 std::string* scaleText) {
+Page LayoutSheet(std::vector<SheetView> views, const SheetOptions& options, std::string* scaleText,
+                 std::string* overflow) {
     Page page;
     page.unit = "mm";
     page.width = options.size.width;
     page.height = options.size.height;
     page.title = options.fileName;
     page.style = LineStyle{0.5, 0.35, 0.25, 2.0, 1.2, 0.5, 0.15};
+    page.tolerance = options.tolerance;
     const double margin = 10, titleH = 24, titleW = 110;
     const double gx0 = margin, gy0 = margin, gx1 = page.width - margin;
     const double gy1 = page.height - margin - titleH;
@@ -137,12 +164,21 @@ Page LayoutSheet(std::vector<SheetView> views, const SheetOptions& options,
         if (w > 0) fit = std::fmin(fit, 0.85 * cw / w);
         if (h > 0) fit = std::fmin(fit, 0.85 * ch / h);
     }
-    double scale = kScales.back();
+    double fitting = kScales.back();
     for (double s : kScales)
         if (s <= fit) {
-            scale = s;
+            fitting = s;
             break;
         }
+    const double scale = options.scale > 0 ? options.scale : fitting;
+    if (overflow) {
+        overflow->clear();
+        if (scale > fit / 0.85 * (1 + 1e-9))  // fit keeps 15 % of each cell free
+            *overflow = fmt::format(
+                "at scale {} the views do not fit their cells on {} (they overlap or leave the "
+                "sheet); {} fits",
+                ScaleText(scale), options.size.name, ScaleText(fitting));
+    }
     for (std::size_t i = 0; i < views.size(); ++i) {
         if (slotOf[i] < 0 || world[i].Empty()) continue;
         const int col = cells[slotOf[i]][0], row = cells[slotOf[i]][1];

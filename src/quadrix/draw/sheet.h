@@ -43,12 +43,25 @@ struct SheetOptions {
     SheetSize size{"A4", 297, 210};
     bool firstAngle = false;
     std::string fileName;  // shown in the title block
+    // The scale, millimetres of paper per world unit (0.5 is 1:2); 0 = the largest standard
+    // scale at which every view fits (above). A given scale is used as it is, even when views
+    // then overflow their cells (LayoutSheet says so in `overflow`).
+    double scale = 0;
+    double tolerance = 0.01;  // mm: Page::tolerance
 };
+
+// Parses a scale "A:B" (A mm of paper for B world units) or a positive number (A:1): "1:2",
+// "2:1", "0.5". Returns an error message, or empty with `out` set.
+std::string ParseScale(const std::string& text, double& out);
+
+// The ratio written in the title block: "1:2", "2:1", "1:1", "1:2.5".
+std::string ScaleText(double scale);
 
 // Lays out the views (at most four, in the order front, top, right, iso of the layout above;
 // names not in the layout fill the free cells). Returns the page in millimetres; `scaleText` is
-// set to the ratio written in the title block ("1:2").
+// set to the ratio written in the title block ("1:2"); `overflow` (when given) is set when a
+// view does not fit its cell at options.scale, with the largest standard scale that would.
 Page LayoutSheet(std::vector<SheetView> views, const SheetOptions& options,
-                 std::string* scaleText = nullptr);
+                 std::string* scaleText = nullptr, std::string* overflow = nullptr);
 
 }  // namespace quadrix::draw

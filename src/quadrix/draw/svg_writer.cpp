@@ -50,7 +50,23 @@ void ArcPath(const Stroke& s, std::string& out) {
     }
 }
 
-void StrokeElement(const Stroke& s, const char* cls, std::string& out) {
+// A parabolic arc is a quadratic polynomial: exactly one quadratic Bézier, whose control point
+// is where the end tangents meet, P(a0) + (a1 − a0)/2 · P'(a0).
+void ParabolaPath(const Stroke& s, std::string& out) {
+    const Point2 p0 = s.ArcPoint(s.a0), p1 = s.ArcPoint(s.a1), d0 = s.ArcTangent(s.a0);
+    const double h = 0.5 * (s.a1 - s.a0);
+    out += fmt::format("M {} {} Q {} {} {} {}", Num(p0.x), Num(p0.y), Num(p0.x + h * d0.x),
+                       Num(p0.y + h * d0.y), Num(p1.x), Num(p1.y));
+}
+
+void CubicsPath(const std::vector<Point2>& p, std::string& out) {
+    out += fmt::format("M {} {}", Num(p[0].x), Num(p[0].y));
+    for (std::size_t i = 1; i + 2 < p.size(); i += 3)
+        out += fmt::format(" C {} {} {} {} {} {}", Num(p[i].x), Num(p[i].y), Num(p[i + 1].x),
+                           Num(p[i + 1].y), Num(p[i + 2].x), Num(p[i + 2].y));
+}
+
+void StrokeElement(const Stroke& s, const char* cls, double tolerance, std::string& out) {
     if (s.kind == StrokeKind::kEllipseArc && s.a1 - s.a0 >= 2 * M_PI * (1 - 1e-12)) {
         const EllipseAxes ax = AxesOf(s.U, s.V);
         out += fmt::format(
@@ -63,6 +79,10 @@ void StrokeElement(const Stroke& s, const char* cls, std::string& out) {
     std::string d;
     if (s.kind == StrokeKind::kEllipseArc) {
         ArcPath(s, d);
+    } else if (s.kind == StrokeKind::kParabolaArc) {
+        ParabolaPath(s, d);
+    } else if (s.kind == StrokeKind::kHyperbolaArc) {
+        CubicsPath(ConicToCubics(s, tolerance), d);
     } else {
         for (std::size_t i = 0; i < s.points.size(); ++i)
             d += fmt::format("{}{} {}", i == 0 ? "M " : " L ", Num(s.points[i].x),
@@ -115,14 +135,15 @@ std::string SvgDocument(const Page& page) {
                        Num(page.height));
     out += "<g id=\"hidden\">\n";
     for (const Stroke& s : page.strokes)
-        if (!s.visible) StrokeElement(s, "hidden", out);
+        if (!s.visible) StrokeElement(s, "hidden", page.tolerance, out);
     out += "</g>\n<g id=\"edges\">\n";
     for (const Stroke& s : page.strokes)
         if (s.visible && s.role == CurveRole::kEdge)
-            StrokeElement(s, s.tangent ? "tangent" : "edge", out);
+            StrokeElement(s, s.tangent ? "tangent" : "edge", page.tolerance, out);
     out += "</g>\n<g id=\"silhouettes\">\n";
     for (const Stroke& s : page.strokes)
-        if (s.visible && s.role == CurveRole::kSilhouette) StrokeElement(s, "silhouette", out);
+        if (s.visible && s.role == CurveRole::kSilhouette)
+            StrokeElement(s, "silhouette", page.tolerance, out);
     out += "</g>\n";
     if (!page.frameLines.empty() || !page.texts.empty()) {
         out += "<g id=\"sheet\">\n";

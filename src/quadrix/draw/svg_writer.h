@@ -3,7 +3,9 @@
 // path of SVG `A` commands whose radii and rotation come from the singular value decomposition
 // of its conjugate semi-diameters [U V] = R(φ) diag(rx, ±ry) R(θ) (closed form for 2×2); arcs of
 // more than 0.9π are written as several `A` commands of at most 2π/3, since the large-arc flag
-// is ill-conditioned near π. Numbers are written with 17 significant digits (round-trip exact).
+// is ill-conditioned near π. A parabolic arc is one quadratic Bézier `Q` (exact: the curve is a
+// quadratic polynomial), a hyperbolic arc cubic Béziers `C` within Page::tolerance
+// (page.h ConicToCubics). Numbers are written with 17 significant digits (round-trip exact).
 // Cairo's SVG surface, by contrast, writes every arc as cubic Béziers.
 //
 // Hidden strokes are drawn first (class "hidden", dashed), then visible edges (class "tangent",

@@ -48,27 +48,32 @@ bool WriteDrawingFile(RenderContext& context, const DrawingRequest& request,
     draw::Page page;
     if (request.sheetViews.empty()) {
         if (!context.Flatten(request.view, diags) || diags.HasErrors()) return false;
-        if (!draw::CheckDrawable(context.Flat(), request.allowMissing, diags)) return false;
-        const draw::Drawing d = draw::MakeDrawing(context.Flat(), request.options);
+        if (!draw::CheckDrawable(context.Flat(), request.allowMissing, diags, &context.Scene()))
+            return false;
+        const draw::Drawing d =
+            draw::MakeDrawing(draw::DrawableSubset(context.Flat()), request.options);
         rep.views.emplace_back(context.Flat().viewName, d.stats);
         rep.seconds += d.stats.seconds;
-        page = draw::SingleViewPage(d, request.title);
+        page = draw::SingleViewPage(d, request.title, request.tolerance);
     } else {
         std::vector<draw::SheetView> views;
         for (const std::string& name : request.sheetViews) {
             if (!FlattenStandardView(context, name, request.view, diags)) return false;
             // Every view flattens the same solids: one check (and one warning) is enough.
-            if (views.empty() && !draw::CheckDrawable(context.Flat(), request.allowMissing, diags))
+            if (views.empty() &&
+                !draw::CheckDrawable(context.Flat(), request.allowMissing, diags, &context.Scene()))
                 return false;
             draw::SheetView v;
             v.name = name;
-            v.drawing = draw::MakeDrawing(context.Flat(), request.options);
+            v.drawing = draw::MakeDrawing(draw::DrawableSubset(context.Flat()), request.options);
             v.pixelsPerUnit = PixelsPerUnit(context.Flat());
             rep.views.emplace_back(name, v.drawing.stats);
             rep.seconds += v.drawing.stats.seconds;
             views.push_back(std::move(v));
         }
-        page = draw::LayoutSheet(std::move(views), request.sheet, &rep.scaleText);
+        std::string overflow;
+        page = draw::LayoutSheet(std::move(views), request.sheet, &rep.scaleText, &overflow);
+        if (!overflow.empty()) diags.Warning({}, overflow, {}, "draw");
     }
     rep.strokes = page.strokes.size();
     if (page.strokes.empty())

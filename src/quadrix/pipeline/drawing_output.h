@@ -3,8 +3,9 @@
 // drawing key. Given a render context that has read its scene (stage 1, render_context.h):
 //   1. flatten the view (stage 2; a view already flattened for the same request costs nothing),
 //      or each standard view of a sheet in turn;
-//   2. refuse what the drawer cannot draw (draw/undrawable.h): a quartic surface is an error, a
-//      freeform surface too unless `allowMissing` (then a warning, and the rest is drawn);
+//   2. refuse what the drawer cannot draw (draw/undrawable.h): a quartic surface or a freeform
+//      surface is an error unless `allowMissing` (then a warning, and the rest is drawn: the
+//      solids without quartics);
 //   3. draw (draw/drawing.h) and lay out the page: one view in device pixels, or the sheet
 //      (draw/sheet.h);
 //   4. write the file by its extension (draw/page_file.h), atomically.
@@ -30,6 +31,7 @@ struct DrawingRequest {
     std::vector<std::string> sheetViews;  // standard views (draw/sheet.h) for one sheet, <= 4
     draw::SheetOptions sheet;             // paper, projection and title-block file name
     draw::DrawOptions options;
+    double tolerance = 0.05;    // px: Bézier tolerance of a single view (a sheet: sheet.tolerance)
     bool allowMissing = false;  // leave freeform surfaces out (a warning) instead of an error
     std::string title;          // the page's title (a single view; a sheet uses sheet.fileName)
     SourceLoc loc;              // where an error writing the file is reported (uq's `show`)
