@@ -52,6 +52,18 @@ double HalfSpaceScale(const FlatHalfSpace& hs) {
         s = std::fmax(bMax / aMax, std::sqrt(std::fabs(q.K()) / aMax));
     else if (bMax > 0)
         s = std::fabs(q.K()) / bMax;
+    // Per axis with a positive diagonal entry a_ii: sqrt(|K| / a_ii) and |b_i| / a_ii, the
+    // radius and centre along that axis of an ellipsoid (its half-extent is sqrt(R (A⁻¹)_ii) >=
+    // sqrt(R / a_ii)). A ball scaled by 1e6 along x has a_xx 1e-12 of the others: an analytic box
+    // the Cholesky step declines (too ill-conditioned) and a scale of 1 from the largest
+    // coefficients, so its 1e6 extent passed 1e-3 × the search limit and was called unbounded.
+    // Entries below 1e-14 of the largest are left out: rounding noise of a rotated cylinder
+    // (and an ellipsoid that elongated is a cylinder to double precision anyway).
+    for (int i = 0; i < 3; ++i)
+        if (const double a = q.k[i]; a > 1e-14 * aMax) {
+            const double bi = i == 0 ? q.G() : i == 1 ? q.H() : q.J();
+            s = std::fmax(s, std::fmax(std::sqrt(std::fabs(q.K()) / a), std::fabs(bi) / a));
+        }
     Box3 box = LiteralBox(hs, false);
     for (int i = 0; i < 3; ++i) {
         if (std::isfinite(box.lo[i])) s = std::fmax(s, std::fabs(box.lo[i]));
