@@ -247,7 +247,7 @@ TEST(OutputSafety, ReadOnlyFileIsNotReplaced) {
     ExpectRefused(Render(dir, "s.uq --size 16x16 -o link.ppm"), dir,
                   {"s.uq", "ro.ppm", "link.ppm"});
     const std::vector<std::string> others = {"export --to pov s.uq -o ro.ppm",
-                                             "uq -dppm:ro.ppm -r16x16 s.uq", "draw s.uq -o ro.svg"};
+                                             "uq -dppm:ro.ppm s.uq", "draw s.uq -o ro.svg"};
     dir.Write("ro.svg", "old");
     ASSERT_EQ(chmod(dir.File("ro.svg").c_str(), 0400), 0);
     for (const std::string& cmd : others) {

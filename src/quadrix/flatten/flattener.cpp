@@ -463,7 +463,7 @@ class FlattenerImpl {
                                 "window with whh or whw",
                                 isBody ? "body" : "csg solid", flat_.solids[i].name, loc.ToString(),
                                 quadric ? " (to double precision: a quadric stretched by "
-                                          "more than about 1e7 along an axis is a cylinder "
+                                          "about 1e7 or more along an axis is a cylinder "
                                           "there)"
                                         : ""));
                 return std::nullopt;
