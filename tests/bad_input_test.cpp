@@ -35,6 +35,11 @@ struct BadInput {
     // the directory as its setup left it (no output, no temporary file), and expectFirstLine is
     // searched in every line of stderr.
     std::string command = {};
+    // A command row that must SUCCEED (exit 0) instead: `check`, a shell command run in the temp
+    // dir afterwards ({quadrix} = the binary), must exit 0 too, and no temporary file may be left.
+    // For reproducers whose right answer is not an error (a planted link ignored, a mode kept,
+    // a picture equal to the reference engine's).
+    std::string check = {};
 };
 
 void PrintTo(const BadInput& b, std::ostream* os) { *os << b.name; }
@@ -793,6 +798,152 @@ std::vector<BadInput> FrontEndRows() {
     };
 }
 
+// Issue 23, third hardening pass: read-only targets, the shading budget, `quadrix compare`'s
+// reader, the limits of every command, elongated quadrics, and the issue's reproducers that had
+// only separate tests (output_safety_test.cpp, all_engines_test.cpp, complexity_guard_test.cpp).
+std::vector<BadInput> ThirdPassRows() {
+    const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
+    const std::string big = BodyOfLiterals(20000);
+    const std::string lit = big + "light l1 1 0 0 -1;\n";
+    auto row = [](const char* name, std::map<std::string, std::string> files,
+                  const std::string& command, const std::string& expect,
+                  const std::string& setup = {}) {
+        BadInput b{name, std::move(files), "", expect, setup};
+        b.command = command;
+        return b;
+    };
+    auto ok = [](const char* name, std::map<std::string, std::string> files,
+                 const std::string& command, const std::string& check,
+                 const std::string& setup = {}) {
+        BadInput b{name, std::move(files), "", "", setup};
+        b.command = command;
+        b.check = check;
+        return b;
+    };
+    const std::string ellipsoid = "definition d;\n" + sphere + "enddef;\n";
+    const std::string aMinusA =
+        "quadric unit <1 1 1 0 0 0 0 0 0 -1>; body one (unit); body two (unit);\n"
+        "csg none (one - two);\nsolid box side =from 1.5 -1 -1 =to 3 1 1;\n"
+        "view front dop .3 .4 -1;\n";
+    return {
+        // ---- A read-only target is not replaced (docs/output.md rule 1).
+        {"OutputIsReadOnly",
+         {{"main.uq", sphere}},
+         "-o {dir}/ro.png",
+         R"(cannot write.*ro\.png.*read-only \(mode 0444\))",
+         "echo old > ro.png; chmod 444 ro.png"},
+        {"DumpFrameIsReadOnly",
+         {{"main.uq", sphere}},
+         "--dump-frame {dir}/ro.qxf",
+         R"(cannot write.*ro\.qxf.*read-only)",
+         "echo old > ro.qxf; chmod 400 ro.qxf"},
+        row("ExportOverReadOnlyFile", {{"main.uq", sphere}}, "export --to pov main.uq -o ro.pov",
+            R"(cannot write 'ro\.pov'.*read-only)", "echo old > ro.pov; chmod 444 ro.pov"),
+        row("DrawOverReadOnlyFile", {{"main.uq", sphere}}, "draw main.uq -o ro.svg",
+            R"(cannot write.*ro\.svg.*read-only)", "echo old > ro.svg; chmod 444 ro.svg"),
+        row("PipeOverReadOnlyFile", {{"p.pipe", "radius .25\npath\n0 0 0\n1 0 0\n"}},
+            "pipe p.pipe -o ro.uq", R"(cannot write.*ro\.uq.*read-only)",
+            "echo old > ro.uq; chmod 444 ro.uq"),
+        // ---- The shading budget (shade/shade_budget.h): a body of 20,000 literals gets no
+        // default anti-aliasing or shadows (a note), and asked for, a clean error, not minutes.
+        // Shadow rays from the lit side leave the convex body after a few literals: within the
+        // budget, a picture.
+        ok("WideBodyExplicitShadows", {{"main.uq", lit}},
+           "render main.uq --shadows --aa off --size 48x48 -o out.ppm", "test -s out.ppm"),
+        ok("WideBodyDefaultPicture", {{"main.uq", lit}}, "render main.uq --size 48x48 -o out.ppm",
+           "test -s out.ppm"),
+        {"WideBodyExplicitAa",
+         {{"main.uq", big}},
+         "--aa 4 --size 48x48",
+         R"(error: anti-aliasing: the rays would evaluate more than \d+ literals.*body 'big' )"
+         R"(has 20000 literals.*--aa off)"},
+        // ---- quadrix compare: the bounded reader, the image limits and the memory budget.
+        row("CompareDevZero", {}, "compare /dev/zero /dev/zero",
+            R"(error: cannot read '/dev/zero': it is larger than 256 MiB)"),
+        row("CompareHugeHeader", {{"a.qxf", "QXF1 16384 16384\n"}}, "compare a.qxf a.qxf",
+            R"(a\.qxf:1:6: error: image size 16384x16384 is too large)"),
+        row("CompareHeaderPastMaxMemory", {{"a.qxf", "QXF1 4096 4096\n"}},
+            "compare --max-memory 100M a.qxf a.qxf",
+            R"(a\.qxf:1:6: error: an image of 4096x4096 pixels needs about .*memory budget is )"
+            R"(100 MiB \(--max-memory\))"),
+        row("CompareBadPixelLine", {{"a.qxf", "QXF1 2 2\n0 0 1 0 0 1 0 0 0\n5 0 1 0 0 1 0 0 0\n"}},
+            "compare a.qxf a.qxf", R"(a\.qxf:3:1: error: expected a pixel x in 0\.\.1)"),
+        row("CompareTruncatedPixelLine", {{"a.qxf", "QXF1 2 2\n0 0 1 0 0\n"}},
+            "compare a.qxf a.qxf", R"(a\.qxf:2:10: error: expected a number)"),
+        // ---- --max-memory and --time-limit on every command (apps/quadrix/limit_options.h):
+        // a scene that is a FIFO nobody writes stalls the reader until the time limit.
+        row("BatchTimeLimit",
+            {{"jobs.jsonl", "{\"inputs\": [\"stall.uq\"], \"output\": \"out.png\"}\n"}},
+            "batch --quiet --time-limit 0.3 jobs.jsonl", R"(error: time limit of 0\.3 s)",
+            "mkfifo stall.uq"),
+        row("BatchMaxMemory",
+            {{"main.uq", sphere},
+             {"jobs.jsonl",
+              "{\"inputs\": [\"main.uq\"], \"output\": \"out.png\", \"size\": \"4096x4096\"}\n"}},
+            "batch --quiet --max-memory 100M jobs.jsonl", R"(memory budget is 100 MiB)"),
+        row("ViewTimeLimit", {}, "view --offscreen --bench 1 --time-limit 0.3 stall.uq",
+            R"(error: time limit of 0\.3 s)", "mkfifo stall.uq"),
+        row("ViewMaxMemory", {{"main.uq", sphere}},
+            "view --offscreen --bench 1 --size 4096x4096 --max-memory 100M main.uq",
+            R"(memory budget is 100 MiB \(--max-memory\))"),
+        row("DrawTimeLimit", {}, "draw stall.uq -o out.svg --time-limit 0.3",
+            R"(error: time limit of 0\.3 s)", "mkfifo stall.uq"),
+        row("DrawMaxMemoryMalformed", {{"main.uq", sphere}},
+            "draw main.uq -o out.svg --max-memory lots", R"(error: --max-memory.*'lots')"),
+        row("ExportTimeLimit", {}, "export --to pov stall.uq -o out.pov --time-limit 0.3",
+            R"(error: time limit of 0\.3 s)", "mkfifo stall.uq"),
+        row("ExportTimeLimitMalformed", {{"main.uq", sphere}},
+            "export --to pov main.uq -o out.pov --time-limit -2", R"(error: --time-limit)"),
+        row("UqTimeLimit", {}, "uq --time-limit 0.3 -dppm:out.ppm stall.uq",
+            R"(error: time limit of 0\.3 s)", "mkfifo stall.uq"),
+        row("UqMaxMemoryMalformed", {{"main.uq", sphere}},
+            "uq --max-memory 0 -dppm:out.ppm main.uq", R"(error: --max-memory.*'0')"),
+        // ---- A quadric stretched along one axis: bounded, auto-fitted (it was "unbounded in the
+        // view"); past double precision the message says why.
+        {"BallScaledBy1e6",
+         {{"main.uq", ellipsoid + "instance (d =sx 1e6);\nview v vpn 1 0 0 dop -1 0 0;\n"}},
+         "",
+         "",
+         "",
+         100},
+        {"BallScaledBy1e6Flat",
+         {{"main.uq", ellipsoid + "instance (d =sx 1e6 =sy 1e6);\n"}},
+         "",
+         "",
+         "",
+         100},
+        {"BallScaledBy1e308",
+         {{"main.uq", ellipsoid + "instance (d =sx 1e308);\n"}},
+         "",
+         R"(main\.uq:\d+:\d+: error: .*unbounded in the view \(to double precision: a quadric )"
+         R"(stretched)"},
+        // ---- The issue's reproducers that have separate tests, as rows too.
+        ok("PipePlantedLink",
+           {{"p.pipe", "radius .25\npath\n0 0 0\n1 0 0\n"}, {"victim", "precious"}},
+           "pipe p.pipe -o o.uq", "test \"$(cat victim)\" = precious && grep -q quadric o.uq",
+           "ln -s victim o.uq.tmp"),
+        ok("ModeOf0600FileKept", {{"main.uq", sphere}}, "render main.uq --size 16x16 -o p.ppm",
+           "test \"$(stat -c %a p.ppm)\" = 600 && head -c 2 p.ppm | grep -q P",
+           "echo old > p.ppm; chmod 600 p.ppm"),
+        {"PixelpowersGuardStrict",
+         {{"main.uq", sphere + "quadric t <1 1 1 -1 0 0 0 0 0 -1>;\nbody b2 (t);\n"
+                               "csg u (ball | b2);\n"}},
+         "--engine pixelpowers --engine-opt max-products=1 --strict",
+         R"(error.*cannot draw the whole scene)"},
+        ok("PixelpowersGuardComposes",
+           {{"main.uq", sphere + "quadric t <1 1 1 -1 0 0 0 0 0 -1>;\nbody b2 (t);\n"
+                                 "csg u (ball | b2);\n"}},
+           "render main.uq --engine pixelpowers --engine-opt max-products=1 --size 32x32 -o "
+           "out.ppm --aa off",
+           "{quadrix} render main.uq --size 32x32 -o ref.ppm --aa off && cmp out.ppm ref.ppm"),
+        ok("PixelpowersAMinusA", {{"main.uq", aMinusA}},
+           "render main.uq --engine pixelpowers --size 32x32 --aa off -o out.ppm",
+           "{quadrix} render main.uq --size 32x32 --aa off -o ref.ppm && cmp out.ppm ref.ppm"),
+        row("InteractiveStdinDevZero", {}, "-i < /dev/zero",
+            R"(cannot read standard input: a line is longer than 256 MiB)"),
+    };
+}
+
 std::vector<BadInput> Table() {
     const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
     std::vector<BadInput> t = {
@@ -914,6 +1065,7 @@ std::vector<BadInput> Table() {
     for (BadInput& b : AddressLimitRows()) t.push_back(std::move(b));
     for (BadInput& b : GuardAndScaleRows()) t.push_back(std::move(b));
     for (BadInput& b : FrontEndRows()) t.push_back(std::move(b));
+    for (BadInput& b : ThirdPassRows()) t.push_back(std::move(b));
     return t;
 }
 
@@ -944,6 +1096,20 @@ TEST_P(BadInputTest, OneLineErrorNonZeroExitNoOutput) {
         const std::string cmd = "cd '" + dir.path() + "' && " + QuadrixBinary() + " " +
                                 Substitute(b.command, dir.path());
         CommandResult r = RunShell(cmd);
+        if (!b.check.empty()) {
+            ASSERT_EQ(r.exitCode, 0) << cmd << "\n" << r.err;
+            std::string check = Substitute(b.check, dir.path());
+            for (std::size_t p; (p = check.find("{quadrix}")) != std::string::npos;)
+                check.replace(p, 9, QuadrixBinary());
+            const CommandResult c = RunShell("cd '" + dir.path() + "' && " + check);
+            EXPECT_EQ(c.exitCode, 0) << check << "\n" << c.out << c.err;
+            // No temporary file left (names the setup planted excepted).
+            for (const std::string& name : Listing(dir.path())) {
+                if (before.count(name)) continue;
+                EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+            }
+            return;
+        }
         EXPECT_NE(r.exitCode, 0) << cmd << "\n" << r.err;
         EXPECT_LT(r.exitCode, 128) << "killed by a signal: " << r.err;
         // The message is searched line by line (a batch prints its failures in a summary).

@@ -226,6 +226,66 @@ TEST(OutputSafety, ModeOfTheReplacedFileIsKept) {
     EXPECT_EQ(st.st_mode & 0777, 0640u);
 }
 
+// A read-only file is not replaced (the rename needs only the directory's permission, so it was
+// replaced with exit 0). Rule (docs/output.md rule 1): refused when no write bit is set — for
+// every user, root included — or when this user may not write it (access W_OK).
+TEST(OutputSafety, ReadOnlyFileIsNotReplaced) {
+    TempDir dir;
+    dir.Write("s.uq", kSphere);
+    dir.Write("ro.ppm", "old");
+    ASSERT_EQ(chmod(dir.File("ro.ppm").c_str(), 0444), 0);
+    // As the current user (root too: the mode-bit rule).
+    CommandResult r = Render(dir, "s.uq --size 16x16 -o ro.ppm");
+    ExpectRefused(r, dir, {"s.uq", "ro.ppm"});
+    EXPECT_NE(r.err.find("read-only (mode 0444)"), std::string::npos) << r.err;
+    EXPECT_EQ(Slurp(dir.File("ro.ppm")), "old");
+    struct stat st {};
+    ASSERT_EQ(stat(dir.File("ro.ppm").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0444u);
+    // Through a symbolic link, and by the other writers (export, uq's devices, pipe).
+    fs::create_symlink("ro.ppm", dir.File("link.ppm"));
+    ExpectRefused(Render(dir, "s.uq --size 16x16 -o link.ppm"), dir,
+                  {"s.uq", "ro.ppm", "link.ppm"});
+    const std::vector<std::string> others = {"export --to pov s.uq -o ro.ppm",
+                                             "uq -dppm:ro.ppm s.uq", "draw s.uq -o ro.svg"};
+    dir.Write("ro.svg", "old");
+    ASSERT_EQ(chmod(dir.File("ro.svg").c_str(), 0400), 0);
+    for (const std::string& cmd : others) {
+        r = RunShell("cd '" + dir.path() + "' && " + QuadrixBinary() + " " + cmd);
+        ExpectRefused(r, dir, {"s.uq", "ro.ppm", "link.ppm", "ro.svg"});
+    }
+    EXPECT_EQ(Slurp(dir.File("ro.ppm")), "old");
+    EXPECT_EQ(Slurp(dir.File("ro.svg")), "old");
+}
+
+// The access rule for a user who may not write the file though every write bit is not clear: a
+// root-owned 0644 file in a directory everyone may write, rendered to as nobody.
+TEST(OutputSafety, FileOfAnotherUserIsNotReplaced) {
+    TempDir dir;
+    dir.Write("s.uq", kSphere);
+    dir.Write("theirs.ppm", "old");
+    ASSERT_EQ(chmod(dir.File("theirs.ppm").c_str(), 0644), 0);
+    std::string run = QuadrixBinary() + " render s.uq --size 16x16 -o theirs.ppm";
+    if (geteuid() == 0) {
+        if (!HaveProgram("setpriv")) GTEST_SKIP() << "running as root without setpriv";
+        chmod(dir.path().c_str(), 0777);  // nobody may create (and rename) files here
+        run = "setpriv --reuid=65534 --regid=65534 --clear-groups " + run;
+    } else {
+        // Not root: the file is ours, so make it another's by the mode (owner write cleared,
+        // group and others write set) — access(W_OK) refuses, the mode-bit rule does not.
+        ASSERT_EQ(chmod(dir.File("theirs.ppm").c_str(), 0466), 0);
+    }
+    CommandResult r = RunShell("cd '" + dir.path() + "' && " + run);
+    chmod(dir.path().c_str(), 0700);
+    EXPECT_NE(r.exitCode, 0) << r.err;
+    EXPECT_LT(r.exitCode, 128) << r.err;
+    EXPECT_NE(r.err.find("permission denied (it is not writable by this user)"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(Slurp(dir.File("theirs.ppm")), "old");
+    EXPECT_TRUE(Others(dir, {"s.uq", "theirs.ppm"}).empty())
+        << Others(dir, {"s.uq", "theirs.ppm"})[0];
+}
+
 TEST(OutputSafety, LibraryChecksAllOutputsBeforeWriting) {
     TempDir dir;
     const std::string in = dir.Write("in.uq", kSphere);

@@ -24,9 +24,14 @@ void AddBatchCommand(CLI::App& app, BatchArgs& args) {
                   "Render every frame again, even those whose outputs exist (default: resume)");
     cmd->add_flag("--quiet", args.quiet, "No progress: only errors and the summary");
     cmd->add_flag("--json", args.json, "Also print the summary as one JSON object on stdout");
+    AddLimitOptions(*cmd, args);
 }
 
 int RunBatch(const BatchArgs& args) {
+    if (auto e = ApplyLimits(args); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
     std::string text;
     if (auto why = ReadBoundedFile(args.jobFile, text); !why.empty()) {
         std::fprintf(stderr, "quadrix: error: cannot read the job file '%s': %s\n",

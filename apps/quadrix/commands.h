@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "limit_options.h"
 #include "quadrix/pipeline/camera.h"
 #include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/pipeline.h"
@@ -39,7 +40,7 @@ std::string SceneViewOptions(const SceneViewArgs& args, PipelineOptions& po, Cam
 // After Read (the input format says which axis is up): the camera's view into `view`.
 bool ApplyCamera(RenderContext& ctx, CameraRequest camera, ViewRequest& view, Diagnostics& diags);
 
-struct RenderArgs : SceneViewArgs {
+struct RenderArgs : SceneViewArgs, LimitArgs {
     // Set by main for the one-shot `quadrix render`: once every output is committed the process
     // ends at once (_exit), without freeing the Frame, the image and the scene (issue 24).
     bool exitWhenDone = false;
@@ -65,9 +66,6 @@ struct RenderArgs : SceneViewArgs {
     std::string dumpFrame;
     std::vector<std::string> engineOptions;  // key=value
     bool strict = false;                     // --strict (importers and engine composition)
-    // Limits for servers and batch runs (docs/output.md).
-    std::string maxMemory;  // e.g. "2G"; empty = the machine's budget only
-    double timeLimit = 0;   // seconds of wall-clock time; 0 = none
     // Animation and view lists (docs/batch.md; src/quadrix/batch/).
     int frames = 0;          // --frames N
     std::string frameRange;  // --frame-range a:b
@@ -81,7 +79,7 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args);
 // The picture defaults, kDefaultAaSamples and ParseAaSamples: shade/picture_defaults.h.
 int RunRender(const RenderArgs& args);
 
-struct ExportArgs : SceneViewArgs {
+struct ExportArgs : SceneViewArgs, LimitArgs {
     std::vector<std::string> scenes;
     std::string to = "pov";
     std::string output;
@@ -116,7 +114,7 @@ void AddPipeCommand(CLI::App& app, PipeArgs& args);
 int RunPipe(const PipeArgs& args);
 
 // `quadrix compare`: two Frames pixel by pixel (compare_command.cpp, frame/compare.h).
-struct CompareArgs {
+struct CompareArgs : LimitArgs {
     std::vector<std::string> inputs;
     std::string engines;  // "a,b"
     std::string size = "320x240";
@@ -132,7 +130,7 @@ void AddEnginesCommand(CLI::App& app, bool& markdown);
 int RunEngines(bool markdown);
 
 // `quadrix draw`: exact hidden-line drawings (draw_command.cpp, draw/drawing.h).
-struct DrawArgs {
+struct DrawArgs : LimitArgs {
     std::vector<std::string> scenes;
     std::string output;
     std::string size = "800x600";
@@ -163,7 +161,7 @@ void AddManCommand(CLI::App& app, ManArgs& args);
 int RunMan(const CLI::App& app, const ManArgs& args);
 // `quadrix batch JOBFILE` (batch_command.cpp) and render's animation options
 // (animation_options.cpp; src/quadrix/batch/, docs/batch.md).
-struct BatchArgs {
+struct BatchArgs : LimitArgs {
     std::string jobFile;
     int threads = 0;
     bool restart = false;  // render every frame, even those whose outputs exist
@@ -185,7 +183,7 @@ int RunAnimation(const RenderArgs& args, const PipelineOptions& po, const Engine
                  const ShadeOptions& shade, const PictureDefaults& picture,
                  const OutputRequest& outputs);
 // `quadrix view`: the interactive window (view_command.cpp, viewer_window.cpp, docs/viewer.md).
-struct ViewArgs {
+struct ViewArgs : LimitArgs {
     std::vector<std::string> scenes;
     std::string size = "960x720";
     std::string view;

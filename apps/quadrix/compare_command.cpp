@@ -36,6 +36,7 @@ void AddCompareCommand(CLI::App& app, CompareArgs& args) {
     cmd->add_option("--tolerance", args.tolerance,
                     "Largest same-surface depth difference that agrees (device z units)")
         ->capture_default_str();
+    AddLimitOptions(*cmd, args);
 }
 
 namespace {
@@ -76,6 +77,10 @@ int RenderWithEngines(const CompareArgs& args, Frame& a, Frame& b, std::string& 
 }  // namespace
 
 int RunCompare(const CompareArgs& args) {
+    if (auto e = ApplyLimits(args); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
     Frame a, b;
     std::string names;
     if (!args.engines.empty()) {
@@ -86,8 +91,11 @@ int RunCompare(const CompareArgs& args) {
             return 2;
         }
         for (int k = 0; k < 2; ++k)
+            // Through the bounded reader, the size checked against the image limits and the
+            // memory budget before the Frame is made; errors are positioned (FILE:LINE:COL).
             if (auto e = ReadFrameDump(args.inputs[k], k == 0 ? a : b); !e.empty()) {
-                std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+                std::fprintf(stderr, "%s%s\n", e.rfind("error: ", 0) == 0 ? "quadrix: " : "",
+                             e.c_str());
                 return 1;
             }
         names = args.inputs[0] + " vs " + args.inputs[1];

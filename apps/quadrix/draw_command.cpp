@@ -102,9 +102,14 @@ void AddDrawCommand(CLI::App& app, DrawArgs& args) {
                   "Draw without what the drawer cannot draw (freeform surfaces; imported "
                   "primitives that cannot be drawn): a warning instead of an error");
     cmd->add_flag("--stats", args.stats, "Print curve counts and times to standard error");
+    AddLimitOptions(*cmd, args);
 }
 
 int RunDraw(const DrawArgs& args) {
+    if (auto e = ApplyLimits(args); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
     if (!draw::IsPageFileName(args.output)) {
         std::fprintf(stderr,
                      "quadrix: error: %s: the output must end in .svg, .pdf, .eps or .png\n",

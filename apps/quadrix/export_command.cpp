@@ -25,9 +25,14 @@ void AddExportCommand(CLI::App& app, ExportArgs& args) {
                   "Lights cast shadows (as quadrix render --shadows; default: shadowless)");
     // The same scene and view options as render (view_options.cpp).
     AddSceneViewOptions(*cmd, args, "Export");
+    AddLimitOptions(*cmd, args);
 }
 
 int RunExport(const ExportArgs& args) {
+    if (auto e = ApplyLimits(args); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
     Diagnostics diags;
     PipelineOptions po;
     if (auto e = ParseSize(args.size, po.width, po.height); !e.empty()) {

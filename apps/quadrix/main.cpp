@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "quadrix/engines/engine_limit.h"
 #include "quadrix/io/phase_times.h"
 
 namespace {
@@ -173,6 +174,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr,
                      "quadrix: error: out of memory (the input or image is too large for the "
                      "memory available; see docs/output.md)\n");
+        return 1;
+    } catch (const quadrix::EngineLimitError& e) {
+        // A complexity guard outside the render context's own catch: the shading budget
+        // (shade/shade_budget.h). No picture is written; temporaries are removed on unwinding.
+        std::fprintf(stderr, "quadrix: error: %s\n", e.what());
         return 1;
     } catch (const std::length_error& e) {
         std::fprintf(stderr, "quadrix: error: out of memory (%s)\n", e.what());

@@ -9,11 +9,9 @@
 #include "commands.h"
 #include "quadrix/batch/run.h"
 #include "quadrix/engines/registry.h"
-#include "quadrix/frame/memory_budget.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/io/output_file.h"
 #include "quadrix/io/phase_times.h"
-#include "quadrix/io/time_limit.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/camera.h"
 #include "quadrix/pipeline/output.h"
@@ -99,10 +97,7 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                   "(instead of composing them from raycast)");
     AddSceneViewOptions(*cmd, args, "Draw");
     cmd->footer(EnginesHelp());
-    cmd->add_option("--max-memory", args.maxMemory,
-                    "Memory budget, e.g. 2G or 512M: larger images are refused (docs/output.md)");
-    cmd->add_option("--time-limit", args.timeLimit,
-                    "Give up after this many seconds (exit 124, no output left)");
+    AddLimitOptions(*cmd, args);
     AddAnimationOptions(*cmd, args);
 }
 
@@ -146,21 +141,8 @@ int FinishRender(const RenderArgs& args, int code) {
 
 int RunRender(const RenderArgs& args) {
     MarkPhase("start");
-    if (!args.maxMemory.empty()) {
-        std::size_t bytes = 0;
-        if (!ParseByteSize(args.maxMemory, bytes)) {
-            std::fprintf(stderr,
-                         "quadrix: error: --max-memory: expected a size of at least 1M such as "
-                         "512M or 2G, found '%s'\n",
-                         args.maxMemory.c_str());
-            return 2;
-        }
-        SetMemoryBudget(bytes);
-    }
-    if (args.timeLimit != 0 && !SetTimeLimit(args.timeLimit)) {
-        std::fprintf(stderr,
-                     "quadrix: error: --time-limit: expected a positive number of "
-                     "seconds\n");
+    if (auto e = ApplyLimits(args); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
         return 2;
     }
     int aaSamples = kDefaultAaSamples;

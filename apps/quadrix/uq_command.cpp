@@ -56,6 +56,9 @@ constexpr const char* kUsage =
     "  --engine-opt K=V    engine-specific setting (repeatable), as quadrix render's\n"
     "  --allow-missing     the svg, pdf and eps devices draw without the freeform surfaces\n"
     "                      (a warning instead of an error), as quadrix draw --allow-missing\n"
+    "  --max-memory SIZE   memory budget (512M, 2G): larger pictures are refused, as quadrix\n"
+    "                      render's\n"
+    "  --time-limit SECS   give up after SECS seconds (exit 124, no output left)\n"
     "  --version   print the version\n"
     "  -h, --help  this text\n"
     "See docs/uq-compat.md for the matching quadrix render options.\n";
@@ -97,6 +100,7 @@ struct Plan {
     bool help = false;
     bool version = false;
     EngineRequest engine;  // the last --engine and every --engine-opt, checked before any work
+    std::string maxMemory, timeLimit;  // --max-memory, --time-limit (limit_options.h)
 };
 
 // Parses the arguments into a plan; returns an error message or empty.
@@ -125,6 +129,23 @@ std::string ParseArgs(const std::vector<std::string>& args, Plan& plan) {
         }
         if (a == "--allow-missing") {
             add(Kind::kAllowMissing);
+            continue;
+        }
+        // --max-memory SIZE and --time-limit SECONDS (or =VALUE), as quadrix render's.
+        if (a == "--max-memory" || a.rfind("--max-memory=", 0) == 0 || a == "--time-limit" ||
+            a.rfind("--time-limit=", 0) == 0) {
+            const bool memory = a.rfind("--max-memory", 0) == 0;
+            const std::string option = memory ? "--max-memory" : "--time-limit";
+            std::string v;
+            if (a.size() > option.size()) {
+                v = a.substr(option.size() + 1);
+            } else if (i + 1 < args.size()) {
+                v = args[++i];
+            } else {
+                return fmt::format("option {} needs {}", option,
+                                   memory ? "a size such as 512M" : "a number of seconds");
+            }
+            (memory ? plan.maxMemory : plan.timeLimit) = v;
             continue;
         }
         // --engine NAME / --engine=NAME and --engine-opt KEY=VALUE, as quadrix render's.
@@ -331,6 +352,7 @@ int RunUq(const std::vector<std::string>& args) {
     }
     // An unknown engine or a bad engine option is a usage error (docs/cli.md), as in render.
     if (auto e = RenderContext::CheckEngine(plan.engine); !e.empty()) return UsageError(e);
+    if (auto e = ApplyLimits(plan.maxMemory, plan.timeLimit); !e.empty()) return UsageError(e);
     // "If no -d option is given, UniQuadrix checks for device names in environment variable
     // UQDEV": with a -d anywhere on the line, its first device is the device from the start.
     std::string initialDevice;

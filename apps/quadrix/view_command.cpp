@@ -62,9 +62,14 @@ void AddViewCommand(CLI::App& app, ViewArgs& args) {
                   "drawing key's drawing without the freeform surfaces (a warning, not an "
                   "error)");
     cmd->footer(viewer::KeyHelp());
+    AddLimitOptions(*cmd, args);
 }
 
 int RunView(const ViewArgs& args) {
+    if (auto e = ApplyLimits(args); !e.empty()) {
+        std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());
+        return 2;
+    }
     ViewerSession session;
     if (auto e = ParseSize(args.size, session.width, session.height); !e.empty()) {
         std::fprintf(stderr, "quadrix: error: %s\n", e.c_str());

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "quadrix/engines/engine_limit.h"
 #include "quadrix/import/rt_view.h"
 #include "quadrix/io/output_check.h"
 
@@ -180,7 +181,13 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
         if (auto note = ApplyPictureDefaults(ctx_.Flat(), job.picture, so);
             !note.empty() && r.flattened)
             r.warnings += "note: " + note + "\n";
-        image = ctx_.Shade(fb, so);
+        try {
+            image = ctx_.Shade(fb, so);
+        } catch (const EngineLimitError& e) {  // the shading budget (shade/shade_budget.h)
+            r.error = std::string("error: ") + e.what() + "\n";
+            r.seconds = Since(t0);
+            return r;
+        }
     }
     if (std::string e = WriteOutputs(out, fb, image ? &*image : nullptr); !e.empty())
         r.error = e + "\n";

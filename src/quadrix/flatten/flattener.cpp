@@ -503,11 +503,32 @@ class FlattenerImpl {
                                              loc.ToString(), view_.id, FormatPoint(view_.eye)));
                     return std::nullopt;
                 }
-                diags_.Error(loc, fmt::format("{} '{}' at {} is unbounded in the view and "
-                                              "nothing bounded is there to fit the window to; "
-                                              "give the view a window with whh or whw",
-                                              isBody ? "body" : "csg solid", flat_.solids[i].name,
-                                              loc.ToString()));
+                // A quadric scaled by more than about 1e7 along one axis is, to double precision,
+                // a cylinder along it (its coefficient there underflows against the others): say
+                // so, since the scene may mean a bounded solid (issue 23).
+                bool quadric = false;
+                std::vector<int> stack{flat_.solids[i].root};
+                while (!stack.empty() && !quadric) {
+                    const FlatCsgNode& node = flat_.nodes[static_cast<std::size_t>(stack.back())];
+                    stack.pop_back();
+                    if (!node.isLeaf) {
+                        stack.insert(stack.end(), node.children.begin(), node.children.end());
+                        continue;
+                    }
+                    for (const FlatLiteral& l :
+                         flat_.bodies[static_cast<std::size_t>(node.body)].literals)
+                        quadric |= !flat_.halfSpaces[static_cast<std::size_t>(l.halfSpace)].isPlane;
+                }
+                diags_.Error(
+                    loc,
+                    fmt::format("{} '{}' at {} is unbounded in the view{} and nothing "
+                                "bounded is there to fit the window to; give the view a "
+                                "window with whh or whw",
+                                isBody ? "body" : "csg solid", flat_.solids[i].name, loc.ToString(),
+                                quadric ? " (to double precision: a quadric stretched by "
+                                          "about 1e7 or more along an axis is a cylinder "
+                                          "there)"
+                                        : ""));
                 return std::nullopt;
             }
             case WindowFitStatus::kNoExtent:

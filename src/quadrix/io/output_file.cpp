@@ -165,6 +165,17 @@ std::string ResolveTarget(const std::string& path, std::string& target, bool& ex
         return Refuse(
             path, fmt::format("it is {} (only regular files are replaced)", KindOf(st.st_mode)));
     if (WasRead(st)) return Refuse(path, "it is one of the input files");
+    // A file its owner made read-only is not replaced, though the rename (which needs only the
+    // directory's permission) could: the shell's `>` refuses it too. The rule: refused when the
+    // user may not write it (access W_OK, by the effective ids), and also when no write bit is
+    // set at all (mode & 0222 == 0) — root passes access() for any file, as it does `>`, but
+    // a 0444 file is still a file someone meant to keep (as rm asks before removing it).
+    if ((st.st_mode & 0222) == 0)
+        return Refuse(path, fmt::format("it is read-only (mode {:04o}); make it writable to "
+                                        "replace it",
+                                        static_cast<unsigned>(st.st_mode & 07777)));
+    if (faccessat(AT_FDCWD, target.c_str(), W_OK, AT_EACCESS) != 0 && errno == EACCES)
+        return Refuse(path, "permission denied (it is not writable by this user)");
     return {};
 }
 

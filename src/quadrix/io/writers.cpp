@@ -11,11 +11,15 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
+#include "quadrix/frame/image_limits.h"
+#include "quadrix/io/bounded_read.h"
 #include "quadrix/io/phase_times.h"
 #include "quadrix/io/png_encoder.h"
 #include "quadrix/math/srgb.h"
@@ -292,27 +296,102 @@ std::string WriteFrameDump(const std::string& path, const Frame& frame) {
     return f.Commit();
 }
 
+namespace {
+
+// A cursor over a frame dump's text with its line and column, for positioned errors.
+struct DumpCursor {
+    const char* p;
+    const char* end;
+    int line = 1;
+    const char* lineStart;
+    int Column() const { return static_cast<int>(p - lineStart) + 1; }
+    void SkipBlanks() {
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+    }
+    // The next field on this line as a number; false (p left at the field) when there is none or
+    // it is not a number. The text is NUL-terminated (std::string), so strtod stops in it.
+    bool Number(double& v) {
+        SkipBlanks();
+        if (p >= end || *p == '\n') return false;
+        char* after = nullptr;
+        v = std::strtod(p, &after);
+        if (after == p ||
+            (after < end && *after != ' ' && *after != '\t' && *after != '\r' && *after != '\n'))
+            return false;
+        p = after;
+        return true;
+    }
+    bool Integer(long long& v, long long lo, long long hi) {
+        double d;
+        const char* at = p;
+        if (!Number(d) || !(d >= static_cast<double>(lo) && d <= static_cast<double>(hi)) ||
+            d != std::floor(d)) {
+            p = at;
+            SkipBlanks();
+            return false;
+        }
+        v = static_cast<long long>(d);
+        return true;
+    }
+    bool EndOfLine() {
+        SkipBlanks();
+        if (p >= end) return true;
+        if (*p != '\n') return false;
+        ++p;
+        ++line;
+        lineStart = p;
+        return true;
+    }
+};
+
+}  // namespace
+
 std::string ReadFrameDump(const std::string& path, Frame& frame) {
-    std::ifstream in(path);
-    if (!in) return fmt::format("cannot read '{}'", path);
-    std::string magic;
-    int w = 0, h = 0;
-    if (!(in >> magic >> w >> h) || magic != "QXF1" || w <= 0 || h <= 0 || w > 65536 || h > 65536)
-        return fmt::format("'{}' is not a Quadrix frame dump", path);
-    frame.Reset(w, h);
-    int x, y, s, b, o;
-    double z, nx, ny, nz;
-    while (in >> x >> y >> z >> nx >> ny >> nz >> s >> b >> o) {
-        if (x < 0 || y < 0 || x >= w || y >= h)
-            return fmt::format("'{}': pixel out of range", path);
-        std::size_t i = frame.Index(x, y);
+    // The bounded reader (io/bounded_read.h): /dev/zero or a 300 MB file is an error after at
+    // most kMaxInputBytes, never an unbounded allocation.
+    std::string text;
+    if (auto e = ReadBoundedFile(path, text); !e.empty())
+        return fmt::format("error: cannot read '{}': {}", path, e);
+    DumpCursor c{text.data(), text.data() + text.size(), 1, text.data()};
+    auto at = [&](const std::string& what) {
+        return fmt::format("{}:{}:{}: error: {}", path, c.line, c.Column(), what);
+    };
+    c.SkipBlanks();
+    if (text.compare(static_cast<std::size_t>(c.p - text.data()), 5, "QXF1 ") != 0 &&
+        text.compare(static_cast<std::size_t>(c.p - text.data()), 5, "QXF1\t") != 0)
+        return at(fmt::format("'{}' is not a Quadrix frame dump (no QXF1 header)", path));
+    c.p += 4;
+    long long w = 0, h = 0;
+    c.SkipBlanks();
+    const int sizeColumn = c.Column();
+    if (!c.Integer(w, 1, kMaxSide * 4LL)) return at("expected the frame's width");
+    if (!c.Integer(h, 1, kMaxSide * 4LL)) return at("expected the frame's height");
+    // The size is checked against the image limits and the memory budget before the Frame is
+    // allocated (a header "QXF1 16384 16384" asked for 12 GB).
+    if (auto e = CheckImageSize(w, h); !e.empty())
+        return fmt::format("{}:1:{}: error: {}", path, sizeColumn, e);
+    if (!c.EndOfLine()) return at("expected the end of the header line");
+    frame.Reset(static_cast<int>(w), static_cast<int>(h));
+    while (c.p < c.end) {
+        if (c.EndOfLine()) continue;  // a blank line
+        long long x, y, s, b, o;
+        double z, nx, ny, nz;
+        if (!c.Integer(x, 0, w - 1)) return at("expected a pixel x in 0.." + std::to_string(w - 1));
+        if (!c.Integer(y, 0, h - 1)) return at("expected a pixel y in 0.." + std::to_string(h - 1));
+        if (!c.Number(z) || !c.Number(nx) || !c.Number(ny) || !c.Number(nz))
+            return at("expected a number (depth, then the normal's x, y, z)");
+        constexpr long long kMin = std::numeric_limits<std::int32_t>::min(),
+                            kMax = std::numeric_limits<std::int32_t>::max();
+        if (!c.Integer(s, kMin, kMax) || !c.Integer(b, kMin, kMax) || !c.Integer(o, kMin, kMax))
+            return at("expected an id (surface, body, solid)");
+        if (!c.EndOfLine()) return at("expected the end of the pixel line");
+        const std::size_t i = frame.Index(static_cast<int>(x), static_cast<int>(y));
         frame.depth[i] = z;
         frame.normal[i] = {nx, ny, nz};
-        frame.surface[i] = s;
-        frame.body[i] = b;
-        frame.solid[i] = o;
+        frame.surface[i] = static_cast<std::int32_t>(s);
+        frame.body[i] = static_cast<std::int32_t>(b);
+        frame.solid[i] = static_cast<std::int32_t>(o);
     }
-    if (!in.eof()) return fmt::format("'{}': malformed pixel line", path);
     return {};
 }
 

@@ -11,6 +11,8 @@
 
 #include "quadrix/engines/raycast/sample_tracer.h"
 #include "quadrix/shade/row_shading.h"
+#include "quadrix/shade/shade_budget.h"
+#include "quadrix/util/ray_work.h"
 
 namespace quadrix {
 
@@ -232,6 +234,14 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             image.linear[k] = static_cast<float>(image.pixels[k] / 255.0);
     }
     std::atomic<std::size_t> count{0};
+    // The shading budget (shade_budget.h): as many sample rays as if every pixel were an edge
+    // pixel, each of kShadeLiteralsPerRay literals.
+    int side = 1;
+    while (side * side < options.aaSamples) ++side;
+    ShadeBudget budget("anti-aliasing", "--aa off, or a smaller --aa",
+                       static_cast<std::uint64_t>(frame.width) *
+                           static_cast<std::uint64_t>(frame.height) *
+                           static_cast<std::uint64_t>(side * side));
     tbb::parallel_for(
         tbb::blocked_range<int>(0, frame.height, 4), [&](const tbb::blocked_range<int>& span) {
             std::size_t local = 0;
@@ -241,6 +251,8 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                 const scene::Color background = shader.Background(y, frame.height);
                 for (int x = 0; x < frame.width; ++x) {
                     if (!(edges[frame.Index(x, y)] & kEdgePixel)) continue;
+                    if (budget.Exhausted()) break;
+                    const std::uint64_t work = tRayLiterals;
                     ++local;
                     double r = 0, g = 0, b = 0, wsum = 0;
                     for (const SubPixel& s : SamplePositions(options.aaSamples, x, y)) {
@@ -256,10 +268,12 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                         wsum += wgt;
                     }
                     StorePixel(image, x, y, {r / wsum, g / wsum, b / wsum});
+                    budget.Spend(tRayLiterals - work);
                 }
             }
             count += local;
         });
+    budget.ThrowIfExhausted(scene);
     stats.edgePixels = count.load();
     int k = 1;
     while (k * k < options.aaSamples) ++k;

@@ -12,7 +12,11 @@ bool DeclaresLights(const FlatScene& flat) {
 
 std::string ApplyPictureDefaults(const FlatScene& flat, const PictureDefaults& defaults,
                                  ShadeOptions& options) {
-    const bool small = flat.bodies.size() <= kPictureDefaultBodies;
+    const FlatBody* widest = nullptr;
+    for (const FlatBody& b : flat.bodies)
+        if (!widest || b.literals.size() > widest->literals.size()) widest = &b;
+    const bool wide = widest && widest->literals.size() > kPictureDefaultLiterals;
+    const bool small = flat.bodies.size() <= kPictureDefaultBodies && !wide;
     const bool shadows = defaults.shadows && !options.shadows && DeclaresLights(flat);
     const bool aa = defaults.antialiasing;
     if (small) {
@@ -21,8 +25,12 @@ std::string ApplyPictureDefaults(const FlatScene& flat, const PictureDefaults& d
         return {};
     }
     if (!shadows && !aa) return {};
-    return fmt::format("{} bodies: no default{}{} (--shadows, --aa N ask for them)",
-                       flat.bodies.size(), shadows ? " shadows" : "",
+    const std::string why =
+        flat.bodies.size() > kPictureDefaultBodies
+            ? fmt::format("{} bodies", flat.bodies.size())
+            : fmt::format("body '{}' has {} literals", widest->name, widest->literals.size());
+    return fmt::format("{}: no default{}{} (--shadows, --aa N ask for them)", why,
+                       shadows ? " shadows" : "",
                        aa ? (shadows ? " or anti-aliasing" : " anti-aliasing") : "");
 }
 

@@ -22,6 +22,11 @@ constexpr int kDefaultAaSamples = 4;
 // at 640×360 take 0.85 s with shadows and 1.5 s with --aa 4 (docs/shading.md), so only scenes
 // beyond what was measured are left out.
 constexpr std::size_t kPictureDefaultBodies = 20000;
+// Nor scenes with a body of more literals: the box trees skip solids and CSG children, never the
+// literals of one body, so every sample or shadow ray that meets it evaluates all of them (one
+// body of 10⁵ literals: 17 s of anti-aliasing at 64×64, docs/performance.md). Asked for
+// explicitly they are done under the shading budget (shade_budget.h).
+constexpr std::size_t kPictureDefaultLiterals = 1024;
 
 // Which of the options the request leaves to the defaults.
 struct PictureDefaults {

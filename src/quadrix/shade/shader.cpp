@@ -10,7 +10,9 @@
 
 #include "quadrix/shade/phong.h"
 #include "quadrix/shade/row_shading.h"
+#include "quadrix/shade/shade_budget.h"
 #include "quadrix/shade/shadows.h"
+#include "quadrix/util/ray_work.h"
 
 namespace quadrix {
 
@@ -212,10 +214,24 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
     // them when the anti-aliasing's shadow-boundary test reads their shading.
     const std::uint8_t wanted =
         options.aaSamples > 1 && options.shadows ? kRowShaded | kRowHalo : kRowShaded;
+    // The shading budget (shade_budget.h) of the shadow rays: one per light per pixel.
+    std::uint64_t lights = 0;
+    for (const scene::Light& l : scene.lights) lights += l.kind != scene::Light::Kind::kAmbient;
+    ShadeBudget budget("shadows", "--no-shadows",
+                       static_cast<std::uint64_t>(frame.width) *
+                           static_cast<std::uint64_t>(frame.height) *
+                           std::max<std::uint64_t>(1, lights));
     auto shadeRows = [&](const tbb::blocked_range<int>& rows) {
         PixelShader::MaterialCache cache;
         for (int y = rows.begin(); y < rows.end(); ++y) {
             if (!kinds.empty() && !(kinds[static_cast<std::size_t>(y)] & wanted)) continue;
+            if (budget.Exhausted()) return;
+            const std::uint64_t work = tRayLiterals;
+            struct Spend {
+                ShadeBudget& budget;
+                std::uint64_t start;
+                ~Spend() { budget.Spend(tRayLiterals - start); }
+            } spend{budget, work};
             const scene::Color background = shader.Background(y, frame.height);
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);
@@ -233,6 +249,7 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
         }
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, frame.height, 16), shadeRows);
+    if (options.shadows) budget.ThrowIfExhausted(scene);
     return image;
 }
 

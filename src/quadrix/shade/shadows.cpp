@@ -7,6 +7,7 @@
 
 #include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/math/quadratic.h"
+#include "quadrix/util/ray_work.h"
 
 namespace quadrix {
 
@@ -179,6 +180,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
         slots[k]->clear();
         slots[k]->Append(s0, Interval::kNoId, s1, Interval::kNoId);
         for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(node.body)].literals) {
+            ++tRayLiterals;  // the shading budget's count (shade_budget.h)
             LiteralInto(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)], l.complemented, p,
                         d, *slots[k + 1], *slots[k + 2]);
             Intersection(*slots[k], *slots[k + 1], *slots[k + 3]);

@@ -5,6 +5,7 @@
 
 #include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/flatten/wide_node_trees.h"
+#include "quadrix/util/ray_work.h"
 
 namespace quadrix::raycast {
 
@@ -53,6 +54,7 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
         LiteralCounters unused;
         const std::int32_t* tag = tables_.BodyTags(b);
         for (std::size_t k = 0; k < tables_.BodyTagCount(b); ++k) {
+            ++tRayLiterals;  // the shading budget's count (shade/shade_budget.h)
             const Tag& t = tables_.TagOf(tag[k]);
             const RaySet set =
                 LiteralOnRay(tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)],
