@@ -83,7 +83,15 @@ std::string RtViewOptions(const SceneViewArgs& args, PipelineOptions& po, Diagno
             return fmt::format("--rt-view: cannot read '{}': {}", args.rtView, why);
         auto rt = import::ParseRtViewScript(text, args.rtView, diags);
         if (!rt) return "--rt-view: the view file has errors";
-        po.rtView = *rt;
+        if (rt->Fitted()) {  // rt's `ae`: the same view as --az/--el (import/rt_view.h)
+            if (po.azimuth || po.elevation)
+                return "--az/--el cannot be combined with an rt view script's 'ae'";
+            po.azimuth = rt->aeAzimuth;
+            po.elevation = rt->aeElevation;
+            if (rt->viewsize > 0) po.viewsize = rt->viewsize;
+        } else {
+            po.rtView = *rt;
+        }
     }
     if ((po.rtView || po.azimuth || po.elevation) && !args.view.empty())
         return "--view cannot be combined with --az/--el or an rt view";

@@ -142,6 +142,13 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
         view.elevation.reset();
         view.view = lv.view;
         view.rtView = lv.rtView;
+        if (lv.rtView && lv.rtView->Fitted()) {  // rt's `ae`: the --az/--el view
+            view.rtView.reset();
+            view.azimuth = lv.rtView->aeAzimuth;
+            view.elevation = lv.rtView->aeElevation;
+            view.viewsize.reset();
+            if (lv.rtView->viewsize > 0) view.viewsize = lv.rtView->viewsize;
+        }
     }
     Diagnostics diags;
     const auto t1 = std::chrono::steady_clock::now();
