@@ -95,7 +95,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Also write the Frame (depth, normal, ids) as a .qxf text dump");
     cmd->add_flag("--strict", args.strict,
                   "Refuse what cannot be drawn as asked: primitives that cannot be drawn "
-                  "(torus, ...) even with --allow-missing, and solids the engine cannot draw "
+                  "(superell, dsp, ebm, nmg, ...) even with --allow-missing, and solids the engine "
+                  "cannot draw "
                   "(instead of composing them from raycast)");
     AddSceneViewOptions(*cmd, args, "Draw");
     cmd->footer(EnginesHelp());

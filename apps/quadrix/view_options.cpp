@@ -19,10 +19,12 @@ void AddSceneViewOptions(CLI::App& cmd, SceneViewArgs& args, const std::string& 
         ->delimiter(',')
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    cmd.add_flag("--allow-missing", args.allowMissing,
-                 fmt::format("{} an imported model without the primitives that cannot be drawn "
-                             "(torus, ...): a warning and a count in --stats instead of an error",
-                             verb));
+    cmd.add_flag(
+        "--allow-missing", args.allowMissing,
+        fmt::format(
+            "{} an imported model without the primitives that cannot be drawn "
+            "(superell, dsp, ebm, nmg, ...): a warning and a count in --stats instead of an error",
+            verb));
     cmd.add_option("--camera", args.camera,
                    "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
                    "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
