@@ -87,6 +87,8 @@ TEST(CliConventions, ExitCodesAreConsistent) {
         {"render " + scene + " -o " + out + " --format gif", 2},
         {"render " + scene + " -o " + dir.File("o.gif"), 2},
         {"render " + scene, 2},
+        {"render " + scene + " -o " + out + " --frame-range 0:3", 2},
+        {"render " + scene + " -o " + out + " --resume", 2},
         {"render " + bad + " -o " + out, 1},
         {"render " + dir.File("missing.uq") + " -o " + out, 1},
         {"compare --engines nosuch,raycast " + scene, 2},

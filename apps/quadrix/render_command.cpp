@@ -202,6 +202,22 @@ int RunRender(const RenderArgs& args) {
         }
         po.section = section;
     }
+    // The animation-only options on a still picture would be silently ignored (issue 22).
+    if (args.frames == 0 && args.turntable == 0 && args.views.empty()) {
+        if (!args.frameRange.empty()) {
+            std::fprintf(stderr,
+                         "quadrix: error: --frame-range: there is no animation to take frames "
+                         "from (give --frames, --turntable or --views)\n");
+            return 2;
+        }
+        if (args.resume) {
+            std::fprintf(stderr,
+                         "quadrix: error: --resume: a still picture has no frames to skip; it "
+                         "applies to --frames, --turntable or --views (batch jobs resume by "
+                         "default)\n");
+            return 2;
+        }
+    }
     if (args.hatch && args.section.empty()) {
         std::fprintf(stderr,
                      "quadrix: error: --hatch: there is no section to hatch (give --section)\n");
