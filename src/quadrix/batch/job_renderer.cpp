@@ -56,6 +56,15 @@ bool AllComplete(FrameResult& r, int width, int height) {
 
 }  // namespace
 
+bool FrameComplete(const Job& job, int frame) {
+    FrameResult r;
+    const bool animated = job.Animated();
+    r.image = FramePath(job.output.image, frame, animated);
+    r.dumpFrame = FramePath(job.output.dumpFrame, frame, animated);
+    r.exr = FramePath(job.output.exr, frame, animated);
+    return AllComplete(r, job.view.width, job.view.height);
+}
+
 Box3 SceneWorldBounds(RenderContext& ctx, Diagnostics& diags) {
     ViewRequest probe;
     probe.width = probe.height = 256;
