@@ -172,6 +172,15 @@ std::vector<BadInput> HardeningRows() {
          R"(error: time limit of 0\.3 s)",
          "sleep 2 |"},
         {"TimeLimitMalformed", {{"main.uq", sphere}}, "--time-limit -1", R"(error: --time-limit)"},
+        // ---- Animation options on a still picture: usage errors, not silently ignored (issue 22).
+        {"FrameRangeWithoutFrames",
+         {{"main.uq", sphere}},
+         "--frame-range 2:5",
+         R"(error: --frame-range: there is no animation.*--frames, --turntable or --views)"},
+        {"ResumeOnAStillPicture",
+         {{"main.uq", sphere}},
+         "--resume",
+         R"(error: --resume: a still picture has no frames)"},
         // ---- BRL-CAD: numbers beyond int are positioned errors (were UBSan float-cast overflow).
         {"V4ColorTableHugeId",
          {{"m.asc", "I 1 v4\nt\nm 4 2.5e12 3 0 0 0\n"}},

@@ -1,6 +1,7 @@
 // The batch front ends end to end (issue 22): `quadrix render --frames/--turntable`, `quadrix
 // batch` with a bad job and resumption, and the same runs under `mpirun --oversubscribe -np 3`,
 // whose outputs must be byte-identical to the single-process ones. Small pictures, few frames.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -119,6 +120,10 @@ TEST(BatchCommand, KilledRunIsResumedAndEveryFrameIsCorrect) {
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
     EXPECT_NE(resumed.err.find("5 rendered, 3 skipped"), std::string::npos) << resumed.err;
     EXPECT_NE(resumed.err.find("exists but is incomplete"), std::string::npos) << resumed.err;
+    // Before it starts, the resumed run says which frames the killed one left unfinished.
+    EXPECT_NE(resumed.err.find("resuming: 5 of 8 frames not complete:"), std::string::npos)
+        << resumed.err;
+    EXPECT_NE(resumed.err.find(" frames 3-7"), std::string::npos) << resumed.err;
     for (int f = 0; f < 8; ++f) {
         const std::string name = "f_000" + std::to_string(f) + ".png";
         EXPECT_EQ(Bytes(ref.File(name)), Bytes(out.File(name))) << name;
@@ -297,6 +302,10 @@ TEST(BatchMpi, ARankKilledMidRunIsResumed) {
         RunShell(Mpirun(2) + QuadrixBinary() + args + "'" + out.File("f.png") + "' --resume");
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
     EXPECT_NE(resumed.err.find(std::to_string(written) + " skipped"), std::string::npos)
+        << resumed.err;
+    // Rank 0 says first which frames the killed run did not complete.
+    EXPECT_NE(resumed.err.find(fmt::format("resuming: {} of 8 frames not complete:", 8 - written)),
+              std::string::npos)
         << resumed.err;
     for (int f = 0; f < 8; ++f) {
         const std::string name = "f_000" + std::to_string(f) + ".png";

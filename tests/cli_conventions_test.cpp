@@ -42,6 +42,12 @@ TEST(CliConventions, HelpListsSubcommandsAndDescribesOne) {
     EXPECT_EQ(render.exitCode, 0);
     EXPECT_NE(render.out.find("--engine"), std::string::npos) << render.out;
     EXPECT_NE(render.out.find("--format"), std::string::npos) << render.out;
+    // Tori are drawn (issue 20): the help's examples of what cannot be drawn do not name them.
+    for (const char* sub : {"render", "export"}) {
+        CommandResult help = Quadrix(std::string("help ") + sub);
+        EXPECT_NE(help.out.find("--allow-missing"), std::string::npos) << sub;
+        EXPECT_EQ(help.out.find("torus"), std::string::npos) << help.out;
+    }
     CommandResult uq = Quadrix("help uq");
     EXPECT_EQ(uq.exitCode, 0);
     EXPECT_NE(uq.out.find("usage: quadrix uq"), std::string::npos) << uq.out;
@@ -81,6 +87,8 @@ TEST(CliConventions, ExitCodesAreConsistent) {
         {"render " + scene + " -o " + out + " --format gif", 2},
         {"render " + scene + " -o " + dir.File("o.gif"), 2},
         {"render " + scene, 2},
+        {"render " + scene + " -o " + out + " --frame-range 0:3", 2},
+        {"render " + scene + " -o " + out + " --resume", 2},
         {"render " + bad + " -o " + out, 1},
         {"render " + dir.File("missing.uq") + " -o " + out, 1},
         {"compare --engines nosuch,raycast " + scene, 2},

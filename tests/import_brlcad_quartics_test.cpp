@@ -1,8 +1,8 @@
 // BRL-CAD tor, eto, general tgc and pipe → exact quartic and quadric half-spaces (issue 20):
 // membership against each primitive's own definition, exact boxes, the pipe's layout (bend
 // geometry, joints that leave no crack), its volume and projected area against the analytic
-// values, the readers (v4, v5, .g round trip), and the shared samples drawn whole: the truck's 11
-// tyres are in the picture where they should be.
+// values, the readers (v4, v5, .g round trip), the ars as the closed mesh it bounds, and the
+// shared samples drawn whole: the truck's 11 tyres are in the picture where they should be.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -324,6 +324,53 @@ TEST(ImportBrlcadPipe, RenderedPipeCoversItsProjectedArea) {
     }
 }
 
+// `solid pipe` in the language (docs/language.md §3.13) is the imported pipe: TestPipe written
+// with the same points (Quadrix coordinates: model (x, y, z) is (x, z, y)) draws the same picture
+// as the .asc, through the same view of a .uq file: the same covered pixels except where a
+// silhouette passes within rounding of a pixel centre, and the same depths.
+TEST(ImportBrlcadPipe, LanguagePipeDrawsLikeTheAscPipe) {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "quadrix_pipe_lang_test";
+    std::filesystem::create_directories(dir);
+    const std::string asc = (dir / "pipe.asc").string(), view = (dir / "view.uq").string(),
+                      uq = (dir / "pipe.uq").string();
+    const std::string viewText = "view v vrp 10 0 10 dop .3 -.8 -.45 whw 17 whh 14;\n";
+    {
+        std::ofstream(asc) << "title {pipe}\n" << PipePut("p", TestPipe());
+        std::ofstream(view) << viewText;
+        std::ofstream(uq) << "solid pipe hose =p 0 0 0 4 0 0 =p 20 0 0 6 2 8 =p 20 0 20 6 2 0;\n"
+                          << viewText;
+    }
+    auto render = [&](std::vector<std::string> paths, PipelineResult& res) {
+        PipelineOptions po;
+        po.scenePaths = std::move(paths);
+        po.viewName = "v";
+        po.width = 220;
+        po.height = 180;
+        Diagnostics d;
+        EXPECT_TRUE(RunPipeline(po, res, d)) << AllMessages(d);
+    };
+    PipelineResult a, b;
+    render({asc, view}, a);
+    render({uq}, b);
+    ASSERT_EQ(a.frame.width, b.frame.width);
+    int covered = 0, differ = 0;
+    double worstDepth = 0;
+    for (int y = 0; y < a.frame.height; ++y)
+        for (int x = 0; x < a.frame.width; ++x) {
+            const bool ca = a.frame.Covered(x, y), cb = b.frame.Covered(x, y);
+            covered += ca;
+            if (ca != cb) {
+                ++differ;
+            } else if (ca) {
+                const std::size_t i = a.frame.Index(x, y);
+                worstDepth = std::max(worstDepth, std::fabs(a.frame.depth[i] - b.frame.depth[i]));
+            }
+        }
+    EXPECT_GT(covered, 3000);
+    EXPECT_LE(differ, 3) << "of " << covered << " covered pixels";
+    EXPECT_LT(worstDepth, 1e-3);
+}
+
 // Readers: the v5 `put` form and the binary .g round trip keep every point.
 TEST(ImportBrlcadPipe, ReadFromV5AndG) {
     const std::string text = "title {p}\n" + PipePut("p", TestPipe());
@@ -357,6 +404,111 @@ TEST(ImportBrlcadPipe, ReadFromV5AndG) {
     EXPECT_FALSE(Inside(im->scene, "p", Q(12 + 8 * c45, 8 - 8 * c45, 0)));   // on the bore axis
     EXPECT_FALSE(Inside(im->scene, "p", Q(20, 20.1, 2)));
     EXPECT_TRUE(Inside(im->scene, "p", Q(20, 19.9, 2)));
+}
+
+// ars (issue 20): curves of points joined into a closed mesh, drawn as the solid it bounds. The
+// test ars is a square prism (±1, ±1, z from 0 to 2) with a pyramid at each end (apexes at z = −1
+// and z = 3): the first and last curves are single points repeated. Read from v5 (nested and
+// flat point lists), v4 (A/B records, points relative to the first) and .g (written and read
+// back); an ars whose last curve does not close it is refused by name.
+std::string ArsV5(const std::string& name, bool closeTop) {
+    const std::string top = closeTop ? "{0 0 3} {0 0 3} {0 0 3} {0 0 3}"
+                                     : "{.5 .5 3} {-.5 .5 3} {-.5 -.5 3} {.5 -.5 3}";
+    return fmt::format(
+        "put {{{}}} ars NC 4 PPC 4 C0 {{{{0 0 -1}} {{0 0 -1}} {{0 0 -1}} {{0 0 -1}}}} "
+        "C1 {{1 1 0 -1 1 0 -1 -1 0 1 -1 0}} C2 {{{{1 1 2}} {{-1 1 2}} {{-1 -1 2}} {{1 -1 2}}}} "
+        "C3 {{{}}}\n",
+        name, top);
+}
+
+// A v4 granule record: `B 5 curve 0` and 8 points (the given ones, then zeros).
+std::string Granule(int curve, const std::string& points) {
+    std::istringstream in(points);
+    std::string s = fmt::format("B 5 {} 0", curve), v;
+    int n = 0;
+    while (in >> v) s += " " + v, ++n;
+    for (; n < 24; ++n) s += " 0";
+    return s + "\n";
+}
+
+const std::string kArsV4 =
+    "I 1 v4\nars test\nA 5 a 4 4 1 4\n" + Granule(0, "0 0 -1 0 0 0 0 0 0 0 0 0") +
+    Granule(1, "1 1 1 -1 1 1 -1 -1 1 1 -1 1") + Granule(2, "1 1 3 -1 1 3 -1 -1 3 1 -1 3") +
+    Granule(3, "0 0 4 0 0 4 0 0 4 0 0 4");
+
+void ExpectTheArsSolid(const scene::Scene& s, const std::string& id) {
+    EXPECT_TRUE(Inside(s, id, Q(0, 0, 1)));
+    EXPECT_TRUE(Inside(s, id, Q(0.95, -0.95, 1.9)));
+    EXPECT_TRUE(Inside(s, id, Q(0, 0, -0.9)));    // near the bottom apex
+    EXPECT_TRUE(Inside(s, id, Q(0.1, 0, 2.85)));  // near the top apex
+    EXPECT_FALSE(Inside(s, id, Q(1.05, 0, 1)));
+    EXPECT_FALSE(Inside(s, id, Q(0.5, 0.5, -0.9)));  // beside the bottom pyramid
+    EXPECT_FALSE(Inside(s, id, Q(0, 0, 3.05)));
+}
+
+TEST(ImportBrlcadArs, ClosedArsIsDrawnFromV5V4AndG) {
+    auto v5 = Import("title {a}\n" + ArsV5("a", true));
+    ASSERT_TRUE(v5->ok) << AllMessages(v5->diags);
+    EXPECT_TRUE(v5->report.skipped.empty());
+    ExpectTheArsSolid(v5->scene, "a");
+    auto v4 = Import(kArsV4);
+    ASSERT_TRUE(v4->ok) << AllMessages(v4->diags);
+    ExpectTheArsSolid(v4->scene, "a");
+    // .g: written from the v5 database, read back with the same curves.
+    brlcad::Database db;
+    Diagnostics d;
+    ASSERT_TRUE(brlcad::ParseV5("title {a}\n" + ArsV5("a", true), "a.asc", db, d));
+    ASSERT_EQ(db.primitives.size(), 1u);
+    ASSERT_EQ(db.primitives[0].arsCurves.size(), 4u);
+    std::string err;
+    auto g = brlcad::WriteG(db, &err);
+    ASSERT_TRUE(g) << err;
+    brlcad::Database back;
+    ASSERT_TRUE(brlcad::ParseG(*g, "a.g", back, d)) << AllMessages(d);
+    ASSERT_EQ(back.primitives.size(), 1u);
+    EXPECT_EQ(back.primitives[0].arsCurves, db.primitives[0].arsCurves);
+    brlcad::Database v4db;
+    ASSERT_TRUE(brlcad::ParseV4(kArsV4, "a.asc", v4db, d)) << AllMessages(d);
+    ASSERT_EQ(v4db.primitives.size(), 1u);
+    EXPECT_EQ(v4db.primitives[0].arsCurves, db.primitives[0].arsCurves);
+    // Rendered: the prism and pyramids seen from above (model z) cover the 2 × 2 square.
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "quadrix_ars_test";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "ars.asc").string();
+    std::ofstream(path) << "title {a}\n" << ArsV5("a", true);
+    PipelineOptions po;
+    po.scenePaths = {path};
+    po.width = po.height = 100;
+    RtView rt;
+    rt.viewsize = 4;
+    rt.eye = {0.013, 0.017, 10};
+    po.rtView = rt;
+    PipelineResult res;
+    ASSERT_TRUE(RunPipeline(po, res, d)) << AllMessages(d);
+    int covered = 0;
+    for (int r = 0; r < 100; ++r)
+        for (int c = 0; c < 100; ++c) covered += res.frame.Covered(c, r);
+    EXPECT_NEAR(covered * 0.04 * 0.04, 4.0, 0.1);
+}
+
+TEST(ImportBrlcadArs, OpenArsIsAnErrorNamingIt) {
+    auto open = Import("title {a}\n" + ArsV5("cup", false));
+    EXPECT_FALSE(open->ok);
+    const std::string all = AllMessages(open->diags);
+    EXPECT_NE(all.find("test.asc:2:1: error: primitive 'cup' (ars) cannot be drawn: its curves "
+                       "do not bound a closed solid"),
+              std::string::npos)
+        << all;
+    // Bad v4 records are positioned errors.
+    brlcad::Database db;
+    Diagnostics d;
+    EXPECT_FALSE(brlcad::ParseV4("I 1 v4\nt\nA 5 a 4 4 1 3\n", "b.asc", db, d));
+    EXPECT_NE(AllMessages(d).find("b.asc:3:"), std::string::npos) << AllMessages(d);
+    Diagnostics missing;
+    EXPECT_FALSE(
+        brlcad::ParseV4("I 1 v4\nt\nA 5 a 2 3 1 2\n" + Granule(0, "0 0 0"), "m.asc", db, missing));
+    EXPECT_NE(AllMessages(missing).find("has 1 granules"), std::string::npos)
+        << AllMessages(missing);
 }
 
 // The truck (shared sample): its 11 tyres are tori. Seen from below, the bottom of the tread of

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "quadrix/import/rt_view.h"
 #include "quadrix/pipeline/inputs.h"
@@ -12,6 +14,11 @@
 
 namespace quadrix {
 namespace {
+
+std::string FileBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 // A sphere of radius 10 centred at model (5, 5, 5).
 const char* kSphereCsg = "translate([5, 5, 5]) sphere(r = 10);\n";
@@ -105,6 +112,63 @@ TEST(ImportMixed, RenderCommandFlags) {
     EXPECT_EQ(incomplete.exitCode, 2);
 }
 
+// rt's `ae AZ EL` in a view script (--rt-view, --views) is the --az/--el view: fitted to the
+// model, byte for byte the same picture; with `viewsize` in the script, that viewsize.
+TEST(ImportMixed, RtScriptAeIsTheAzElView) {
+    testing::TempDir dir;
+    std::string asc = dir.Write("m.asc",
+                                "title {t}\n"
+                                "put {s} ell V {0 0 0} A {10 0 0} B {0 4 0} C {0 0 6}\n"
+                                "put {b} arb8 V1 {8 -2 -2} V2 {16 -2 -2} V3 {16 2 -2} V4 {8 2 -2} "
+                                "V5 {8 -2 2} V6 {16 -2 2} V7 {16 2 2} V8 {8 2 2}\n"
+                                "put {all.g} comb region yes tree {u {l s} {l b}}\n");
+    std::string ae = dir.Write("ae.rt", "ae 30 20;\n");
+    std::string aeSized = dir.Write("aes.rt", "viewsize 60;\nae 120 -35;\n");
+    auto png = [&](const std::string& name, const std::string& flags) {
+        const std::string out = dir.File(name);
+        auto r = testing::RunShell(testing::QuadrixBinary() + " render " + asc + " -o " + out +
+                                   " --size 96x80 " + flags);
+        EXPECT_EQ(r.exitCode, 0) << flags << "\n" << r.err;
+        return FileBytes(out);
+    };
+    const std::string azel = png("azel.png", "--az 30 --el 20");
+    ASSERT_FALSE(azel.empty());
+    EXPECT_EQ(png("ae.png", "--rt-view " + ae), azel);
+    EXPECT_NE(png("other.png", "--az 31 --el 20"), azel);  // the comparison can tell views apart
+    EXPECT_EQ(png("aes.png", "--rt-view " + aeSized),
+              png("azels.png", "--az 120 --el -35 --viewsize 60"));
+    // One frame per `start`/`end` of a view list, the --az/--el view. (Only the first frame is
+    // compared byte for byte: the render context keeps the rt eye light of the first rt view for
+    // the later frames of a list, whatever their kind; their coverage is compared.)
+    std::string list =
+        dir.Write("list.rt", "start 0;\nae 30 20;\nend;\nstart 1;\nae 120 -35;\nend;\n");
+    png("f.png", "--views " + list + " --format ppm");
+    png("azel2.ppm", "--az 120 --el -35");
+    EXPECT_EQ(FileBytes(dir.File("f_0000.png")), png("azel.ppm", "--az 30 --el 20"));
+    Image second, want;
+    ASSERT_TRUE(testing::ReadPnm(dir.File("f_0001.png"), second));
+    ASSERT_TRUE(testing::ReadPnm(dir.File("azel2.ppm"), want));
+    ASSERT_EQ(second.width, want.width);
+    int differ = 0, covered = 0;
+    for (int y = 0; y < want.height; ++y)
+        for (int x = 0; x < want.width; ++x) {
+            const bool a = second.At(x, y)[0] + second.At(x, y)[1] + second.At(x, y)[2] > 0;
+            const bool b = want.At(x, y)[0] + want.At(x, y)[1] + want.At(x, y)[2] > 0;
+            covered += b;
+            differ += a != b;
+        }
+    EXPECT_GT(covered, 500);
+    EXPECT_EQ(differ, 0);
+    // MGED's twist is not rt's: a positioned error, exit 2.
+    std::string twist = dir.Write("tw.rt", "ae 30 20 10;\n");
+    auto r = testing::RunShell(testing::QuadrixBinary() + " render " + asc + " -o " +
+                               dir.File("t.png") + " --rt-view " + twist);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("tw.rt:1:10: error: rt's 'ae' takes the azimuth and the elevation only"),
+              std::string::npos)
+        << r.err;
+}
+
 }  // namespace
 }  // namespace quadrix
 
@@ -136,6 +200,27 @@ TEST(ImportRtView, ScriptCommandsAndErrors) {
     EXPECT_EQ(bad.Items()[0].Format(false), "b.rt:2:12: error: 'x' is not a finite number");
     Diagnostics missing;
     EXPECT_FALSE(ParseRtViewScript("viewsize 10;", "m.rt", missing).has_value());
+    // ae: alone it is fitted to the model later; an eye_pt after it keeps ae's rotation, which is
+    // the --az/--el one; a viewrot after it replaces it.
+    auto fitted = ParseRtViewScript("ae 30 20;", "a.rt", d);
+    ASSERT_TRUE(fitted.has_value());
+    EXPECT_TRUE(fitted->Fitted());
+    EXPECT_EQ(*fitted->aeAzimuth, 30);
+    EXPECT_EQ(*fitted->aeElevation, 20);
+    EXPECT_EQ(fitted->viewsize, 0);
+    auto placed = ParseRtViewScript("ae 30 20; eye_pt 1 2 3; viewsize 9;", "p.rt", d);
+    ASSERT_TRUE(placed.has_value());
+    EXPECT_FALSE(placed->Fitted());
+    EXPECT_EQ(placed->viewrot, AzElRtView(30, 20, Box3{}, std::nullopt).viewrot);
+    EXPECT_EQ(placed->eye, (Vec3{1, 2, 3}));
+    auto replaced = ParseRtViewScript(
+        "ae 30 20; viewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1; "
+        "eye_pt 0 0 0; viewsize 5;",
+        "r.rt", d);
+    ASSERT_TRUE(replaced.has_value());
+    EXPECT_EQ(replaced->viewrot, Mat4::Identity());
+    Diagnostics noEye;
+    EXPECT_FALSE(ParseRtViewScript("ae 30 20; eye_pt 1 2 3;", "n.rt", noEye).has_value());
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/antialias.h"
@@ -23,21 +25,42 @@ struct PovCase {
     bool shadows = false;  // both renderers with shadows
     // No disagreement at all away from our silhouettes (the quartic cases, issue 20).
     bool exactInterior = false;
+    // rt's azimuth/elevation view (--az/--el) for an imported model (a scene "asc:..."); NAN: the
+    // scene's own view.
+    double az = NAN, el = NAN;
     friend void PrintTo(const PovCase& c, std::ostream* os) { *os << c.name; }
 };
 
 class PovrayTest : public ::testing::TestWithParam<PovCase> {};
 
+// The scene file of a case: a path under the source tree, or inline text ("text:" a .uq file,
+// "asc:" a BRL-CAD v5 .asc file) written into `dir`.
+std::string ScenePath(const PovCase& c, const TempDir& dir) {
+    if (c.scene.rfind("text:", 0) == 0) return dir.Write("scene.uq", c.scene.substr(5));
+    if (c.scene.rfind("asc:", 0) == 0) return dir.Write("scene.asc", c.scene.substr(4));
+    return SourcePath(c.scene);
+}
+
+// The command-line view options of a case ("" for the scene's own view).
+std::string ViewArgs(const PovCase& c) {
+    return std::isnan(c.az) ? std::string() : fmt::format(" --az {} --el {}", c.az, c.el);
+}
+
+void SetView(const PovCase& c, PipelineOptions& o) {
+    if (std::isnan(c.az)) return;
+    o.azimuth = c.az;
+    o.elevation = c.el;
+}
+
 TEST_P(PovrayTest, CoverageMatchesExceptOnSilhouettes) {
     if (!HaveProgram("povray")) GTEST_SKIP() << "povray is not installed";
     const PovCase& c = GetParam();
     TempDir dir;
-    std::string scenePath = c.scene.rfind("text:", 0) == 0
-                                ? dir.Write("scene.uq", c.scene.substr(5))
-                                : SourcePath(c.scene);
+    std::string scenePath = ScenePath(c, dir);
     std::string size = fmt::format("{}x{}", c.width, c.height);
-    CommandResult e = RunShell(QuadrixBinary() + " export --to pov --mask '" + scenePath +
-                               "' --size " + size + " -o '" + dir.File("s.pov") + "'");
+    CommandResult e =
+        RunShell(QuadrixBinary() + " export --to pov --mask '" + scenePath + "' --size " + size +
+                 ViewArgs(c) + " -o '" + dir.File("s.pov") + "'");
     ASSERT_EQ(e.exitCode, 0) << e.err;
     CommandResult p =
         RunShell(fmt::format("cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} -A +FP -D -V -GA +WT2",
@@ -52,6 +75,7 @@ TEST_P(PovrayTest, CoverageMatchesExceptOnSilhouettes) {
     o.scenePaths = {scenePath};
     o.width = c.width;
     o.height = c.height;
+    SetView(c, o);
     PipelineResult r;
     Diagnostics d;
     ASSERT_TRUE(RunPipeline(o, r, d));
@@ -97,13 +121,11 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
     const PovCase& c = GetParam();
     if (c.perspective) GTEST_SKIP() << "POV-Ray shades the export with device-space normals";
     TempDir dir;
-    std::string scenePath = c.scene.rfind("text:", 0) == 0
-                                ? dir.Write("scene.uq", c.scene.substr(5))
-                                : SourcePath(c.scene);
+    std::string scenePath = ScenePath(c, dir);
     std::string size = fmt::format("{}x{}", c.width, c.height);
     CommandResult e =
-        RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " + size + " -o '" +
-                 dir.File("s.pov") + "'" + (c.shadows ? " --shadows" : ""));
+        RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " + size +
+                 ViewArgs(c) + " -o '" + dir.File("s.pov") + "'" + (c.shadows ? " --shadows" : ""));
     ASSERT_EQ(e.exitCode, 0) << e.err;
     CommandResult p = RunShell(fmt::format(
         "cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} -A +FP -D -V -GA +WT2 File_Gamma=sRGB",
@@ -117,6 +139,7 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
     o.scenePaths = {scenePath};
     o.width = c.width;
     o.height = c.height;
+    SetView(c, o);
     PipelineResult r;
     Diagnostics d;
     ASSERT_TRUE(RunPipeline(o, r, d));
@@ -176,13 +199,11 @@ TEST_P(PovrayAntialiasedTest, PicturesMatchEverywhere) {
     if (!HaveProgram("povray")) GTEST_SKIP() << "povray is not installed";
     const PovCase& c = GetParam();
     TempDir dir;
-    std::string scenePath = c.scene.rfind("text:", 0) == 0
-                                ? dir.Write("scene.uq", c.scene.substr(5))
-                                : SourcePath(c.scene);
+    std::string scenePath = ScenePath(c, dir);
     std::string size = fmt::format("{}x{}", c.width, c.height);
     CommandResult e =
-        RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " + size + " -o '" +
-                 dir.File("s.pov") + "'" + (c.shadows ? " --shadows" : ""));
+        RunShell(QuadrixBinary() + " export --to pov '" + scenePath + "' --size " + size +
+                 ViewArgs(c) + " -o '" + dir.File("s.pov") + "'" + (c.shadows ? " --shadows" : ""));
     ASSERT_EQ(e.exitCode, 0) << e.err;
     CommandResult p =
         RunShell(fmt::format("cd '{}' && povray +Is.pov +Os.ppm +W{} +H{} +A0.0 +AM1 +R4 -J +FP -D "
@@ -197,6 +218,7 @@ TEST_P(PovrayAntialiasedTest, PicturesMatchEverywhere) {
     o.scenePaths = {scenePath};
     o.width = c.width;
     o.height = c.height;
+    SetView(c, o);
     PipelineResult r;
     Diagnostics d;
     ASSERT_TRUE(RunPipeline(o, r, d));
@@ -265,6 +287,26 @@ const std::string kQuarticCsg =
 const std::string kTorusPerspective =
     "text:solid torus ring =r 1.5 .5; view eye vrp 0 0 0 cop 1.5 2.5 -5;";
 
+// BRL-CAD pipes (import/brlcad/pipe_solid.h): straight runs (a cone where the diameters change),
+// torus bends and bores, exported as cones, `torus` and their complements. The pipe runs from
+// the origin along +x, bends by 90° (radius 8) at (20, 0, 0) and runs to (20, 20, 0); its first
+// run tapers from a solid od 4 to od 6 with a bore of 2; a second pipe, a solid rod, bends twice
+// in another plane. Viewed through the bore of the first run into the bend (az 184, el 4: rays
+// along the run hit the inside of the bend), edge-on to the bend's plane (el 0.5: rays grazing
+// the tori's tops), and from above the bend (az 0, el 90: the torus's equator is the silhouette).
+const std::string kBrlcadPipes =
+    "asc:title {pipes}\n"
+    "put {p} pipe V0 {0 0 0} O0 4 I0 0 R0 0 V1 {20 0 0} O1 6 I1 2 R1 8 V2 {20 20 0} O2 6 I2 2 "
+    "R2 0\n"
+    "put {q} pipe V0 {-4 -6 -6} O0 2.5 I0 1.2 R0 0 V1 {10 -6 -6} O1 2.5 I1 1.2 R1 3 "
+    "V2 {10 -6 4} O2 2.5 I2 1.2 R2 4 V3 {16 4 4} O3 2.5 I3 1.2 R3 0\n"
+    "put {all.g} comb region yes tree {u {l p} {l q}}\n";
+// The same kind of pipe written in the language (solid pipe, docs/language.md §3.13), in CSG.
+const std::string kLanguagePipe =
+    "text:solid pipe hose =p 0 0 0 1.2 .7 0 =p 3 0 0 1.2 .7 1.5 =p 3 0 3 1.2 .7 0 =c .3 .6 .9;\n"
+    "solid box block =at 3 0 3 =size 1.6 1.6 1.6;\n"
+    "csg cut (block - hose); view v dop -.3 -.5 -1;";
+
 INSTANTIATE_TEST_SUITE_P(
     Quartics, PovrayTest,
     ::testing::Values(PovCase{"TorusThroughHole", kTorusThroughHole, 200, 160, false, false, true},
@@ -272,7 +314,13 @@ INSTANTIATE_TEST_SUITE_P(
                       PovCase{"EllipticalTorus", kEllipticalTorus, 200, 160, false, false, true},
                       PovCase{"GeneralCone", kGeneralCone, 160, 160, false, false, true},
                       PovCase{"QuarticCsg", kQuarticCsg, 200, 160, false, false, true},
-                      PovCase{"TorusPerspective", kTorusPerspective, 200, 160, true, false, true}),
+                      PovCase{"TorusPerspective", kTorusPerspective, 200, 160, true, false, true},
+                      PovCase{"PipeThroughTheBore", kBrlcadPipes, 200, 160, false, false, true, 184,
+                              4},
+                      PovCase{"PipeGrazing", kBrlcadPipes, 200, 160, false, false, true, 30, 0.5},
+                      PovCase{"PipeFromAbove", kBrlcadPipes, 200, 160, false, false, true, 0, 90},
+                      PovCase{"PipeOblique", kBrlcadPipes, 200, 160, false, false, true, 35, 25},
+                      PovCase{"LanguagePipe", kLanguagePipe, 200, 160, false, false, true}),
     [](const auto& info) { return std::string(info.param.name); });
 
 INSTANTIATE_TEST_SUITE_P(

@@ -93,7 +93,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
                     "Also write the Frame (depth, normal, ids) as a .qxf text dump");
     cmd->add_flag("--strict", args.strict,
                   "Refuse what cannot be drawn as asked: primitives that cannot be drawn "
-                  "(torus, ...) even with --allow-missing, and solids the engine cannot draw "
+                  "(superell, dsp, ebm, nmg, ...) even with --allow-missing, and solids the engine "
+                  "cannot draw "
                   "(instead of composing them from raycast)");
     AddSceneViewOptions(*cmd, args, "Draw");
     cmd->footer(EnginesHelp());
@@ -182,6 +183,22 @@ int RunRender(const RenderArgs& args) {
             return 2;
         }
         po.section = section;
+    }
+    // The animation-only options on a still picture would be silently ignored (issue 22).
+    if (args.frames == 0 && args.turntable == 0 && args.views.empty()) {
+        if (!args.frameRange.empty()) {
+            std::fprintf(stderr,
+                         "quadrix: error: --frame-range: there is no animation to take frames "
+                         "from (give --frames, --turntable or --views)\n");
+            return 2;
+        }
+        if (args.resume) {
+            std::fprintf(stderr,
+                         "quadrix: error: --resume: a still picture has no frames to skip; it "
+                         "applies to --frames, --turntable or --views (batch jobs resume by "
+                         "default)\n");
+            return 2;
+        }
     }
     if (args.hatch && args.section.empty()) {
         std::fprintf(stderr,

@@ -19,10 +19,12 @@ void AddSceneViewOptions(CLI::App& cmd, SceneViewArgs& args, const std::string& 
         ->delimiter(',')
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    cmd.add_flag("--allow-missing", args.allowMissing,
-                 fmt::format("{} an imported model without the primitives that cannot be drawn "
-                             "(torus, ...): a warning and a count in --stats instead of an error",
-                             verb));
+    cmd.add_flag(
+        "--allow-missing", args.allowMissing,
+        fmt::format(
+            "{} an imported model without the primitives that cannot be drawn "
+            "(superell, dsp, ebm, nmg, ...): a warning and a count in --stats instead of an error",
+            verb));
     cmd.add_option("--camera", args.camera,
                    "Look-at camera eye_x,eye_y,eye_z,center_x,center_y,center_z in the model's "
                    "coordinates (Z-up for BRL-CAD/OpenSCAD files), as OpenSCAD");
@@ -83,7 +85,15 @@ std::string RtViewOptions(const SceneViewArgs& args, PipelineOptions& po, Diagno
             return fmt::format("--rt-view: cannot read '{}': {}", args.rtView, why);
         auto rt = import::ParseRtViewScript(text, args.rtView, diags);
         if (!rt) return "--rt-view: the view file has errors";
-        po.rtView = *rt;
+        if (rt->Fitted()) {  // rt's `ae`: the same view as --az/--el (import/rt_view.h)
+            if (po.azimuth || po.elevation)
+                return "--az/--el cannot be combined with an rt view script's 'ae'";
+            po.azimuth = rt->aeAzimuth;
+            po.elevation = rt->aeElevation;
+            if (rt->viewsize > 0) po.viewsize = rt->viewsize;
+        } else {
+            po.rtView = *rt;
+        }
     }
     if ((po.rtView || po.azimuth || po.elevation) && !args.view.empty())
         return "--view cannot be combined with --az/--el or an rt view";

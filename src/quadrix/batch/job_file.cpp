@@ -170,7 +170,15 @@ std::string JobFromJson(const json& j, Job& job) {
         Diagnostics d;
         auto rt = import::ParseRtViewScript(text, rtView, d);
         if (!rt) return d.Items().empty() ? "bad rt view" : d.Items().front().Format(false);
-        job.view.rtView = *rt;
+        if (rt->Fitted()) {  // rt's `ae`: the view of "az"/"el" (import/rt_view.h)
+            if (job.view.azimuth || job.view.elevation)
+                return "\"az\"/\"el\" cannot be combined with an \"rt_view\" script's 'ae'";
+            job.view.azimuth = rt->aeAzimuth;
+            job.view.elevation = rt->aeElevation;
+            if (rt->viewsize > 0) job.view.viewsize = rt->viewsize;
+        } else {
+            job.view.rtView = *rt;
+        }
     }
     if (!views.empty()) {
         Diagnostics d;

@@ -57,6 +57,15 @@ bool AllComplete(FrameResult& r, int width, int height) {
 
 }  // namespace
 
+bool FrameComplete(const Job& job, int frame) {
+    FrameResult r;
+    const bool animated = job.Animated();
+    r.image = FramePath(job.output.image, frame, animated);
+    r.dumpFrame = FramePath(job.output.dumpFrame, frame, animated);
+    r.exr = FramePath(job.output.exr, frame, animated);
+    return AllComplete(r, job.view.width, job.view.height);
+}
+
 Box3 SceneWorldBounds(RenderContext& ctx, Diagnostics& diags) {
     ViewRequest probe;
     probe.width = probe.height = 256;
@@ -145,6 +154,13 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
         view.elevation.reset();
         view.view = lv.view;
         view.rtView = lv.rtView;
+        if (lv.rtView && lv.rtView->Fitted()) {  // rt's `ae`: the --az/--el view
+            view.rtView.reset();
+            view.azimuth = lv.rtView->aeAzimuth;
+            view.elevation = lv.rtView->aeElevation;
+            view.viewsize.reset();
+            if (lv.rtView->viewsize > 0) view.viewsize = lv.rtView->viewsize;
+        }
     }
     Diagnostics diags;
     const auto t1 = std::chrono::steady_clock::now();

@@ -42,6 +42,10 @@ Box3 SceneWorldBounds(RenderContext& ctx, Diagnostics& diags);
 scene::View TurntableView(const Turntable& t, int frame, int count, const Box3& worldBox, int width,
                           int height);
 
+// Whether every output of frame `frame` of `job` exists and is complete (io/output_check.h): what
+// --resume skips. Used by the run to report, before it starts, what it resumes.
+bool FrameComplete(const Job& job, int frame);
+
 class JobRenderer {
   public:
     // threads: 0 = all cores (the context's oneTBB arena).

@@ -53,6 +53,46 @@ std::string Label(const std::vector<JobEntry>& jobs, int j) {
     return l.empty() ? fmt::format("job {}", j) : l;
 }
 
+// What a resumed run (--resume, or a job file run again) still has to do, said before it starts:
+// "resuming: 6 of 8 frames not complete: spin.png frames 2-7" (the frames of a killed run, or of
+// a rank killed mid-run, that it did not finish), one job after another, at most 12 jobs named.
+// Empty when every frame is to be rendered (nothing was done before) or when nothing is left.
+std::string ResumeReport(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units) {
+    int todo = 0, frames = 0;
+    std::map<int, std::vector<int>> missing;  // job → frames not complete
+    for (const Unit& u : units) {
+        if (u.frame < 0) continue;
+        ++frames;
+        if (!FrameComplete(jobs[u.job].job, u.frame)) {
+            ++todo;
+            missing[u.job].push_back(u.frame);
+        }
+    }
+    if (todo == frames || todo == 0) return {};
+    std::string s = fmt::format("resuming: {} of {} frame{} not complete:", todo, frames,
+                                frames == 1 ? "" : "s");
+    int named = 0;
+    for (const auto& [job, list] : missing) {
+        if (++named > 12) {
+            s += fmt::format(" and {} more jobs", missing.size() - 12);
+            break;
+        }
+        s += fmt::format("{} {}", named > 1 ? ";" : "", Label(jobs, job));
+        if (!jobs[job].job.Animated()) continue;
+        std::string ranges;
+        for (std::size_t i = 0; i < list.size();) {
+            std::size_t j = i;
+            while (j + 1 < list.size() && list[j + 1] == list[j] + 1) ++j;
+            ranges += fmt::format(
+                "{}{}", ranges.empty() ? "" : ",",
+                j == i ? fmt::format("{}", list[i]) : fmt::format("{}-{}", list[i], list[j]));
+            i = j + 1;
+        }
+        s += fmt::format(" frame{} {}", list.size() == 1 ? "" : "s", ranges);
+    }
+    return s;
+}
+
 // The fault-injection hook of the resumption tests (run.h): the number of frames after which
 // this process kills itself, 0 = never.
 int KillAfterFrames(int rank) {
@@ -216,6 +256,9 @@ Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units
                const RunOptions& options, bool terminal) {
     const auto t0 = std::chrono::steady_clock::now();
     const int rank = MpiRank();
+    if (rank == 0 && options.skipExisting && !options.quiet)
+        if (std::string r = ResumeReport(jobs, units); !r.empty())
+            std::fprintf(stderr, "%s\n", r.c_str());
     // The next unit's index lives in rank 0's window; MPI_Fetch_and_op takes one (passive
     // target, no reply from a busy rank needed).
     // Next to it the run's progress counts (done, rendered, failed), which every rank adds its
@@ -298,6 +341,9 @@ Summary RunJobs(const std::vector<JobEntry>& jobs, const RunOptions& options) {
 #ifdef QUADRIX_HAVE_MPI
     if (options.useMpi && MpiSize() > 1) return RunMpi(jobs, units, options, terminal);
 #endif
+    if (options.skipExisting && !options.quiet)
+        if (std::string r = ResumeReport(jobs, units); !r.empty())
+            std::fprintf(stderr, "%s\n", r.c_str());
     const auto t0 = std::chrono::steady_clock::now();
     Progress progress(stderr, static_cast<int>(units.size()), terminal, options.quiet);
     int at = 0;

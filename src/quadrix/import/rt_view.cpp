@@ -92,6 +92,9 @@ std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string
     TextMap map(text, file);
     RtView rt;
     bool haveSize = false, haveEye = false, haveRot = false;
+    // The last `ae` not yet followed by an eye_pt, viewrot or orientation (rt's do_ae puts the
+    // eye at the model's centre and keeps the viewsize set before it).
+    std::optional<std::pair<double, double>> fittedAe;
     std::size_t i = 0;
     bool ok = true;
     while (i < text.size()) {
@@ -136,12 +139,28 @@ std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string
             if ((ok = numbers(1, v) && ok)) rt.viewsize = v[0], haveSize = true;
         } else if (cmd == "eye_pt") {
             if ((ok = numbers(3, v) && ok)) rt.eye = {v[0], v[1], v[2]}, haveEye = true;
+            fittedAe.reset();
+        } else if (cmd == "ae") {
+            if (words.size() == 4) {
+                diags.Error(map.At(words[3].second),
+                            "rt's 'ae' takes the azimuth and the elevation only (a third "
+                            "number, MGED's twist, is not an rt view command)",
+                            map.LineText(words[3].second));
+                ok = false;
+            } else if ((ok = numbers(2, v) && ok)) {
+                const RtView azel = AzElRtView(v[0], v[1], Box3{}, std::nullopt);
+                rt.viewrot = azel.viewrot;
+                haveRot = true;
+                fittedAe = std::pair{v[0], v[1]};
+            }
         } else if (cmd == "viewrot") {
+            fittedAe.reset();
             if ((ok = numbers(16, v) && ok)) {
                 for (int k = 0; k < 16; ++k) rt.viewrot.m[k / 4][k % 4] = v[k];
                 haveRot = true;
             }
         } else if (cmd == "orientation") {
+            fittedAe.reset();
             if ((ok = numbers(4, v) && ok)) {
                 // Unit quaternion (x y z w) → rotation matrix (the usual right-handed form).
                 // A zero quaternion is no rotation at all (it gave the identity, issue 23); any
@@ -184,10 +203,20 @@ std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string
         // Other rt commands (start, end, clean, ...) do not change the view.
     }
     if (!ok) return std::nullopt;
+    if (fittedAe) {
+        if (haveSize && !(rt.viewsize > 0)) {
+            diags.Error(map.At(0), "an rt view needs a positive viewsize");
+            return std::nullopt;
+        }
+        rt.aeAzimuth = fittedAe->first;
+        rt.aeElevation = fittedAe->second;
+        if (!haveSize) rt.viewsize = 0;
+        return rt;
+    }
     if (!haveSize || !haveEye || !haveRot || !(rt.viewsize > 0)) {
         diags.Error(map.At(0),
                     "an rt view needs a positive viewsize, an eye_pt and a viewrot (or "
-                    "orientation)");
+                    "orientation), or an 'ae azimuth elevation'");
         return std::nullopt;
     }
     return rt;

@@ -21,6 +21,13 @@ struct RtView {
     double viewsize = 0;
     Vec3 eye;
     Mat4 viewrot = Mat4::Identity();
+    // A script whose view is rt's `ae AZ EL` (azimuth, elevation in degrees) with no eye_pt,
+    // viewrot or orientation after it: rt fits that view to the model (centred on its box,
+    // viewsize = the box's diagonal unless the script's `viewsize` gives it), which needs the
+    // model, so the view is not made here. The caller turns it into the --az/--el request
+    // (azimuth, elevation and, when viewsize > 0, the viewsize): the same view as --az/--el.
+    std::optional<double> aeAzimuth, aeElevation;
+    bool Fitted() const { return aeAzimuth.has_value(); }
 };
 
 // The view (id "rt") reproducing rt's frame pixel for pixel on a width×height image.
@@ -35,8 +42,13 @@ RtView AzElRtView(double azimuth, double elevation, const Box3& modelBox,
 scene::View MakeAzElView(double azimuth, double elevation, const Box3& modelBox,
                          std::optional<double> viewsize, int width, int height);
 
-// Reads rt's view commands (`viewsize s;` `eye_pt x y z;` `viewrot m0 .. m15;` `ae az el;`)
-// from text, as rt reads them on standard input. Errors name file:line:column.
+// Reads rt's view commands (`viewsize s;` `eye_pt x y z;` `viewrot m0 .. m15;`
+// `orientation x y z w;` `ae az el;`) from text, as rt reads them on standard input. `ae` sets
+// the rotation as rt's do_ae does (the --az/--el rotation: the viewer along (cos el cos az,
+// cos el sin az, sin el), model Z up); an `eye_pt` after it keeps that rotation with the given
+// eye (then `viewsize` is needed), otherwise the view is fitted to the model (RtView::Fitted).
+// A `viewrot`/`orientation` after `ae` replaces its rotation. rt's `ae` takes two numbers (MGED's
+// third, a twist, is refused with a message). Errors name file:line:column.
 std::optional<RtView> ParseRtViewScript(std::string_view text, const std::string& file,
                                         Diagnostics& diags);
 

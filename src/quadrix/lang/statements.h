@@ -37,11 +37,12 @@ bool ParsePlane(Parser& p, const Token& keyword);
 bool ParseQuadric(Parser& p, const Token& keyword);
 bool ParseBody(Parser& p, const Token& keyword);
 bool ParseCsg(Parser& p, const Token& keyword);
-bool ParsePatch(Parser& p, const Token& keyword);    // stmt_patch.cpp
-bool ParseBezier(Parser& p, const Token& keyword);   // stmt_freeform.cpp
-bool ParseBspline(Parser& p, const Token& keyword);  // stmt_freeform.cpp
-bool ParsePatches(Parser& p, const Token& keyword);  // stmt_freeform.cpp
-bool ParseSolid(Parser& p, const Token& keyword);    // stmt_solids.cpp: solids by dimensions
+bool ParsePatch(Parser& p, const Token& keyword);      // stmt_patch.cpp
+bool ParseBezier(Parser& p, const Token& keyword);     // stmt_freeform.cpp
+bool ParseBspline(Parser& p, const Token& keyword);    // stmt_freeform.cpp
+bool ParsePatches(Parser& p, const Token& keyword);    // stmt_freeform.cpp
+bool ParseSolid(Parser& p, const Token& keyword);      // stmt_solids.cpp: solids by dimensions
+bool ParsePipeSolid(Parser& p, const Token& keyword);  // stmt_pipe.cpp: after `solid pipe`
 bool ParseDefinition(Parser& p, const Token& keyword);
 bool ParseEnddef(Parser& p, const Token& keyword);
 bool ParseInstance(Parser& p, const Token& keyword);

@@ -425,7 +425,7 @@ const Kind* FindKind(std::string_view name) {
 std::string KindNames() {
     std::string s;
     for (const Kind& k : Kinds()) s += (s.empty() ? "" : ", ") + std::string(k.name);
-    return s;
+    return s + ", pipe";
 }
 
 std::string CountText(unsigned counts) {
@@ -525,6 +525,10 @@ std::string GenerateBaseId(ReaderState& s, std::string_view kind) {
 
 bool ParseSolid(Parser& p, const Token& keyword) {
     const Token& kindToken = p.Peek();
+    if (kindToken.kind == TokenKind::kId && kindToken.text == "pipe") {
+        p.Take();
+        return ParsePipeSolid(p, keyword);  // stmt_pipe.cpp: a union of pieces, not one body
+    }
     const Kind* kind = kindToken.kind == TokenKind::kId ? FindKind(kindToken.text) : nullptr;
     if (!kind) return p.Expected(fmt::format("a solid kind ({}) after 'solid'", KindNames()));
     p.Take();

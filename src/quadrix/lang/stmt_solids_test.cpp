@@ -429,6 +429,18 @@ TEST(LangSolids, BadInputGivesPositionedErrors) {
         {"solid blob b =r 1;", "blob", "expected a solid kind"},
         {"solid sphere s =r 1 =sx 0;", "0;", "scale factor 0"},
         {"solid sphere s =r;", "=r", "found 0"},
+        // solid pipe (stmt_pipe.cpp): at the =p concerned, or at `solid` for the whole pipe.
+        {"solid pipe h =p 0 0 0 2 1 =p 1 0 0 2 1 0;", "=p", "takes 6 numbers"},
+        {"solid pipe h =p 0 0 0 2 1 0;", "solid", "at least 2 points"},
+        {"solid pipe h =p 0 0 0 2 1 0 =p 5 0 0 0 0 0;", "=p 5", "outer diameter"},
+        {"solid pipe h =p 0 0 0 2 2 0 =p 5 0 0 2 1 0;", "=p", "inner diameter"},
+        {"solid pipe h =p 0 0 0 2 0 0 =p 5 0 0 2 0 -1;", "=p 5", "bend radius"},
+        {"solid pipe h =p 0 0 0 2 0 0 =p 5 0 0 2 0 .5 =p 5 5 0 2 0 0;", "=p 5 0",
+         "smaller than the outer radius"},
+        {"solid pipe h =p 0 0 0 2 0 0 =p 5 0 0 2 0 4 =p 5 5 0 2 0 4 =p 10 5 0 2 0 0;", "=p 5 5",
+         "overlap"},
+        {"solid pipe h =p 0 0 0 2 0 0 =p 5 0 0 2 0 2 =p 0 0 0 2 0 0;", "=p 5", "turns"},
+        {"solid pipe h =p 0 0 0 2 0 0 =p 1 0 0 2 0 0 =r 1;", "=r", "unknown option"},
     };
     for (const ErrorCase& c : cases) {
         Parsed r = Parse(c.text);
@@ -444,6 +456,74 @@ TEST(LangSolids, BadInputGivesPositionedErrors) {
         // Nothing half-made is left behind.
         EXPECT_TRUE(r.scene.top.bodies.empty()) << c.text;
     }
+}
+
+// solid pipe: one body per run or bend, named as docs/language.md says, their union the csg `id`;
+// membership of points of the wall, the bore and outside against the pipe's definition.
+TEST(LangSolids, PipePiecesNamesAndMembership) {
+    // From the origin along +x, a 90° bend of radius 3 at (6, 0, 0), then along +y; od 2, id 1.2.
+    Parsed r = Parse(
+        "solid pipe hose =p 0 0 0 2 1.2 0 =p 6 0 0 2 1.2 3 =p 6 5 0 2 1.2 0 =c .3 .6 .9 "
+        "=open1;");
+    ASSERT_TRUE(r.ok) << r.All();
+    const scene::Scope& top = r.scene.top;
+    ASSERT_EQ(top.bodies.size(), 3u);
+    ASSERT_EQ(top.csgs.size(), 1u);
+    EXPECT_EQ(top.csgs[0].id, "hose");
+    ASSERT_TRUE(top.csgs[0].color.has_value());
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(top.bodies[k].id, "hose#" + std::to_string(k + 1));
+        EXPECT_TRUE(top.bodies[k].usedAsOperand);
+        EXPECT_EQ(top.bodies[k].literals.size(), 4u);  // outer, !bore, start and end planes
+    }
+    ASSERT_NE(FindHs(r, "hose#1"), nullptr);
+    EXPECT_EQ(FindHs(r, "hose#1")->kind, HalfSpace::Kind::kQuadric);
+    EXPECT_EQ(FindHs(r, "hose#2")->kind, HalfSpace::Kind::kQuartic);  // the bend: a torus
+    ASSERT_NE(FindHs(r, "hose#2.bore"), nullptr);
+    EXPECT_EQ(FindHs(r, "hose#2.bore")->kind, HalfSpace::Kind::kQuartic);
+    EXPECT_FALSE(FindHs(r, "hose#1.0")->transparent);  // =open1 opens the far end only
+    EXPECT_TRUE(FindHs(r, "hose#3.1")->transparent);
+    // Each run ends where the next piece begins: the joint at x = 3 (tangent distance 3).
+    const Plane& j = FindHs(r, "hose#1.1")->plane;
+    EXPECT_NEAR(j.Evaluate({3, 0, 0}), 0, 1e-12);
+    auto inside = [&](const Vec3& p) {
+        for (const scene::Body& b : top.bodies) {
+            bool in = true;
+            for (const scene::Literal& l : b.literals) {
+                const HalfSpace& h = top.halfSpaces[l.halfSpace];
+                const double v = h.kind == HalfSpace::Kind::kQuartic ? h.quartic->Evaluate(p)
+                                 : h.kind == HalfSpace::Kind::kPlane ? h.plane.Evaluate(p)
+                                                                     : h.quadric.Evaluate(p);
+                in = in && (l.complemented ? v >= 0 : v <= 0);
+            }
+            if (in) return true;
+        }
+        return false;
+    };
+    EXPECT_TRUE(inside({1, 0.8, 0}));   // the wall of the first run
+    EXPECT_FALSE(inside({1, 0.3, 0}));  // its bore
+    EXPECT_FALSE(inside({1, 1.2, 0}));  // outside
+    EXPECT_TRUE(inside({6, 4, 0.8}));   // the wall of the last run
+    // The bend: centre (3, 3, 0), radius 3; at 45° the centre line is at (3 + 3/√2, 3 − 3/√2).
+    const double c = 3 / std::sqrt(2.0), u = 1 / std::sqrt(2.0);
+    EXPECT_TRUE(inside({3 + c + 0.8 * u, 3 - c - 0.8 * u, 0}));
+    EXPECT_FALSE(inside({3 + c + 0.3 * u, 3 - c - 0.3 * u, 0}));
+    EXPECT_FALSE(inside({3 + c + 1.1 * u, 3 - c - 1.1 * u, 0}));
+    EXPECT_FALSE(inside({-0.1, 0.8, 0}));  // before the start cap
+    // =hsb: half-spaces only; a transform moves every piece.
+    Parsed h = Parse("solid pipe rod =p 0 0 0 2 0 0 =p 0 4 0 2 0 0 =hsb =tx 10;");
+    ASSERT_TRUE(h.ok) << h.All();
+    EXPECT_TRUE(h.scene.top.bodies.empty());
+    EXPECT_TRUE(h.scene.top.csgs.empty());
+    ASSERT_NE(FindHs(h, "rod#1"), nullptr);
+    EXPECT_NEAR(FindHs(h, "rod#1")->quadric.Evaluate({10, 2, 0}), -1, 1e-12);  // on the axis: −r²
+    EXPECT_EQ(FindHs(h, "rod#1.bore"), nullptr);                               // a solid rod
+    // In a csg like any solid.
+    Parsed cut = Parse(
+        "solid box block =at 0 0 0 =size 4 4 4;\n"
+        "solid pipe drill =p -3 0 0 1 0 0 =p 3 0 0 1 0 0;\n"
+        "csg holed (block - drill);");
+    EXPECT_TRUE(cut.ok) << cut.All();
 }
 
 TEST(LangSolids, ClashingIdsAddNothing) {
@@ -524,7 +604,7 @@ TEST(LangSolids, LanguageDocExamplesRead) {
         const auto close = doc.find("```", open + 4);
         const std::string block = doc.substr(open + 4, close - open - 4);
         open = close + 3;
-        if (block.find("kind [id]") != std::string::npos) continue;  // the grammar
+        if (block.find("[id]") != std::string::npos) continue;  // a grammar
         Parsed r = Parse(block);
         EXPECT_TRUE(r.ok) << block << "\n" << r.All();
         EXPECT_EQ(r.diags.WarningCount(), 0) << r.All();

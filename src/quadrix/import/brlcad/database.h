@@ -38,6 +38,10 @@ struct Primitive {
         double od = 0, id = 0, bend = 0;
     };
     std::vector<PipePoint> pipe;
+    // ars (FORMAT.md §2.1 `A`/`B`, v5 `NC PPC C0 …`): curves of the same number of points, all
+    // absolute; each curve is a closed loop, consecutive curves are joined by quadrilaterals
+    // (librt's rt_ars_tess). Drawn as the closed mesh they bound (primitives.cpp).
+    std::vector<std::vector<Vec3>> arsCurves;
     // bot (triangle mesh, FORMAT.md §3.1): vertices, 0-based triangles, mode (1 surface, 2 solid,
     // 3 plate, 4 plate without obliquity), orientation (1 unoriented, 2 counter-clockwise seen
     // from outside, 3 clockwise), and in plate modes one thickness and one "appended" flag

@@ -30,6 +30,7 @@
 //   epa 19: V H A(unit) r_1 r_2               ehy 20: V H A(unit) r_1 r_2 c
 //   eto 21: V N C r r_d                       hyp 38: V H A b bnr
 //   pipe 15: u32 n, then n × (x y z, inner diameter, outer diameter, bend radius)
+//   ars 5: u32 curves, u32 points per curve, then curves × points × (x y z)
 //   bot 30: u32 nv, u32 nf, u8 orientation, u8 mode, u8 flags, nv × xyz, nf × 3 u32,
 //           in plate modes nf thicknesses and the face-mode bit vector as a hex string + NUL,
 //           with flag 0x1 (surface normals) u32 nn, u32 nfn, nn × xyz, nfn × 3 u32

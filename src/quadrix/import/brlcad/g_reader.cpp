@@ -311,6 +311,9 @@ class GReader {
             case 15:
                 ok = Pipe(c, o, p);
                 break;
+            case 5:
+                ok = Ars(c, o, p);
+                break;
             default:  // kept by name for the census; the converter reports it if reached
                 break;
         }
@@ -336,6 +339,25 @@ class GReader {
             double q[6] = {0, 0, 0, 0, 0, 0};
             if (!Doubles(c, o, 6, q)) return false;
             p.pipe.push_back({{q[0], q[1], q[2]}, q[4], q[3], q[5]});
+        }
+        return true;
+    }
+
+    // ars (librt's rt_ars_export5): u32 curves, u32 points a curve, then every point x y z.
+    bool Ars(Cursor& c, const RawObject& o, Primitive& p) {
+        std::uint64_t nc = 0, ppc = 0;
+        if (!c.U(4, nc) || !c.U(4, ppc)) return Fail(o, "ars: truncated header");
+        if (ppc != 0 && nc > c.left() / 24 / ppc)
+            return Fail(o,
+                        fmt::format("ars: {} curves of {} points do not fit in the body", nc, ppc));
+        for (std::uint64_t i = 0; i < nc; ++i) {
+            std::vector<Vec3> curve;
+            for (std::uint64_t j = 0; j < ppc; ++j) {
+                double q[3] = {0, 0, 0};
+                if (!Doubles(c, o, 3, q)) return false;
+                curve.push_back({q[0], q[1], q[2]});
+            }
+            p.arsCurves.push_back(std::move(curve));
         }
         return true;
     }

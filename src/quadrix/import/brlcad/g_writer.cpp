@@ -106,6 +106,11 @@ std::optional<std::string> SolidBody(const Primitive& p, std::string* error) {
         b.U(p.pipe.size(), 4);
         for (const Primitive::PipePoint& q : p.pipe)
             b.Vec(q.at), b.Double(q.id), b.Double(q.od), b.Double(q.bend);
+    } else if (t == "ars") {
+        b.U(p.arsCurves.size(), 4);
+        b.U(p.arsCurves.empty() ? 0 : p.arsCurves[0].size(), 4);
+        for (const std::vector<Vec3>& curve : p.arsCurves)
+            for (const Vec3& q : curve) b.Vec(q);
     } else if (t == "eto") {
         b.Vec(p.V), b.Vec(p.N), b.Vec(p.C), b.Double(p.r), b.Double(p.rd);
     } else if (t == "hyp") {

@@ -14,7 +14,7 @@
 namespace quadrix::import::brlcad {
 
 // The .g bytes, or nullopt with *error set (a primitive type whose parameters the Database does
-// not keep, such as dsp or ars, cannot be written).
+// not keep, such as dsp or superell, cannot be written).
 std::optional<std::string> WriteG(const Database& db, std::string* error);
 
 }  // namespace quadrix::import::brlcad

@@ -58,9 +58,10 @@ ShapeHalfSpace Flipped(const ShapeHalfSpace& h) {
     return f;
 }
 
-PipeLayout Fail(std::string why) {
+PipeLayout Fail(std::string why, int point = -1) {
     PipeLayout l;
     l.problem = std::move(why);
+    l.point = point;
     return l;
 }
 
@@ -72,9 +73,11 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
         const auto& p = pts[i];
         if (!(p.od > 0) || !(p.id >= 0) || !(p.id < p.od) || !std::isfinite(p.od) ||
             !std::isfinite(p.bend) || !std::isfinite(p.at.x + p.at.y + p.at.z))
-            return Fail(fmt::format(
-                "point {} has outer diameter {} and inner diameter {} (need 0 <= id < od)", i, p.od,
-                p.id));
+            return Fail(
+                fmt::format("point {} has outer diameter {} and inner diameter {} (need 0 <= id < "
+                            "od)",
+                            i, p.od, p.id),
+                static_cast<int>(i));
     }
     PipeLayout out;
     Vec3 x = pts[0].at;
@@ -98,10 +101,10 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
         const double runLength = Length(p.at - prevPoint);
         if (i + 1 == pts.size()) {
             if (prevBendDist > runLength * (1 + 1e-9))
-                return Fail(
-                    fmt::format("the last run (to point {}) is too short for the bend "
-                                "before it",
-                                i));
+                return Fail(fmt::format("the last run (to point {}) is too short for the bend "
+                                        "before it",
+                                        i),
+                            static_cast<int>(i));
             run(p.at, p.od, p.id);
             break;
         }
@@ -114,7 +117,8 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
         const double t = p.bend * std::tan(deflection / 2);
         if (nextSame || Length(axis) < kCollinear || !(t > kSamePoint)) {
             if (Dot(n1, n2) > 0.5 && !nextSame)
-                return Fail(fmt::format("the pipe turns back on itself at point {}", i));
+                return Fail(fmt::format("the pipe turns back on itself at point {}", i),
+                            static_cast<int>(i));
             // Collinear (or no bend radius): a straight run to the point.
             run(p.at, p.od, p.id);
             x = p.at, od = p.od, id = p.id;
@@ -123,17 +127,18 @@ PipeLayout LayOutPipe(const std::vector<Primitive::PipePoint>& pts) {
             continue;
         }
         if (p.bend < p.od / 2)
-            return Fail(
-                fmt::format("the bend radius {} at point {} is smaller than the outer "
-                            "radius {}",
-                            p.bend, i, p.od / 2));
+            return Fail(fmt::format("the bend radius {} at point {} is smaller than the outer "
+                                    "radius {}",
+                                    p.bend, i, p.od / 2),
+                        static_cast<int>(i));
         if (deflection >= std::numbers::pi * (1 - 1e-9))
-            return Fail(fmt::format("the bend at point {} turns through 180°", i));
+            return Fail(fmt::format("the bend at point {} turns through 180°", i),
+                        static_cast<int>(i));
         if (prevBendDist + t > runLength * (1 + 1e-9))
-            return Fail(
-                fmt::format("the bends at and before point {} overlap on the run "
-                            "between them",
-                            i));
+            return Fail(fmt::format("the bends at and before point {} overlap on the run "
+                                    "between them",
+                                    i),
+                        static_cast<int>(i));
         const Vec3 s = p.at + n1 * t, e = p.at + n2 * t;
         run(s, p.od, p.id);
         PipePiece b;

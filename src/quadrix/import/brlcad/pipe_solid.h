@@ -49,6 +49,7 @@ struct PipePiece {
 struct PipeLayout {
     bool ok = false;
     std::string problem;  // when !ok
+    int point = -1;       // when !ok: the point the problem is at (0-based), -1 for the whole pipe
     std::vector<PipePiece> pieces;
 };
 

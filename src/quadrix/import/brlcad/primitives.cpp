@@ -4,7 +4,11 @@
 // (shapes/local_frame.h); the pipe is pipe_solid.h's.
 #include "quadrix/import/brlcad/primitives.h"
 
+#include <fmt/format.h>
+
+#include <array>
 #include <cmath>
+#include <map>
 
 #include "quadrix/import/brlcad/pipe_solid.h"
 #include "quadrix/import/shapes/ellipsoid.h"
@@ -103,6 +107,55 @@ ConvertResult Bot(const Primitive& p) {
         m = MeshToSolid(p.vertices, faces);
     }
     if (!m.ok) return refuse(m.problem);
+    r.shape = std::move(m.shape);
+    return r;
+}
+
+// ars (librt's rt_ars_tess): consecutive curves joined by quadrilaterals, (i, j) (i+1, j)
+// (i+1, j+1) (i, j+1) with j wrapping round each closed curve, split into two triangles; equal
+// points are one vertex (the first and last curves of a closed ars shrink to a point), triangles
+// with a repeated vertex are dropped. The mesh is then drawn as the solid it bounds
+// (mesh_solid.h), which refuses one with an open edge: such an ars bounds no solid.
+ConvertResult Ars(const Primitive& p) {
+    ConvertResult r;
+    r.censusName = "ars";
+    auto refuse = [&](std::string why) {
+        r.status = ConvertResult::Status::kNonQuadric;
+        r.problem = std::move(why);
+        return r;
+    };
+    const auto& curves = p.arsCurves;
+    if (curves.size() < 2 || curves[0].size() < 3)
+        return refuse(fmt::format("an ars of {} curves of {} points bounds no solid", curves.size(),
+                                  curves.empty() ? 0 : curves[0].size()));
+    std::vector<Vec3> vertices;
+    std::map<std::array<double, 3>, int> index;
+    auto vertex = [&](const Vec3& v) {
+        auto [it, added] = index.try_emplace({v.x, v.y, v.z}, static_cast<int>(vertices.size()));
+        if (added) vertices.push_back(v);
+        return it->second;
+    };
+    std::vector<std::vector<int>> faces;
+    auto triangle = [&](int a, int b, int c) {
+        if (a != b && b != c && a != c) faces.push_back({a, b, c});
+    };
+    const std::size_t n = curves[0].size();
+    for (std::size_t i = 0; i + 1 < curves.size(); ++i) {
+        if (curves[i + 1].size() != n) return Invalid(p, "its curves have different lengths");
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::size_t k = (j + 1) % n;
+            const int a = vertex(curves[i][j]), b = vertex(curves[i + 1][j]),
+                      c = vertex(curves[i + 1][k]), d = vertex(curves[i][k]);
+            triangle(a, b, c);
+            triangle(a, c, d);
+        }
+    }
+    MeshSolid m = MeshToSolid(vertices, faces);
+    if (!m.ok)
+        return refuse(
+            fmt::format("its curves do not bound a closed solid ({}); an ars is drawn "
+                        "when its first and last curves close it",
+                        m.problem));
     r.shape = std::move(m.shape);
     return r;
 }
@@ -325,9 +378,14 @@ ConvertResult ConvertPrimitive(const Primitive& p) {
         r = Eto(p);
     else if (t == "pipe")
         r = Pipe(p);
+    else if (t == "ars")
+        r = Ars(p);
     else {
         r.status = ConvertResult::Status::kNonQuadric;
-        r.problem = "this primitive type is not made of quadrics, quartics and planes";
+        r.problem = fmt::format(
+            "Quadrix does not convert BRL-CAD's {} (it draws arb4-8, arbn, ars, bot, ehy, ell, "
+            "epa, eto, half, hyp, part, pipe, rhc, rpc, tgc and tor; docs/import.md)",
+            t);
     }
     if (r.censusName.empty()) r.censusName = t;
     return r;

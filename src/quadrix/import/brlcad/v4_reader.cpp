@@ -83,14 +83,18 @@ class V4Reader {
             else if (id == "A")
                 Ars(toks);
             else if (id == "B" && inArs_)
-                continue;
+                ArsGranule(toks);
             else
                 Error(toks[0], fmt::format("unknown or unsupported v4 record type '{}' (this "
                                            "reader knows I S C M m s A/B)",
                                            id));
-            if (id != "B") inArs_ = id == "A";
+            if (id != "B") {
+                if (inArs_ && id != "A") FinishArs();
+                inArs_ = id == "A";
+            }
             if (diags_.ErrorCount() > 50) break;
         }
+        if (inArs_) FinishArs();
         FinishComb();
         return !diags_.HasErrors();
     }
@@ -324,16 +328,92 @@ class V4Reader {
         db_.AddPrimitive(std::move(p));
     }
 
+    // ARS (g2asc's arsadump/arsbdump): `A type name m n curlen totlen` — m curves of n points,
+    // each curve stored in curlen granules, totlen granules in all — then totlen records
+    // `B type curve granule v0 … v23`, 8 points a granule. As in librt's rt_ars_import4, the first
+    // point of the first curve is absolute and every other point is relative to it.
     void Ars(const std::vector<Token>& toks) {
-        if (toks.size() < 3) {
-            Error(toks.back(), "truncated ARS record");
+        if (inArs_) FinishArs();
+        ars_ = {};
+        if (toks.size() < 7) {
+            Error(toks.back(),
+                  "truncated ARS record: expected 'A type name curves "
+                  "points_per_curve granules_per_curve granules'");
             return;
         }
-        Primitive p;
+        Primitive& p = ars_.prim;
         p.type = "ars";
         p.name = std::string(toks[2].text);
         p.loc = map_.At(toks[0].offset);
+        p.sourceLine = map_.LineText(toks[0].offset);
+        double v[4];
+        if (!Numbers(toks, 3, 4, v, fmt::format("ARS record '{}'", p.name))) return;
+        static const char* kField[] = {"number of curves", "points per curve", "granules per curve",
+                                       "number of granules"};
+        for (int k = 0; k < 4; ++k)
+            if (v[k] != std::floor(v[k]) || v[k] < 0 || v[k] > 1e7) {
+                Error(toks[3 + k], fmt::format("ARS record '{}': {} '{}' is not a whole number "
+                                               "from 0 to 10000000",
+                                               p.name, kField[k], toks[3 + k].text));
+                return;
+            }
+        ars_.curves = static_cast<std::size_t>(v[0]);
+        ars_.points = static_cast<std::size_t>(v[1]);
+        ars_.perCurve = static_cast<std::size_t>(v[2]);
+        ars_.granules = static_cast<std::size_t>(v[3]);
+        if (ars_.perCurve * 8 < ars_.points || ars_.curves * ars_.perCurve != ars_.granules) {
+            Error(toks[5],
+                  fmt::format("ARS record '{}': {} curves of {} points do not fit {} "
+                              "granules of 8 points ({} a curve)",
+                              p.name, ars_.curves, ars_.points, ars_.granules, ars_.perCurve));
+            return;
+        }
+        ars_.ok = true;
+        ars_.at = toks[0];
+    }
+
+    void ArsGranule(const std::vector<Token>& toks) {
+        if (!ars_.ok) return;  // the A record was refused (reported)
+        double v[24];
+        if (!Numbers(toks, 4, 24, v, fmt::format("ARS granule of '{}'", ars_.prim.name))) {
+            ars_.ok = false;
+            return;
+        }
+        if (ars_.values.size() >= ars_.granules * 24) {
+            Error(toks[0], fmt::format("ARS '{}' has more than its {} granules", ars_.prim.name,
+                                       ars_.granules));
+            ars_.ok = false;
+            return;
+        }
+        ars_.values.insert(ars_.values.end(), v, v + 24);
+    }
+
+    void FinishArs() {
+        inArs_ = false;
+        if (!ars_.ok) return;
+        if (ars_.values.size() != ars_.granules * 24) {
+            Error(ars_.at, fmt::format("ARS '{}' has {} granules (B records), its A record says "
+                                       "{}",
+                                       ars_.prim.name, ars_.values.size() / 24, ars_.granules));
+            return;
+        }
+        Primitive& p = ars_.prim;
+        Vec3 base;
+        for (std::size_t i = 0; i < ars_.curves; ++i) {
+            std::vector<Vec3> curve;
+            for (std::size_t j = 0; j < ars_.points; ++j) {
+                const double* q = &ars_.values[(i * ars_.perCurve * 8 + j) * 3];
+                Vec3 pt{q[0], q[1], q[2]};
+                if (i == 0 && j == 0)
+                    base = pt;
+                else
+                    pt = base + pt;
+                curve.push_back(pt);
+            }
+            p.arsCurves.push_back(std::move(curve));
+        }
         db_.AddPrimitive(std::move(p));
+        ars_ = {};
     }
 
     TextMap map_;
@@ -343,6 +423,13 @@ class V4Reader {
     std::size_t li_ = 0;
     bool inComb_ = false;
     bool inArs_ = false;
+    struct PendingArs {
+        bool ok = false;
+        Primitive prim;
+        Token at;
+        std::size_t curves = 0, points = 0, perCurve = 0, granules = 0;
+        std::vector<double> values;  // 24 a granule, in the order of the B records
+    } ars_;
     Combination comb_;
     std::vector<Member> members_;
 };

@@ -296,6 +296,8 @@ class V5Reader {
             }
         } else if (type == "bot") {
             ok = Bot(w, kv, what, p);
+        } else if (type == "ars") {
+            ok = Ars(w, kv, what, p);
         } else if (type == "arbn") {
             double n = 0;
             num("N", n);
@@ -326,6 +328,63 @@ class V5Reader {
             }
         }
         if (ok) db_.AddPrimitive(std::move(p));
+    }
+
+    // ars (librt's rt_ars_get): NC curves, PPC points a curve, C0 … C(NC-1) each a list of PPC
+    // points, written {x y z} each or as 3·PPC plain numbers.
+    bool Ars(const std::vector<Word>& w, const std::map<std::string, Word>& kv,
+             const std::string& what, Primitive& p) {
+        // NC cannot exceed the number of keys (each curve is one); PPC is bounded by the text.
+        auto count = [&](const char* key, double hi, double& v) {
+            auto it = kv.find(key);
+            if (it == kv.end()) {
+                Error(w[0].offset, fmt::format("{}: missing parameter '{}'", what, key));
+                return false;
+            }
+            return Number(it->second, v, what + " " + key) &&
+                   WholeNumberIn(it->second, v, 0, hi, what + " " + key);
+        };
+        double nc = 0, ppc = 0;
+        if (!count("NC", static_cast<double>(kv.size()), nc) || !count("PPC", 1e7, ppc))
+            return false;
+        for (int i = 0; i < static_cast<int>(nc); ++i) {
+            const std::string key = fmt::format("C{}", i);
+            auto it = kv.find(key);
+            if (it == kv.end()) {
+                Error(w[0].offset, fmt::format("{}: missing curve '{}'", what, key));
+                return false;
+            }
+            auto l = List(it->second);
+            if (!l) return false;
+            std::vector<Vec3> curve;
+            if (!l->empty() && (*l)[0].braced) {
+                for (const Word& v : *l) {
+                    Vec3 x;
+                    if (!Vector(v, x, what + " " + key)) return false;
+                    curve.push_back(x);
+                }
+            } else {
+                if (l->size() % 3 != 0) {
+                    Error(it->second.offset, fmt::format("{} {}: {} numbers are not whole points "
+                                                         "(x y z)",
+                                                         what, key, l->size()));
+                    return false;
+                }
+                for (std::size_t k = 0; k < l->size(); k += 3) {
+                    Vec3 x;
+                    for (int c = 0; c < 3; ++c)
+                        if (!Number((*l)[k + c], x[c], what + " " + key)) return false;
+                    curve.push_back(x);
+                }
+            }
+            if (curve.size() != static_cast<std::size_t>(ppc)) {
+                Error(it->second.offset,
+                      fmt::format("{} {}: {} points, PPC says {}", what, key, curve.size(), ppc));
+                return false;
+            }
+            p.arsCurves.push_back(std::move(curve));
+        }
+        return true;
     }
 
     // bot: mode surf|volume|plate|plate_nocos (or 1-4), orient no|rh|lh (or 1-3), V {{x y z}
