@@ -189,6 +189,7 @@ struct ViewArgs {
     int threads = 0;
     std::string script;
     int bench = 0;
+    int benchScale = 1;  // --bench-scale: the orbit's frames at 1/S of the resolution
     bool offscreen = false;
     std::vector<std::string> top;
     bool allowMissing = false;
