@@ -446,6 +446,15 @@ TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {
     EXPECT_NE(bench.out.find("view bench: 6 frames 64x48 engine raycast offscreen:"),
               std::string::npos)
         << bench.out;
+    // At the moving frames' scale, with the profile of the mean frame.
+    const CommandResult scaled = RunShell(QuadrixBinary() + " view '" + scene +
+                                          "' --bench 4 --bench-scale 2 --offscreen --size 64x48");
+    ASSERT_EQ(scaled.exitCode, 0) << scaled.err;
+    EXPECT_NE(scaled.out.find("view bench: 4 frames 64x48 at 1/2 engine raycast offscreen:"),
+              std::string::npos)
+        << scaled.out;
+    EXPECT_NE(scaled.out.find("view bench profile, mean a frame: flatten "), std::string::npos)
+        << scaled.out;
     const CommandResult badScript =
         RunShell("printf 'orbit 1\\n' > /tmp/quadrix_view_bad_$$.txt; " + QuadrixBinary() +
                  " view '" + scene +
