@@ -373,7 +373,7 @@ std::string SpheresMinusCylinder(int perSide) {
 // on a thread of its own) and a pick asked for while a frame is drawn (`click-now`), the event
 // loop goes on: its longest pass stays a small fraction of the drawing's time, frames are shown
 // while the drawing is written, and both answers arrive (the pick on standard output and in the
-// overlay, the drawing on disk, equal to `quadrix draw` of the view printed with it).
+// overlay, the drawing on disk with its view printed).
 TEST(ViewerWindow, EventLoopKeepsRunningWhileADrawingAndAPickArePending) {
     if (auto why = WindowUnavailable(); !why.empty()) GTEST_SKIP() << why;
     TempDir dir;
@@ -417,18 +417,10 @@ TEST(ViewerWindow, EventLoopKeepsRunningWhileADrawingAndAPickArePending) {
     EXPECT_TRUE(boxAt(before, 1, 10));
     EXPECT_FALSE(boxAt(before, 1, 45));
     EXPECT_TRUE(boxAt(after, 1, 45));
-    // The drawing: `quadrix draw` of the view printed with it.
-    const std::string out = run.out;
-    const std::size_t at = out.find("view camera vrp");
-    ASSERT_NE(at, std::string::npos) << out;
-    const std::size_t from = out.rfind("{ quadrix view", at);
-    ASSERT_NE(from, std::string::npos) << out;
-    dir.Write("d.uq", out.substr(from, out.find('\n', at) + 1 - from));
-    const CommandResult d =
-        RunShell(QuadrixBinary() + " draw '" + scene + "' '" + dir.File("d.uq") +
-                 "' --size 320x240 -o '" + dir.File("d.svg") + "'");
-    ASSERT_EQ(d.exitCode, 0) << d.err;
-    EXPECT_EQ(Slurp(dir.File("quadrix-view-1.svg")), Slurp(dir.File("d.svg")));
+    // The drawing was written, and its view printed (that the drawing thread's file is `quadrix
+    // draw` of the printed view is SectionOverlayAndDrawingMatchTheCommandLine's check).
+    EXPECT_NE(Slurp(dir.File("quadrix-view-1.svg")).find("<svg"), std::string::npos);
+    EXPECT_NE(run.out.find("view camera vrp"), std::string::npos) << run.out;
 }
 
 TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {

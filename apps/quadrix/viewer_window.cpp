@@ -285,8 +285,7 @@ std::vector<std::string> Viewer::OverlayLines() const {
     const int columns = viewer::OverlayColumns(w, h);
     static const std::string kHelps[] = {
         "H help  X section  [ ] move it  C hatch  D drawing  V view  O overlay  Q quit",
-        "H help  X section  D drawing  V view  O overlay  Q quit", "H help  V view  Q quit",
-        "H help"};
+        "H help  X section  D drawing  V view  Q quit", "H help  V view  Q quit", "H help"};
     for (const std::string& help : kHelps)
         if (static_cast<int>(help.size()) <= columns || &help == &kHelps[3]) {
             lines.push_back(help);
