@@ -191,6 +191,7 @@ struct ViewArgs : LimitArgs {
     int threads = 0;
     std::string script;
     int bench = 0;
+    int benchScale = 1;  // --bench-scale: the orbit's frames at 1/S of the resolution
     bool offscreen = false;
     std::vector<std::string> top;
     bool allowMissing = false;

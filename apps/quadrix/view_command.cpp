@@ -42,6 +42,10 @@ void AddViewCommand(CLI::App& app, ViewArgs& args) {
                     "Play a fixed orbit of N full-resolution frames and report frames/s "
                     "(offscreen when there is no display)")
         ->check(CLI::Range(1, 100000));
+    cmd->add_option("--bench-scale", args.benchScale,
+                    "With --bench: draw the orbit's frames at 1/S of the resolution (the "
+                    "progressive schedule's moving frames), shown stretched to the window")
+        ->check(CLI::Range(1, 16));
     cmd->add_flag("--offscreen", args.offscreen, "With --bench: render without a window");
     cmd->add_option("--aa", args.aa,
                     "Anti-aliasing of the still frame, as quadrix render's: off|4|16|64 (default " +
@@ -137,8 +141,9 @@ int RunView(const ViewArgs& args) {
         return 1;
     }
     if (offscreen) {
-        const viewer::BenchResult r = viewer::RunBenchOrbit(
-            worker, session.camera, session.width, session.height, args.engine, args.bench);
+        const viewer::BenchResult r =
+            viewer::RunBenchOrbit(worker, session.camera, session.width, session.height,
+                                  args.engine, args.bench, args.benchScale);
         if (!r.error.empty()) {
             std::fputs(r.error.c_str(), stderr);
             return 1;
@@ -162,6 +167,7 @@ int RunView(const ViewArgs& args) {
     session.files = load.files;
     session.name = args.scenes.front();
     session.benchFrames = args.bench;
+    session.benchScale = args.benchScale;
     return RunViewerWindow(session);
 }
 

@@ -1,8 +1,11 @@
 // The SDL2 window of `quadrix view` (issue 18). Software frames from the render thread
 // (viewer/render_worker.h) are blitted as a streaming texture: no OpenGL is needed, and under
 // Xvfb SDL's software renderer does the same job. The event thread only turns events into camera
-// moves and commands, asks the render thread for frames (viewer/progressive.h), and uploads what
-// comes back; it never renders and never waits for a frame, except in the bench.
+// moves and commands, asks the render thread for frames (viewer/progressive.h), picks and
+// drawings, and uploads what comes back; it never renders and never waits for the render thread
+// (a pick is answered between two frames, a drawing is written on a thread of its own: both are
+// polled like frames), except in the bench. --stats reports the longest pass of the event loop,
+// which shows it.
 //
 // Scripted input (viewer/script.h) is replayed as SDL events pushed onto the window's own queue,
 // so a script drives exactly the code a user does: the same mouse and key handlers.
@@ -58,14 +61,18 @@ std::vector<std::string> UserEngines() {
     return names;
 }
 
-// 8-bit sRGB RGB bytes of an image (gray expanded), as the PNG writer encodes them.
-std::vector<std::uint8_t> DisplayBytes(const Image& image) {
-    std::vector<std::uint8_t> srgb = EncodeSrgb8(image);
-    if (image.channels == 3) return srgb;
-    std::vector<std::uint8_t> rgb(srgb.size() * 3);
-    for (std::size_t i = 0; i < srgb.size(); ++i)
-        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = srgb[i];
-    return rgb;
+using SysClock = std::chrono::system_clock;
+
+// What a pick was asked for (RenderWorker::RequestPick's tag).
+enum PickTag : int { kPickShow = 0, kPickPivot = 1 };
+
+// The statistics of a list of seconds, as "mean M ms, median D ms, max X ms".
+std::string Summary(std::vector<double> v) {
+    if (v.empty()) return "none";
+    std::sort(v.begin(), v.end());
+    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+    return fmt::format("mean {:.2f} ms, median {:.2f} ms, max {:.2f} ms", 1e3 * mean,
+                       1e3 * v[v.size() / 2], 1e3 * v.back());
 }
 
 class Viewer {
@@ -102,7 +109,14 @@ class Viewer {
     // faces are hatched unless `drawing` (quadrix draw's options).
     std::string SectionOptions(bool drawing = false) const;
     void MoveSection(double pixels);  // along its normal, by `pixels` of the window's scale
-    bool WriteDrawing(const std::string& path);
+    // Starts the drawing of the current view (written on the worker's drawing thread); false
+    // when the previous one is still being written.
+    bool StartDrawing(const std::string& path);
+    void DrawingDone(const viewer::DrawingOutcome& d);
+    void PickDone(const viewer::PickOutcome& p);
+    // A pick or reload would wait for the refining frame in flight: cancel it (it is asked for
+    // again), unless --no-cancel.
+    void CancelRefinement();
     void PrintLatency() const;
     void HandleEvent(const SDL_Event& ev);
     void RunCommand(Command c);
@@ -135,14 +149,41 @@ class Viewer {
     SDL_Texture* overlayTexture_ = nullptr;
     viewer::OverlayImage overlay_;
     std::vector<std::string> overlayLines_;
-    std::vector<std::uint8_t> shown_;  // the bytes in the texture
-    Image shownImage_;                 // the image they came from
+    std::vector<std::uint32_t> shown_;  // the pixels in the texture (0x00RRGGBB)
+    // The bench's profile of the window thread: texture upload, present (summed).
+    double uploadSeconds_ = 0, presentSeconds_ = 0;
+    Image shownImage_;  // the image they came from
     int shownScale_ = 1;
     bool shownAntialiased_ = false;
     double shownSeconds_ = 0;
     std::string error_;          // the current reload/frame error, for the title
     std::string drawingNotice_;  // the last drawing's first diagnostic, until the view changes
+    std::vector<std::string> pickLines_;  // the last pick, in the overlay until the view changes
     std::string lastNote_;
+    // Picks asked for and not answered yet; the drawing being written (its view, as printed).
+    int picksPending_ = 0;
+    struct PendingDrawing {
+        std::string path, viewText, drawOptions;
+        int width = 0, height = 0;
+    };
+    std::optional<PendingDrawing> drawing_;
+    // The event loop's health (--stats): its longest pass (events handled + frames uploaded +
+    // script), the frames shown while a drawing was being written, answer times.
+    double longestPass_ = 0;
+    long passes_ = 0;
+    int framesDuringDrawing_ = 0;
+    std::vector<double> pickSeconds_, drawingSeconds_;
+    std::vector<Clock::time_point> pickAsked_;
+    double slowestFrame_ = 0;
+    // Live reload: the save (the file's modification time) of a reload asked for, and of the
+    // reloaded scene's first picture and full-resolution picture still to come.
+    std::optional<SysClock::time_point> reloadSaved_;
+    std::optional<std::pair<std::uint64_t, SysClock::time_point>> reloadFirst_, reloadFull_;
+    std::vector<double> reloadFirstSeconds_, reloadFullSeconds_;
+    // Its parts: from the save to the change seen (polling), from then to the scene read.
+    std::vector<double> reloadSeenSeconds_, reloadReadSeconds_;
+    Clock::time_point reloadSeen_{};
+    double lastReloadSeconds_ = -1;
     // Mouse (and ctrl, held for section drags).
     int dragButton_ = 0, downX_ = 0, downY_ = 0;
     bool moved_ = false, ctrlDown_ = false, sectionDrag_ = false;
@@ -155,6 +196,7 @@ class Viewer {
     // Script.
     std::size_t scriptPos_ = 0;
     bool scriptWaitsFinal_ = false;
+    bool scriptWaitsAnswer_ = false;  // for the script's own pick or drawing
     Clock::time_point sleepUntil_{};
     bool running_ = true;
     int exitCode_ = 0;
@@ -215,6 +257,7 @@ void Viewer::Title() {
 
 void Viewer::Changed() {
     drawingNotice_.clear();
+    pickLines_.clear();
     scheduler_.ViewChanged();
     if (!pendingChange_) pendingChange_.emplace(scheduler_.Generation(), Clock::now());
     if (s_.cancelStale && !cancelSent_ && scheduler_.StaleRefinementInFlight()) {
@@ -231,11 +274,23 @@ std::vector<std::string> Viewer::OverlayLines() const {
     a += camera_.perspective ? "  perspective" : "  parallel";
     if (edges_) a += "  edges";
     if (section_.on) a += hatch_ ? "  section hatched" : "  section";
+    if (lastReloadSeconds_ >= 0) a += fmt::format("  reload {:.0f} ms", 1e3 * lastReloadSeconds_);
     std::vector<std::string> lines = {a};
     if (!error_.empty()) lines.push_back("error: " + error_);
     if (!drawingNotice_.empty()) lines.push_back(drawingNotice_);
-    lines.push_back(
-        "H help  X section  [ ] move it  C hatch  D drawing  V view  O overlay  Q quit");
+    lines.insert(lines.end(), pickLines_.begin(), pickLines_.end());
+    // The help in one row: the longest form that fits the window (the overlay wraps the rest).
+    int w = width_, h = height_;
+    if (renderer_) SDL_GetRendererOutputSize(renderer_, &w, &h);
+    const int columns = viewer::OverlayColumns(w, h);
+    static const std::string kHelps[] = {
+        "H help  X section  [ ] move it  C hatch  D drawing  V view  O overlay  Q quit",
+        "H help  X section  D drawing  V view  Q quit", "H help  V view  Q quit", "H help"};
+    for (const std::string& help : kHelps)
+        if (static_cast<int>(help.size()) <= columns || &help == &kHelps[3]) {
+            lines.push_back(help);
+            break;
+        }
     return lines;
 }
 
@@ -249,12 +304,15 @@ void Viewer::UpdateOverlay() {
     overlay_ = viewer::DrawOverlay(lines, w, h);
     if (overlayTexture_) SDL_DestroyTexture(overlayTexture_);
     overlayTexture_ = nullptr;
-    if (overlay_.Empty()) return;
+    if (overlay_.Empty() || overlay_.boxWidth == 0 || overlay_.boxHeight == 0) return;
+    // Only the box, copied without blending (every pixel of it is opaque, every other one
+    // transparent): blending a window-sized texture cost the software renderer milliseconds
+    // a frame at 1280×720.
     overlayTexture_ =
         SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING,
-                          overlay_.width, overlay_.height);
+                          overlay_.boxWidth, overlay_.boxHeight);
     if (!overlayTexture_) return;
-    SDL_SetTextureBlendMode(overlayTexture_, SDL_BLENDMODE_BLEND);
+    SDL_SetTextureBlendMode(overlayTexture_, SDL_BLENDMODE_NONE);
     SDL_UpdateTexture(overlayTexture_, nullptr, overlay_.rgba.data(), overlay_.width * 4);
 }
 
@@ -271,9 +329,26 @@ void Viewer::MoveSection(double pixels) {
     Changed();
 }
 
-bool Viewer::WriteDrawing(const std::string& path) {
-    const viewer::DrawingOutcome d = s_.worker->WriteDrawing(path, camera_.ToView(), width_,
-                                                             height_, section_.ToPlane(), s_.name);
+bool Viewer::StartDrawing(const std::string& path) {
+    if (!s_.worker->StartDrawing(path, camera_.ToView(), width_, height_, section_.ToPlane(),
+                                 s_.name)) {
+        drawingNotice_ = "drawing: the previous drawing is still being written";
+        Title();
+        return false;
+    }
+    // The view drawn is the view now, whatever happens while it is written.
+    drawing_ = PendingDrawing{
+        path, viewer::FormatViewStatement(camera_, width_, height_, "camera", SectionOptions()),
+        SectionOptions(true), width_, height_};
+    drawingNotice_ = "drawing " + path + " ...";
+    Title();
+    return true;
+}
+
+void Viewer::DrawingDone(const viewer::DrawingOutcome& d) {
+    const std::optional<PendingDrawing> pending = std::move(drawing_);
+    drawing_.reset();
+    drawingSeconds_.push_back(d.seconds);
     // What was refused or left out (freeform surfaces, draw/undrawable.h) is said on standard
     // error and in the window's overlay until the view changes, never passed over.
     std::fputs(d.messages.c_str(), stderr);
@@ -281,49 +356,95 @@ bool Viewer::WriteDrawing(const std::string& path) {
     Title();
     if (renderer_) Present(nullptr);
     if (!d.ok) {
-        std::fprintf(stderr, "quadrix: error: drawing %s not written\n", path.c_str());
+        std::fprintf(stderr, "quadrix: error: drawing %s not written\n", d.path.c_str());
         exitCode_ = 1;
-        return false;
+        return;
     }
+    if (!pending) return;
     std::fprintf(stderr,
-                 "quadrix: drawing %s: the view below, drawn as `quadrix draw %s VIEW.uq --size "
-                 "%dx%d%s -o %s`\n",
-                 path.c_str(), s_.name.c_str(), width_, height_, SectionOptions(true).c_str(),
-                 path.c_str());
-    std::fputs(
-        viewer::FormatViewStatement(camera_, width_, height_, "camera", SectionOptions()).c_str(),
-        stdout);
+                 "quadrix: drawing %s (%.0f ms): the view below, drawn as `quadrix draw %s "
+                 "VIEW.uq --size %dx%d%s -o %s`\n",
+                 d.path.c_str(), 1e3 * d.seconds, s_.name.c_str(), pending->width, pending->height,
+                 pending->drawOptions.c_str(), d.path.c_str());
+    std::fputs(pending->viewText.c_str(), stdout);
     std::fflush(stdout);
-    return true;
+}
+
+void Viewer::PickDone(const viewer::PickOutcome& p) {
+    --picksPending_;
+    if (!pickAsked_.empty()) {
+        pickSeconds_.push_back(Since(pickAsked_.front()));
+        pickAsked_.erase(pickAsked_.begin());
+    }
+    if (p.tag == kPickPivot) {
+        // A double-click makes the picked point the orbit centre.
+        if (p.drawn && p.pick.hit) {
+            camera_.pivot = p.pick.point;
+            std::printf("orbit centre %.6g %.6g %.6g\n", p.pick.point.x, p.pick.point.y,
+                        p.pick.point.z);
+            std::fflush(stdout);
+        }
+        return;
+    }
+    const std::string text = p.drawn ? viewer::FormatPick(p.pick) : "pick: nothing drawn yet";
+    std::printf("%s\n", text.c_str());
+    std::fflush(stdout);
+    pickLines_ = p.drawn ? viewer::PickOverlayLines(p.pick) : std::vector<std::string>{text};
+    Title();
+    if (renderer_) Present(nullptr);
+}
+
+void Viewer::CancelRefinement() {
+    if (s_.cancelStale && !cancelSent_ && scheduler_.RefinementInFlight()) {
+        s_.worker->CancelFrame();
+        cancelSent_ = true;
+    }
 }
 
 void Viewer::PrintLatency() const {
     if (latencies_.empty()) {
         std::fprintf(stderr, "quadrix: latency: no input event was followed by a picture\n");
-        return;
+    } else {
+        std::vector<double> v = latencies_;
+        std::sort(v.begin(), v.end());
+        const double mean = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+        std::fprintf(stderr,
+                     "quadrix: latency from an input event to the first picture of its view: %zu "
+                     "events, mean %.1f ms, median %.1f ms, 90th %.1f ms, max %.1f ms; %d stale "
+                     "frames cancelled\n",
+                     v.size(), 1e3 * mean, 1e3 * v[v.size() / 2], 1e3 * v[(v.size() * 9) / 10],
+                     1e3 * v.back(), framesCancelled_);
     }
-    std::vector<double> v = latencies_;
-    std::sort(v.begin(), v.end());
-    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
     std::fprintf(stderr,
-                 "quadrix: latency from an input event to the first picture of its view: %zu "
-                 "events, mean %.1f ms, median %.1f ms, 90th %.1f ms, max %.1f ms; %d stale "
-                 "frames cancelled\n",
-                 v.size(), 1e3 * mean, 1e3 * v[v.size() / 2], 1e3 * v[(v.size() * 9) / 10],
-                 1e3 * v.back(), framesCancelled_);
+                 "quadrix: event loop: %ld passes, longest %.1f ms; slowest frame %.1f ms; "
+                 "picks: %zu answered (%s); drawings: %zu written (%s), %d frames shown while "
+                 "one was written\n",
+                 passes_, 1e3 * longestPass_, 1e3 * slowestFrame_, pickSeconds_.size(),
+                 Summary(pickSeconds_).c_str(), drawingSeconds_.size(),
+                 Summary(drawingSeconds_).c_str(), framesDuringDrawing_);
+    std::fprintf(stderr,
+                 "quadrix: live reload: %zu reloads; from saving a file to the first picture "
+                 "of the new scene: %s; to its full-resolution picture: %s; of which the change "
+                 "seen (10 ms polling): %s, the scene read: %s\n",
+                 reloadFirstSeconds_.size(), Summary(reloadFirstSeconds_).c_str(),
+                 Summary(reloadFullSeconds_).c_str(), Summary(reloadSeenSeconds_).c_str(),
+                 Summary(reloadReadSeconds_).c_str());
 }
 
 void Viewer::Upload(viewer::FrameOutcome& frame) {
     const Image& im = frame.image;
     if (!texture_ || textureW_ != im.width || textureH_ != im.height) {
         if (texture_) SDL_DestroyTexture(texture_);
-        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
+        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB888, SDL_TEXTUREACCESS_STREAMING,
                                      im.width, im.height);
         textureW_ = im.width;
         textureH_ = im.height;
     }
-    shown_ = DisplayBytes(im);
-    if (texture_) SDL_UpdateTexture(texture_, nullptr, shown_.data(), im.width * 3);
+    // The sRGB bytes were encoded on the render thread (FrameJob::display).
+    const auto t0 = Clock::now();
+    shown_ = frame.display.empty() ? viewer::DisplayPixels(im) : std::move(frame.display);
+    if (texture_) SDL_UpdateTexture(texture_, nullptr, shown_.data(), im.width * 4);
+    uploadSeconds_ += Since(t0);
     shownImage_ = std::move(frame.image);  // `im` is not used below
     shownScale_ = frame.job.request.scale;
     shownAntialiased_ = frame.job.request.antialiased;
@@ -332,13 +453,33 @@ void Viewer::Upload(viewer::FrameOutcome& frame) {
         latencies_.push_back(Since(pendingChange_->second));
         pendingChange_.reset();
     }
+    if (drawing_) ++framesDuringDrawing_;
+    const auto t1 = Clock::now();
     Present(nullptr);
+    presentSeconds_ += Since(t1);
+    // From the save of a reloaded file to its first picture, and to its full-resolution one.
+    const std::uint64_t generation = frame.job.request.generation;
+    auto sinceSave = [](SysClock::time_point saved) {
+        return std::chrono::duration<double>(SysClock::now() - saved).count();
+    };
+    if (reloadFirst_ && generation >= reloadFirst_->first) {
+        lastReloadSeconds_ = sinceSave(reloadFirst_->second);
+        reloadFirstSeconds_.push_back(lastReloadSeconds_);
+        reloadFirst_.reset();
+    }
+    if (reloadFull_ && generation >= reloadFull_->first && shownScale_ == 1) {
+        reloadFullSeconds_.push_back(sinceSave(reloadFull_->second));
+        reloadFull_.reset();
+    }
 }
 
 void Viewer::Present(std::vector<std::uint8_t>* readback) {
-    SDL_RenderClear(renderer_);
+    if (!texture_) SDL_RenderClear(renderer_);  // the texture covers the window
     if (texture_) SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
-    if (overlayTexture_ && overlayOn_) SDL_RenderCopy(renderer_, overlayTexture_, nullptr, nullptr);
+    if (overlayTexture_ && overlayOn_) {
+        const SDL_Rect box{0, 0, overlay_.boxWidth, overlay_.boxHeight};
+        SDL_RenderCopy(renderer_, overlayTexture_, nullptr, &box);
+    }
     if (readback) {
         int w = 0, h = 0;
         SDL_GetRendererOutputSize(renderer_, &w, &h);
@@ -366,6 +507,7 @@ void Viewer::PumpWorker() {
             }
         } else {
             scheduler_.Delivered(frame->job.request, frame->seconds);
+            slowestFrame_ = std::max(slowestFrame_, frame->seconds);
             for (const std::string& n : frame->notes)
                 if (frame->job.request.scale == 1 && n != lastNote_) {
                     std::fprintf(stderr, "quadrix: note: %s\n", n.c_str());
@@ -375,6 +517,8 @@ void Viewer::PumpWorker() {
         }
         Title();
     }
+    while (auto pick = s_.worker->TakePick()) PickDone(*pick);
+    if (auto d = s_.worker->TakeDrawing()) DrawingDone(*d);
     if (auto load = s_.worker->TakeReload()) {
         ++reloads_;
         watch_.SetFiles(load->files);
@@ -383,6 +527,12 @@ void Viewer::PumpWorker() {
             std::fprintf(stderr, "quadrix: reloaded\n");
             error_.clear();
             Changed();
+            if (reloadSaved_) {
+                reloadReadSeconds_.push_back(Since(reloadSeen_));
+                reloadFirst_.emplace(scheduler_.Generation(), *reloadSaved_);
+                reloadFull_ = reloadFirst_;
+            }
+            reloadSaved_.reset();
         } else {
             std::fputs(load->messages.c_str(), stderr);
             std::fprintf(stderr, "quadrix: the scene has errors; keeping the last good picture\n");
@@ -402,6 +552,7 @@ void Viewer::PumpWorker() {
             job.section = section_.ToPlane();
             job.hatch = hatch_;
             job.aaSamples = s_.aaSamples;
+            job.display = true;
             cancelSent_ = false;
             s_.worker->Submit(job);
         }
@@ -409,9 +560,18 @@ void Viewer::PumpWorker() {
 }
 
 void Viewer::PollFiles() {
-    if (Since(lastPoll_) < 0.05) return;
+    // Every 10 ms (each pass of the loop, which waits 10 ms at most for an event): one stat()
+    // per watched file.
+    if (Since(lastPoll_) < 0.01) return;
     lastPoll_ = Clock::now();
-    if (watch_.Changed()) s_.worker->ReloadAsync();
+    if (!watch_.Changed()) return;
+    reloadSaved_ = watch_.LastChangeTime();
+    if (!reloadSaved_) reloadSaved_ = SysClock::now();  // a file went away
+    reloadSeen_ = Clock::now();
+    reloadSeenSeconds_.push_back(
+        std::max(0.0, std::chrono::duration<double>(SysClock::now() - *reloadSaved_).count()));
+    CancelRefinement();  // its picture is of the old scene: let the reload start at once
+    s_.worker->ReloadAsync();
 }
 
 bool Viewer::Screenshot(const std::string& path, bool window) {
@@ -422,7 +582,7 @@ bool Viewer::Screenshot(const std::string& path, bool window) {
     SDL_GetRendererOutputSize(renderer_, &w, &h);
     // The window must show the image byte for byte when it is at its full resolution, with the
     // overlay's opaque pixels over it.
-    std::vector<std::uint8_t> expected = shown_;
+    std::vector<std::uint8_t> expected = viewer::RgbBytes(shown_);
     if (overlayOn_ && overlayTexture_) viewer::CompositeOverlay(overlay_, expected);
     if (shownScale_ == 1 && w == shownImage_.width && h == shownImage_.height &&
         pixels != expected) {
@@ -570,7 +730,7 @@ void Viewer::RunCommand(Command c) {
             Present(nullptr);
             break;
         case Command::kDrawing:
-            WriteDrawing(fmt::format("quadrix-view-{}.svg", ++drawingCount_));
+            StartDrawing(fmt::format("quadrix-view-{}.svg", ++drawingCount_));
             break;
     }
     Title();
@@ -594,13 +754,11 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
             break;
         case SDL_MOUSEBUTTONDOWN:
             if (ev.button.button == SDL_BUTTON_LEFT && ev.button.clicks == 2) {
-                // A double-click makes the picked point the orbit centre.
-                const viewer::PickResult p = s_.worker->PickAt(ev.button.x, ev.button.y);
-                if (p.hit) {
-                    camera_.pivot = p.point;
-                    std::printf("orbit centre %.6g %.6g %.6g\n", p.point.x, p.point.y, p.point.z);
-                    std::fflush(stdout);
-                }
+                // A double-click makes the picked point the orbit centre (PickDone).
+                CancelRefinement();
+                s_.worker->RequestPick(ev.button.x, ev.button.y, kPickPivot);
+                ++picksPending_;
+                pickAsked_.push_back(Clock::now());
             }
             if (dragButton_ == 0) {
                 dragButton_ = ev.button.button;
@@ -613,9 +771,12 @@ void Viewer::HandleEvent(const SDL_Event& ev) {
         case SDL_MOUSEBUTTONUP:
             if (ev.button.button == dragButton_) {
                 if (!moved_ && dragButton_ == SDL_BUTTON_LEFT && !sectionDrag_) {
-                    const std::string pick = s_.worker->PickText(ev.button.x, ev.button.y);
-                    std::printf("%s\n", pick.c_str());
-                    std::fflush(stdout);
+                    // Answered between two frames (PickDone): the refining frame in flight, if
+                    // any, is cancelled so that the answer does not wait for it.
+                    CancelRefinement();
+                    s_.worker->RequestPick(ev.button.x, ev.button.y, kPickShow);
+                    ++picksPending_;
+                    pickAsked_.push_back(Clock::now());
                 }
                 dragButton_ = 0;
             }
@@ -696,6 +857,12 @@ void Viewer::StepScript() {
         running_ = false;
         return;
     }
+    // The script's own picks and drawings are waited for before its next line; any pick or
+    // drawing (a `key D`) before its end.
+    const bool answersPending = picksPending_ > 0 || drawing_;
+    if (scriptWaitsAnswer_ && answersPending) return;
+    scriptWaitsAnswer_ = false;
+    if (scriptPos_ >= script.size() && answersPending) return;
     scriptWaitsFinal_ = false;
     while (running_ && scriptPos_ < script.size()) {
         const ScriptEvent& e = script[scriptPos_];
@@ -707,6 +874,7 @@ void Viewer::StepScript() {
             scriptWaitsFinal_ = true;
             return;
         }
+        if (e.kind == ScriptEvent::Kind::kDrawing && drawing_) return;  // one at a time
         ++scriptPos_;
         const int cx = width_ / 2, cy = height_ / 2;
         switch (e.kind) {
@@ -761,6 +929,8 @@ void Viewer::StepScript() {
                 return;
             }
             case ScriptEvent::Kind::kClick:
+            case ScriptEvent::Kind::kClickNow:
+                scriptWaitsAnswer_ = true;
                 PushMouse(SDL_MOUSEBUTTONDOWN, SDL_BUTTON_LEFT, int(e.x), int(e.y));
                 PushMouse(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, int(e.x), int(e.y));
                 return;
@@ -795,9 +965,9 @@ void Viewer::StepScript() {
                 break;
             case ScriptEvent::Kind::kDrawing:
                 // A failed drawing is reported (the exit status too), and the script goes on:
-                // what the window shows about it can be looked at.
-                WriteDrawing(e.text);
-                break;
+                // what the window shows about it can be looked at. The script waits for it.
+                scriptWaitsAnswer_ = StartDrawing(e.text);
+                return;
             case ScriptEvent::Kind::kPrintView:
                 if (e.text.empty()) {
                     RunCommand(Command::kPrintView);
@@ -823,13 +993,19 @@ void Viewer::StepScript() {
                 break;
         }
     }
-    if (scriptPos_ >= script.size()) running_ = false;  // the end of a script closes the window
+    // The end of a script closes the window, once its picks and drawings are answered.
+    if (scriptPos_ >= script.size() && picksPending_ == 0 && !drawing_) running_ = false;
 }
 
 int Viewer::Run() {
     while (running_) {
         SDL_Event ev;
-        if (SDL_WaitEventTimeout(&ev, 10)) {
+        const bool got = SDL_WaitEventTimeout(&ev, 10);
+        // A pass: what the event thread does between two waits for events. It never waits for
+        // the render thread, so its longest pass (--stats) stays short while frames, picks and
+        // drawings of any size are in flight.
+        const auto pass = Clock::now();
+        if (got) {
             HandleEvent(ev);
             while (running_ && SDL_PollEvent(&ev)) HandleEvent(ev);
         }
@@ -840,6 +1016,8 @@ int Viewer::Run() {
         }
         PollFiles();
         StepScript();
+        longestPass_ = std::max(longestPass_, Since(pass));
+        ++passes_;
     }
     if (s_.stats) PrintLatency();
     return exitCode_;
@@ -848,8 +1026,8 @@ int Viewer::Run() {
 int Viewer::Bench() {
     // The fixed orbit (viewer/bench_orbit.h), each frame shown: render + encode + blit.
     const viewer::BenchResult r =
-        viewer::RunBenchOrbit(*s_.worker, camera_, width_, height_, engine_, s_.benchFrames, 1,
-                              [&](viewer::FrameOutcome& frame) {
+        viewer::RunBenchOrbit(*s_.worker, camera_, width_, height_, engine_, s_.benchFrames,
+                              s_.benchScale, [&](viewer::FrameOutcome& frame) {
                                   Upload(frame);
                                   SDL_Event ev;
                                   while (SDL_PollEvent(&ev))
@@ -860,7 +1038,16 @@ int Viewer::Bench() {
         std::fputs(r.error.c_str(), stderr);
         return 1;
     }
-    std::fputs(viewer::FormatBench(r, width_, height_, engine_, "in a window").c_str(), stdout);
+    SDL_RendererInfo info{};
+    SDL_GetRendererInfo(renderer_, &info);
+    std::fputs(viewer::FormatBench(
+                   r, width_, height_, engine_,
+                   fmt::format("in a window (SDL renderer {})", info.name ? info.name : "?"))
+                   .c_str(),
+               stdout);
+    const int n = std::max(1, r.frames);
+    std::printf("view bench window thread, mean a frame: texture upload %.2f ms, present %.2f ms\n",
+                1e3 * uploadSeconds_ / n, 1e3 * presentSeconds_ / n);
     return 0;
 }
 

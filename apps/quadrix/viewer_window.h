@@ -22,6 +22,7 @@ struct ViewerSession {
     std::string name;                // for the title: the first scene file
     const std::vector<viewer::ScriptEvent>* script = nullptr;  // scripted input, or null
     int benchFrames = 0;      // > 0: play a fixed orbit of this many frames and report frames/s
+    int benchScale = 1;       // its frames at 1/benchScale of the resolution (--bench-scale)
     int aaSamples = 0;        // anti-aliasing of the still frame (0 = off)
     bool cancelStale = true;  // abandon a refining frame when the view changes (--no-cancel)
     bool stats = false;       // print the latency figures at exit (--stats)

@@ -31,13 +31,20 @@ void FileWatch::SetFiles(std::vector<std::string> paths) {
 
 bool FileWatch::Changed() {
     bool changed = false;
+    std::optional<std::chrono::system_clock::time_point> newest;
     for (std::size_t i = 0; i < paths_.size(); ++i) {
         const Stamp now = StampOf(paths_[i]);
         if (!(now == stamps_[i])) {
             stamps_[i] = now;
             changed = true;
+            if (now.exists) {
+                const auto t = std::chrono::time_point_cast<std::chrono::system_clock::duration>(
+                    std::chrono::file_clock::to_sys(now.time));
+                if (!newest || t > *newest) newest = t;
+            }
         }
     }
+    if (changed) lastChange_ = newest;
     return changed;
 }
 

@@ -22,11 +22,20 @@ TEST(ViewerFileWatch, SeesChangesOnceAndFilesAppearingAndGoing) {
     std::filesystem::last_write_time(a,
                                      std::filesystem::last_write_time(a) + std::chrono::seconds(2));
     EXPECT_TRUE(w.Changed());
+    // The change's time is the file's new modification time (the save-to-picture latency
+    // starts there), 2 s ahead of now.
+    ASSERT_TRUE(w.LastChangeTime());
+    const double ahead =
+        std::chrono::duration<double>(*w.LastChangeTime() - std::chrono::system_clock::now())
+            .count();
+    EXPECT_GT(ahead, 1.0);
+    EXPECT_LT(ahead, 2.5);
     EXPECT_FALSE(w.Changed());
     dir.Write("b.uq", "x");
     EXPECT_TRUE(w.Changed());
     std::filesystem::remove(b);
     EXPECT_TRUE(w.Changed());
+    EXPECT_FALSE(w.LastChangeTime());  // the only changed file is gone
     EXPECT_FALSE(w.Changed());
 }
 

@@ -117,9 +117,49 @@ const std::uint8_t* GlyphRows(char c) {
 
 int OverlayScale(int windowHeight) { return windowHeight >= 480 ? 2 : 1; }
 
-OverlayImage DrawOverlay(const std::vector<std::string>& lines, int width, int height) {
+int OverlayColumns(int width, int height) {
+    // A row of n characters is 2·pad + n·advance − s wide (DrawOverlay).
+    const int s = OverlayScale(height);
+    return std::max(1, (width - 4 * s + s) / ((kGlyphWidth + 1) * s));
+}
+
+std::vector<std::string> WrapOverlayLines(const std::vector<std::string>& lines, int columns) {
+    const std::size_t n = static_cast<std::size_t>(std::max(columns, 3));
+    std::vector<std::string> rows;
+    for (const std::string& line : lines) {
+        std::string rest = line;
+        bool first = true;
+        while (true) {
+            if (!first) rest = "  " + rest;
+            if (rest.size() <= n) {
+                rows.push_back(rest);
+                break;
+            }
+            // The last space within the row (not the indentation of a continuation row).
+            const std::size_t from = first ? 0 : 2;
+            std::size_t cut = rest.rfind(' ', n);
+            std::size_t next = cut;
+            if (cut == std::string::npos || cut <= from) {
+                cut = next = n;  // a word longer than the row
+            } else {
+                while (cut > from && rest[cut - 1] == ' ') --cut;
+                while (next < rest.size() && rest[next] == ' ') ++next;
+                if (cut <= from) cut = next = n;
+            }
+            rows.push_back(rest.substr(0, cut));
+            rest = rest.substr(next);
+            first = false;
+            if (rest.empty()) break;
+        }
+    }
+    return rows;
+}
+
+OverlayImage DrawOverlay(const std::vector<std::string>& unwrapped, int width, int height) {
     OverlayImage im;
-    if (lines.empty() || width <= 0 || height <= 0) return im;
+    if (unwrapped.empty() || width <= 0 || height <= 0) return im;
+    const std::vector<std::string> lines =
+        WrapOverlayLines(unwrapped, OverlayColumns(width, height));
     im.width = width;
     im.height = height;
     im.rgba.assign(static_cast<std::size_t>(width) * height * 4, 0);
@@ -136,6 +176,8 @@ OverlayImage DrawOverlay(const std::vector<std::string>& lines, int width, int h
     const int boxH = 2 * pad + static_cast<int>(lines.size()) * lineHeight - 3 * s;
     for (int y = 0; y < boxH; ++y)
         for (int x = 0; x < boxW; ++x) put(x, y, kBox);
+    im.boxWidth = std::clamp(boxW, 0, width);
+    im.boxHeight = std::clamp(boxH, 0, height);
     for (std::size_t l = 0; l < lines.size(); ++l)
         for (std::size_t k = 0; k < lines[l].size(); ++k) {
             const std::uint8_t* rows = GlyphRows(lines[l][k]);

@@ -56,11 +56,60 @@ TEST(ViewerOverlay, OpaqueBoxAtTheTopLeftTransparentElsewhere) {
     EXPECT_EQ(maxX, 2 + 15 * 6 - 1 + 2 - 1);
     EXPECT_EQ(maxY, 2 + 2 * 10 - 3 + 2 - 1);
     EXPECT_EQ(opaque, (maxX + 1) * (maxY + 1));
+    EXPECT_EQ(im.boxWidth, maxX + 1);  // the rectangle a window copies
+    EXPECT_EQ(im.boxHeight, maxY + 1);
     int expectedInk = 0;
     for (char c : std::string("RAYCAST 12.5 MSH HELP")) expectedInk += Ink(c);
     EXPECT_EQ(ink, expectedInk);
     EXPECT_EQ(OverlayScale(720), 2);
     EXPECT_TRUE(DrawOverlay({}, 200, 100).Empty());
+}
+
+// The help line at a 320-pixel-wide window (53 columns at scale 1) is wrapped, not cut off: every
+// row fits, every word is kept in order, and the box stays inside the window.
+TEST(ViewerOverlay, LongLinesWrapToTheWindowsWidth) {
+    const std::string help =
+        "H help  X section  [ ] move it  C hatch  D drawing  V view  O overlay  Q quit";
+    EXPECT_EQ(OverlayColumns(320, 240), 52);    // (320 - 3) / 6
+    EXPECT_EQ(OverlayColumns(1280, 720), 106);  // (1280 - 6) / 12 at scale 2
+    const std::vector<std::string> rows = WrapOverlayLines({"raycast", help}, 52);
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[0], "raycast");
+    EXPECT_EQ(rows[1], "H help  X section  [ ] move it  C hatch  D drawing");
+    EXPECT_EQ(rows[2], "  V view  O overlay  Q quit");
+    auto words = [](const std::string& text) {
+        std::vector<std::string> w;
+        std::string cur;
+        for (char c : text + " ")
+            if (c == ' ') {
+                if (!cur.empty()) w.push_back(cur);
+                cur.clear();
+            } else {
+                cur += c;
+            }
+        return w;
+    };
+    for (int columns : {11, 13, 26, 40}) {  // a word and the indentation fit
+        std::string joined;
+        for (const std::string& r : WrapOverlayLines({help}, columns)) {
+            EXPECT_LE(static_cast<int>(r.size()), columns) << r;
+            joined += r + " ";
+        }
+        EXPECT_EQ(words(joined), words(help)) << columns;
+    }
+    // A word longer than a row is cut, not dropped.
+    EXPECT_EQ(WrapOverlayLines({"abcdefgh"}, 5), (std::vector<std::string>{"abcde", "  fgh"}));
+    // Drawn: the box is inside a 320×240 window, three rows tall.
+    const OverlayImage im = DrawOverlay({"raycast", help}, 320, 240);
+    int maxX = 0, maxY = 0;
+    for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x)
+            if (im.rgba[(y * 320 + x) * 4 + 3] == 255) {
+                maxX = std::max(maxX, x);
+                maxY = std::max(maxY, y);
+            }
+    EXPECT_EQ(maxX, 2 + 50 * 6 - 1 + 2 - 1);  // the longest row, 50 characters
+    EXPECT_EQ(maxY, 2 + 3 * 10 - 3 + 2 - 1);
 }
 
 TEST(ViewerOverlay, CompositeReplacesOnlyTheOpaquePixels) {

@@ -49,13 +49,16 @@ PickResult Pick(const Frame& frame, const FlatScene& flat, const scene::Scene* s
     } else if (r.surface >= halfSpaces &&
                r.surface - halfSpaces < static_cast<int>(flat.freeforms.size())) {
         r.freeform = true;
-        r.surfaceName = flat.freeforms[r.surface - halfSpaces].name;
+        const FlatFreeform& f = flat.freeforms[r.surface - halfSpaces];
+        r.surfaceName = f.name;
+        // A freeform surface has no body: its own statement (a `bezier`, `patches` ...) is where.
+        if (f.loc.line > 0) r.where = f.loc.ToString();
     }
     if (r.solid >= 0 && r.solid < static_cast<int>(flat.solids.size()))
         r.solidName = flat.solids[r.solid].name;
     if (r.body >= 0 && r.body < static_cast<int>(flat.bodies.size())) {
         r.bodyName = flat.bodies[r.body].name;
-        if (scene) r.where = BodyLocation(*scene, r.bodyName);
+        if (scene && r.where.empty()) r.where = BodyLocation(*scene, r.bodyName);
     }
     return r;
 }
@@ -72,6 +75,21 @@ std::string FormatPick(const PickResult& p) {
     s += fmt::format(" point {:.6g} {:.6g} {:.6g} normal {:.4f} {:.4f} {:.4f}", p.point.x,
                      p.point.y, p.point.z, p.normal.x, p.normal.y, p.normal.z);
     return s;
+}
+
+std::vector<std::string> PickOverlayLines(const PickResult& p) {
+    if (!p.hit) return {fmt::format("pick {} {}: background", p.x, p.y)};
+    std::vector<std::string> lines;
+    if (p.freeform)
+        lines.push_back(fmt::format("pick {} {}: freeform surface {}", p.x, p.y, p.surfaceName));
+    else
+        lines.push_back(fmt::format("pick {} {}: solid {}  body {}  half-space {}", p.x, p.y,
+                                    p.solidName, p.bodyName, p.surfaceName));
+    if (!p.where.empty()) lines.push_back("  at " + p.where);
+    lines.push_back(fmt::format("  point {:.6g} {:.6g} {:.6g}", p.point.x, p.point.y, p.point.z));
+    lines.push_back(
+        fmt::format("  normal {:.4f} {:.4f} {:.4f}", p.normal.x, p.normal.y, p.normal.z));
+    return lines;
 }
 
 }  // namespace quadrix::viewer

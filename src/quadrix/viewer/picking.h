@@ -6,10 +6,12 @@
 // p_world = worldFromDevice (x+½, y+½, z, 1), divided by w (perspective is a projective map,
 // view_setup.h). The source position is that of the scene body whose id is the last component of
 // the flattened body's path ("part/holes[2]/bore" → bore), looked up in the top scope, then in the
-// definitions: a body path says which definition a copy came from, not which copy.
+// definitions: a body path says which definition a copy came from, not which copy. A freeform
+// surface (no body) gives its own statement's position, which the flat scene keeps.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
@@ -36,5 +38,8 @@ PickResult Pick(const Frame& frame, const FlatScene& flat, const scene::Scene* s
 // One line: "pick 120 80: solid part body part/bore half-space bore (file:3:1) point ... normal
 // ...", or "pick 120 80: background".
 std::string FormatPick(const PickResult& pick);
+// The same for the window's overlay, a line per item: what was hit (solid, body, half-space, or
+// the freeform surface), "at file:line:col", the point and the normal.
+std::vector<std::string> PickOverlayLines(const PickResult& pick);
 
 }  // namespace quadrix::viewer

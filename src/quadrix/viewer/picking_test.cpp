@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "quadrix/pipeline/render_context.h"
 
 namespace quadrix::viewer {
@@ -62,6 +64,54 @@ TEST(ViewerPicking, PointNormalAndNamesOfThePixel) {
         EXPECT_FALSE(Pick(frame, ctx.Flat(), nullptr, -1, 5).hit);
         EXPECT_FALSE(Pick(frame, ctx.Flat(), nullptr, 5, frame.height).hit);
     }
+}
+
+// A freeform surface has no body: its pick names it and gives its own statement's file:line:col
+// (FlatFreeform::loc), in the printed line and in the overlay's lines.
+TEST(ViewerPicking, FreeformSurfaceGivesItsStatementsLocation) {
+    RenderContext ctx(1);
+    InputRequest in;
+    in.text =
+        "quadric ball <1 1 1 0 0 0 2 0 0 3>;\n"  // a ball of radius 1 about (-2 0 0)
+        "body blob <ball>;\n"
+        "view v vrp 0 0 0 dop 0 0 -1 whh 4;\n"
+        "bezier sq 1 1 < 0 -1 0  2 -1 0  0 1 0  2 1 0 > =c 1 0 0;\n";
+    in.textName = "ff.uq";
+    Diagnostics diags;
+    ASSERT_TRUE(ctx.Read(in, diags));
+    ViewRequest req;
+    req.width = 80;
+    req.height = 80;
+    ASSERT_TRUE(ctx.Flatten(req, diags));
+    ASSERT_EQ(ctx.Flat().freeforms.size(), 1u);
+    Frame frame;
+    RenderReport report;
+    ASSERT_TRUE(ctx.Render(EngineRequest{}, frame, report, diags));
+    // The square covers x in [0, 2], the ball x in [-3, -1]: some pixels of each.
+    std::optional<PickResult> patch, ball;
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x) {
+            const PickResult p = Pick(frame, ctx.Flat(), &ctx.Scene(), x, y);
+            if (p.hit && p.freeform && !patch) patch = p;
+            if (p.hit && !p.freeform && !ball) ball = p;
+        }
+    ASSERT_TRUE(patch && ball);
+    EXPECT_EQ(patch->surfaceName, "sq");
+    EXPECT_EQ(patch->where, "ff.uq:4:1");
+    EXPECT_NEAR(patch->point.z, 0, 1e-6);
+    EXPECT_NE(FormatPick(*patch).find("freeform surface sq (ff.uq:4:1)"), std::string::npos)
+        << FormatPick(*patch);
+    const std::vector<std::string> lines = PickOverlayLines(*patch);
+    ASSERT_EQ(lines.size(), 4u);
+    EXPECT_EQ(lines[0], fmt::format("pick {} {}: freeform surface sq", patch->x, patch->y));
+    EXPECT_EQ(lines[1], "  at ff.uq:4:1");
+    EXPECT_EQ(lines[2].rfind("  point ", 0), 0u);
+    EXPECT_EQ(lines[3].rfind("  normal ", 0), 0u);
+    EXPECT_EQ(ball->where, "ff.uq:2:1");
+    EXPECT_EQ(ball->surfaceName, "ball");
+    EXPECT_NE(PickOverlayLines(*ball)[0].find("body blob  half-space ball"), std::string::npos);
+    EXPECT_EQ(PickOverlayLines(Pick(frame, ctx.Flat(), &ctx.Scene(), 1, 1)),
+              std::vector<std::string>{"pick 1 1: background"});
 }
 
 }  // namespace

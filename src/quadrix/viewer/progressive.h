@@ -49,6 +49,9 @@ class FrameScheduler {
                (shown_->antialiased || !antialias_);
     }
     bool InFlight() const { return inFlight_.has_value(); }
+    // A refining frame is being drawn (of this view or an older one): a pick or a reload that
+    // would wait for it cancels it (it is asked for again).
+    bool RefinementInFlight() const { return inFlight_ && inFlight_->refining; }
     // A refining frame of an older view is being drawn: worth cancelling.
     bool StaleRefinementInFlight() const {
         return inFlight_ && inFlight_->refining && inFlight_->generation != generation_;

@@ -7,6 +7,7 @@
 #include <future>
 #include <set>
 
+#include "quadrix/io/writers.h"
 #include "quadrix/pipeline/drawing_output.h"
 #include "quadrix/shade/section_hatch.h"
 #include "quadrix/viewer/edges.h"
@@ -48,7 +49,35 @@ std::vector<std::string> SourceFiles(const scene::Scene& scene) {
     return {files.begin(), files.end()};
 }
 
+double Since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 }  // namespace
+
+std::vector<std::uint32_t> DisplayPixels(const Image& image) {
+    const std::vector<std::uint8_t> srgb = EncodeSrgb8(image);
+    const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
+    std::vector<std::uint32_t> out(n);
+    if (image.channels == 3 && srgb.size() == 3 * n) {
+        for (std::size_t i = 0; i < n; ++i)
+            out[i] = std::uint32_t{srgb[3 * i]} << 16 | std::uint32_t{srgb[3 * i + 1]} << 8 |
+                     srgb[3 * i + 2];
+    } else if (srgb.size() == n) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = std::uint32_t{srgb[i]} * 0x010101u;
+    }
+    return out;
+}
+
+std::vector<std::uint8_t> RgbBytes(const std::vector<std::uint32_t>& pixels) {
+    std::vector<std::uint8_t> rgb(pixels.size() * 3);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        rgb[3 * i] = static_cast<std::uint8_t>(pixels[i] >> 16);
+        rgb[3 * i + 1] = static_cast<std::uint8_t>(pixels[i] >> 8);
+        rgb[3 * i + 2] = static_cast<std::uint8_t>(pixels[i]);
+    }
+    return rgb;
+}
 
 RenderWorker::RenderWorker(InputRequest input, int threads, std::function<void()> wake)
     : input_(std::move(input)), threads_(threads), wake_(std::move(wake)) {
@@ -62,6 +91,7 @@ RenderWorker::~RenderWorker() {
     }
     cv_.notify_all();
     thread_.join();
+    if (drawingThread_.joinable()) drawingThread_.join();
 }
 
 void RenderWorker::Loop() {
@@ -89,6 +119,7 @@ void RenderWorker::Loop() {
             std::lock_guard lock(mutex_);
             frameDone_ = std::move(outcome);
         }
+        cv_.notify_all();  // WaitFrame
         if (wake_) wake_();
     }
 }
@@ -122,8 +153,11 @@ LoadOutcome RenderWorker::ReadInto(std::unique_ptr<RenderContext>& ctx) {
     out.files = input_.paths;
     if (out.ok) {
         for (std::string& f : SourceFiles(fresh->Scene())) out.files.push_back(std::move(f));
+        auto snapshot = std::make_shared<const scene::Scene>(fresh->Scene());
         ctx = std::move(fresh);
-        frameView_.reset();  // frame_ is the old scene's: never shaded again
+        drawnView_.reset();  // drawn_ is the old scene's: never picked or shaded again
+        std::lock_guard lock(mutex_);
+        scene_ = std::move(snapshot);
     } else {
         // Watch the files of the errors as well: a new `read` may be the broken one.
         for (const Diagnostic& d : diags.Items())
@@ -177,6 +211,14 @@ std::optional<FrameOutcome> RenderWorker::TakeFrame() {
     return r;
 }
 
+FrameOutcome RenderWorker::WaitFrame() {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [&] { return frameDone_.has_value(); });
+    FrameOutcome r = std::move(*frameDone_);
+    frameDone_.reset();
+    return r;
+}
+
 FrameOutcome RenderWorker::RenderNow(const FrameJob& job) {
     FrameOutcome out;
     Call([&] { out = Draw(job); });
@@ -202,13 +244,16 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
     engine.engine = job.engine;
     Diagnostics diags;
     RenderReport report;
-    // The anti-aliased stage of the Frame already drawn shades it again; anything else renders.
-    const bool reuse = job.request.antialiased && frameView_ && SameView(*frameView_, view) &&
-                       frameEngine_ == job.engine && frame_.width == view.width &&
-                       frame_.height == view.height;
-    if (!ctx_->Flatten(view, diags) || (!reuse && !ctx_->Render(engine, frame_, report, diags)) ||
+    // The anti-aliased stage of the Frame delivered last shades it again; anything else renders
+    // into the scratch Frame, which replaces it only once whole.
+    const bool reuse = job.request.antialiased && drawnView_ && SameView(*drawnView_, view) &&
+                       drawnEngine_ == job.engine && drawn_.width == view.width &&
+                       drawn_.height == view.height;
+    const bool flattened = ctx_->Flatten(view, diags);
+    out.flattenSeconds = Since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (!flattened || (!reuse && !ctx_->Render(engine, frame_, report, diags)) ||
         diags.HasErrors()) {
-        frameView_.reset();  // frame_ may be partial
         if (report.cancelled) {
             out.cancelled = true;
             return out;
@@ -217,50 +262,95 @@ FrameOutcome RenderWorker::Draw(const FrameJob& job) {
         if (out.error.empty()) out.error = "the frame could not be drawn";
         return out;
     }
-    frameView_ = view;
-    frameEngine_ = job.engine;
-    frameScale_ = s;
+    out.renderSeconds = Since(t1);
+    const auto t2 = std::chrono::steady_clock::now();
+    Frame& frame = reuse ? drawn_ : frame_;
     ShadeOptions so;
     if (job.request.antialiased) so.aaSamples = job.aaSamples;
     // A reduced frame keeps the world spacing of the full one (the same lines, while moving),
     // down to 3 of its pixels.
     so.hatch = job.hatch && job.section.has_value();
     so.hatchSpacing = std::max(kHatchSpacingPixels / s, 3.0);
-    out.image = ctx_->Shade(frame_, so);
+    out.image = ctx_->Shade(frame, so);
     if (cancel_.Cancelled()) {  // the anti-aliasing pass was stopped: a partial image
         out.image = Image{};
         out.cancelled = true;
         return out;
     }
-    if (job.edges) DrawEdges(frame_, out.image);
+    if (job.edges) DrawEdges(frame, out.image);
+    out.shadeSeconds = Since(t2);
+    if (!reuse) {
+        std::swap(frame_, drawn_);
+        drawnView_ = view;
+        drawnEngine_ = job.engine;
+        drawnScale_ = s;
+    }
+    if (job.display) {
+        const auto t3 = std::chrono::steady_clock::now();
+        ctx_->InArena([&] { out.display = DisplayPixels(out.image); });
+        out.encodeSeconds = Since(t3);
+    }
     out.notes = report.notes;
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.seconds = Since(t0);
     return out;
 }
 
-DrawingOutcome RenderWorker::WriteDrawing(const std::string& path, const scene::View& view,
-                                          int width, int height,
-                                          const std::optional<Plane>& section,
-                                          const std::string& title) {
-    DrawingOutcome out;
-    Call([&] {
-        if (!ctx_) {
+bool RenderWorker::StartDrawing(const std::string& path, const scene::View& view, int width,
+                                int height, const std::optional<Plane>& section,
+                                const std::string& title) {
+    std::shared_ptr<const scene::Scene> scene;
+    {
+        std::lock_guard lock(mutex_);
+        if (drawingBusy_) return false;
+        drawingBusy_ = true;
+        scene = scene_;
+    }
+    if (drawingThread_.joinable()) drawingThread_.join();  // the previous one, finished
+    DrawingRequest request;
+    request.view.width = width;
+    request.view.height = height;
+    request.view.view = view;
+    request.view.section = section;
+    request.allowMissing = input_.allowMissing;
+    request.title = title;
+    drawingThread_ = std::thread([this, scene, request, path] {
+        const auto t0 = std::chrono::steady_clock::now();
+        DrawingOutcome out;
+        out.path = path;
+        if (!scene) {
             out.messages = out.first = "quadrix: error: no scene has been read\n";
-            return;
+        } else {
+            // A context of its own on a copy of the scene: the render thread's context is
+            // drawing frames meanwhile.
+            RenderContext context(threads_);
+            context.Scene() = *scene;
+            context.SceneChanged();
+            Diagnostics diags;
+            out.ok = WriteDrawingFile(context, request, path, diags);
+            out.messages = Printed(diags);
+            if (!diags.Items().empty()) out.first = diags.Items().front().Format(false);
         }
-        DrawingRequest request;
-        request.view.width = width;
-        request.view.height = height;
-        request.view.view = view;
-        request.view.section = section;
-        request.allowMissing = input_.allowMissing;
-        request.title = title;
-        Diagnostics diags;
-        out.ok = WriteDrawingFile(*ctx_, request, path, diags);
-        out.messages = Printed(diags);
-        if (!diags.Items().empty()) out.first = diags.Items().front().Format(false);
+        out.seconds = Since(t0);
+        {
+            std::lock_guard lock(mutex_);
+            drawingDone_ = std::move(out);
+            drawingBusy_ = false;
+        }
+        if (wake_) wake_();
     });
-    return out;
+    return true;
+}
+
+std::optional<DrawingOutcome> RenderWorker::TakeDrawing() {
+    std::lock_guard lock(mutex_);
+    auto r = std::move(drawingDone_);
+    drawingDone_.reset();
+    return r;
+}
+
+bool RenderWorker::DrawingInProgress() {
+    std::lock_guard lock(mutex_);
+    return drawingBusy_;
 }
 
 std::size_t RenderWorker::BodyCount() {
@@ -317,30 +407,54 @@ std::string RenderWorker::InitialCamera(const std::string& viewName, int width, 
     return error;
 }
 
+PickOutcome RenderWorker::DoPick(int x, int y) {
+    PickOutcome out;
+    Diagnostics diags;
+    // The flat scene of the frame delivered (a cancelled frame may have flattened another view
+    // since; the context keeps the last one, so this is free when nothing else was flattened).
+    if (ctx_ && drawnView_ && ctx_->Flatten(*drawnView_, diags)) {
+        out.drawn = true;
+        out.pick = Pick(drawn_, ctx_->Flat(), &ctx_->Scene(), x / drawnScale_, y / drawnScale_);
+    }
+    out.pick.x = x;
+    out.pick.y = y;
+    return out;
+}
+
+void RenderWorker::RequestPick(int x, int y, int tag) {
+    {
+        std::lock_guard lock(mutex_);
+        calls_.push_back([this, x, y, tag] {
+            PickOutcome out = DoPick(x, y);
+            out.tag = tag;
+            {
+                std::lock_guard inner(mutex_);
+                picksDone_.push_back(std::move(out));
+            }
+            if (wake_) wake_();
+        });
+    }
+    cv_.notify_all();
+}
+
+std::optional<PickOutcome> RenderWorker::TakePick() {
+    std::lock_guard lock(mutex_);
+    if (picksDone_.empty()) return std::nullopt;
+    PickOutcome r = std::move(picksDone_.front());
+    picksDone_.pop_front();
+    return r;
+}
+
 PickResult RenderWorker::PickAt(int x, int y) {
     PickResult p;
-    Call([&] {
-        if (ctx_ && frame_.width > 0)
-            p = Pick(frame_, ctx_->Flat(), &ctx_->Scene(), x / frameScale_, y / frameScale_);
-        p.x = x;
-        p.y = y;
-    });
+    Call([&] { p = DoPick(x, y).pick; });
     return p;
 }
 
 std::string RenderWorker::PickText(int x, int y) {
-    std::string text;
-    Call([&] {
-        if (!ctx_ || frame_.width == 0) {
-            text = "pick: nothing drawn yet";
-            return;
-        }
-        PickResult p = Pick(frame_, ctx_->Flat(), &ctx_->Scene(), x / frameScale_, y / frameScale_);
-        p.x = x;
-        p.y = y;
-        text = FormatPick(p);
-    });
-    return text;
+    PickOutcome out;
+    Call([&] { out = DoPick(x, y); });
+    return out.drawn ? FormatPick(out.pick) : "pick: nothing drawn yet";
 }
 
 }  // namespace quadrix::viewer

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <thread>
 
+#include "quadrix/io/writers.h"
 #include "test_util.h"
 
 namespace quadrix::viewer {
@@ -79,6 +80,72 @@ TEST(ViewerRenderWorker, FramesReloadAndKeepingTheLastGoodScene) {
     const FrameOutcome changed = worker.RenderNow(job);
     ASSERT_EQ(changed.error, "");
     EXPECT_NE(changed.image.pixels, full.image.pixels);
+}
+
+// Picks and drawings are asked for and polled, never waited for: a pick answers about the frame
+// delivered last, even when the frame after it was cancelled halfway (the Frame is
+// double-buffered), and a drawing is written on a thread of its own while frames go on.
+TEST(ViewerRenderWorker, AsynchronousPicksAndDrawings) {
+    testing::TempDir dir;
+    const std::string top =
+        dir.Write("top.uq", "quadric ball <1 1 1 0 0 0 0 0 0 -4>;\nbody blob <ball>;\n");
+    InputRequest in;
+    in.paths = {top};
+    RenderWorker worker(in, 1);
+    ASSERT_TRUE(worker.Load().ok);
+    Camera cam;
+    SceneSphere sphere;
+    ASSERT_EQ(worker.InitialCamera("", 80, 60, cam, sphere), "");
+    // Nothing delivered yet: the pick says so.
+    worker.RequestPick(40, 30, 3);
+    auto none = WaitFor([&] { return worker.TakePick(); });
+    ASSERT_TRUE(none);
+    EXPECT_FALSE(none->drawn);
+    EXPECT_EQ(none->tag, 3);
+    FrameJob job;
+    job.view = cam.ToView();
+    job.width = 80;
+    job.height = 60;
+    job.display = true;
+    const FrameOutcome full = worker.RenderNow(job);
+    ASSERT_EQ(full.error, "");
+    EXPECT_EQ(full.display, DisplayPixels(full.image));  // encoded on the render thread
+    // 0x00RRGGBB words of the PNG writer's sRGB bytes.
+    std::vector<std::uint8_t> rgb = EncodeSrgb8(full.image);
+    if (full.image.channels == 1) {
+        std::vector<std::uint8_t> grey = rgb;
+        rgb.clear();
+        for (std::uint8_t v : grey) rgb.insert(rgb.end(), {v, v, v});
+    }
+    EXPECT_EQ(RgbBytes(full.display), rgb);
+    worker.RequestPick(40, 30, 7);
+    auto p = WaitFor([&] { return worker.TakePick(); });
+    ASSERT_TRUE(p);
+    EXPECT_TRUE(p->drawn);
+    EXPECT_EQ(p->tag, 7);
+    EXPECT_TRUE(p->pick.hit);
+    EXPECT_EQ(p->pick.bodyName, "blob");
+    // A frame panned so that the ball leaves the centre, cancelled at once: whether it was
+    // abandoned or finished, the pick answers about the frame delivered last.
+    Camera moved = cam;
+    moved.Pan(60, 0, 60);
+    job.view = moved.ToView();
+    worker.Submit(job);
+    worker.CancelFrame();
+    auto next = WaitFor([&] { return worker.TakeFrame(); });
+    ASSERT_TRUE(next);
+    worker.RequestPick(40, 30, 8);
+    auto q = WaitFor([&] { return worker.TakePick(); });
+    ASSERT_TRUE(q);
+    EXPECT_EQ(q->pick.hit, next->cancelled) << "the pick is not of the frame delivered last";
+    // The drawing, on its own thread.
+    ASSERT_TRUE(worker.StartDrawing(dir.File("a.svg"), cam.ToView(), 80, 60, std::nullopt, "t"));
+    auto d = WaitFor([&] { return worker.TakeDrawing(); });
+    ASSERT_TRUE(d);
+    EXPECT_TRUE(d->ok) << d->messages;
+    EXPECT_EQ(d->path, dir.File("a.svg"));
+    EXPECT_TRUE(testing::FileExists(dir.File("a.svg")));
+    EXPECT_FALSE(worker.DrawingInProgress());
 }
 
 }  // namespace

@@ -119,6 +119,7 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
         {"pan", {Kind::kPan, 2, 1, 0}},
         {"zoom", {Kind::kZoom, 1, 2, 0}},
         {"click", {Kind::kClick, 2, 0, 0}},
+        {"click-now", {Kind::kClickNow, 2, 0, 0}},
         {"key", {Kind::kKey, 0, 0, 1}},
         {"engine", {Kind::kEngine, 0, 0, 1}},
         {"wait", {Kind::kWait, 0, 0, 0}},
@@ -149,7 +150,7 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
         if (it == kSyntax.end()) {
             diags.Error(
                 at(words[0].column),
-                fmt::format("unknown script event '{}' (orbit, pan, zoom, click, key, "
+                fmt::format("unknown script event '{}' (orbit, pan, zoom, click, click-now, key, "
                             "engine, wait, screenshot, screenshot-window, section-drag, drawing, "
                             "print-view, sleep, wait-reload, quit)",
                             words[0].text),
@@ -235,6 +236,7 @@ std::optional<std::vector<ScriptEvent>> ParseScript(std::string_view text, const
                 ev.y = v.size() > 2 ? v[2] : std::nan("");
                 break;
             case Kind::kClick:
+            case Kind::kClickNow:
                 ev.x = v[0];
                 ev.y = v[1];
                 break;

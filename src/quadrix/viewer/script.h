@@ -16,7 +16,10 @@
 //                         motion events (default 1)
 //   pan DX DY [STEPS]     the same with the right button
 //   zoom CLICKS [X Y]     mouse-wheel clicks (> 0 zooms in) at (X, Y), default the centre
-//   click X Y             a left click without motion: a pick
+//   click X Y             wait, then a left click without motion: a pick (the script goes on
+//                         once it is answered)
+//   click-now X Y         the same without waiting for the full-resolution frame (a pick while
+//                         a frame is being drawn)
 //   key NAME              a key press, e.g. `key 5`, `key P`, `key Escape`
 //   engine NAME           switch to a registered engine (or `next`)
 //   wait                  until the full-resolution frame of the current view is shown
@@ -82,6 +85,7 @@ struct ScriptEvent {
         kPan,
         kZoom,
         kClick,
+        kClickNow,
         kKey,
         kEngine,
         kWait,
