@@ -71,7 +71,13 @@ Surfaces ClassifySurfaces(const FlatScene& scene, const Box3& sceneBox) {
     s.rep.assign(n, -1);
     s.box.assign(n, Box3{});
     s.opaque.assign(n, false);
-    std::map<std::pair<bool, std::array<double, 10>>, int> byKey;
+    // Representatives by a cell of the sum of their normalised coefficients (planes and
+    // quadrics apart); a half-space is matched against the representatives of its cell and the
+    // two neighbouring ones, coefficient by coefficient within kSame. (Rounding the
+    // coefficients to a grid would split equal surfaces whose values straddle a grid line.)
+    constexpr double kSame = 1e-9, kCell = 1e-6;
+    std::map<std::pair<bool, long long>, std::vector<int>> byCell;
+    std::vector<std::array<double, 10>> keys(n);
     std::vector<Box3> own(n);
     for (const FlatBody& b : scene.bodies)
         for (const FlatLiteral& l : b.literals)
@@ -83,11 +89,29 @@ Surfaces ClassifySurfaces(const FlatScene& scene, const Box3& sceneBox) {
         auto key = Normalised(h, ok);
         if (!ok || own[i].Empty()) continue;
         if (!h.isPlane && h.quadric.IsDegenerateToLinear()) continue;  // rare; not drawn
-        // Round away the last bits so that equal surfaces written differently still match.
-        for (double& v : key) v = std::round(v * 1e12) / 1e12 + 0.0;
-        auto [it, fresh] = byKey.emplace(std::make_pair(h.isPlane, key), static_cast<int>(i));
-        const int r = it->second;
-        if (fresh) s.reps.push_back(r);
+        keys[i] = key;
+        double sum = 0;
+        for (double v : key) sum += v;
+        const long long cell = static_cast<long long>(std::floor(sum / kCell));
+        int r = -1;
+        for (long long c = cell - 1; c <= cell + 1 && r < 0; ++c) {
+            auto it = byCell.find({h.isPlane, c});
+            if (it == byCell.end()) continue;
+            for (int cand : it->second) {
+                bool same = true;
+                for (std::size_t k = 0; k < key.size() && same; ++k)
+                    same = std::fabs(keys[static_cast<std::size_t>(cand)][k] - key[k]) <= kSame;
+                if (same) {
+                    r = cand;
+                    break;
+                }
+            }
+        }
+        if (r < 0) {
+            r = static_cast<int>(i);
+            byCell[{h.isPlane, cell}].push_back(r);
+            s.reps.push_back(r);
+        }
         s.rep[i] = r;
         s.box[static_cast<std::size_t>(r)].Extend(own[i]);
         if (!h.transparent && !h.isClip) s.opaque[static_cast<std::size_t>(r)] = true;

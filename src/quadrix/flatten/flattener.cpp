@@ -61,10 +61,10 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view) {
 
 class FlattenerImpl {
   public:
-    // `world` is the kept world stage (copied from), or `ownWorld` one to consume (moved from).
+    // `world`: the kept world stage (FlattenView), or null for a one-shot Flatten.
     FlattenerImpl(const scene::Scene& scene, const FlattenOptions& options, Diagnostics& diags,
-                  const WorldScene* world, WorldScene* ownWorld)
-        : scene_(scene), options_(options), diags_(diags), world_(world), ownWorld_(ownWorld) {}
+                  const WorldScene* world)
+        : scene_(scene), options_(options), diags_(diags), world_(world) {}
 
     std::optional<FlatScene> Run() {
         if (!CheckOptions()) return std::nullopt;
@@ -119,7 +119,16 @@ class FlattenerImpl {
             flat.halfSpaces.push_back(std::move(h));
         }
         const int nClip = static_cast<int>(flat.halfSpaces.size());
-        if (!PlaceWorld(nClip)) return std::nullopt;
+        if (world_) {
+            if (!PlaceWorld(nClip)) return std::nullopt;
+        } else {
+            // One-shot: the walk maps every half-space straight into provisional space (one
+            // composed transform per half-space, the fewest roundings).
+            HierarchyLimits limits;
+            limits.clipLiteralsPerBody = nClip;
+            if (!FlattenHierarchy(scene_, view_.provFromWorld, limits, flat, hierarchy_, diags_))
+                return std::nullopt;
+        }
         if (flat.solids.empty() && flat.freeforms.empty()) {
             diags_.Error({},
                          "nothing to draw: the scene has no body, instance or csg solid "
@@ -163,21 +172,12 @@ class FlattenerImpl {
     // and rescales from object to world space), every literal shifted by nClip. false with an
     // error when a half-space's coefficients overflow under the view.
     bool PlaceWorld(int nClip) {
-        if (!world_ && !ownWorld_) {  // one-shot: the world stage here, where its errors belong
-            std::optional<WorldScene> made = FlattenWorld(scene_, diags_);
-            if (!made) return false;
-            madeWorld_ = std::move(*made);
-            ownWorld_ = &madeWorld_;
-        }
         FlatScene& flat = flat_;
-        const bool own = ownWorld_ != nullptr;
-        const WorldScene& world = own ? *ownWorld_ : *world_;
-        FlatScene& ownFlat = own ? ownWorld_->flat : flat;  // only used when own
+        const WorldScene& world = *world_;
         const std::size_t nWorld = world.flat.halfSpaces.size();
         flat.halfSpaces.reserve(nClip + nWorld);
         for (std::size_t i = 0; i < nWorld; ++i) {
-            flat.halfSpaces.push_back(own ? std::move(ownFlat.halfSpaces[i])
-                                          : world.flat.halfSpaces[i]);
+            flat.halfSpaces.push_back(world.flat.halfSpaces[i]);
             FlatHalfSpace& h = flat.halfSpaces.back();
             bool finite;
             if (h.IsQuartic()) {
@@ -202,20 +202,12 @@ class FlattenerImpl {
                 return false;
             }
         }
-        if (own) {
-            flat.bodies = std::move(ownFlat.bodies);
-            flat.nodes = std::move(ownFlat.nodes);
-            flat.solids = std::move(ownFlat.solids);
-            flat.freeforms = std::move(ownFlat.freeforms);
-            hierarchy_ = std::move(ownWorld_->hierarchy);
-        } else {
-            flat.bodies = world.flat.bodies;
-            flat.nodes = world.flat.nodes;
-            flat.solids = world.flat.solids;
-            flat.freeforms = world.flat.freeforms;
-            hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
-            hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
-        }
+        flat.bodies = world.flat.bodies;
+        flat.nodes = world.flat.nodes;
+        flat.solids = world.flat.solids;
+        flat.freeforms = world.flat.freeforms;
+        hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
+        hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
         if (nClip > 0)
             for (FlatBody& b : flat.bodies)
                 for (FlatLiteral& l : b.literals) l.halfSpace += nClip;
@@ -762,8 +754,6 @@ class FlattenerImpl {
     const FlattenOptions& options_;
     Diagnostics& diags_;
     const WorldScene* world_;
-    WorldScene* ownWorld_;
-    WorldScene madeWorld_;  // the world stage of a one-shot Flatten
     ViewSetup view_;
     // The planes cutting every body (view_.finalClips, then the section plane), provisional space.
     std::vector<Plane> finalPlanes_;
@@ -787,12 +777,12 @@ std::optional<WorldScene> FlattenWorld(const scene::Scene& scene, Diagnostics& d
 
 std::optional<FlatScene> FlattenView(const scene::Scene& scene, const WorldScene& world,
                                      const FlattenOptions& options, Diagnostics& diags) {
-    return FlattenerImpl(scene, options, diags, &world, nullptr).Run();
+    return FlattenerImpl(scene, options, diags, &world).Run();
 }
 
 std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,
                                  Diagnostics& diags) {
-    return FlattenerImpl(scene, options, diags, nullptr, nullptr).Run();
+    return FlattenerImpl(scene, options, diags, nullptr).Run();
 }
 
 }  // namespace quadrix

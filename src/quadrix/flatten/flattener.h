@@ -56,8 +56,8 @@ struct FlattenOptions {
 };
 inline constexpr const char* kSectionName = "<section>";
 
-// nullopt (with errors in diags) when the scene cannot be flattened. The same as FlattenView of
-// FlattenWorld: one-shot callers need not keep the world stage.
+// nullopt (with errors in diags) when the scene cannot be flattened. One-shot: the walk maps each
+// half-space from its object space into the view with one composed transform.
 std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,
                                  Diagnostics& diags);
 
@@ -70,9 +70,12 @@ std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions
 //   FlattenView   steps 2-6 on a kept WorldScene: each half-space mapped once more by the view's
 //                 provisional map (and rescaled), the clip and section planes put in front, the
 //                 bounds, the window fit, the device map and the culling.
-// Flatten(scene, options) is exactly FlattenView(scene, FlattenWorld(scene), options): the two
-// roads give the same bits. The literal guard (HierarchyLimits::maxLiterals) is applied in the
-// world stage with the most clip literals any view appends (kMostClipLiteralsPerBody).
+// FlattenView(FlattenWorld) gives the same solids, bodies, ids and names as Flatten; a half-space
+// of an instance is mapped twice (object → world, world → view) instead of once, so its
+// coefficients can differ in the last bits (a half-space of the top scope is mapped by the
+// identity first: bit for bit the same). The literal guard (HierarchyLimits::maxLiterals) is
+// applied in the world stage with the most clip literals any view appends
+// (kMostClipLiteralsPerBody).
 struct WorldScene {
     // halfSpaces, bodies (literals index halfSpaces; bounds unset), nodes, solids and freeforms.
     FlatScene flat;

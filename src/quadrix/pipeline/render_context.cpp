@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "quadrix/engines/engine_limit.h"
@@ -131,7 +132,7 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     const auto t0 = std::chrono::steady_clock::now();
     scene_ = scene::Scene{};
     inputs_ = InputReport{};
-    flatValid_ = worldValid_ = false;
+    flatValid_ = worldValid_ = flattenedOnce_ = false;
     if (request.paths.empty()) {
         lang::ReadOptions ro;
         ro.clock = request.clock;
@@ -154,14 +155,18 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
 }
 
 bool RenderContext::ReadAtClock(double clock, Diagnostics& diags) {
-    const bool cameraOnly = worldValid_ && !inputs_.clockOutsideViews;
+    const bool cameraOnly = (worldValid_ || flattenedOnce_) && !inputs_.clockOutsideViews;
+    const bool hadWorld = worldValid_;
     InputRequest request = lastInput_;
     request.clock = clock;
     const int errorsBefore = diags.ErrorCount();
     if (!Read(request, diags) || diags.ErrorCount() != errorsBefore) return false;
     // The geometry read at this clock is the kept one when neither reading used the clock
     // outside views (Read invalidated it; world_ still holds it).
-    if (cameraOnly && !inputs_.clockOutsideViews) worldValid_ = true;
+    if (cameraOnly && !inputs_.clockOutsideViews) {
+        worldValid_ = hadWorld;
+        flattenedOnce_ = true;  // the next view builds the world stage (or reuses it)
+    }
     return true;
 }
 
@@ -201,17 +206,24 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     fo.section = view.section;
     const int errorsBefore = diags.ErrorCount();
     lastReusedWorld_ = worldValid_;
-    if (!worldValid_) {
-        std::optional<WorldScene> world = FlattenWorld(scene_, diags);
+    std::optional<FlatScene> flat;
+    if (!worldValid_ && !flattenedOnce_) {
+        flat = quadrix::Flatten(scene_, fo, diags);  // the first view: in one go
         ++worldFlattens;
-        if (!world || diags.ErrorCount() != errorsBefore) {
-            flattenSeconds = SecondsSince(t0);
-            return false;
+        flattenedOnce_ = true;
+    } else {
+        if (!worldValid_) {
+            std::optional<WorldScene> world = FlattenWorld(scene_, diags);
+            ++worldFlattens;
+            if (!world || diags.ErrorCount() != errorsBefore) {
+                flattenSeconds = SecondsSince(t0);
+                return false;
+            }
+            world_ = std::move(*world);
+            worldValid_ = true;
         }
-        world_ = std::move(*world);
-        worldValid_ = true;
+        flat = FlattenView(scene_, world_, fo, diags);
     }
-    auto flat = FlattenView(scene_, world_, fo, diags);
     flattenSeconds = SecondsSince(t0);
     if (!flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);
@@ -264,8 +276,19 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, const Engin
     } else {
         const FlatScene sub = SubsetOfSolids(flat_, solids);
         reference->Render(sub, ro, other);
-        for (auto& s : other.solid)
-            if (s != Frame::kNone) s = solids[static_cast<std::size_t>(s)];
+        // Solid ids of the subset back to the flat scene's; with regionOnly the pixels outside
+        // the region are unspecified and are not read.
+        auto remap = [&](int x0, int y0, int x1, int y1) {
+            for (int y = std::max(y0, 0); y < std::min(y1, other.height); ++y)
+                for (int x = std::max(x0, 0); x < std::min(x1, other.width); ++x) {
+                    auto& s = other.solid[other.Index(x, y)];
+                    if (s != Frame::kNone) s = solids[static_cast<std::size_t>(s)];
+                }
+        };
+        if (request.region && request.regionOnly)
+            for (const PixelRect& r : request.region->rects) remap(r.x0, r.y0, r.x1, r.y1);
+        else
+            remap(0, 0, other.width, other.height);
     }
     ComposeMinOf(frame, other, request);
 }

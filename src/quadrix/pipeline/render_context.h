@@ -9,9 +9,11 @@
 //                swapped into the scene). The flat scene is kept: asking again for the same view,
 //                size and lights costs nothing, so re-rendering (another engine, the viewer's next
 //                frame of a still view) does not flatten again. The world stage (flattener.h:
-//                the hierarchy walk into world space) is kept too: another view, size, light or
-//                section runs only the view stage (projection, bounds, window fit); a scene
-//                change (Read, SceneChanged) runs both again.
+//                the hierarchy walk into world space) is made when a second view of the scene
+//                is asked for, and kept: every later view, size, light or section runs only the
+//                view stage (projection, bounds, window fit); a scene change (Read,
+//                SceneChanged) starts again. (The first view is flattened in one go, so a
+//                one-shot render pays nothing for the cache and keeps the fewest roundings.)
 //   3. Render    the requested engine (a registry row, engines/registry.h) draws what it can into
 //                the Frame; what it cannot — solids it reports undrawn, or all solids for an
 //                engine without that capability — the reference engine (raycast) draws into a
@@ -151,7 +153,7 @@ class RenderContext {
     // SceneChanged() after changing it so that the next Flatten does not reuse a stale result.
     scene::Scene& Scene() { return scene_; }
     const scene::Scene& Scene() const { return scene_; }
-    void SceneChanged() { flatValid_ = worldValid_ = false; }
+    void SceneChanged() { flatValid_ = worldValid_ = flattenedOnce_ = false; }
     const InputReport& Inputs() const { return inputs_; }
 
     // Stage 2. false with errors in diags. Reuses the kept flat scene when nothing changed.
@@ -162,7 +164,9 @@ class RenderContext {
     // Whether the last Flatten call that flattened reused the kept world stage (flattener.h:
     // FlattenWorld), i.e. redid only what the view change invalidates.
     bool LastFlattenReusedWorld() const { return lastReusedWorld_; }
-    // Times the world stage was run since construction (tests, batch summaries).
+    // Times the geometry was flattened since construction (tests, batch summaries): the first
+    // view of a scene is flattened in one go (flattener.h Flatten); a second view builds the
+    // world stage, which every later view reuses.
     int worldFlattens = 0;
 
     // Stage 3 on the last flattened scene. false with errors in diags (unknown engine, bad
@@ -216,6 +220,7 @@ class RenderContext {
     bool flatValid_ = false, lastReused_ = false;
     WorldScene world_;  // the kept world stage, valid with worldValid_
     bool worldValid_ = false, lastReusedWorld_ = false;
+    bool flattenedOnce_ = false;  // the scene was flattened for one view (one-shot)
     // The request the kept flat scene was made for (lights and view as given).
     std::optional<ViewRequest> flatFor_;
     std::string flatViewName_;
