@@ -407,7 +407,9 @@ std::vector<FileSample> SampleFile(const testing::SvgDrawing& svg, double spacin
             lines.emplace_back(&s, std::move(pl));
         }
     }
-    for (const auto& [shape, pts] : lines) {
+    for (const auto& line : lines) {
+        const auto& shape = line.first;  // (clang 14: no lambda capture of a structured binding)
+        const auto& pts = line.second;
         auto add = [&](double x, double y) {
             FileSample q;
             q.x = x;
