@@ -4,6 +4,8 @@
 
 #include <string_view>
 
+#include "quadrix/flatten/blank_quartics.h"
+
 namespace quadrix::draw {
 
 namespace {
@@ -143,13 +145,7 @@ FlatScene DrawableSubset(const FlatScene& scene) {
             sub.bodies[b].literals.clear();
             sub.bodies[b].bounds = Box3{};
         }
-    for (FlatHalfSpace& h : sub.halfSpaces) {
-        if (!h.IsQuartic()) continue;
-        h.quartic.reset();
-        h.isPlane = true;
-        h.plane = Plane{0, 0, 0, 1};
-        h.transparent = true;
-    }
+    BlankQuarticHalfSpaces(sub);
     return sub;
 }
 

@@ -9,6 +9,7 @@
 #include "quadrix/engines/engine_limit.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
 #include "quadrix/engines/registry.h"
+#include "quadrix/flatten/blank_quartics.h"
 #include "quadrix/frame/image_limits.h"
 #include "quadrix/lang/reader.h"
 #include "quadrix/shade/antialias.h"
@@ -91,13 +92,7 @@ int FirstQuarticOf(const FlatScene& flat, int s) {
 FlatScene WithoutQuartics(const FlatScene& flat, const std::vector<int>& solids) {
     FlatScene sub = SubsetOfSolids(flat, solids);
     sub.freeforms = flat.freeforms;
-    for (FlatHalfSpace& h : sub.halfSpaces) {
-        if (!h.IsQuartic()) continue;
-        h.quartic.reset();
-        h.isPlane = true;
-        h.plane = Plane{0, 0, 0, 1};
-        h.transparent = true;
-    }
+    BlankQuarticHalfSpaces(sub);
     return sub;
 }
 
