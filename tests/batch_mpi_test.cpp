@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "quadrix/util/sanitizers.h"
 #include "test_util.h"
@@ -147,6 +149,81 @@ TEST(BatchCommand, AnimationFramesGetThePictureDefaults) {
             << plain;
     }
     EXPECT_NE(Bytes(dir.File("dstill.png")), Bytes(dir.File("pstill.png")));
+}
+
+// An animated camera (`clock` in the view alone): the scene is read once, only its view statement
+// again per frame (the summary says "scene read 1 time"); the last frame is the one a run of that
+// frame alone gives, which reads the whole scene at its clock. Each frame's line and the summary
+// give the stages' times.
+TEST(BatchCommand, CameraAnimationReadsTheSceneOnceAndTimesItsStages) {
+    TempDir dir;
+    const std::string scene =
+        dir.Write("cam.uq",
+                  "solid box cube =from -1 -1 -1 =to 1 1 1 =c .3 .6 .9;\n"
+                  "solid sphere ball =at 1 1 1 =r .6 =c .9 .5 .2;\n"
+                  "view cam vrp 0 0 0\n  dop (2 * clock - 1) .4 -1 whw (3 + clock);\n");
+    const std::string base =
+        QuadrixBinary() + " render '" + scene + "' --size 40x32 --threads 1 --frames 3 -o '";
+    auto all = RunShell(base + dir.File("all.png") + "'");
+    ASSERT_EQ(all.exitCode, 0) << all.err;
+    EXPECT_NE(all.err.find("scene read 1 time,"), std::string::npos) << all.err;
+    for (const char* key : {"\"read_s\":", "\"flatten_s\":", "\"render_s\":", "\"shade_s\":",
+                            "\"write_s\":", "(stages, mean: read "})
+        EXPECT_NE(all.err.find(key), std::string::npos) << key << "\n" << all.err;
+    auto last = RunShell(base + dir.File("last.png") + "' --frame-range 2:2");
+    ASSERT_EQ(last.exitCode, 0) << last.err;
+    EXPECT_EQ(Bytes(dir.File("all_0002.png")), Bytes(dir.File("last_0002.png")));
+    EXPECT_NE(Bytes(dir.File("all_0000.png")), Bytes(dir.File("all_0002.png")));
+}
+
+// A light-less scene (a BRL-CAD sample) gets rt's lights for an rt view, its eye light along
+// that view: each frame of a view list of rt views (rt's `ae`, and eye_pt/viewrot) must be the
+// picture of a separate `quadrix render` of that view alone, not lit along the first view.
+TEST(BatchCommand, EachRtViewOfAListIsLitLikeItsOwnRender) {
+    const std::string sample = "/work/shared/data/brlcad/operators.asc";
+    if (!FileExists(sample)) GTEST_SKIP() << "the shared BRL-CAD samples are not installed";
+    TempDir dir;
+    const std::vector<std::vector<std::string>> lists = {
+        {"ae 35 25;", "ae 200 -40;"},
+        {"viewsize 6000; eye_pt 0 0 5000; viewrot 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1;",
+         "viewsize 6000; eye_pt 5000 0 0; viewrot 0 1 0 0 0 0 1 0 1 0 0 0 0 0 0 1;"}};
+    for (std::size_t l = 0; l < lists.size(); ++l) {
+        std::string text;
+        for (std::size_t k = 0; k < lists[l].size(); ++k)
+            text += fmt::format("start {};\n{}\nend;\n", k, lists[l][k]);
+        const std::string tag = "l" + std::to_string(l);
+        const std::string views = dir.Write(tag + ".rt", text);
+        const std::string base =
+            QuadrixBinary() + " render '" + sample + "' --size 48x40 --threads 1 -o '";
+        auto r = RunShell(base + dir.File(tag + ".png") + "' --views '" + views + "'");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        for (std::size_t k = 0; k < lists[l].size(); ++k) {
+            const std::string one = dir.Write(tag + "_" + std::to_string(k) + ".rt", lists[l][k]);
+            const std::string alone = dir.File(tag + "_alone" + std::to_string(k) + ".png");
+            auto a = RunShell(base + alone + "' --rt-view '" + one + "'");
+            ASSERT_EQ(a.exitCode, 0) << a.err;
+            const std::string frame = dir.File(fmt::format("{}_{:04d}.png", tag, k));
+            EXPECT_EQ(Bytes(frame), Bytes(alone)) << lists[l][k];
+        }
+        EXPECT_NE(Bytes(dir.File(tag + "_0000.png")), Bytes(dir.File(tag + "_0001.png")));
+    }
+}
+
+// The same for a turntable of a light-less scene: its last frame, rendered after the others in
+// one run, is the frame rendered alone (nothing of frame 0's lighting is kept).
+TEST(BatchCommand, TurntableFramesOfALightlessSceneAreThoseRenderedAlone) {
+    const std::string sample = "/work/shared/data/brlcad/operators.asc";
+    if (!FileExists(sample)) GTEST_SKIP() << "the shared BRL-CAD samples are not installed";
+    TempDir dir;
+    const std::string base = QuadrixBinary() + " render '" + sample +
+                             "' --size 48x40 --threads 1 --turntable 3 --el 30 -o '";
+    auto all = RunShell(base + dir.File("all.png") + "'");
+    ASSERT_EQ(all.exitCode, 0) << all.err;
+    auto last = RunShell(base + dir.File("last.png") + "' --frame-range 2:2");
+    ASSERT_EQ(last.exitCode, 0) << last.err;
+    EXPECT_FALSE(FileExists(dir.File("last_0000.png")));
+    EXPECT_EQ(Bytes(dir.File("all_0002.png")), Bytes(dir.File("last_0002.png")));
+    EXPECT_NE(Bytes(dir.File("all_0000.png")), Bytes(dir.File("all_0002.png")));
 }
 
 TEST(BatchMpi, AnimationAndBatchAreByteIdenticalToOneProcess) {

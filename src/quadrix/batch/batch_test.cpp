@@ -456,8 +456,9 @@ TEST(BatchJobRenderer, ClockSceneIsReadPerFrameAndMatchesSingleRenders) {
             << f;
 }
 
-// A clock only in the view (an animated camera): the scene is read per frame for its view, but
-// its geometry is flattened once; every frame equals its single render.
+// A clock only in the view (an animated camera): the scene is read once, only its view
+// statements again per frame, and its geometry is flattened once; every frame equals its single
+// render (which reads the whole scene at that clock).
 TEST(BatchJobRenderer, CameraClockKeepsTheGeometry) {
     Dir dir;
     Job job = MakeJob(dir.Write("c.uq",
@@ -467,8 +468,12 @@ TEST(BatchJobRenderer, CameraClockKeepsTheGeometry) {
                       dir.File("c.ppm"));
     job.frames = 3;
     JobRenderer r(1);
-    for (int f = 0; f < 3; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "");
-    EXPECT_EQ(r.reads, 3);
+    for (int f = 0; f < 3; ++f) {
+        const FrameResult fr = r.Render(job, 0, f);
+        EXPECT_EQ(fr.error, "");
+        EXPECT_EQ(fr.read, f == 0);
+    }
+    EXPECT_EQ(r.reads, 1);
     EXPECT_EQ(r.flattens, 3);
     EXPECT_EQ(r.GeometryFlattens(), 2);  // frame 0 in one go, then the kept world stage
     EXPECT_NE(Bytes(dir.File("c_0000.ppm")), Bytes(dir.File("c_0002.ppm")));  // the camera moved
@@ -476,6 +481,66 @@ TEST(BatchJobRenderer, CameraClockKeepsTheGeometry) {
         EXPECT_EQ(Bytes(dir.File("c_000" + std::to_string(f) + ".ppm")),
                   RenderAlone(job, f, dir.File("ref.ppm")))
             << f;
+}
+
+// The view statements read again at each clock are those of the whole reading, in order and at
+// their places: views in a file read by `read`, a view over several lines after another
+// statement on its line, a `redef view` that builds on the view as it is, an anonymous view, and
+// the default view asked for by name. Every frame equals the whole scene read at its clock.
+TEST(BatchJobRenderer, CameraClockReadsOnlyTheViewsAgainInOrder) {
+    Dir dir;
+    dir.Write("cams.uq",
+              "view side vrp 0 0 0 dop (clock - .5) .2 -1 whw 4;\n"
+              "view vrp 0 0 0 dop 0 0 -1 whw (3 + clock);\n");
+    const std::string scene =
+        dir.Write("s.uq",
+                  "solid box cube =from -1 -1 -1 =to 1 1 1 =c .3 .6 .9;\n"
+                  "read \"cams.uq\";\n"
+                  "solid sphere ball =at 1 1 1 =r .6 =c .9 .5 .2; view top vrp 0 0 0\n"
+                  "  dop .2 -1 (.1 + clock) whw 3;\n"
+                  "redef view side vup (clock) 1 0 whh 3;\n");
+    for (const std::string name : {"side", "top", "v#1", ""}) {
+        Job job = MakeJob(scene, dir.File("f_" + name + ".ppm"));
+        job.view.viewName = name;
+        job.frames = 3;
+        JobRenderer r(1);
+        for (int f = 0; f < 3; ++f) EXPECT_EQ(r.Render(job, 0, f).error, "") << name << f;
+        EXPECT_EQ(r.reads, 1) << name;
+        EXPECT_EQ(r.GeometryFlattens(), 2) << name;
+        EXPECT_NE(Bytes(dir.File("f_" + name + "_0000.ppm")),
+                  Bytes(dir.File("f_" + name + "_0002.ppm")))
+            << name;
+        for (int f = 0; f < 3; ++f)
+            EXPECT_EQ(Bytes(dir.File("f_" + name + "_000" + std::to_string(f) + ".ppm")),
+                      RenderAlone(job, f, dir.File("ref.ppm")))
+                << name << f;
+    }
+}
+
+// A view statement that is wrong at some clock (a window of size 0 at clock 1): that frame fails
+// with the message, at the view's file:line:column, that a single render at that clock gives;
+// the frames before it are rendered.
+TEST(BatchJobRenderer, CameraClockErrorAtOneFrameIsTheSingleRendersError) {
+    Dir dir;
+    const std::string scene = dir.Write("e.uq",
+                                        "solid box cube =from -1 -1 -1 =to 1 1 1;\n"
+                                        "view cam vrp 0 0 0 dop 0 0 -1\n   whw (1 - clock);\n");
+    Job job = MakeJob(scene, dir.File("e.ppm"));
+    job.frames = 2;
+    JobRenderer r(1);
+    EXPECT_EQ(r.Render(job, 0, 0).error, "");
+    const FrameResult bad = r.Render(job, 0, 1);
+    RenderContext ctx(1);
+    Diagnostics d;
+    InputRequest in = job.input;
+    in.clock = 1;
+    EXPECT_FALSE(ctx.Read(in, d));
+    std::string single;
+    for (const Diagnostic& e : d.Items())
+        if (e.severity == Diagnostic::Severity::kError) single += e.Format(false) + "\n";
+    EXPECT_NE(single, "");
+    EXPECT_EQ(bad.error, single);
+    EXPECT_NE(bad.error.find("e.uq:3:"), std::string::npos) << bad.error;
 }
 
 TEST(BatchJobRenderer, TurntableOrbitsTheBoundsAndKeepsOneRead) {

@@ -109,11 +109,13 @@ bool JobRenderer::Load(const Job& job, int jobId, double clock, FrameResult& r) 
     InputRequest in = job.input;
     in.clock = clock;
     const auto t0 = std::chrono::steady_clock::now();
-    // The same job at another clock: the context keeps the geometry when only views use it.
+    // The same job at another clock: when only views use it, the context reads just the view
+    // statements again and keeps the geometry.
+    const int readsBefore = ctx_.sceneReads;
     loadedOk_ =
         loadedJob_ == jobId && loadedOk_ ? ctx_.ReadAtClock(clock, diags) : ctx_.Read(in, diags);
-    r.read = true;
-    ++reads;
+    r.read = ctx_.sceneReads != readsBefore;
+    reads += ctx_.sceneReads - readsBefore;
     worldBox_.reset();
     if (loadedOk_ && job.turntable) {
         worldBox_ = SceneWorldBounds(ctx_, diags);
@@ -205,9 +207,11 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
             return r;
         }
     }
+    r.shadeSeconds = Since(t3);
+    const auto t4 = std::chrono::steady_clock::now();
     if (std::string e = WriteOutputs(out, fb, image ? &*image : nullptr); !e.empty())
         r.error = e + "\n";
-    r.writeSeconds = Since(t3);
+    r.writeSeconds = Since(t4);
     r.seconds = Since(t0);
     return r;
 }

@@ -2,8 +2,9 @@
 // can be kept between frames (issue 22: "read and flattened once per distinct geometry"):
 //   - the scene is read once per job; a scene that uses `clock` (Scene::usesClock) is read again
 //     for each frame whose clock differs; when the clock is only in its view statements (an
-//     animated camera) the geometry is the same and its world stage is kept
-//     (RenderContext::ReadAtClock), so the geometry is flattened once per job;
+//     animated camera) only those statements are read again, the geometry is the same and its
+//     world stage is kept (RenderContext::ReadAtClock): the scene is read once and its geometry
+//     flattened once per job;
 //   - the flat scene is reused by the context when the next frame has the same view (a still
 //     animation of a clock-free scene renders from one flattening); another view (a turntable,
 //     a view list) runs only the view stage of the flattener;
@@ -23,12 +24,17 @@ namespace quadrix::batch {
 
 // What rendering one frame did and cost.
 struct FrameResult {
-    std::string image, dumpFrame, exr;  // the paths written (or that would have been)
-    std::string error;                  // empty on success; diagnostics, one per line
-    std::string warnings;               // warnings and notes, one per line
-    bool skipped = false;               // every output existed already (SkipExisting)
-    bool read = false, flattened = false;
-    double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0, writeSeconds = 0;
+    std::string image, dumpFrame, exr;     // the paths written (or that would have been)
+    std::string error;                     // empty on success; diagnostics, one per line
+    std::string warnings;                  // warnings and notes, one per line
+    bool skipped = false;                  // every output existed already (SkipExisting)
+    bool read = false, flattened = false;  // the inputs were read; a view was flattened
+    // The frame's stages (docs/batch.md "Progress"): reading the inputs (or only the view
+    // statements; a turntable's bounds included; 0 when the scene is kept from the frame
+    // before), flattening the view, the engine's drawing with its composition, shading the
+    // picture (picture defaults, anti-aliasing, edges), encoding and writing the outputs.
+    double readSeconds = 0, flattenSeconds = 0, renderSeconds = 0, shadeSeconds = 0,
+           writeSeconds = 0;
     double seconds = 0;  // the whole frame
 };
 

@@ -112,6 +112,7 @@ void Progress::Frame(int job, int frame, const FrameResult& r, const std::string
         j["read_s"] = r.readSeconds;
         j["flatten_s"] = r.flattenSeconds;
         j["render_s"] = r.renderSeconds;
+        j["shade_s"] = r.shadeSeconds;
         j["write_s"] = r.writeSeconds;
     }
     if (!notes.empty()) j["notes"] = notes;

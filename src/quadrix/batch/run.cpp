@@ -45,6 +45,7 @@ std::vector<Unit> Units(const std::vector<JobEntry>& jobs) {
 struct RankTally {
     int rendered = 0, skipped = 0, failed = 0, reads = 0, flattens = 0, geometryFlattens = 0;
     double frameSeconds = 0, minFrame = 1e300, maxFrame = 0;
+    StageSeconds stages;
     std::map<int, std::string> failures;  // job → first error
 };
 
@@ -136,6 +137,11 @@ RankTally RenderUnits(const std::vector<JobEntry>& jobs, const std::vector<Unit>
             t.frameSeconds += r.seconds;
             t.minFrame = std::min(t.minFrame, r.seconds);
             t.maxFrame = std::max(t.maxFrame, r.seconds);
+            t.stages.read += r.readSeconds;
+            t.stages.flatten += r.flattenSeconds;
+            t.stages.render += r.renderSeconds;
+            t.stages.shade += r.shadeSeconds;
+            t.stages.write += r.writeSeconds;
         }
         progress.Frame(unit.job, unit.frame, r, frameLabel);
         if (killAfter > 0 && t.rendered == killAfter) std::raise(SIGKILL);
@@ -165,6 +171,11 @@ Summary Summed(const std::vector<JobEntry>& jobs, const std::vector<RankTally>& 
         s.frameSeconds += t.frameSeconds;
         s.minFrame = std::min(s.minFrame, t.minFrame);
         s.maxFrame = std::max(s.maxFrame, t.maxFrame);
+        s.stages.read += t.stages.read;
+        s.stages.flatten += t.stages.flatten;
+        s.stages.render += t.stages.render;
+        s.stages.shade += t.stages.shade;
+        s.stages.write += t.stages.write;
         for (const auto& [j, e] : t.failures) failures.emplace(j, e);
     }
     if (s.rendered == 0) s.minFrame = 0;
@@ -175,6 +186,16 @@ Summary Summed(const std::vector<JobEntry>& jobs, const std::vector<RankTally>& 
         s.failures.push_back(fmt::format("{}: {}", Label(jobs, j), text));
     }
     return s;
+}
+
+nlohmann::json StagesJson(const StageSeconds& s) {
+    nlohmann::json j;
+    j["read"] = s.read;
+    j["flatten"] = s.flatten;
+    j["render"] = s.render;
+    j["shade"] = s.shade;
+    j["write"] = s.write;
+    return j;
 }
 
 double Since(std::chrono::steady_clock::time_point t0) {
@@ -209,6 +230,7 @@ nlohmann::json TallyJson(const RankTally& t) {
     j["frame_s"] = t.frameSeconds;
     j["min_s"] = t.minFrame;
     j["max_s"] = t.maxFrame;
+    j["stages_s"] = StagesJson(t.stages);
     nlohmann::json f = nlohmann::json::object();
     for (const auto& [job, e] : t.failures) f[std::to_string(job)] = e;
     j["failures"] = f;
@@ -226,6 +248,9 @@ RankTally TallyFromJson(const nlohmann::json& j) {
     t.frameSeconds = j["frame_s"];
     t.minFrame = j["min_s"];
     t.maxFrame = j["max_s"];
+    const nlohmann::json& st = j["stages_s"];
+    t.stages = {st["read"].get<double>(), st["flatten"].get<double>(), st["render"].get<double>(),
+                st["shade"].get<double>(), st["write"].get<double>()};
     for (const auto& [k, v] : j["failures"].items()) t.failures.emplace(std::stoi(k), v);
     return t;
 }
@@ -362,6 +387,13 @@ std::string Summary::Text() const {
     if (rendered > 0)
         s += fmt::format("; per frame {:.2f} ms mean, {:.2f} min, {:.2f} max",
                          1e3 * frameSeconds / rendered, 1e3 * minFrame, 1e3 * maxFrame);
+    if (rendered > 0)
+        s += fmt::format(
+            " (stages, mean: read {:.2f} ms, flatten {:.2f}, render {:.2f}, shade {:.2f}, write "
+            "{:.2f})",
+            1e3 * stages.read / rendered, 1e3 * stages.flatten / rendered,
+            1e3 * stages.render / rendered, 1e3 * stages.shade / rendered,
+            1e3 * stages.write / rendered);
     s += fmt::format("; scene read {} time{}, geometry flattened {} time{}, views {} time{}", reads,
                      reads == 1 ? "" : "s", geometryFlattens, geometryFlattens == 1 ? "" : "s",
                      flattens, flattens == 1 ? "" : "s");
@@ -383,6 +415,7 @@ std::string Summary::Json() const {
     j["mean_frame_s"] = rendered > 0 ? frameSeconds / rendered : 0.0;
     j["min_frame_s"] = minFrame;
     j["max_frame_s"] = maxFrame;
+    j["stages_s"] = StagesJson(stages);  // sums over the rendered frames
     j["reads"] = reads;
     j["flattens"] = flattens;
     j["geometry_flattens"] = geometryFlattens;

@@ -48,6 +48,11 @@ struct RunOptions {
     bool useMpi = true;  // when built with MPI and launched by mpirun
 };
 
+// Seconds spent in each stage of a frame (FrameResult in job_renderer.h), summed over frames.
+struct StageSeconds {
+    double read = 0, flatten = 0, render = 0, shade = 0, write = 0;
+};
+
 struct Summary {
     int jobs = 0, failedJobs = 0;
     int frames = 0, rendered = 0, skipped = 0, failed = 0;
@@ -58,6 +63,7 @@ struct Summary {
     double seconds = 0;       // wall clock of the whole run
     double frameSeconds = 0;  // sum of the rendered frames' times (all ranks)
     double minFrame = 0, maxFrame = 0;
+    StageSeconds stages;                // over the rendered frames (all ranks)
     std::vector<std::string> failures;  // "label: error" of each failed job (first error)
     // One line for people, and one JSON object (event "summary").
     std::string Text() const;

@@ -41,6 +41,8 @@ class Lexer {
         while (pos_ < end && source_.Has(pos_)) Advance();
     }
     Source& GetSource() { return source_; }
+    // The byte offset reached: just after the last token lexed.
+    std::size_t Offset() const { return pos_; }
 
     // The source line of `loc` for a diagnostic (see Source::LineForDiagnostic).
     std::string LineOf(const SourceLoc& loc) const;

@@ -191,6 +191,7 @@ bool Parser::RunStatement() {
         return false;
     }
     Token keyword = Take();
+    keywordEnd_ = lexer_.Offset();
     if (state_.InDefinition() && !entry->allowedInDefinition) {
         Error(keyword.loc,
               fmt::format("a '{}' statement is not allowed inside a definition (definition '{}' "
@@ -199,6 +200,14 @@ bool Parser::RunStatement() {
         return false;
     }
     return entry->parse(*this, keyword);
+}
+
+void Parser::RecordViewStatement(const Token& keyword) {
+    const std::size_t end = lexer_.Offset();
+    if (next_ || end < keywordEnd_) return;  // no ';' (an error was reported)
+    state_.viewStatements.push_back(
+        {keyword.loc.file ? *keyword.loc.file : nullptr, keyword.loc.line, keyword.loc.column,
+         keyword.text + std::string(source_.From(keywordEnd_).substr(0, end - keywordEnd_))});
 }
 
 void Parser::SkipToSemicolon() {

@@ -52,6 +52,9 @@ class Parser {
     Source& GetSource() { return source_; }
     // Stops reading this source after the current statement (quit).
     void Stop() { stopped_ = true; }
+    // Records the view statement that `keyword` started and whose ';' was just taken
+    // (ReaderState::viewStatements).
+    void RecordViewStatement(const Token& keyword);
 
     // --- token cursor -----------------------------------------------------------------------
     const Token& Peek();
@@ -145,7 +148,8 @@ class Parser {
     Source& source_;
     Lexer lexer_;
     std::optional<Token> next_;
-    int lastLine_ = 0;  // line of the last token taken
+    int lastLine_ = 0;            // line of the last token taken
+    std::size_t keywordEnd_ = 0;  // byte offset after the keyword of the current statement
     bool stopped_ = false;
 };
 

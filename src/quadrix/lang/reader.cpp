@@ -30,6 +30,9 @@ bool Reader::ReadText(std::string_view text, const std::string& name) {
 
 bool Reader::UsesClock() const { return impl_->state.usesClock; }
 bool Reader::UsesClockOutsideViews() const { return impl_->state.usesClockOutsideViews; }
+const std::vector<ViewStatement>& Reader::ViewStatements() const {
+    return impl_->state.viewStatements;
+}
 
 void Reader::Resume() { impl_->state.aborted = false; }
 

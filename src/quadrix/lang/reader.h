@@ -46,6 +46,15 @@ class CommandHandler {
     virtual bool OnCommand(const Command& command, scene::Scene& scene, Diagnostics& diags) = 0;
 };
 
+// A view or redef view statement as written: where it starts and its text from its first keyword
+// to its ';'. A scene whose `clock` is only in its views re-reads just these at another clock
+// (an animated camera: RenderContext::ReadAtClock), in order, on the views.
+struct ViewStatement {
+    std::shared_ptr<const std::string> file;  // its name in diagnostics
+    int line = 0, column = 0;                 // of the first keyword, 1-based
+    std::string text;
+};
+
 struct ReadOptions {
     int maxIncludeDepth = 16;  // seed 001 §2.1.7: reads nest to depth 16
     CommandHandler* commands = nullptr;
@@ -68,6 +77,8 @@ class Reader {
     // Whether `clock` was used outside view statements (the scene's geometry, lights or
     // background depend on it); false when the clock only moves the camera.
     bool UsesClockOutsideViews() const;
+    // The view and redef view statements read so far, in order.
+    const std::vector<ViewStatement>& ViewStatements() const;
     // Reading stops everywhere after too many errors or statements; a session that reports and
     // clears its diagnostics between inputs resumes reading with the next one by calling this.
     void Resume();

@@ -93,6 +93,8 @@ class ReaderState {
     // stage (flattener.h) from frame to frame.
     bool usesClockOutsideViews = false;
     int viewDepth = 0;
+    // Every view and redef view statement read, as written (Reader::ViewStatements).
+    std::vector<ViewStatement> viewStatements;
     // Statements read by this reader, over all its inputs. Beyond kMaxStatements reading stops
     // with a message: an endless generated input must not grow the scene until memory runs out.
     long long statementCount = 0;

@@ -203,6 +203,7 @@ bool ParseView(Parser& p, const Token& keyword) {
     if (!p.OptionalId(view.id, idLoc, IsViewParameterKeyword)) return false;
     bool valuesOk = true;
     if (!ParseViewParams(p, view, false, "the view", valuesOk)) return false;
+    p.RecordViewStatement(keyword);
 
     ReaderState& s = p.State();
     if (view.id.empty()) view.id = s.GenerateId("v", ReaderState::Namespace::kView);
@@ -229,6 +230,7 @@ bool ParseRedefView(Parser& p, const Token& keyword) {
     bool changed = p.PeekIs(TokenKind::kKeyword) && IsViewParameter(p.Peek().keyword);
     bool valuesOk = true;
     if (!ParseViewParams(p, view, true, "the redef view statement", valuesOk)) return false;
+    p.RecordViewStatement(keyword);
     if (index < 0 && command.id != "default") {
         p.Error(idLoc, fmt::format("unknown view '{}'", command.id));
         return true;

@@ -145,6 +145,7 @@ bool ReadSceneInputs(const std::vector<std::string>& paths, const InputOptions& 
     }
     report.usesClock = uq && uq->UsesClock();
     report.clockOutsideViews = uq && uq->UsesClockOutsideViews();
+    if (report.usesClock && !report.clockOutsideViews) report.viewStatements = uq->ViewStatements();
     return !diags.HasErrors();
 }
 

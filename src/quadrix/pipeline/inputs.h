@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "quadrix/import/brlcad/brlcad_import.h"
+#include "quadrix/lang/reader.h"
 #include "quadrix/scene/diagnostics.h"
 #include "quadrix/scene/scene.h"
 
@@ -45,6 +46,10 @@ struct InputReport {
     // ... outside view statements: the geometry may differ from clock to clock (false when the
     // clock only moves the camera).
     bool clockOutsideViews = false;
+    // When `clock` is in view statements only: every view and redef view statement read, in
+    // order (lang::Reader::ViewStatements), which another clock re-reads on their own
+    // (RenderContext::ReadAtClock).
+    std::vector<lang::ViewStatement> viewStatements;
 };
 
 // Reads every path ("-" = standard input, always UniQuadrix) into `scene`. Returns false when

@@ -127,7 +127,7 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     const auto t0 = std::chrono::steady_clock::now();
     scene_ = scene::Scene{};
     inputs_ = InputReport{};
-    flatValid_ = worldValid_ = flattenedOnce_ = false;
+    flatValid_ = worldValid_ = flattenedOnce_ = rtLights_ = false;
     if (request.paths.empty()) {
         lang::ReadOptions ro;
         ro.clock = request.clock;
@@ -135,6 +135,8 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
         reader.ReadText(request.text, request.textName);
         inputs_.usesClock = reader.UsesClock();
         inputs_.clockOutsideViews = reader.UsesClockOutsideViews();
+        if (inputs_.usesClock && !inputs_.clockOutsideViews)
+            inputs_.viewStatements = reader.ViewStatements();
     } else {
         // Files of mixed formats (UniQuadrix, BRL-CAD, OpenSCAD) into one scene (docs/import.md).
         InputOptions io;
@@ -146,10 +148,84 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     }
     readSeconds = SecondsSince(t0);
     lastInput_ = request;
-    return !diags.HasErrors();
+    ++sceneReads;
+    readOk_ = !diags.HasErrors();
+    return readOk_;
+}
+
+namespace {
+
+// The view statements of a reading, read again at `clock` into `views` (a scene of views alone),
+// each at its line and column, so that a message names the place in its file: statements of one
+// file in a row make one text, their gaps blanked (newlines kept).
+void ReadViewStatements(const std::vector<lang::ViewStatement>& statements, double clock,
+                        scene::Scene& views, Diagnostics& diags) {
+    lang::ReadOptions ro;
+    ro.clock = clock;
+    lang::Reader reader(views, diags, ro);
+    std::string text;
+    const std::string* name = nullptr;
+    int line = 1, column = 1;  // where the end of `text` is
+    auto flush = [&] {
+        if (name) reader.ReadText(text, *name);
+        text.clear();
+        line = column = 1;
+    };
+    static const std::string kText = "<text>";
+    for (const lang::ViewStatement& s : statements) {
+        const std::string* file = s.file ? s.file.get() : &kText;
+        if (!name || *file != *name || s.line < line || (s.line == line && s.column < column))
+            flush();
+        name = file;
+        for (; line < s.line; ++line, column = 1) text += '\n';
+        text.append(static_cast<std::size_t>(s.column - column), ' ');
+        column = s.column;
+        text += s.text;
+        for (char c : s.text) {
+            if (c == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+    }
+    flush();
+}
+
+}  // namespace
+
+bool RenderContext::ReadViewsAtClock(double clock, Diagnostics& diags) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int errorsBefore = diags.ErrorCount();
+    scene::Scene views;
+    ReadViewStatements(inputs_.viewStatements, clock, views, diags);
+    readSeconds = SecondsSince(t0);
+    if (diags.ErrorCount() != errorsBefore) return false;
+    // Each view replaces the scene's of the same id (the same views as the whole reading made).
+    std::vector<std::size_t> at;
+    for (const scene::View& v : views.views) {
+        auto it = std::find_if(scene_.views.begin(), scene_.views.end(),
+                               [&](const scene::View& w) { return w.id == v.id; });
+        if (it == scene_.views.end()) return false;
+        at.push_back(static_cast<std::size_t>(it - scene_.views.begin()));
+    }
+    for (std::size_t k = 0; k < at.size(); ++k) scene_.views[at[k]] = views.views[k];
+    flatValid_ = false;
+    lastInput_.clock = clock;
+    return true;
 }
 
 bool RenderContext::ReadAtClock(double clock, Diagnostics& diags) {
+    // Only the camera moves: the view statements are read again, the rest is kept.
+    if (readOk_ && inputs_.usesClock && !inputs_.clockOutsideViews) {
+        Diagnostics viewDiags;
+        if (ReadViewsAtClock(clock, viewDiags)) {
+            for (const Diagnostic& d : viewDiags.Items()) diags.Add(d);
+            return true;
+        }
+        // An error at this clock: the whole reading reports it as a single render would.
+    }
     const bool cameraOnly = (worldValid_ || flattenedOnce_) && !inputs_.clockOutsideViews;
     const bool hadWorld = worldValid_;
     InputRequest request = lastInput_;
@@ -181,13 +257,19 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     std::string viewName = view.viewName;
     if (!view.view && (view.rtView || view.azimuth || view.elevation)) {
         // An rt-style view is made once per request and added to the scene like a view statement
-        // (with rt's lights when the scene has none); asking again replaces it.
+        // (with rt's lights when the scene has none); asking again replaces it, and the lights
+        // made for the last one (their eye light looks along its direction), never the scene's.
         std::erase_if(scene_.views, [](const scene::View& v) { return v.id == "rt"; });
+        if (rtLights_)
+            std::erase_if(scene_.lights, [](const scene::Light& l) {
+                return l.id == "rt_ambient" || l.id == "rt_eye";  // AddRtLights' ids
+            });
         scene::View made =
             view.rtView ? import::MakeRtView(*view.rtView, view.width, view.height)
                         : import::MakeAzElView(view.azimuth.value_or(35),
                                                view.elevation.value_or(25), inputs_.importedBounds,
                                                view.viewsize, view.width, view.height);
+        rtLights_ = scene_.lights.empty();
         import::AddRtLights(scene_, made);
         scene_.views.push_back(made);
         viewName = made.id;

@@ -146,8 +146,11 @@ class RenderContext {
     // Stage 1. Replaces the scene. false with errors in diags.
     bool Read(const InputRequest& request, Diagnostics& diags);
     // Stage 1 again, the last Read's request at another `clock` (an animation's next frame).
-    // When both the last and this reading found `clock` only in view statements (the camera
-    // moves, the geometry does not: Inputs().clockOutsideViews), the world stage is kept.
+    // When the last reading found `clock` only in view statements (the camera moves, the
+    // geometry does not: !Inputs().clockOutsideViews), only those statements are read again
+    // (InputReport::viewStatements) and their views replace the scene's: the inputs are not read
+    // and the world stage is kept. (A view statement with an error at this clock reads the
+    // whole inputs again, so that its messages are those of a single render.)
     bool ReadAtClock(double clock, Diagnostics& diags);
     // The scene, for front ends that build it statement by statement (uq's prompt). Call
     // SceneChanged() after changing it so that the next Flatten does not reuse a stale result.
@@ -189,12 +192,17 @@ class RenderContext {
     // per context).
     void SetCancellation(Cancellation* cancellation) { cancel_ = cancellation; }
 
-    // Seconds spent by the last Read and Flatten calls.
+    // Seconds spent by the last Read (or ReadAtClock) and Flatten calls.
     double readSeconds = 0, flattenSeconds = 0;
+    // Times the inputs were read since construction (Read, and ReadAtClock when it reads them).
+    int sceneReads = 0;
 
   private:
     struct Arena;
     Engine* EngineNamed(const std::string& name);
+    // ReadAtClock's camera-only case: false (the scene unchanged) when a view statement has an
+    // error at `clock` or the views read are not the scene's.
+    bool ReadViewsAtClock(double clock, Diagnostics& diags);
     Image ShadeInArena(const Frame& frame, const ShadeOptions& options) const;
     // Draws `solids` of the flat scene with the reference engine and merges them into `frame`.
     void ComposeReference(const std::vector<int>& solids, const EngineRequest& request,
@@ -216,11 +224,15 @@ class RenderContext {
     scene::Scene scene_;
     InputReport inputs_;
     InputRequest lastInput_;  // what the last Read read (ReadAtClock)
+    bool readOk_ = false;     // the last Read had no error
     FlatScene flat_;
     bool flatValid_ = false, lastReused_ = false;
     WorldScene world_;  // the kept world stage, valid with worldValid_
     bool worldValid_ = false, lastReusedWorld_ = false;
     bool flattenedOnce_ = false;  // the scene was flattened for one view (one-shot)
+    // The scene's lights are those AddRtLights made for the last rt-style view (the scene had
+    // none): the next rt-style view replaces them with its own.
+    bool rtLights_ = false;
     // The request the kept flat scene was made for (lights and view as given).
     std::optional<ViewRequest> flatFor_;
     std::string flatViewName_;
