@@ -35,6 +35,13 @@ class Lexer {
     // The next token; kEnd forever once the input is exhausted.
     Token Next();
 
+    // The fast path of number lists (a quadric's ten coefficients): reads `n` plain numbers
+    // separated by white space straight from the text held, as n calls of Next() would, and
+    // returns true with `lastLine` the line of the last one. Returns false, having read
+    // nothing, at anything else (a comment, `clock`, an expression, a malformed or out-of-range
+    // number, the end of the text held): Next() then reads, and reports, as always.
+    bool TakePlainNumbers(double* out, std::size_t n, int& lastLine);
+
     void SetQuiet(bool quiet) { quiet_ = quiet; }
     // Skips the text up to byte `end` unread (line and column still counted).
     void SkipTo(std::size_t end) {

@@ -75,6 +75,11 @@ class Parser {
         next_.reset();
         return true;
     }
+    // Takes `n` plain numbers at once (Lexer::TakePlainNumbers) when nothing has been looked at
+    // ahead; false (nothing taken) otherwise: the caller then takes them one by one.
+    bool TakePlainNumbers(double* out, std::size_t n) {
+        return !next_ && lexer_.TakePlainNumbers(out, n, lastLine_);
+    }
     bool PeekIsKeyword(Keyword keyword) {
         return Peek().kind == TokenKind::kKeyword && Peek().keyword == keyword;
     }

@@ -9,6 +9,7 @@
 // recursion of this recursive-descent parser.
 #include <fmt/format.h>
 
+#include "quadrix/lang/big_arrays.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/statements.h"
 
@@ -99,6 +100,7 @@ class CsgBuilder {
         node.isLeaf = true;
         node.ref = *ref;
         node.loc = loc;
+        PrepareAppend(csg_.nodes);
         csg_.nodes.push_back(node);
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
@@ -111,6 +113,7 @@ class CsgBuilder {
         node.left = left;
         node.right = right;
         node.loc = loc;
+        PrepareAppend(csg_.nodes);
         csg_.nodes.push_back(node);
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
