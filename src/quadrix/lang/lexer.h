@@ -48,6 +48,8 @@ class Lexer {
         while (pos_ < end && source_.Has(pos_)) Advance();
     }
     Source& GetSource() { return source_; }
+    // The offset of the next byte to read.
+    std::size_t Offset() const { return pos_; }
 
     // The source line of `loc` for a diagnostic (see Source::LineForDiagnostic).
     std::string LineOf(const SourceLoc& loc) const;

@@ -25,6 +25,15 @@ Token Parser::Take() {
     return t;
 }
 
+std::string_view Parser::TextToSemicolon() {
+    const std::size_t from = lexer_.Offset();
+    if (from < lookedAheadTo_) return {};
+    const std::string_view text = source_.From(from);
+    const std::size_t semicolon = text.find(';');
+    lookedAheadTo_ = semicolon == std::string_view::npos ? source_.Size() : from + semicolon;
+    return semicolon == std::string_view::npos ? std::string_view() : text.substr(0, semicolon);
+}
+
 void Parser::Error(const SourceLoc& loc, std::string message, const char* kind) {
     if (state_.aborted) return;
     // Only positions in this source have their line at hand.

@@ -80,6 +80,10 @@ class Parser {
     bool TakePlainNumbers(double* out, std::size_t n) {
         return !next_ && lexer_.TakePlainNumbers(out, n, lastLine_);
     }
+    // For capacity hints (a csg expression of 100,000 operands): the text held from the next
+    // byte to read up to the next ';'. Empty when there is no ';' in the text held, or when that
+    // text was already handed out (so that no byte is looked at twice, even when ';' are missing).
+    std::string_view TextToSemicolon();
     bool PeekIsKeyword(Keyword keyword) {
         return Peek().kind == TokenKind::kKeyword && Peek().keyword == keyword;
     }
@@ -150,7 +154,8 @@ class Parser {
     Source& source_;
     Lexer lexer_;
     std::optional<Token> next_;
-    int lastLine_ = 0;  // line of the last token taken
+    int lastLine_ = 0;               // line of the last token taken
+    std::size_t lookedAheadTo_ = 0;  // TextToSemicolon: the end of the last text handed out
     bool stopped_ = false;
 };
 

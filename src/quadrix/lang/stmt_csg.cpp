@@ -9,6 +9,8 @@
 // recursion of this recursive-descent parser.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "quadrix/lang/big_arrays.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/statements.h"
@@ -101,7 +103,7 @@ class CsgBuilder {
         node.ref = *ref;
         node.loc = loc;
         PrepareAppend(csg_.nodes);
-        csg_.nodes.push_back(node);
+        csg_.nodes.push_back(std::move(node));
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
 
@@ -114,7 +116,7 @@ class CsgBuilder {
         node.right = right;
         node.loc = loc;
         PrepareAppend(csg_.nodes);
-        csg_.nodes.push_back(node);
+        csg_.nodes.push_back(std::move(node));
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
 
@@ -131,6 +133,13 @@ bool ParseCsg(Parser& p, const Token& keyword) {
     SourceLoc idLoc = keyword.loc;
     if (!p.OptionalId(csg.id, idLoc)) return false;
     if (!p.PeekIs(TokenKind::kLParen)) return p.Expected("'(' to start the csg expression");
+    // A big expression gets its node array at once (big_arrays.h): a node per operand and per
+    // operator, at most 2 per operator character ahead ('-' may also start a number).
+    if (std::string_view ahead = p.TextToSemicolon(); ahead.size() >= 16384) {
+        const auto ops = std::count_if(ahead.begin(), ahead.end(),
+                                       [](char c) { return c == '|' || c == '&' || c == '-'; });
+        ReserveAdvised(csg.nodes, 2 * static_cast<std::size_t>(ops) + 1);
+    }
     CsgBuilder builder(p, csg);
     auto root = builder.Parenthesised();
     if (!root) return false;

@@ -46,7 +46,14 @@ inline void AdviseHugePages(const void* p, std::size_t bytes) {
     const std::uintptr_t first =
         (begin - kSlack + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
     const std::uintptr_t last = (begin + bytes + kSlack) / kHugePageBytes * kHugePageBytes;
-    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+    if (last <= first) return;
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#ifndef MADV_COLLAPSE
+#define MADV_COLLAPSE 25  // Linux 6.1 (linux/mman.h); older kernels refuse it, harmlessly
+#endif
+    // malloc wrote its header in the first page before the advice came, so that page is already
+    // mapped in 4 KiB pages and the rest of it would fault in 4 KiB pages too: collapse it now.
+    if (first < begin) madvise(reinterpret_cast<void*>(first), kHugePageBytes, MADV_COLLAPSE);
 #else
     (void)p;
     (void)bytes;
