@@ -34,7 +34,7 @@ class IdTable {
         for (std::size_t i = h & Mask();; i = (i + 1) & Mask()) {
             const Slot& s = slots_[i];
             if (s.value < 0) return -1;
-            if (s.hash == h && std::string_view(idOf(s.value)) == id) return s.value;
+            if (s.hash == h && Same(idOf(s.value), id)) return s.value;
         }
     }
 
@@ -50,7 +50,7 @@ class IdTable {
                 ++count_;
                 return;
             }
-            if (s.hash == h && std::string_view(idOf(s.value)) == id) {
+            if (s.hash == h && Same(idOf(s.value), id)) {
                 s.value = value;
                 return;
             }
@@ -93,6 +93,14 @@ class IdTable {
 
   private:
     static bool IsDigit(char c) { return c >= '0' && c <= '9'; }
+    // std::string_view's ==, without a call to memcmp for the short ids of most scenes.
+    static bool Same(std::string_view a, std::string_view b) {
+        if (a.size() != b.size()) return false;
+        if (a.size() > 16) return a == b;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (a[i] != b[i]) return false;
+        return true;
+    }
     std::size_t Mask() const { return slots_.size() - 1; }
     // Doubles the array; the stored hashes place the slots again without looking at any id.
     void Grow() {

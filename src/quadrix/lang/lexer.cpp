@@ -7,11 +7,6 @@
 
 namespace quadrix::lang {
 
-bool IsIdStart(int c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '#' || c == '_';
-}
-bool IsIdChar(int c) { return IsIdStart(c) || (c >= '0' && c <= '9'); }
-
 namespace {
 
 bool IsDigit(int c) { return c >= '0' && c <= '9'; }

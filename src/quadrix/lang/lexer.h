@@ -96,7 +96,9 @@ class Lexer {
 };
 
 // Character classes shared with the parser (e.g. to explain why a path needs quotes).
-bool IsIdStart(int c);
-bool IsIdChar(int c);
+inline bool IsIdStart(int c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '#' || c == '_';
+}
+inline bool IsIdChar(int c) { return IsIdStart(c) || (c >= '0' && c <= '9'); }
 
 }  // namespace quadrix::lang

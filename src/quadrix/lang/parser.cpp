@@ -120,9 +120,23 @@ bool Parser::ReservedWord(const Token& token) {
 }
 
 bool Parser::OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow)(Keyword)) {
+    return OptionalIdAt(id, loc, keywordMayFollow);
+}
+bool Parser::OptionalId(std::string& id, TokenLoc& loc, bool (*keywordMayFollow)(Keyword)) {
+    return OptionalIdAt(id, loc, keywordMayFollow);
+}
+bool Parser::ExpectId(std::string_view what, std::string& id, SourceLoc& loc) {
+    return ExpectIdAt(what, id, loc);
+}
+bool Parser::ExpectId(std::string_view what, std::string& id, TokenLoc& loc) {
+    return ExpectIdAt(what, id, loc);
+}
+
+template <class Loc>
+bool Parser::OptionalIdAt(std::string& id, Loc& loc, bool (*keywordMayFollow)(Keyword)) {
     const Token& t = Peek();
     if (t.kind == TokenKind::kId) {
-        id = t.text;
+        id = std::move(next_->text);
         loc = t.loc;
         Take();
         return true;
@@ -135,10 +149,11 @@ bool Parser::OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow
     return ReservedWord(t);
 }
 
-bool Parser::ExpectId(std::string_view what, std::string& id, SourceLoc& loc) {
+template <class Loc>
+bool Parser::ExpectIdAt(std::string_view what, std::string& id, Loc& loc) {
     const Token& t = Peek();
     if (t.kind == TokenKind::kId) {
-        id = t.text;
+        id = std::move(next_->text);
         loc = t.loc;
         Take();
         return true;

@@ -117,8 +117,12 @@ class Parser {
     // leaves `id` empty when the next token is not an id. Keywords for which
     // `keywordMayFollow(keyword)` is true are not ids but the start of what follows.
     bool OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow)(Keyword) = nullptr);
+    // The same with the position as a TokenLoc (token.h), for the statements read by the
+    // hundred thousand: no file-name reference count is touched unless the position is kept.
+    bool OptionalId(std::string& id, TokenLoc& loc, bool (*keywordMayFollow)(Keyword) = nullptr);
     // A required id (`what` names it: "definition id").
     bool ExpectId(std::string_view what, std::string& id, SourceLoc& loc);
+    bool ExpectId(std::string_view what, std::string& id, TokenLoc& loc);
     // `=c r g b` after its option token has been taken: three numbers in [0, 1] (linear light),
     // or `=c name` with one of the CSS/SVG color names (sRGB, converted to linear; appearance.cpp).
     std::optional<scene::Color> ParseColor(const Token& option);
@@ -149,6 +153,10 @@ class Parser {
     // Stops reading everywhere once Diagnostics::kMaxStored errors have been reported.
     void CheckErrorLimit();
     bool ReservedWord(const Token& token);
+    template <class Loc>
+    bool OptionalIdAt(std::string& id, Loc& loc, bool (*keywordMayFollow)(Keyword));
+    template <class Loc>
+    bool ExpectIdAt(std::string_view what, std::string& id, Loc& loc);
 
     ReaderState& state_;
     Source& source_;

@@ -77,12 +77,12 @@ class CsgBuilder {
     std::optional<int> Factor() {
         if (p_.PeekIs(TokenKind::kLParen)) return Parenthesised();
         std::string id;
-        SourceLoc loc;
+        TokenLoc loc;
         if (!p_.ExpectId("a body, instance, array or csg id, or '('", id, loc)) return std::nullopt;
         return Leaf(id, loc);
     }
 
-    int Leaf(const std::string& id, const SourceLoc& loc) {
+    int Leaf(const std::string& id, const TokenLoc& loc) {
         ReaderState& s = p_.State();
         auto ref = s.FindSolid(id);
         if (!ref) {
@@ -107,7 +107,7 @@ class CsgBuilder {
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
 
-    int Combine(scene::CsgOp op, int left, int right, const SourceLoc& loc) {
+    int Combine(scene::CsgOp op, int left, int right, const TokenLoc& loc) {
         if (left == kInvalid || right == kInvalid) return kInvalid;
         scene::CsgNode node;
         node.isLeaf = false;

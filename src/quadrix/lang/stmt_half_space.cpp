@@ -60,7 +60,7 @@ template <class Check>
 bool ParseHalfSpace(Parser& p, const Token& keyword, scene::HalfSpace hs, std::string_view names,
                     double* coefficients, Check check) {
     std::string_view statement = hs.kind == scene::HalfSpace::Kind::kPlane ? "plane" : "quadric";
-    SourceLoc idLoc = keyword.loc;
+    TokenLoc idLoc = keyword.loc;
     if (!p.OptionalId(hs.id, idLoc)) return false;
     SourceLoc listLoc;
     if (!ParseCoefficients(p, statement, names, coefficients, listLoc)) return false;
