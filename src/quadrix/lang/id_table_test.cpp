@@ -52,6 +52,21 @@ TEST(LangIdTable, IdsThatShareSlotsAreKeptApart) {
     EXPECT_EQ(table.Find("q100000", idOf), -1);
 }
 
+TEST(LangIdTable, ReserveKeepsWhatIsStoredAndRoomForMore) {
+    std::vector<std::string> ids;
+    for (int i = 0; i < 50000; ++i) ids.push_back("b" + std::to_string(i));
+    IdTable table;
+    auto idOf = [&](int v) -> const std::string& { return ids[v]; };
+    for (int i = 0; i < 1000; ++i) table.Set(ids[i], i, idOf);
+    table.Reserve(50000);  // rehashes the 1,000 already there
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(table.Find(ids[i], idOf), i);
+    for (int i = 1000; i < 50000; ++i) table.Set(ids[i], i, idOf);
+    table.Reserve(10);  // never shrinks
+    EXPECT_EQ(table.Size(), 50000u);
+    for (int i = 0; i < 50000; i += 3) ASSERT_EQ(table.Find(ids[i], idOf), i);
+    EXPECT_EQ(table.Find("b50000", idOf), -1);
+}
+
 TEST(LangIdTable, NumberedIdsKeepTheirOrderInGroupsOfSixteen) {
     // q16 ... q31 hash to 16 consecutive values (one run of slots), q32 starts another group.
     const std::uint32_t first = IdTable::Hash("q16");

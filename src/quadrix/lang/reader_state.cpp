@@ -180,6 +180,9 @@ void ReaderState::ReserveForText(std::string_view text) {
     ReserveAdvised(scope.halfSpaces, scope.halfSpaces.size() + halfSpaces);
     ReserveAdvised(scope.bodies, scope.bodies.size() + bodies);
     ReserveAdvised(scope.csgs, scope.csgs.size() + csgs);
+    ScopeIndex& index = CurrentIndex();
+    index.halfSpaces.Reserve(index.halfSpaces.Size() + halfSpaces);
+    index.solids.Reserve(index.solids.Size() + bodies + csgs);
 }
 
 int ReaderState::AddHalfSpace(scene::HalfSpace hs) {
