@@ -15,6 +15,7 @@
 #include <mutex>
 
 #include "quadrix/io/output_file.h"
+#include "quadrix/util/huge_pages.h"
 
 namespace quadrix {
 
@@ -92,7 +93,15 @@ std::string ReadBoundedFile(const std::string& path, std::string& text, std::siz
             return TooLarge(limit);
         }
         NoteInputFile(fd);
-        text.reserve(text.size() + static_cast<std::size_t>(st.st_size));
+        // One byte more: the read that finds the end of the file. A big text is read into huge
+        // pages (util/huge_pages.h; std::string allocates one byte more for its terminator).
+        const std::size_t want = text.size() + static_cast<std::size_t>(st.st_size) + 1;
+        if (text.empty() && want >= kHugePageBytes) {
+            text.reserve(HugePageRequest(want + 1) - 1);
+            AdviseHugePages(text.data(), text.capacity() + 1);
+        } else {
+            text.reserve(want);
+        }
     }
     const std::size_t before = text.size();
     std::string e = ReadAll(fd, text, limit + before, nullptr);

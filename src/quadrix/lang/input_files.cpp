@@ -60,6 +60,7 @@ std::string CheckCanRead(const ReaderState& state, const IncludeFrame& frame) {
 std::string RunSource(ReaderState& state, Source& source, IncludeFrame frame) {
     if (std::string why = CheckCanRead(state, frame); !why.empty()) return why;
     state.includeStack.push_back(std::move(frame));
+    state.ReserveForText(source.From(0));  // empty for standard input, which grows
     Parser parser(state, source);
     parser.Run();
     state.includeStack.pop_back();

@@ -1,6 +1,7 @@
 #include "quadrix/lang/keywords.h"
 
 #include <array>
+#include <cstdint>
 
 namespace quadrix::lang {
 
@@ -66,9 +67,30 @@ constexpr std::array kSpellings = {
     Spelling{"vc", Keyword::kVrp},
 };
 
+// Which (length, first letter) pairs some spelling has: most words the lexer reads are ids
+// (q12345), and this rules them out before any comparison.
+constexpr std::size_t kMaxLength = 10;
+struct Starts {
+    std::array<std::uint32_t, kMaxLength + 1> lettersOfLength{};  // bit c - 'a'
+    constexpr Starts() {
+        for (const Spelling& s : kSpellings)
+            lettersOfLength[s.word.size()] |= 1u << (s.word[0] - 'a');
+    }
+};
+constexpr Starts kStarts;
+static_assert([] {
+    for (const Spelling& s : kSpellings)
+        if (s.word.empty() || s.word.size() > kMaxLength || s.word[0] < 'a' || s.word[0] > 'z')
+            return false;
+    return true;
+}());
+
 }  // namespace
 
 Keyword LookupKeyword(std::string_view word) {
+    if (word.empty() || word.size() > kMaxLength || word[0] < 'a' || word[0] > 'z' ||
+        !(kStarts.lettersOfLength[word.size()] >> (word[0] - 'a') & 1u))
+        return Keyword::kNone;
     // About forty entries: a linear scan is as fast as a hash here and keeps the table readable.
     for (const Spelling& s : kSpellings)
         if (s.word == word) return s.keyword;

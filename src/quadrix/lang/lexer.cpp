@@ -7,11 +7,6 @@
 
 namespace quadrix::lang {
 
-bool IsIdStart(int c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '#' || c == '_';
-}
-bool IsIdChar(int c) { return IsIdStart(c) || (c >= '0' && c <= '9'); }
-
 namespace {
 
 bool IsDigit(int c) { return c >= '0' && c <= '9'; }
@@ -75,7 +70,69 @@ long long DecimalOrder(std::string_view mantissa, long long exp) {
     return order + exp;
 }
 
+// A number token that starts at `p` (a sign, a digit or '.'), as LexNumber reads it, when it is
+// well formed, finite, not an underflow, and followed by a byte that ends it (all within
+// [p, end)): its value and length. False for anything LexNumber would report or treat specially.
+bool ScanPlainNumber(const char* p, const char* end, double& value, std::size_t& length) {
+    auto at = [&](std::size_t i) -> int {
+        return p + i < end ? static_cast<unsigned char>(p[i]) : -1;
+    };
+    std::size_t n = 0;
+    const bool negative = at(0) == '-';
+    if (at(0) == '+' || at(0) == '-') ++n;
+    const std::size_t mantissaStart = n;
+    const bool startsNumber = IsDigit(at(n)) || (at(n) == '.' && IsDigit(at(n + 1)));
+    if (!startsNumber) return false;
+    while (IsDigit(at(n))) ++n;
+    if (at(n) == '.') {
+        ++n;
+        while (IsDigit(at(n))) ++n;
+    }
+    const int e = at(n), afterE = at(n + 1);
+    if ((e == 'e' || e == 'E') &&
+        (IsDigit(afterE) || ((afterE == '+' || afterE == '-') && IsDigit(at(n + 2))))) {
+        n += 2;
+        while (IsDigit(at(n))) ++n;
+    }
+    const int next = at(n);
+    if (next < 0 || IsIdChar(next) || next == '.') return false;  // the end, or malformed
+    double v = 0;
+    auto [ptr, ec] = std::from_chars(p + mantissaStart, p + n, v, std::chars_format::general);
+    if (ec != std::errc() || ptr != p + n || !std::isfinite(v)) return false;
+    value = negative ? -v : v;
+    length = n;
+    return true;
+}
+
 }  // namespace
+
+bool Lexer::TakePlainNumbers(double* out, std::size_t n, int& lastLine) {
+    const std::string_view text = source_.From(pos_);
+    const char* const begin = text.data();
+    const char* const end = begin + text.size();
+    const char* p = begin;
+    int line = line_, column = column_, numberLine = line_;
+    for (std::size_t i = 0; i < n; ++i) {
+        for (; p < end && IsSpace(static_cast<unsigned char>(*p)); ++p) {
+            if (*p == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+        std::size_t length = 0;
+        if (!ScanPlainNumber(p, end, out[i], length)) return false;
+        numberLine = line;
+        p += length;
+        column += static_cast<int>(length);
+    }
+    pos_ += static_cast<std::size_t>(p - begin);
+    line_ = line;
+    column_ = column;
+    lastLine = numberLine;
+    return true;
+}
 
 Lexer::Lexer(Source& source, Diagnostics& diags) : source_(source), diags_(diags) {
     // A UTF-8 byte order mark, as some editors write, is not part of the scene.

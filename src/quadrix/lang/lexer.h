@@ -35,13 +35,20 @@ class Lexer {
     // The next token; kEnd forever once the input is exhausted.
     Token Next();
 
+    // The fast path of number lists (a quadric's ten coefficients): reads `n` plain numbers
+    // separated by white space straight from the text held, as n calls of Next() would, and
+    // returns true with `lastLine` the line of the last one. Returns false, having read
+    // nothing, at anything else (a comment, `clock`, an expression, a malformed or out-of-range
+    // number, the end of the text held): Next() then reads, and reports, as always.
+    bool TakePlainNumbers(double* out, std::size_t n, int& lastLine);
+
     void SetQuiet(bool quiet) { quiet_ = quiet; }
     // Skips the text up to byte `end` unread (line and column still counted).
     void SkipTo(std::size_t end) {
         while (pos_ < end && source_.Has(pos_)) Advance();
     }
     Source& GetSource() { return source_; }
-    // The byte offset reached: just after the last token lexed.
+    // The offset of the next byte to read.
     std::size_t Offset() const { return pos_; }
 
     // The source line of `loc` for a diagnostic (see Source::LineForDiagnostic).
@@ -89,7 +96,9 @@ class Lexer {
 };
 
 // Character classes shared with the parser (e.g. to explain why a path needs quotes).
-bool IsIdStart(int c);
-bool IsIdChar(int c);
+inline bool IsIdStart(int c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '#' || c == '_';
+}
+inline bool IsIdChar(int c) { return IsIdStart(c) || (c >= '0' && c <= '9'); }
 
 }  // namespace quadrix::lang

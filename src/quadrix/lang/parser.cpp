@@ -25,6 +25,15 @@ Token Parser::Take() {
     return t;
 }
 
+std::string_view Parser::TextToSemicolon() {
+    const std::size_t from = lexer_.Offset();
+    if (from < lookedAheadTo_) return {};
+    const std::string_view text = source_.From(from);
+    const std::size_t semicolon = text.find(';');
+    lookedAheadTo_ = semicolon == std::string_view::npos ? source_.Size() : from + semicolon;
+    return semicolon == std::string_view::npos ? std::string_view() : text.substr(0, semicolon);
+}
+
 void Parser::Error(const SourceLoc& loc, std::string message, const char* kind) {
     if (state_.aborted) return;
     // Only positions in this source have their line at hand.
@@ -111,9 +120,23 @@ bool Parser::ReservedWord(const Token& token) {
 }
 
 bool Parser::OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow)(Keyword)) {
+    return OptionalIdAt(id, loc, keywordMayFollow);
+}
+bool Parser::OptionalId(std::string& id, TokenLoc& loc, bool (*keywordMayFollow)(Keyword)) {
+    return OptionalIdAt(id, loc, keywordMayFollow);
+}
+bool Parser::ExpectId(std::string_view what, std::string& id, SourceLoc& loc) {
+    return ExpectIdAt(what, id, loc);
+}
+bool Parser::ExpectId(std::string_view what, std::string& id, TokenLoc& loc) {
+    return ExpectIdAt(what, id, loc);
+}
+
+template <class Loc>
+bool Parser::OptionalIdAt(std::string& id, Loc& loc, bool (*keywordMayFollow)(Keyword)) {
     const Token& t = Peek();
     if (t.kind == TokenKind::kId) {
-        id = t.text;
+        id = std::move(next_->text);
         loc = t.loc;
         Take();
         return true;
@@ -126,10 +149,11 @@ bool Parser::OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow
     return ReservedWord(t);
 }
 
-bool Parser::ExpectId(std::string_view what, std::string& id, SourceLoc& loc) {
+template <class Loc>
+bool Parser::ExpectIdAt(std::string_view what, std::string& id, Loc& loc) {
     const Token& t = Peek();
     if (t.kind == TokenKind::kId) {
-        id = t.text;
+        id = std::move(next_->text);
         loc = t.loc;
         Take();
         return true;

@@ -78,6 +78,15 @@ class Parser {
         next_.reset();
         return true;
     }
+    // Takes `n` plain numbers at once (Lexer::TakePlainNumbers) when nothing has been looked at
+    // ahead; false (nothing taken) otherwise: the caller then takes them one by one.
+    bool TakePlainNumbers(double* out, std::size_t n) {
+        return !next_ && lexer_.TakePlainNumbers(out, n, lastLine_);
+    }
+    // For capacity hints (a csg expression of 100,000 operands): the text held from the next
+    // byte to read up to the next ';'. Empty when there is no ';' in the text held, or when that
+    // text was already handed out (so that no byte is looked at twice, even when ';' are missing).
+    std::string_view TextToSemicolon();
     bool PeekIsKeyword(Keyword keyword) {
         return Peek().kind == TokenKind::kKeyword && Peek().keyword == keyword;
     }
@@ -111,8 +120,12 @@ class Parser {
     // leaves `id` empty when the next token is not an id. Keywords for which
     // `keywordMayFollow(keyword)` is true are not ids but the start of what follows.
     bool OptionalId(std::string& id, SourceLoc& loc, bool (*keywordMayFollow)(Keyword) = nullptr);
+    // The same with the position as a TokenLoc (token.h), for the statements read by the
+    // hundred thousand: no file-name reference count is touched unless the position is kept.
+    bool OptionalId(std::string& id, TokenLoc& loc, bool (*keywordMayFollow)(Keyword) = nullptr);
     // A required id (`what` names it: "definition id").
     bool ExpectId(std::string_view what, std::string& id, SourceLoc& loc);
+    bool ExpectId(std::string_view what, std::string& id, TokenLoc& loc);
     // `=c r g b` after its option token has been taken: three numbers in [0, 1] (linear light),
     // or `=c name` with one of the CSS/SVG color names (sRGB, converted to linear; appearance.cpp).
     std::optional<scene::Color> ParseColor(const Token& option);
@@ -143,13 +156,18 @@ class Parser {
     // Stops reading everywhere once Diagnostics::kMaxStored errors have been reported.
     void CheckErrorLimit();
     bool ReservedWord(const Token& token);
+    template <class Loc>
+    bool OptionalIdAt(std::string& id, Loc& loc, bool (*keywordMayFollow)(Keyword));
+    template <class Loc>
+    bool ExpectIdAt(std::string_view what, std::string& id, Loc& loc);
 
     ReaderState& state_;
     Source& source_;
     Lexer lexer_;
     std::optional<Token> next_;
-    int lastLine_ = 0;            // line of the last token taken
-    std::size_t keywordEnd_ = 0;  // byte offset after the keyword of the current statement
+    int lastLine_ = 0;               // line of the last token taken
+    std::size_t keywordEnd_ = 0;     // byte offset after the keyword of the current statement
+    std::size_t lookedAheadTo_ = 0;  // TextToSemicolon: the end of the last text handed out
     bool stopped_ = false;
 };
 

@@ -1,5 +1,10 @@
 #include "quadrix/lang/reader_state.h"
 
+#include <cstring>
+
+#include "quadrix/lang/big_arrays.h"
+#include "quadrix/lang/keywords.h"
+
 namespace quadrix::lang {
 
 namespace {
@@ -144,9 +149,46 @@ void ReaderState::MarkOperand(const scene::SolidRef& ref) {
     }
 }
 
+void ReaderState::ReserveForText(std::string_view text) {
+    if (text.size() < kReserveMinBytes) return;
+    std::size_t halfSpaces = 0, bodies = 0, csgs = 0;
+    const char* p = text.data();
+    const char* end = p + text.size();
+    while (p < end) {
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) ++p;
+        const char* word = p;
+        while (p < end && *p >= 'a' && *p <= 'z') ++p;
+        switch (LookupKeyword(std::string_view(word, static_cast<std::size_t>(p - word)))) {
+            case Keyword::kPlane:
+            case Keyword::kQuadric:
+                ++halfSpaces;
+                break;
+            case Keyword::kBody:
+                ++bodies;
+                break;
+            case Keyword::kCsg:
+                ++csgs;
+                break;
+            default:
+                break;
+        }
+        const void* semicolon = std::memchr(p, ';', static_cast<std::size_t>(end - p));
+        if (!semicolon) break;
+        p = static_cast<const char*>(semicolon) + 1;
+    }
+    scene::Scope& scope = CurrentScope();
+    ReserveAdvised(scope.halfSpaces, scope.halfSpaces.size() + halfSpaces);
+    ReserveAdvised(scope.bodies, scope.bodies.size() + bodies);
+    ReserveAdvised(scope.csgs, scope.csgs.size() + csgs);
+    ScopeIndex& index = CurrentIndex();
+    index.halfSpaces.Reserve(index.halfSpaces.Size() + halfSpaces);
+    index.solids.Reserve(index.solids.Size() + bodies + csgs);
+}
+
 int ReaderState::AddHalfSpace(scene::HalfSpace hs) {
     scene::Scope& scope = CurrentScope();
     int index = static_cast<int>(scope.halfSpaces.size());
+    PrepareAppend(scope.halfSpaces);
     scope.halfSpaces.push_back(std::move(hs));
     CurrentIndex().halfSpaces.Set(scope.halfSpaces.back().id, index, HalfSpaceIds(scope));
     return index;
@@ -155,6 +197,7 @@ int ReaderState::AddHalfSpace(scene::HalfSpace hs) {
 int ReaderState::AddBody(scene::Body body) {
     scene::Scope& scope = CurrentScope();
     int index = static_cast<int>(scope.bodies.size());
+    PrepareAppend(scope.bodies);
     scope.bodies.push_back(std::move(body));
     CurrentIndex().solids.Set(scope.bodies.back().id, EncodeSolid({Kind::kBody, index}),
                               SolidIds(scope));
@@ -164,6 +207,7 @@ int ReaderState::AddBody(scene::Body body) {
 int ReaderState::AddInstance(scene::Instance instance) {
     scene::Scope& scope = CurrentScope();
     int index = static_cast<int>(scope.instances.size());
+    PrepareAppend(scope.instances);
     scope.instances.push_back(std::move(instance));
     CurrentIndex().solids.Set(scope.instances.back().id, EncodeSolid({Kind::kInstance, index}),
                               SolidIds(scope));
@@ -173,6 +217,7 @@ int ReaderState::AddInstance(scene::Instance instance) {
 int ReaderState::AddCsg(scene::Csg csg) {
     scene::Scope& scope = CurrentScope();
     int index = static_cast<int>(scope.csgs.size());
+    PrepareAppend(scope.csgs);
     scope.csgs.push_back(std::move(csg));
     CurrentIndex().solids.Set(scope.csgs.back().id, EncodeSolid({Kind::kCsg, index}),
                               SolidIds(scope));

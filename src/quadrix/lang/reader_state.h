@@ -64,6 +64,13 @@ class ReaderState {
     // Sets usedAsOperand on the solid `ref` of the current scope.
     void MarkOperand(const scene::SolidRef& ref);
 
+    // Before a big input is parsed: makes room in the current scope for the statements the text
+    // appears to hold (counted by the keyword after each ';', comments included, so it is an
+    // estimate), so that its arrays are allocated once (big_arrays.h) instead of being moved
+    // at each doubling. Nothing for a text under kReserveMinBytes.
+    void ReserveForText(std::string_view text);
+    static constexpr std::size_t kReserveMinBytes = 256 * 1024;
+
     int AddHalfSpace(scene::HalfSpace hs);
     int AddBody(scene::Body body);
     int AddInstance(scene::Instance instance);

@@ -6,43 +6,37 @@
 namespace quadrix::lang {
 
 Source::Source(std::string name, std::string text)
-    : name_(std::make_shared<const std::string>(std::move(name))), text_(std::move(text)) {
-    IndexLines(0);
-}
+    : name_(std::make_shared<const std::string>(std::move(name))), text_(std::move(text)) {}
 
 Source::Source(std::string name, LineReader readLine)
     : name_(std::make_shared<const std::string>(std::move(name))), readLine_(std::move(readLine)) {}
 
-void Source::Append(std::string_view more) {
-    const std::size_t before = text_.size();
-    text_ += more;
-    IndexLines(before);
-}
+void Source::Append(std::string_view more) { text_ += more; }
 
 bool Source::ReadMore(std::size_t pos) {
     while (pos >= text_.size() && readLine_) {
-        std::size_t before = text_.size();
         if (!readLine_(text_)) {
             readLine_ = nullptr;  // end of input: never ask again
             break;
         }
-        IndexLines(before);
     }
     return pos < text_.size();
 }
 
-void Source::IndexLines(std::size_t from) {
+void Source::IndexLines() const {
     const char* begin = text_.data();
     const char* end = begin + text_.size();
-    for (const char* p = begin + from; p < end;) {
+    for (const char* p = begin + indexedTo_; p < end;) {
         const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
         if (!nl) break;
         p = static_cast<const char*>(nl) + 1;
         lineStarts_.push_back(static_cast<std::size_t>(p - begin));
     }
+    indexedTo_ = text_.size();
 }
 
 std::string Source::LineForDiagnostic(int line, int column) const {
+    if (line >= 1 && line > static_cast<int>(lineStarts_.size())) IndexLines();
     if (line < 1 || line > static_cast<int>(lineStarts_.size()) || column > kMaxShownColumn)
         return {};
     std::size_t start = lineStarts_[line - 1];

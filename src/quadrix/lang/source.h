@@ -1,5 +1,5 @@
 // One input of the reader: the text of a file, a string or standard input, with a line index for
-// diagnostics.
+// diagnostics (built when the first diagnostic needs it).
 //
 // A Source may be complete from the start (files, ReadText) or grow a line at a time (standard
 // input), so that an interactive session can execute a statement as soon as its ';' is typed:
@@ -51,12 +51,15 @@ class Source {
 
   private:
     bool ReadMore(std::size_t pos);
-    void IndexLines(std::size_t from);
+    // Extends lineStarts_ over the text held now. Lines are indexed only when a diagnostic
+    // shows one (the lexer counts lines itself): most inputs never need the index.
+    void IndexLines() const;
 
     std::shared_ptr<const std::string> name_;
     std::string text_;
-    std::vector<std::size_t> lineStarts_{0};  // offset of the first byte of each line
-    LineReader readLine_;                     // empty when the text is complete
+    mutable std::vector<std::size_t> lineStarts_{0};  // offset of the first byte of each line
+    mutable std::size_t indexedTo_ = 0;               // bytes searched for line starts so far
+    LineReader readLine_;                             // empty when the text is complete
 };
 
 }  // namespace quadrix::lang

@@ -35,6 +35,25 @@ TEST(LangStatements, PlaneAndQuadricWithOptions) {
     EXPECT_EQ(hs[0].loc.column, 1);
 }
 
+// Number lists are read by a fast path when they are plain numbers (Lexer::TakePlainNumbers) and
+// token by token otherwise: the values, and the positions after a list, must not depend on which.
+TEST(LangStatements, NumberListsReadTheSameWhateverTheirSpelling) {
+    Parsed r = Parse(
+        "plane pa <1 -2.5 +3e1 .25>;\n"
+        "plane pb <1 {two} -2.5 (30) 0.25>;\n"
+        "plane pc <1\n -2.5\n\t30.0e0 2.5E-1>;\n"
+        "plane pd <1 -2.5 30 1e-400>;\n"
+        "plane pe <1\n  -2.5 3e1\n .25> =x;");
+    ASSERT_EQ(r.Errors().size(), 1u) << r.All();
+    const auto& hs = r.scene.top.halfSpaces;
+    ASSERT_EQ(hs.size(), 4u);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(hs[i].plane, (Plane{1, -2.5, 30, 0.25})) << i;
+    EXPECT_EQ(hs[3].plane, (Plane{1, -2.5, 30, 0}));  // an underflow is zero, quietly
+    // The position after a list read by the fast path over three lines: =x on line 9, column 7.
+    EXPECT_EQ(r.Errors()[0]->loc.line, 9);
+    EXPECT_EQ(r.Errors()[0]->loc.column, 7);
+}
+
 // The materials extension, point and spot lights and the background (docs/language.md §3.6-3.7).
 TEST(LangStatements, MaterialsLightsAndBackground) {
     Parsed r = Parse(

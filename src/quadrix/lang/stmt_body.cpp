@@ -21,26 +21,38 @@ namespace {
 // bodies name a handful), indexed by a hash map once it grows past kLinear entries.
 class SeenLiterals {
   public:
-    const SourceLoc* Find(int index) const {
+    const TokenLoc* Find(int index) const {
         if (map_.empty()) {
-            for (const auto& [i, loc] : list_)
-                if (i == index) return &loc;
+            for (std::size_t k = 0; k < size_; ++k)
+                if (At(k).first == index) return &At(k).second;
             return nullptr;
         }
         auto it = map_.find(index);
-        return it == map_.end() ? nullptr : &list_[it->second].second;
+        return it == map_.end() ? nullptr : &At(it->second).second;
     }
-    void Add(int index, const SourceLoc& loc) {
-        list_.emplace_back(index, loc);
-        if (list_.size() == kLinear)
-            for (std::size_t k = 0; k < list_.size(); ++k) map_.emplace(list_[k].first, k);
-        else if (list_.size() > kLinear)
-            map_.emplace(index, list_.size() - 1);
+    void Add(int index, const TokenLoc& loc) {
+        // The first few in place: most bodies name one to six half-spaces, and a vector would
+        // allocate for each body.
+        if (size_ < kInPlace)
+            inPlace_[size_] = {index, loc};
+        else
+            more_.emplace_back(index, loc);
+        ++size_;
+        if (size_ == kLinear)
+            for (std::size_t k = 0; k < size_; ++k) map_.emplace(At(k).first, k);
+        else if (size_ > kLinear)
+            map_.emplace(index, size_ - 1);
     }
 
   private:
+    const std::pair<int, TokenLoc>& At(std::size_t k) const {
+        return k < kInPlace ? inPlace_[k] : more_[k - kInPlace];
+    }
+    static constexpr std::size_t kInPlace = 8;
     static constexpr std::size_t kLinear = 16;
-    std::vector<std::pair<int, SourceLoc>> list_;
+    std::pair<int, TokenLoc> inPlace_[kInPlace];
+    std::size_t size_ = 0;
+    std::vector<std::pair<int, TokenLoc>> more_;
     std::unordered_map<int, std::size_t> map_;
 };
 
@@ -51,7 +63,7 @@ bool ParseLiteral(Parser& p, scene::Body& body, SeenLiterals& seen) {
         complemented = true;
     }
     std::string id;
-    SourceLoc loc;
+    TokenLoc loc;
     if (!p.ExpectId(complemented ? "a half-space id after '!'" : "a half-space id or '!'", id, loc))
         return false;
     ReaderState& s = p.State();
@@ -65,7 +77,7 @@ bool ParseLiteral(Parser& p, scene::Body& body, SeenLiterals& seen) {
         p.Error(loc, fmt::format("unknown half-space '{}'{}", id, where));
         return true;
     }
-    if (const SourceLoc* first = seen.Find(index))
+    if (const TokenLoc* first = seen.Find(index))
         p.Warning(loc, fmt::format("half-space '{}' is named twice in this body (first at {})", id,
                                    first->ToString()));
     else
@@ -79,7 +91,7 @@ bool ParseLiteral(Parser& p, scene::Body& body, SeenLiterals& seen) {
 bool ParseBody(Parser& p, const Token& keyword) {
     scene::Body body;
     body.loc = keyword.loc;
-    SourceLoc idLoc = keyword.loc;
+    TokenLoc idLoc = keyword.loc;
     if (!p.OptionalId(body.id, idLoc)) return false;
 
     Token open = p.Peek();

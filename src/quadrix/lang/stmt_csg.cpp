@@ -9,6 +9,9 @@
 // recursion of this recursive-descent parser.
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "quadrix/lang/big_arrays.h"
 #include "quadrix/lang/parser.h"
 #include "quadrix/lang/statements.h"
 
@@ -74,12 +77,12 @@ class CsgBuilder {
     std::optional<int> Factor() {
         if (p_.PeekIs(TokenKind::kLParen)) return Parenthesised();
         std::string id;
-        SourceLoc loc;
+        TokenLoc loc;
         if (!p_.ExpectId("a body, instance, array or csg id, or '('", id, loc)) return std::nullopt;
         return Leaf(id, loc);
     }
 
-    int Leaf(const std::string& id, const SourceLoc& loc) {
+    int Leaf(const std::string& id, const TokenLoc& loc) {
         ReaderState& s = p_.State();
         auto ref = s.FindSolid(id);
         if (!ref) {
@@ -99,11 +102,12 @@ class CsgBuilder {
         node.isLeaf = true;
         node.ref = *ref;
         node.loc = loc;
-        csg_.nodes.push_back(node);
+        PrepareAppend(csg_.nodes);
+        csg_.nodes.push_back(std::move(node));
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
 
-    int Combine(scene::CsgOp op, int left, int right, const SourceLoc& loc) {
+    int Combine(scene::CsgOp op, int left, int right, const TokenLoc& loc) {
         if (left == kInvalid || right == kInvalid) return kInvalid;
         scene::CsgNode node;
         node.isLeaf = false;
@@ -111,7 +115,8 @@ class CsgBuilder {
         node.left = left;
         node.right = right;
         node.loc = loc;
-        csg_.nodes.push_back(node);
+        PrepareAppend(csg_.nodes);
+        csg_.nodes.push_back(std::move(node));
         return static_cast<int>(csg_.nodes.size()) - 1;
     }
 
@@ -128,6 +133,13 @@ bool ParseCsg(Parser& p, const Token& keyword) {
     SourceLoc idLoc = keyword.loc;
     if (!p.OptionalId(csg.id, idLoc)) return false;
     if (!p.PeekIs(TokenKind::kLParen)) return p.Expected("'(' to start the csg expression");
+    // A big expression gets its node array at once (big_arrays.h): a node per operand and per
+    // operator, at most 2 per operator character ahead ('-' may also start a number).
+    if (std::string_view ahead = p.TextToSemicolon(); ahead.size() >= 16384) {
+        const auto ops = std::count_if(ahead.begin(), ahead.end(),
+                                       [](char c) { return c == '|' || c == '&' || c == '-'; });
+        ReserveAdvised(csg.nodes, 2 * static_cast<std::size_t>(ops) + 1);
+    }
     CsgBuilder builder(p, csg);
     auto root = builder.Parenthesised();
     if (!root) return false;

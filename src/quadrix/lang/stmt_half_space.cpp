@@ -22,7 +22,8 @@ bool ParseCoefficients(Parser& p, std::string_view statement, std::string_view n
     if (!p.PeekIs(TokenKind::kLAngle))
         return p.Expected(fmt::format("'<' before the {} coefficients", statement));
     p.Take();
-    for (std::size_t i = 0; i < names.size(); ++i) {
+    const bool fast = p.TakePlainNumbers(out, names.size());
+    for (std::size_t i = 0; i < names.size() && !fast; ++i) {
         if (p.TakeNumber(out[i])) continue;
         auto v =
             p.ExpectNumber(fmt::format("coefficient {} of the {} ({} numbers between '<' and '>')",
@@ -59,7 +60,7 @@ template <class Check>
 bool ParseHalfSpace(Parser& p, const Token& keyword, scene::HalfSpace hs, std::string_view names,
                     double* coefficients, Check check) {
     std::string_view statement = hs.kind == scene::HalfSpace::Kind::kPlane ? "plane" : "quadric";
-    SourceLoc idLoc = keyword.loc;
+    TokenLoc idLoc = keyword.loc;
     if (!p.OptionalId(hs.id, idLoc)) return false;
     SourceLoc listLoc;
     if (!ParseCoefficients(p, statement, names, coefficients, listLoc)) return false;
