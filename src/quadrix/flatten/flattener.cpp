@@ -32,7 +32,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
+#include <optional>
 #include <unordered_map>
 
 #include "quadrix/flatten/bounds.h"
@@ -60,6 +62,26 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view) {
     s = std::fmax(s, view.d);
     return s > 0 && std::isfinite(s) ? s : 1.0;
 }
+
+// Per body: the body whose box it may reuse by translation (itself: none) and the shift from
+// that body to it, in provisional space (FlattenerImpl::TranslationReuse).
+struct Reuse {
+    std::vector<std::size_t> ref;
+    std::vector<Vec3> shift;
+};
+
+// Per body: a conservative box; where `exact`, the body's own (BodyBounds); elsewhere reused by
+// translation, and the body's own box lies between it shrunk and grown by `pad` per axis.
+struct BodyBoxes {
+    std::vector<Box3> box;
+    std::vector<Vec3> pad;
+    std::vector<char> exact;
+    bool AllExact() const {
+        for (char c : exact)
+            if (!c) return false;
+        return true;
+    }
+};
 
 class FlattenerImpl {
   public:
@@ -144,10 +166,28 @@ class FlattenerImpl {
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_);
         bool anySearched = false;
-        std::vector<Box3> bodyBoxes = AllBodyBounds(flat, bo, &anySearched);
+        const Reuse reuse = TranslationReuse(nClip);
+        boxes_ = AllBodyBounds(flat, bo, &anySearched, &reuse);
+        bodiesOf_ = BodiesOfSolids();
+        solidExact_.assign(flat.solids.size(), 1);
+        for (std::size_t s = 0; s < flat.solids.size(); ++s)
+            for (int b : bodiesOf_[s])
+                if (!boxes_.exact[static_cast<std::size_t>(b)]) solidExact_[s] = 0;
+        // Boxes reused by translation hold the true ones only to within their pad: the fit
+        // boxes are made from the padded boxes, and the solids that can decide the window are
+        // bounded directly (SettleExtremes), so the window is the one of the direct boxes.
         std::vector<Box3> fitBoxes =
             FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
-                          view_.fitNear, bodyBoxes, bo, &passesEye_);
+                          view_.fitNear, PaddedBoxes(true), bo, &passesEye_);
+        auto makeExact = [&](const std::vector<std::size_t>& which) {
+            MakeSolidsExact(which, bo);
+            const std::vector<Box3> solidFit =
+                FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
+                              view_.fitNear, PaddedBoxes(true), bo);
+            for (std::size_t s = 0; s < solidFit.size(); ++s) fitBoxes[s] = solidFit[s];
+        };
+        const bool autoFit = !view_.whw && !view_.whh;
+        if (autoFit && !boxes_.AllExact()) SettleExtremes(fitBoxes, solidExact_, makeExact);
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).
         for (const FlatFreeform& f : flat.freeforms) {
@@ -161,11 +201,18 @@ class FlattenerImpl {
         std::optional<WindowFit> fit = Fit(fitBoxes);
         if (!fit) return std::nullopt;
         WarnAboutSolidsAroundEye();
-        if (!view_.whw && !view_.whh && anySearched)
-            RefineFit(
-                *fit, fitBoxes, std::vector<char>(flat.solids.size(), 1),
-                [](const std::vector<std::size_t>&, std::vector<Box3>&, std::vector<char>&) {});
-        ToDevice(*fit, bodyBoxes);
+        if (autoFit && anySearched)
+            RefineFit(*fit, fitBoxes, solidExact_,
+                      [&](const std::vector<std::size_t>& which, std::vector<Box3>& firstBoxes,
+                          std::vector<char>& firstKnown) {
+                          makeExact(which);
+                          for (std::size_t s : which) {
+                              firstBoxes[s] = fitBoxes[s];
+                              firstKnown[s] = 1;
+                          }
+                      });
+        if (!boxes_.AllExact()) SettleCulling(*fit, bo);
+        ToDevice(*fit, boxes_.box);
         Cull();
         SetDepthTolerance(*fit);
         return std::move(flat_);
@@ -279,31 +326,306 @@ class FlattenerImpl {
     // bodies with the same literals share one computation (FirstWithSameLiterals). Mitered pipes
     // and other bodies of oblique planes cost milliseconds each (branch and bound, bounds.h).
     // `anySearched` is set when some box was not exact from the analytic stage.
-    static std::vector<Box3> AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
-                                           bool* anySearched) {
+    //
+    // Bounds reused by translation (`reuse`, TranslationReuse): a body that is a translate of an
+    // earlier one by t gets the earlier one's box moved by t when that box came from the exact
+    // stages (analytic, polytope vertices or critical points: within kTight of the true extremes,
+    // bounds.h) and lies well inside the search region. The box moved by t holds the translate
+    // of the earlier body exactly (rounded outward); the body's own coefficients are that
+    // translate to rounding (two transforms of one statement with one linear part). The body's
+    // own box would differ from it by the two certificates' allowances, at most kTightNappe =
+    // 1e-5 × (size + |coordinate|) each: `pad` (2e-5 of that) bounds the difference, and the
+    // window fit and the culling use it to decide which solids to bound directly after all.
+    static BodyBoxes AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
+                                   bool* anySearched, const Reuse* reuse = nullptr) {
         const std::vector<std::size_t> first = FirstWithSameLiterals(flat);
-        std::vector<std::size_t> distinct;
-        for (std::size_t i = 0; i < first.size(); ++i)
-            if (first[i] == i) distinct.push_back(i);
-        std::vector<Box3> bodyBoxes(flat.bodies.size());
-        std::vector<char> searched(flat.bodies.size(), 0);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, distinct.size(), 8),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                                  const std::size_t i = distinct[j];
-                                  BoundsStats st;
-                                  bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
-                                  searched[i] = st.analyticOnly == 0;
-                              }
-                          });
-        for (std::size_t i = 0; i < first.size(); ++i)
+        const std::size_t n = first.size();
+        BodyBoxes out;
+        out.box.resize(n);
+        out.pad.assign(n, Vec3{0, 0, 0});
+        out.exact.assign(n, 1);
+        std::vector<char> searched(n, 0), tight(n, 0), done(n, 0);
+        auto direct = [&](const std::vector<std::size_t>& which) {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 8),
+                              [&](const tbb::blocked_range<std::size_t>& r) {
+                                  for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                      const std::size_t i = which[j];
+                                      BoundsStats st;
+                                      out.box[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
+                                      searched[i] = st.analyticOnly == 0;
+                                      tight[i] = st.convexSolves == 0 && st.boxesPopped == 0;
+                                      done[i] = 1;
+                                  }
+                              });
+        };
+        auto refOf = [&](std::size_t i) { return reuse ? reuse->ref[i] : i; };
+        std::vector<std::size_t> own, later;
+        for (std::size_t i = 0; i < n; ++i)
+            if (first[i] == i) (refOf(i) == i ? own : later).push_back(i);
+        direct(own);
+        const double inside = 1e-4 * bo.searchLimit;
+        std::vector<std::size_t> fallback;
+        for (std::size_t i : later) {
+            const std::size_t r = first[refOf(i)];
+            const Box3& rb = out.box[r];
+            bool ok = done[r] && tight[r] && rb.Finite();
+            Box3 moved;
+            Vec3 pad;
+            for (int a = 0; ok && a < 3; ++a) {
+                const double t = reuse->shift[i][a];
+                double lo = rb.lo[a] + t, hi = rb.hi[a] + t;
+                lo -= 4e-16 * (std::fabs(rb.lo[a]) + std::fabs(t)) + 1e-300;
+                hi += 4e-16 * (std::fabs(rb.hi[a]) + std::fabs(t)) + 1e-300;
+                const double reach = std::fmax(std::fmax(std::fabs(rb.lo[a]), std::fabs(rb.hi[a])),
+                                               std::fmax(std::fabs(lo), std::fabs(hi)));
+                ok = std::isfinite(t) && reach < inside;
+                moved.lo[a] = lo;
+                moved.hi[a] = hi;
+                pad[a] = 2e-5 * ((rb.hi[a] - rb.lo[a]) + reach);
+            }
+            if (!ok) {
+                fallback.push_back(i);
+                continue;
+            }
+            out.box[i] = moved;
+            out.pad[i] = pad;
+            out.exact[i] = 0;
+            searched[i] = searched[r];
+        }
+        direct(fallback);
+        for (std::size_t i = 0; i < n; ++i)
             if (first[i] != i) {
-                bodyBoxes[i] = bodyBoxes[first[i]];
+                out.box[i] = out.box[first[i]];
+                out.pad[i] = out.pad[first[i]];
+                out.exact[i] = out.exact[first[i]];
                 searched[i] = searched[first[i]];
             }
         if (anySearched)
             for (char c : searched) *anySearched |= c != 0;
-        return bodyBoxes;
+        return out;
+    }
+
+    // Which bodies are translates of an earlier one (AllBodyBounds), read from the coefficients
+    // (an imported model places every primitive instance in the top scope with its path matrix
+    // applied, so the hierarchy does not say). Bodies are grouped by their literals' kinds,
+    // complements and linear parts (a plane's normal, a quadric's A) divided by their largest
+    // entry, which agree to rounding for two placements of one primitive with one rotation
+    // (A' = L⁻ᵀAL⁻¹ does not involve the translation; the importer's normalisation by the
+    // largest coefficient does, in the last bits), so they are matched to 1e-12 and hashed on a
+    // grid (a pair split by a grid line is only not shared). Within a group the shift t is the
+    // least-squares solution of the translated literals' equations (a plane: n·t = d - d'; a
+    // quadric: A t = b - b', with f(x) = xᵀAx + 2bᵀx + k), and the body counts as the translate
+    // only when every coefficient of every literal matches its reference's moved by t to 1e-12 of
+    // the terms' magnitude (and t is determined: the normals span space). Only where a translation
+    // of the world is one of provisional space and moves every literal: parallel views without clip
+    // or section planes (those are not moved with the body). Elsewhere every body is its own
+    // reference.
+    Reuse TranslationReuse(int nClip) const {
+        const std::size_t n = flat_.bodies.size();
+        Reuse r;
+        r.ref.resize(n);
+        for (std::size_t i = 0; i < n; ++i) r.ref[i] = i;
+        r.shift.assign(n, Vec3{0, 0, 0});
+        if (!options_.reuseBoundsByTranslation || view_.perspective || nClip != 0 ||
+            !view_.fitClips.empty())
+            return r;
+        // A literal normalised: the linear part (3 for a plane, 6 for a quadric) and the rest
+        // (d; b and k), all divided by the largest |entry| of the linear part.
+        struct Norm {
+            bool ok = false, plane = true;
+            double lin[6] = {0, 0, 0, 0, 0, 0};
+            double rest[4] = {0, 0, 0, 0};
+        };
+        std::vector<Norm> norms(flat_.halfSpaces.size());
+        for (std::size_t h = 0; h < norms.size(); ++h) {
+            const FlatHalfSpace& hs = flat_.halfSpaces[h];
+            Norm& nm = norms[h];
+            if (hs.IsQuartic()) continue;
+            nm.plane = hs.isPlane;
+            double m = 0;
+            if (hs.isPlane) {
+                const double v[3] = {hs.plane.a, hs.plane.b, hs.plane.c};
+                for (double x : v) m = std::fmax(m, std::fabs(x));
+                if (!(m > 0) || !std::isfinite(m)) continue;
+                for (int k = 0; k < 3; ++k) nm.lin[k] = v[k] / m;
+                nm.rest[0] = hs.plane.d / m;
+            } else {
+                for (int k = 0; k < 6; ++k) m = std::fmax(m, std::fabs(hs.quadric.k[k]));
+                if (!(m > 0) || !std::isfinite(m)) continue;
+                for (int k = 0; k < 6; ++k) nm.lin[k] = hs.quadric.k[k] / m;
+                for (int k = 0; k < 4; ++k) nm.rest[k] = hs.quadric.k[6 + k] / m;
+            }
+            nm.ok = std::isfinite(nm.rest[0]) && std::isfinite(nm.rest[1]) &&
+                    std::isfinite(nm.rest[2]) && std::isfinite(nm.rest[3]);
+        }
+        // A x for the normalised A of a quadric (lin: A B C D E F).
+        auto mulA = [](const double* q, const Vec3& x) {
+            return Vec3{q[0] * x.x + q[3] * x.y + q[5] * x.z, q[3] * x.x + q[1] * x.y + q[4] * x.z,
+                        q[5] * x.x + q[4] * x.y + q[2] * x.z};
+        };
+        // The shift taking body `ref` to body `i` (same group), or nullopt.
+        auto shiftOf = [&](std::size_t ref, std::size_t i) -> std::optional<Vec3> {
+            const auto& la = flat_.bodies[ref].literals;
+            const auto& lb = flat_.bodies[i].literals;
+            double g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, h[3] = {0, 0, 0};
+            auto row = [&](const Vec3& rv, double rhs) {
+                const double v[3] = {rv.x, rv.y, rv.z};
+                for (int p = 0; p < 3; ++p) {
+                    for (int q = 0; q < 3; ++q) g[p][q] += v[p] * v[q];
+                    h[p] += v[p] * rhs;
+                }
+            };
+            for (std::size_t l = 0; l < la.size(); ++l) {
+                const Norm& x = norms[static_cast<std::size_t>(la[l].halfSpace)];
+                const Norm& y = norms[static_cast<std::size_t>(lb[l].halfSpace)];
+                if (x.plane) {
+                    row({x.lin[0], x.lin[1], x.lin[2]}, x.rest[0] - y.rest[0]);
+                } else {
+                    row({x.lin[0], x.lin[3], x.lin[5]}, x.rest[0] - y.rest[0]);
+                    row({x.lin[3], x.lin[1], x.lin[4]}, x.rest[1] - y.rest[1]);
+                    row({x.lin[5], x.lin[4], x.lin[2]}, x.rest[2] - y.rest[2]);
+                }
+            }
+            const Vec3 c0{g[0][0], g[1][0], g[2][0]}, c1{g[0][1], g[1][1], g[2][1]},
+                c2{g[0][2], g[1][2], g[2][2]};
+            const double det = Dot(c0, Cross(c1, c2));
+            const double scale = g[0][0] + g[1][1] + g[2][2];
+            if (!(std::fabs(det) > 1e-9 * scale * scale * scale)) return std::nullopt;
+            const Vec3 hv{h[0], h[1], h[2]};
+            const Vec3 t{Dot(hv, Cross(c1, c2)) / det, Dot(c0, Cross(hv, c2)) / det,
+                         Dot(c0, Cross(c1, hv)) / det};
+            if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)))
+                return std::nullopt;
+            constexpr double kMatch = 1e-12;
+            auto close = [](double a, double b, double mag) {
+                return std::fabs(a - b) <= kMatch * mag;
+            };
+            for (std::size_t l = 0; l < la.size(); ++l) {
+                const Norm& x = norms[static_cast<std::size_t>(la[l].halfSpace)];
+                const Norm& y = norms[static_cast<std::size_t>(lb[l].halfSpace)];
+                if (x.plane) {
+                    // d' = d - n·t
+                    const double nt = x.lin[0] * t.x + x.lin[1] * t.y + x.lin[2] * t.z;
+                    if (!close(y.rest[0], x.rest[0] - nt,
+                               std::fabs(x.rest[0]) + std::fabs(y.rest[0]) + std::fabs(nt)))
+                        return std::nullopt;
+                } else {
+                    // b' = b - A t, k' = k - 2 b·t + tᵀA t
+                    const Vec3 at = mulA(x.lin, t);
+                    const double bv[3] = {x.rest[0], x.rest[1], x.rest[2]};
+                    const double atv[3] = {at.x, at.y, at.z};
+                    for (int k = 0; k < 3; ++k)
+                        if (!close(y.rest[k], bv[k] - atv[k],
+                                   std::fabs(bv[k]) + std::fabs(y.rest[k]) + std::fabs(atv[k])))
+                            return std::nullopt;
+                    const double bt = bv[0] * t.x + bv[1] * t.y + bv[2] * t.z;
+                    const double tat = Dot(t, at);
+                    if (!close(y.rest[3], x.rest[3] - 2 * bt + tat,
+                               std::fabs(x.rest[3]) + std::fabs(y.rest[3]) + 2 * std::fabs(bt) +
+                                   std::fabs(tat)))
+                        return std::nullopt;
+                }
+            }
+            return t;
+        };
+        std::unordered_map<std::uint64_t, std::vector<std::size_t>> byHash;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto& lits = flat_.bodies[i].literals;
+            bool ok = !lits.empty();
+            std::uint64_t key = 1469598103934665603ull;
+            auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
+            for (const FlatLiteral& l : lits) {
+                const Norm& nm = norms[static_cast<std::size_t>(l.halfSpace)];
+                ok = ok && nm.ok;
+                mix(static_cast<std::uint64_t>(nm.plane) * 2 + l.complemented);
+                // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched to 1e-12 below.
+                for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
+                    mix(static_cast<std::uint64_t>(std::llround(std::ldexp(nm.lin[k], 36))));
+            }
+            if (!ok) continue;
+            std::vector<std::size_t>& bucket = byHash[key];
+            for (std::size_t c = 0; c < bucket.size() && c < 4; ++c) {
+                const std::size_t j = bucket[c];
+                const auto& lj = flat_.bodies[j].literals;
+                bool same = lj.size() == lits.size();
+                for (std::size_t l = 0; same && l < lits.size(); ++l) {
+                    const Norm& x = norms[static_cast<std::size_t>(lj[l].halfSpace)];
+                    const Norm& y = norms[static_cast<std::size_t>(lits[l].halfSpace)];
+                    same = x.plane == y.plane && lj[l].complemented == lits[l].complemented;
+                    for (int k = 0; same && k < 6; ++k)
+                        same = std::fabs(x.lin[k] - y.lin[k]) <= 1e-12;
+                }
+                if (!same) continue;
+                if (std::optional<Vec3> t = shiftOf(j, i)) {
+                    r.ref[i] = j;
+                    r.shift[i] = *t;
+                    break;
+                }
+            }
+            if (r.ref[i] == i) bucket.push_back(i);
+        }
+        return r;
+    }
+
+    // Body boxes grown by their pad (the boxes reused by translation; `grow` false: shrunk, an
+    // empty box where the pad exceeds it): between them lies the body's own box.
+    std::vector<Box3> PaddedBoxes(bool grow) const {
+        std::vector<Box3> out = boxes_.box;
+        const double sign = grow ? 1 : -1;
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            if (boxes_.exact[i] || out[i].Empty()) continue;
+            for (int a = 0; a < 3; ++a) {
+                out[i].lo[a] -= sign * boxes_.pad[i][a];
+                out[i].hi[a] += sign * boxes_.pad[i][a];
+            }
+            if (out[i].Empty()) out[i] = Box3{};
+        }
+        return out;
+    }
+
+    // Bounds the bodies of solids `which` directly where their boxes were reused (in parallel).
+    void MakeSolidsExact(const std::vector<std::size_t>& which, const BoundsOptions& bo) {
+        std::vector<std::size_t> bodies;
+        for (std::size_t s : which) {
+            for (int b : bodiesOf_[s])
+                if (!boxes_.exact[static_cast<std::size_t>(b)])
+                    bodies.push_back(static_cast<std::size_t>(b));
+            solidExact_[s] = 1;
+        }
+        std::sort(bodies.begin(), bodies.end());
+        bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                  const std::size_t i = bodies[j];
+                                  boxes_.box[i] = BodyBounds(flat_, flat_.bodies[i], bo);
+                                  boxes_.exact[i] = 1;
+                                  boxes_.pad[i] = Vec3{0, 0, 0};
+                              }
+                          });
+    }
+
+    // Culling with reused boxes: a solid is dropped when its box misses the image (ToDevice,
+    // Cull). Where the grown and the shrunk boxes of a solid disagree on that, its own box could
+    // go either way, so its bodies are bounded directly: the solids kept (and so every id in
+    // the frame) are those of the direct boxes.
+    void SettleCulling(const WindowFit& fit, const BoundsOptions& bo) {
+        const std::vector<Box3> grown = PaddedBoxes(true), shrunk = PaddedBoxes(false);
+        std::vector<Box3> devGrown(grown.size()), devShrunk(shrunk.size());
+        for (std::size_t i = 0; i < grown.size(); ++i) {
+            devGrown[i] = MapBox(fit, grown[i]);
+            devShrunk[i] = MapBox(fit, shrunk[i]);
+        }
+        const std::vector<Box3> g = TreeBounds(flat_, devGrown), h = TreeBounds(flat_, devShrunk);
+        const Box3 image{{0, 0, -kInf}, {double(flat_.width), double(flat_.height), kInf}};
+        std::vector<std::size_t> unsure;
+        for (std::size_t s = 0; s < flat_.solids.size(); ++s) {
+            if (solidExact_[s]) continue;
+            const int root = flat_.solids[s].root;
+            if (g[root].Intersected(image).Empty() != h[root].Intersected(image).Empty())
+                unsure.push_back(s);
+        }
+        if (!unsure.empty()) MakeSolidsExact(unsure, bo);
     }
 
     // Solid boxes for the window fit: like the final ones, except that the fit ignores fbp, so
@@ -711,6 +1033,20 @@ class FlattenerImpl {
         return std::nullopt;
     }
 
+    // A box maps exactly under a positive scale and a translation, up to rounding: pad by a
+    // few ulps of the coordinates.
+    static Box3 MapBox(const WindowFit& fit, const Box3& b) {
+        if (b.Empty()) return Box3{};
+        Box3 r;
+        const double o[3] = {fit.ox, fit.oy, 0};
+        for (int i = 0; i < 3; ++i) {
+            double lo = fit.k * b.lo[i] + o[i], hi = fit.k * b.hi[i] + o[i];
+            r.lo[i] = lo - 4e-16 * (std::fabs(lo) + std::fabs(o[i])) - 1e-300;
+            r.hi[i] = hi + 4e-16 * (std::fabs(hi) + std::fabs(o[i])) + 1e-300;
+        }
+        return r;
+    }
+
     // Maps everything from provisional to device space: D = T(ox, oy, 0) · S(k, k, k).
     void ToDevice(const WindowFit& fit, const std::vector<Box3>& bodyBoxes) {
         FlatScene& flat = flat_;
@@ -727,22 +1063,9 @@ class FlattenerImpl {
                 RescaleCoefficients(h.quadric);
             }
         }
-        // A box maps exactly under a positive scale and a translation, up to rounding: pad by a
-        // few ulps of the coordinates.
-        auto mapBox = [&](const Box3& b) {
-            if (b.Empty()) return Box3{};
-            Box3 r;
-            const double o[3] = {fit.ox, fit.oy, 0};
-            for (int i = 0; i < 3; ++i) {
-                double lo = fit.k * b.lo[i] + o[i], hi = fit.k * b.hi[i] + o[i];
-                r.lo[i] = lo - 4e-16 * (std::fabs(lo) + std::fabs(o[i])) - 1e-300;
-                r.hi[i] = hi + 4e-16 * (std::fabs(hi) + std::fabs(o[i])) + 1e-300;
-            }
-            return r;
-        };
         std::vector<Box3> devBodies(bodyBoxes.size());
         for (std::size_t i = 0; i < bodyBoxes.size(); ++i) {
-            devBodies[i] = mapBox(bodyBoxes[i]);
+            devBodies[i] = MapBox(fit, bodyBoxes[i]);
             flat.bodies[i].bounds = devBodies[i];
         }
         std::vector<Box3> nodes = TreeBounds(flat, devBodies);
@@ -940,6 +1263,9 @@ class FlattenerImpl {
     std::vector<std::string> freeformNames_;  // fit boxes past the solids
     std::vector<char> eyeInside_;             // per solid (FindSolidsAroundEye)
     std::vector<char> passesEye_;             // per solid: its box reaches the fit's near plane
+    BodyBoxes boxes_;                         // per body, provisional space (AllBodyBounds)
+    std::vector<std::vector<int>> bodiesOf_;  // per solid: its bodies
+    std::vector<char> solidExact_;            // per solid: every body's box is its own
 };
 
 }  // namespace
