@@ -18,7 +18,10 @@
 //     (a ground plane) are drawn clipped to it (window_fit.h). Pixels stay square: the window is
 //     fitted inside the image and centred.
 //  5. Device: x = column, y = row (row 0 at the top), z grows away from the viewer.
-//  6. Bounds: every body, CSG node and solid gets conservative device-space bounds.
+//  6. Bounds: every body, CSG node and solid gets conservative device-space bounds. In parallel
+//     views without clip planes a body that is a translate of an earlier one gets that one's box
+//     moved (flattener.cpp); the solids deciding the auto-fit window or the culling are always
+//     bounded directly, so both are those of the direct bounds.
 //
 // Errors (user tier): unknown view, nothing bounded and no window, a view whose vectors are
 // degenerate (vup parallel to vpn, zero vectors, cop on the view plane), an empty scene, a

@@ -643,9 +643,7 @@ TEST(FlattenBounds, BoxesReusedByTranslationKeepTheWindowAndHoldTheBodies) {
         o.reuseBoundsByTranslation = false;
         std::optional<FlatScene> direct = Flatten(s, o, d2);
         ASSERT_TRUE(reused && direct)
-            << view << "\n"
-            << d1.Items().size()
-            << (d1.Items().empty() ? std::string() : d1.Items()[0].Format(false));
+            << view << ": " << (d1.Items().empty() ? std::string() : d1.Items()[0].Format(false));
         EXPECT_EQ(reused->projection.deviceFromWorld.Matrix().m,
                   direct->projection.deviceFromWorld.Matrix().m)
             << view;
