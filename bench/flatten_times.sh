@@ -4,14 +4,15 @@
 # synthetic helicopter (bench/make_helicopter.py, 2,211 and 10,131 bodies) and on every shared
 # BRL-CAD sample, in the default (auto-fitted) view and in --az 35 --el 25, and prints the minimum
 # over REPS runs of the wall-clock `flatten` and `render` phases of `quadrix render --stats`
-# (512×512, --threads THREADS), with the machine load at the start and the end.
+# (SIZE, default 512x512, --threads THREADS), with the machine load at the start and the end.
 #
-#   bench/flatten_times.sh BEFORE_BINARY AFTER_BINARY [REPS=3] [THREADS=1]
+#   bench/flatten_times.sh BEFORE_BINARY AFTER_BINARY [REPS=3] [THREADS=1] [SIZE=512x512]
 set -euo pipefail
 before=$1
 after=$2
 reps=${3:-3}
 threads=${4:-1}
+size=${5:-512x512}
 here=$(cd "$(dirname "$0")" && pwd)
 # The shared samples sit beside the checkout (../shared from the main checkout).
 samples=${QUADRIX_BRLCAD_SAMPLES:-$here/../../shared/data/brlcad}
@@ -31,14 +32,14 @@ min_phase() {
     local best=""
     for _ in $(seq "$reps"); do
         local v
-        v=$("$bin" render "$@" --threads "$threads" --stats -o "$tmp/out.png" 2>&1 >/dev/null |
+        v=$("$bin" render "$@" --threads "$threads" --size "$size" --stats -o "$tmp/out.png" 2>&1 >/dev/null |
             sed -n "s/.*$phase \([0-9.]*\) s.*/\1/p" | head -1)
         best=$(awk -v a="$best" -v b="$v" 'BEGIN { print (a == "" || b + 0 < a + 0) ? b : a }')
     done
     echo "$best"
 }
 
-echo "load at start: $(uptime | sed 's/.*load average: //')"
+echo "size $size, threads $threads, load at start: $(uptime | sed 's/.*load average: //')"
 echo "| model | view | flatten before | flatten after | ratio | render after |"
 echo "|---|---|---|---|---|---|"
 row() {

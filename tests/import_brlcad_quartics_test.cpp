@@ -436,6 +436,14 @@ const std::string kArsV4 =
     Granule(1, "1 1 1 -1 1 1 -1 -1 1 1 -1 1") + Granule(2, "1 1 3 -1 1 3 -1 -1 3 1 -1 3") +
     Granule(3, "0 0 4 0 0 4 0 0 4 0 0 4");
 
+// g2asc's arsadump writes the A record with the solid's extent after the four counts
+// (`A type name m n curlen totlen xmax xmin ymax ymin zmax zmin`, librt's struct ars_rec); the
+// extent is redundant (the granules hold the points) and is not read.
+const std::string kArsV4WithExtent =
+    "I 1 v4\nars test\nA 5 a 4 4 1 4 1.0e+00 -1.0e+00 1.0e+00 -1.0e+00 3.0e+00 -1.0e+00\n" +
+    Granule(0, "0 0 -1 0 0 0 0 0 0 0 0 0") + Granule(1, "1 1 1 -1 1 1 -1 -1 1 1 -1 1") +
+    Granule(2, "1 1 3 -1 1 3 -1 -1 3 1 -1 3") + Granule(3, "0 0 4 0 0 4 0 0 4 0 0 4");
+
 void ExpectTheArsSolid(const scene::Scene& s, const std::string& id) {
     EXPECT_TRUE(Inside(s, id, Q(0, 0, 1)));
     EXPECT_TRUE(Inside(s, id, Q(0.95, -0.95, 1.9)));
@@ -471,6 +479,10 @@ TEST(ImportBrlcadArs, ClosedArsIsDrawnFromV5V4AndG) {
     ASSERT_TRUE(brlcad::ParseV4(kArsV4, "a.asc", v4db, d)) << AllMessages(d);
     ASSERT_EQ(v4db.primitives.size(), 1u);
     EXPECT_EQ(v4db.primitives[0].arsCurves, db.primitives[0].arsCurves);
+    brlcad::Database withExtent;
+    ASSERT_TRUE(brlcad::ParseV4(kArsV4WithExtent, "a.asc", withExtent, d)) << AllMessages(d);
+    ASSERT_EQ(withExtent.primitives.size(), 1u);
+    EXPECT_EQ(withExtent.primitives[0].arsCurves, db.primitives[0].arsCurves);
     // Rendered: the prism and pyramids seen from above (model z) cover the 2 × 2 square.
     std::filesystem::path dir = std::filesystem::temp_directory_path() / "quadrix_ars_test";
     std::filesystem::create_directories(dir);

@@ -29,8 +29,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <functional>
+#include <optional>
 #include <unordered_map>
 
 #include "quadrix/flatten/bounds.h"
@@ -58,6 +62,26 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view) {
     s = std::fmax(s, view.d);
     return s > 0 && std::isfinite(s) ? s : 1.0;
 }
+
+// Per body: the body whose box it may reuse by translation (itself: none) and the shift from
+// that body to it, in provisional space (FlattenerImpl::TranslationReuse).
+struct Reuse {
+    std::vector<std::size_t> ref;
+    std::vector<Vec3> shift;
+};
+
+// Per body: a conservative box; where `exact`, the body's own (BodyBounds); elsewhere reused by
+// translation, and the body's own box lies between it shrunk and grown by `pad` per axis.
+struct BodyBoxes {
+    std::vector<Box3> box;
+    std::vector<Vec3> pad;
+    std::vector<char> exact;
+    bool AllExact() const {
+        for (char c : exact)
+            if (!c) return false;
+        return true;
+    }
+};
 
 class FlattenerImpl {
   public:
@@ -142,10 +166,28 @@ class FlattenerImpl {
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_);
         bool anySearched = false;
-        std::vector<Box3> bodyBoxes = AllBodyBounds(flat, bo, &anySearched);
+        const Reuse reuse = TranslationReuse(nClip);
+        boxes_ = AllBodyBounds(flat, bo, &anySearched, &reuse);
+        bodiesOf_ = BodiesOfSolids();
+        solidExact_.assign(flat.solids.size(), 1);
+        for (std::size_t s = 0; s < flat.solids.size(); ++s)
+            for (int b : bodiesOf_[s])
+                if (!boxes_.exact[static_cast<std::size_t>(b)]) solidExact_[s] = 0;
+        // Boxes reused by translation hold the true ones only to within their pad: the fit
+        // boxes are made from the padded boxes, and the solids that can decide the window are
+        // bounded directly (SettleExtremes), so the window is the one of the direct boxes.
         std::vector<Box3> fitBoxes =
             FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
-                          view_.fitNear, bodyBoxes, bo, &passesEye_);
+                          view_.fitNear, PaddedBoxes(true), bo, &passesEye_);
+        auto makeExact = [&](const std::vector<std::size_t>& which) {
+            MakeSolidsExact(which, bo);
+            const std::vector<Box3> solidFit =
+                FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
+                              view_.fitNear, PaddedBoxes(true), bo);
+            for (std::size_t s = 0; s < solidFit.size(); ++s) fitBoxes[s] = solidFit[s];
+        };
+        const bool autoFit = !view_.whw && !view_.whh;
+        if (autoFit && !boxes_.AllExact()) SettleExtremes(fitBoxes, solidExact_, makeExact);
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).
         for (const FlatFreeform& f : flat.freeforms) {
@@ -159,8 +201,18 @@ class FlattenerImpl {
         std::optional<WindowFit> fit = Fit(fitBoxes);
         if (!fit) return std::nullopt;
         WarnAboutSolidsAroundEye();
-        if (!view_.whw && !view_.whh && anySearched) RefineFit(*fit, fitBoxes);
-        ToDevice(*fit, bodyBoxes);
+        if (autoFit && anySearched)
+            RefineFit(*fit, fitBoxes, solidExact_,
+                      [&](const std::vector<std::size_t>& which, std::vector<Box3>& firstBoxes,
+                          std::vector<char>& firstKnown) {
+                          makeExact(which);
+                          for (std::size_t s : which) {
+                              firstBoxes[s] = fitBoxes[s];
+                              firstKnown[s] = 1;
+                          }
+                      });
+        if (!boxes_.AllExact()) SettleCulling(*fit, bo);
+        ToDevice(*fit, boxes_.box);
         Cull();
         SetDepthTolerance(*fit);
         return std::move(flat_);
@@ -274,31 +326,306 @@ class FlattenerImpl {
     // bodies with the same literals share one computation (FirstWithSameLiterals). Mitered pipes
     // and other bodies of oblique planes cost milliseconds each (branch and bound, bounds.h).
     // `anySearched` is set when some box was not exact from the analytic stage.
-    static std::vector<Box3> AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
-                                           bool* anySearched) {
+    //
+    // Bounds reused by translation (`reuse`, TranslationReuse): a body that is a translate of an
+    // earlier one by t gets the earlier one's box moved by t when that box came from the exact
+    // stages (analytic, polytope vertices or critical points: within kTight of the true extremes,
+    // bounds.h) and lies well inside the search region. The box moved by t holds the translate
+    // of the earlier body exactly (rounded outward); the body's own coefficients are that
+    // translate to rounding (two transforms of one statement with one linear part). The body's
+    // own box would differ from it by the two certificates' allowances, at most kTightNappe =
+    // 1e-5 × (size + |coordinate|) each: `pad` (2e-5 of that) bounds the difference, and the
+    // window fit and the culling use it to decide which solids to bound directly after all.
+    static BodyBoxes AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
+                                   bool* anySearched, const Reuse* reuse = nullptr) {
         const std::vector<std::size_t> first = FirstWithSameLiterals(flat);
-        std::vector<std::size_t> distinct;
-        for (std::size_t i = 0; i < first.size(); ++i)
-            if (first[i] == i) distinct.push_back(i);
-        std::vector<Box3> bodyBoxes(flat.bodies.size());
-        std::vector<char> searched(flat.bodies.size(), 0);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, distinct.size(), 8),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                                  const std::size_t i = distinct[j];
-                                  BoundsStats st;
-                                  bodyBoxes[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
-                                  searched[i] = st.analyticOnly == 0;
-                              }
-                          });
-        for (std::size_t i = 0; i < first.size(); ++i)
+        const std::size_t n = first.size();
+        BodyBoxes out;
+        out.box.resize(n);
+        out.pad.assign(n, Vec3{0, 0, 0});
+        out.exact.assign(n, 1);
+        std::vector<char> searched(n, 0), tight(n, 0), done(n, 0);
+        auto direct = [&](const std::vector<std::size_t>& which) {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 8),
+                              [&](const tbb::blocked_range<std::size_t>& r) {
+                                  for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                      const std::size_t i = which[j];
+                                      BoundsStats st;
+                                      out.box[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
+                                      searched[i] = st.analyticOnly == 0;
+                                      tight[i] = st.convexSolves == 0 && st.boxesPopped == 0;
+                                      done[i] = 1;
+                                  }
+                              });
+        };
+        auto refOf = [&](std::size_t i) { return reuse ? reuse->ref[i] : i; };
+        std::vector<std::size_t> own, later;
+        for (std::size_t i = 0; i < n; ++i)
+            if (first[i] == i) (refOf(i) == i ? own : later).push_back(i);
+        direct(own);
+        const double inside = 1e-4 * bo.searchLimit;
+        std::vector<std::size_t> fallback;
+        for (std::size_t i : later) {
+            const std::size_t r = first[refOf(i)];
+            const Box3& rb = out.box[r];
+            bool ok = done[r] && tight[r] && rb.Finite();
+            Box3 moved;
+            Vec3 pad;
+            for (int a = 0; ok && a < 3; ++a) {
+                const double t = reuse->shift[i][a];
+                double lo = rb.lo[a] + t, hi = rb.hi[a] + t;
+                lo -= 4e-16 * (std::fabs(rb.lo[a]) + std::fabs(t)) + 1e-300;
+                hi += 4e-16 * (std::fabs(rb.hi[a]) + std::fabs(t)) + 1e-300;
+                const double reach = std::fmax(std::fmax(std::fabs(rb.lo[a]), std::fabs(rb.hi[a])),
+                                               std::fmax(std::fabs(lo), std::fabs(hi)));
+                ok = std::isfinite(t) && reach < inside;
+                moved.lo[a] = lo;
+                moved.hi[a] = hi;
+                pad[a] = 2e-5 * ((rb.hi[a] - rb.lo[a]) + reach);
+            }
+            if (!ok) {
+                fallback.push_back(i);
+                continue;
+            }
+            out.box[i] = moved;
+            out.pad[i] = pad;
+            out.exact[i] = 0;
+            searched[i] = searched[r];
+        }
+        direct(fallback);
+        for (std::size_t i = 0; i < n; ++i)
             if (first[i] != i) {
-                bodyBoxes[i] = bodyBoxes[first[i]];
+                out.box[i] = out.box[first[i]];
+                out.pad[i] = out.pad[first[i]];
+                out.exact[i] = out.exact[first[i]];
                 searched[i] = searched[first[i]];
             }
         if (anySearched)
             for (char c : searched) *anySearched |= c != 0;
-        return bodyBoxes;
+        return out;
+    }
+
+    // Which bodies are translates of an earlier one (AllBodyBounds), read from the coefficients
+    // (an imported model places every primitive instance in the top scope with its path matrix
+    // applied, so the hierarchy does not say). Bodies are grouped by their literals' kinds,
+    // complements and linear parts (a plane's normal, a quadric's A) divided by their largest
+    // entry, which agree to rounding for two placements of one primitive with one rotation
+    // (A' = L⁻ᵀAL⁻¹ does not involve the translation; the importer's normalisation by the
+    // largest coefficient does, in the last bits), so they are matched to 1e-12 and hashed on a
+    // grid (a pair split by a grid line is only not shared). Within a group the shift t is the
+    // least-squares solution of the translated literals' equations (a plane: n·t = d - d'; a
+    // quadric: A t = b - b', with f(x) = xᵀAx + 2bᵀx + k), and the body counts as the translate
+    // only when every coefficient of every literal matches its reference's moved by t to 1e-12 of
+    // the terms' magnitude (and t is determined: the normals span space). Only where a translation
+    // of the world is one of provisional space and moves every literal: parallel views without clip
+    // or section planes (those are not moved with the body). Elsewhere every body is its own
+    // reference.
+    Reuse TranslationReuse(int nClip) const {
+        const std::size_t n = flat_.bodies.size();
+        Reuse r;
+        r.ref.resize(n);
+        for (std::size_t i = 0; i < n; ++i) r.ref[i] = i;
+        r.shift.assign(n, Vec3{0, 0, 0});
+        if (!options_.reuseBoundsByTranslation || view_.perspective || nClip != 0 ||
+            !view_.fitClips.empty())
+            return r;
+        // A literal normalised: the linear part (3 for a plane, 6 for a quadric) and the rest
+        // (d; b and k), all divided by the largest |entry| of the linear part.
+        struct Norm {
+            bool ok = false, plane = true;
+            double lin[6] = {0, 0, 0, 0, 0, 0};
+            double rest[4] = {0, 0, 0, 0};
+        };
+        std::vector<Norm> norms(flat_.halfSpaces.size());
+        for (std::size_t h = 0; h < norms.size(); ++h) {
+            const FlatHalfSpace& hs = flat_.halfSpaces[h];
+            Norm& nm = norms[h];
+            if (hs.IsQuartic()) continue;
+            nm.plane = hs.isPlane;
+            double m = 0;
+            if (hs.isPlane) {
+                const double v[3] = {hs.plane.a, hs.plane.b, hs.plane.c};
+                for (double x : v) m = std::fmax(m, std::fabs(x));
+                if (!(m > 0) || !std::isfinite(m)) continue;
+                for (int k = 0; k < 3; ++k) nm.lin[k] = v[k] / m;
+                nm.rest[0] = hs.plane.d / m;
+            } else {
+                for (int k = 0; k < 6; ++k) m = std::fmax(m, std::fabs(hs.quadric.k[k]));
+                if (!(m > 0) || !std::isfinite(m)) continue;
+                for (int k = 0; k < 6; ++k) nm.lin[k] = hs.quadric.k[k] / m;
+                for (int k = 0; k < 4; ++k) nm.rest[k] = hs.quadric.k[6 + k] / m;
+            }
+            nm.ok = std::isfinite(nm.rest[0]) && std::isfinite(nm.rest[1]) &&
+                    std::isfinite(nm.rest[2]) && std::isfinite(nm.rest[3]);
+        }
+        // A x for the normalised A of a quadric (lin: A B C D E F).
+        auto mulA = [](const double* q, const Vec3& x) {
+            return Vec3{q[0] * x.x + q[3] * x.y + q[5] * x.z, q[3] * x.x + q[1] * x.y + q[4] * x.z,
+                        q[5] * x.x + q[4] * x.y + q[2] * x.z};
+        };
+        // The shift taking body `ref` to body `i` (same group), or nullopt.
+        auto shiftOf = [&](std::size_t ref, std::size_t i) -> std::optional<Vec3> {
+            const auto& la = flat_.bodies[ref].literals;
+            const auto& lb = flat_.bodies[i].literals;
+            double g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, h[3] = {0, 0, 0};
+            auto row = [&](const Vec3& rv, double rhs) {
+                const double v[3] = {rv.x, rv.y, rv.z};
+                for (int p = 0; p < 3; ++p) {
+                    for (int q = 0; q < 3; ++q) g[p][q] += v[p] * v[q];
+                    h[p] += v[p] * rhs;
+                }
+            };
+            for (std::size_t l = 0; l < la.size(); ++l) {
+                const Norm& x = norms[static_cast<std::size_t>(la[l].halfSpace)];
+                const Norm& y = norms[static_cast<std::size_t>(lb[l].halfSpace)];
+                if (x.plane) {
+                    row({x.lin[0], x.lin[1], x.lin[2]}, x.rest[0] - y.rest[0]);
+                } else {
+                    row({x.lin[0], x.lin[3], x.lin[5]}, x.rest[0] - y.rest[0]);
+                    row({x.lin[3], x.lin[1], x.lin[4]}, x.rest[1] - y.rest[1]);
+                    row({x.lin[5], x.lin[4], x.lin[2]}, x.rest[2] - y.rest[2]);
+                }
+            }
+            const Vec3 c0{g[0][0], g[1][0], g[2][0]}, c1{g[0][1], g[1][1], g[2][1]},
+                c2{g[0][2], g[1][2], g[2][2]};
+            const double det = Dot(c0, Cross(c1, c2));
+            const double scale = g[0][0] + g[1][1] + g[2][2];
+            if (!(std::fabs(det) > 1e-9 * scale * scale * scale)) return std::nullopt;
+            const Vec3 hv{h[0], h[1], h[2]};
+            const Vec3 t{Dot(hv, Cross(c1, c2)) / det, Dot(c0, Cross(hv, c2)) / det,
+                         Dot(c0, Cross(c1, hv)) / det};
+            if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)))
+                return std::nullopt;
+            constexpr double kMatch = 1e-12;
+            auto close = [](double a, double b, double mag) {
+                return std::fabs(a - b) <= kMatch * mag;
+            };
+            for (std::size_t l = 0; l < la.size(); ++l) {
+                const Norm& x = norms[static_cast<std::size_t>(la[l].halfSpace)];
+                const Norm& y = norms[static_cast<std::size_t>(lb[l].halfSpace)];
+                if (x.plane) {
+                    // d' = d - n·t
+                    const double nt = x.lin[0] * t.x + x.lin[1] * t.y + x.lin[2] * t.z;
+                    if (!close(y.rest[0], x.rest[0] - nt,
+                               std::fabs(x.rest[0]) + std::fabs(y.rest[0]) + std::fabs(nt)))
+                        return std::nullopt;
+                } else {
+                    // b' = b - A t, k' = k - 2 b·t + tᵀA t
+                    const Vec3 at = mulA(x.lin, t);
+                    const double bv[3] = {x.rest[0], x.rest[1], x.rest[2]};
+                    const double atv[3] = {at.x, at.y, at.z};
+                    for (int k = 0; k < 3; ++k)
+                        if (!close(y.rest[k], bv[k] - atv[k],
+                                   std::fabs(bv[k]) + std::fabs(y.rest[k]) + std::fabs(atv[k])))
+                            return std::nullopt;
+                    const double bt = bv[0] * t.x + bv[1] * t.y + bv[2] * t.z;
+                    const double tat = Dot(t, at);
+                    if (!close(y.rest[3], x.rest[3] - 2 * bt + tat,
+                               std::fabs(x.rest[3]) + std::fabs(y.rest[3]) + 2 * std::fabs(bt) +
+                                   std::fabs(tat)))
+                        return std::nullopt;
+                }
+            }
+            return t;
+        };
+        std::unordered_map<std::uint64_t, std::vector<std::size_t>> byHash;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto& lits = flat_.bodies[i].literals;
+            bool ok = !lits.empty();
+            std::uint64_t key = 1469598103934665603ull;
+            auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
+            for (const FlatLiteral& l : lits) {
+                const Norm& nm = norms[static_cast<std::size_t>(l.halfSpace)];
+                ok = ok && nm.ok;
+                mix(static_cast<std::uint64_t>(nm.plane) * 2 + l.complemented);
+                // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched to 1e-12 below.
+                for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
+                    mix(static_cast<std::uint64_t>(std::llround(std::ldexp(nm.lin[k], 36))));
+            }
+            if (!ok) continue;
+            std::vector<std::size_t>& bucket = byHash[key];
+            for (std::size_t c = 0; c < bucket.size() && c < 4; ++c) {
+                const std::size_t j = bucket[c];
+                const auto& lj = flat_.bodies[j].literals;
+                bool same = lj.size() == lits.size();
+                for (std::size_t l = 0; same && l < lits.size(); ++l) {
+                    const Norm& x = norms[static_cast<std::size_t>(lj[l].halfSpace)];
+                    const Norm& y = norms[static_cast<std::size_t>(lits[l].halfSpace)];
+                    same = x.plane == y.plane && lj[l].complemented == lits[l].complemented;
+                    for (int k = 0; same && k < 6; ++k)
+                        same = std::fabs(x.lin[k] - y.lin[k]) <= 1e-12;
+                }
+                if (!same) continue;
+                if (std::optional<Vec3> t = shiftOf(j, i)) {
+                    r.ref[i] = j;
+                    r.shift[i] = *t;
+                    break;
+                }
+            }
+            if (r.ref[i] == i) bucket.push_back(i);
+        }
+        return r;
+    }
+
+    // Body boxes grown by their pad (the boxes reused by translation; `grow` false: shrunk, an
+    // empty box where the pad exceeds it): between them lies the body's own box.
+    std::vector<Box3> PaddedBoxes(bool grow) const {
+        std::vector<Box3> out = boxes_.box;
+        const double sign = grow ? 1 : -1;
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            if (boxes_.exact[i] || out[i].Empty()) continue;
+            for (int a = 0; a < 3; ++a) {
+                out[i].lo[a] -= sign * boxes_.pad[i][a];
+                out[i].hi[a] += sign * boxes_.pad[i][a];
+            }
+            if (out[i].Empty()) out[i] = Box3{};
+        }
+        return out;
+    }
+
+    // Bounds the bodies of solids `which` directly where their boxes were reused (in parallel).
+    void MakeSolidsExact(const std::vector<std::size_t>& which, const BoundsOptions& bo) {
+        std::vector<std::size_t> bodies;
+        for (std::size_t s : which) {
+            for (int b : bodiesOf_[s])
+                if (!boxes_.exact[static_cast<std::size_t>(b)])
+                    bodies.push_back(static_cast<std::size_t>(b));
+            solidExact_[s] = 1;
+        }
+        std::sort(bodies.begin(), bodies.end());
+        bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                  const std::size_t i = bodies[j];
+                                  boxes_.box[i] = BodyBounds(flat_, flat_.bodies[i], bo);
+                                  boxes_.exact[i] = 1;
+                                  boxes_.pad[i] = Vec3{0, 0, 0};
+                              }
+                          });
+    }
+
+    // Culling with reused boxes: a solid is dropped when its box misses the image (ToDevice,
+    // Cull). Where the grown and the shrunk boxes of a solid disagree on that, its own box could
+    // go either way, so its bodies are bounded directly: the solids kept (and so every id in
+    // the frame) are those of the direct boxes.
+    void SettleCulling(const WindowFit& fit, const BoundsOptions& bo) {
+        const std::vector<Box3> grown = PaddedBoxes(true), shrunk = PaddedBoxes(false);
+        std::vector<Box3> devGrown(grown.size()), devShrunk(shrunk.size());
+        for (std::size_t i = 0; i < grown.size(); ++i) {
+            devGrown[i] = MapBox(fit, grown[i]);
+            devShrunk[i] = MapBox(fit, shrunk[i]);
+        }
+        const std::vector<Box3> g = TreeBounds(flat_, devGrown), h = TreeBounds(flat_, devShrunk);
+        const Box3 image{{0, 0, -kInf}, {double(flat_.width), double(flat_.height), kInf}};
+        std::vector<std::size_t> unsure;
+        for (std::size_t s = 0; s < flat_.solids.size(); ++s) {
+            if (solidExact_[s]) continue;
+            const int root = flat_.solids[s].root;
+            if (g[root].Intersected(image).Empty() != h[root].Intersected(image).Empty())
+                unsure.push_back(s);
+        }
+        if (!unsure.empty()) MakeSolidsExact(unsure, bo);
     }
 
     // Solid boxes for the window fit: like the final ones, except that the fit ignores fbp, so
@@ -360,6 +687,116 @@ class FlattenerImpl {
         return solidBoxes;
     }
 
+    // The bodies under each solid's root (children before parents, so one pass from the roots).
+    std::vector<std::vector<int>> BodiesOfSolids() const {
+        std::vector<std::vector<int>> out(flat_.solids.size());
+        std::vector<int> stack;
+        for (std::size_t s = 0; s < flat_.solids.size(); ++s) {
+            stack.assign(1, flat_.solids[s].root);
+            while (!stack.empty()) {
+                const FlatCsgNode& node = flat_.nodes[static_cast<std::size_t>(stack.back())];
+                stack.pop_back();
+                if (node.isLeaf)
+                    out[s].push_back(node.body);
+                else
+                    stack.insert(stack.end(), node.children.begin(), node.children.end());
+            }
+        }
+        return out;
+    }
+
+    // FitSolidBoxes for the solids `which` only (the boxes of the others are left as they are in
+    // `solidBoxes`): their bodies are bounded (in parallel) and their trees combined exactly as
+    // FitSolidBoxes does for all, so each of their boxes is bit for bit FitSolidBoxes' (a body's
+    // box is a pure function of its literals, a node's of its subtree).
+    static void SomeFitSolidBoxes(
+        const FlatScene& flat, const std::vector<FlatHalfSpace>& halfSpaces,
+        const std::vector<Plane>& fitClips, const std::vector<Plane>& finalClips, double farDepth,
+        double nearDepth, const BoundsOptions& bo, const std::vector<std::vector<int>>& bodiesOf,
+        const std::vector<std::size_t>& which, std::vector<Box3>& solidBoxes) {
+        bool same = fitClips.size() == finalClips.size();
+        for (std::size_t i = 0; same && i < fitClips.size(); ++i)
+            same = fitClips[i] == finalClips[i];
+        std::vector<FlatHalfSpace> fitPlanes;
+        for (const Plane& p : fitClips) {
+            FlatHalfSpace h;
+            h.plane = p;
+            fitPlanes.push_back(h);
+        }
+        const std::size_t nClip = finalClips.size();
+        std::vector<int> bodies;
+        for (std::size_t s : which)
+            bodies.insert(bodies.end(), bodiesOf[s].begin(), bodiesOf[s].end());
+        std::vector<Box3> bodyBoxes(flat.bodies.size());
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
+            [&](const tbb::blocked_range<std::size_t>& r) {
+                std::vector<BoundLiteral> lits;
+                for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                    const FlatBody& b = flat.bodies[static_cast<std::size_t>(bodies[j])];
+                    // All literals (as BodyBounds), or the fit planes instead of the final ones.
+                    const std::size_t own = same ? b.literals.size() : b.literals.size() - nClip;
+                    lits.clear();
+                    for (std::size_t l = 0; l < own; ++l)
+                        lits.push_back(
+                            {&halfSpaces[b.literals[l].halfSpace], b.literals[l].complemented});
+                    if (!same)
+                        for (const FlatHalfSpace& h : fitPlanes) lits.push_back({&h, false});
+                    bodyBoxes[static_cast<std::size_t>(bodies[j])] = IntersectionBounds(lits, bo);
+                }
+            });
+        std::vector<Box3> nodeBoxes = TreeBounds(flat, bodyBoxes);
+        std::vector<Box3> fitBoxes = FitTreeBounds(flat, bodyBoxes, nodeBoxes, farDepth, nearDepth);
+        for (std::size_t s : which) solidBoxes[s] = fitBoxes[flat.solids[s].root];
+    }
+
+    // The auto-fit window depends on the solids' fit boxes only through their hull on x and y
+    // (FitWindow). Given boxes of which those not `known` are only known to CONTAIN the true ones
+    // (on the axes where they are finite), SettleExtremes makes known (through `make`, which
+    // replaces the box and sets the flag) every solid that could decide a side of the hull: one
+    // whose box reaches beyond the most extreme known box on that side, or is not finite on
+    // that axis. The hull of the boxes is then the hull of the true ones, bit for bit; the others
+    // lie inside it whatever their true boxes are. Rounds of the eight most extreme candidates
+    // per side, until none is left.
+    template <class Make>
+    static void SettleExtremes(const std::vector<Box3>& boxes, const std::vector<char>& known,
+                               Make&& make) {
+        const std::size_t n = known.size();
+        std::vector<std::pair<double, std::size_t>> cand;
+        for (;;) {
+            std::vector<std::size_t> todo;
+            for (int axis = 0; axis < 2; ++axis)
+                for (int hi = 0; hi < 2; ++hi) {
+                    auto out = [&](const Box3& b) { return hi ? b.hi[axis] : -b.lo[axis]; };
+                    auto finiteOn = [&](const Box3& b) {
+                        return !b.Empty() && std::isfinite(b.lo[axis]) && std::isfinite(b.hi[axis]);
+                    };
+                    double best = -kInf;
+                    for (std::size_t s = 0; s < n; ++s)
+                        if (known[s] && finiteOn(boxes[s])) best = std::fmax(best, out(boxes[s]));
+                    cand.clear();
+                    for (std::size_t s = 0; s < n; ++s) {
+                        if (known[s] || boxes[s].Empty()) continue;
+                        if (!finiteOn(boxes[s]))
+                            cand.push_back({kInf, s});
+                        else if (out(boxes[s]) > best)
+                            cand.push_back({out(boxes[s]), s});
+                    }
+                    const std::size_t take = std::min<std::size_t>(cand.size(), 8);
+                    std::partial_sort(
+                        cand.begin(), cand.begin() + static_cast<std::ptrdiff_t>(take), cand.end(),
+                        [](const auto& a, const auto& b) {
+                            return a.first > b.first || (a.first == b.first && a.second < b.second);
+                        });
+                    for (std::size_t c = 0; c < take; ++c) todo.push_back(cand[c].second);
+                }
+            if (todo.empty()) return;
+            std::sort(todo.begin(), todo.end());
+            todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+            make(todo);
+        }
+    }
+
     // Auto-fit, second look. The bounds are tightest where the scene is centred and about as
     // large as the search expects, which provisional space is not for a model far from vrp or
     // much smaller than its distance (a cone frustum 1 km from the origin is bounded 1.5 to 50
@@ -367,55 +804,119 @@ class FlattenerImpl {
     // again in the device space of the fit just made, where the scene fills the image; both
     // boxes are conservative, so the fit uses their intersection. Twice at most, and only while
     // the fit still changes (scale up by 0.1 % or a shift of a quarter pixel).
-    void RefineFit(WindowFit& fit, std::vector<Box3>& fitBoxes) {
+    //
+    // Only the solids that can decide the window are bounded again (SettleExtremes): a solid's
+    // box after a look is its box before it intersected with the new one, so it never reaches
+    // beyond the box before; a solid whose box before lies inside the hull of the boxes already
+    // settled cannot move the window. The window is therefore bit for bit the one made from
+    // every solid's second look, at the cost of a few solids (the helicopter: 2 × 2,211 bodies
+    // bounded again before, a few dozen now). `firstKnown` marks the solids whose first boxes
+    // are exact; `makeFirstKnown` makes others so (boxes reused by translation, flattener.cpp).
+    template <class MakeFirst>
+    void RefineFit(WindowFit& fit, std::vector<Box3>& fitBoxes, std::vector<char> firstKnown,
+                   MakeFirst&& makeFirstKnown) {
         const std::size_t nSolids = flat_.solids.size();
+        const std::vector<std::vector<int>> bodiesOf = BodiesOfSolids();
+        struct Look {
+            WindowFit fit;
+            Transform dev;
+            std::vector<FlatHalfSpace> halfSpaces;  // device space of `fit`, where `mapped`
+            std::vector<char> mapped;
+            std::vector<Plane> fitClips, finalClips;
+            std::vector<Box3> boxes;  // per solid: the box after this look (where known)
+            std::vector<char> known;
+        };
+        std::vector<Look> looks;
+        // Level 0 is the first boxes; level p > 0 the boxes after look p.
+        std::vector<Box3> firstBoxes(fitBoxes.begin(),
+                                     fitBoxes.begin() + static_cast<std::ptrdiff_t>(nSolids));
+        auto boxesAt = [&](std::size_t level) -> std::vector<Box3>& {
+            return level == 0 ? firstBoxes : looks[level - 1].boxes;
+        };
+        auto knownAt = [&](std::size_t level) -> std::vector<char>& {
+            return level == 0 ? firstKnown : looks[level - 1].known;
+        };
+        BoundsOptions bo;
+        bo.searchLimit = 1e6 * std::fmax(options_.width, options_.height);
+        // Makes the boxes of `which` known at `level` (and at the levels before).
+        std::function<void(std::size_t, const std::vector<std::size_t>&)> makeKnown =
+            [&](std::size_t level, const std::vector<std::size_t>& which) {
+                std::vector<std::size_t> before;
+                for (std::size_t s : which)
+                    if (!knownAt(level - 1)[s]) before.push_back(s);
+                if (!before.empty()) {
+                    if (level == 1)
+                        makeFirstKnown(before, firstBoxes, firstKnown);
+                    else
+                        makeKnown(level - 1, before);
+                }
+                Look& look = looks[level - 1];
+                // The half-spaces of these solids in the look's device space (once each).
+                for (std::size_t s : which)
+                    for (int b : bodiesOf[s])
+                        for (const FlatLiteral& l :
+                             flat_.bodies[static_cast<std::size_t>(b)].literals) {
+                            const std::size_t k = static_cast<std::size_t>(l.halfSpace);
+                            if (look.mapped[k]) continue;
+                            look.mapped[k] = 1;
+                            FlatHalfSpace& h = look.halfSpaces[k];
+                            h = flat_.halfSpaces[k];
+                            if (h.IsQuartic())
+                                h.TransformBy(look.dev);
+                            else if (h.isPlane)
+                                h.plane = h.plane.Transformed(look.dev);
+                            else
+                                h.quadric = h.quadric.Transformed(look.dev);
+                        }
+                std::vector<Box3> dev = look.boxes;
+                SomeFitSolidBoxes(flat_, look.halfSpaces, look.fitClips, look.finalClips,
+                                  view_.perspective ? look.fit.k * view_.d : 0.0,
+                                  look.fit.k * view_.fitNear, bo, bodiesOf, which, dev);
+                // Back to provisional space, x = (x_dev - ox) / k, and intersected with the
+                // boxes before where both are finite.
+                const double off[3] = {look.fit.ox, look.fit.oy, 0};
+                const std::vector<Box3>& prev = boxesAt(level - 1);
+                for (std::size_t i : which) {
+                    Box3 b = dev[i];
+                    const Box3& first = prev[i];
+                    if (b.Empty() || first.Empty()) {
+                        b = Box3{};
+                    } else {
+                        for (int axis = 0; axis < 3; ++axis) {
+                            double lo = (b.lo[axis] - off[axis]) / look.fit.k,
+                                   hi = (b.hi[axis] - off[axis]) / look.fit.k;
+                            if (!(std::isfinite(lo) && std::isfinite(hi))) lo = -kInf, hi = kInf;
+                            if (std::isfinite(first.lo[axis]) && std::isfinite(first.hi[axis])) {
+                                lo = std::fmax(lo, first.lo[axis]);
+                                hi = std::fmin(hi, first.hi[axis]);
+                                if (!(lo <= hi)) lo = first.lo[axis], hi = first.hi[axis];
+                            }
+                            b.lo[axis] = lo;
+                            b.hi[axis] = hi;
+                        }
+                    }
+                    look.boxes[i] = b;
+                    look.known[i] = 1;
+                }
+            };
         for (int pass = 0; pass < 2; ++pass) {
+            Look look;
+            look.fit = fit;
             const Transform dev =
                 Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
-            FlatScene probe;
-            probe.halfSpaces = flat_.halfSpaces;
-            for (FlatHalfSpace& h : probe.halfSpaces) {
-                if (h.IsQuartic())
-                    h.TransformBy(dev);
-                else if (h.isPlane)
-                    h.plane = h.plane.Transformed(dev);
-                else
-                    h.quadric = h.quadric.Transformed(dev);
-            }
-            probe.bodies = flat_.bodies;
-            probe.nodes = flat_.nodes;
-            probe.solids = flat_.solids;
-            std::vector<Plane> fitClips, finalClips;
-            for (const Plane& p : view_.fitClips) fitClips.push_back(p.Transformed(dev));
-            for (const Plane& p : finalPlanes_) finalClips.push_back(p.Transformed(dev));
-            BoundsOptions bo;
-            bo.searchLimit = 1e6 * std::fmax(options_.width, options_.height);
-            std::vector<Box3> bodyBoxes = AllBodyBounds(probe, bo, nullptr);
-            std::vector<Box3> boxes = FitSolidBoxes(probe, fitClips, finalClips,
-                                                    view_.perspective ? fit.k * view_.d : 0.0,
-                                                    fit.k * view_.fitNear, bodyBoxes, bo);
-            // Back to provisional space, x = (x_dev - ox) / k, and intersected with the first
-            // boxes where both are finite; freeform hulls stay as they are.
-            const double o[3] = {fit.ox, fit.oy, 0};
-            for (std::size_t i = 0; i < nSolids; ++i) {
-                Box3& b = boxes[i];
-                const Box3& first = fitBoxes[i];
-                if (b.Empty() || first.Empty()) {
-                    b = Box3{};
-                    continue;
-                }
-                for (int axis = 0; axis < 3; ++axis) {
-                    double lo = (b.lo[axis] - o[axis]) / fit.k, hi = (b.hi[axis] - o[axis]) / fit.k;
-                    if (!(std::isfinite(lo) && std::isfinite(hi))) lo = -kInf, hi = kInf;
-                    if (std::isfinite(first.lo[axis]) && std::isfinite(first.hi[axis])) {
-                        lo = std::fmax(lo, first.lo[axis]);
-                        hi = std::fmin(hi, first.hi[axis]);
-                        if (!(lo <= hi)) lo = first.lo[axis], hi = first.hi[axis];
-                    }
-                    b.lo[axis] = lo;
-                    b.hi[axis] = hi;
-                }
-            }
+            look.dev = dev;
+            look.halfSpaces.resize(flat_.halfSpaces.size());
+            look.mapped.assign(flat_.halfSpaces.size(), 0);
+            for (const Plane& p : view_.fitClips) look.fitClips.push_back(p.Transformed(dev));
+            for (const Plane& p : finalPlanes_) look.finalClips.push_back(p.Transformed(dev));
+            // Until known, a solid's box after the look is bounded by its box before it.
+            look.boxes = boxesAt(looks.size());
+            look.known.assign(nSolids, 0);
+            looks.push_back(std::move(look));
+            const std::size_t level = looks.size();
+            SettleExtremes(looks.back().boxes, looks.back().known,
+                           [&](const std::vector<std::size_t>& which) { makeKnown(level, which); });
+            std::vector<Box3> boxes = looks.back().boxes;
             for (std::size_t i = nSolids; i < fitBoxes.size(); ++i) boxes.push_back(fitBoxes[i]);
             WindowRequest request;
             request.width = options_.width;
@@ -427,7 +928,6 @@ class FlattenerImpl {
                            std::fabs(next.oy - fit.oy) > 0.25;
             if (!changed) return;
             fit = next;
-            fitBoxes = std::move(boxes);
         }
     }
 
@@ -533,6 +1033,20 @@ class FlattenerImpl {
         return std::nullopt;
     }
 
+    // A box maps exactly under a positive scale and a translation, up to rounding: pad by a
+    // few ulps of the coordinates.
+    static Box3 MapBox(const WindowFit& fit, const Box3& b) {
+        if (b.Empty()) return Box3{};
+        Box3 r;
+        const double o[3] = {fit.ox, fit.oy, 0};
+        for (int i = 0; i < 3; ++i) {
+            double lo = fit.k * b.lo[i] + o[i], hi = fit.k * b.hi[i] + o[i];
+            r.lo[i] = lo - 4e-16 * (std::fabs(lo) + std::fabs(o[i])) - 1e-300;
+            r.hi[i] = hi + 4e-16 * (std::fabs(hi) + std::fabs(o[i])) + 1e-300;
+        }
+        return r;
+    }
+
     // Maps everything from provisional to device space: D = T(ox, oy, 0) · S(k, k, k).
     void ToDevice(const WindowFit& fit, const std::vector<Box3>& bodyBoxes) {
         FlatScene& flat = flat_;
@@ -549,22 +1063,9 @@ class FlattenerImpl {
                 RescaleCoefficients(h.quadric);
             }
         }
-        // A box maps exactly under a positive scale and a translation, up to rounding: pad by a
-        // few ulps of the coordinates.
-        auto mapBox = [&](const Box3& b) {
-            if (b.Empty()) return Box3{};
-            Box3 r;
-            const double o[3] = {fit.ox, fit.oy, 0};
-            for (int i = 0; i < 3; ++i) {
-                double lo = fit.k * b.lo[i] + o[i], hi = fit.k * b.hi[i] + o[i];
-                r.lo[i] = lo - 4e-16 * (std::fabs(lo) + std::fabs(o[i])) - 1e-300;
-                r.hi[i] = hi + 4e-16 * (std::fabs(hi) + std::fabs(o[i])) + 1e-300;
-            }
-            return r;
-        };
         std::vector<Box3> devBodies(bodyBoxes.size());
         for (std::size_t i = 0; i < bodyBoxes.size(); ++i) {
-            devBodies[i] = mapBox(bodyBoxes[i]);
+            devBodies[i] = MapBox(fit, bodyBoxes[i]);
             flat.bodies[i].bounds = devBodies[i];
         }
         std::vector<Box3> nodes = TreeBounds(flat, devBodies);
@@ -762,6 +1263,9 @@ class FlattenerImpl {
     std::vector<std::string> freeformNames_;  // fit boxes past the solids
     std::vector<char> eyeInside_;             // per solid (FindSolidsAroundEye)
     std::vector<char> passesEye_;             // per solid: its box reaches the fit's near plane
+    BodyBoxes boxes_;                         // per body, provisional space (AllBodyBounds)
+    std::vector<std::vector<int>> bodiesOf_;  // per solid: its bodies
+    std::vector<char> solidExact_;            // per solid: every body's box is its own
 };
 
 }  // namespace

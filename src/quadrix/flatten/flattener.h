@@ -18,7 +18,10 @@
 //     (a ground plane) are drawn clipped to it (window_fit.h). Pixels stay square: the window is
 //     fitted inside the image and centred.
 //  5. Device: x = column, y = row (row 0 at the top), z grows away from the viewer.
-//  6. Bounds: every body, CSG node and solid gets conservative device-space bounds.
+//  6. Bounds: every body, CSG node and solid gets conservative device-space bounds. In parallel
+//     views without clip planes a body that is a translate of an earlier one gets that one's box
+//     moved (flattener.cpp); the solids deciding the auto-fit window or the culling are always
+//     bounded directly, so both are those of the direct bounds.
 //
 // Errors (user tier): unknown view, nothing bounded and no window, a view whose vectors are
 // degenerate (vup parallel to vpn, zero vectors, cop on the view plane), an empty scene, a
@@ -53,6 +56,9 @@ struct FlattenOptions {
     // the cut is drawn as a face of each solid it crosses. Its half-space is an opaque plane
     // named kSectionName (which no scene name can be), shared by every body.
     std::optional<Plane> section;
+    // Bodies that are translates of another (parallel views without clip planes) reuse its box
+    // moved by the shift (flattener.cpp); off only to compare with direct bounds in tests.
+    bool reuseBoundsByTranslation = true;
 };
 inline constexpr const char* kSectionName = "<section>";
 

@@ -586,3 +586,103 @@ TEST(FlattenBounds, BodiesSharingLiteralsShareExactlyTheBoxesComputedAlone) {
 
 }  // namespace
 }  // namespace quadrix
+
+namespace quadrix {
+namespace {
+using namespace flatten_test;
+
+// Bounds reused by translation (flattener.cpp): 60 oblique capped cylinders, three rotations
+// times twenty translations, placed in the top scope with their coefficients transformed (as
+// the BRL-CAD importer does), and an array of translated copies of one more. Parallel views,
+// auto-fitted and with a window: with reuse the window (deviceFromWorld) is bit for bit the one
+// of the direct bounds, the same solids are kept, and every body's box is within 2e-5 × (size
+// + |coordinate|) of its direct box and contains the body's points sampled on its surface.
+TEST(FlattenBounds, BoxesReusedByTranslationKeepTheWindowAndHoldTheBodies) {
+    scene::Scene s;
+    const double r = 3, h = 20;
+    const Quadric cyl = Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, 0, -r * r});
+    const Plane top{0, 0, 1, -h}, bottom{0, 0, -1, 0};
+    std::vector<Transform> placements;
+    for (int rot = 0; rot < 3; ++rot)
+        for (int k = 0; k < 20; ++k) {
+            const Transform t =
+                Transform::Translate({37.5 * k - 300, 11.0 * rot + 0.3 * k, 5.0 * k}) *
+                Transform::Rotate(0, 25 + 30 * rot) * Transform::Rotate(2, 10 + 17 * rot);
+            placements.push_back(t);
+            const int q = AddQuadric(s.top, "c", cyl.Transformed(t).k);
+            const int p1 = AddPlane(s.top, "t", top.Transformed(t));
+            const int p2 = AddPlane(s.top, "b", bottom.Transformed(t));
+            AddBody(s.top, "rod", {q, p1, p2});
+        }
+    scene::Scope def;
+    def.id = "pin";
+    {
+        const int q = AddQuadric(def, "c", cyl.Transformed(Transform::Rotate(1, 40)).k);
+        const int p1 = AddPlane(def, "t", top.Transformed(Transform::Rotate(1, 40)));
+        const int p2 = AddPlane(def, "b", bottom.Transformed(Transform::Rotate(1, 40)));
+        AddBody(def, "pin", {q, p1, p2});
+    }
+    s.definitions.push_back(def);
+    AddInstance(s.top, "pins", 0, Transform::Translate({0, -80, 0}), 12,
+                Transform::Translate({25, 0, 3}));
+    scene::View oblique = MakeView("oblique");
+    oblique.vpn = Vec3{0.4, -0.5, -1};
+    oblique.dop = Vec3{-0.4, 0.5, 1};  // orthographic
+    s.views.push_back(oblique);
+    scene::View window = oblique;
+    window.id = "window";
+    window.whw = 150;  // cuts off some rods: culled ones must be the same
+    s.views.push_back(window);
+    for (const char* view : {"oblique", "window"}) {
+        FlattenOptions o;
+        o.width = 640;
+        o.height = 360;
+        o.viewName = view;
+        Diagnostics d1, d2;
+        std::optional<FlatScene> reused = Flatten(s, o, d1);
+        o.reuseBoundsByTranslation = false;
+        std::optional<FlatScene> direct = Flatten(s, o, d2);
+        ASSERT_TRUE(reused && direct)
+            << view << ": " << (d1.Items().empty() ? std::string() : d1.Items()[0].Format(false));
+        EXPECT_EQ(reused->projection.deviceFromWorld.Matrix().m,
+                  direct->projection.deviceFromWorld.Matrix().m)
+            << view;
+        ASSERT_EQ(reused->solids.size(), direct->solids.size()) << view;
+        ASSERT_EQ(reused->bodies.size(), direct->bodies.size()) << view;
+        int differing = 0;
+        for (std::size_t b = 0; b < reused->bodies.size(); ++b) {
+            const Box3& a = reused->bodies[b].bounds;
+            const Box3& e = direct->bodies[b].bounds;
+            ASSERT_EQ(reused->bodies[b].name, direct->bodies[b].name);
+            for (int axis = 0; axis < 3; ++axis) {
+                const double tol = 2e-5 * ((e.hi[axis] - e.lo[axis]) +
+                                           std::fmax(std::fabs(e.lo[axis]), std::fabs(e.hi[axis])));
+                EXPECT_NEAR(a.lo[axis], e.lo[axis], tol) << view << " body " << b;
+                EXPECT_NEAR(a.hi[axis], e.hi[axis], tol) << view << " body " << b;
+                differing += a.lo[axis] != e.lo[axis] || a.hi[axis] != e.hi[axis];
+            }
+        }
+        // The reuse happened (boxes from a moved box differ in their last bits).
+        EXPECT_GT(differing, 20) << view;
+        // Points on the rods' surfaces (in world space) lie in their reused boxes.
+        if (std::string(view) == "oblique") {
+            ASSERT_EQ(reused->bodies.size(), 72u);
+            for (std::size_t b = 0; b < placements.size(); ++b)
+                for (int i = 0; i < 64; ++i) {
+                    const double phi = 2 * M_PI * i / 64;
+                    for (double z : {0.0, h / 2, h}) {
+                        const Vec3 p = reused->projection.deviceFromWorld.MapPoint(
+                            placements[b].MapPoint({r * std::cos(phi), r * std::sin(phi), z}));
+                        const Box3& box = reused->bodies[b].bounds;
+                        for (int axis = 0; axis < 3; ++axis) {
+                            EXPECT_GE(p[axis], box.lo[axis]) << b;
+                            EXPECT_LE(p[axis], box.hi[axis]) << b;
+                        }
+                    }
+                }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace quadrix
