@@ -7,10 +7,12 @@
 #endif
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <vector>
 
+#include "quadrix/frame/frame.h"
 #include "quadrix/io/phase_times.h"
 
 namespace quadrix {
@@ -57,20 +59,65 @@ struct Strip {
     bool ok = true;
 };
 
-// A thread's working memory for strips, kept between strips and between images: the filtered
-// rows, the deflate output before it is copied into its chunk, and a deflate state (reset for each
-// strip). Fresh buffers of this size cost more than the compression itself on rendered pictures:
-// zeroed by the vector and faulted in page by page (docs/performance.md "Output").
+// A thread's working memory for strips, kept between strips and between images: zlib's deflate
+// state (reset for each strip), the filtered rows and the deflate output before it is copied into
+// its chunk. Fresh memory costs more than the compression itself on rendered pictures: each 4 KiB
+// page's first touch is a page fault of about 18 µs on this project's virtual machines, and the
+// state and buffers of a 128 KiB strip are 130 pages. So they live in one 2 MiB mapping in a huge
+// page (frame/frame.h AllocateFrameBytes: one fault): zlib's state first (its allocator, below),
+// then the rows and the output; buffers that do not fit after it are allocated on their own.
 struct StripScratch {
-    std::unique_ptr<std::uint8_t[]> raw, out;
+    static constexpr std::size_t kArenaBytes = kFrameHugeBytes;
+    std::uint8_t* arena = nullptr;
+    std::size_t arenaUsed = 0;                 // by zlib's state, which is allocated once
+    std::unique_ptr<std::uint8_t[]> raw, out;  // when the rows and output do not fit the arena
     std::size_t rawCapacity = 0, outCapacity = 0;
     z_stream z{};
     bool ready = false;  // z initialised
-    StripScratch() = default;
+    StripScratch() {
+        try {
+            arena = static_cast<std::uint8_t*>(AllocateFrameBytes(kArenaBytes));
+        } catch (const std::bad_alloc&) {
+            arena = nullptr;  // zlib's own allocator and the heap, then
+        }
+        if (arena) {
+            z.zalloc = [](voidpf self, uInt items, uInt size) -> voidpf {
+                return static_cast<StripScratch*>(self)->Take(std::size_t{items} * size);
+            };
+            z.zfree = [](voidpf self, voidpf p) { static_cast<StripScratch*>(self)->Give(p); };
+            z.opaque = this;
+        }
+    }
     StripScratch(const StripScratch&) = delete;
     StripScratch& operator=(const StripScratch&) = delete;
     ~StripScratch() {
         if (ready) deflateEnd(&z);
+        FreeFrameBytes(arena, kArenaBytes);
+    }
+    // zlib's allocator: from the arena while it lasts (nothing is freed before deflateEnd).
+    voidpf Take(std::size_t n) {
+        n = (n + 63) / 64 * 64;
+        if (arenaUsed + n <= kArenaBytes) {
+            void* p = arena + arenaUsed;
+            arenaUsed += n;
+            return p;
+        }
+        return std::malloc(n);
+    }
+    void Give(voidpf p) {
+        const auto* b = static_cast<std::uint8_t*>(p);
+        if (!(b >= arena && b < arena + kArenaBytes)) std::free(p);
+    }
+    // The rows (n bytes) and the output (m bytes): after zlib's state in the arena when both fit.
+    void Buffers(std::size_t n, std::size_t m, std::uint8_t*& rows, std::uint8_t*& output) {
+        const std::size_t at = (arenaUsed + 63) / 64 * 64;
+        if (arena && at + n + m <= kArenaBytes) {
+            rows = arena + at;
+            output = rows + n;
+            return;
+        }
+        rows = Reserve(raw, rawCapacity, n);
+        output = Reserve(out, outCapacity, m);
     }
     static std::uint8_t* Reserve(std::unique_ptr<std::uint8_t[]>& p, std::size_t& capacity,
                                  std::size_t n) {
@@ -90,9 +137,22 @@ StripScratch& ThreadScratch() {
 // Filtered rows y0..y1 deflated (raw, level 1); the first strip carries the zlib header.
 void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, bool last, Strip& s) {
     StripScratch& t = ThreadScratch();
+    z_stream& z = t.z;
+    if (!t.ready) {
+        if (deflateInit2(&z, 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+            s.ok = false;
+            return;
+        }
+        t.ready = true;
+    } else if (deflateReset(&z) != Z_OK) {
+        s.ok = false;
+        return;
+    }
     const std::size_t stride = rowBytes + 1;
     const std::size_t rawBytes = static_cast<std::size_t>(y1 - y0) * stride;
-    std::uint8_t* raw = StripScratch::Reserve(t.raw, t.rawCapacity, rawBytes);
+    const std::size_t bound = deflateBound(&z, rawBytes) + 16;
+    std::uint8_t *raw = nullptr, *out = nullptr;
+    t.Buffers(rawBytes, bound, raw, out);
     for (int y = y0; y < y1; ++y) {
         std::uint8_t* p = raw + static_cast<std::size_t>(y - y0) * stride;
         p[0] = static_cast<std::uint8_t>(r.filter);
@@ -105,19 +165,6 @@ void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, boo
     s.rawBytes = rawBytes;
     s.adler = Adler32(1L, raw, rawBytes);
 
-    z_stream& z = t.z;
-    if (!t.ready) {
-        if (deflateInit2(&z, 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
-            s.ok = false;
-            return;
-        }
-        t.ready = true;
-    } else if (deflateReset(&z) != Z_OK) {
-        s.ok = false;
-        return;
-    }
-    const std::size_t bound = deflateBound(&z, rawBytes) + 16;
-    std::uint8_t* out = StripScratch::Reserve(t.out, t.outCapacity, bound);
     z.next_in = raw;
     z.avail_in = static_cast<uInt>(rawBytes);
     z.next_out = out;
