@@ -118,7 +118,8 @@ TEST(DeviceOutput, PngDecodesToTheShadedPixels) {
         Image back;
         ASSERT_TRUE(ReadPng(tmp.File("out.png"), back));
         EXPECT_EQ(back.channels, color ? 3 : 1);
-        EXPECT_EQ(back.pixels, Encoded(r.image));
+        EXPECT_EQ(std::vector<std::uint8_t>(back.pixels.begin(), back.pixels.end()),
+                  Encoded(r.image));
     }
 }
 
@@ -131,7 +132,7 @@ TEST(DeviceOutput, PgmAndPpmHoldTheShadedPixels) {
     ASSERT_TRUE(quadrix::testing::ReadPnm(tmp.File("a.pgm"), back));
     EXPECT_EQ(back.channels, 1);
     const std::vector<std::uint8_t> want = Encoded(r.image);
-    EXPECT_EQ(back.pixels, want);
+    EXPECT_EQ(std::vector<std::uint8_t>(back.pixels.begin(), back.pixels.end()), want);
     // ppm forces RGB even for a gray picture: every channel equals the gray value.
     auto ppm = Make("ppm:" + tmp.File("a.ppm"), 40, 30);
     ASSERT_EQ(Draw(*ppm, r), "");

@@ -3,17 +3,51 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <mutex>
 
 namespace quadrix {
 
 namespace {
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
 std::size_t RoundUp(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+
+// One mapping freed and kept for the next allocation of the same length: an image or Frame made
+// and dropped for every frame (the viewer's) then costs neither mmap/munmap nor the kernel's
+// zeroing and faulting of its pages each time (measured in docs/performance.md "Viewer"). Only
+// mappings of at most kKeptBytes are kept, so a big Frame's memory is returned when it is freed.
+constexpr std::size_t kKeptBytes = std::size_t{16} << 20;
+std::mutex keptMutex;
+void* kept = nullptr;
+std::size_t keptLength = 0;
+
+void* TakeKept(std::size_t len) {
+    std::lock_guard lock(keptMutex);
+    if (!kept || keptLength != len) return nullptr;
+    void* p = kept;
+    kept = nullptr;
+    return p;
+}
+
+bool Keep(void* p, std::size_t len) {
+    if (len > kKeptBytes) return false;
+    std::lock_guard lock(keptMutex);
+    if (kept) return false;
+    kept = p;
+    keptLength = len;
+    return true;
+}
+
 }  // namespace
 
 void* AllocateFrameBytes(std::size_t bytes) {
     const std::size_t len = RoundUp(bytes);
     if (len < bytes || len + kHugePage < len) throw std::bad_alloc();
+    if (void* p = TakeKept(len)) {
+#ifdef MADV_HUGEPAGE
+        madvise(p, len, MADV_HUGEPAGE);  // AdviseSmallPages may have changed it
+#endif
+        return p;
+    }
     // Map 2 MiB more than needed, then unmap the ends so that what is left is aligned.
     void* m =
         mmap(nullptr, len + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -31,7 +65,7 @@ void* AllocateFrameBytes(std::size_t bytes) {
 }
 
 void FreeFrameBytes(void* p, std::size_t bytes) {
-    if (p) munmap(p, RoundUp(bytes));
+    if (p && !Keep(p, RoundUp(bytes))) munmap(p, RoundUp(bytes));
 }
 
 namespace {

@@ -125,6 +125,8 @@ std::vector<std::uint8_t> EncodeSrgb8(const Image& image) {
     return out;
 }
 
+const std::uint8_t* Srgb8Table() { return SrgbTable().data(); }
+
 std::vector<std::uint8_t> EncodeSrgb8Precise(const Image& image) {
     std::vector<std::uint8_t> out(image.pixels.size());
     if (HasLinear(image)) {

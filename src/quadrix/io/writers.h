@@ -53,6 +53,8 @@ std::string WritePnm(const std::string& path, const Image& image,
 // from Image::linear when present (for viewers that want the smoother darks).
 std::vector<std::uint8_t> EncodeSrgb8(const Image& image);
 std::vector<std::uint8_t> EncodeSrgb8Precise(const Image& image);
+// The table EncodeSrgb8 applies to each 8-bit linear sample (for encoders fused with other work).
+const std::uint8_t* Srgb8Table();
 
 // Frame dump for tests and tools: a text header then one line per pixel
 //   QXF1 <width> <height>

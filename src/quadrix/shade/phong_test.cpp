@@ -146,6 +146,49 @@ TEST(ShadeLambert, SpecularFinishAddsAHighlightOpacityBlendsWithTheBackground) {
     EXPECT_NEAR(img.linear[6], 0.2, 1e-6);
 }
 
+// 8-bit shading without shadows or world points repeats a pixel's bytes along runs of the same
+// (surface, body, normal) and for the background (shader.cpp ShadeRowLocal): the bytes must be
+// those of shading every pixel, which the linear (16-bit) output still does.
+TEST(ShadeLambert, EightBitRunsGiveTheBytesOfShadingEveryPixel) {
+    for (const bool colour : {true, false}) {
+        FlatScene s = TwoLights(37, 5);
+        s.background = colour ? scene::Color{0.1, 0.2, 0.3} : scene::Color{0.1, 0.1, 0.1};
+        s.backgroundBottom = {0.6, 0.6, 0.6};  // a gradient: each row its own background
+        scene::Finish shiny;
+        shiny.specular = 0.5;
+        shiny.shininess = 10;
+        scene::Finish glass;
+        glass.opacity = 0.4;
+        const int a = AddBody(s, colour ? scene::Color{0.9, 0.5, 0.2} : scene::Color{}, shiny);
+        const int b = AddBody(s, colour ? scene::Color{0.2, 0.5, 0.9} : scene::Color{}, glass);
+        const int c = AddBody(s, {}, {});
+        Frame f(37, 5);
+        for (int y = 0; y < 5; ++y)
+            for (int x = 0; x < 37; ++x) {
+                const std::size_t i = f.Index(x, y);
+                if (x % 11 == 10) continue;  // background between the runs
+                const int body = x < 12 ? a : x < 20 ? b : c;
+                const int surface = x % 7 < 4 ? 0 : 1;  // the same normal on two surfaces
+                // Runs of one normal (a plane), then one normal a pixel (a curved surface).
+                const double t = x < 25 ? 0.3 * y : 0.05 * x + 0.1 * y;
+                const Vec3 n = Normalize({std::sin(t), 0.2, -std::cos(t)});
+                f.Offer(i, 1, n, surface, body, 0);
+            }
+        ShadeOptions o;
+        o.linear = false;
+        const Image runs = Shade(f, s, o);
+        o.linear = true;
+        const Image each = Shade(f, s, o);
+        ASSERT_EQ(runs.channels, colour ? 3 : 1);
+        EXPECT_EQ(runs.pixels, each.pixels) << "colour " << colour;
+        // Not all one colour: the runs differ from each other and from the background.
+        std::size_t distinct = 0;
+        for (std::size_t k = 1; k < runs.pixels.size(); ++k)
+            distinct += runs.pixels[k] != runs.pixels[k - 1];
+        EXPECT_GT(distinct, runs.pixels.size() / 10);
+    }
+}
+
 TEST(ShadeLights, PointAndSpotLights) {
     scene::Light point;
     point.kind = scene::Light::Kind::kPoint;

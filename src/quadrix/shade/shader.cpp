@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <utility>
 
@@ -38,6 +39,8 @@ std::uint8_t ToByte(double v) {
     if (v >= 1) return 255;
     return static_cast<std::uint8_t>(v * 255.0 + 0.5);
 }
+
+bool SameBits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
 
 float ToUnit(double v) { return v > 0 ? (v < 1 ? static_cast<float>(v) : 1.0f) : 0.0f; }
 
@@ -199,6 +202,62 @@ void StorePixel(Image& image, int x, int y, const scene::Color& c) {
     }
 }
 
+namespace {
+
+// The 8-bit bytes of a colour, RGB or gray, as ShadeRowKinds stores them.
+struct PixelBytes {
+    std::uint8_t v[3] = {0, 0, 0};
+    PixelBytes() = default;
+    PixelBytes(const scene::Color& c) : v{ToByte(c.r), ToByte(c.g), ToByte(c.b)} {}
+};
+
+// Row y of an 8-bit image whose shading is local (ShadeRowKinds): a pixel's colour depends only
+// on its (surface, body), its normal and the row's background, so a pixel repeating the previous
+// covered pixel's three bit for bit (a plane's run) repeats its bytes, and every background
+// pixel of the row gets the same bytes; only the others are shaded (PixelShader::At). The Frame's
+// depth is not read.
+void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
+                   const scene::Color& background, Image& image,
+                   PixelShader::MaterialCache& cache) {
+    const std::size_t row = frame.Index(0, y);
+    const std::int32_t* surface = frame.surface.data() + row;
+    const std::int32_t* body = frame.body.data() + row;
+    const Vec3* normal = frame.normal.data() + row;
+    const int width = frame.width;
+    const bool rgb = image.channels == 3;
+    std::uint8_t* out = image.At(0, y);
+    const PixelBytes back(
+        shader.At(0.5, y + 0.5, Frame::kNone, Frame::kNone, HUGE_VAL, Vec3{}, background, &cache));
+    PixelBytes last;
+    std::int32_t lastSurface = Frame::kNone, lastBody = Frame::kNone;
+    Vec3 lastNormal{0, 0, 0};
+    for (int x = 0; x < width; ++x) {
+        const std::int32_t s = surface[x];
+        const PixelBytes* bytes = &back;
+        if (s != Frame::kNone) {
+            const std::int32_t b = body[x];
+            if (s != lastSurface || b != lastBody || !SameBits(normal[x], lastNormal)) {
+                lastSurface = s;
+                lastBody = b;
+                lastNormal = normal[x];
+                last =
+                    PixelBytes(shader.At(x + 0.5, y + 0.5, s, b, 0, normal[x], background, &cache));
+            }
+            bytes = &last;
+        }
+        if (rgb) {
+            std::uint8_t* p = out + 3 * static_cast<std::size_t>(x);
+            p[0] = bytes->v[0];
+            p[1] = bytes->v[1];
+            p[2] = bytes->v[2];
+        } else {
+            out[x] = bytes->v[0];
+        }
+    }
+}
+
+}  // namespace
+
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
     return ShadeRowKinds(frame, scene, options, {});
 }
@@ -206,6 +265,14 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
 Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
                     const std::vector<std::uint8_t>& kinds) {
     const PixelShader shader(frame, scene, options);
+    // Whether PixelShader::At depends only on (surface, body), the normal and the background: no
+    // shadows, no world point (point or spot lights, highlights under perspective), not the fast
+    // model. The repeat of a previous pixel's bytes (below) only then, and for 8-bit output:
+    // Image::linear would need its floats repeated too, which is not worth it for the one output
+    // that reads them.
+    const ShadingModel model = options.fast ? ShadingModel::kFast : options.model;
+    const bool local = !options.linear && !options.shadows && model != ShadingModel::kFast &&
+                       !NeedsPoint(scene, model);
     Image image(frame.width, frame.height, shader.Color() ? 3 : 1);
     if (options.linear) image.linear.assign(image.pixels.size(), 0.0f);
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
@@ -233,6 +300,10 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
                 ~Spend() { budget.Spend(tRayLiterals - start); }
             } spend{budget, work};
             const scene::Color background = shader.Background(y, frame.height);
+            if (local) {
+                ShadeRowLocal(shader, frame, y, background, image, cache);
+                continue;
+            }
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);
                 const scene::Color c =
