@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <regex>
 #include <set>
@@ -20,11 +21,29 @@
 namespace quadrix::testing {
 namespace {
 
+// A file's text, or a function that makes it when the row runs. gtest builds every row in every
+// test process (ctest runs each test alone), so the big generated scenes are made only by the
+// test that writes them: built eagerly they cost every process 0.1 s, 0.45 s under ASan.
+struct FileText {
+    FileText() = default;
+    FileText(std::string t) : text(std::move(t)) {}  // NOLINT: implicit, rows list plain texts
+    FileText(const char* t) : text(t) {}             // NOLINT
+    std::string Get() const { return make ? make() : text; }
+    std::string text;
+    std::function<std::string()> make = {};
+};
+FileText Lazy(std::function<std::string()> make) {
+    FileText f;
+    f.make = std::move(make);
+    return f;
+}
+using Files = std::map<std::string, FileText>;
+
 struct BadInput {
     const char* name;
-    std::map<std::string, std::string> files;  // written into a temp dir; "main.uq" is rendered
-    std::string extraArgs;                     // appended to the command line ({dir} = temp dir)
-    std::string expectFirstLine;               // regex searched in the first line of stderr
+    Files files;                  // written into a temp dir; "main.uq" is rendered
+    std::string extraArgs;        // appended to the command line ({dir} = temp dir)
+    std::string expectFirstLine;  // regex searched in the first line of stderr
     // Shell commands run in the temp dir before quadrix (mkfifo, ln, ulimit: the same shell).
     std::string setup = {};
     // Rows that must give a correct picture instead of an error (exit 0, out.ppm written, lit:
@@ -44,7 +63,7 @@ struct BadInput {
 
 void PrintTo(const BadInput& b, std::ostream* os) { *os << b.name; }
 
-std::string IncludeChain(int depth, std::map<std::string, std::string>& files) {
+std::string IncludeChain(int depth, Files& files) {
     // main.uq reads f1.uq, f1 reads f2, …, f<depth> holds a sphere.
     for (int i = 1; i <= depth; ++i) {
         std::string next = i < depth ? "read \"f" + std::to_string(i + 1) + ".uq\";\n"
@@ -204,7 +223,7 @@ std::vector<BadInput> HardeningRows() {
          "{dir}/m.asc",
          R"(m\.asc:2:\d+: error.*N)"},
         {"V5TreeTooDeep",
-         {{"m.asc", DeepV5Tree(2001)}},
+         {{"m.asc", Lazy([] { return DeepV5Tree(2001); })}},
          "{dir}/m.asc",
          R"(m\.asc:3:\d+: error.*deeper than 2000)"},
         // ---- OpenSCAD: non-positive sizes are errors (OpenSCAD draws nothing).
@@ -334,7 +353,7 @@ std::vector<BadInput> HardeningRows() {
          "{dir}/m.asc",
          R"(m\.asc:2:\d+: error.*N)"},
         {"V5TreeVeryDeep",
-         {{"m.asc", DeepV5Tree(50000)}},
+         {{"m.asc", Lazy([] { return DeepV5Tree(50000); })}},
          "{dir}/m.asc",
          R"(m\.asc:3:\d+: error.*deeper than 2000)"},
         // ---- Correct pictures where wrong ones (or misleading errors) came before.
@@ -401,7 +420,12 @@ std::vector<BadInput> HardeningRows() {
          "",
          "",
          100},
-        {"V5TreeAtTheDepthLimit", {{"m.asc", DeepV5Tree(2000)}}, "{dir}/m.asc", "", "", 100},
+        {"V5TreeAtTheDepthLimit",
+         {{"m.asc", Lazy([] { return DeepV5Tree(2000); })}},
+         "{dir}/m.asc",
+         "",
+         "",
+         100},
     };
 }
 
@@ -476,12 +500,16 @@ std::vector<BadInput> GuardAndScaleRows() {
             fanOut["f" + std::to_string(i) + ".uq"] += fmt::format("read \"f{}.uq\";\n", i + 1);
     fanOut["f8.uq"] = "{ empty }\n";
     fanOut["main.uq"] = "read \"f1.uq\";\n" + sphere;
-    std::string wide;
-    for (int i = 0; i < 10001; ++i) wide += "read \"part.uq\";\n";
+    const FileText wide = Lazy([sphere] {
+        std::string w;
+        for (int i = 0; i < 10001; ++i) w += "read \"part.uq\";\n";
+        return w + sphere;
+    });
     std::string dup = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (";
     for (int i = 0; i < 2000; ++i) dup += i ? " s" : "s";
     dup += ");\n";
-    const std::string balls = CoincidentBallUnion(300), body = BodyOfLiterals(2000);
+    const FileText balls = Lazy([] { return CoincidentBallUnion(300); });
+    const FileText body = Lazy([] { return BodyOfLiterals(2000); });
     return {
         // ---- Coefficients of any magnitude: a correct, lit picture on every engine.
         {"QuadricScaledBy1e308", {{"main.uq", huge}}, "", "", "", 100},
@@ -539,11 +567,17 @@ std::vector<BadInput> GuardAndScaleRows() {
         {"BodyOf2000Literals", {{"main.uq", body}}, "", "", "", 100},
         {"BodyOf2000LiteralsScanline", {{"main.uq", body}}, "--engine scanline", "", "", 100},
         {"BodyOf2000LiteralsPixelpowers", {{"main.uq", body}}, "--engine pixelpowers", "", "", 100},
-        {"UnionOf2000SmallBalls", {{"main.uq", UnionOfSmallBalls(2000)}}, "", "", "", 100},
+        {"UnionOf2000SmallBalls",
+         {{"main.uq", Lazy([] { return UnionOfSmallBalls(2000); })}},
+         "",
+         "",
+         "",
+         100},
         {"DuplicateLiterals", {{"main.uq", dup}}, "", "", "", 100},
-        {"ReadFanOut", fanOut, "", R"(f7\.uq:\d+:\d+: error.*more than 10000 files read)"},
+        {"ReadFanOut", Files(fanOut.begin(), fanOut.end()), "",
+         R"(f7\.uq:\d+:\d+: error.*more than 10000 files read)"},
         {"ReadFanOutWide",
-         {{"part.uq", "{ nothing }\n"}, {"main.uq", wide + sphere}},
+         {{"part.uq", "{ nothing }\n"}, {"main.uq", wide}},
          "",
          R"(main\.uq:10001:\d+: error.*more than 10000 files read)"},
         // Raycast's work budget (engines/raycast/work_budget.h): a dense union past
@@ -555,7 +589,7 @@ std::vector<BadInput> GuardAndScaleRows() {
         // Through the reference engine too: scanline hands the union to raycast (max-overlap),
         // whose default budget (4,096 per pixel) 10,000 coincident balls pass.
         {"DenseUnionComposedByRaycast",
-         {{"main.uq", CoincidentBallUnion(10000)}},
+         {{"main.uq", Lazy([] { return CoincidentBallUnion(10000); })}},
          "--engine scanline --size 16x16",
          R"(error.*max-evaluations=4096 per pixel.*solid 'u' has 10000 operands)"},
         {"MaxEvaluationsZero",
@@ -707,9 +741,8 @@ std::vector<BadInput> FrontEndRows() {
         b.command = "batch --quiet jobs.jsonl";
         return b;
     };
-    auto row = [](const char* name, std::map<std::string, std::string> files,
-                  const std::string& command, const std::string& expect,
-                  const std::string& setup = {}) {
+    auto row = [](const char* name, Files files, const std::string& command,
+                  const std::string& expect, const std::string& setup = {}) {
         BadInput b{name, std::move(files), "", expect, setup};
         b.command = command;
         return b;
@@ -812,18 +845,16 @@ std::vector<BadInput> FrontEndRows() {
 // only separate tests (output_safety_test.cpp, all_engines_test.cpp, complexity_guard_test.cpp).
 std::vector<BadInput> ThirdPassRows() {
     const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
-    const std::string big = BodyOfLiterals(20000);
-    const std::string lit = big + "light l1 1 0 0 -1;\n";
-    auto row = [](const char* name, std::map<std::string, std::string> files,
-                  const std::string& command, const std::string& expect,
-                  const std::string& setup = {}) {
+    const FileText big = Lazy([] { return BodyOfLiterals(20000); });
+    const FileText lit = Lazy([] { return BodyOfLiterals(20000) + "light l1 1 0 0 -1;\n"; });
+    auto row = [](const char* name, Files files, const std::string& command,
+                  const std::string& expect, const std::string& setup = {}) {
         BadInput b{name, std::move(files), "", expect, setup};
         b.command = command;
         return b;
     };
-    auto ok = [](const char* name, std::map<std::string, std::string> files,
-                 const std::string& command, const std::string& check,
-                 const std::string& setup = {}) {
+    auto ok = [](const char* name, Files files, const std::string& command,
+                 const std::string& check, const std::string& setup = {}) {
         BadInput b{name, std::move(files), "", "", setup};
         b.command = command;
         b.check = check;
@@ -1095,7 +1126,7 @@ std::set<std::string> Listing(const std::string& dir) {
 TEST_P(BadInputTest, OneLineErrorNonZeroExitNoOutput) {
     const BadInput& b = GetParam();
     TempDir dir;
-    for (const auto& [name, text] : b.files) dir.Write(name, text);
+    for (const auto& [name, text] : b.files) dir.Write(name, text.Get());
     if (!b.command.empty()) {
         // Another front end: the directory must be left as the setup left it.
         if (!b.setup.empty()) {
