@@ -9,14 +9,11 @@
 #include "quadrix/engines/engine_limit.h"
 #include "quadrix/import/rt_view.h"
 #include "quadrix/io/output_check.h"
+#include "quadrix/util/seconds_since.h"
 
 namespace quadrix::batch {
 
 namespace {
-
-double Since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Errors (and, separately, warnings and notes) of `diags` as text, one diagnostic per line.
 std::string ErrorText(const Diagnostics& diags) {
@@ -121,7 +118,7 @@ bool JobRenderer::Load(const Job& job, int jobId, double clock, FrameResult& r) 
         worldBox_ = SceneWorldBounds(ctx_, diags);
         if (diags.HasErrors()) loadedOk_ = false;
     }
-    r.readSeconds = Since(t0);
+    r.readSeconds = SecondsSince(t0);
     loadedJob_ = jobId;
     loadedClock_ = clock;
     loadError_ = loadedOk_ ? std::string() : ErrorText(diags);
@@ -142,7 +139,7 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
         return r;
     }
     if (!Load(job, jobId, job.Clock(frame), r)) {
-        r.seconds = Since(t0);
+        r.seconds = SecondsSince(t0);
         return r;
     }
     ViewRequest view = job.view;
@@ -168,10 +165,10 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
     const auto t1 = std::chrono::steady_clock::now();
     if (!ctx_.Flatten(view, diags)) {
         r.error = ErrorText(diags);
-        r.seconds = Since(t0);
+        r.seconds = SecondsSince(t0);
         return r;
     }
-    r.flattenSeconds = Since(t1);
+    r.flattenSeconds = SecondsSince(t1);
     r.flattened = !ctx_.LastFlattenReused();
     if (r.flattened) ++flattens;
     Frame fb;
@@ -179,10 +176,10 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
     const auto t2 = std::chrono::steady_clock::now();
     if (!ctx_.Render(job.engine, fb, report, diags)) {
         r.error = ErrorText(diags);
-        r.seconds = Since(t0);
+        r.seconds = SecondsSince(t0);
         return r;
     }
-    r.renderSeconds = Since(t2);
+    r.renderSeconds = SecondsSince(t2);
     for (const std::string& w : report.stats.warnings)
         r.warnings += fmt::format("warning: engine {}: {}\n", job.engine.engine, w);
     r.warnings += WarningText(diags);
@@ -203,16 +200,16 @@ FrameResult JobRenderer::Render(const Job& job, int jobId, int frame, bool skipE
             image = ctx_.Shade(fb, so);
         } catch (const EngineLimitError& e) {  // the shading budget (shade/shade_budget.h)
             r.error = std::string("error: ") + e.what() + "\n";
-            r.seconds = Since(t0);
+            r.seconds = SecondsSince(t0);
             return r;
         }
     }
-    r.shadeSeconds = Since(t3);
+    r.shadeSeconds = SecondsSince(t3);
     const auto t4 = std::chrono::steady_clock::now();
     if (std::string e = WriteOutputs(out, fb, image ? &*image : nullptr); !e.empty())
         r.error = e + "\n";
-    r.writeSeconds = Since(t4);
-    r.seconds = Since(t0);
+    r.writeSeconds = SecondsSince(t4);
+    r.seconds = SecondsSince(t0);
     return r;
 }
 

@@ -15,6 +15,7 @@
 
 #include "quadrix/batch/job_renderer.h"
 #include "quadrix/batch/progress.h"
+#include "quadrix/util/seconds_since.h"
 
 #ifdef QUADRIX_HAVE_MPI
 #include <mpi.h>
@@ -198,10 +199,6 @@ nlohmann::json StagesJson(const StageSeconds& s) {
     return j;
 }
 
-double Since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 #ifdef QUADRIX_HAVE_MPI
 bool mpiStarted = false;
 void StartMpi() {
@@ -322,7 +319,7 @@ Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units
     MPI_Win_free(&win);
     progress.Finish();
     std::vector<RankTally> tallies = AllTallies(mine);
-    return Summed(jobs, tallies, static_cast<int>(units.size()), Since(t0));
+    return Summed(jobs, tallies, static_cast<int>(units.size()), SecondsSince(t0));
 }
 #endif
 
@@ -374,7 +371,7 @@ Summary RunJobs(const std::vector<JobEntry>& jobs, const RunOptions& options) {
     int at = 0;
     RankTally t = RenderUnits(jobs, units, options, progress, [&] { return at++; });
     progress.Finish();
-    return Summed(jobs, {t}, static_cast<int>(units.size()), Since(t0));
+    return Summed(jobs, {t}, static_cast<int>(units.size()), SecondsSince(t0));
 }
 
 std::string Summary::Text() const {

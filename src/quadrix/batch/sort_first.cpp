@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadrix/batch/mpi_piece.h"
 #include "quadrix/batch/run.h"
 
 #ifdef QUADRIX_HAVE_MPI
@@ -29,7 +30,6 @@ std::vector<RowSpan> SortFirstRows(int width, int height, int rank, int ranks) {
 #ifdef QUADRIX_HAVE_MPI
 namespace {
 
-constexpr std::size_t kPiece = std::size_t{256} << 20;
 constexpr std::size_t kPixelBytes = sizeof(double) + sizeof(Vec3) + 3 * sizeof(std::int32_t);  // 60
 constexpr int kFrameTag = 8, kHaloTag = 9, kImageTag = 10;
 
@@ -109,8 +109,8 @@ void TransferImage(std::conditional_t<kPack, const Image, Image>& image, const R
 // Posts the sends or receives of `bytes` bytes at `data` in pieces MPI's int counts can hold.
 void Post(bool send, char* data, std::size_t bytes, int peer, int tag,
           std::vector<MPI_Request>& requests) {
-    for (std::size_t at = 0; at < bytes; at += kPiece) {
-        const int n = static_cast<int>(std::min(kPiece, bytes - at));
+    for (std::size_t at = 0; at < bytes; at += kMpiPiece) {
+        const int n = static_cast<int>(std::min(kMpiPiece, bytes - at));
         MPI_Request r;
         if (send)
             MPI_Isend(data + at, n, MPI_BYTE, peer, tag, MPI_COMM_WORLD, &r);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "quadrix/batch/mpi_piece.h"
 #include "quadrix/batch/run.h"
 
 #ifdef QUADRIX_HAVE_MPI
@@ -14,19 +15,17 @@ namespace quadrix::batch {
 #ifdef QUADRIX_HAVE_MPI
 namespace {
 
-constexpr std::size_t kPiece = std::size_t{256} << 20;
-
 void SendBytes(const void* data, std::size_t bytes, int to) {
     const char* p = static_cast<const char*>(data);
-    for (std::size_t at = 0; at < bytes; at += kPiece)
-        MPI_Send(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, to, 7,
+    for (std::size_t at = 0; at < bytes; at += kMpiPiece)
+        MPI_Send(p + at, static_cast<int>(std::min(kMpiPiece, bytes - at)), MPI_BYTE, to, 7,
                  MPI_COMM_WORLD);
 }
 
 void ReceiveBytes(void* data, std::size_t bytes, int from) {
     char* p = static_cast<char*>(data);
-    for (std::size_t at = 0; at < bytes; at += kPiece)
-        MPI_Recv(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, from, 7,
+    for (std::size_t at = 0; at < bytes; at += kMpiPiece)
+        MPI_Recv(p + at, static_cast<int>(std::min(kMpiPiece, bytes - at)), MPI_BYTE, from, 7,
                  MPI_COMM_WORLD, MPI_STATUS_IGNORE);
 }
 

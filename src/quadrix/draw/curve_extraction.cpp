@@ -35,11 +35,6 @@ std::array<double, 10> Normalised(const FlatHalfSpace& h, bool& ok) {
     return k;
 }
 
-bool Overlap(const Box3& a, const Box3& b) {
-    return !(a.hi.x < b.lo.x || b.hi.x < a.lo.x || a.hi.y < b.lo.y || b.hi.y < a.lo.y ||
-             a.hi.z < b.lo.z || b.hi.z < a.lo.z);
-}
-
 }  // namespace
 
 bool LimbPlaneOf(const Quadric& q, Plane& out) {
@@ -145,7 +140,7 @@ std::vector<Curve3> ExtractCurves(const FlatScene& scene, const Surfaces& surfac
                 !surfaces.opaque[static_cast<std::size_t>(b)])
                 continue;
             const Box3& boxB = surfaces.box[static_cast<std::size_t>(b)];
-            if (!Overlap(boxA, boxB)) continue;
+            if (!boxA.Overlaps(boxB)) continue;
             const Box3 both = boxA.Intersected(boxB);
             const FlatHalfSpace& B = hs[static_cast<std::size_t>(b)];
             std::vector<Curve3> found;

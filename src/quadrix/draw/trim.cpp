@@ -49,11 +49,6 @@ bool ContainsCurve(const FlatHalfSpace& h, const Curve3& c, double tol) {
     return true;
 }
 
-bool Overlap(const Box3& a, const Box3& b) {
-    return !(a.hi.x < b.lo.x || b.hi.x < a.lo.x || a.hi.y < b.lo.y || b.hi.y < a.lo.y ||
-             a.hi.z < b.lo.z || b.hi.z < a.lo.z);
-}
-
 }  // namespace
 
 std::vector<double> CurveBreaks(const Curve3& c, const FlatHalfSpace& s) {
@@ -281,7 +276,7 @@ std::vector<CurvePiece> TrimToBoundary(const FlatScene& scene, const Surfaces& s
         std::vector<int> shared;
         for (int r : surfaces.reps) {
             if (r == c.surfaceA || r == c.surfaceB) continue;
-            if (!Overlap(cb, surfaces.box[static_cast<std::size_t>(r)])) continue;
+            if (!cb.Overlaps(surfaces.box[static_cast<std::size_t>(r)])) continue;
             const FlatHalfSpace& h = scene.halfSpaces[static_cast<std::size_t>(r)];
             if (ContainsCurve(h, c, containTol)) {
                 shared.push_back(r);  // its sign along the curve is rounding noise: no breaks

@@ -7,22 +7,22 @@ namespace quadrix {
 
 namespace {
 
-constexpr double kInf = HUGE_VAL;
+constexpr double kUnbounded = HUGE_VAL;
 
 bool FiniteOn(const Box3& b, int axis) {
     return !b.Empty() && std::isfinite(b.lo[axis]) && std::isfinite(b.hi[axis]);
 }
 
 void SetUnknown(Box3& b, int axis) {
-    b.lo[axis] = -kInf;
-    b.hi[axis] = kInf;
+    b.lo[axis] = -kUnbounded;
+    b.hi[axis] = kUnbounded;
 }
 
 // The fit box of one non-leaf node from its children's fit boxes (window_fit.h).
 Box3 CombineFit(const FlatCsgNode& node, const std::vector<Box3>& fit) {
     Box3 out = Box3::Everything();
     for (int axis = 0; axis < 3; ++axis) {
-        double lo = kInf, hi = -kInf;
+        double lo = kUnbounded, hi = -kUnbounded;
         bool known = false;
         switch (node.op) {
             case scene::CsgOp::kUnion:
@@ -34,7 +34,7 @@ Box3 CombineFit(const FlatCsgNode& node, const std::vector<Box3>& fit) {
                     }
                 break;
             case scene::CsgOp::kIntersection:
-                lo = -kInf, hi = kInf;
+                lo = -kUnbounded, hi = kUnbounded;
                 for (int c : node.children)
                     if (FiniteOn(fit[c], axis)) {
                         lo = std::fmax(lo, fit[c].lo[axis]);
@@ -101,7 +101,7 @@ WindowFitStatus FitWindow(const WindowRequest& request, const std::vector<Box3>&
     const double w = request.width, h = request.height, m = request.margin;
     fit = WindowFit{};
     if (request.whw || request.whh) {
-        double k = kInf;
+        double k = kUnbounded;
         if (request.whw) k = std::fmin(k, 0.5 * w / *request.whw);
         if (request.whh) k = std::fmin(k, 0.5 * h / *request.whh);
         fit.k = k;
@@ -120,14 +120,14 @@ WindowFitStatus FitWindow(const WindowRequest& request, const std::vector<Box3>&
             }
     if (!known[0] && !known[1]) return WindowFitStatus::kNothingBounded;
     const double size[2] = {w, h};
-    double k = kInf, centre[2] = {0, 0};
+    double k = kUnbounded, centre[2] = {0, 0};
     for (int axis = 0; axis < 2; ++axis) {
         if (!known[axis]) continue;  // centred on vrp
         double span = extent.hi[axis] - extent.lo[axis];
         centre[axis] = 0.5 * (extent.lo[axis] + extent.hi[axis]);
         if (span > 0) k = std::fmin(k, size[axis] * (1 - 2 * m) / span);
     }
-    if (!(k < kInf) || !(k > 0)) return WindowFitStatus::kNoExtent;
+    if (!(k < kUnbounded) || !(k > 0)) return WindowFitStatus::kNoExtent;
     fit.k = k;
     fit.ox = 0.5 * w - k * centre[0];
     fit.oy = 0.5 * h - k * centre[1];

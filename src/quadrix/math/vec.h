@@ -147,6 +147,11 @@ struct Box3 {
     }
     Vec3 Center() const { return (lo + hi) * 0.5; }
     Vec3 Size() const { return hi - lo; }
+    // Closed boxes that share a point (touching counts); false when either is empty.
+    bool Overlaps(const Box3& b) const {
+        return !(hi.x < b.lo.x || b.hi.x < lo.x || hi.y < b.lo.y || b.hi.y < lo.y ||
+                 hi.z < b.lo.z || b.hi.z < lo.z);
+    }
 };
 
 }  // namespace quadrix

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "quadrix/freeform/roots.h"
+#include "quadrix/util/seconds_since.h"
 
 namespace quadrix::isocurve {
 
@@ -22,10 +23,6 @@ std::pair<BezierCurve, BezierCurve> SplitHomogeneous(const BezierCurve& c) {
     }
     return {BezierCurve(3, c.Degree(), std::move(xyz), c.T0(), c.T1()),
             BezierCurve(1, c.Degree(), std::move(w), c.T0(), c.T1())};
-}
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
 }  // namespace
@@ -175,7 +172,7 @@ Extraction Finish(IsoFamily& family, Extraction e, std::chrono::steady_clock::ti
     e.stats.curves = static_cast<int>(e.curves.size());
     e.stats.length = 0;
     for (const Isocurve& c : e.curves) e.stats.length += CurveLength(family, c);
-    e.stats.seconds = Seconds(start);
+    e.stats.seconds = SecondsSince(start);
     return e;
 }
 

@@ -9,14 +9,11 @@
 #include <cstdlib>
 
 #include "quadrix/engines/isocurve/counters.h"
+#include "quadrix/util/seconds_since.h"
 
 namespace quadrix::isocurve {
 
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 // Largest singular value of the 2×3 block of rows 0, 1: the spectral norm of the xy part of a
 // linear map, from the eigenvalues of the 2×2 matrix A Aᵀ.
@@ -111,7 +108,7 @@ IsocurveStats RenderFreeform(const std::vector<FreeformDrawable>& drawables,
     tbb::parallel_for(std::size_t{0}, drawables.size(), [&](std::size_t i) {
         ex[i] = ExtractFor(*drawables[i].surface, st.delta, options);
     });
-    st.extractSeconds = Seconds(start);
+    st.extractSeconds = SecondsSince(start);
     for (const Extraction& e : ex) {
         st.curves += e.stats.curves;
         st.length += e.stats.length;
@@ -122,7 +119,7 @@ IsocurveStats RenderFreeform(const std::vector<FreeformDrawable>& drawables,
     }
     start = std::chrono::steady_clock::now();
     st.raster = DrawExtractions(drawables, ex, projection, st.thickness, frame);
-    st.drawSeconds = Seconds(start);
+    st.drawSeconds = SecondsSince(start);
     return st;
 }
 

@@ -2,19 +2,9 @@
 
 #include <algorithm>
 
+#include "quadrix/engines/scanline/pixel_range.h"
+
 namespace quadrix::scanline {
-namespace {
-
-// Inclusive pixel range of the centres i + ½ inside [lo, hi], clipped to [0, n) (as the engine's
-// units are made).
-void PixelRange(double lo, double hi, int n, int& a, int& b) {
-    double fa = std::ceil(lo - 0.5), fb = std::floor(hi - 0.5);
-    a = static_cast<int>(std::clamp(std::isnan(fa) ? 0.0 : fa, 0.0, static_cast<double>(n)));
-    b = static_cast<int>(std::clamp(std::isnan(fb) ? n - 1.0 : fb, -1.0, n - 1.0));
-}
-
-}  // namespace
-
 // Per unit its refused bodies and the bodies that may cover an image side (for CSG units: the
 // operands of its tree), and the units sorted on y0.
 RowBodies::RowBodies(ScanContext& ctx) : ctx_(ctx) {

@@ -11,6 +11,7 @@
 
 #include "quadrix/engines/scanline/counters.h"
 #include "quadrix/engines/scanline/overlap_guard.h"
+#include "quadrix/engines/scanline/pixel_range.h"
 #include "quadrix/engines/scanline/renderer.h"
 #include "quadrix/engines/scanline/resolver.h"
 
@@ -21,13 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
-}
-
-// Inclusive pixel range of the centres i + ½ inside [lo, hi], clipped to [0, n).
-void PixelRange(double lo, double hi, int n, int& a, int& b) {
-    double fa = std::ceil(lo - 0.5), fb = std::floor(hi - 0.5);
-    a = static_cast<int>(std::clamp(std::isnan(fa) ? 0.0 : fa, 0.0, static_cast<double>(n)));
-    b = static_cast<int>(std::clamp(std::isnan(fb) ? n - 1.0 : fb, -1.0, n - 1.0));
 }
 
 Unit MakeUnit(const FlatScene& scene, int solid, const Box3& bounds) {
