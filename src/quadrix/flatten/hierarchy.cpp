@@ -2,8 +2,6 @@
 #include "quadrix/flatten/hierarchy.h"
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <deque>
@@ -11,6 +9,7 @@
 #include <optional>
 
 #include "quadrix/flatten/coefficient_scale.h"
+#include "quadrix/lang/big_arrays.h"
 
 namespace quadrix {
 
@@ -38,8 +37,8 @@ std::string InstanceName(const scene::Scene& s, const scene::Instance& inst) {
 
 struct Counts {
     double bodies = 0, literals = 0;
-    // Half-spaces of the scope instances visited (each maps its own once: an upper bound of the
-    // half-spaces the walk appends, for reserving).
+    // Half-spaces of the scope instances visited (each maps its own at most once): an upper
+    // bound of the half-spaces the walk appends, for reserving.
     double halfSpaces = 0;
     Counts& operator+=(const Counts& o) {
         bodies += o.bodies;
@@ -190,16 +189,6 @@ class Counter {
 // ---------------------------------------------------------------------------------------------
 // The walk.
 
-// A drawn item of the top scope, in DrawScope's order: a body, one copy of an instance or array
-// (with delta^k, accumulated as DrawScope does), a freeform surface or a CSG solid.
-struct TopItem {
-    enum class Kind { kBody, kCopy, kFreeform, kCsg };
-    Kind kind = Kind::kBody;
-    int index = -1;  // into the top scope's bodies, instances, freeforms or csgs
-    int copy = 0;    // kCopy: k
-    Transform deltaK;
-};
-
 // One visit of a scope under a transform: its half-spaces are transformed lazily, once.
 struct ScopeInst {
     const scene::Scope* scope = nullptr;
@@ -235,8 +224,6 @@ class Walker {
     Walker(const scene::Scene& scene, FlatScene& out, HierarchyResult& result, Diagnostics& diags)
         : scene_(scene), out_(out), result_(result), diags_(diags) {}
 
-    static constexpr std::size_t kMaxFreeforms = 100000;
-
     bool Run(const Transform& targetFromWorld) {
         worldFromTarget_ = targetFromWorld.Inverted();
         ScopeInst top{&scene_.top, targetFromWorld, "", {}};
@@ -245,40 +232,9 @@ class Walker {
         return !failed_;
     }
 
-    // Draws items [begin, end) of the top scope as DrawScope would, into this walker's own
-    // output; `topOrigin` gets, per half-space appended, its index in the top scope (-1 for a
-    // half-space of an instance copy). The top scope's half-spaces are numbered by their first
-    // use in these items only: the caller merges them with those of the other items.
-    bool RunItems(const Transform& targetFromWorld, const std::vector<TopItem>& items,
-                  std::size_t begin, std::size_t end, std::vector<int>& topOrigin) {
-        worldFromTarget_ = targetFromWorld.Inverted();
-        topOrigin_ = &topOrigin;
-        const scene::Scope& s = scene_.top;
-        ScopeInst top{&s, targetFromWorld, "", {}};
-        top.hsMap.assign(s.halfSpaces.size(), -1);
-        for (std::size_t i = begin; i < end && !failed_; ++i) {
-            const TopItem& item = items[i];
-            switch (item.kind) {
-                case TopItem::Kind::kBody:
-                    DrawBody(top, item.index, std::nullopt, {});
-                    break;
-                case TopItem::Kind::kCopy:
-                    DrawCopy(top, s.instances[item.index], item.copy, item.deltaK, std::nullopt,
-                             {});
-                    break;
-                case TopItem::Kind::kFreeform:
-                    DrawFreeform(top, s.freeforms[item.index], std::nullopt, {});
-                    break;
-                case TopItem::Kind::kCsg:
-                    DrawCsg(top, item.index, std::nullopt, {});
-                    break;
-            }
-        }
-        return !failed_;
-    }
-
   private:
     static constexpr int kMaxDepth = 1000;  // CSG expression recursion (alternating operators)
+    static constexpr std::size_t kMaxFreeforms = 100000;
 
     void Fail(const SourceLoc& loc, std::string message) {
         if (!failed_) diags_.Error(loc, std::move(message));
@@ -287,67 +243,47 @@ class Walker {
 
     void DrawScope(ScopeInst& si, const std::optional<Color>& color, const scene::Finish& finish) {
         const scene::Scope& s = *si.scope;
-        for (std::size_t i = 0; i < s.bodies.size() && !failed_; ++i)
-            if (!s.bodies[i].usedAsOperand) DrawBody(si, int(i), color, finish);
+        for (std::size_t i = 0; i < s.bodies.size() && !failed_; ++i) {
+            if (s.bodies[i].usedAsOperand) continue;
+            Term t = RefTerm(si, {SolidRef::Kind::kBody, int(i)}, color, finish);
+            AddSolid(t, si.path + BodyName(s.bodies[i], int(i)), s.bodies[i].loc);
+        }
         for (std::size_t i = 0; i < s.instances.size() && !failed_; ++i) {
             const scene::Instance& inst = s.instances[i];
             if (inst.usedAsOperand || inst.count <= 0) continue;
+            const scene::Scope& def = scene_.definitions[inst.definition];
+            std::optional<Color> c = inst.color ? inst.color : color;
+            const scene::Finish fin = scene::Finish::Over(inst.finish, finish);
             Transform deltaK;
             for (int k = 0; k < inst.count && !failed_; ++k) {
-                DrawCopy(si, inst, k, deltaK, color, finish);
+                ScopeInst child{&def, si.t * deltaK * inst.init, CopyPath(si.path, inst, k), {}};
+                child.hsMap.assign(def.halfSpaces.size(), -1);
+                DrawScope(child, c, fin);
                 deltaK = inst.delta * deltaK;
             }
         }
         for (const scene::FreeformSurface& f : s.freeforms) {
             if (failed_) break;
-            DrawFreeform(si, f, color, finish);
+            if (out_.freeforms.size() >= kMaxFreeforms) {
+                Fail(f.loc, fmt::format("more than {} freeform surfaces to draw (instances and "
+                                        "arrays multiply them)",
+                                        kMaxFreeforms));
+                break;
+            }
+            FlatFreeform ff;
+            // The walk composes target-from-object; freeform surfaces stay in world space.
+            ff.surface = f.surface.Transformed((worldFromTarget_ * si.t).Matrix());
+            ff.color = f.color ? *f.color : color ? *color : Color{};
+            ff.finish = scene::Finish::Over(f.finish, finish);
+            ff.name = si.path + f.id;
+            ff.loc = f.loc;
+            out_.freeforms.push_back(std::move(ff));
         }
-        for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i)
-            if (!s.csgs[i].usedAsOperand) DrawCsg(si, int(i), color, finish);
-    }
-
-    // The items of DrawScope, one drawn statement (or instance copy) each.
-    void DrawBody(ScopeInst& si, int i, const std::optional<Color>& color,
-                  const scene::Finish& finish) {
-        const scene::Body& b = si.scope->bodies[i];
-        Term t = RefTerm(si, {SolidRef::Kind::kBody, i}, color, finish);
-        AddSolid(t, si.path + BodyName(b, i), b.loc);
-    }
-
-    // Copy k of `inst` (deltaK = delta^k, accumulated by the caller).
-    void DrawCopy(ScopeInst& si, const scene::Instance& inst, int k, const Transform& deltaK,
-                  const std::optional<Color>& color, const scene::Finish& finish) {
-        const scene::Scope& def = scene_.definitions[inst.definition];
-        std::optional<Color> c = inst.color ? inst.color : color;
-        const scene::Finish fin = scene::Finish::Over(inst.finish, finish);
-        ScopeInst child{&def, si.t * deltaK * inst.init, CopyPath(si.path, inst, k), {}};
-        child.hsMap.assign(def.halfSpaces.size(), -1);
-        DrawScope(child, c, fin);
-    }
-
-    void DrawFreeform(ScopeInst& si, const scene::FreeformSurface& f,
-                      const std::optional<Color>& color, const scene::Finish& finish) {
-        if (out_.freeforms.size() >= kMaxFreeforms) {
-            Fail(f.loc, fmt::format("more than {} freeform surfaces to draw (instances and "
-                                    "arrays multiply them)",
-                                    kMaxFreeforms));
-            return;
+        for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i) {
+            if (s.csgs[i].usedAsOperand) continue;
+            Term t = RefTerm(si, {SolidRef::Kind::kCsg, int(i)}, color, finish);
+            AddSolid(t, si.path + CsgName(s.csgs[i], int(i)), s.csgs[i].loc);
         }
-        FlatFreeform ff;
-        // The walk composes target-from-object; freeform surfaces stay in world space.
-        ff.surface = f.surface.Transformed((worldFromTarget_ * si.t).Matrix());
-        ff.color = f.color ? *f.color : color ? *color : Color{};
-        ff.finish = scene::Finish::Over(f.finish, finish);
-        ff.name = si.path + f.id;
-        ff.loc = f.loc;
-        out_.freeforms.push_back(std::move(ff));
-    }
-
-    void DrawCsg(ScopeInst& si, int i, const std::optional<Color>& color,
-                 const scene::Finish& finish) {
-        const scene::Csg& c = si.scope->csgs[i];
-        Term t = RefTerm(si, {SolidRef::Kind::kCsg, i}, color, finish);
-        AddSolid(t, si.path + CsgName(c, i), c.loc);
     }
 
     static Term RefTerm(ScopeInst& si, SolidRef ref, const std::optional<Color>& color,
@@ -619,7 +555,6 @@ class Walker {
         }
         out_.halfSpaces.push_back(std::move(f));
         result_.halfSpaceLocs.push_back(hs.loc);
-        if (topOrigin_) topOrigin_->push_back(si.scope == &scene_.top ? local : -1);
         si.hsMap[local] = static_cast<int>(out_.halfSpaces.size()) - 1;
         return si.hsMap[local];
     }
@@ -632,160 +567,13 @@ class Walker {
     bool failed_ = false;
     int currentSolid_ = -1;
     std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded
-    std::vector<int>* topOrigin_ = nullptr;           // RunItems
 };
-
-// The top scope's drawn items in DrawScope's order.
-std::vector<TopItem> TopItems(const scene::Scope& top) {
-    std::vector<TopItem> items;
-    for (std::size_t i = 0; i < top.bodies.size(); ++i)
-        if (!top.bodies[i].usedAsOperand)
-            items.push_back({TopItem::Kind::kBody, int(i), 0, Transform{}});
-    for (std::size_t i = 0; i < top.instances.size(); ++i) {
-        const scene::Instance& inst = top.instances[i];
-        if (inst.usedAsOperand || inst.count <= 0) continue;
-        Transform deltaK;
-        for (int k = 0; k < inst.count; ++k) {
-            items.push_back({TopItem::Kind::kCopy, int(i), k, deltaK});
-            deltaK = inst.delta * deltaK;
-        }
-    }
-    for (std::size_t i = 0; i < top.freeforms.size(); ++i)
-        items.push_back({TopItem::Kind::kFreeform, int(i), 0, Transform{}});
-    for (std::size_t i = 0; i < top.csgs.size(); ++i)
-        if (!top.csgs[i].usedAsOperand)
-            items.push_back({TopItem::Kind::kCsg, int(i), 0, Transform{}});
-    return items;
-}
-
-// What one run of consecutive top items drew, numbered from 0 (RunItems).
-struct Chunk {
-    FlatScene flat;
-    HierarchyResult result;
-    std::vector<int> topOrigin;  // per half-space: its top-scope index, or -1
-    bool ok = false;
-    // Filled by the merge: per half-space its index in the output (kept: first use overall).
-    std::vector<int> global;
-    std::vector<char> kept;
-    std::size_t halfSpaceBase = 0, bodyBase = 0, nodeBase = 0, solidBase = 0, freeformBase = 0;
-};
-
-// The parallel walk: the top items in runs walked concurrently, then concatenated in order, a
-// half-space of the top scope kept at its first use overall (the others of its uses name it), so
-// every index, name and order is the serial walk's. false when a run failed or the freeform
-// limit is passed: the caller then walks serially, which reports the serial walk's error.
-bool WalkInParallel(const scene::Scene& scene, const Transform& targetFromWorld,
-                    const std::vector<TopItem>& items, FlatScene& out, HierarchyResult& result) {
-    const std::size_t nChunks = std::min<std::size_t>(items.size(), 256);
-    std::vector<Chunk> chunks(nChunks);
-    auto first = [&](std::size_t c) { return items.size() * c / nChunks; };
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nChunks, 1),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t c = r.begin(); c < r.end(); ++c) {
-                              Diagnostics quiet;  // a failure is reported by the serial walk
-                              Chunk& ch = chunks[c];
-                              Walker w(scene, ch.flat, ch.result, quiet);
-                              ch.ok = w.RunItems(targetFromWorld, items, first(c), first(c + 1),
-                                                 ch.topOrigin);
-                          }
-                      });
-    std::size_t freeforms = 0;
-    for (const Chunk& ch : chunks) {
-        if (!ch.ok) return false;
-        freeforms += ch.flat.freeforms.size();
-    }
-    if (out.freeforms.size() + freeforms > Walker::kMaxFreeforms) return false;
-    // Numbering, in the serial walk's order.
-    std::vector<int> topGlobal(scene.top.halfSpaces.size(), -1);
-    std::size_t nHalf = out.halfSpaces.size(), nBody = out.bodies.size(), nNode = out.nodes.size(),
-                nSolid = out.solids.size(), nFree = out.freeforms.size();
-    for (Chunk& ch : chunks) {
-        ch.halfSpaceBase = nHalf;
-        ch.bodyBase = nBody;
-        ch.nodeBase = nNode;
-        ch.solidBase = nSolid;
-        ch.freeformBase = nFree;
-        const std::size_t n = ch.flat.halfSpaces.size();
-        ch.global.resize(n);
-        ch.kept.assign(n, 1);
-        for (std::size_t j = 0; j < n; ++j) {
-            const int top = ch.topOrigin[j];
-            if (top >= 0 && topGlobal[top] >= 0) {
-                ch.global[j] = topGlobal[top];
-                ch.kept[j] = 0;
-                continue;
-            }
-            ch.global[j] = static_cast<int>(nHalf++);
-            if (top >= 0) topGlobal[top] = ch.global[j];
-        }
-        nBody += ch.flat.bodies.size();
-        nNode += ch.flat.nodes.size();
-        nSolid += ch.flat.solids.size();
-        nFree += ch.flat.freeforms.size();
-    }
-    // The result's lists run beside the output's from where the walk started.
-    const std::size_t half0 = chunks[0].halfSpaceBase, body0 = chunks[0].bodyBase,
-                      solid0 = chunks[0].solidBase;
-    const std::size_t hsLoc0 = result.halfSpaceLocs.size(), bodyLoc0 = result.bodyLocs.size(),
-                      solidLoc0 = result.solidLocs.size();
-    out.halfSpaces.resize(nHalf);
-    out.bodies.resize(nBody);
-    out.nodes.resize(nNode);
-    out.solids.resize(nSolid);
-    out.freeforms.resize(nFree);
-    result.halfSpaceLocs.resize(hsLoc0 + (nHalf - half0));
-    result.bodyLocs.resize(bodyLoc0 + (nBody - body0));
-    result.solidLocs.resize(solidLoc0 + (nSolid - solid0));
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, nChunks, 1),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t c = r.begin(); c < r.end(); ++c) {
-                Chunk& ch = chunks[c];
-                for (std::size_t j = 0; j < ch.flat.halfSpaces.size(); ++j) {
-                    if (!ch.kept[j]) continue;
-                    const std::size_t g = static_cast<std::size_t>(ch.global[j]);
-                    out.halfSpaces[g] = std::move(ch.flat.halfSpaces[j]);
-                    result.halfSpaceLocs[hsLoc0 + (g - half0)] = ch.result.halfSpaceLocs[j];
-                }
-                for (std::size_t b = 0; b < ch.flat.bodies.size(); ++b) {
-                    FlatBody& body = ch.flat.bodies[b];
-                    for (FlatLiteral& l : body.literals)
-                        l.halfSpace = ch.global[static_cast<std::size_t>(l.halfSpace)];
-                    body.solid += static_cast<int>(ch.solidBase);
-                    out.bodies[ch.bodyBase + b] = std::move(body);
-                    result.bodyLocs[bodyLoc0 + (ch.bodyBase - body0) + b] = ch.result.bodyLocs[b];
-                }
-                for (std::size_t k = 0; k < ch.flat.nodes.size(); ++k) {
-                    FlatCsgNode& node = ch.flat.nodes[k];
-                    if (node.isLeaf)
-                        node.body += static_cast<int>(ch.bodyBase);
-                    else
-                        for (int& child : node.children) child += static_cast<int>(ch.nodeBase);
-                    out.nodes[ch.nodeBase + k] = std::move(node);
-                }
-                for (std::size_t k = 0; k < ch.flat.solids.size(); ++k) {
-                    FlatSolid& solid = ch.flat.solids[k];
-                    solid.root += static_cast<int>(ch.nodeBase);
-                    out.solids[ch.solidBase + k] = std::move(solid);
-                    result.solidLocs[solidLoc0 + (ch.solidBase - solid0) + k] =
-                        ch.result.solidLocs[k];
-                }
-                for (std::size_t k = 0; k < ch.flat.freeforms.size(); ++k)
-                    out.freeforms[ch.freeformBase + k] = std::move(ch.flat.freeforms[k]);
-            }
-        });
-    // vector<bool> packs bits: filled serially.
-    for (const Chunk& ch : chunks)
-        result.solidIsCsg.insert(result.solidIsCsg.end(), ch.result.solidIsCsg.begin(),
-                                 ch.result.solidIsCsg.end());
-    return true;
-}
 
 }  // namespace
 
 bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorld,
                       const HierarchyLimits& limits, FlatScene& out, HierarchyResult& result,
-                      Diagnostics& diags, bool parallel) {
+                      Diagnostics& diags) {
     // The guard first: nothing is built for a scene that would explode.
     Counter counter(scene, limits.clipLiteralsPerBody, diags);
     Counts total;
@@ -818,22 +606,20 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
                         total.bodies, total.literals, limits.maxBodies, limits.maxLiterals));
         return false;
     }
-    // Reserved, so that the big lists are written once (no copies as they grow: on a virtual
-    // machine the fresh pages cost more than the walk's arithmetic). Half-spaces: at most the
-    // scope instances' half-spaces and at most the literals.
+    // The lists reserved, so that each is written once instead of copied as it grows, and a big
+    // one in transparent huge pages (lang/big_arrays.h): on a virtual machine a fresh 4 KiB page
+    // costs ~15 us, more than the walk's arithmetic on it (docs/performance.md, "Third round").
+    // Half-spaces: at most the scope instances' own, and at most the literals. Nodes: a leaf per
+    // body and fewer operator nodes than leaves, but for unions of nothing (a hint).
     const double halfSpaces = std::min(total.halfSpaces + double(top.halfSpaces.size()),
                                        total.literals - total.bodies * limits.clipLiteralsPerBody);
-    out.halfSpaces.reserve(out.halfSpaces.size() + static_cast<std::size_t>(halfSpaces));
-    result.halfSpaceLocs.reserve(result.halfSpaceLocs.size() +
-                                 static_cast<std::size_t>(halfSpaces));
-    out.nodes.reserve(out.nodes.size() + 2 * static_cast<std::size_t>(total.bodies));
-    result.bodyLocs.reserve(result.bodyLocs.size() + static_cast<std::size_t>(total.bodies));
-    if (parallel) {
-        const std::vector<TopItem> items = TopItems(top);
-        if (items.size() >= 2 && WalkInParallel(scene, targetFromWorld, items, out, result))
-            return true;
-    }
-    out.bodies.reserve(out.bodies.size() + static_cast<std::size_t>(total.bodies));
+    const auto nHalf = static_cast<std::size_t>(halfSpaces);
+    const auto nBody = static_cast<std::size_t>(total.bodies);
+    lang::ReserveAdvised(out.halfSpaces, out.halfSpaces.size() + nHalf);
+    lang::ReserveAdvised(result.halfSpaceLocs, result.halfSpaceLocs.size() + nHalf);
+    lang::ReserveAdvised(out.bodies, out.bodies.size() + nBody);
+    lang::ReserveAdvised(result.bodyLocs, result.bodyLocs.size() + nBody);
+    lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);
     Walker walker(scene, out, result, diags);
     return walker.Run(targetFromWorld);
 }

@@ -55,15 +55,8 @@ struct HierarchyResult {
 
 // Appends the drawn solids of `scene` to `out` (halfSpaces, bodies, nodes, solids), transformed
 // by targetFromWorld. false (with errors in diags) on a limit, a cycle or a bad reference.
-//
-// `parallel`: the top scope's drawn items (bodies, instance copies, freeform surfaces, CSG
-// solids) are walked in runs on the calling thread's TBB arena and concatenated in order; a
-// half-space of the top scope shared by several runs is kept at its first use overall. The
-// output (every half-space, body, node, solid and freeform, their order, names and source
-// locations) is the serial walk's, element for element; when a run fails (any error) the walk
-// is done again serially, so the diagnostics are the serial walk's too.
 bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorld,
                       const HierarchyLimits& limits, FlatScene& out, HierarchyResult& result,
-                      Diagnostics& diags, bool parallel = true);
+                      Diagnostics& diags);
 
 }  // namespace quadrix
