@@ -672,14 +672,12 @@ class FlattenerImpl {
     static std::vector<Box3> FitSolidBoxes(const FlatScene& flat,
                                            const std::vector<Plane>& fitClips,
                                            const std::vector<Plane>& finalClips, double farDepth,
-                                           double nearDepth,
-                                           const std::vector<Box3>& finalBodyBoxes,
+                                           double nearDepth, std::vector<Box3> bodyBoxes,
                                            const BoundsOptions& bo,
                                            std::vector<char>* passesEye = nullptr) {
         bool same = fitClips.size() == finalClips.size();
         for (std::size_t i = 0; same && i < fitClips.size(); ++i)
             same = fitClips[i] == finalClips[i];
-        std::vector<Box3> bodyBoxes = finalBodyBoxes;
         if (!same) {
             std::vector<FlatHalfSpace> fitPlanes;
             for (const Plane& p : fitClips) {
