@@ -862,7 +862,8 @@ class FlattenerImpl {
             std::vector<Box3> boxes;  // per solid: the box after this look (where known)
             std::vector<char> known;
         };
-        std::vector<Look> looks;
+        // A deque: a look never moves once made, so its table's pointers into `mapped` stay valid.
+        std::deque<Look> looks;
         // Level 0 is the first boxes; level p > 0 the boxes after look p.
         std::vector<Box3> firstBoxes(fitBoxes.begin(),
                                      fitBoxes.begin() + static_cast<std::ptrdiff_t>(nSolids));
