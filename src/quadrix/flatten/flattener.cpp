@@ -28,11 +28,13 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <deque>
 #include <functional>
 #include <optional>
 #include <unordered_map>
@@ -42,6 +44,7 @@
 #include "quadrix/flatten/hierarchy.h"
 #include "quadrix/flatten/view_setup.h"
 #include "quadrix/flatten/window_fit.h"
+#include "quadrix/lang/big_arrays.h"
 #include "quadrix/scene/light_rig.h"
 
 namespace quadrix {
@@ -53,10 +56,18 @@ constexpr double kInf = HUGE_VAL;
 // The search limit of the bounds: 1e6 × the scene's scale (bounds.h), the scale being the
 // largest of the bodies' half-spaces' characteristic lengths, the window and the eye distance.
 // (The perspective near plane, at depth -1e4 d, would inflate it for nothing.)
+// In parallel: the largest of the half-spaces' scales is the same in any order (fmax).
 double SceneScale(const FlatScene& flat, const ViewSetup& view) {
-    double s = 0;
-    for (const FlatHalfSpace& h : flat.halfSpaces)
-        if (!h.isClip && h.name != kSectionName) s = std::fmax(s, HalfSpaceScale(h));
+    double s = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, flat.halfSpaces.size(), 1024), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& r, double m) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                const FlatHalfSpace& h = flat.halfSpaces[i];
+                if (!h.isClip && h.name != kSectionName) m = std::fmax(m, HalfSpaceScale(h));
+            }
+            return m;
+        },
+        [](double a, double b) { return std::fmax(a, b); });
     if (view.whh) s = std::fmax(s, *view.whh);
     if (view.whw) s = std::fmax(s, *view.whw);
     s = std::fmax(s, view.d);
@@ -82,6 +93,35 @@ struct BodyBoxes {
         return true;
     }
 };
+
+// A literal normalised for TranslationReuse: the linear part (3 for a plane, 6 for a quadric)
+// and the rest (d; b and k), all divided by the largest |entry| of the linear part; not `ok` for
+// a quartic or a degenerate or non-finite one.
+struct Norm {
+    bool ok = false, plane = true;
+    double lin[6] = {0, 0, 0, 0, 0, 0};
+    double rest[4] = {0, 0, 0, 0};
+};
+
+void NormaliseLiteral(const FlatHalfSpace& hs, Norm& nm) {
+    if (hs.IsQuartic()) return;
+    nm.plane = hs.isPlane;
+    double m = 0;
+    if (hs.isPlane) {
+        const double v[3] = {hs.plane.a, hs.plane.b, hs.plane.c};
+        for (double x : v) m = std::fmax(m, std::fabs(x));
+        if (!(m > 0) || !std::isfinite(m)) return;
+        for (int k = 0; k < 3; ++k) nm.lin[k] = v[k] / m;
+        nm.rest[0] = hs.plane.d / m;
+    } else {
+        for (int k = 0; k < 6; ++k) m = std::fmax(m, std::fabs(hs.quadric.k[k]));
+        if (!(m > 0) || !std::isfinite(m)) return;
+        for (int k = 0; k < 6; ++k) nm.lin[k] = hs.quadric.k[k] / m;
+        for (int k = 0; k < 4; ++k) nm.rest[k] = hs.quadric.k[6 + k] / m;
+    }
+    nm.ok = std::isfinite(nm.rest[0]) && std::isfinite(nm.rest[1]) && std::isfinite(nm.rest[2]) &&
+            std::isfinite(nm.rest[3]);
+}
 
 class FlattenerImpl {
   public:
@@ -429,35 +469,16 @@ class FlattenerImpl {
         if (!options_.reuseBoundsByTranslation || view_.perspective || nClip != 0 ||
             !view_.fitClips.empty())
             return r;
-        // A literal normalised: the linear part (3 for a plane, 6 for a quadric) and the rest
-        // (d; b and k), all divided by the largest |entry| of the linear part.
-        struct Norm {
-            bool ok = false, plane = true;
-            double lin[6] = {0, 0, 0, 0, 0, 0};
-            double rest[4] = {0, 0, 0, 0};
-        };
-        std::vector<Norm> norms(flat_.halfSpaces.size());
-        for (std::size_t h = 0; h < norms.size(); ++h) {
-            const FlatHalfSpace& hs = flat_.halfSpaces[h];
-            Norm& nm = norms[h];
-            if (hs.IsQuartic()) continue;
-            nm.plane = hs.isPlane;
-            double m = 0;
-            if (hs.isPlane) {
-                const double v[3] = {hs.plane.a, hs.plane.b, hs.plane.c};
-                for (double x : v) m = std::fmax(m, std::fabs(x));
-                if (!(m > 0) || !std::isfinite(m)) continue;
-                for (int k = 0; k < 3; ++k) nm.lin[k] = v[k] / m;
-                nm.rest[0] = hs.plane.d / m;
-            } else {
-                for (int k = 0; k < 6; ++k) m = std::fmax(m, std::fabs(hs.quadric.k[k]));
-                if (!(m > 0) || !std::isfinite(m)) continue;
-                for (int k = 0; k < 6; ++k) nm.lin[k] = hs.quadric.k[k] / m;
-                for (int k = 0; k < 4; ++k) nm.rest[k] = hs.quadric.k[6 + k] / m;
-            }
-            nm.ok = std::isfinite(nm.rest[0]) && std::isfinite(nm.rest[1]) &&
-                    std::isfinite(nm.rest[2]) && std::isfinite(nm.rest[3]);
-        }
+        // Per half-space, in parallel (a pure function of its coefficients); big lists in huge
+        // pages (lang/big_arrays.h).
+        std::vector<Norm> norms;
+        lang::ReserveAdvised(norms, flat_.halfSpaces.size());
+        norms.resize(flat_.halfSpaces.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, norms.size(), 1024),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t h = range.begin(); h < range.end(); ++h)
+                                  NormaliseLiteral(flat_.halfSpaces[h], norms[h]);
+                          });
         // A x for the normalised A of a quadric (lin: A B C D E F).
         auto mulA = [](const double* q, const Vec3& x) {
             return Vec3{q[0] * x.x + q[3] * x.y + q[5] * x.z, q[3] * x.x + q[1] * x.y + q[4] * x.z,
@@ -528,22 +549,36 @@ class FlattenerImpl {
             }
             return t;
         };
+        // Each body's group key (in parallel), then the groups in body order.
+        std::vector<std::uint64_t> keys(n);
+        std::vector<char> keyed(n);
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, n, 256),
+            [&](const tbb::blocked_range<std::size_t>& range) {
+                for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                    const auto& lits = flat_.bodies[i].literals;
+                    bool ok = !lits.empty();
+                    std::uint64_t key = 1469598103934665603ull;
+                    auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
+                    for (const FlatLiteral& l : lits) {
+                        const Norm& nm = norms[static_cast<std::size_t>(l.halfSpace)];
+                        ok = ok && nm.ok;
+                        mix(static_cast<std::uint64_t>(nm.plane) * 2 + l.complemented);
+                        // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched to
+                        // 1e-12 below.
+                        for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
+                            mix(static_cast<std::uint64_t>(
+                                std::llround(std::ldexp(nm.lin[k], 36))));
+                    }
+                    keys[i] = key;
+                    keyed[i] = ok;
+                }
+            });
         std::unordered_map<std::uint64_t, std::vector<std::size_t>> byHash;
         for (std::size_t i = 0; i < n; ++i) {
+            if (!keyed[i]) continue;
             const auto& lits = flat_.bodies[i].literals;
-            bool ok = !lits.empty();
-            std::uint64_t key = 1469598103934665603ull;
-            auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
-            for (const FlatLiteral& l : lits) {
-                const Norm& nm = norms[static_cast<std::size_t>(l.halfSpace)];
-                ok = ok && nm.ok;
-                mix(static_cast<std::uint64_t>(nm.plane) * 2 + l.complemented);
-                // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched to 1e-12 below.
-                for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
-                    mix(static_cast<std::uint64_t>(std::llround(std::ldexp(nm.lin[k], 36))));
-            }
-            if (!ok) continue;
-            std::vector<std::size_t>& bucket = byHash[key];
+            std::vector<std::size_t>& bucket = byHash[keys[i]];
             for (std::size_t c = 0; c < bucket.size() && c < 4; ++c) {
                 const std::size_t j = bucket[c];
                 const auto& lj = flat_.bodies[j].literals;
@@ -637,14 +672,12 @@ class FlattenerImpl {
     static std::vector<Box3> FitSolidBoxes(const FlatScene& flat,
                                            const std::vector<Plane>& fitClips,
                                            const std::vector<Plane>& finalClips, double farDepth,
-                                           double nearDepth,
-                                           const std::vector<Box3>& finalBodyBoxes,
+                                           double nearDepth, std::vector<Box3> bodyBoxes,
                                            const BoundsOptions& bo,
                                            std::vector<char>* passesEye = nullptr) {
         bool same = fitClips.size() == finalClips.size();
         for (std::size_t i = 0; same && i < fitClips.size(); ++i)
             same = fitClips[i] == finalClips[i];
-        std::vector<Box3> bodyBoxes = finalBodyBoxes;
         if (!same) {
             std::vector<FlatHalfSpace> fitPlanes;
             for (const Plane& p : fitClips) {
@@ -710,7 +743,7 @@ class FlattenerImpl {
     // FitSolidBoxes does for all, so each of their boxes is bit for bit FitSolidBoxes' (a body's
     // box is a pure function of its literals, a node's of its subtree).
     static void SomeFitSolidBoxes(
-        const FlatScene& flat, const std::vector<FlatHalfSpace>& halfSpaces,
+        const FlatScene& flat, const std::vector<const FlatHalfSpace*>& halfSpaces,
         const std::vector<Plane>& fitClips, const std::vector<Plane>& finalClips, double farDepth,
         double nearDepth, const BoundsOptions& bo, const std::vector<std::vector<int>>& bodiesOf,
         const std::vector<std::size_t>& which, std::vector<Box3>& solidBoxes) {
@@ -739,7 +772,8 @@ class FlattenerImpl {
                     lits.clear();
                     for (std::size_t l = 0; l < own; ++l)
                         lits.push_back(
-                            {&halfSpaces[b.literals[l].halfSpace], b.literals[l].complemented});
+                            {halfSpaces[static_cast<std::size_t>(b.literals[l].halfSpace)],
+                             b.literals[l].complemented});
                     if (!same)
                         for (const FlatHalfSpace& h : fitPlanes) lits.push_back({&h, false});
                     bodyBoxes[static_cast<std::size_t>(bodies[j])] = IntersectionBounds(lits, bo);
@@ -820,13 +854,16 @@ class FlattenerImpl {
         struct Look {
             WindowFit fit;
             Transform dev;
-            std::vector<FlatHalfSpace> halfSpaces;  // device space of `fit`, where `mapped`
-            std::vector<char> mapped;
+            // Device space of `fit`: per half-space of flat_, its image (null until a solid that
+            // uses it is bounded in this look); only those are mapped, kept in `mapped`.
+            std::vector<const FlatHalfSpace*> halfSpaces;
+            std::deque<FlatHalfSpace> mapped;
             std::vector<Plane> fitClips, finalClips;
             std::vector<Box3> boxes;  // per solid: the box after this look (where known)
             std::vector<char> known;
         };
-        std::vector<Look> looks;
+        // A deque: a look never moves once made, so its table's pointers into `mapped` stay valid.
+        std::deque<Look> looks;
         // Level 0 is the first boxes; level p > 0 the boxes after look p.
         std::vector<Box3> firstBoxes(fitBoxes.begin(),
                                      fitBoxes.begin() + static_cast<std::ptrdiff_t>(nSolids));
@@ -857,10 +894,9 @@ class FlattenerImpl {
                         for (const FlatLiteral& l :
                              flat_.bodies[static_cast<std::size_t>(b)].literals) {
                             const std::size_t k = static_cast<std::size_t>(l.halfSpace);
-                            if (look.mapped[k]) continue;
-                            look.mapped[k] = 1;
-                            FlatHalfSpace& h = look.halfSpaces[k];
-                            h = flat_.halfSpaces[k];
+                            if (look.halfSpaces[k]) continue;
+                            FlatHalfSpace& h = look.mapped.emplace_back(flat_.halfSpaces[k]);
+                            look.halfSpaces[k] = &h;
                             if (h.IsQuartic())
                                 h.TransformBy(look.dev);
                             else if (h.isPlane)
@@ -905,8 +941,7 @@ class FlattenerImpl {
             const Transform dev =
                 Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
             look.dev = dev;
-            look.halfSpaces.resize(flat_.halfSpaces.size());
-            look.mapped.assign(flat_.halfSpaces.size(), 0);
+            look.halfSpaces.assign(flat_.halfSpaces.size(), nullptr);
             for (const Plane& p : view_.fitClips) look.fitClips.push_back(p.Transformed(dev));
             for (const Plane& p : finalPlanes_) look.finalClips.push_back(p.Transformed(dev));
             // Until known, a solid's box after the look is bounded by its box before it.

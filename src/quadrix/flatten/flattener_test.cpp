@@ -4,8 +4,10 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 #include "quadrix/flatten/bounds.h"
@@ -681,6 +683,138 @@ TEST(FlattenBounds, BoxesReusedByTranslationKeepTheWindowAndHoldTheBodies) {
                     }
                 }
         }
+    }
+}
+
+// A generated model in the shape of an imported vehicle (flatten/hierarchy.cpp reserves its lists
+// from the guard's counts; SceneScale, TranslationReuse and the bounds run in parallel): rods
+// placed in the top scope (translates of each other, so boxes are reused), CSG solids over them
+// sharing top-scope half-spaces with drawn bodies, an array of a definition and an instance used
+// as a CSG operand.
+scene::Scene GeneratedVehicle() {
+    scene::Scene s;
+    const Quadric cyl = Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, 0, -4});
+    // z <= 15 and, complemented, z >= 0.
+    const Plane top{0, 0, 1, -15}, bottom{0, 0, 1, 0};
+    std::vector<int> rods;
+    for (int k = 0; k < 120; ++k) {
+        const Transform t = Transform::Translate({9.0 * (k % 30), 13.0 * (k / 30), 0.5 * k}) *
+                            Transform::Rotate(0, 20 + 15 * (k / 30));
+        const int q = AddQuadric(s.top, fmt::format("rod{}.c", k), cyl.Transformed(t).k);
+        const int p1 = AddPlane(s.top, fmt::format("rod{}.t", k), top.Transformed(t));
+        const int p2 = AddPlane(s.top, fmt::format("rod{}.b", k), bottom.Transformed(t));
+        rods.push_back(AddBody(s.top, fmt::format("rod{}", k), {q, p1, ~p2}));
+    }
+    // A sphere used by a drawn body and by the CSG solids below.
+    const int ball = AddSphere(s.top, "hub", {120, 20, 10}, 30);
+    AddBody(s.top, "hub", {ball});
+    scene::Scope bolt;
+    bolt.id = "bolt";
+    {
+        const int q = AddQuadric(bolt, "c", cyl.Transformed(Transform::Rotate(1, 90)).k);
+        const int p1 = AddPlane(bolt, "l", Plane{1, 0, 0, -4});
+        const int p2 = AddPlane(bolt, "r", Plane{-1, 0, 0, -4});
+        AddBody(bolt, "bolt", {q, p1, p2});
+    }
+    s.definitions.push_back(bolt);
+    AddInstance(s.top, "bolts", 0, Transform::Translate({0, -30, 0}), 25,
+                Transform::Translate({11, 0, 1}));
+    const int operand = AddInstance(s.top, "pin", 0, Transform::Translate({60, 60, 5}));
+    for (int c = 0; c < 6; ++c) {
+        // (rod a | rod b | pin) - hub: an instance operand and a shared half-space.
+        CsgBuilder b;
+        const int u = b.Op(scene::CsgOp::kUnion, b.Body(rods[static_cast<std::size_t>(c)]),
+                           b.Body(rods[static_cast<std::size_t>(119 - c)]));
+        const int withPin = c == 0 ? b.Op(scene::CsgOp::kUnion, u, b.Inst(operand)) : u;
+        const int hub = AddBody(s.top, fmt::format("cut{}", c), {ball});
+        AddCsg(s.top, fmt::format("frame{}", c), b,
+               b.Op(scene::CsgOp::kDifference, withPin, b.Body(hub)));
+    }
+    return s;
+}
+
+void ExpectSameFlatScene(const FlatScene& a, const FlatScene& b, const std::string& what) {
+    auto sameBox = [](const Box3& x, const Box3& y) {
+        return std::memcmp(&x, &y, sizeof(Box3)) == 0;
+    };
+    EXPECT_EQ(a.projection.deviceFromWorld.Matrix().m, b.projection.deviceFromWorld.Matrix().m)
+        << what;
+    EXPECT_EQ(a.depthTolerance, b.depthTolerance) << what;
+    ASSERT_EQ(a.halfSpaces.size(), b.halfSpaces.size()) << what;
+    for (std::size_t i = 0; i < a.halfSpaces.size(); ++i) {
+        const FlatHalfSpace &x = a.halfSpaces[i], &y = b.halfSpaces[i];
+        EXPECT_EQ(x.name, y.name) << what << " half-space " << i;
+        EXPECT_EQ(x.isPlane, y.isPlane) << what << " half-space " << i;
+        EXPECT_EQ(x.transparent, y.transparent) << what << " half-space " << i;
+        EXPECT_EQ(x.isClip, y.isClip) << what << " half-space " << i;
+        EXPECT_EQ(std::memcmp(&x.plane, &y.plane, sizeof(Plane)), 0) << what << " " << i;
+        EXPECT_EQ(std::memcmp(&x.quadric, &y.quadric, sizeof(Quadric)), 0) << what << " " << i;
+    }
+    ASSERT_EQ(a.bodies.size(), b.bodies.size()) << what;
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+        const FlatBody &x = a.bodies[i], &y = b.bodies[i];
+        EXPECT_EQ(x.name, y.name) << what << " body " << i;
+        EXPECT_EQ(x.solid, y.solid) << what << " body " << i;
+        ASSERT_EQ(x.literals.size(), y.literals.size()) << what << " body " << i;
+        for (std::size_t l = 0; l < x.literals.size(); ++l) {
+            EXPECT_EQ(x.literals[l].halfSpace, y.literals[l].halfSpace) << what << " body " << i;
+            EXPECT_EQ(x.literals[l].complemented, y.literals[l].complemented) << what;
+        }
+        EXPECT_TRUE(sameBox(x.bounds, y.bounds)) << what << " body " << i;
+    }
+    ASSERT_EQ(a.nodes.size(), b.nodes.size()) << what;
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        const FlatCsgNode &x = a.nodes[i], &y = b.nodes[i];
+        EXPECT_EQ(x.isLeaf, y.isLeaf) << what << " node " << i;
+        EXPECT_EQ(x.body, y.body) << what << " node " << i;
+        EXPECT_EQ(x.op, y.op) << what << " node " << i;
+        EXPECT_EQ(x.children, y.children) << what << " node " << i;
+        EXPECT_TRUE(sameBox(x.bounds, y.bounds)) << what << " node " << i;
+    }
+    ASSERT_EQ(a.solids.size(), b.solids.size()) << what;
+    for (std::size_t i = 0; i < a.solids.size(); ++i) {
+        EXPECT_EQ(a.solids[i].name, b.solids[i].name) << what << " solid " << i;
+        EXPECT_EQ(a.solids[i].root, b.solids[i].root) << what << " solid " << i;
+        EXPECT_TRUE(sameBox(a.solids[i].bounds, b.solids[i].bounds)) << what << " solid " << i;
+    }
+}
+
+// The parallel passes of the flattener (the scene scale, the translates' keys, the bounds) give
+// the FlatScene of one thread, element for element and bit for bit, in an auto-fitted view (the
+// fit's second look) and in a window; the names are the walk's paths.
+TEST(FlattenHierarchy, SameSceneOnOneThreadAndOnTwo) {
+    scene::Scene s = GeneratedVehicle();
+    scene::View oblique = MakeView("oblique");
+    oblique.vpn = Vec3{0.3, -0.6, -1};
+    oblique.dop = Vec3{-0.3, 0.6, 1};
+    s.views.push_back(oblique);
+    scene::View window = oblique;
+    window.id = "window";
+    window.whw = 200;
+    s.views.push_back(window);
+    for (const char* view : {"oblique", "window"}) {
+        FlattenOptions o;
+        o.width = 640;
+        o.height = 360;
+        o.viewName = view;
+        std::optional<FlatScene> flat[2];
+        for (int threads = 1; threads <= 2; ++threads) {
+            Diagnostics d;
+            tbb::task_arena arena(threads);
+            arena.execute([&] { flat[threads - 1] = Flatten(s, o, d); });
+            ASSERT_TRUE(flat[threads - 1]) << view;
+        }
+        ExpectSameFlatScene(*flat[0], *flat[1], view);
+        const FlatScene& f = *flat[1];
+        // The walk's order: the top scope's drawn bodies (rod6 to rod113, the hub), the copies
+        // of the array, then the CSG solids; half-spaces at their first use. (The window culls.)
+        if (std::string(view) != "oblique") continue;
+        ASSERT_GT(f.bodies.size(), 109u) << view;
+        EXPECT_EQ(f.bodies[0].name, "rod6") << view;
+        EXPECT_EQ(f.bodies[108].name, "hub") << view;
+        EXPECT_EQ(f.bodies[109].name, "bolts[0]/bolt") << view;
+        EXPECT_EQ(f.halfSpaces[5].name, "rod7.b") << view;
+        EXPECT_EQ(f.solids.back().name, "frame5");
     }
 }
 

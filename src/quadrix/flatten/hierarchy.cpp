@@ -3,11 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <deque>
 #include <memory>
 #include <optional>
 
 #include "quadrix/flatten/coefficient_scale.h"
+#include "quadrix/lang/big_arrays.h"
 
 namespace quadrix {
 
@@ -35,12 +37,16 @@ std::string InstanceName(const scene::Scene& s, const scene::Instance& inst) {
 
 struct Counts {
     double bodies = 0, literals = 0;
+    // Half-spaces of the scope instances visited (each maps its own at most once): an upper
+    // bound of the half-spaces the walk appends, for reserving.
+    double halfSpaces = 0;
     Counts& operator+=(const Counts& o) {
         bodies += o.bodies;
         literals += o.literals;
+        halfSpaces += o.halfSpaces;
         return *this;
     }
-    Counts operator*(double k) const { return {bodies * k, literals * k}; }
+    Counts operator*(double k) const { return {bodies * k, literals * k, halfSpaces * k}; }
 };
 
 class Counter {
@@ -83,7 +89,7 @@ class Counter {
         switch (ref.kind) {
             case SolidRef::Kind::kBody:
                 if (ref.index < 0 || ref.index >= int(s.bodies.size())) return Bad(s.loc);
-                return {1, double(s.bodies[ref.index].literals.size()) + clip_};
+                return {1, double(s.bodies[ref.index].literals.size()) + clip_, 0};
             case SolidRef::Kind::kInstance: {
                 if (ref.index < 0 || ref.index >= int(s.instances.size())) return Bad(s.loc);
                 const scene::Instance& inst = s.instances[ref.index];
@@ -126,6 +132,7 @@ class Counter {
         }
         defState_[def] = 1;
         Counts c = Drawn(def, depth + 1);
+        c.halfSpaces += double(scene_.definitions[def].halfSpaces.size());
         defState_[def] = 2;
         defCounts_[def] = c;
         return c;
@@ -599,7 +606,20 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
                         total.bodies, total.literals, limits.maxBodies, limits.maxLiterals));
         return false;
     }
-    out.bodies.reserve(out.bodies.size() + static_cast<std::size_t>(total.bodies));
+    // The lists reserved, so that each is written once instead of copied as it grows, and a big
+    // one in transparent huge pages (lang/big_arrays.h): on a virtual machine a fresh 4 KiB page
+    // costs ~15 us, more than the walk's arithmetic on it (docs/performance.md, "Third round").
+    // Half-spaces: at most the scope instances' own, and at most the literals. Nodes: a leaf per
+    // body and fewer operator nodes than leaves, but for unions of nothing (a hint).
+    const double halfSpaces = std::min(total.halfSpaces + double(top.halfSpaces.size()),
+                                       total.literals - total.bodies * limits.clipLiteralsPerBody);
+    const auto nHalf = static_cast<std::size_t>(halfSpaces);
+    const auto nBody = static_cast<std::size_t>(total.bodies);
+    lang::ReserveAdvised(out.halfSpaces, out.halfSpaces.size() + nHalf);
+    lang::ReserveAdvised(result.halfSpaceLocs, result.halfSpaceLocs.size() + nHalf);
+    lang::ReserveAdvised(out.bodies, out.bodies.size() + nBody);
+    lang::ReserveAdvised(result.bodyLocs, result.bodyLocs.size() + nBody);
+    lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);
     Walker walker(scene, out, result, diags);
     return walker.Run(targetFromWorld);
 }
