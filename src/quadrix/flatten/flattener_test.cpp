@@ -723,12 +723,15 @@ scene::Scene GeneratedVehicle() {
     for (int c = 0; c < 6; ++c) {
         // (rod a | rod b | pin) - hub: an instance operand and a shared half-space.
         CsgBuilder b;
-        const int u = b.Op(scene::CsgOp::kUnion, b.Body(rods[static_cast<std::size_t>(c)]),
-                           b.Body(rods[static_cast<std::size_t>(119 - c)]));
+        const int rodA = b.Body(rods[static_cast<std::size_t>(c)]);
+        const int rodB = b.Body(rods[static_cast<std::size_t>(119 - c)]);
+        const int u = b.Op(scene::CsgOp::kUnion, rodA, rodB);
         const int withPin = c == 0 ? b.Op(scene::CsgOp::kUnion, u, b.Inst(operand)) : u;
         const int hub = AddBody(s.top, fmt::format("cut{}", c), {ball});
-        AddCsg(s.top, fmt::format("frame{}", c), b,
-               b.Op(scene::CsgOp::kDifference, withPin, b.Body(hub)));
+        // The root first: AddCsg takes the builder, and the order in which a call's arguments
+        // are evaluated is unspecified (clang copied the builder before the root was added).
+        const int cutRoot = b.Op(scene::CsgOp::kDifference, withPin, b.Body(hub));
+        AddCsg(s.top, fmt::format("frame{}", c), b, cutRoot);
     }
     return s;
 }
