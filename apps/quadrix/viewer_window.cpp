@@ -149,7 +149,7 @@ class Viewer {
     SDL_Texture* overlayTexture_ = nullptr;
     viewer::OverlayImage overlay_;
     std::vector<std::string> overlayLines_;
-    std::vector<std::uint32_t> shown_;  // the pixels in the texture (0x00RRGGBB)
+    FrameArray<std::uint32_t> shown_;  // the pixels in the texture (0x00RRGGBB)
     // The bench's profile of the window thread: texture upload, present (summed).
     double uploadSeconds_ = 0, presentSeconds_ = 0;
     Image shownImage_;  // the image they came from

@@ -11,30 +11,46 @@ namespace {
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
 std::size_t RoundUp(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
 
-// One mapping freed and kept for the next allocation of the same length: an image or Frame made
-// and dropped for every frame (the viewer's) then costs neither mmap/munmap nor the kernel's
-// zeroing and faulting of its pages each time (measured in docs/performance.md "Viewer"). Only
-// mappings of at most kKeptBytes are kept, so a big Frame's memory is returned when it is freed.
-constexpr std::size_t kKeptBytes = std::size_t{16} << 20;
+// Mappings freed and kept for the next allocation of the same length: the Frame's arrays, the
+// image and the window's pixels made and dropped for every frame (the viewer's) then cost neither
+// mmap/munmap nor the kernel's zeroing and faulting of their pages each time (measured in
+// docs/performance.md "Viewer"). A 1280x720 frame's set (depth, normals, three id arrays, the RGB
+// image, the display words: 44 MiB) fits; at most kKeptSlots mappings of at most kKeptBytes each
+// and kKeptTotal in all are kept, so a big Frame's memory is returned when it is freed.
+constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
+constexpr std::size_t kKeptTotal = std::size_t{96} << 20;
+constexpr int kKeptSlots = 8;
+struct KeptMapping {
+    void* p = nullptr;
+    std::size_t length = 0;
+};
 std::mutex keptMutex;
-void* kept = nullptr;
-std::size_t keptLength = 0;
+KeptMapping kept[kKeptSlots];
+std::size_t keptTotal = 0;
 
 void* TakeKept(std::size_t len) {
     std::lock_guard lock(keptMutex);
-    if (!kept || keptLength != len) return nullptr;
-    void* p = kept;
-    kept = nullptr;
-    return p;
+    for (KeptMapping& k : kept) {
+        if (!k.p || k.length != len) continue;
+        void* p = k.p;
+        k = {};
+        keptTotal -= len;
+        return p;
+    }
+    return nullptr;
 }
 
 bool Keep(void* p, std::size_t len) {
     if (len > kKeptBytes) return false;
     std::lock_guard lock(keptMutex);
-    if (kept) return false;
-    kept = p;
-    keptLength = len;
-    return true;
+    if (keptTotal + len > kKeptTotal) return false;
+    for (KeptMapping& k : kept) {
+        if (k.p) continue;
+        k = {p, len};
+        keptTotal += len;
+        return true;
+    }
+    return false;
 }
 
 }  // namespace

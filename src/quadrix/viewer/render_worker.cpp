@@ -58,12 +58,12 @@ double Since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-std::vector<std::uint32_t> DisplayPixels(const Image& image) {
+FrameArray<std::uint32_t> DisplayPixels(const Image& image) {
     // EncodeSrgb8's table applied and the words packed in one pass, in parallel over blocks of
     // pixels (the same bytes as encoding to sRGB first, without the intermediate image).
     const std::uint8_t* t = Srgb8Table();
     const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
-    std::vector<std::uint32_t> out(n);
+    FrameArray<std::uint32_t> out(n);  // not zeroed: every word is written below
     const std::uint8_t* p = image.pixels.data();
     std::uint32_t* o = out.data();
     const tbb::blocked_range<std::size_t> all(0, n, std::size_t{1} << 15);
@@ -77,11 +77,13 @@ std::vector<std::uint32_t> DisplayPixels(const Image& image) {
         tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t i = r.begin(); i < r.end(); ++i) o[i] = t[p[i]] * 0x010101u;
         });
+    } else {
+        std::fill(out.begin(), out.end(), 0u);  // no pixels of this size: black
     }
     return out;
 }
 
-std::vector<std::uint8_t> RgbBytes(const std::vector<std::uint32_t>& pixels) {
+std::vector<std::uint8_t> RgbBytes(const FrameArray<std::uint32_t>& pixels) {
     std::vector<std::uint8_t> rgb(pixels.size() * 3);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
         rgb[3 * i] = static_cast<std::uint8_t>(pixels[i] >> 16);

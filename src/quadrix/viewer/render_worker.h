@@ -86,7 +86,8 @@ struct FrameOutcome {
     std::vector<std::string> notes;
     bool cancelled = false;  // abandoned by CancelFrame: no image, no error
     // With job.display: DisplayPixels(image), encoded on the render thread.
-    std::vector<std::uint32_t> display;
+    // In the Frame's storage (frame/frame.h): the mapping is kept for the next frame's words.
+    FrameArray<std::uint32_t> display;
     // Where `seconds` went (the profile of a frame; --bench prints the means).
     double flattenSeconds = 0, renderSeconds = 0, shadeSeconds = 0, encodeSeconds = 0;
 };
@@ -94,9 +95,9 @@ struct FrameOutcome {
 // The 8-bit sRGB values of an image (gray expanded), as the PNG writer encodes them, packed as
 // 0x00RRGGBB words: SDL_PIXELFORMAT_RGB888, the X server's own format at depth 24, so the
 // window's texture takes them without a conversion on the window's thread.
-std::vector<std::uint32_t> DisplayPixels(const Image& image);
+FrameArray<std::uint32_t> DisplayPixels(const Image& image);
 // Those words back to RGB bytes (a screenshot's check against the window's read-back pixels).
-std::vector<std::uint8_t> RgbBytes(const std::vector<std::uint32_t>& pixels);
+std::vector<std::uint8_t> RgbBytes(const FrameArray<std::uint32_t>& pixels);
 
 class RenderWorker {
   public:
