@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 #include "commands.h"
 #include "quadrix/engines/engine_limit.h"
 #include "quadrix/io/phase_times.h"
+#include "quadrix/util/heap_huge_pages.h"
 
 namespace {
 
@@ -165,6 +167,11 @@ int Run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     quadrix::MarkPhase("main");  // io/phase_times.h (QUADRIX_PHASE_TIMES)
+    // The heap in transparent huge pages (util/heap_huge_pages.h): a 1280x720 render made
+    // ~5,800 page faults, ~1,450 with it. QUADRIX_HEAP_PAGES=small leaves the heap as it was
+    // (to measure the difference).
+    if (const char* e = std::getenv("QUADRIX_HEAP_PAGES"); !e || std::string(e) != "small")
+        quadrix::UseHugePagesForTheHeap(std::size_t{256} << 20);
     // Allocation failure anywhere is a clear error with a non-zero exit, not SIGABRT
     // (docs/output.md "Limits"). Output files in the making are removed by their destructors
     // while the exception unwinds.

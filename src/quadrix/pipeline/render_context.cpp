@@ -284,25 +284,29 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     const int errorsBefore = diags.ErrorCount();
     lastReusedWorld_ = worldValid_;
     std::optional<FlatScene> flat;
-    if (!worldValid_ && !flattenedOnce_) {
-        flat = quadrix::Flatten(scene_, fo, diags);  // the first view: in one go
-        ++worldFlattens;
-        flattenedOnce_ = true;
-    } else {
+    // In the context's arena, so that its parallel steps use the threads asked for.
+    bool worldFailed = false;
+    InArena([&] {
+        if (!worldValid_ && !flattenedOnce_) {
+            flat = quadrix::Flatten(scene_, fo, diags);  // the first view: in one go
+            ++worldFlattens;
+            flattenedOnce_ = true;
+            return;
+        }
         if (!worldValid_) {
             std::optional<WorldScene> world = FlattenWorld(scene_, diags);
             ++worldFlattens;
             if (!world || diags.ErrorCount() != errorsBefore) {
-                flattenSeconds = SecondsSince(t0);
-                return false;
+                worldFailed = true;
+                return;
             }
             world_ = std::move(*world);
             worldValid_ = true;
         }
         flat = FlattenView(scene_, world_, fo, diags);
-    }
+    });
     flattenSeconds = SecondsSince(t0);
-    if (!flat || diags.ErrorCount() != errorsBefore) return false;
+    if (worldFailed || !flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);
     const std::string invalid = flat_.Validate();
     QUADRIX_CHECK(invalid.empty(), "{}", invalid);

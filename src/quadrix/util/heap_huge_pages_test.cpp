@@ -1,0 +1,93 @@
+#include "quadrix/util/heap_huge_pages.h"
+
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "quadrix/util/sanitizers.h"
+
+namespace quadrix {
+namespace {
+
+long MinorFaults() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_minflt;
+}
+
+// Why the heap cannot be put in huge pages here, or "" when it can.
+std::string WhyNot() {
+    if (QUADRIX_ASAN) return "AddressSanitizer allocates the heap itself";
+#if !defined(__GLIBC__)
+    return "the C library is not glibc";
+#endif
+    std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string mode;
+    if (!std::getline(f, mode)) return "this kernel has no transparent huge pages";
+    if (mode.find("[never]") != std::string::npos) return "transparent huge pages are off here";
+    rlimit r{};
+    if (getrlimit(RLIMIT_AS, &r) == 0 && r.rlim_cur != RLIM_INFINITY)
+        return "an address-space limit is set (ulimit -v)";
+    return "";
+}
+
+// Each gtest case runs in a process of its own (gtest_discover_tests), so changing the
+// process's allocator here touches no other test.
+TEST(HeapHugePages, AllocationsOfMegabytesComeFromTheHeapInHugePages) {
+    if (std::string why = WhyNot(); !why.empty()) GTEST_SKIP() << why;
+    ASSERT_TRUE(UseHugePagesForTheHeap(std::size_t{64} << 20));
+    constexpr std::size_t kBytes = std::size_t{8} << 20;
+    char* p = static_cast<char*>(std::malloc(kBytes));
+    ASSERT_NE(p, nullptr);
+    // From the heap, below the break (glibc would have mapped 8 MiB on its own before).
+    const auto brk = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    EXPECT_LE(reinterpret_cast<std::uintptr_t>(p) + kBytes, brk);
+    // Touched, 8 MiB in 4 KiB pages is 2,048 faults; in 2 MiB pages a handful.
+    const long before = MinorFaults();
+    std::memset(p, 1, kBytes);
+    const long faults = MinorFaults() - before;
+    EXPECT_LT(faults, 512) << "8 MiB touched with " << faults << " page faults";
+    // Freed and allocated again: the same memory, no new faults.
+    std::free(p);
+    char* q = static_cast<char*>(std::malloc(kBytes));
+    ASSERT_NE(q, nullptr);
+    const long again = MinorFaults();
+    std::memset(q, 2, kBytes);
+    EXPECT_LT(MinorFaults() - again, 16);
+    std::free(q);
+}
+
+TEST(HeapHugePages, UnderAnAddressSpaceLimitTheHeapIsLeftAsItIs) {
+    if (QUADRIX_ASAN) GTEST_SKIP() << "AddressSanitizer cannot run under an address-space limit";
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        rlimit r{};
+        getrlimit(RLIMIT_AS, &r);
+        r.rlim_cur = std::size_t{8} << 30;
+        if (setrlimit(RLIMIT_AS, &r) != 0) _exit(3);
+        if (UseHugePagesForTheHeap(std::size_t{256} << 20)) _exit(1);
+        void* p = std::malloc(std::size_t{1} << 20);  // allocation works as before
+        _exit(p ? 0 : 2);
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: reserved under the limit, 2: malloc failed after, "
+                                         "3: setrlimit failed";
+}
+
+TEST(HeapHugePages, SizesOutsideTheRangeAreRefused) {
+    EXPECT_FALSE(UseHugePagesForTheHeap(1 << 20));
+    EXPECT_FALSE(UseHugePagesForTheHeap(std::size_t{1} << 31));
+}
+
+}  // namespace
+}  // namespace quadrix
