@@ -50,6 +50,10 @@ add_custom_target(quadrix_man ALL DEPENDS ${QUADRIX_MAN_PAGE} ${QUADRIX_BASH_COM
 
 # --- Install ---------------------------------------------------------------------------------
 install(TARGETS quadrix RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+if(TARGET quadrix_view)  # the window of quadrix view (CMakeLists.txt)
+  install(TARGETS quadrix_view LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadrix
+    COMPONENT runtime)
+endif()
 install(TARGETS quadrix_shared EXPORT QuadrixTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT development
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

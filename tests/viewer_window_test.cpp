@@ -457,5 +457,35 @@ TEST(ViewerWindow, NoDisplayIsAClearErrorAndTheBenchRunsOffscreen) {
         << badScript.err;
 }
 
+// The window is a module loaded by `quadrix view` only (apps/quadrix/viewer_window_loader.cpp):
+// the program itself does not load SDL2, and without the module beside it (nor installed) the
+// window is a clear error while every other command and the offscreen bench still work.
+TEST(ViewerWindow, TheWindowModuleIsLoadedOnlyByViewAndItsAbsenceIsAClearError) {
+    const CommandResult libs = RunShell("ldd " + QuadrixBinary());
+    ASSERT_EQ(libs.exitCode, 0) << libs.err;
+    EXPECT_EQ(libs.out.find("libSDL2"), std::string::npos) << libs.out;
+    const std::string scene = SourcePath("examples/tube.uq");
+    const CommandResult alone = RunShell("d=$(mktemp -d) && cp " + QuadrixBinary() +
+                                         " $d/quadrix && cd $d && "
+                                         "./quadrix view '" +
+                                         scene +
+                                         "'; echo \"view=$?\"; "
+                                         "./quadrix view '" +
+                                         scene +
+                                         "' --bench 2 --offscreen --size 32x24 > /dev/null; "
+                                         "echo \"bench=$?\"; ./quadrix render '" +
+                                         scene +
+                                         "' --size 32x24 -o t.png; "
+                                         "echo \"render=$?\"; cd / && rm -rf $d");
+    EXPECT_NE(alone.out.find("view=1"), std::string::npos) << alone.out << alone.err;
+    EXPECT_TRUE(alone.err.find("quadrix: error: the window module of `quadrix view` is missing") !=
+                    std::string::npos ||
+                alone.err.find("quadrix: error: this quadrix was built without SDL2") !=
+                    std::string::npos)
+        << alone.err;
+    EXPECT_NE(alone.out.find("bench=0"), std::string::npos) << alone.out << alone.err;
+    EXPECT_NE(alone.out.find("render=0"), std::string::npos) << alone.out << alone.err;
+}
+
 }  // namespace
 }  // namespace quadrix::testing

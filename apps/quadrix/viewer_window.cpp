@@ -1053,9 +1053,12 @@ int Viewer::Bench() {
 
 }  // namespace
 
-bool HaveViewerWindow() { return true; }
+}  // namespace quadrix::cli
 
-void WakeViewerWindow() {
+// The module's entry points (viewer_window_loader.cpp finds them with dlsym). The functions of
+// the window are internal to the module: the program's own RunViewerWindow (the loader) must not
+// be confused with them.
+extern "C" __attribute__((visibility("default"))) void quadrix_view_wake() {
     // SDL_PushEvent may be called from any thread; before SDL_Init it is simply not done.
     if (SDL_WasInit(SDL_INIT_VIDEO) == 0) return;
     SDL_Event ev{};
@@ -1063,30 +1066,11 @@ void WakeViewerWindow() {
     SDL_PushEvent(&ev);
 }
 
-int RunViewerWindow(const ViewerSession& session) {
-    Viewer viewer(session);
+extern "C" __attribute__((visibility("default"))) int quadrix_view_run(
+    const quadrix::cli::ViewerSession* session) {
+    quadrix::cli::Viewer viewer(*session);
     if (!viewer.Open()) return 1;
-    return session.benchFrames > 0 ? viewer.Bench() : viewer.Run();
+    return session->benchFrames > 0 ? viewer.Bench() : viewer.Run();
 }
 
-}  // namespace quadrix::cli
-
-#else  // !QUADRIX_HAVE_SDL2
-
-#include <cstdio>
-
-namespace quadrix::cli {
-
-bool HaveViewerWindow() { return false; }
-void WakeViewerWindow() {}
-
-int RunViewerWindow(const ViewerSession&) {
-    std::fprintf(stderr,
-                 "quadrix: error: this quadrix was built without SDL2 (Debian: libsdl2-dev), so "
-                 "`quadrix view` has no window; `quadrix view --bench N` renders offscreen\n");
-    return 1;
-}
-
-}  // namespace quadrix::cli
-
-#endif
+#endif  // QUADRIX_HAVE_SDL2
