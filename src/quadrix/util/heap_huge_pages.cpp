@@ -23,7 +23,8 @@ bool UseHugePagesForTheHeap(std::size_t reserve) {
     if (reserve < 2 * kHuge || reserve > (std::size_t{512} << 20)) return false;
     // Under an address-space or data limit (ulimit -v, -d) the reservation would count against
     // it: the heap is left as it is.
-    for (int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    const int limits[] = {RLIMIT_AS, RLIMIT_DATA};
+    for (int resource : limits) {
         rlimit r{};
         if (getrlimit(resource, &r) != 0 || r.rlim_cur != RLIM_INFINITY) return false;
     }
