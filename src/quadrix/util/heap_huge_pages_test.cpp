@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -20,6 +21,24 @@ long MinorFaults() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     return u.ru_minflt;
+}
+
+// The VmFlags line of /proc/self/smaps for the mapping that holds `p` ("" when not found).
+std::string VmFlagsOf(const void* p) {
+    const auto a = reinterpret_cast<std::uintptr_t>(p);
+    std::ifstream f("/proc/self/smaps");
+    std::string line;
+    bool inside = false;
+    while (std::getline(f, line)) {
+        unsigned long lo = 0, hi = 0;
+        if (std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2 &&
+            line.find(' ') > line.find('-')) {
+            inside = a >= lo && a < hi;
+        } else if (inside && line.rfind("VmFlags:", 0) == 0) {
+            return line + " ";
+        }
+    }
+    return "";
 }
 
 // Why the heap cannot be put in huge pages here, or "" when it can.
@@ -49,11 +68,19 @@ TEST(HeapHugePages, AllocationsOfMegabytesComeFromTheHeapInHugePages) {
     // From the heap, below the break (glibc would have mapped 8 MiB on its own before).
     const auto brk = reinterpret_cast<std::uintptr_t>(sbrk(0));
     EXPECT_LE(reinterpret_cast<std::uintptr_t>(p) + kBytes, brk);
-    // Touched, 8 MiB in 4 KiB pages is 2,048 faults; in 2 MiB pages a handful.
+    // Advised: the mapping that holds its middle carries the huge-page advice ("hg" in its
+    // VmFlags; the whole 2 MiB pages of the reserved range are advised, and the block's first
+    // bytes may lie before the first of them).
+    // Whether the kernel then finds free 2 MiB pages depends on the machine's memory at that
+    // moment (it falls back to 4 KiB pages when it cannot), so the faults are reported, not
+    // asserted: 8 MiB in 4 KiB pages is 2,048 faults, in 2 MiB pages a handful.
+    const std::string flags = VmFlagsOf(p + kBytes / 2);
+    EXPECT_NE(flags.find(" hg "), std::string::npos) << flags;
     const long before = MinorFaults();
     std::memset(p, 1, kBytes);
     const long faults = MinorFaults() - before;
-    EXPECT_LT(faults, 512) << "8 MiB touched with " << faults << " page faults";
+    RecordProperty("faults_for_8_MiB", static_cast<int>(faults));
+    std::printf("8 MiB touched with %ld page faults\n", faults);
     // Freed and allocated again: the same memory, no new faults.
     std::free(p);
     char* q = static_cast<char*>(std::malloc(kBytes));
