@@ -1,9 +1,9 @@
 // HaveViewerWindow, WakeViewerWindow and RunViewerWindow (viewer_window.h) for the program: the
 // window itself (viewer_window.cpp) is a module of its own, quadrix-view.so, linked with SDL2,
-// and loaded only by `quadrix view`. SDL2 brings some 50 shared libraries (sound, Wayland, X11,
-// D-Bus, codecs); linked into the program they cost every quadrix process about 20 ms before main
+// and loaded only by `quadrix view`. SDL2 brings about 40 shared libraries (sound, Wayland, X11,
+// D-Bus, codecs); linked into the program they cost every quadrix process 10-20 ms before main
 // on the test machines (an empty program linked like quadrix started in 34 ms, 14 ms without
-// SDL2: docs/performance.md "Start-up").
+// SDL2: docs/performance.md "Page faults and start-up").
 //
 // The module is looked for next to the program (the build tree), then at the installed place
 // relative to it (QUADRIX_VIEW_MODULE_FROM_BIN, set by CMake: <libdir>/quadrix/quadrix-view.so).

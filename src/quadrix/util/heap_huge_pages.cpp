@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdlib>
 
+#include "quadrix/util/huge_pages.h"
 #include "quadrix/util/sanitizers.h"
 
 #if defined(__GLIBC__) && defined(__linux__) && !QUADRIX_ASAN
@@ -19,7 +20,7 @@ namespace quadrix {
 
 bool UseHugePagesForTheHeap(std::size_t reserve) {
 #if QUADRIX_HEAP_HUGE_PAGES
-    constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+    constexpr std::uintptr_t kHuge = kHugePageBytes;
     if (reserve < 2 * kHuge || reserve > (std::size_t{512} << 20)) return false;
     // Under an address-space or data limit (ulimit -v, -d) the reservation would count against
     // it: the heap is left as it is.
