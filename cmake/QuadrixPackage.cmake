@@ -21,7 +21,9 @@ target_include_directories(quadrix_shared PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 target_compile_features(quadrix_shared PUBLIC cxx_std_20)
-target_link_libraries(quadrix_shared PRIVATE quadrix_lib quadrix_flags)
+# The code of the program's modules (Cairo, OpenEXR, MPI; CMakeLists.txt) is linked in: a library
+# loads once for a process's lifetime, and its users find no module files to install beside it.
+target_link_libraries(quadrix_shared PRIVATE quadrix_lib quadrix_modules_linked quadrix_flags)
 target_link_options(quadrix_shared PRIVATE
   "LINKER:--version-script=${PROJECT_SOURCE_DIR}/cmake/quadrix.map")
 # Every symbol resolved at link time, except under clang's sanitizers: their runtime is linked
@@ -54,6 +56,9 @@ if(TARGET quadrix_view)  # the window of quadrix view (CMakeLists.txt)
   install(TARGETS quadrix_view LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadrix
     COMPONENT runtime)
 endif()
+# The program's modules: Cairo, OpenEXR, MPI (CMakeLists.txt, src/quadrix/util/module_loader.h).
+install(TARGETS ${QUADRIX_MODULES} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadrix
+  COMPONENT runtime)
 install(TARGETS quadrix_shared EXPORT QuadrixTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT development
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

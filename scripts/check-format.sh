@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Checks the C++ sources against the checked-in .clang-format (issue 16): every tracked .cpp/.h
-# under src/, apps/, tests/, bench/, include/, python/ and examples/ must be formatted. Run by
+# under src/, apps/, modules/, tests/, bench/, include/, python/ and examples/ must be formatted. Run by
 # scripts/test.sh; run `clang-format -i FILE` to fix a file. Files go to clang-format forty at a
 # time, one batch per core (a process per file cost a minute: clang-format's start-up, 600 times).
 set -euo pipefail
@@ -9,7 +9,7 @@ if ! command -v clang-format >/dev/null; then
   echo "check-format: clang-format is not installed (scripts/install-deps.sh installs it)" >&2
   exit 1
 fi
-files=$(git ls-files '*.cpp' '*.h' | grep -E '^(src|apps|tests|bench|include|python|examples)/')
+files=$(git ls-files '*.cpp' '*.h' | grep -E '^(src|apps|modules|tests|bench|include|python|examples)/')
 checked=$(printf '%s\n' "$files" | wc -l)
 # --dry-run --Werror reports "FILE:LINE:COL: error: code should be clang-formatted" per difference
 # and exits non-zero; any other failure (a file that cannot be read) fails the check too.

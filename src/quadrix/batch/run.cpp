@@ -17,10 +17,6 @@
 #include "quadrix/batch/progress.h"
 #include "quadrix/util/seconds_since.h"
 
-#ifdef QUADRIX_HAVE_MPI
-#include <mpi.h>
-#endif
-
 namespace quadrix::batch {
 
 namespace {
@@ -199,23 +195,6 @@ nlohmann::json StagesJson(const StageSeconds& s) {
     return j;
 }
 
-#ifdef QUADRIX_HAVE_MPI
-bool mpiStarted = false;
-void StartMpi() {
-    if (mpiStarted) return;
-    int initialised = 0;
-    MPI_Initialized(&initialised);
-    if (!initialised) {
-        MPI_Init(nullptr, nullptr);
-        std::atexit([] {
-            int finalised = 0;
-            MPI_Finalized(&finalised);
-            if (!finalised) MPI_Finalize();
-        });
-    }
-    mpiStarted = true;
-}
-
 nlohmann::json TallyJson(const RankTally& t) {
     nlohmann::json j;
     j["rendered"] = t.rendered;
@@ -252,25 +231,11 @@ RankTally TallyFromJson(const nlohmann::json& j) {
     return t;
 }
 
-// Every rank's tally on every rank (a JSON text each: allgather of lengths, then of bytes).
+// Every rank's tally on every rank (a JSON text each).
 std::vector<RankTally> AllTallies(const RankTally& mine) {
-    const std::string text = TallyJson(mine).dump();
-    int size = 0;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    int length = static_cast<int>(text.size());
-    std::vector<int> lengths(size), offsets(size);
-    MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    int total = 0;
-    for (int r = 0; r < size; ++r) {
-        offsets[r] = total;
-        total += lengths[r];
-    }
-    std::string all(total, '\0');
-    MPI_Allgatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
-                   MPI_CHAR, MPI_COMM_WORLD);
     std::vector<RankTally> tallies;
-    for (int r = 0; r < size; ++r)
-        tallies.push_back(TallyFromJson(nlohmann::json::parse(all.substr(offsets[r], lengths[r]))));
+    for (const std::string& text : Mpi().allGather(TallyJson(mine).dump()))
+        tallies.push_back(TallyFromJson(nlohmann::json::parse(text)));
     return tallies;
 }
 
@@ -281,22 +246,16 @@ Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units
     if (rank == 0 && options.skipExisting && !options.quiet)
         if (std::string r = ResumeReport(jobs, units); !r.empty())
             std::fprintf(stderr, "%s\n", r.c_str());
-    // The next unit's index lives in rank 0's window; MPI_Fetch_and_op takes one (passive
-    // target, no reply from a busy rank needed).
+    // The next unit's index is counter 0 on rank 0; a rank takes one with an atomic add
+    // (passive target, no reply from a busy rank needed).
     // Next to it the run's progress counts (done, rendered, failed), which every rank adds its
     // frames to, so that rank 0 shows the whole run's progress.
-    long long* counter = nullptr;
-    MPI_Win win;
-    MPI_Win_allocate(rank == 0 ? 4 * sizeof(long long) : 0, sizeof(long long), MPI_INFO_NULL,
-                     MPI_COMM_WORLD, &counter, &win);
-    if (rank == 0) std::fill_n(counter, 4, 0LL);
-    MPI_Barrier(MPI_COMM_WORLD);
-    MPI_Win_lock_all(0, win);
+    const MpiModule& mpi = Mpi();
+    MpiCounter* counter = mpi.counterCreate(4);
     const long long one = 1;
     auto next = [&]() -> int {
         long long got = 0;
-        MPI_Fetch_and_op(&one, &got, MPI_LONG_LONG, 0, 0, MPI_SUM, win);
-        MPI_Win_flush(0, win);
+        mpi.counterAdd(counter, 0, 1, &one, &got);
         return got < static_cast<long long>(units.size()) ? static_cast<int>(got) : -1;
     };
     // Only rank 0 draws progress (the whole run's counts, progress.h); every rank reports its own
@@ -305,64 +264,25 @@ Summary RunMpi(const std::vector<JobEntry>& jobs, const std::vector<Unit>& units
     progress.ShareCounts([&](const ProgressCounts& delta) {
         const long long add[3] = {delta.done, delta.rendered, delta.failed};
         long long before[3] = {0, 0, 0};
-        MPI_Get_accumulate(add, 3, MPI_LONG_LONG, before, 3, MPI_LONG_LONG, 0, 1, 3, MPI_LONG_LONG,
-                           MPI_SUM, win);
-        MPI_Win_flush(0, win);
+        mpi.counterAdd(counter, 1, 3, add, before);
         return ProgressCounts{static_cast<int>(before[0] + add[0]),
                               static_cast<int>(before[1] + add[1]),
                               static_cast<int>(before[2] + add[2])};
     });
     RankTally mine = RenderUnits(jobs, units, options, progress, next);
     if (rank == 0) progress.Wait();
-    MPI_Win_unlock_all(win);
-    MPI_Barrier(MPI_COMM_WORLD);
-    MPI_Win_free(&win);
+    mpi.counterFree(counter);
     progress.Finish();
     std::vector<RankTally> tallies = AllTallies(mine);
     return Summed(jobs, tallies, static_cast<int>(units.size()), SecondsSince(t0));
 }
-#endif
 
 }  // namespace
-
-bool UnderMpiLauncher() {
-#ifdef QUADRIX_HAVE_MPI
-    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
-        if (std::getenv(v)) return true;
-#endif
-    return false;
-}
-
-int MpiRank() {
-#ifdef QUADRIX_HAVE_MPI
-    if (!UnderMpiLauncher()) return 0;
-    StartMpi();
-    int r = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &r);
-    return r;
-#else
-    return 0;
-#endif
-}
-
-int MpiSize() {
-#ifdef QUADRIX_HAVE_MPI
-    if (!UnderMpiLauncher()) return 1;
-    StartMpi();
-    int n = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &n);
-    return n;
-#else
-    return 1;
-#endif
-}
 
 Summary RunJobs(const std::vector<JobEntry>& jobs, const RunOptions& options) {
     const std::vector<Unit> units = Units(jobs);
     const bool terminal = options.terminal < 0 ? StderrIsTerminal() : options.terminal == 1;
-#ifdef QUADRIX_HAVE_MPI
     if (options.useMpi && MpiSize() > 1) return RunMpi(jobs, units, options, terminal);
-#endif
     if (options.skipExisting && !options.quiet)
         if (std::string r = ResumeReport(jobs, units); !r.empty())
             std::fprintf(stderr, "%s\n", r.c_str());

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "quadrix/batch/job.h"
+#include "quadrix/batch/mpi.h"  // UnderMpiLauncher, MpiRank, MpiSize
 
 namespace quadrix::batch {
 
@@ -73,13 +74,5 @@ struct Summary {
 // Renders every frame of every job; progress and errors on standard error; returns the summary
 // (on every rank the same counts under MPI).
 Summary RunJobs(const std::vector<JobEntry>& jobs, const RunOptions& options);
-
-// Whether this process was started by an MPI launcher (mpirun/srun set the rank's environment)
-// and Quadrix was built with MPI.
-bool UnderMpiLauncher();
-// This process's rank and the number of ranks (0 and 1 without MPI). Initialises MPI on first
-// use when UnderMpiLauncher().
-int MpiRank();
-int MpiSize();
 
 }  // namespace quadrix::batch

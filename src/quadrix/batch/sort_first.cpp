@@ -7,12 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "quadrix/batch/mpi_piece.h"
+#include "quadrix/batch/mpi.h"
 #include "quadrix/batch/run.h"
-
-#ifdef QUADRIX_HAVE_MPI
-#include <mpi.h>
-#endif
 
 namespace quadrix::batch {
 
@@ -27,7 +23,6 @@ std::vector<RowSpan> SortFirstRows(int width, int height, int rank, int ranks) {
     return rows;
 }
 
-#ifdef QUADRIX_HAVE_MPI
 namespace {
 
 constexpr std::size_t kPixelBytes = sizeof(double) + sizeof(Vec3) + 3 * sizeof(std::int32_t);  // 60
@@ -106,25 +101,10 @@ void TransferImage(std::conditional_t<kPack, const Image, Image>& image, const R
     if (image.linear.size() == image.pixels.size()) move(image.linear);
 }
 
-// Posts the sends or receives of `bytes` bytes at `data` in pieces MPI's int counts can hold.
-void Post(bool send, char* data, std::size_t bytes, int peer, int tag,
-          std::vector<MPI_Request>& requests) {
-    for (std::size_t at = 0; at < bytes; at += kMpiPiece) {
-        const int n = static_cast<int>(std::min(kMpiPiece, bytes - at));
-        MPI_Request r;
-        if (send)
-            MPI_Isend(data + at, n, MPI_BYTE, peer, tag, MPI_COMM_WORLD, &r);
-        else
-            MPI_Irecv(data + at, n, MPI_BYTE, peer, tag, MPI_COMM_WORLD, &r);
-        requests.push_back(r);
-    }
-}
-
 // One whole message of `buffer` to or from `peer`, waited for.
 void Exchange(bool send, std::vector<char>& buffer, int peer, int tag) {
-    std::vector<MPI_Request> requests;
-    Post(send, buffer.data(), buffer.size(), peer, tag, requests);
-    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    const MpiMessage m{send, buffer.data(), buffer.size(), peer, tag};
+    Mpi().exchange(&m, 1);
 }
 
 // The rows of `from`'s bands that `to` reads around its own (its kRowHalo rows), ascending.
@@ -146,7 +126,7 @@ void ExchangeHalo(Frame& frame, int rank, int ranks) {
     std::vector<std::vector<char>> out(static_cast<std::size_t>(ranks)),
         in(static_cast<std::size_t>(ranks));
     std::vector<Runs> inRuns(static_cast<std::size_t>(ranks));
-    std::vector<MPI_Request> requests;
+    std::vector<MpiMessage> messages;
     for (int peer = 0; peer < ranks; ++peer) {
         if (peer == rank) continue;
         const auto p = static_cast<std::size_t>(peer);
@@ -154,12 +134,12 @@ void ExchangeHalo(Frame& frame, int rank, int ranks) {
             RowRuns(HaloRows(frame.width, frame.height, rank, peer, ranks), frame.width);
         out[p].resize(PixelCount(send) * kPixelBytes);
         Transfer<true>(frame, send, out[p].data());
-        Post(true, out[p].data(), out[p].size(), peer, kHaloTag, requests);
+        messages.push_back({true, out[p].data(), out[p].size(), peer, kHaloTag});
         inRuns[p] = RowRuns(HaloRows(frame.width, frame.height, peer, rank, ranks), frame.width);
         in[p].resize(PixelCount(inRuns[p]) * kPixelBytes);
-        Post(false, in[p].data(), in[p].size(), peer, kHaloTag, requests);
+        messages.push_back({false, in[p].data(), in[p].size(), peer, kHaloTag});
     }
-    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    Mpi().exchange(messages.data(), messages.size());
     for (int peer = 0; peer < ranks; ++peer)
         if (peer != rank)
             Transfer<false>(frame, inRuns[static_cast<std::size_t>(peer)],
@@ -225,27 +205,20 @@ bool DrawBands(RenderContext& ctx, const EngineRequest& engine, Frame& frame, Re
         frame.ResizeForOverwrite(width, height);
         AdviseSmallPages(frame);
     }
-    int ok = ctx.Render(mine, frame, report, diags) ? 1 : 0;
-    int all = 0;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    return all != 0;
+    const bool ok = ctx.Render(mine, frame, report, diags);
+    return Mpi().allMin(ok ? 1 : 0) != 0;
 }
 
 }  // namespace
-#endif
 
 bool RenderSortFirst(RenderContext& ctx, const EngineRequest& engine, Frame& frame,
                      RenderReport& report, Diagnostics& diags) {
     const int ranks = MpiSize();
     if (ranks <= 1) return ctx.Render(engine, frame, report, diags);
-#ifdef QUADRIX_HAVE_MPI
     const int rank = MpiRank();
     if (!DrawBands(ctx, engine, frame, report, diags, rank, ranks)) return false;
     GatherFrame(frame, rank, ranks);
     return true;
-#else
-    return ctx.Render(engine, frame, report, diags);
-#endif
 }
 
 bool RenderShadeSortFirst(RenderContext& ctx, const EngineRequest& engine,
@@ -259,7 +232,6 @@ bool RenderShadeSortFirst(RenderContext& ctx, const EngineRequest& engine,
         if (MpiRank() == 0) image = ctx.Shade(frame, shade);
         return true;
     }
-#ifdef QUADRIX_HAVE_MPI
     const int rank = MpiRank();
     if (!DrawBands(ctx, engine, frame, report, diags, rank, ranks)) return false;
     ExchangeHalo(frame, rank, ranks);
@@ -271,9 +243,6 @@ bool RenderShadeSortFirst(RenderContext& ctx, const EngineRequest& engine,
     if (needFrame) GatherFrame(frame, rank, ranks);
     GatherImage(image, rank, ranks);
     return true;
-#else
-    return false;
-#endif
 }
 
 }  // namespace quadrix::batch

@@ -1,57 +1,72 @@
-// OpenEXR writer; see exr.h for the channel layout.
+// OpenEXR output; see exr.h for the channel layout. The channels are prepared here; the module
+// quadrix-exr.so writes them with OpenEXR (io/exr_module.h).
 #include "quadrix/io/exr.h"
 
 #include <fmt/format.h>
 
 #include <cstdint>
 #include <cstdio>
-#include <stdexcept>
 #include <vector>
 
-#ifdef QUADRIX_HAVE_OPENEXR
-#include <ImfChannelList.h>
-#include <ImfChromaticitiesAttribute.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfIO.h>
-#include <ImfInputFile.h>
-#include <ImfOutputFile.h>
-#include <ImfStandardAttributes.h>
-#include <ImfStringAttribute.h>
-#endif
+#include "quadrix/io/exr_module.h"
+#include "quadrix/util/module_loader.h"
+
+// Null unless the module's source is linked into this target (quadrix_modules_linked); the
+// program loads quadrix-exr.so instead (util/module_loader.h).
+#pragma weak quadrix_exr_module
 
 namespace quadrix {
 
-#ifdef QUADRIX_HAVE_OPENEXR
-
 namespace {
 
-// OpenEXR writes through an OStream; this one writes into the stdio stream of an OutputFile
-// (temporary file + rename, io/output_file.h), so an EXR is as atomic as every other output.
-class StdioOStream : public Imf::OStream {
-  public:
-    StdioOStream(std::FILE* file, const std::string& name)
-        : Imf::OStream(name.c_str()), file_(file) {}
-    void write(const char c[], int n) override {
-        if (std::fwrite(c, 1, static_cast<std::size_t>(n), file_) != static_cast<std::size_t>(n))
-            throw std::runtime_error("write failed");
-    }
-    uint64_t tellp() override { return static_cast<uint64_t>(ftello(file_)); }
-    void seekp(uint64_t pos) override {
-        if (fseeko(file_, static_cast<off_t>(pos), SEEK_SET) != 0)
-            throw std::runtime_error("seek failed");
-    }
-
-  private:
-    std::FILE* file_;
+struct Loaded {
+    const ExrModule* module = nullptr;
+    std::string error;  // why module is null
 };
+
+const Loaded& Module() {
+    static const Loaded loaded = [] {
+        Loaded l;
+#ifndef QUADRIX_HAVE_OPENEXR
+        l.error =
+            "this quadrix was built without OpenEXR: .exr output is not available (install "
+            "libopenexr-dev and rebuild; see docs/dependencies.md)";
+        return l;
+#else
+        if (quadrix_exr_module) {
+            l.module = quadrix_exr_module();
+            return l;
+        }
+        const auto entry = reinterpret_cast<const ExrModule* (*)()>(
+            LoadModuleSymbol("quadrix-exr.so", "quadrix_exr_module", &l.error));
+        if (!entry) {
+            l.error = ".exr output needs OpenEXR: " + l.error;
+            return l;
+        }
+        const ExrModule* m = entry();
+        if (m->abi != kExrModuleAbi || !m->write || !m->check) {
+            l.error = fmt::format(
+                "quadrix-exr.so is from another build of Quadrix (interface {}, this program's {})",
+                m->abi, kExrModuleAbi);
+            return l;
+        }
+        l.module = m;
+        return l;
+#endif
+    }();
+    return loaded;
+}
 
 }  // namespace
 
-bool HaveOpenExr() { return true; }
+bool HaveOpenExr() { return Module().module != nullptr; }
+
+std::string OpenExrUnavailable() { return Module().error; }
 
 std::string WriteExr(OutputFile& file, const Frame& frame, const Image* image) {
     if (!file.ok()) return file.error();
+    const ExrModule* exr = Module().module;
+    if (!exr) return fmt::format("cannot write '{}': {}", file.path(), Module().error);
     const int w = frame.width, h = frame.height;
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (w <= 0 || h <= 0 || frame.depth.size() != n) return "internal error: malformed frame";
@@ -84,79 +99,31 @@ std::string WriteExr(OutputFile& file, const Frame& frame, const Image* image) {
         ids[2][i] = static_cast<std::uint32_t>(frame.solid[i] + 1);
     }
 
-    try {
-        Imf::Header header(w, h);
-        header.compression() = Imf::ZIP_COMPRESSION;
-        header.insert("software", Imf::StringAttribute(std::string("Quadrix ") + QUADRIX_VERSION));
-        Imf::addChromaticities(header, Imf::Chromaticities());  // sRGB / BT.709 primaries, D65
-        Imf::FrameBuffer fb;
-        auto addFloat = [&](const char* name, std::vector<float>& data) {
-            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.data()),
-                                       sizeof(float), sizeof(float) * static_cast<std::size_t>(w)));
-        };
-        auto addUint = [&](const char* name, std::vector<std::uint32_t>& data) {
-            header.channels().insert(name, Imf::Channel(Imf::UINT));
-            fb.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(data.data()),
-                                       sizeof(std::uint32_t),
-                                       sizeof(std::uint32_t) * static_cast<std::size_t>(w)));
-        };
-        if (image) {
-            addFloat("R", rgba[0]);
-            addFloat("G", rgba[1]);
-            addFloat("B", rgba[2]);
-            addFloat("A", rgba[3]);
-        }
-        addFloat("Z", z);
-        addFloat("N.x", nrm[0]);
-        addFloat("N.y", nrm[1]);
-        addFloat("N.z", nrm[2]);
-        addUint("id.surface", ids[0]);
-        addUint("id.body", ids[1]);
-        addUint("id.solid", ids[2]);
-        StdioOStream stream(file.stream(), file.path());
-        Imf::OutputFile out(stream, header, 1);
-        out.setFrameBuffer(fb);
-        out.writePixels(h);
-    } catch (const std::exception& e) {
-        return fmt::format("cannot write '{}': OpenEXR: {}", file.path(), e.what());
+    std::vector<ExrChannel> channels;
+    if (image) {
+        channels.push_back({"R", false, rgba[0].data()});
+        channels.push_back({"G", false, rgba[1].data()});
+        channels.push_back({"B", false, rgba[2].data()});
+        channels.push_back({"A", false, rgba[3].data()});
     }
+    channels.push_back({"Z", false, z.data()});
+    channels.push_back({"N.x", false, nrm[0].data()});
+    channels.push_back({"N.y", false, nrm[1].data()});
+    channels.push_back({"N.z", false, nrm[2].data()});
+    channels.push_back({"id.surface", true, ids[0].data()});
+    channels.push_back({"id.body", true, ids[1].data()});
+    channels.push_back({"id.solid", true, ids[2].data()});
+    const std::string software = std::string("Quadrix ") + QUADRIX_VERSION;
+    std::string error;
+    if (!exr->write(file.stream(), file.path().c_str(), w, h, channels.data(),
+                    static_cast<int>(channels.size()), software.c_str(), &error))
+        return fmt::format("cannot write '{}': {}", file.path(), error);
     return {};
 }
 
 std::string CheckExrFile(const std::string& path, int width, int height) {
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imath::Box2i dw = in.header().dataWindow();
-        if (dw.max.x - dw.min.x + 1 != width || dw.max.y - dw.min.y + 1 != height)
-            return fmt::format("{}×{} pixels, not {}×{}", dw.max.x - dw.min.x + 1,
-                               dw.max.y - dw.min.y + 1, width, height);
-        if (!in.isComplete()) return "incomplete (scan lines missing)";
-        // Every chunk decoded (one channel's worth of memory): a file cut inside its last chunk
-        // still has a complete offset table.
-        const Imf::ChannelList& channels = in.header().channels();
-        if (channels.begin() != channels.end()) {
-            std::vector<float> scratch(static_cast<std::size_t>(width) *
-                                       static_cast<std::size_t>(height));
-            Imf::FrameBuffer fb;
-            fb.insert(
-                channels.begin().name(),
-                Imf::Slice(Imf::FLOAT,
-                           reinterpret_cast<char*>(scratch.data() - dw.min.x -
-                                                   static_cast<std::ptrdiff_t>(dw.min.y) * width),
-                           sizeof(float), sizeof(float) * static_cast<std::size_t>(width)));
-            in.setFrameBuffer(fb);
-            in.readPixels(dw.min.y, dw.max.y);
-        }
-    } catch (const std::exception& e) {
-        return fmt::format("not a readable OpenEXR file ({})", e.what());
-    }
-    return {};
-}
-
-#else
-
-std::string CheckExrFile(const std::string& path, int, int) {
+    if (const ExrModule* exr = Module().module) return exr->check(path.c_str(), width, height);
+    // Without OpenEXR only the magic number is checked.
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) return "cannot be read";
     unsigned char magic[4] = {};
@@ -165,17 +132,6 @@ std::string CheckExrFile(const std::string& path, int, int) {
     std::fclose(f);
     return ok ? std::string() : "not an OpenEXR file";
 }
-
-bool HaveOpenExr() { return false; }
-
-std::string WriteExr(OutputFile& file, const Frame&, const Image*) {
-    return fmt::format(
-        "cannot write '{}': this quadrix was built without OpenEXR (install libopenexr-dev and "
-        "rebuild; see docs/dependencies.md)",
-        file.path());
-}
-
-#endif
 
 std::string WriteExr(const std::string& path, const Frame& frame, const Image* image) {
     OutputFile f(path);

@@ -15,7 +15,8 @@
 //                       usual convention of object-id passes
 // Header attributes: "software" (Quadrix <version>) and the chromaticities of sRGB/BT.709.
 //
-// Built with OpenEXR (QUADRIX_HAVE_OPENEXR); without it WriteExr returns a clear error.
+// Written by the module quadrix-exr.so (io/exr_module.h), built when OpenEXR is found
+// (QUADRIX_HAVE_OPENEXR) and loaded on first use; without it WriteExr returns a clear error.
 #pragma once
 
 #include <string>
@@ -26,8 +27,10 @@
 
 namespace quadrix {
 
-// True when this build can write OpenEXR files.
+// True when this build can write OpenEXR files (loads the module on first call).
 bool HaveOpenExr();
+// Why it cannot (a one-line message), or empty when it can.
+std::string OpenExrUnavailable();
 // Writes `image` (may be null: then R, G, B, A are left out) and the layers of `frame` into
 // `file` (committed by the caller). Empty string on success, else a one-line message.
 std::string WriteExr(OutputFile& file, const Frame& frame, const Image* image);

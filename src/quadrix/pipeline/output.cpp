@@ -42,9 +42,7 @@ std::string CheckOutputs(const OutputRequest& request) {
             "cannot tell the image format of '{}' (use .png, .pgm, .ppm, .pnm, .exr or .qxf, or "
             "--format)",
             request.image);
-    if (format == ImageFormat::kExr && !HaveOpenExr())
-        return "this quadrix was built without OpenEXR: .exr output is not available (install "
-               "libopenexr-dev and rebuild; see docs/dependencies.md)";
+    if (format == ImageFormat::kExr && !HaveOpenExr()) return OpenExrUnavailable();
     // Never a device, FIFO, directory or file already read (io/output_file.h).
     if (auto e =
             CheckOutputPaths({request.image, request.dumpFrame.empty() ? "-" : request.dumpFrame});
@@ -54,8 +52,7 @@ std::string CheckOutputs(const OutputRequest& request) {
         ImageFormat exr;
         if (!ImageFormatFromPath(request.exr, exr) || exr != ImageFormat::kExr)
             return fmt::format("exr output: '{}' is not a .exr file", request.exr);
-        if (!HaveOpenExr())
-            return "this quadrix was built without OpenEXR: .exr output is not available";
+        if (!HaveOpenExr()) return OpenExrUnavailable();
         if (auto e = CheckOutputPaths({request.exr}); !e.empty()) return e;
         std::error_code ec;
         for (const std::string* other : {&request.image, &request.dumpFrame})
