@@ -40,8 +40,8 @@ TEST(Modules, TheProgramLinksNeitherCairoNorOpenExrNorMpi) {
 TEST(Modules, ARenderToPngLoadsNoModuleAndADrawingToPdfLoadsCairos) {
     TempDir dir;
     const std::string scene = SourcePath("examples/tube.uq");
-    const std::string render = LoadedObjects("render '" + scene + "' --size 32x24 -o '" +
-                                             dir.File("t.png") + "'");
+    const std::string render =
+        LoadedObjects("render '" + scene + "' --size 32x24 -o '" + dir.File("t.png") + "'");
     ASSERT_NE(render.find("libtbb"), std::string::npos) << "no LD_DEBUG trace:\n" << render;
     for (const char* lib : {"quadrix-", "libcairo", "libOpenEXR", "libmpi"})
         EXPECT_EQ(render.find(lib), std::string::npos) << lib << " loaded by render:\n" << render;
@@ -55,11 +55,10 @@ TEST(Modules, ARenderToPngLoadsNoModuleAndADrawingToPdfLoadsCairos) {
 TEST(Modules, DrawingsAndExrFilesAreWrittenThroughTheModules) {
     TempDir dir;
     const std::string scene = SourcePath("examples/machined_part.uq");
-    const CommandResult draw = RunShell(QuadrixBinary() + " draw '" + scene + "' -o '" +
-                                        dir.File("p.pdf") + "' && " + QuadrixBinary() +
-                                        " draw '" + scene + "' -o '" + dir.File("p.eps") +
-                                        "' && " + QuadrixBinary() + " draw '" + scene + "' -o '" +
-                                        dir.File("p.png") + "'");
+    const CommandResult draw =
+        RunShell(QuadrixBinary() + " draw '" + scene + "' -o '" + dir.File("p.pdf") + "' && " +
+                 QuadrixBinary() + " draw '" + scene + "' -o '" + dir.File("p.eps") + "' && " +
+                 QuadrixBinary() + " draw '" + scene + "' -o '" + dir.File("p.png") + "'");
     ASSERT_EQ(draw.exitCode, 0) << draw.err;
     EXPECT_EQ(Head(dir.File("p.pdf"), 5), "%PDF-");
     EXPECT_EQ(Head(dir.File("p.eps"), 4), "%!PS");

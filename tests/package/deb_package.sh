@@ -27,8 +27,13 @@ for pattern in ' \./usr/bin/quadrix$' "${lib}libquadrix\.so\.0\.[0-9.]+$" "${lib
                "${lib}cmake/Quadrix/QuadrixTargets\.cmake$" "${lib}pkgconfig/quadrix\.pc$" \
                ' \./usr/share/man/man1/quadrix\.1(\.gz)?$' \
                ' \./usr/share/bash-completion/completions/quadrix$' \
-               ' \./usr/share/doc/quadrix/api\.md$'; do
+               ' \./usr/share/doc/quadrix/api\.md$' "${lib}quadrix/quadrix-cairo\.so$"; do
   grep -Eq -- "$pattern" "$work/contents" || { echo "missing in the package: $pattern"; exit 1; }
+done
+# The modules the build made (src/quadrix/util/module_loader.h) are all in the package.
+for module in "$build"/quadrix-*.so; do
+  grep -Eq -- "${lib}quadrix/$(basename "$module")$" "$work/contents" ||
+    { echo "module missing in the package: $(basename "$module")"; exit 1; }
 done
 if grep -E -- '/usr/include/quadrix/.+/' "$work/contents"; then
   echo "internal headers are in the package"; exit 1

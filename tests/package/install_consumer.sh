@@ -24,6 +24,12 @@ if find "$prefix/include" -name '*.h' | grep -v 'include/quadrix/quadrix.h$'; th
   echo "internal headers were installed"; exit 1
 fi
 "$prefix/bin/quadrix" --version
+# The installed program loads its modules (Cairo, OpenEXR, MPI: src/quadrix/util/module_loader.h)
+# from the prefix's <libdir>/quadrix, not from the build tree.
+LD_DEBUG=files "$prefix/bin/quadrix" draw "$src/examples/tube.uq" -o "$work/tube.pdf" 2> "$work/ld.log"
+grep -Eq "file=$prefix/[^ ]+/quadrix/quadrix-cairo\.so" "$work/ld.log" ||
+  { grep -E 'file=.*quadrix-' "$work/ld.log"; echo "the installed quadrix did not load its own Cairo module"; exit 1; }
+[[ "$(head -c 5 "$work/tube.pdf")" == "%PDF-" ]] || { echo "no PDF from the installed quadrix"; exit 1; }
 
 # 1. CMake: find_package(Quadrix REQUIRED). The project's own flags must not reach the consumer.
 cmake -S "$src/tests/package/consumer" -B "$work/cmake-build" -G Ninja \

@@ -81,8 +81,9 @@ void* LoadModuleSymbol(const char* file, const char* symbol, std::string* error)
         return nullptr;
     }
     void* p = dlsym(m.handle, symbol);
-    if (!p && error) *error = std::string("the module ") + file + " has no " + symbol +
-                              " (is it from another build of Quadrix?)";
+    if (!p && error)
+        *error = std::string("the module ") + file + " has no " + symbol +
+                 " (is it from another build of Quadrix?)";
     return p;
 }
 

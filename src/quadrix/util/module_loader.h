@@ -12,10 +12,10 @@
 //
 // The modules are self-contained: each links its library and the C++ runtime only, and exchanges
 // plain data with Quadrix through the table of functions its interface header declares
-// (draw/cairo_module.h, io/exr_module.h, batch/mpi_module.h). Targets that would rather link the library than load a module (the
-// shared library of the public API, the Python module, the tests) link the module's source
-// directly (CMake target quadrix_modules_linked); its table is then found without dlopen, through
-// a weak reference (see QUADRIX_LINKED_MODULE in the module headers).
+// (draw/cairo_module.h, io/exr_module.h, batch/mpi_module.h). Targets that would rather link the
+// library than load a module (the shared library of the public API, the Python module, the tests)
+// link the module's source directly (CMake target quadrix_modules_linked); its table is then found
+// without dlopen, through a weak reference (see QUADRIX_LINKED_MODULE in the module headers).
 //
 // Where a module is looked for: in $QUADRIX_MODULE_DIR alone when it is set, else in order (the
 // first file that exists is loaded):
