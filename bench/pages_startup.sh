@@ -4,7 +4,8 @@
 # QUADRIX_HEAP_PAGES=small, alternating, on the machined part (picture defaults), the synthetic
 # helicopters (bench/make_helicopter.py) and 100,000 spheres minus a cylinder, all at 1280x720;
 # then start-up: `quadrix --version` and a 64x64 render against empty programs linked with the
-# same shared libraries as quadrix, and with only the core ones. Prints a Markdown table of the
+# same shared libraries as quadrix, and with only the core ones, and the commands that load a
+# module (an .exr output, a PDF drawing) next to one that does not (an SVG drawing). Prints a Markdown table of the
 # minimum wall time, CPU time and page faults of REPS runs and the ratios, and writes it to
 # bench/results/pages_startup_<date>.md.
 #
@@ -92,6 +93,10 @@ srow "empty, core libraries" ./empty_core ./empty_core
 srow "empty, linked like quadrix" ./empty_like_quadrix ./empty_like_quadrix
 srow "quadrix --version" "$quadrix" "$quadrix" --version
 srow "quadrix render, machined part 64×64" "$quadrix" "$quadrix" render "$ex/machined_part.uq" --size 64x64 -o o.png
+# The commands that load a module on demand (src/quadrix/util/module_loader.h).
+srow "quadrix render 64×64 to .exr (+ quadrix-exr.so)" "$quadrix" "$quadrix" render "$ex/machined_part.uq" --size 64x64 -o o.exr
+srow "quadrix draw to .pdf (+ quadrix-cairo.so)" "$quadrix" "$quadrix" draw "$ex/machined_part.uq" -o o.pdf
+srow "quadrix draw to .svg (no module)" "$quadrix" "$quadrix" draw "$ex/machined_part.uq" -o o.svg
 cpu=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
 report="# Page faults and start-up, $(date -u '+%Y-%m-%d %H:%M') UTC
 
