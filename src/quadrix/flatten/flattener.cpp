@@ -746,7 +746,8 @@ class FlattenerImpl {
         const FlatScene& flat, const std::vector<const FlatHalfSpace*>& halfSpaces,
         const std::vector<Plane>& fitClips, const std::vector<Plane>& finalClips, double farDepth,
         double nearDepth, const BoundsOptions& bo, const std::vector<std::vector<int>>& bodiesOf,
-        const std::vector<std::size_t>& which, std::vector<Box3>& solidBoxes) {
+        const std::vector<std::size_t>& firstSame, const std::vector<std::size_t>& which,
+        std::vector<Box3>& solidBoxes) {
         bool same = fitClips.size() == finalClips.size();
         for (std::size_t i = 0; same && i < fitClips.size(); ++i)
             same = fitClips[i] == finalClips[i];
@@ -757,9 +758,18 @@ class FlattenerImpl {
             fitPlanes.push_back(h);
         }
         const std::size_t nClip = finalClips.size();
+        // Bodies with the same literals (firstSame, FirstWithSameLiterals) are bounded once: a
+        // subtracted tool repeated in every term of a union is one body per term.
         std::vector<int> bodies;
+        std::vector<char> queued(flat.bodies.size(), 0);
         for (std::size_t s : which)
-            bodies.insert(bodies.end(), bodiesOf[s].begin(), bodiesOf[s].end());
+            for (int b : bodiesOf[s]) {
+                const std::size_t rep = firstSame[static_cast<std::size_t>(b)];
+                if (!queued[rep]) {
+                    queued[rep] = 1;
+                    bodies.push_back(static_cast<int>(rep));
+                }
+            }
         std::vector<Box3> bodyBoxes(flat.bodies.size());
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
@@ -779,6 +789,11 @@ class FlattenerImpl {
                     bodyBoxes[static_cast<std::size_t>(bodies[j])] = IntersectionBounds(lits, bo);
                 }
             });
+        for (std::size_t s : which)
+            for (int b : bodiesOf[s]) {
+                const auto i = static_cast<std::size_t>(b);
+                if (firstSame[i] != i) bodyBoxes[i] = bodyBoxes[firstSame[i]];
+            }
         std::vector<Box3> nodeBoxes = TreeBounds(flat, bodyBoxes);
         std::vector<Box3> fitBoxes = FitTreeBounds(flat, bodyBoxes, nodeBoxes, farDepth, nearDepth);
         for (std::size_t s : which) solidBoxes[s] = fitBoxes[flat.solids[s].root];
@@ -851,6 +866,7 @@ class FlattenerImpl {
                    MakeFirst&& makeFirstKnown) {
         const std::size_t nSolids = flat_.solids.size();
         const std::vector<std::vector<int>> bodiesOf = BodiesOfSolids();
+        const std::vector<std::size_t> firstSame = FirstWithSameLiterals(flat_);
         struct Look {
             WindowFit fit;
             Transform dev;
@@ -907,7 +923,7 @@ class FlattenerImpl {
                 std::vector<Box3> dev = look.boxes;
                 SomeFitSolidBoxes(flat_, look.halfSpaces, look.fitClips, look.finalClips,
                                   view_.perspective ? look.fit.k * view_.d : 0.0,
-                                  look.fit.k * view_.fitNear, bo, bodiesOf, which, dev);
+                                  look.fit.k * view_.fitNear, bo, bodiesOf, firstSame, which, dev);
                 // Back to provisional space, x = (x_dev - ox) / k, and intersected with the
                 // boxes before where both are finite.
                 const double off[3] = {look.fit.ox, look.fit.oy, 0};

@@ -580,6 +580,14 @@ TEST(FlattenBounds, BodiesSharingLiteralsShareExactlyTheBoxesComputedAlone) {
         EXPECT_EQ(shared.flat->nodes[n].bounds.lo[0], alone.flat->nodes[n].bounds.lo[0]);
         EXPECT_EQ(shared.flat->nodes[n].bounds.hi[1], alone.flat->nodes[n].bounds.hi[1]);
     }
+    // The auto-fit window too (its second look, RefineFit, bounds each shared drill once).
+    for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}) {
+        const Vec3 a = shared.flat->projection.deviceFromWorld.MapPoint(p);
+        const Vec3 b = alone.flat->projection.deviceFromWorld.MapPoint(p);
+        EXPECT_EQ(a.x, b.x);
+        EXPECT_EQ(a.y, b.y);
+        EXPECT_EQ(a.z, b.z);
+    }
     // The drill's box is finite and wider in x than in y: it was bounded, not left unbounded.
     const Box3& drill = shared.flat->bodies[1].bounds;
     EXPECT_GT(drill.hi[0] - drill.lo[0], 2 * (drill.hi[1] - drill.lo[1]));
