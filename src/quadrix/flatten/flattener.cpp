@@ -202,12 +202,15 @@ class FlattenerImpl {
         if (view_.perspective) FindSolidsAroundEye();
         for (FlatBody& b : flat.bodies)
             for (int c = 0; c < nClip; ++c) b.literals.push_back({c, false});
+        // The literal lists are final from here to the culling: which bodies share one is
+        // found once for every look of the bounds and the fit.
+        firstSame_ = FirstWithSameLiterals(flat);
 
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_);
         bool anySearched = false;
         const Reuse reuse = TranslationReuse(nClip);
-        boxes_ = AllBodyBounds(flat, bo, &anySearched, &reuse);
+        boxes_ = AllBodyBounds(flat, firstSame_, bo, &anySearched, &reuse);
         bodiesOf_ = BodiesOfSolids();
         solidExact_.assign(flat.solids.size(), 1);
         for (std::size_t s = 0; s < flat.solids.size(); ++s)
@@ -217,13 +220,15 @@ class FlattenerImpl {
         // boxes are made from the padded boxes, and the solids that can decide the window are
         // bounded directly (SettleExtremes), so the window is the one of the direct boxes.
         std::vector<Box3> fitBoxes =
-            FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
-                          view_.fitNear, PaddedBoxes(true), bo, &passesEye_);
+            FitSolidBoxes(flat, firstSame_, view_.fitClips, finalPlanes_,
+                          view_.perspective ? view_.d : 0.0, view_.fitNear, PaddedBoxes(true), bo,
+                          &passesEye_);
         auto makeExact = [&](const std::vector<std::size_t>& which) {
             MakeSolidsExact(which, bo);
             const std::vector<Box3> solidFit =
-                FitSolidBoxes(flat, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
-                              view_.fitNear, PaddedBoxes(true), bo);
+                FitSolidBoxes(flat, firstSame_, view_.fitClips, finalPlanes_,
+                              view_.perspective ? view_.d : 0.0, view_.fitNear, PaddedBoxes(true),
+                              bo);
             for (std::size_t s = 0; s < solidFit.size(); ++s) fitBoxes[s] = solidFit[s];
         };
         const bool autoFit = !view_.whw && !view_.whh;
@@ -376,9 +381,9 @@ class FlattenerImpl {
     // own box would differ from it by the two certificates' allowances, at most kTightNappe =
     // 1e-5 × (size + |coordinate|) each: `pad` (2e-5 of that) bounds the difference, and the
     // window fit and the culling use it to decide which solids to bound directly after all.
-    static BodyBoxes AllBodyBounds(const FlatScene& flat, const BoundsOptions& bo,
-                                   bool* anySearched, const Reuse* reuse = nullptr) {
-        const std::vector<std::size_t> first = FirstWithSameLiterals(flat);
+    static BodyBoxes AllBodyBounds(const FlatScene& flat, const std::vector<std::size_t>& first,
+                                   const BoundsOptions& bo, bool* anySearched,
+                                   const Reuse* reuse = nullptr) {
         const std::size_t n = first.size();
         BodyBoxes out;
         out.box.resize(n);
@@ -670,6 +675,7 @@ class FlattenerImpl {
     // FitTreeBounds. `passesEye` (when given) gets per solid whether its box reaches the near
     // plane (it holds the eye or passes beside or behind it).
     static std::vector<Box3> FitSolidBoxes(const FlatScene& flat,
+                                           const std::vector<std::size_t>& first,
                                            const std::vector<Plane>& fitClips,
                                            const std::vector<Plane>& finalClips, double farDepth,
                                            double nearDepth, std::vector<Box3> bodyBoxes,
@@ -686,7 +692,6 @@ class FlattenerImpl {
                 fitPlanes.push_back(h);
             }
             const std::size_t nClip = finalClips.size();
-            const std::vector<std::size_t> first = FirstWithSameLiterals(flat);
             std::vector<BoundLiteral> lits;
             for (std::size_t i = 0; i < flat.bodies.size(); ++i) {
                 if (first[i] != i) {
@@ -865,8 +870,8 @@ class FlattenerImpl {
     void RefineFit(WindowFit& fit, std::vector<Box3>& fitBoxes, std::vector<char> firstKnown,
                    MakeFirst&& makeFirstKnown) {
         const std::size_t nSolids = flat_.solids.size();
-        const std::vector<std::vector<int>> bodiesOf = BodiesOfSolids();
-        const std::vector<std::size_t> firstSame = FirstWithSameLiterals(flat_);
+        const std::vector<std::vector<int>>& bodiesOf = bodiesOf_;
+        const std::vector<std::size_t>& firstSame = firstSame_;
         struct Look {
             WindowFit fit;
             Transform dev;
@@ -1316,6 +1321,7 @@ class FlattenerImpl {
     std::vector<char> passesEye_;             // per solid: its box reaches the fit's near plane
     BodyBoxes boxes_;                         // per body, provisional space (AllBodyBounds)
     std::vector<std::vector<int>> bodiesOf_;  // per solid: its bodies
+    std::vector<std::size_t> firstSame_;      // per body (FirstWithSameLiterals)
     std::vector<char> solidExact_;            // per solid: every body's box is its own
 };
 
