@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "quadrix/flatten/bounds_internal.h"
+#include "quadrix/flatten/literal_cache.h"
 #include "quadrix/math/symmetric_eigen.h"
 
 namespace quadrix {
@@ -28,7 +29,7 @@ Box3 LiteralBox(const FlatHalfSpace& halfSpace, bool complemented) {
     return AnalyticBox(MakeInsideFn(halfSpace, complemented), &centre, &hasCentre);
 }
 
-double HalfSpaceScale(const FlatHalfSpace& hs) {
+double HalfSpaceScale(const FlatHalfSpace& hs, const Box3* literalBox) {
     if (hs.IsQuartic()) {  // the largest coordinate of its box
         const Box3 box = hs.quartic->SpaceBounds();
         double s = 0;
@@ -78,7 +79,7 @@ double HalfSpaceScale(const FlatHalfSpace& hs) {
             if (std::isfinite(extent)) s = std::fmax(s, extent);
         }
     }
-    Box3 box = LiteralBox(hs, false);
+    const Box3 box = literalBox ? *literalBox : LiteralBox(hs, false);
     for (int i = 0; i < 3; ++i) {
         if (std::isfinite(box.lo[i])) s = std::fmax(s, std::fabs(box.lo[i]));
         if (std::isfinite(box.hi[i])) s = std::fmax(s, std::fabs(box.hi[i]));
@@ -212,11 +213,19 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     boxes.reserve(literals.size());
     Box3 b0 = Box3::Everything();
     for (const BoundLiteral& lit : literals) {
-        fns.push_back(MakeInsideFn(*lit.halfSpace, lit.complemented));
-        Vec3 centre;
-        bool hasCentre = false;
-        boxes.push_back(AnalyticBox(fns.back(), &centre, &hasCentre));
-        if (hasCentre) seeds.push_back(centre);
+        const LiteralCache::Entry* cached =
+            options.literals && !lit.complemented ? options.literals->Find(lit.halfSpace) : nullptr;
+        if (cached) {  // what the two calls below would give (literal_cache.h)
+            fns.push_back(cached->fn);
+            boxes.push_back(cached->box);
+            if (cached->hasCentre) seeds.push_back(cached->centre);
+        } else {
+            fns.push_back(MakeInsideFn(*lit.halfSpace, lit.complemented));
+            Vec3 centre;
+            bool hasCentre = false;
+            boxes.push_back(AnalyticBox(fns.back(), &centre, &hasCentre));
+            if (hasCentre) seeds.push_back(centre);
+        }
         b0 = b0.Intersected(boxes.back());
     }
     if (b0.Empty()) return Box3{};

@@ -84,6 +84,8 @@
 
 namespace quadrix {
 
+struct LiteralCache;  // flatten/literal_cache.h
+
 struct BoundsOptions {
     // The search region is |coordinate| <= searchLimit; a side beyond 1e-3 × searchLimit is
     // reported unbounded. The Flattener sets this to 1e6 × the scene's scale.
@@ -99,6 +101,10 @@ struct BoundsOptions {
     // Stage (a'') for bodies of one convex quadric and at most 16 planes (bounds_critical.cpp);
     // off only to compare it with the relaxation in tests.
     bool criticalPoints = true;
+    // Stage (a) of the uncomplemented quadric literals, made once for the half-spaces these
+    // bounds are taken over (flatten/literal_cache.h); null: each literal's is made as needed.
+    // The boxes are the same bits either way.
+    const LiteralCache* literals = nullptr;
 };
 
 struct BoundsStats {
@@ -122,7 +128,8 @@ Box3 LiteralBox(const FlatHalfSpace& halfSpace, bool complemented);
 
 // A length characterising where a half-space lies (distance of a plane from the origin, size and
 // position of a quadric); used by the Flattener to choose searchLimit. 0 when unknown.
-double HalfSpaceScale(const FlatHalfSpace& halfSpace);
+// `literalBox`, when given, is LiteralBox(halfSpace, false) already made (LiteralCache).
+double HalfSpaceScale(const FlatHalfSpace& halfSpace, const Box3* literalBox = nullptr);
 
 // Conservative bounds of the intersection of the literals. Infinite coordinates mean unbounded
 // on that side; an empty box means the set is provably empty.

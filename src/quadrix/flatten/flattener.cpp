@@ -42,6 +42,7 @@
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/coefficient_scale.h"
 #include "quadrix/flatten/hierarchy.h"
+#include "quadrix/flatten/literal_cache.h"
 #include "quadrix/flatten/view_setup.h"
 #include "quadrix/flatten/window_fit.h"
 #include "quadrix/lang/big_arrays.h"
@@ -57,13 +58,15 @@ constexpr double kInf = HUGE_VAL;
 // largest of the bodies' half-spaces' characteristic lengths, the window and the eye distance.
 // (The perspective near plane, at depth -1e4 d, would inflate it for nothing.)
 // In parallel: the largest of the half-spaces' scales is the same in any order (fmax).
-double SceneScale(const FlatScene& flat, const ViewSetup& view) {
+double SceneScale(const FlatScene& flat, const ViewSetup& view, const LiteralCache& literals) {
     double s = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, flat.halfSpaces.size(), 1024), 0.0,
         [&](const tbb::blocked_range<std::size_t>& r, double m) {
             for (std::size_t i = r.begin(); i < r.end(); ++i) {
                 const FlatHalfSpace& h = flat.halfSpaces[i];
-                if (!h.isClip && h.name != kSectionName) m = std::fmax(m, HalfSpaceScale(h));
+                if (h.isClip || h.name == kSectionName) continue;
+                const LiteralCache::Entry* e = literals.Find(&h);
+                m = std::fmax(m, HalfSpaceScale(h, e ? &e->box : nullptr));
             }
             return m;
         },
@@ -206,8 +209,12 @@ class FlattenerImpl {
         // found once for every look of the bounds and the fit.
         firstSame_ = FirstWithSameLiterals(flat);
 
+        // Stage (a) of every quadric literal once, for the scale and every body's bounds in
+        // provisional space (literal_cache.h); flat.halfSpaces stays as it is until ToDevice.
+        const LiteralCache literals = LiteralCache::Build(flat.halfSpaces);
         BoundsOptions bo;
-        bo.searchLimit = 1e6 * SceneScale(flat, view_);
+        bo.searchLimit = 1e6 * SceneScale(flat, view_, literals);
+        bo.literals = &literals;
         bool anySearched = false;
         const Reuse reuse = TranslationReuse(nClip);
         boxes_ = AllBodyBounds(flat, firstSame_, bo, &anySearched, &reuse);
@@ -257,6 +264,7 @@ class FlattenerImpl {
                           }
                       });
         if (!boxes_.AllExact()) SettleCulling(*fit, bo);
+        bo.literals = nullptr;  // the half-spaces move to device space now
         ToDevice(*fit, boxes_.box);
         Cull();
         SetDepthTolerance(*fit);
