@@ -75,4 +75,32 @@ void BuildProgram(const FlatScene& scene, CsgProgram& out);
 void PruneProgram(const CsgProgram& src, const Rect& r, CsgProgram& dst,
                   std::vector<std::int32_t>& stack);
 
+// Screen-space bins of a program (issue 24: the per-tile pruning of a wide union became the
+// cost): for a row or column of disjoint rectangles, sorted along one axis (the 32 sub-tiles of
+// a tile, the 32 tiles of a block), which solids and which operands of every wide union or
+// difference (more than kBinnedOperands; a difference's minuend excepted) can meet each
+// rectangle, found once per program by a binary search per operand. Pruning with the bins
+// visits only those instead of every operand for every rectangle; the others would fail the
+// same test (a rectangle they miss along the axis), so the pruned program is the same bits.
+// Intersections are not binned (one operand that misses empties them: they are walked whole).
+struct ProgramBins {
+    static constexpr std::int32_t kBinnedOperands = 8;
+    bool alongX = true;
+    std::vector<double> lo, hi;  // per bin: its rectangle's range on the axis (ascending)
+    // Per node of the program: its index among the binned nodes, or -1. Binned node w's list for
+    // bin k is items[starts[w * (bins + 1) + k] .. starts[w * (bins + 1) + k + 1]), positions of
+    // its operands in their order; the solid lists likewise in solidStarts / solidItems.
+    std::vector<std::int32_t> binnedOf, starts, items;
+    std::vector<std::int32_t> solidStarts, solidItems;
+    std::size_t Bins() const { return lo.size(); }
+};
+
+// The bins of `src` over `rects` (disjoint and in ascending order along x when alongX, else y).
+void BinProgram(const CsgProgram& src, const std::vector<Rect>& rects, bool alongX,
+                ProgramBins& out);
+
+// PruneProgram(src, r, dst, stack) for r, the rectangle of bin `bin` of `bins` (made from src).
+void PruneProgram(const CsgProgram& src, const ProgramBins& bins, std::size_t bin, const Rect& r,
+                  CsgProgram& dst, std::vector<std::int32_t>& stack);
+
 }  // namespace quadrix::eval

@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <string>
+
 #include "quadrix/flatten/test_scene_builder.h"
 
 namespace quadrix::eval {
@@ -92,6 +98,124 @@ TEST(RaycastProgram, SolidsAreSortedByNearestDepthThenIndex) {
     EXPECT_EQ(full.solids[1].solid, 3);  // zlo 2
     EXPECT_EQ(full.solids[2].solid, 2);  // zlo 3
     EXPECT_EQ(full.solids[3].solid, 0);  // zlo 5
+}
+
+// ---------------------------------------------------------------------------------------------
+// Screen-space bins (ProgramBins): pruning with them gives the same program as without, on
+// random programs of wide unions, differences and intersections, NaN and infinite bounds, over
+// a row of sub-tiles and a column of tiles.
+
+namespace bins_test {
+
+bool SameDouble(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool SameRect(const Rect& a, const Rect& b) {
+    return SameDouble(a.x0, b.x0) && SameDouble(a.x1, b.x1) && SameDouble(a.y0, b.y0) &&
+           SameDouble(a.y1, b.y1);
+}
+
+void ExpectSamePrograms(const CsgProgram& a, const CsgProgram& b, const std::string& where) {
+    ASSERT_EQ(a.nodes.size(), b.nodes.size()) << where;
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        const ProgNode &x = a.nodes[i], &y = b.nodes[i];
+        EXPECT_TRUE(SameRect(x.xy, y.xy) && SameDouble(x.zlo, y.zlo) && x.kind == y.kind &&
+                    x.first == y.first && x.count == y.count)
+            << where << " node " << i;
+    }
+    EXPECT_EQ(a.children, b.children) << where;
+    ASSERT_EQ(a.solids.size(), b.solids.size()) << where;
+    for (std::size_t i = 0; i < a.solids.size(); ++i)
+        EXPECT_TRUE(a.solids[i].solid == b.solids[i].solid && a.solids[i].root == b.solids[i].root &&
+                    SameRect(a.solids[i].xy, b.solids[i].xy) &&
+                    SameDouble(a.solids[i].zlo, b.solids[i].zlo))
+            << where << " solid " << i;
+    EXPECT_EQ(a.maxDepth, b.maxDepth) << where;
+}
+
+// A random program over a 256 × 256 block: solids of bodies, and of wide nodes of up to 60
+// operands nested two deep.
+CsgProgram RandomProgram(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> pos(-20, 276), size(0, 40), unit(0, 1);
+    CsgProgram p;
+    auto rect = [&] {
+        const double u = unit(rng);
+        if (u < 0.02) return Rect{std::nan(""), std::nan(""), 0, 255};
+        if (u < 0.04) return Rect{-HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL};
+        if (u < 0.3) {  // ends exactly on the bins' edges (k + 0.5, k + 7.5 in steps of 8)
+            auto edge = [&] { return 8.0 * static_cast<double>(rng() % 33) + (rng() % 2 ? 0.5 : 7.5); };
+            const double x0 = edge(), x1 = x0 + 8.0 * static_cast<double>(rng() % 3);
+            const double y0 = edge(), y1 = y0 + 8.0 * static_cast<double>(rng() % 3);
+            return Rect{x0, x1, y0, y1};
+        }
+        const double x = pos(rng), y = pos(rng);
+        return Rect{x, x + size(rng), y, y + size(rng)};
+    };
+    auto body = [&] {
+        ProgNode n;
+        n.xy = rect();
+        n.zlo = pos(rng);
+        n.kind = NodeKind::kBody;
+        n.first = static_cast<std::int32_t>(rng() % 1000);
+        p.nodes.push_back(n);
+        return static_cast<std::int32_t>(p.nodes.size() - 1);
+    };
+    std::function<std::int32_t(int)> node = [&](int depth) -> std::int32_t {
+        if (depth >= 2 || unit(rng) < 0.3) return body();
+        std::vector<std::int32_t> kids;
+        const int count = 1 + static_cast<int>(rng() % 60);
+        for (int i = 0; i < count; ++i) kids.push_back(node(depth + 1));
+        ProgNode n;
+        const double k = unit(rng);
+        n.kind = k < 0.5 ? NodeKind::kUnion : k < 0.85 ? NodeKind::kDifference
+                                                        : NodeKind::kIntersection;
+        n.xy = unit(rng) < 0.5 ? Rect{-HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL} : rect();
+        n.zlo = -HUGE_VAL;
+        n.first = static_cast<std::int32_t>(p.children.size());
+        n.count = count;
+        p.children.insert(p.children.end(), kids.begin(), kids.end());
+        p.nodes.push_back(n);
+        return static_cast<std::int32_t>(p.nodes.size() - 1);
+    };
+    const int solids = 1 + static_cast<int>(rng() % 40);
+    for (int s = 0; s < solids; ++s) {
+        const std::int32_t root = node(0);
+        const ProgNode& r = p.nodes[static_cast<std::size_t>(root)];
+        p.solids.push_back({s, root, r.xy, r.zlo});
+    }
+    p.maxDepth = 3;
+    return p;
+}
+
+}  // namespace bins_test
+
+TEST(RaycastProgram, BinnedPruningIsThePruningOfEveryOperand) {
+    std::mt19937_64 rng(5);
+    std::vector<std::int32_t> stack;
+    int binnedNodes = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const CsgProgram program = bins_test::RandomProgram(rng);
+        for (const bool alongX : {true, false}) {
+            // 32 sub-tiles of 8 pixels in a row (x), or 32 tiles of 8 rows in a column (y); the
+            // last one cut short as at an image edge.
+            std::vector<Rect> rects;
+            for (int k = 0; k < 32; ++k) {
+                const double a = 8 * k + 0.5, b = std::min(8 * k + 7.5, 250.5);
+                if (a > b) break;
+                rects.push_back(alongX ? Rect{a, b, 100.5, 107.5} : Rect{0.5, 255.5, a, b});
+            }
+            ProgramBins bins;
+            BinProgram(program, rects, alongX, bins);
+            for (std::int32_t w : bins.binnedOf) binnedNodes += w >= 0;
+            for (std::size_t k = 0; k < rects.size(); ++k) {
+                CsgProgram whole, binned;
+                PruneProgram(program, rects[k], whole, stack);
+                PruneProgram(program, bins, k, rects[k], binned, stack);
+                bins_test::ExpectSamePrograms(whole, binned,
+                                              "trial " + std::to_string(trial) + " bin " +
+                                                  std::to_string(k) + (alongX ? " x" : " y"));
+            }
+        }
+    }
+    EXPECT_GT(binnedNodes, 100);  // the bins were used, not bypassed
 }
 
 }  // namespace

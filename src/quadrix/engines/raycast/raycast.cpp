@@ -129,6 +129,9 @@ class RaycastEngine final : public Engine {
             CsgProgram block;
             std::vector<std::int32_t> stack;
             PruneProgram(full, Centres(bx0, by0, bx1, by1), block, stack);
+            // The block's tiles are its rows (tiling.h): its program binned over them.
+            ProgramBins bins;
+            BinProgram(block, TileRects(bx0, by0, bx1, by1), false, bins);
             ++workers.local().counters.blocks;
             if (block.solids.empty()) {
                 workers.local().counters.pixels +=
@@ -155,7 +158,9 @@ class RaycastEngine final : public Engine {
                         if (x0 >= bx1 || y0 >= by1) continue;
                         if (region && !region->Intersects(x0, y0, x0 + kTileW, y0 + kTileH))
                             continue;
-                        RenderTile(scene, tables, block, x0, y0, std::min(x0 + kTileW, bx1),
+                        RenderTile(scene, tables, block, bins,
+                                   static_cast<std::size_t>((y0 - by0) / kTileH), x0, y0,
+                                   std::min(x0 + kTileW, bx1),
                                    std::min(y0 + kTileH, by1), w, frame);
                     }
                 });

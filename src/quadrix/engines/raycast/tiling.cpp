@@ -70,11 +70,11 @@ void DrawSubTilePixels(const FlatScene& scene, const SceneTables& tables, int sx
 
 // One sub-tile [sx, ex) × [sy, ey) of the tile program: pruned, reduced, then filled as
 // background, as one plane, or pixel by pixel.
-void RenderSubTile(const FlatScene& scene, const SceneTables& tables, int sx, int sy, int ex,
-                   int ey, Worker& w, const PixelRows& out) {
+void RenderSubTile(const FlatScene& scene, const SceneTables& tables, std::size_t bin, int sx,
+                   int sy, int ex, int ey, Worker& w, const PixelRows& out) {
     ++w.counters.tiles;
     const Rect r = Centres(sx, sy, ex, ey);
-    PruneProgram(w.tileProgram, r, w.subTileProgram, w.stack);
+    PruneProgram(w.tileProgram, w.subTileBins, bin, r, w.subTileProgram, w.stack);
     w.counters.tileSolids += w.subTileProgram.solids.size();
     w.counters.pixels += static_cast<std::uint64_t>((ex - sx) * (ey - sy));
     if (w.subTileProgram.solids.empty()) {
@@ -98,10 +98,18 @@ void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
     PixelRows::Of(frame).FillBackground(x0, y0, x1, y1);
 }
 
-void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block, int x0,
-                int y0, int x1, int y1, Worker& w, Frame& frame) {
+std::vector<Rect> TileRects(int bx0, int by0, int bx1, int by1) {
+    std::vector<Rect> rects;
+    for (int y0 = by0; y0 < by1; y0 += kTileH)
+        rects.push_back(Centres(bx0, y0, bx1, std::min(y0 + kTileH, by1)));
+    return rects;
+}
+
+void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block,
+                const ProgramBins& bins, std::size_t bin, int x0, int y0, int x1, int y1, Worker& w,
+                Frame& frame) {
     ++w.counters.coarseTiles;
-    PruneProgram(block, Centres(x0, y0, x1, y1), w.tileProgram, w.stack);
+    PruneProgram(block, bins, bin, Centres(x0, y0, x1, y1), w.tileProgram, w.stack);
     if (w.tileProgram.solids.empty()) {
         w.counters.pixels += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
         FillBackground(frame, x0, y0, x1, y1);
@@ -109,6 +117,11 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
     }
     w.reduction.PrepareStrip(w.tileProgram, Centres(x0, y0, x1, y1));
     const PixelRows out = w.tile.Rows(x0, y0);
+    // The sub-tiles: one row (tiling.h), binned along x.
+    w.subTileRects.clear();
+    for (int sx = x0; sx < x1; sx += kSubTile)
+        w.subTileRects.push_back(Centres(sx, y0, std::min(sx + kSubTile, x1), y1));
+    BinProgram(w.tileProgram, w.subTileRects, true, w.subTileBins);
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
             int ex = std::min(sx + kSubTile, x1), ey = std::min(sy + kSubTile, y1);
@@ -118,7 +131,8 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
                 continue;
             }
             const std::uint64_t before = w.counters.bodies;
-            RenderSubTile(scene, tables, sx, sy, ex, ey, w, out);
+            RenderSubTile(scene, tables, static_cast<std::size_t>((sx - x0) / kSubTile), sx, sy,
+                          ex, ey, w, out);
             if (w.budget) w.budget->Spend(w.counters.bodies - before);
         }
     }

@@ -34,8 +34,19 @@ inline Rect Centres(int x0, int y0, int x1, int y1) {
 // the tile that owns it, as a hit or as background.
 void FillBackground(Frame& frame, int x0, int y0, int x1, int y1);
 
-// Renders one 256×8 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program.
-void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block, int x0,
-                int y0, int x1, int y1, Worker& w, Frame& frame);
+// Tiles are whole rows of a block, and sub-tiles one row of a tile: the rectangles pruned from
+// one program are disjoint along one axis, so each program is binned over them
+// (eval::ProgramBins).
+static_assert(kTileW == kBlock && kTileH == kSubTile);
+
+// The tiles of the block [bx0, bx1) × [by0, by1) in order, as pixel-centre rectangles (the bins
+// of the block's program).
+std::vector<Rect> TileRects(int bx0, int by0, int bx1, int by1);
+
+// Renders one 256×8 tile (pixel rectangle [x0, x1) × [y0, y1)) from its block's program; `bins`
+// are the block program's over TileRects and `bin` this tile's.
+void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProgram& block,
+                const ProgramBins& bins, std::size_t bin, int x0, int y0, int x1, int y1, Worker& w,
+                Frame& frame);
 
 }  // namespace quadrix::raycast
