@@ -209,9 +209,9 @@ class FlattenerImpl {
         // found once for every look of the bounds and the fit.
         firstSame_ = FirstWithSameLiterals(flat);
 
-        // Stage (a) of every quadric literal once, for the scale and every body's bounds in
-        // provisional space (literal_cache.h); flat.halfSpaces stays as it is until ToDevice.
-        const LiteralCache literals = LiteralCache::Build(flat.halfSpaces);
+        // Stage (a) of every quadric literal once, for the scale and every body's first bounds
+        // in provisional space (literal_cache.h); flat.halfSpaces stays as it is meanwhile.
+        LiteralCache literals = LiteralCache::Build(flat.halfSpaces);
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_, literals);
         bo.literals = &literals;
@@ -240,6 +240,11 @@ class FlattenerImpl {
         };
         const bool autoFit = !view_.whw && !view_.whh;
         if (autoFit && !boxes_.AllExact()) SettleExtremes(fitBoxes, solidExact_, makeExact);
+        // The few bodies bounded again from here on (a solid settled by the fit's second look or
+        // the culling) do without the cache: its memory (about 200 bytes a quadric) goes back to
+        // the heap for the second look's arrays, which would otherwise be fresh pages.
+        bo.literals = nullptr;
+        literals = LiteralCache{};
         // Freeform surfaces take part in the fit through the hull of their control points in
         // provisional space (exact image of the surface, conservative bounds).
         for (const FlatFreeform& f : flat.freeforms) {
@@ -264,7 +269,6 @@ class FlattenerImpl {
                           }
                       });
         if (!boxes_.AllExact()) SettleCulling(*fit, bo);
-        bo.literals = nullptr;  // the half-spaces move to device space now
         ToDevice(*fit, boxes_.box);
         Cull();
         SetDepthTolerance(*fit);
