@@ -591,12 +591,15 @@ class FlattenerImpl {
                     keyed[i] = ok;
                 }
             });
-        std::unordered_map<std::uint64_t, std::vector<std::size_t>> byHash;
-        for (std::size_t i = 0; i < n; ++i) {
-            if (!keyed[i]) continue;
+        // Body i is matched against the first kCandidates bodies of its group that were not
+        // matched themselves (in body order). Once a group has that many, its candidates are
+        // fixed: the later bodies of the group are matched afterwards, in parallel, against the
+        // same candidates as in body order (a matched body never becomes a candidate, and one
+        // past the first kCandidates never is one), so the result is the same.
+        constexpr std::size_t kCandidates = 4;
+        auto match = [&](std::size_t i, const std::vector<std::size_t>& bucket) {
             const auto& lits = flat_.bodies[i].literals;
-            std::vector<std::size_t>& bucket = byHash[keys[i]];
-            for (std::size_t c = 0; c < bucket.size() && c < 4; ++c) {
+            for (std::size_t c = 0; c < bucket.size() && c < kCandidates; ++c) {
                 const std::size_t j = bucket[c];
                 const auto& lj = flat_.bodies[j].literals;
                 bool same = lj.size() == lits.size();
@@ -611,11 +614,27 @@ class FlattenerImpl {
                 if (std::optional<Vec3> t = shiftOf(j, i)) {
                     r.ref[i] = j;
                     r.shift[i] = *t;
-                    break;
+                    return;
                 }
             }
+        };
+        std::unordered_map<std::uint64_t, std::vector<std::size_t>> byHash;
+        std::vector<std::pair<std::size_t, const std::vector<std::size_t>*>> later;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!keyed[i]) continue;
+            std::vector<std::size_t>& bucket = byHash[keys[i]];
+            if (bucket.size() >= kCandidates) {
+                later.push_back({i, &bucket});  // (unordered_map nodes do not move)
+                continue;
+            }
+            match(i, bucket);
             if (r.ref[i] == i) bucket.push_back(i);
         }
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, later.size(), 256),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t k = range.begin(); k < range.end(); ++k)
+                                  match(later[k].first, *later[k].second);
+                          });
         return r;
     }
 

@@ -147,6 +147,12 @@ void TileReduction::PrepareStrip(const CsgProgram& program, const Rect& r) {
         const auto body = static_cast<std::size_t>(node.first);
         StripBody& sb = stripBody_[body];
         if (sb.stamp == stripStamp_) continue;  // (a body is one node; cheap guard anyway)
+        // A body of one literal gains nothing from the strip: its literal is a plane bound or
+        // a quadric to classify again on every sub-tile, so PrepareTile reduces it from its
+        // own literal there (the same proofs on a smaller rectangle; the frame is the same
+        // either way, tile_reduction.h). A body the strip would prove empty is then proved so
+        // on each of its sub-tiles instead.
+        if (tables_.BodyTagCount(body) == 1) continue;
         const auto begin = static_cast<std::int32_t>(stripTags_.size());
         const bool empty =
             ReduceBody(tables_.BodyTags(body), tables_.BodyTagCount(body), r, stripTags_);
