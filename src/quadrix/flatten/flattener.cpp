@@ -940,22 +940,36 @@ class FlattenerImpl {
                         makeKnown(level - 1, before);
                 }
                 Look& look = looks[level - 1];
-                // The half-spaces of these solids in the look's device space (once each).
+                // The half-spaces of these solids in the look's device space (once each): which
+                // ones first, then their images in parallel (each its own).
+                std::vector<std::size_t> fresh;
+                std::vector<char> seen(flat_.halfSpaces.size(), 0);
                 for (std::size_t s : which)
                     for (int b : bodiesOf[s])
                         for (const FlatLiteral& l :
                              flat_.bodies[static_cast<std::size_t>(b)].literals) {
                             const std::size_t k = static_cast<std::size_t>(l.halfSpace);
-                            if (look.halfSpaces[k]) continue;
-                            FlatHalfSpace& h = look.mapped.emplace_back(flat_.halfSpaces[k]);
-                            look.halfSpaces[k] = &h;
+                            if (look.halfSpaces[k] || seen[k]) continue;
+                            seen[k] = 1;
+                            fresh.push_back(k);
+                        }
+                const std::size_t base = look.mapped.size();
+                look.mapped.resize(base + fresh.size());
+                tbb::parallel_for(
+                    tbb::blocked_range<std::size_t>(0, fresh.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                            FlatHalfSpace& h = look.mapped[base + j];
+                            h = flat_.halfSpaces[fresh[j]];
                             if (h.IsQuartic())
                                 h.TransformBy(look.dev);
                             else if (h.isPlane)
                                 h.plane = h.plane.Transformed(look.dev);
                             else
                                 h.quadric = h.quadric.Transformed(look.dev);
+                            look.halfSpaces[fresh[j]] = &h;
                         }
+                    });
                 std::vector<Box3> dev = look.boxes;
                 SomeFitSolidBoxes(flat_, look.halfSpaces, look.fitClips, look.finalClips,
                                   view_.perspective ? look.fit.k * view_.d : 0.0,
@@ -1139,22 +1153,30 @@ class FlattenerImpl {
         FlatScene& flat = flat_;
         Transform dev =
             Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
-        for (FlatHalfSpace& h : flat.halfSpaces) {
-            if (h.IsQuartic()) {
-                h.TransformBy(dev);
-            } else if (h.isPlane) {
-                h.plane = h.plane.Transformed(dev);
-                RescaleCoefficients(h.plane);
-            } else {
-                h.quadric = h.quadric.Transformed(dev);
-                RescaleCoefficients(h.quadric);
-            }
-        }
+        // Each half-space and each body box on its own: in parallel.
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flat.halfSpaces.size(), 1024),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                                  FlatHalfSpace& h = flat.halfSpaces[i];
+                                  if (h.IsQuartic()) {
+                                      h.TransformBy(dev);
+                                  } else if (h.isPlane) {
+                                      h.plane = h.plane.Transformed(dev);
+                                      RescaleCoefficients(h.plane);
+                                  } else {
+                                      h.quadric = h.quadric.Transformed(dev);
+                                      RescaleCoefficients(h.quadric);
+                                  }
+                              }
+                          });
         std::vector<Box3> devBodies(bodyBoxes.size());
-        for (std::size_t i = 0; i < bodyBoxes.size(); ++i) {
-            devBodies[i] = MapBox(fit, bodyBoxes[i]);
-            flat.bodies[i].bounds = devBodies[i];
-        }
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodyBoxes.size(), 1024),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                                  devBodies[i] = MapBox(fit, bodyBoxes[i]);
+                                  flat.bodies[i].bounds = devBodies[i];
+                              }
+                          });
         std::vector<Box3> nodes = TreeBounds(flat, devBodies);
         for (std::size_t i = 0; i < nodes.size(); ++i) flat.nodes[i].bounds = nodes[i];
         Box3 image{{0, 0, -kInf}, {double(flat.width), double(flat.height), kInf}};
