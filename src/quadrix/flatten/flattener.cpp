@@ -483,8 +483,13 @@ class FlattenerImpl {
         r.ref.resize(n);
         for (std::size_t i = 0; i < n; ++i) r.ref[i] = i;
         r.shift.assign(n, Vec3{0, 0, 0});
+        // A reused box only saves work for a solid that does not reach the window's edge: one
+        // that may is bounded directly anyway (SettleExtremes). With at most six solids each may
+        // hold one of the six extremes (a union of 100,000 spheres is one solid), so nothing is
+        // reused and the search for translates is skipped; the flat scene is the same either way.
+        constexpr std::size_t kFewSolids = 6;
         if (!options_.reuseBoundsByTranslation || view_.perspective || nClip != 0 ||
-            !view_.fitClips.empty())
+            !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids)
             return r;
         // Per half-space, in parallel (a pure function of its coefficients); big lists in huge
         // pages (lang/big_arrays.h).
