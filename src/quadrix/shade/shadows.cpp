@@ -189,6 +189,13 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
         }
         return;
     }
+    if (anyHit && node.op == scene::CsgOp::kDifference && node.children.size() >= 2) {
+        const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(node.children[0])];
+        if (!minuend.isLeaf && minuend.op == scene::CsgOp::kUnion) {
+            DistributedDifference(n, p, d, s0, s1, slots, k);
+            return;
+        }
+    }
     const bool union_ = node.op == scene::CsgOp::kUnion;
     // anyHit: the caller only asks whether the set is empty, so a union may stop at its first
     // child that meets the segment (its set is then not the whole union's, but not empty).
@@ -230,12 +237,63 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
     }
 }
 
+void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, double s0, double s1,
+                                         std::vector<IntervalList*>& slots, std::size_t k) const {
+    const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
+    const int m = node.children[0];
+    const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(m)];
+    slots[k]->clear();
+    if (!HitsBox(minuend.bounds, p, d, s0, s1)) return;
+    bool haveSubtrahends = false;
+    // Operand c of the minuend's union: its set in slots[k + 1]; the subtrahends' union, made
+    // the first time an operand meets the segment, in slots[k]; true (the difference's set, not
+    // empty, left in slots[k]) when c − subtrahends meets the segment.
+    auto operand = [&](int c) {
+        if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
+        Node(c, p, d, s0, s1, slots, k + 1, false);
+        if (slots[k + 1]->empty()) return false;
+        if (!haveSubtrahends) {
+            haveSubtrahends = true;
+            auto subtrahend = [&](int b) {
+                if (!HitsBox(scene_.nodes[static_cast<std::size_t>(b)].bounds, p, d, s0, s1))
+                    return false;
+                Node(b, p, d, s0, s1, slots, k + 2, false);
+                Union(*slots[k], *slots[k + 2], *slots[k + 3]);
+                std::swap(slots[k], slots[k + 3]);
+                return false;
+            };
+            const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
+            if (wide >= 0) {
+                wide_[static_cast<std::size_t>(wide)].Segment(p, d, s0, s1, [&](std::int32_t i) {
+                    return subtrahend(node.children[1 + static_cast<std::size_t>(i)]);
+                });
+            } else {
+                for (std::size_t j = 1; j < node.children.size(); ++j) subtrahend(node.children[j]);
+            }
+        }
+        Difference(*slots[k + 1], *slots[k], *slots[k + 2]);
+        if (slots[k + 2]->empty()) return false;
+        std::swap(slots[k], slots[k + 2]);
+        return true;
+    };
+    const std::int32_t wide = wideOf_[static_cast<std::size_t>(m)];
+    bool found = false;
+    if (wide >= 0) {
+        found = wide_[static_cast<std::size_t>(wide)].Segment(
+            p, d, s0, s1, [&](std::int32_t i) { return operand(minuend.children[static_cast<std::size_t>(i)]); });
+    } else {
+        for (int c : minuend.children)
+            if ((found = operand(c))) break;
+    }
+    if (!found) slots[k]->clear();
+}
+
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     const double len = Length(d);
     if (!(len > 0)) return false;
     const double s0 = 1e-4 / len;
     std::vector<IntervalList*>& slots =
-        ThreadScratch(static_cast<std::size_t>(maxDepth_) + 4).slots;
+        ThreadScratch(static_cast<std::size_t>(maxDepth_) + 6).slots;
     return solids_.Segment(p, d, s0, sMax, [&](std::int32_t i) {
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(i)];
         const FlatCsgNode& root = scene_.nodes[static_cast<std::size_t>(solid.root)];

@@ -99,6 +99,14 @@ class ShadowTester {
     // union, 1, 2, ... of a difference.
     void Wide(const FlatCsgNode& node, const BoxTree& tree, const Vec3& p, const Vec3& d, double s0,
               double s1, std::vector<IntervalList*>& slots, std::size_t k, bool anyHit) const;
+    // Node n, a difference whose minuend is a union, asked only whether its set meets the
+    // segment: (∪ Aᵢ) − B₁ − … − Bₘ = ∪ (Aᵢ − (B₁ ∪ … ∪ Bₘ)) (regularised sets are a Boolean
+    // algebra), so the operands Aᵢ are tried one at a time and the first one left non-empty
+    // by the subtrahends (made once, when an operand first meets the segment) answers; a
+    // shadow ray through a dense union minus a tool stops at its first blocker instead of
+    // making the union of every operand it crosses. slots[k] as Node.
+    void DistributedDifference(int n, const Vec3& p, const Vec3& d, double s0, double s1,
+                               std::vector<IntervalList*>& slots, std::size_t k) const;
     const FlatScene& scene_;
     BoxTree solids_;                    // over scene_.solids[k].bounds
     std::vector<BoxTree> wide_;         // trees of the wide nodes

@@ -101,5 +101,109 @@ TEST(ShadeShadows, AHoleLetsTheLightThroughAndASurfaceDoesNotShadowItself) {
     EXPECT_EQ(out[0].lo, 3);
 }
 
+// (∪ Aᵢ) − B₁ − B₂ answered operand by operand (ShadowTester::DistributedDifference) against
+// the same set written ∪ (Aᵢ − B₁ − B₂), which the tester answers with its union path: the same
+// answer on every ray. Balls of random sizes packed in a box, two drills through them; a few
+// operands (plain loops) and many (box trees: more than kWideNode operands).
+FlatScene BallsMinusDrills(int balls, bool distributed, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1), size(0.3, 1.2);
+    FlatScene s;
+    auto addQuadric = [&](const Quadric& q) {
+        FlatHalfSpace h;
+        h.isPlane = false;
+        h.quadric = q;
+        s.halfSpaces.push_back(h);
+        return static_cast<int>(s.halfSpaces.size()) - 1;
+    };
+    auto addLeaf = [&](std::vector<FlatLiteral> lits, const Box3& box) {
+        FlatBody body;
+        body.literals = std::move(lits);
+        s.bodies.push_back(body);
+        FlatCsgNode leaf;
+        leaf.body = static_cast<int>(s.bodies.size()) - 1;
+        leaf.bounds = box;
+        s.nodes.push_back(leaf);
+        return static_cast<int>(s.nodes.size()) - 1;
+    };
+    auto addNode = [&](scene::CsgOp op, std::vector<int> children, const Box3& box) {
+        FlatCsgNode n;
+        n.isLeaf = false;
+        n.op = op;
+        n.children = std::move(children);
+        n.bounds = box;
+        s.nodes.push_back(n);
+        return static_cast<int>(s.nodes.size()) - 1;
+    };
+    const Box3 all{{-10, -10, -10}, {10, 10, 10}};
+    // Two drills: infinite cylinders along z and along x (radius 1.5), boxes clipped to `all`.
+    const int dz = addQuadric(Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, -1, 0, 0, 1 - 2.25}));
+    const int dx = addQuadric(Quadric::FromCoefficients({0, 1, 1, 0, 0, 0, 0, 0, -2, 4 - 2.25}));
+    std::vector<Vec3> centres;
+    std::vector<double> radii;
+    for (int i = 0; i < balls; ++i) {
+        centres.push_back(Vec3{u(rng), u(rng), u(rng)} * 6);
+        radii.push_back(size(rng));
+    }
+    auto ball = [&](int i) {
+        const Vec3 c = centres[static_cast<std::size_t>(i)];
+        const double r = radii[static_cast<std::size_t>(i)];
+        const int q = addQuadric(SphereQ(c, r));
+        return addLeaf({{q, false}}, {c - Vec3{r, r, r}, c + Vec3{r, r, r}});
+    };
+    auto drills = [&] {
+        return std::vector<int>{addLeaf({{dz, false}}, all), addLeaf({{dx, false}}, all)};
+    };
+    int root;
+    if (distributed) {
+        std::vector<int> terms;
+        for (int i = 0; i < balls; ++i) {
+            std::vector<int> kids{ball(i)};
+            for (int d : drills()) kids.push_back(d);
+            terms.push_back(addNode(scene::CsgOp::kDifference, kids,
+                                    s.nodes[static_cast<std::size_t>(kids[0])].bounds));
+        }
+        root = addNode(scene::CsgOp::kUnion, terms, all);
+    } else {
+        std::vector<int> kids;
+        for (int i = 0; i < balls; ++i) kids.push_back(ball(i));
+        const int u = addNode(scene::CsgOp::kUnion, kids, all);
+        std::vector<int> diff{u};
+        for (int d : drills()) diff.push_back(d);
+        root = addNode(scene::CsgOp::kDifference, diff, all);
+    }
+    FlatSolid solid;
+    solid.root = root;
+    solid.bounds = all;
+    s.solids.push_back(solid);
+    return s;
+}
+
+TEST(ShadeShadows, ADifferenceOfAUnionAnswersAsItsDistributedForm) {
+    for (int balls : {5, 200}) {
+        const FlatScene nested = BallsMinusDrills(balls, false, 23);
+        const FlatScene distributed = BallsMinusDrills(balls, true, 23);
+        const ShadowTester a(nested), b(distributed);
+        std::mt19937 rng(31);
+        std::uniform_real_distribution<double> u(-1, 1);
+        int blocked = 0;
+        const int rays = 4000;
+        for (int i = 0; i < rays; ++i) {
+            const Vec3 p = Vec3{u(rng), u(rng), u(rng)} * 9;
+            // Half the rays aimed at the balls' region, so that both answers are common.
+            const Vec3 aim = i % 2 ? Vec3{u(rng), u(rng), u(rng)} * 6 - p
+                                   : Vec3{u(rng), u(rng), u(rng)};
+            const Vec3 d = Normalize(aim) * (0.5 + std::fabs(u(rng)));
+            const double sMax = i % 3 ? HUGE_VAL : 4 * std::fabs(u(rng));
+            const bool want = b.Blocked(p, d, sMax);
+            EXPECT_EQ(a.Blocked(p, d, sMax), want) << balls << " balls, ray " << i;
+            blocked += want;
+        }
+        // Both answers common (the test would pass vacuously otherwise).
+        EXPECT_GT(blocked, rays / 40) << balls;
+        EXPECT_LT(blocked, rays - rays / 40) << balls;
+    }
+}
+
 }  // namespace
 }  // namespace quadrix
