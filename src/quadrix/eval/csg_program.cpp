@@ -317,7 +317,10 @@ void PruneProgram(const CsgProgram& src, const ProgramBins& bins, std::size_t bi
     ProgramSource source{src};
     const BinView view{&bins, bin};
     for (std::int32_t i = bins.solidStarts[bin]; i < bins.solidStarts[bin + 1]; ++i)
-        PruneSolid(source, src.solids[static_cast<std::size_t>(bins.solidItems[static_cast<std::size_t>(i)])], r, dst, stack, view);
+        PruneSolid(
+            source,
+            src.solids[static_cast<std::size_t>(bins.solidItems[static_cast<std::size_t>(i)])], r,
+            dst, stack, view);
     std::sort(dst.solids.begin(), dst.solids.end(), SolidLess);
 }
 

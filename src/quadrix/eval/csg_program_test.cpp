@@ -124,7 +124,8 @@ void ExpectSamePrograms(const CsgProgram& a, const CsgProgram& b, const std::str
     EXPECT_EQ(a.children, b.children) << where;
     ASSERT_EQ(a.solids.size(), b.solids.size()) << where;
     for (std::size_t i = 0; i < a.solids.size(); ++i)
-        EXPECT_TRUE(a.solids[i].solid == b.solids[i].solid && a.solids[i].root == b.solids[i].root &&
+        EXPECT_TRUE(a.solids[i].solid == b.solids[i].solid &&
+                    a.solids[i].root == b.solids[i].root &&
                     SameRect(a.solids[i].xy, b.solids[i].xy) &&
                     SameDouble(a.solids[i].zlo, b.solids[i].zlo))
             << where << " solid " << i;
@@ -141,7 +142,9 @@ CsgProgram RandomProgram(std::mt19937_64& rng) {
         if (u < 0.02) return Rect{std::nan(""), std::nan(""), 0, 255};
         if (u < 0.04) return Rect{-HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL};
         if (u < 0.3) {  // ends exactly on the bins' edges (k + 0.5, k + 7.5 in steps of 8)
-            auto edge = [&] { return 8.0 * static_cast<double>(rng() % 33) + (rng() % 2 ? 0.5 : 7.5); };
+            auto edge = [&] {
+                return 8.0 * static_cast<double>(rng() % 33) + (rng() % 2 ? 0.5 : 7.5);
+            };
             const double x0 = edge(), x1 = x0 + 8.0 * static_cast<double>(rng() % 3);
             const double y0 = edge(), y1 = y0 + 8.0 * static_cast<double>(rng() % 3);
             return Rect{x0, x1, y0, y1};
@@ -165,8 +168,9 @@ CsgProgram RandomProgram(std::mt19937_64& rng) {
         for (int i = 0; i < count; ++i) kids.push_back(node(depth + 1));
         ProgNode n;
         const double k = unit(rng);
-        n.kind = k < 0.5 ? NodeKind::kUnion : k < 0.85 ? NodeKind::kDifference
-                                                        : NodeKind::kIntersection;
+        n.kind = k < 0.5    ? NodeKind::kUnion
+                 : k < 0.85 ? NodeKind::kDifference
+                            : NodeKind::kIntersection;
         n.xy = unit(rng) < 0.5 ? Rect{-HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL} : rect();
         n.zlo = -HUGE_VAL;
         n.first = static_cast<std::int32_t>(p.children.size());

@@ -236,7 +236,8 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
                 c[j] = 0.5 * b0.lo[j] + 0.5 * b0.hi[j];
                 h[j] = 0.5 * b0.hi[j] - 0.5 * b0.lo[j];
             }
-            const Range r = RangeFromLocal(EvaluateLocal(f, c), f.a, f.lamMin, f.lamMax, h, nullptr);
+            const Range r =
+                RangeFromLocal(EvaluateLocal(f, c), f.a, f.lamMin, f.lamMax, h, nullptr);
             decided = r.hi <= r.margin;  // the literal holds on all of B0: no shaping literal
         }
         if (!decided && !f.isPlane) {

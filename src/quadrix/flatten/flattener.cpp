@@ -226,16 +226,14 @@ class FlattenerImpl {
         // Boxes reused by translation hold the true ones only to within their pad: the fit
         // boxes are made from the padded boxes, and the solids that can decide the window are
         // bounded directly (SettleExtremes), so the window is the one of the direct boxes.
-        std::vector<Box3> fitBoxes =
-            FitSolidBoxes(flat, firstSame_, view_.fitClips, finalPlanes_,
-                          view_.perspective ? view_.d : 0.0, view_.fitNear, PaddedBoxes(true), bo,
-                          &passesEye_);
+        std::vector<Box3> fitBoxes = FitSolidBoxes(flat, firstSame_, view_.fitClips, finalPlanes_,
+                                                   view_.perspective ? view_.d : 0.0, view_.fitNear,
+                                                   PaddedBoxes(true), bo, &passesEye_);
         auto makeExact = [&](const std::vector<std::size_t>& which) {
             MakeSolidsExact(which, bo);
-            const std::vector<Box3> solidFit =
-                FitSolidBoxes(flat, firstSame_, view_.fitClips, finalPlanes_,
-                              view_.perspective ? view_.d : 0.0, view_.fitNear, PaddedBoxes(true),
-                              bo);
+            const std::vector<Box3> solidFit = FitSolidBoxes(
+                flat, firstSame_, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
+                view_.fitNear, PaddedBoxes(true), bo);
             for (std::size_t s = 0; s < solidFit.size(); ++s) fitBoxes[s] = solidFit[s];
         };
         const bool autoFit = !view_.whw && !view_.whh;
@@ -960,21 +958,20 @@ class FlattenerImpl {
                         }
                 const std::size_t base = look.mapped.size();
                 look.mapped.resize(base + fresh.size());
-                tbb::parallel_for(
-                    tbb::blocked_range<std::size_t>(0, fresh.size(), 512),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                            FlatHalfSpace& h = look.mapped[base + j];
-                            h = flat_.halfSpaces[fresh[j]];
-                            if (h.IsQuartic())
-                                h.TransformBy(look.dev);
-                            else if (h.isPlane)
-                                h.plane = h.plane.Transformed(look.dev);
-                            else
-                                h.quadric = h.quadric.Transformed(look.dev);
-                            look.halfSpaces[fresh[j]] = &h;
-                        }
-                    });
+                tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fresh.size(), 512),
+                                  [&](const tbb::blocked_range<std::size_t>& r) {
+                                      for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                          FlatHalfSpace& h = look.mapped[base + j];
+                                          h = flat_.halfSpaces[fresh[j]];
+                                          if (h.IsQuartic())
+                                              h.TransformBy(look.dev);
+                                          else if (h.isPlane)
+                                              h.plane = h.plane.Transformed(look.dev);
+                                          else
+                                              h.quadric = h.quadric.Transformed(look.dev);
+                                          look.halfSpaces[fresh[j]] = &h;
+                                      }
+                                  });
                 std::vector<Box3> dev = look.boxes;
                 SomeFitSolidBoxes(flat_, look.halfSpaces, look.fitClips, look.finalClips,
                                   view_.perspective ? look.fit.k * view_.d : 0.0,

@@ -34,12 +34,11 @@ TEST(LiteralCache, BoxesAreBitForBitThoseMadeWithoutIt) {
     };
     for (int trial = 0; trial < 60; ++trial) {
         const double s = std::pow(10.0, mag(rng));
-        const Transform t =
-            Transform::Translate({5 * s * u(rng), 5 * s * u(rng), 5 * s * u(rng)}) *
-            bounds_test::RandomRotation(rng);
+        const Transform t = Transform::Translate({5 * s * u(rng), 5 * s * u(rng), 5 * s * u(rng)}) *
+                            bounds_test::RandomRotation(rng);
         Box3 exact;
-        add(bounds_test::MiteredPipe(t, r(rng), 2 + u(rng), 0.8 * u(rng), -2 + u(rng),
-                                     0.8 * u(rng), exact));
+        add(bounds_test::MiteredPipe(t, r(rng), 2 + u(rng), 0.8 * u(rng), -2 + u(rng), 0.8 * u(rng),
+                                     exact));
         add(bounds_test::ConeFrustum(t, 0.5 + 0.4 * u(rng), 1 + 0.5 * u(rng), 3 + u(rng), exact));
         Body ell;
         ell.hs.push_back(bounds_test::QuadricHs(

@@ -279,8 +279,9 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     const std::int32_t wide = wideOf_[static_cast<std::size_t>(m)];
     bool found = false;
     if (wide >= 0) {
-        found = wide_[static_cast<std::size_t>(wide)].Segment(
-            p, d, s0, s1, [&](std::int32_t i) { return operand(minuend.children[static_cast<std::size_t>(i)]); });
+        found = wide_[static_cast<std::size_t>(wide)].Segment(p, d, s0, s1, [&](std::int32_t i) {
+            return operand(minuend.children[static_cast<std::size_t>(i)]);
+        });
     } else {
         for (int c : minuend.children)
             if ((found = operand(c))) break;

@@ -191,8 +191,8 @@ TEST(ShadeShadows, ADifferenceOfAUnionAnswersAsItsDistributedForm) {
         for (int i = 0; i < rays; ++i) {
             const Vec3 p = Vec3{u(rng), u(rng), u(rng)} * 9;
             // Half the rays aimed at the balls' region, so that both answers are common.
-            const Vec3 aim = i % 2 ? Vec3{u(rng), u(rng), u(rng)} * 6 - p
-                                   : Vec3{u(rng), u(rng), u(rng)};
+            const Vec3 aim =
+                i % 2 ? Vec3{u(rng), u(rng), u(rng)} * 6 - p : Vec3{u(rng), u(rng), u(rng)};
             const Vec3 d = Normalize(aim) * (0.5 + std::fabs(u(rng)));
             const double sMax = i % 3 ? HUGE_VAL : 4 * std::fabs(u(rng));
             const bool want = b.Blocked(p, d, sMax);

@@ -160,8 +160,8 @@ class RaycastEngine final : public Engine {
                             continue;
                         RenderTile(scene, tables, block, bins,
                                    static_cast<std::size_t>((y0 - by0) / kTileH), x0, y0,
-                                   std::min(x0 + kTileW, bx1),
-                                   std::min(y0 + kTileH, by1), w, frame);
+                                   std::min(x0 + kTileW, bx1), std::min(y0 + kTileH, by1), w,
+                                   frame);
                     }
                 });
         };

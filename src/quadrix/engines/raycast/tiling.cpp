@@ -131,8 +131,8 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
                 continue;
             }
             const std::uint64_t before = w.counters.bodies;
-            RenderSubTile(scene, tables, static_cast<std::size_t>((sx - x0) / kSubTile), sx, sy,
-                          ex, ey, w, out);
+            RenderSubTile(scene, tables, static_cast<std::size_t>((sx - x0) / kSubTile), sx, sy, ex,
+                          ey, w, out);
             if (w.budget) w.budget->Spend(w.counters.bodies - before);
         }
     }

@@ -35,7 +35,7 @@ class Worker {
 
     WorkBudget* budget = nullptr;  // the render's (work_budget.h), shared by the workers
     CsgProgram tileProgram, subTileProgram;
-    ProgramBins subTileBins;          // tileProgram's over subTileRects (tiling.cpp)
+    ProgramBins subTileBins;  // tileProgram's over subTileRects (tiling.cpp)
     std::vector<Rect> subTileRects;
     std::vector<std::int32_t> stack;  // PruneProgram's scratch
     Counters counters;
