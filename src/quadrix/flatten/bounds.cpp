@@ -172,6 +172,52 @@ std::optional<Box3> PolytopeBox(const std::vector<InsideFn>& shaping, const Box3
     return box;
 }
 
+// Stage (a) of one literal: its inside function and analytic box, with the box's centre when it
+// has one; from the literal cache when it holds them (literal_cache.h: the same values).
+struct LiteralStageA {
+    InsideFn f;
+    Box3 box;
+    Vec3 centre;
+    bool hasCentre = false;
+};
+LiteralStageA StageA(const BoundLiteral& lit, const BoundsOptions& options) {
+    if (options.literals && !lit.complemented)
+        if (const LiteralCache::Entry* e = options.literals->Find(lit.halfSpace))
+            return {e->fn, e->box, e->centre, e->hasCentre};
+    LiteralStageA a;
+    a.f = MakeInsideFn(*lit.halfSpace, lit.complemented);
+    a.box = AnalyticBox(a.f, &a.centre, &a.hasCentre);
+    return a;
+}
+
+// True when the literal provably holds on all of the finite box b0 (centre c, half-sizes h):
+// it cannot shape the set inside b0.
+bool HoldsOnAll(const InsideFn& f, const double c[3], const double h[3]) {
+    const Range r = RangeFromLocal(EvaluateLocal(f, c), f.a, f.lamMin, f.lamMax, h, nullptr);
+    return r.hi <= r.margin;
+}
+
+void CentreAndHalf(const Box3& b, double c[3], double h[3]) {
+    for (int j = 0; j < 3; ++j) {
+        c[j] = 0.5 * b.lo[j] + 0.5 * b.hi[j];
+        h[j] = 0.5 * b.hi[j] - 0.5 * b.lo[j];
+    }
+}
+
+// One shaping quadric whose analytic box `own` is B0's on every axis it bounds: within B0 the
+// set is its ellipse/ellipsoid section times B0's range on its free axes (AnalyticBox bounds a
+// quadric only when it is positive definite on the axes it depends on and free along the
+// others), so B0 is exact.
+bool OwnBoxIsB0(const Box3& own, const Box3& b0) {
+    bool exact = false;
+    for (int i = 0; i < 3; ++i) {
+        if (!(std::isfinite(own.lo[i]) && std::isfinite(own.hi[i]))) continue;
+        exact = own.lo[i] == b0.lo[i] && own.hi[i] == b0.hi[i];
+        if (!exact) break;
+    }
+    return exact;
+}
+
 }  // namespace
 
 Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOptions& options,
@@ -208,23 +254,9 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     if (literals.size() == 1) {
         // One literal (a sphere, an ellipsoid): the steps below up to the analytic stage's
         // answer, without their lists (four allocations a body, most of the cost of bounding
-        // 100,000 spheres). The same values in the same order; when the analytic stage does not
-        // decide, the general path below starts over.
-        const BoundLiteral& lit = literals[0];
-        const LiteralCache::Entry* cached =
-            options.literals && !lit.complemented ? options.literals->Find(lit.halfSpace) : nullptr;
-        InsideFn f;
-        Box3 own;
-        if (cached) {
-            f = cached->fn;
-            own = cached->box;
-        } else {
-            f = MakeInsideFn(*lit.halfSpace, lit.complemented);
-            Vec3 centre;
-            bool hasCentre = false;
-            own = AnalyticBox(f, &centre, &hasCentre);
-        }
-        const Box3 b0 = Box3::Everything().Intersected(own);
+        // 100,000 spheres); when that stage does not decide, the general path starts over.
+        const LiteralStageA a = StageA(literals[0], options);
+        const Box3 b0 = Box3::Everything().Intersected(a.box);
         if (b0.Empty()) {
             if (stats) ++stats->bodies;
             return Box3{};
@@ -232,23 +264,10 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
         bool decided = false;
         if (b0.Finite()) {
             double c[3], h[3];
-            for (int j = 0; j < 3; ++j) {
-                c[j] = 0.5 * b0.lo[j] + 0.5 * b0.hi[j];
-                h[j] = 0.5 * b0.hi[j] - 0.5 * b0.lo[j];
-            }
-            const Range r =
-                RangeFromLocal(EvaluateLocal(f, c), f.a, f.lamMin, f.lamMax, h, nullptr);
-            decided = r.hi <= r.margin;  // the literal holds on all of B0: no shaping literal
+            CentreAndHalf(b0, c, h);
+            decided = HoldsOnAll(a.f, c, h);  // no shaping literal
         }
-        if (!decided && !f.isPlane) {
-            bool exact = false;
-            for (int i = 0; i < 3; ++i) {
-                if (!(std::isfinite(own.lo[i]) && std::isfinite(own.hi[i]))) continue;
-                exact = own.lo[i] == b0.lo[i] && own.hi[i] == b0.hi[i];
-                if (!exact) break;
-            }
-            decided = exact;
-        }
+        if (!decided && !a.f.isPlane) decided = OwnBoxIsB0(a.box, b0);
         if (decided) {
             if (stats) {
                 ++stats->bodies;
@@ -265,19 +284,10 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     boxes.reserve(literals.size());
     Box3 b0 = Box3::Everything();
     for (const BoundLiteral& lit : literals) {
-        const LiteralCache::Entry* cached =
-            options.literals && !lit.complemented ? options.literals->Find(lit.halfSpace) : nullptr;
-        if (cached) {  // what the two calls below would give (literal_cache.h)
-            fns.push_back(cached->fn);
-            boxes.push_back(cached->box);
-            if (cached->hasCentre) seeds.push_back(cached->centre);
-        } else {
-            fns.push_back(MakeInsideFn(*lit.halfSpace, lit.complemented));
-            Vec3 centre;
-            bool hasCentre = false;
-            boxes.push_back(AnalyticBox(fns.back(), &centre, &hasCentre));
-            if (hasCentre) seeds.push_back(centre);
-        }
+        const LiteralStageA a = StageA(lit, options);
+        fns.push_back(a.f);
+        boxes.push_back(a.box);
+        if (a.hasCentre) seeds.push_back(a.centre);
         b0 = b0.Intersected(boxes.back());
     }
     if (b0.Empty()) return Box3{};
@@ -287,16 +297,9 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
     int shapingIndex = -1;
     bool b0Finite = b0.Finite();
     double c[3], h[3];
-    for (int j = 0; j < 3; ++j) {
-        c[j] = 0.5 * b0.lo[j] + 0.5 * b0.hi[j];
-        h[j] = 0.5 * b0.hi[j] - 0.5 * b0.lo[j];
-    }
+    CentreAndHalf(b0, c, h);
     for (std::size_t i = 0; i < fns.size(); ++i) {
-        if (b0Finite) {
-            const InsideFn& f = fns[i];
-            Range r = RangeFromLocal(EvaluateLocal(f, c), f.a, f.lamMin, f.lamMax, h, nullptr);
-            if (r.hi <= r.margin) continue;
-        }
+        if (b0Finite && HoldsOnAll(fns[i], c, h)) continue;
         shaping.push_back(fns[i]);
         shapingIndex = static_cast<int>(i);
     }
@@ -304,19 +307,9 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
         if (stats) ++stats->analyticOnly;
         return b0;
     }
-    // One shaping quadric whose analytic bounds are B0's on every axis it bounds: within B0 the
-    // set is its ellipse/ellipsoid section times B0's range on its free axes (AnalyticBox bounds a
-    // quadric only when it is positive definite on the axes it depends on and free along the
-    // others), so B0 is exact.
+    // One shaping quadric whose analytic box is B0 (OwnBoxIsB0): B0 is exact.
     if (shaping.size() == 1 && !shaping[0].isPlane) {
-        const Box3& own = boxes[shapingIndex];
-        bool exact = false;
-        for (int i = 0; i < 3; ++i) {
-            if (!(std::isfinite(own.lo[i]) && std::isfinite(own.hi[i]))) continue;
-            exact = own.lo[i] == b0.lo[i] && own.hi[i] == b0.hi[i];
-            if (!exact) break;
-        }
-        if (exact) {
+        if (OwnBoxIsB0(boxes[static_cast<std::size_t>(shapingIndex)], b0)) {
             if (stats) ++stats->analyticOnly;
             return b0;
         }
