@@ -191,6 +191,10 @@ ShadingModel ParseShading(const std::string& name) {
 
 struct Rendered {
     Frame frame;
+    // The Frame keeps normals packed and solids per body (frame.h): their arrays for Python are
+    // unpacked once, on first use.
+    std::vector<double> normals;
+    std::vector<std::int32_t> solids;
     Image image;                     // RGB, linear light (io/image.h)
     std::vector<std::uint8_t> srgb;  // image.pixels sRGB-encoded: the bytes a PNG file holds
     RenderReport report;
@@ -576,16 +580,23 @@ PYBIND11_MODULE(quadrix, m) {
             "depth",
             [hw](py::object self) {
                 auto& r = self.cast<Rendered&>();
-                return MakeArray(self, r.frame.depth.data(), hw(r), "float64");
+                return MakeArray(self, r.frame.depth.data(), hw(r), "float32");
             },
-            "H×W float64 device z (pixels; +inf where nothing is drawn)")
+            "H×W float32 device z (pixels; +inf where nothing is drawn)")
         .def_property_readonly(
             "normals",
             [hw3](py::object self) {
                 auto& r = self.cast<Rendered&>();
-                static_assert(sizeof(Vec3) == 3 * sizeof(double));
-                return MakeArray(self, reinterpret_cast<const double*>(r.frame.normal.data()),
-                                 hw3(r), "float64");
+                if (r.normals.size() != 3 * r.frame.normal.size()) {
+                    r.normals.resize(3 * r.frame.normal.size());
+                    for (std::size_t i = 0; i < r.frame.normal.size(); ++i) {
+                        const Vec3 n = r.frame.normal[i];
+                        r.normals[3 * i] = n.x;
+                        r.normals[3 * i + 1] = n.y;
+                        r.normals[3 * i + 2] = n.z;
+                    }
+                }
+                return MakeArray(self, r.normals.data(), hw3(r), "float64");
             },
             "H×W×3 float64 world-space unit normals facing the viewer (0 where empty)")
         .def_property_readonly("surface",
@@ -601,7 +612,12 @@ PYBIND11_MODULE(quadrix, m) {
         .def_property_readonly("solid",
                                [hw](py::object self) {
                                    auto& r = self.cast<Rendered&>();
-                                   return MakeArray(self, r.frame.solid.data(), hw(r), "int32");
+                                   if (r.solids.size() != r.frame.body.size()) {
+                                       r.solids.resize(r.frame.body.size());
+                                       for (std::size_t i = 0; i < r.solids.size(); ++i)
+                                           r.solids[i] = r.frame.Solid(i);
+                                   }
+                                   return MakeArray(self, r.solids.data(), hw(r), "int32");
                                })
         .def_readonly("surface_names", &Rendered::surfaceNames)
         .def_readonly("body_names", &Rendered::bodyNames)

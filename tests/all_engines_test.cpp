@@ -274,17 +274,18 @@ TEST(AllEnginesReference, RaycastEqualsTheSharedEvaluatorBitForBit) {
                 }
                 const std::size_t i = frame.Index(x, y);
                 covered += bestSolid != Frame::kNone;
-                const bool same =
-                    bestSolid == Frame::kNone
-                        ? frame.solid[i] == Frame::kNone
-                        : frame.depth[i] == best.t && frame.surface[i] == best.halfSpace &&
-                              frame.body[i] == best.body && frame.solid[i] == bestSolid;
+                const bool same = bestSolid == Frame::kNone
+                                      ? frame.Solid(i) == Frame::kNone
+                                      : frame.depth[i] == static_cast<float>(best.t) &&
+                                            frame.surface[i] == best.halfSpace &&
+                                            frame.body[i] == best.body &&
+                                            frame.Solid(i) == bestSolid;
                 if (!same && mismatches++ == 0)
                     first = fmt::format(
                         "({}, {}): evaluator t {} surface {} solid {}, raycast t {} "
                         "surface {} solid {}",
                         x, y, best.t, best.halfSpace, bestSolid, frame.depth[i], frame.surface[i],
-                        frame.solid[i]);
+                        frame.Solid(i));
             }
         EXPECT_GT(covered, 100u) << scene.name;
         EXPECT_EQ(mismatches, 0u) << scene.name << ": first at " << first;
@@ -494,7 +495,7 @@ bool SameBits(const Frame& a, const Frame& b) {
     };
     return a.width == b.width && a.height == b.height && same(a.depth, b.depth) &&
            same(a.normal, b.normal) && same(a.surface, b.surface) && same(a.body, b.body) &&
-           same(a.solid, b.solid);
+           a.bodySolid == b.bodySolid;
 }
 
 // A region (sort-first rendering, frame/pixel_region.h) through every engine: its pixels are the

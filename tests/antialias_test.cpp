@@ -183,11 +183,14 @@ TEST(SampleTracer, EqualsTheRaycastEngineAtPixelCentres) {
                 const raycast::Sample s = tracer.Trace(i + 0.5, j + 0.5);
                 ASSERT_EQ(s.surface, r.frame.surface[k]) << path << " " << i << "," << j;
                 ASSERT_EQ(s.body, r.frame.body[k]) << path << " " << i << "," << j;
-                ASSERT_EQ(s.solid, r.frame.solid[k]) << path << " " << i << "," << j;
+                ASSERT_EQ(s.solid, r.frame.Solid(k)) << path << " " << i << "," << j;
                 if (!s.Covered()) continue;
                 ++covered;
-                ASSERT_EQ(s.depth, r.frame.depth[k]) << path << " " << i << "," << j;
-                ASSERT_EQ(s.normal, r.frame.normal[k]) << path << " " << i << "," << j;
+                // The Frame's depth and normal are the tracer's, rounded and packed (frame.h).
+                ASSERT_EQ(static_cast<float>(s.depth), r.frame.depth[k])
+                    << path << " " << i << "," << j;
+                ASSERT_EQ(PackedNormal(s.normal), r.frame.normal[k])
+                    << path << " " << i << "," << j;
             }
         EXPECT_GT(covered, 500) << path;
     }
@@ -233,9 +236,9 @@ TEST(SampleTracer, BoxTreesChangeNoSampleAndNoShadow) {
             const std::size_t k = r.frame.Index(i, j);
             const raycast::Sample s = indexed.Trace(i + 0.5, j + 0.5);
             ASSERT_EQ(s.surface, r.frame.surface[k]) << i << "," << j;
-            ASSERT_EQ(s.solid, r.frame.solid[k]) << i << "," << j;
+            ASSERT_EQ(s.solid, r.frame.Solid(k)) << i << "," << j;
             if (s.Covered()) {
-                ASSERT_EQ(s.depth, r.frame.depth[k]) << i << "," << j;
+                ASSERT_EQ(static_cast<float>(s.depth), r.frame.depth[k]) << i << "," << j;
             }
             covered += s.Covered();
             const raycast::Sample a = indexed.Trace(i + 0.37, j + 0.81),

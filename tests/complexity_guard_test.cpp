@@ -78,7 +78,7 @@ TEST(ComplexityGuard, ScanlineHandsDeepOverlapToRaycast) {
     EXPECT_EQ(Counter(scan.report.stats, "overlap_solids_to_raycast"), 1);
     EXPECT_GT(ray.frame.CoveredCount(), 1000u);
     EXPECT_EQ(scan.frame.surface, ray.frame.surface);
-    EXPECT_EQ(scan.frame.solid, ray.frame.solid);
+    EXPECT_EQ(scan.frame.bodySolid, ray.frame.bodySolid);
     EXPECT_EQ(scan.frame.depth, ray.frame.depth);
 }
 

@@ -71,7 +71,7 @@ TEST(EyeInsideSolid, WithAWindowTheSolidIsSeenFromInsideWithAWarning) {
     ASSERT_EQ(f.width, 48);
     for (std::size_t i = 0; i < f.depth.size(); ++i) {
         ASSERT_TRUE(std::isfinite(f.depth[i])) << "pixel " << i << " shows the background";
-        ASSERT_EQ(f.solid[i], 0);
+        ASSERT_EQ(f.Solid(i), 0);
     }
     // Pixel (24, 24) has its centre 0.5 px off the axis; the far side there is within 1e-3 of
     // z = 1 in world space (the window is 2 units at distance 0.5: 0.5 px = 0.0104 units at d).

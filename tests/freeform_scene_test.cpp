@@ -65,7 +65,7 @@ TEST(FreeformScene, BezierSquareCoversItsPixels) {
             const std::size_t i = f.Index(x, y);
             ASSERT_NE(f.surface[i], Frame::kNone) << x << "," << y;
             EXPECT_EQ(run->r.flat.SurfaceColor(f.surface[i], f.body[i]).g, 0.0);
-            EXPECT_NEAR(std::fabs(f.normal[i].z), 1.0, 1e-9);
+            EXPECT_NEAR(std::fabs(f.Normal(i).z), 1.0, 1e-9);
         }
     EXPECT_EQ(f.surface[f.Index(10, 10)], Frame::kNone);
 }

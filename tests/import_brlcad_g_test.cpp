@@ -316,7 +316,7 @@ TEST(ImportBrlcadG, SamplesRenderTheSameAsTheAsciiDump) {
         std::size_t differ = 0;
         for (std::size_t i = 0; i < ra.frame.depth.size(); ++i)
             differ += ra.frame.surface[i] != rg.frame.surface[i] ||
-                      ra.frame.solid[i] != rg.frame.solid[i] ||
+                      ra.frame.Solid(i) != rg.frame.Solid(i) ||
                       !(ra.frame.depth[i] == rg.frame.depth[i] ||
                         (std::isinf(ra.frame.depth[i]) && std::isinf(rg.frame.depth[i])));
         EXPECT_EQ(differ, 0u) << f;

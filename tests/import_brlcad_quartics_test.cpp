@@ -363,7 +363,8 @@ TEST(ImportBrlcadPipe, LanguagePipeDrawsLikeTheAscPipe) {
                 ++differ;
             } else if (ca) {
                 const std::size_t i = a.frame.Index(x, y);
-                worstDepth = std::max(worstDepth, std::fabs(a.frame.depth[i] - b.frame.depth[i]));
+                worstDepth =
+                    std::max<double>(worstDepth, std::fabs(a.frame.depth[i] - b.frame.depth[i]));
             }
         }
     EXPECT_GT(covered, 3000);

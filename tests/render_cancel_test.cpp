@@ -84,7 +84,7 @@ TEST(RenderCancel, EveryEngineStopsMidFrameAndTheNextFrameIsWhole) {
         ASSERT_TRUE(ctx.Render(e, frame, report, diags)) << info.name;
         EXPECT_EQ(frame.depth, expected.depth) << info.name;
         EXPECT_EQ(frame.surface, expected.surface) << info.name;
-        EXPECT_EQ(frame.solid, expected.solid) << info.name;
+        EXPECT_EQ(frame.bodySolid, expected.bodySolid) << info.name;
     }
 }
 

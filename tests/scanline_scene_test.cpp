@@ -335,8 +335,8 @@ TEST(ScanlineScene, ShadingIntervalAndFastShading) {
     // pixel on this radius) a chord of Δ = 4 pixels leaves an error below 0.01.
     double worst = 0;
     for (std::size_t i = 0; i < f1.normal.size(); ++i)
-        if (f1.surface[i] >= 0 && std::fabs(f1.normal[i].z) > 0.5)
-            worst = std::max(worst, Length(f1.normal[i] - f4.normal[i]));
+        if (f1.surface[i] >= 0 && std::fabs(f1.Normal(i).z) > 0.5)
+            worst = std::max(worst, Length(f1.Normal(i) - f4.Normal(i)));
     EXPECT_GT(worst, 0);
     EXPECT_LT(worst, 0.01);
     // Unknown options are rejected.

@@ -70,13 +70,13 @@ TEST(SectionPlane, CutsASphereThroughItsCentreWithAFlatFaceTowardTheViewer) {
             const double r = std::hypot(x + 0.5 - centre.x, y + 0.5 - centre.y);
             if (std::fabs(r - radius) < 1) continue;  // the rim may go either way
             const std::size_t i = b.Index(x, y);
-            EXPECT_EQ(b.solid[i] != Frame::kNone, r < radius) << x << " " << y;
-            EXPECT_EQ(a.solid[i] != Frame::kNone, r < radius) << x << " " << y;
+            EXPECT_EQ(b.Solid(i) != Frame::kNone, r < radius) << x << " " << y;
+            EXPECT_EQ(a.Solid(i) != Frame::kNone, r < radius) << x << " " << y;
             if (r >= radius) continue;
             ++inside;
             EXPECT_EQ(b.surface[i], section);
             EXPECT_NEAR(b.depth[i], centre.z, 1e-9 * flat.width);
-            EXPECT_NEAR(b.normal[i].z, -1, 1e-12);
+            EXPECT_NEAR(b.Normal(i).z, -1, 1e-12);
             EXPECT_LT(a.depth[i], b.depth[i]);  // the uncut sphere is nearer
         }
     EXPECT_GT(inside, 5000);

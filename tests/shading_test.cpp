@@ -209,7 +209,7 @@ TEST(Shading, TheDefaultRigLightsFacesParallelToZ) {
             const std::size_t i = r.frame.Index(x, y);
             if (!r.frame.Covered(x, y)) continue;
             // The top plane's world normal is +y.
-            if (std::fabs(r.frame.normal[i].y - 1) > 1e-9) continue;
+            if (std::fabs(r.frame.Normal(i).y - 1) > 1e-9) continue;
             ++top;
             dark += img.At(x, y)[0] < 40;
         }

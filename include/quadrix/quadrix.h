@@ -197,6 +197,9 @@ struct RgbImage {
 struct Rendering {
     static constexpr std::int32_t kNone = -1;  // an id of a background pixel
 
+    // Depth and normal as the renderer's Frame keeps them (16 bytes a pixel): depth is a float
+    // value (within half a float ulp of the exact depth), the normal within about 4e-5 radians
+    // of the exact one (exact along the axes).
     int width = 0, height = 0;
     std::vector<double> depth;  // device z (increases away from the viewer); +inf = background
     std::vector<double>

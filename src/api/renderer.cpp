@@ -133,13 +133,15 @@ Rendering Renderer::Render(const Scene& scene, const Options& options) {
     r.depth.assign(frame.depth.begin(), frame.depth.end());
     r.normal.resize(frame.normal.size() * 3);
     for (std::size_t i = 0; i < frame.normal.size(); ++i) {
-        r.normal[3 * i] = frame.normal[i].x;
-        r.normal[3 * i + 1] = frame.normal[i].y;
-        r.normal[3 * i + 2] = frame.normal[i].z;
+        const Vec3 n = frame.normal[i];
+        r.normal[3 * i] = n.x;
+        r.normal[3 * i + 1] = n.y;
+        r.normal[3 * i + 2] = n.z;
     }
     r.surface.assign(frame.surface.begin(), frame.surface.end());
     r.body.assign(frame.body.begin(), frame.body.end());
-    r.solid.assign(frame.solid.begin(), frame.solid.end());
+    r.solid.resize(frame.body.size());
+    for (std::size_t i = 0; i < frame.body.size(); ++i) r.solid[i] = frame.Solid(i);
     const FlatScene& flat = ctx.Flat();
     for (const auto& h : flat.halfSpaces) r.surfaceNames.push_back(h.name);
     for (const auto& f : flat.freeforms) r.surfaceNames.push_back(f.name);

@@ -360,7 +360,7 @@ TEST(BatchSortFirst, RowsShadedFromTheirHaloAreTheWholePicturesBits) {
 TEST(BatchOutputCheck, CompleteFilesOfTheRightSizeOnly) {
     Dir dir;
     Frame frame(6, 4);
-    frame.Offer(frame.Index(2, 1), 0.5, Vec3{0, 0, 1}, 0, 0, 0);
+    frame.Offer(frame.Index(2, 1), 0.5, Vec3{0, 0, 1}, 0, 0);
     Image image(6, 4, 3);
     for (auto& p : image.pixels) p = 128;
     for (const char* name : {"p.png", "p.ppm", "p.pgm", "p.qxf", "p.exr"}) {

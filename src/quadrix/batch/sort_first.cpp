@@ -25,7 +25,7 @@ std::vector<RowSpan> SortFirstRows(int width, int height, int rank, int ranks) {
 
 namespace {
 
-constexpr std::size_t kPixelBytes = sizeof(double) + sizeof(Vec3) + 3 * sizeof(std::int32_t);  // 60
+constexpr std::size_t kPixelBytes = Frame::kBytesPerPixel;
 constexpr int kFrameTag = 8, kHaloTag = 9, kImageTag = 10;
 
 using Runs = std::vector<std::pair<std::size_t, std::size_t>>;  // (first pixel index, count)
@@ -57,7 +57,7 @@ std::size_t PixelCount(const Runs& runs) {
     return n;
 }
 
-// The runs' pixels, array by array (depth, normal, surface, body, solid), packed or unpacked.
+// The runs' pixels, array by array (depth, normal, surface, body), packed or unpacked.
 template <bool kPack>
 void Transfer(std::conditional_t<kPack, const Frame, Frame>& f, const Runs& runs, char* buffer) {
     auto move = [&](auto& array) {
@@ -74,7 +74,6 @@ void Transfer(std::conditional_t<kPack, const Frame, Frame>& f, const Runs& runs
     move(f.normal);
     move(f.surface);
     move(f.body);
-    move(f.solid);
 }
 
 // The runs' image pixels: the 8-bit values, then Image::linear when the image has it.

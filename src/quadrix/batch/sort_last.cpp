@@ -13,12 +13,12 @@ MpiMessage ArrayMessage(bool send, Array& a, int peer) {
             peer, 7};
 }
 
-// The Frame's five arrays to or from `peer`.
+// The Frame's four arrays to or from `peer` (its solids are its bodies', frame.h: every rank's
+// scene has every body, so rank 0's table serves all).
 void ExchangeFrame(bool send, Frame& f, int peer) {
-    const MpiMessage m[5] = {ArrayMessage(send, f.depth, peer), ArrayMessage(send, f.normal, peer),
-                             ArrayMessage(send, f.surface, peer), ArrayMessage(send, f.body, peer),
-                             ArrayMessage(send, f.solid, peer)};
-    Mpi().exchange(m, 5);
+    const MpiMessage m[4] = {ArrayMessage(send, f.depth, peer), ArrayMessage(send, f.normal, peer),
+                             ArrayMessage(send, f.surface, peer), ArrayMessage(send, f.body, peer)};
+    Mpi().exchange(m, 4);
 }
 
 }  // namespace

@@ -19,6 +19,12 @@ std::string Engine::ValidateOptions(const RenderOptions& options) const {
     return CheckOptions(parsed);
 }
 
+void SetBodySolids(const FlatScene& scene, Frame& frame) {
+    frame.bodySolid.resize(scene.bodies.size());
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+        frame.bodySolid[b] = scene.bodies[b].solid;
+}
+
 RenderStats Engine::Render(const FlatScene& scene, const RenderOptions& options, Frame& frame) {
     EngineOptions parsed;
     std::string error = ParseEngineOptions(Name(), Schema(), options.engineOptions, parsed);
@@ -30,6 +36,8 @@ RenderStats Engine::Render(const FlatScene& scene, const RenderOptions& options,
         return stats;
     }
     region_ = options.region ? &*options.region : nullptr;
+    // Before Draw: an engine may read its Frame's solids (comparisons against raycast).
+    SetBodySolids(scene, frame);
     RenderStats stats;
     if (options.threads > 0) {
         tbb::task_arena arena(options.threads);

@@ -103,6 +103,10 @@ class Engine {
     const PixelRegion* region_ = nullptr;
 };
 
+// Fills frame.bodySolid from the scene (each body's FlatBody::solid): what Frame::Solid reads.
+// Render calls it before Draw; whoever fills a Frame another way calls it too.
+void SetBodySolids(const FlatScene& scene, Frame& frame);
+
 // Registry shortcuts (engines/registry.h): nullptr when `name` is not a registered engine.
 std::unique_ptr<Engine> MakeEngine(std::string_view name);
 std::vector<std::string> EngineNames();

@@ -28,7 +28,7 @@ Extent Covered(const Frame& f, int solid = -1) {
     for (int r = 0; r < f.height; ++r)
         for (int c = 0; c < f.width; ++c) {
             if (!f.Covered(c, r)) continue;
-            if (solid >= 0 && f.solid[f.Index(c, r)] != solid) continue;
+            if (solid >= 0 && f.Solid(f.Index(c, r)) != solid) continue;
             e.c0 = std::min(e.c0, c), e.c1 = std::max(e.c1, c);
             e.r0 = std::min(e.r0, r), e.r1 = std::max(e.r1, r);
         }
@@ -264,9 +264,9 @@ TEST(Framing, PicturesShowWorldSpaceLeftHanded) {
     EXPECT_GT(x.c0, o.c1);  // +x to the right
     EXPECT_LT(y.r1, o.r0);  // +y up (smaller rows)
     // +z away: the sphere at z = 3 is behind the one at the origin where they overlap.
-    EXPECT_EQ(f.solid[f.Index(100, 100)], index("o"));
-    EXPECT_EQ(f.solid[f.Index(110, 90)], index("o"));  // inside both discs
-    EXPECT_EQ(f.solid[f.Index(120, 80)], index("z"));  // inside z's disc only
+    EXPECT_EQ(f.Solid(f.Index(100, 100)), index("o"));
+    EXPECT_EQ(f.Solid(f.Index(110, 90)), index("o"));  // inside both discs
+    EXPECT_EQ(f.Solid(f.Index(120, 80)), index("z"));  // inside z's disc only
 }
 
 }  // namespace

@@ -131,12 +131,13 @@ inline Box3 SphereBounds(const Vec3& c, double r, double margin = 1e-6) {
     return {c - e, c + e};
 }
 
-// True when some depth is NaN or some normal component is NaN or infinite.
+// True when some depth is NaN or a covered pixel has no normal (a NaN, infinite or zero normal
+// packs as the zero vector, frame/packed_normal.h).
 inline bool FrameHasNaN(const Frame& f) {
-    for (double d : f.depth)
+    for (float d : f.depth)
         if (std::isnan(d)) return true;
-    for (const Vec3& n : f.normal)
-        if (!IsFinite(n)) return true;
+    for (std::size_t i = 0; i < f.normal.size(); ++i)
+        if (f.surface[i] != Frame::kNone && f.normal[i] == PackedNormal{}) return true;
     return false;
 }
 

@@ -70,7 +70,7 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
             }
             if (ca && cr) {
                 ++c.coveredBoth;
-                c.sameSolid += a.solid[i] == ref.solid[i];
+                c.sameSolid += a.Solid(i) == ref.Solid(i);
                 if (a.surface[i] == ref.surface[i]) {
                     ++c.sameSurface;
                     c.sameSurfaceOtherBody += a.body[i] != ref.body[i];
@@ -103,7 +103,7 @@ FrameComparison CompareFrames(const Frame& a, const Frame& ref, const CompareOpt
                     c.firstDifference = fmt::format(
                         "pixel ({}, {}): surface {} vs {}, solid {} vs {}, depth {:.17g} vs "
                         "{:.17g}",
-                        x, y, a.surface[i], ref.surface[i], a.solid[i], ref.solid[i], a.depth[i],
+                        x, y, a.surface[i], ref.surface[i], a.Solid(i), ref.Solid(i), a.depth[i],
                         ref.depth[i]);
             }
         }
@@ -132,12 +132,12 @@ std::string FirstBitDifference(const Frame& a, const Frame& b) {
         for (int x = 0; x < a.width; ++x) {
             const std::size_t i = a.Index(x, y);
             if (a.depth[i] != b.depth[i] || !(a.normal[i] == b.normal[i]) ||
-                a.surface[i] != b.surface[i] || a.body[i] != b.body[i] || a.solid[i] != b.solid[i])
+                a.surface[i] != b.surface[i] || a.body[i] != b.body[i] || a.Solid(i) != b.Solid(i))
                 return fmt::format(
                     "pixel ({}, {}): depth {:.17g} vs {:.17g}, surface {} vs {}, body {} vs {}, "
                     "solid {} vs {}",
                     x, y, a.depth[i], b.depth[i], a.surface[i], b.surface[i], a.body[i], b.body[i],
-                    a.solid[i], b.solid[i]);
+                    a.Solid(i), b.Solid(i));
         }
     return {};
 }

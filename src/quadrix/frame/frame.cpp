@@ -14,8 +14,8 @@ std::size_t RoundUp(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugeP
 // Mappings freed and kept for the next allocation of the same length: the Frame's arrays, the
 // image and the window's pixels made and dropped for every frame (the viewer's) then cost neither
 // mmap/munmap nor the kernel's zeroing and faulting of their pages each time (measured in
-// docs/performance.md "Viewer"). A 1280x720 frame's set (depth, normals, three id arrays, the RGB
-// image, the display words: 44 MiB) fits; at most kKeptSlots mappings of at most kKeptBytes each
+// docs/performance.md "Viewer"). A 1280x720 frame's set (depth, normals, two id arrays, the RGB
+// image, the display words: 20 MiB) fits; at most kKeptSlots mappings of at most kKeptBytes each
 // and kKeptTotal in all are kept, so a big Frame's memory is returned when it is freed.
 constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
 constexpr std::size_t kKeptTotal = std::size_t{96} << 20;
@@ -101,13 +101,12 @@ void AdviseSmallPages(Frame& frame) {
     AdviseSmall(frame.normal);
     AdviseSmall(frame.surface);
     AdviseSmall(frame.body);
-    AdviseSmall(frame.solid);
 }
 
 void ComposeMin(Frame& into, const Frame& other) {
     for (std::size_t i = 0; i < into.depth.size() && i < other.depth.size(); ++i)
-        into.Offer(i, other.depth[i], other.normal[i], other.surface[i], other.body[i],
-                   other.solid[i]);
+        into.Offer(i, other.depth[i], other.normal[i], other.surface[i], other.body[i]);
+    if (into.bodySolid.size() < other.bodySolid.size()) into.bodySolid = other.bodySolid;
 }
 
 }  // namespace quadrix

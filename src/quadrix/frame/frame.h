@@ -9,15 +9,16 @@
 #include <utility>
 #include <vector>
 
+#include "quadrix/frame/packed_normal.h"
 #include "quadrix/math/vec.h"
 
 namespace quadrix {
 
 // The allocator of the Frame's arrays: like std::allocator, except that an element constructed
-// without arguments (vector::resize) is left as the memory holds it. The elements (double,
-// int32, Vec3) are implicit-lifetime types, so this is well defined, and it lets an engine that
-// writes every pixel (Frame::ResizeForOverwrite) size a fresh Frame without first writing 40 MB
-// from one thread: the pages are first touched by the engine's own parallel writes.
+// without arguments (vector::resize) is left as the memory holds it. The elements (float,
+// int32, PackedNormal) are implicit-lifetime types, so this is well defined, and it lets an engine
+// that writes every pixel (Frame::ResizeForOverwrite) size a fresh Frame without first writing 40
+// MB from one thread: the pages are first touched by the engine's own parallel writes.
 //
 // Arrays of 2 MiB and more are mapped on their own, aligned to 2 MiB, with
 // madvise(MADV_HUGEPAGE): where transparent huge pages are enabled for madvise (Debian's
@@ -63,15 +64,37 @@ bool operator==(const FrameAllocator<T>&, const FrameAllocator<U>&) noexcept {
 template <class T>
 using FrameArray = std::vector<T, FrameAllocator<T>>;
 
+// A pixel costs 16 bytes (issue 24 item 3; it was 44): depth as a float, the normal packed in
+// 32 bits, the surface and body as 32-bit ids. The solid is not stored per pixel: it is the
+// body's solid (FlatBody::solid), looked up in a table of one entry per body.
+//
+// Depth. Engines compute depth in double and keep it so in their own tiles and z-buffers where
+// they compare or compose (raycast's tiles, Pixel-Powers' registers, the scanline's spans); the
+// Frame holds it rounded to the nearest float. Device z is in pixel units (|z| is a few hundred
+// for a 720p picture, a few thousand at most), so the rounding moves a point by at most half a
+// float ulp: 1.5e-5 pixel at |z| = 256, 1.2e-4 at 2048. The shaders read depth for the world
+// point of point lights and for the start of shadow rays (shade/shadows.h starts them beyond
+// the rounding), the viewer for picking and edges; none needs more.
+//
+// Normal. PackedNormal (octahedral, 2 × 16 bits): at most PackedNormal::kMaxError (7e-5)
+// radians from the engine's double normal, exact along the axes.
+//
+// Composition keeps the nearer sample by the stored (float) depth, ties keeping the earlier
+// one, so Frames compose the same however their engines rounded.
 struct Frame {
     static constexpr std::int32_t kNone = -1;
+    static constexpr std::size_t kBytesPerPixel =
+        sizeof(float) + sizeof(PackedNormal) + 2 * sizeof(std::int32_t);
+    static_assert(kBytesPerPixel == 16);
 
     int width = 0, height = 0;
-    FrameArray<double> depth;          // device z; +inf = background
-    FrameArray<Vec3> normal;           // world-space unit normal facing the viewer; 0 = background
+    FrameArray<float> depth;           // device z, rounded to float; +inf = background
+    FrameArray<PackedNormal> normal;   // world-space unit normal facing the viewer; 0 = background
     FrameArray<std::int32_t> surface;  // FlatScene half-space index, kNone = background
     FrameArray<std::int32_t> body;     // FlatScene body index, kNone = background
-    FrameArray<std::int32_t> solid;    // FlatScene solid index, kNone = background
+    // Per body (not per pixel): the FlatScene solid it belongs to. Engine::Render sets it from
+    // the scene; a Frame read from a dump (io/writers.h) from the dump's own (body, solid) pairs.
+    std::vector<std::int32_t> bodySolid;
 
     Frame() = default;
     Frame(int w, int h) { Reset(w, h); }
@@ -80,11 +103,10 @@ struct Frame {
         width = w;
         height = h;
         std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-        depth.assign(n, HUGE_VAL);
-        normal.assign(n, Vec3{});
+        depth.assign(n, HUGE_VALF);
+        normal.assign(n, PackedNormal{});
         surface.assign(n, kNone);
         body.assign(n, kNone);
-        solid.assign(n, kNone);
     }
     // For engines that write every pixel: keeps the buffers (and their contents) when the size
     // is unchanged, so a warm frame is not cleared twice; otherwise new buffers whose contents
@@ -92,7 +114,7 @@ struct Frame {
     void ResizeForOverwrite(int w, int h) {
         const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
         if (w == width && h == height && depth.size() == n && normal.size() == n &&
-            surface.size() == n && body.size() == n && solid.size() == n)
+            surface.size() == n && body.size() == n)
             return;
         width = w;
         height = h;
@@ -100,20 +122,27 @@ struct Frame {
         normal = {};
         surface = {};
         body = {};
-        solid = {};
         depth.resize(n);
         normal.resize(n);
         surface.resize(n);
         body.resize(n);
-        solid.resize(n);
     }
     void SetBackground(std::size_t i) {
-        depth[i] = HUGE_VAL;
-        normal[i] = Vec3{};
+        depth[i] = HUGE_VALF;
+        normal[i] = PackedNormal{};
         surface[i] = kNone;
         body[i] = kNone;
-        solid[i] = kNone;
     }
+    // The solid seen at pixel i: kNone for the background, for a sample of no body (a freeform
+    // surface) and for a body the table does not know.
+    std::int32_t Solid(std::size_t i) const {
+        const std::int32_t b = body[i];
+        return b >= 0 && static_cast<std::size_t>(b) < bodySolid.size()
+                   ? bodySolid[static_cast<std::size_t>(b)]
+                   : kNone;
+    }
+    // The normal at pixel i, unpacked.
+    Vec3 Normal(std::size_t i) const { return normal[i]; }
     std::size_t Index(int x, int y) const {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                static_cast<std::size_t>(x);
@@ -125,18 +154,29 @@ struct Frame {
         return n;
     }
     // Writes a sample when it is nearer than what is there (ties keep the earlier one): the
-    // per-pixel minimum that composes Frames (DESIGN.md "unit of composition").
-    void Offer(std::size_t i, double z, const Vec3& n, std::int32_t surf, std::int32_t bod,
-               std::int32_t sol) {
-        if (z < depth[i]) {
-            depth[i] = z;
+    // per-pixel minimum that composes Frames (DESIGN.md "unit of composition"). Nearer is
+    // decided on the depth as stored, rounded to float.
+    void Offer(std::size_t i, double z, PackedNormal n, std::int32_t surf, std::int32_t bod) {
+        const float zf = static_cast<float>(z);
+        if (zf < depth[i]) {
+            depth[i] = zf;
             normal[i] = n;
             surface[i] = surf;
             body[i] = bod;
-            solid[i] = sol;
         }
     }
+    // Whether a sample at depth z would be kept by Offer (for z-buffers that skip the work of a
+    // sample's normal when it is hidden).
+    bool Nearer(std::size_t i, double z) const { return static_cast<float>(z) < depth[i]; }
 };
+
+// The most that storing depth z in the Frame (rounding to float) changes it: half a float ulp.
+// For comparisons of a Frame with exact values: |frame.depth[i] − z| ≤ DepthRounding(z) + the
+// engine's own error.
+inline double DepthRounding(double z) {
+    const float f = std::fabs(static_cast<float>(z));
+    return 0.5 * (static_cast<double>(std::nextafter(f, HUGE_VALF)) - static_cast<double>(f));
+}
 
 // Per-pixel minimum of two Frames of the same size (the union of their solids).
 void ComposeMin(Frame& into, const Frame& other);

@@ -64,9 +64,9 @@ std::size_t MemoryBudget() { return Budget().first; }
 void SetMemoryBudget(std::size_t bytes) { gCap.store(bytes); }
 
 std::size_t RenderBytes(long long width, long long height) {
-    // Frame: depth (8) + normal (24) + surface, body, solid ids (3 × 4) = 44 bytes a pixel; the
-    // RGB image 3; engines keep at most about one more depth and id per pixel (merging a second
-    // Frame keeps a whole second Frame: 44). 96 bytes a pixel covers all of these.
+    // Frame: 16 bytes a pixel (frame.h); the RGB image 3 and its linear floats 12; engines keep
+    // at most about one more double depth, normal and id per pixel (44), and merging keeps a
+    // second Frame (16). 96 bytes a pixel covers all of these.
     constexpr std::size_t kBytesPerPixel = 96;
     if (width <= 0 || height <= 0) return 0;
     return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * kBytesPerPixel;

@@ -28,11 +28,10 @@ std::vector<std::pair<int, int>> RowSpans(const PixelRegion& region, int y, int 
 }
 
 void FillBackground(Frame& f, std::size_t from, std::size_t n) {
-    std::fill_n(f.depth.begin() + static_cast<std::ptrdiff_t>(from), n, HUGE_VAL);
-    std::fill_n(f.normal.begin() + static_cast<std::ptrdiff_t>(from), n, Vec3{});
+    std::fill_n(f.depth.begin() + static_cast<std::ptrdiff_t>(from), n, HUGE_VALF);
+    std::fill_n(f.normal.begin() + static_cast<std::ptrdiff_t>(from), n, PackedNormal{});
     std::fill_n(f.surface.begin() + static_cast<std::ptrdiff_t>(from), n, Frame::kNone);
     std::fill_n(f.body.begin() + static_cast<std::ptrdiff_t>(from), n, Frame::kNone);
-    std::fill_n(f.solid.begin() + static_cast<std::ptrdiff_t>(from), n, Frame::kNone);
 }
 
 }  // namespace
@@ -86,16 +85,16 @@ void CopyRegion(Frame& into, const Frame& from, const PixelRegion& region) {
             std::copy_n(from.normal.begin() + i, n, into.normal.begin() + i);
             std::copy_n(from.surface.begin() + i, n, into.surface.begin() + i);
             std::copy_n(from.body.begin() + i, n, into.body.begin() + i);
-            std::copy_n(from.solid.begin() + i, n, into.solid.begin() + i);
         }
+    if (into.bodySolid.size() < from.bodySolid.size()) into.bodySolid = from.bodySolid;
 }
 
 void ComposeMinInRegion(Frame& into, const Frame& other, const PixelRegion& region) {
     for (int y = 0; y < into.height; ++y)
         for (const auto& [a, b] : RowSpans(region, y, into.width))
             for (std::size_t i = into.Index(a, y), e = into.Index(b, y); i < e; ++i)
-                into.Offer(i, other.depth[i], other.normal[i], other.surface[i], other.body[i],
-                           other.solid[i]);
+                into.Offer(i, other.depth[i], other.normal[i], other.surface[i], other.body[i]);
+    if (into.bodySolid.size() < other.bodySolid.size()) into.bodySolid = other.bodySolid;
 }
 
 }  // namespace quadrix

@@ -90,13 +90,14 @@ std::string WriteExr(OutputFile& file, const Frame& frame, const Image* image) {
     for (auto& c : nrm) c.resize(n);
     for (auto& c : ids) c.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        z[i] = static_cast<float>(frame.depth[i]);
-        nrm[0][i] = static_cast<float>(frame.normal[i].x);
-        nrm[1][i] = static_cast<float>(frame.normal[i].y);
-        nrm[2][i] = static_cast<float>(frame.normal[i].z);
+        z[i] = frame.depth[i];
+        const Vec3 normal = frame.normal[i];
+        nrm[0][i] = static_cast<float>(normal.x);
+        nrm[1][i] = static_cast<float>(normal.y);
+        nrm[2][i] = static_cast<float>(normal.z);
         ids[0][i] = static_cast<std::uint32_t>(frame.surface[i] + 1);
         ids[1][i] = static_cast<std::uint32_t>(frame.body[i] + 1);
-        ids[2][i] = static_cast<std::uint32_t>(frame.solid[i] + 1);
+        ids[2][i] = static_cast<std::uint32_t>(frame.Solid(i) + 1);
     }
 
     std::vector<ExrChannel> channels;

@@ -270,10 +270,10 @@ std::string WriteFrameDump(OutputFile& f, const Frame& frame) {
         for (int x = 0; x < frame.width; ++x) {
             std::size_t i = frame.Index(x, y);
             if (frame.surface[i] == Frame::kNone) continue;
-            const Vec3& n = frame.normal[i];
+            const Vec3 n = frame.normal[i];
             std::fprintf(f.stream(), "%d %d %.17g %.17g %.17g %.17g %d %d %d\n", x, y,
                          frame.depth[i], n.x, n.y, n.z, frame.surface[i], frame.body[i],
-                         frame.solid[i]);
+                         frame.Solid(i));
         }
     return {};
 }
@@ -346,6 +346,10 @@ struct DumpCursor {
     }
 };
 
+// The largest body id a dump may name: the Frame keeps a table of one solid per body.
+constexpr long long kMaxDumpBodies = 1LL << 26;
+constexpr std::int32_t kUnset = Frame::kNone - 1;
+
 }  // namespace
 
 std::string ReadFrameDump(const std::string& path, Frame& frame) {
@@ -374,6 +378,7 @@ std::string ReadFrameDump(const std::string& path, Frame& frame) {
         return fmt::format("{}:1:{}: error: {}", path, sizeColumn, e);
     if (!c.EndOfLine()) return at("expected the end of the header line");
     frame.Reset(static_cast<int>(w), static_cast<int>(h));
+    frame.bodySolid.clear();
     while (c.p < c.end) {
         if (c.EndOfLine()) continue;  // a blank line
         long long x, y, s, b, o;
@@ -387,13 +392,32 @@ std::string ReadFrameDump(const std::string& path, Frame& frame) {
         if (!c.Integer(s, kMin, kMax) || !c.Integer(b, kMin, kMax) || !c.Integer(o, kMin, kMax))
             return at("expected an id (surface, body, solid)");
         if (!c.EndOfLine()) return at("expected the end of the pixel line");
+        // The Frame keeps one solid per body (frame.h): a body's pixels must agree on it.
+        if (b < Frame::kNone || b >= kMaxDumpBodies || o < Frame::kNone)
+            return at(fmt::format("body {} or solid {} is not an id (-1 for none; bodies below {})",
+                                  b, o, kMaxDumpBodies));
+        if (b == Frame::kNone && o != Frame::kNone)
+            return at(
+                fmt::format("solid {} without a body (the Frame finds a pixel's solid by its "
+                            "body)",
+                            o));
+        if (b != Frame::kNone) {
+            const auto bi = static_cast<std::size_t>(b);
+            if (frame.bodySolid.size() <= bi) frame.bodySolid.resize(bi + 1, kUnset);
+            if (frame.bodySolid[bi] == kUnset)
+                frame.bodySolid[bi] = static_cast<std::int32_t>(o);
+            else if (frame.bodySolid[bi] != o)
+                return at(fmt::format("body {} is in solid {} here but in solid {} earlier", b, o,
+                                      frame.bodySolid[bi]));
+        }
         const std::size_t i = frame.Index(static_cast<int>(x), static_cast<int>(y));
-        frame.depth[i] = z;
-        frame.normal[i] = {nx, ny, nz};
+        frame.depth[i] = static_cast<float>(z);
+        frame.normal[i] = Vec3{nx, ny, nz};
         frame.surface[i] = static_cast<std::int32_t>(s);
         frame.body[i] = static_cast<std::int32_t>(b);
-        frame.solid[i] = static_cast<std::int32_t>(o);
     }
+    for (std::int32_t& solid : frame.bodySolid)
+        if (solid == kUnset) solid = Frame::kNone;
     return {};
 }
 

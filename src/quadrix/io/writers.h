@@ -59,6 +59,9 @@ const std::uint8_t* Srgb8Table();
 // Frame dump for tests and tools: a text header then one line per pixel
 //   QXF1 <width> <height>
 //   <x> <y> <depth> <nx> <ny> <nz> <surface> <body> <solid>     (covered pixels only, %.17g)
+// The values are the Frame's (frame.h): depth a float, the normal decoded from its packing, the
+// solid the body's. Reading a dump packs the normal again and takes each body's solid from its
+// pixels (pixels of one body naming two solids are an error).
 std::string WriteFrameDump(const std::string& path, const Frame& frame);
 // Reads a dump back (for tests); returns an error message or empty.
 std::string ReadFrameDump(const std::string& path, Frame& frame);

@@ -355,21 +355,9 @@ void RenderContext::ComposeReference(const std::vector<int>& solids, const Engin
     if (solids.size() == flat_.solids.size()) {
         reference->Render(flat_, ro, other);
     } else {
-        const FlatScene sub = SubsetOfSolids(flat_, solids);
-        reference->Render(sub, ro, other);
-        // Solid ids of the subset back to the flat scene's; with regionOnly the pixels outside
-        // the region are unspecified and are not read.
-        auto remap = [&](int x0, int y0, int x1, int y1) {
-            for (int y = std::max(y0, 0); y < std::min(y1, other.height); ++y)
-                for (int x = std::max(x0, 0); x < std::min(x1, other.width); ++x) {
-                    auto& s = other.solid[other.Index(x, y)];
-                    if (s != Frame::kNone) s = solids[static_cast<std::size_t>(s)];
-                }
-        };
-        if (request.region && request.regionOnly)
-            for (const PixelRect& r : request.region->rects) remap(r.x0, r.y0, r.x1, r.y1);
-        else
-            remap(0, 0, other.width, other.height);
+        // The subset keeps the flat scene's bodies, so the Frame's solids (each body's, frame.h)
+        // are already the flat scene's.
+        reference->Render(SubsetOfSolids(flat_, solids), ro, other);
     }
     ComposeMinOf(frame, other, request);
 }
@@ -404,7 +392,7 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
     QUADRIX_CHECK(flatValid_, "RenderContext::Render before a successful Flatten");
     if (request.share) {
         // A share of the solids: the flat scene without the others while the engine draws, then
-        // the Frame's solid ids mapped back to the whole scene's.
+        // the report's solid ids mapped back to the whole scene's.
         for (int s : *request.share)
             if (s < 0 || static_cast<std::size_t>(s) >= flat_.solids.size()) {
                 diags.Error({}, fmt::format("solid {} of a share is not in the scene", s), {},
@@ -418,9 +406,8 @@ bool RenderContext::Render(const EngineRequest& request, Frame& frame, RenderRep
         if (request.shareFreeforms) flat_.freeforms = kept.freeforms;
         const bool ok = Render(whole, frame, report, diags);
         flat_ = std::move(kept);
+        // The Frame's solids are its bodies' (frame.h), whose ids the subset keeps.
         const std::vector<int>& ids = *request.share;
-        for (auto& s : frame.solid)
-            if (s != Frame::kNone) s = ids[static_cast<std::size_t>(s)];
         for (UndrawnSolid& u : report.byReference) u.solid = ids[static_cast<std::size_t>(u.solid)];
         return ok;
     }
@@ -561,8 +548,6 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
     const bool ok = Render(request, frame, report, diags);
     flat_ = std::move(kept);
     if (!ok) return false;
-    for (auto& s : frame.solid)
-        if (s != Frame::kNone) s = plain[static_cast<std::size_t>(s)];
     for (UndrawnSolid& u : report.byReference) u.solid = plain[static_cast<std::size_t>(u.solid)];
     try {
         if (!Execute([&] { ComposeReference(quartic, request, frame); })) {

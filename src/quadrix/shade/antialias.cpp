@@ -23,7 +23,7 @@ bool Covered(const Frame& f, std::size_t k) { return f.surface[k] != Frame::kNon
 // Whether an edge separates pixels a and b (4-neighbours); a2 is the pixel beyond a and b2 the
 // one beyond b on the same line (or a and b themselves at the image border).
 bool Separated(const Frame& f, std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
-    if (f.surface[a] != f.surface[b] || f.body[a] != f.body[b] || f.solid[a] != f.solid[b])
+    if (f.surface[a] != f.surface[b] || f.body[a] != f.body[b] || f.Solid(a) != f.Solid(b))
         return true;
     if (!Covered(f, a)) return false;  // both background
     static const double kCos = std::cos(kCreaseDegrees * std::numbers::pi / 180);
@@ -34,7 +34,8 @@ bool Separated(const Frame& f, std::size_t a, std::size_t b, std::size_t a2, std
         slope = std::max(slope, std::fabs(za - f.depth[a2]));
     if (b2 != b && f.surface[b2] == f.surface[b])
         slope = std::max(slope, std::fabs(f.depth[b2] - zb));
-    return std::fabs(zb - za) > 4 * slope + 1e-9 * (1 + std::fabs(za));
+    // The Frame's depths are floats (frame.h): a step below a few of their ulps is rounding.
+    return std::fabs(zb - za) > 4 * slope + 1e-6 * (1 + std::fabs(za));
 }
 
 void Mark(const Frame& f, std::vector<std::uint8_t>& e, std::size_t a, std::size_t b) {

@@ -70,7 +70,7 @@ TEST(ShadePhong, ShadesAFrameWithColorAndBackground) {
     FlatScene s = TwoLights(3, 1);
     const int body = AddBody(s, {1, 0, 0});
     Frame f(3, 1);
-    f.Offer(1, 9, {0, 0, -1}, 0, body, 0);
+    f.Offer(1, 9, Vec3{0, 0, -1}, 0, body);
     ShadeOptions o;
     o.model = ShadingModel::kPhong;
     o.background = scene::Color{0, 0, 1};
@@ -107,7 +107,7 @@ TEST(ShadeLambert, MatchesTheHistoricalFormulaByteForByte) {
     Frame f(64, 1);
     for (int x = 0; x < 64; ++x) {
         const double a = x * (M_PI / 2) / 64;
-        f.Offer(x, 5, Normalize(Vec3{std::sin(a), 0.1, -std::cos(a)}), 0, body, 0);
+        f.Offer(x, 5, Normalize(Vec3{std::sin(a), 0.1, -std::cos(a)}), 0, body);
     }
     const Image img = Shade(f, s);
     ASSERT_EQ(img.channels, 3);
@@ -134,8 +134,8 @@ TEST(ShadeLambert, SpecularFinishAddsAHighlightOpacityBlendsWithTheBackground) {
     glass.opacity = 0.25;
     const int b = AddBody(s, {1, 1, 1}, glass);
     Frame f(3, 1);
-    f.Offer(0, 1, {0, 0, -1}, 0, a, 0);
-    f.Offer(1, 1, {0, 0, -1}, 0, b, 1);
+    f.Offer(0, 1, Vec3{0, 0, -1}, 0, a);
+    f.Offer(1, 1, Vec3{0, 0, -1}, 0, b);
     ShadeOptions o;
     o.background = scene::Color{0.2, 0.2, 0.2};
     const Image img = Shade(f, s, o);
@@ -172,7 +172,7 @@ TEST(ShadeLambert, EightBitRunsGiveTheBytesOfShadingEveryPixel) {
                 // Runs of one normal (a plane), then one normal a pixel (a curved surface).
                 const double t = x < 25 ? 0.3 * y : 0.05 * x + 0.1 * y;
                 const Vec3 n = Normalize({std::sin(t), 0.2, -std::cos(t)});
-                f.Offer(i, 1, n, surface, body, 0);
+                f.Offer(i, 1, n, surface, body);
             }
         ShadeOptions o;
         o.linear = false;

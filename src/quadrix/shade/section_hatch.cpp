@@ -129,7 +129,7 @@ std::size_t HatchSectionRowKinds(const Frame& frame, const FlatScene& scene,
             for (int x = 0; x < frame.width; ++x) {
                 const std::size_t i = frame.Index(x, y);
                 if (frame.surface[i] != hatch->halfSpace) continue;
-                const Ratio& r = family[frame.solid[i] >= 0 && frame.solid[i] % 2 == 1];
+                const Ratio& r = family[frame.Solid(i) >= 0 && frame.Solid(i) % 2 == 1];
                 const double X = x + 0.5;
                 const double D = r.d0 + r.dx * X + r.dy * Y;
                 const double h = (r.n0 + r.nx * X + r.ny * Y) / D;

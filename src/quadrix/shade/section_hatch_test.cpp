@@ -85,7 +85,7 @@ std::array<int, 2> CheckAgainstRule(const Drawn& d, const FlatScene& flat) {
             }
             ++cap;
             const Vec3 p = worldFromDevice.MapPoint({x + 0.5, y + 0.5, d.frame.depth[i]});
-            const int solid = d.frame.solid[i];
+            const int solid = d.frame.Solid(i);
             if (solid != 0 && solid != 1) {
                 ADD_FAILURE() << "solid " << solid;
                 continue;

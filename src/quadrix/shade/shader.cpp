@@ -40,8 +40,6 @@ std::uint8_t ToByte(double v) {
     return static_cast<std::uint8_t>(v * 255.0 + 0.5);
 }
 
-bool SameBits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
-
 float ToUnit(double v) { return v > 0 ? (v < 1 ? static_cast<float>(v) : 1.0f) : 0.0f; }
 
 bool Gray(const scene::Color& c) { return c.r == c.g && c.g == c.b; }
@@ -213,16 +211,16 @@ struct PixelBytes {
 
 // Row y of an 8-bit image whose shading is local (ShadeRowKinds): a pixel's colour depends only
 // on its (surface, body), its normal and the row's background, so a pixel repeating the previous
-// covered pixel's three bit for bit (a plane's run) repeats its bytes, and every background
-// pixel of the row gets the same bytes; only the others are shaded (PixelShader::At). The Frame's
-// depth is not read.
+// covered pixel's three (the normal's packed bits) (a plane's run) repeats its bytes, and every
+// background pixel of the row gets the same bytes; only the others are shaded (PixelShader::At).
+// The Frame's depth is not read.
 void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
                    const scene::Color& background, Image& image,
                    PixelShader::MaterialCache& cache) {
     const std::size_t row = frame.Index(0, y);
     const std::int32_t* surface = frame.surface.data() + row;
     const std::int32_t* body = frame.body.data() + row;
-    const Vec3* normal = frame.normal.data() + row;
+    const PackedNormal* normal = frame.normal.data() + row;
     const int width = frame.width;
     const bool rgb = image.channels == 3;
     std::uint8_t* out = image.At(0, y);
@@ -230,13 +228,13 @@ void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
         shader.At(0.5, y + 0.5, Frame::kNone, Frame::kNone, HUGE_VAL, Vec3{}, background, &cache));
     PixelBytes last;
     std::int32_t lastSurface = Frame::kNone, lastBody = Frame::kNone;
-    Vec3 lastNormal{0, 0, 0};
+    PackedNormal lastNormal;
     for (int x = 0; x < width; ++x) {
         const std::int32_t s = surface[x];
         const PixelBytes* bytes = &back;
         if (s != Frame::kNone) {
             const std::int32_t b = body[x];
-            if (s != lastSurface || b != lastBody || !SameBits(normal[x], lastNormal)) {
+            if (s != lastSurface || b != lastBody || !(normal[x] == lastNormal)) {
                 lastSurface = s;
                 lastBody = b;
                 lastNormal = normal[x];

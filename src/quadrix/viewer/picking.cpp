@@ -37,7 +37,7 @@ PickResult Pick(const Frame& frame, const FlatScene& flat, const scene::Scene* s
     const std::size_t i = static_cast<std::size_t>(y) * frame.width + x;
     if (frame.surface[i] == Frame::kNone || !std::isfinite(frame.depth[i])) return r;
     r.hit = true;
-    r.solid = frame.solid[i];
+    r.solid = frame.Solid(i);
     r.body = frame.body[i];
     r.surface = frame.surface[i];
     r.depth = frame.depth[i];

@@ -178,13 +178,12 @@ void CurveRasterizer::Splat(const Sample& s, const freeform::PowerForm& normal,
                     frame_.normal[i] = n;
                     frame_.surface[i] = ids.surface;
                     frame_.body[i] = ids.body;
-                    frame_.solid[i] = ids.solid;
                     sampleZ_[i] = s.device.z;
                     dist2_[i] = static_cast<float>(d2);
                     layerTol_[i] = tol;
                 }
-            } else if (z < frame_.depth[i]) {
-                frame_.Offer(i, z, n, ids.surface, ids.body, ids.solid);
+            } else if (frame_.Nearer(i, z)) {
+                frame_.Offer(i, z, n, ids.surface, ids.body);
                 owner_[i] = 1;
                 sampleZ_[i] = s.device.z;
                 dist2_[i] = static_cast<float>(d2);

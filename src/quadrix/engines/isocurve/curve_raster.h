@@ -37,8 +37,9 @@
 
 namespace quadrix::isocurve {
 
+// The ids a surface's pixels carry (its solid is its body's, from the Frame's table: frame.h).
 struct FrameIds {
-    std::int32_t surface = 0, body = 0, solid = 0;
+    std::int32_t surface = 0, body = 0;
 };
 
 struct RasterCounts {

@@ -10,7 +10,6 @@ std::vector<FreeformDrawable> SceneDrawables(const FlatScene& scene) {
         FrameIds ids;
         ids.surface = static_cast<std::int32_t>(scene.halfSpaces.size() + k);
         ids.body = Frame::kNone;
-        ids.solid = Frame::kNone;
         drawables.push_back({&scene.freeforms[k].surface, ids});
     }
     return drawables;
@@ -38,7 +37,6 @@ RenderStats IsocurveEngine::Draw(const FlatScene& scene, const EngineOptions& op
         ids.surface =
             static_cast<std::int32_t>(scene.halfSpaces.size() + scene.freeforms.size() + k);
         ids.body = k < bodyIds_.size() ? bodyIds_[k] : Frame::kNone;
-        ids.solid = Frame::kNone;
         drawables.push_back({&surfaces_[k], ids});
     }
     IsocurveStats st = RenderFreeform(drawables, scene.projection, o, frame);

@@ -25,7 +25,7 @@ std::vector<FreeformDrawable> Drawables(const std::vector<Surface>& s, int first
                                         int last = 1 << 30) {
     std::vector<FreeformDrawable> d;
     for (int i = first; i < static_cast<int>(s.size()) && i <= last; ++i)
-        d.push_back({&s[static_cast<std::size_t>(i)], {i, 0, 0}});
+        d.push_back({&s[static_cast<std::size_t>(i)], {i, 0}});
     return d;
 }
 
@@ -171,12 +171,13 @@ TEST(IsocurveRender, ComposesWithAnotherSolidByDepth) {
     // (projected radius < √¾) must win there and the wall must stay around it.
     std::vector<Surface> m = Model("obj/sphere_nurbs.obj");
     auto d = Drawables(m);
-    d[0].ids = {7, 3, 2};
+    d[0].ids = {7, 3};
     Projection p = FitParallel(BoundsOf(d), kToward, kUp, 96, 96);
     double wall = p.deviceFromWorld.MapPoint(p.towardViewer * 0.5).z;
     Frame frame(96, 96);
+    frame.bodySolid = {-1, -1, -1, 2};  // body 3 is in solid 2 (the Frame's table, frame.h)
     for (int y = 0; y < 96; ++y)
-        for (int x = 0; x < 48; ++x) frame.Offer(frame.Index(x, y), wall, {0, 0, 1}, 99, 98, 97);
+        for (int x = 0; x < 48; ++x) frame.Offer(frame.Index(x, y), wall, Vec3{0, 0, 1}, 99, 98);
     RenderFreeform(d, p, {}, frame);
     Transform inv = p.deviceFromWorld.Inverted();
     int sphereWins = 0, wallWins = 0;
@@ -193,7 +194,7 @@ TEST(IsocurveRender, ComposesWithAnotherSolidByDepth) {
             double t = (-B - std::sqrt(disc)) / A;  // device z along this parallel ray is t
             if (t < wall - 0.5) {
                 EXPECT_EQ(frame.surface[i], 7);
-                EXPECT_EQ(frame.solid[i], 2);
+                EXPECT_EQ(frame.Solid(i), 2);
                 ++sphereWins;
             } else if (t > wall + 0.5) {
                 EXPECT_EQ(frame.surface[i], 99);

@@ -66,10 +66,10 @@ void RenderPatchRowsFloat(const QuadricPatch& patch, const FlatScene& scene, int
             ++stats.surfacePixels;
             if (px.sheet == Sheet::kBack) ++stats.backSheetPixels;
             const std::size_t i = frame.Index(pxi, py);
-            if (!(px.zout < frame.depth[i])) continue;  // z-buffer; skip the normal's cost
+            if (!frame.Nearer(i, px.zout)) continue;  // z-buffer; skip the normal's cost
             const Vec3 p{x, y, px.zout};
             frame.Offer(i, px.zout, WorldNormalFromDeviceGradient(scene, p, px.gradient),
-                        patch.surface, patch.body, patch.solid);
+                        patch.surface, patch.body);
         }
     }
 }

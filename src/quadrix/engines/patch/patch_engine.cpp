@@ -162,12 +162,12 @@ void ScanFixedBand(const FixedJob& job, const FlatScene& scene, const Settings& 
             ++bs.fixedSurfacePixels;
             if (s.nz > 0) ++bs.normalsFacingAway;
             const std::size_t idx = frame.Index(pxi, py);
-            if (!(z < frame.depth[idx])) continue;
+            if (!frame.Nearer(idx, z)) continue;
             const double u = job.host.normalUnit;
             const Vec3 g{static_cast<double>(s.nx) * u, static_cast<double>(s.ny) * u,
                          static_cast<double>(s.nz) * u};
             frame.Offer(idx, z, WorldNormalFromDeviceGradient(scene, {x, y, z}, g),
-                        job.patch->surface, job.patch->body, job.patch->solid);
+                        job.patch->surface, job.patch->body);
         }
     }
 }

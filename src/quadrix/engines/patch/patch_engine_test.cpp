@@ -126,7 +126,7 @@ TEST(PatchEngine, FixedModeMatchesFloatAndItsIntegerReference) {
         }
         if (flt.surface[i] == Frame::kNone) continue;
         ++both;
-        maxDepth = std::max(maxDepth, std::fabs(flt.depth[i] - fix.depth[i]));
+        maxDepth = std::max<double>(maxDepth, std::fabs(flt.depth[i] - fix.depth[i]));
         minDot = std::min(minDot, Dot(flt.normal[i], fix.normal[i]));
     }
     std::printf(
@@ -219,8 +219,8 @@ TEST(PatchVsRaycast, FloatPatchAgreesWithRaycastOnRandomPatches) {
         double zlo = HUGE_VAL, zhi = -HUGE_VAL;
         for (std::size_t i = 0; i < rf.depth.size(); ++i)
             if (rf.surface[i] != Frame::kNone) {
-                zlo = std::min(zlo, rf.depth[i]);
-                zhi = std::max(zhi, rf.depth[i]);
+                zlo = std::min<double>(zlo, rf.depth[i]);
+                zhi = std::max<double>(zhi, rf.depth[i]);
             }
         const double range = std::max(zhi - zlo, 1.0);
         for (int y = 0; y < 40; ++y)

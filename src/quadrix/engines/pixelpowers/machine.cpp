@@ -418,7 +418,6 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, Frame& f
                         : scene.WorldNormal(p.halfSpace, {i + 0.5, j + 0.5, z});
                 frame.surface[f] = p.halfSpace;
                 frame.body[f] = p.body;
-                frame.solid[f] = p.solid;
             }
         }
     };

@@ -175,14 +175,15 @@ TEST(PixelPowersMachine, NormalRegistersAndScanOut) {
     EXPECT_EQ(as.program.Equations(), 5u);  // QNPOS, ZLOAD and three NLOADs
     for (int i = 0; i < 10; ++i) {
         double x = i + 0.5;
-        const Vec3& n = f.normal[static_cast<std::size_t>(i)];
+        const Vec3 n = f.Normal(static_cast<std::size_t>(i));
         if (x > 5) {
             EXPECT_EQ(f.surface[static_cast<std::size_t>(i)], Frame::kNone);
             continue;
         }
         EXPECT_NEAR(Length(n), 1, 1e-12);
-        EXPECT_NEAR(n.z, 0.05 * x - 0.9, 1e-12) << i;  // the key light's term, as computed
-        EXPECT_NEAR(n.y, 0, 1e-12);
+        // The key light's term, as computed, then packed in the Frame (frame/packed_normal.h).
+        EXPECT_NEAR(n.z, 0.05 * x - 0.9, PackedNormal::kMaxError) << i;
+        EXPECT_NEAR(n.y, 0, PackedNormal::kMaxError);
         EXPECT_GT(n.x, 0);  // the rest of a's direction
     }
     EXPECT_GT(c.pixelOps, 0u);

@@ -206,14 +206,14 @@ TEST(RaycastCsg, RandomScenesMatchThePointClassificationOracle) {
                 if (!o.covered) continue;
                 ++covered;
                 ASSERT_EQ(f.surface[k], o.surface) << "scene " << n << " pixel " << i << "," << j;
-                ASSERT_EQ(f.solid[k], o.solid) << "scene " << n << " pixel " << i << "," << j;
+                ASSERT_EQ(f.Solid(k), o.solid) << "scene " << n << " pixel " << i << "," << j;
                 // Each half-space belongs to one body here, so the body follows from the surface.
                 const FlatBody& body = scene.bodies[static_cast<std::size_t>(f.body[k])];
                 EXPECT_TRUE(
                     std::any_of(body.literals.begin(), body.literals.end(),
                                 [&](const FlatLiteral& l) { return l.halfSpace == o.surface; }));
                 // Same roots up to the different grouping of the per-pixel coefficients.
-                ASSERT_NEAR(f.depth[k], o.t, 1e-9 * (1 + std::fabs(o.t)));
+                ASSERT_NEAR(f.depth[k], o.t, 1e-9 * (1 + std::fabs(o.t)) + DepthRounding(o.t));
             }
         }
     }
@@ -321,9 +321,9 @@ TEST(RaycastCsg, ExactDepthTiesKeepTheLowerSolidIndex) {
     b.AddSolidOfBody(b.AddBody({{s1, false}}, nearer));
     Frame f = Render(b.scene());
     ASSERT_GT(f.CoveredCount(), 1000u);
-    for (std::size_t k = 0; k < f.solid.size(); ++k) {
+    for (std::size_t k = 0; k < f.body.size(); ++k) {
         if (f.surface[k] != Frame::kNone) {
-            ASSERT_EQ(f.solid[k], 0);
+            ASSERT_EQ(f.Solid(k), 0);
         }
     }
 }
@@ -339,7 +339,7 @@ TEST(RaycastCsg, NearestSolidWinsAndDepthOrderStopsEarly) {
     RenderStats stats;
     Frame f = Render(b.scene(), 0, &stats);
     ASSERT_EQ(f.CoveredCount(), 32u * 32u);
-    for (std::size_t k = 0; k < f.solid.size(); ++k) ASSERT_EQ(f.solid[k], 0);
+    for (std::size_t k = 0; k < f.body.size(); ++k) ASSERT_EQ(f.Solid(k), 0);
     EXPECT_EQ(CounterOrFail(stats, "depth_early_outs"), 32 * 32);
     EXPECT_EQ(CounterOrFail(stats, "pixel_solids"), 32 * 32);
 }

@@ -269,18 +269,17 @@ bool TileReduction::TryFlatFill(const CsgProgram& program, const Rect& r, int x0
     const Tag& near = tables_.TagOf(nearTag);
     const auto hsIndex = static_cast<std::size_t>(near.halfSpace);
     const RayHalfSpace& hs = tables_.halfSpaces[hsIndex];
-    const Vec3 normal = tables_.planeNormal[hsIndex];
+    const PackedNormal normal(tables_.planeNormal[hsIndex]);
     for (int j = y0; j < y1; ++j) {
         const double y = j + 0.5;
         std::size_t k = out.Index(x0, j);
         for (int i = x0; i < x1; ++i, ++k) {
             const double x = i + 0.5;
             const double e = hs.px * x + hs.py * y + hs.pd;  // as EvaluateBody
-            out.depth[k] = -e / hs.c;
+            out.depth[k] = static_cast<float>(-e / hs.c);
             out.normal[k] = normal;
             out.surface[k] = near.halfSpace;
             out.body[k] = near.body;
-            out.solid[k] = solid.solid;
         }
     }
     const auto n = static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));

@@ -257,11 +257,11 @@ void ScanRenderer::ShadeSpan(int i0, int i1, int j) {
                                    faces[static_cast<std::size_t>(best)].halfSpace, i + 0.5, y,
                                    ph.t)))) {
                 shader_.Write(i, j, ph.t, shader_.Normal(ph.halfSpace, i + 0.5, y, ph.t),
-                              ph.halfSpace, ph.body, phSolid);
+                              ph.halfSpace, ph.body);
             } else if (best >= 0) {
                 StackFace& f = faces[static_cast<std::size_t>(best)];
                 shader_.Write(i, j, bestT, shader_.ShadedNormal(f, i, i0, i1, delta, y, bestT),
-                              f.halfSpace, f.body, f.solid);
+                              f.halfSpace, f.body);
             }
         }
         shader_.Advance();
@@ -282,7 +282,7 @@ void ScanRenderer::ExactPixel(int i, int j) {
     ++ctx_.c.exactPixels;
     const double x = i + 0.5, y = j + 0.5;
     eval::RayEvaluator::Hit best;
-    int bestSolid = -1, bestUnit = -1;
+    int bestUnit = -1;
     for (int u : row_.ActiveUnits()) {
         const Unit& unit = ctx_.UnitOf(u);
         if (i < unit.x0 || i > unit.x1) continue;
@@ -292,13 +292,12 @@ void ScanRenderer::ExactPixel(int i, int j) {
              (hit.t == best.t &&
               ctx_.UnitWinsTie(u, hit.halfSpace, bestUnit, best.halfSpace, x, y, hit.t)))) {
             best = hit;
-            bestSolid = unit.solid;
             bestUnit = u;
         }
     }
     if (best.halfSpace < 0) return;
     shader_.Write(i, j, best.t, ctx_.scene.WorldNormal(best.halfSpace, {x, y, best.t}),
-                  best.halfSpace, best.body, bestSolid);
+                  best.halfSpace, best.body);
 }
 
 }  // namespace

@@ -148,14 +148,12 @@ class SpanShader {
     }
     // The normal of face f at pixel i of the span [i0, i1] (shading interval `delta`, (6.9)).
     Vec3 ShadedNormal(StackFace& f, int i, int i0, int i1, int delta, double y, double t);
-    [[gnu::always_inline]] void Write(int i, int j, double t, const Vec3& n, int hs, int body,
-                                      int solid) {
+    [[gnu::always_inline]] void Write(int i, int j, double t, const Vec3& n, int hs, int body) {
         std::size_t idx = ctx_.frame.Index(i, j);
         ctx_.frame.depth[idx] = t;
         ctx_.frame.normal[idx] = n;
         ctx_.frame.surface[idx] = hs;
         ctx_.frame.body[idx] = body;
-        ctx_.frame.solid[idx] = solid;
         ++ctx_.c.covered;
     }
 
