@@ -910,6 +910,16 @@ std::vector<BadInput> ThirdPassRows() {
             "compare a.qxf a.qxf", R"(a\.qxf:3:1: error: expected a pixel x in 0\.\.1)"),
         row("CompareTruncatedPixelLine", {{"a.qxf", "QXF1 2 2\n0 0 1 0 0\n"}},
             "compare a.qxf a.qxf", R"(a\.qxf:2:10: error: expected a number)"),
+        // The Frame keeps one solid per body (frame/frame.h): a dump may not say otherwise.
+        row("CompareBodyInTwoSolids",
+            {{"a.qxf", "QXF1 2 2\n0 0 1 0 0 -1 3 7 1\n1 0 1 0 0 -1 3 7 2\n"}},
+            "compare a.qxf a.qxf",
+            R"(a\.qxf:3:16: error: body 7 is in solid 2 here but in solid 1 earlier)"),
+        row("CompareSolidWithoutBody", {{"a.qxf", "QXF1 2 2\n0 0 1 0 0 -1 3 -1 4\n"}},
+            "compare a.qxf a.qxf", R"(a\.qxf:2:16: error: solid 4 without a body)"),
+        row("CompareBodyIdTooLarge", {{"a.qxf", "QXF1 2 2\n0 0 1 0 0 -1 3 2000000000 0\n"}},
+            "compare a.qxf a.qxf",
+            R"(a\.qxf:2:16: error: body 2000000000 or solid 0 is not an id)"),
         // ---- --max-memory and --time-limit on every command (apps/quadrix/limit_options.h):
         // a scene that is a FIFO nobody writes stalls the reader until the time limit.
         row("BatchTimeLimit",

@@ -389,27 +389,32 @@ std::string ReadFrameDump(const std::string& path, Frame& frame) {
             return at("expected a number (depth, then the normal's x, y, z)");
         constexpr long long kMin = std::numeric_limits<std::int32_t>::min(),
                             kMax = std::numeric_limits<std::int32_t>::max();
-        if (!c.Integer(s, kMin, kMax) || !c.Integer(b, kMin, kMax) || !c.Integer(o, kMin, kMax))
+        if (!c.Integer(s, kMin, kMax)) return at("expected an id (surface, body, solid)");
+        c.SkipBlanks();
+        const int bodyColumn = c.Column();
+        auto atBody = [&](const std::string& what) {
+            return fmt::format("{}:{}:{}: error: {}", path, c.line, bodyColumn, what);
+        };
+        if (!c.Integer(b, kMin, kMax) || !c.Integer(o, kMin, kMax))
             return at("expected an id (surface, body, solid)");
-        if (!c.EndOfLine()) return at("expected the end of the pixel line");
         // The Frame keeps one solid per body (frame.h): a body's pixels must agree on it.
         if (b < Frame::kNone || b >= kMaxDumpBodies || o < Frame::kNone)
-            return at(fmt::format("body {} or solid {} is not an id (-1 for none; bodies below {})",
-                                  b, o, kMaxDumpBodies));
+            return atBody(
+                fmt::format("body {} or solid {} is not an id (-1 for none; bodies below {})", b, o,
+                            kMaxDumpBodies));
         if (b == Frame::kNone && o != Frame::kNone)
-            return at(
-                fmt::format("solid {} without a body (the Frame finds a pixel's solid by its "
-                            "body)",
-                            o));
+            return atBody(fmt::format(
+                "solid {} without a body (the Frame finds a pixel's solid by its body)", o));
         if (b != Frame::kNone) {
             const auto bi = static_cast<std::size_t>(b);
             if (frame.bodySolid.size() <= bi) frame.bodySolid.resize(bi + 1, kUnset);
             if (frame.bodySolid[bi] == kUnset)
                 frame.bodySolid[bi] = static_cast<std::int32_t>(o);
             else if (frame.bodySolid[bi] != o)
-                return at(fmt::format("body {} is in solid {} here but in solid {} earlier", b, o,
-                                      frame.bodySolid[bi]));
+                return atBody(fmt::format("body {} is in solid {} here but in solid {} earlier", b,
+                                          o, frame.bodySolid[bi]));
         }
+        if (!c.EndOfLine()) return at("expected the end of the pixel line");
         const std::size_t i = frame.Index(static_cast<int>(x), static_cast<int>(y));
         frame.depth[i] = static_cast<float>(z);
         frame.normal[i] = Vec3{nx, ny, nz};

@@ -27,7 +27,7 @@ bool Separated(const Frame& f, std::size_t a, std::size_t b, std::size_t a2, std
         return true;
     if (!Covered(f, a)) return false;  // both background
     static const double kCos = std::cos(kCreaseDegrees * std::numbers::pi / 180);
-    if (Dot(f.normal[a], f.normal[b]) < kCos) return true;
+    if (PackedNormal::AngleExceeds(f.normal[a], f.normal[b], kCos)) return true;
     const double za = f.depth[a], zb = f.depth[b];
     double slope = 0;
     if (a2 != a && f.surface[a2] == f.surface[a])

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "quadrix/flatten/wide_node_trees.h"
+#include "quadrix/frame/frame.h"
 #include "quadrix/math/quadratic.h"
 #include "quadrix/util/ray_work.h"
 
@@ -292,7 +293,11 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     const double len = Length(d);
     if (!(len > 0)) return false;
-    const double s0 = 1e-4 / len;
+    // The segment starts past the surface p lies on: 1e-4 pixel, plus far more than the rounding
+    // of p's depth to the Frame's float (frame.h; half an ulp, 1.5e-5 pixel at |z| = 256), so
+    // that a point rounded into its own solid does not shadow itself unless the light grazes
+    // the surface within about 0.06 degrees. The start is then 0.015 pixel out at |z| = 256.
+    const double s0 = (1e-4 + 1024 * DepthRounding(p.z)) / len;
     std::vector<IntervalList*>& slots =
         ThreadScratch(static_cast<std::size_t>(maxDepth_) + 6).slots;
     return solids_.Segment(p, d, s0, sMax, [&](std::int32_t i) {

@@ -80,7 +80,8 @@ class ShadowTester {
     // Nodes with more children than this get a box tree over them.
     static constexpr std::size_t kWideNode = WideNodeTrees::kWideNode;
 
-    // True when a solid's set meets p + s·d for some s in (ε/|d|, sMax), p and d in device space.
+    // True when a solid's set meets p + s·d for some s in (ε/|d|, sMax), p and d in device space;
+    // ε = 1e-4 + 1024 · DepthRounding(p.z) pixels (shadows.cpp).
     bool Blocked(const Vec3& p, const Vec3& d, double sMax) const;
 
     // The set of s where a half-space literal holds on the line (exposed for tests).
