@@ -16,11 +16,11 @@
 // neighbours as in one process. The fast model's mean normals are the whole picture's: for it the
 // Frame is gathered and rank 0 shades everything, as before.
 //
-// Communication: the halo, 2 + 2 rows of Frame (60 bytes a pixel: depth 8, normal 24, three
-// 4-byte ids) per band of 16 between neighbouring ranks; then each rank > 0 sends its shaded rows
+// Communication: the halo, 2 + 2 rows of Frame (16 bytes a pixel: float depth, packed normal,
+// two 4-byte ids; frame/frame.h) per band of 16 between neighbouring ranks; then each rank > 0 sends its shaded rows
 // to rank 0: 1 or 3 bytes a pixel, plus 4 or 12 of Image::linear when the image has it (16-bit
 // PNG, EXR, anti-aliasing). When an output needs the Frame (a .qxf dump, EXR layers, --stats) its
-// pixels are gathered too: (N−1)/N of the picture at 60 bytes a pixel.
+// pixels are gathered too: (N−1)/N of the picture at 16 bytes a pixel.
 //
 // Without MPI, or with one rank, it is ctx.Render and ctx.Shade.
 #pragma once

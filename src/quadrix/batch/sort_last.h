@@ -6,8 +6,8 @@
 // writes as a single process would. A pixel's winner is the nearest surface over all shares,
 // which is what one engine over the whole scene computes; coincident surfaces of different
 // solids (equal depth) go to the lower rank. Communication: each rank > 0 sends its Frame once,
-// 24 + 3·8 + 3·4 = 60 bytes per pixel (depth, normal, surface/body/solid ids), in pieces of at
-// most 256 MiB.
+// 16 bytes per pixel (float depth, packed normal, surface and body ids: frame/frame.h), in pieces
+// of at most 256 MiB.
 //
 // Without MPI, or with one rank, it is ctx.Render.
 #pragma once

@@ -1,5 +1,5 @@
 // A unit normal in 32 bits, as the Frame stores it (issue 24 item 3: the normal was 24 of the
-// Frame's 44 bytes a pixel).
+// Frame's former 44 bytes a pixel).
 //
 // Octahedral encoding: n is projected onto the octahedron |x| + |y| + |z| = 1; the upper half
 // (z ≥ 0) maps to the square |u| + |v| ≤ 1 by (u, v) = (x, y), and the lower half is folded
