@@ -893,8 +893,10 @@ int main(int argc, char** argv) {
     char stamp[32];
     std::time_t now = std::time(nullptr);
     std::strftime(stamp, sizeof stamp, "%Y-%m-%d_%H%M%S", std::gmtime(&now));
-    std::string md =
-        fmt::format("# Quadrix benchmark results {}\n\nMachine: {}\n\n", stamp, machine);
+    std::string md = fmt::format(
+        "# Quadrix benchmark results {}\n\nMachine: {}\n\nFrame: {} bytes a pixel "
+        "(frame/frame.h; issue 24 target ≤ 16).\n\n",
+        stamp, machine, Frame::kBytesPerPixel);
     md +=
         "Frame = in-process render of a flattened scene (warm, median); process = whole "
         "`quadrix render … -o x.png` or `povray` run (median); ratio = POV-Ray process / Quadrix "

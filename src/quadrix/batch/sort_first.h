@@ -17,10 +17,10 @@
 // Frame is gathered and rank 0 shades everything, as before.
 //
 // Communication: the halo, 2 + 2 rows of Frame (16 bytes a pixel: float depth, packed normal,
-// two 4-byte ids; frame/frame.h) per band of 16 between neighbouring ranks; then each rank > 0 sends its shaded rows
-// to rank 0: 1 or 3 bytes a pixel, plus 4 or 12 of Image::linear when the image has it (16-bit
-// PNG, EXR, anti-aliasing). When an output needs the Frame (a .qxf dump, EXR layers, --stats) its
-// pixels are gathered too: (N−1)/N of the picture at 16 bytes a pixel.
+// two 4-byte ids; frame/frame.h) per band of 16 between neighbouring ranks; then each rank > 0
+// sends its shaded rows to rank 0: 1 or 3 bytes a pixel, plus 4 or 12 of Image::linear when the
+// image has it (16-bit PNG, EXR, anti-aliasing). When an output needs the Frame (a .qxf dump, EXR
+// layers, --stats) its pixels are gathered too: (N−1)/N of the picture at 16 bytes a pixel.
 //
 // Without MPI, or with one rank, it is ctx.Render and ctx.Shade.
 #pragma once

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <new>
 #include <utility>
@@ -173,7 +174,9 @@ struct Frame {
 // The most that storing depth z in the Frame (rounding to float) changes it: half a float ulp.
 // For comparisons of a Frame with exact values: |frame.depth[i] − z| ≤ DepthRounding(z) + the
 // engine's own error.
+// 0 for a depth beyond the floats (the background's +inf).
 inline double DepthRounding(double z) {
+    if (!(std::fabs(z) <= static_cast<double>(std::numeric_limits<float>::max()))) return 0;
     const float f = std::fabs(static_cast<float>(z));
     return 0.5 * (static_cast<double>(std::nextafter(f, HUGE_VALF)) - static_cast<double>(f));
 }

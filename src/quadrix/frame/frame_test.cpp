@@ -9,8 +9,8 @@ namespace {
 
 TEST(Frame, APixelIsSixteenBytes) {
     Frame f(4, 3);
-    const std::size_t perPixel = sizeof(f.depth[0]) + sizeof(f.normal[0]) + sizeof(f.surface[0]) +
-                                 sizeof(f.body[0]);
+    const std::size_t perPixel =
+        sizeof(f.depth[0]) + sizeof(f.normal[0]) + sizeof(f.surface[0]) + sizeof(f.body[0]);
     EXPECT_EQ(perPixel, 16u);
     EXPECT_EQ(Frame::kBytesPerPixel, perPixel);
     EXPECT_EQ(f.depth.size(), 12u);
@@ -62,6 +62,12 @@ TEST(Frame, DepthRoundingBoundsTheStoredDepth) {
         EXPECT_GT(DepthRounding(z), 0) << z;
         EXPECT_LT(DepthRounding(z), 1e-7 * std::fabs(z)) << z;  // 2^-24 relative at most
     }
+}
+
+TEST(Frame, DepthRoundingOfTheBackgroundIsZero) {
+    EXPECT_EQ(DepthRounding(HUGE_VAL), 0);
+    EXPECT_EQ(DepthRounding(-HUGE_VAL), 0);
+    EXPECT_EQ(DepthRounding(1e300), 0);  // beyond the largest float
 }
 
 TEST(Frame, ComposeMinKeepsTheNearerAndTheSolidsTable) {

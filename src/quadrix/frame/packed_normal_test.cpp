@@ -9,9 +9,7 @@
 namespace quadrix {
 namespace {
 
-double Angle(const Vec3& a, const Vec3& b) {
-    return std::atan2(Length(Cross(a, b)), Dot(a, b));
-}
+double Angle(const Vec3& a, const Vec3& b) { return std::atan2(Length(Cross(a, b)), Dot(a, b)); }
 
 // Random directions (Gaussian, so uniform on the sphere) and the octahedron's folds, where the
 // lower half's corners meet: the error stays under kMaxError, and the decoded vector is a unit.
