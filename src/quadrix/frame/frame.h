@@ -2,6 +2,7 @@
 // shading and output are applied to a Frame, never inside an engine.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -177,8 +178,12 @@ struct Frame {
 // 0 for a depth beyond the floats (the background's +inf).
 inline double DepthRounding(double z) {
     if (!(std::fabs(z) <= static_cast<double>(std::numeric_limits<float>::max()))) return 0;
-    const float f = std::fabs(static_cast<float>(z));
-    return 0.5 * (static_cast<double>(std::nextafter(f, HUGE_VALF)) - static_cast<double>(f));
+    // The float's ulp from its exponent bits (no libm call: shadow rays ask once each): 2^(e−23)
+    // for a normal float, 2^−149 below.
+    const auto bits = std::bit_cast<std::uint32_t>(std::fabs(static_cast<float>(z)));
+    if (bits < 0x00800000u)
+        return 0.5 * static_cast<double>(std::numeric_limits<float>::denorm_min());
+    return 0.5 * static_cast<double>(std::bit_cast<float>(bits & 0x7f800000u)) * 0x1p-23;
 }
 
 // Per-pixel minimum of two Frames of the same size (the union of their solids).

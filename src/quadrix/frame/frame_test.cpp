@@ -64,6 +64,16 @@ TEST(Frame, DepthRoundingBoundsTheStoredDepth) {
     }
 }
 
+// Half the distance to the next float up, at every binade and in the subnormals.
+TEST(Frame, DepthRoundingIsHalfTheFloatsUlp) {
+    for (double z : {1e-42, 1.17549435e-38, 1e-20, 0.75, 1.0, 1.5, 2.0, 255.9, 256.0, 3e5, 1e30,
+                     -7.25, 3.4e38}) {
+        const float f = std::fabs(static_cast<float>(z));
+        const double half = 0.5 * (static_cast<double>(std::nextafter(f, HUGE_VALF)) - f);
+        EXPECT_EQ(DepthRounding(z), half) << z;
+    }
+}
+
 TEST(Frame, DepthRoundingOfTheBackgroundIsZero) {
     EXPECT_EQ(DepthRounding(HUGE_VAL), 0);
     EXPECT_EQ(DepthRounding(-HUGE_VAL), 0);
