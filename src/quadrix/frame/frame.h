@@ -2,6 +2,7 @@
 // shading and output are applied to a Frame, never inside an engine.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -129,11 +130,13 @@ struct Frame {
         surface.resize(n);
         body.resize(n);
     }
-    void SetBackground(std::size_t i) {
-        depth[i] = HUGE_VALF;
-        normal[i] = PackedNormal{};
-        surface[i] = kNone;
-        body[i] = kNone;
+    void SetBackground(std::size_t i) { SetBackground(i, 1); }
+    // Background on the n pixels from `from` (array by array: wide contiguous stores).
+    void SetBackground(std::size_t from, std::size_t n) {
+        std::fill_n(depth.data() + from, n, HUGE_VALF);
+        std::fill_n(normal.data() + from, n, PackedNormal{});
+        std::fill_n(surface.data() + from, n, kNone);
+        std::fill_n(body.data() + from, n, kNone);
     }
     // The solid seen at pixel i: kNone for the background, for a sample of no body (a freeform
     // surface) and for a body the table does not know.

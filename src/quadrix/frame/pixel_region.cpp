@@ -27,13 +27,6 @@ std::vector<std::pair<int, int>> RowSpans(const PixelRegion& region, int y, int 
     return merged;
 }
 
-void FillBackground(Frame& f, std::size_t from, std::size_t n) {
-    std::fill_n(f.depth.begin() + static_cast<std::ptrdiff_t>(from), n, HUGE_VALF);
-    std::fill_n(f.normal.begin() + static_cast<std::ptrdiff_t>(from), n, PackedNormal{});
-    std::fill_n(f.surface.begin() + static_cast<std::ptrdiff_t>(from), n, Frame::kNone);
-    std::fill_n(f.body.begin() + static_cast<std::ptrdiff_t>(from), n, Frame::kNone);
-}
-
 }  // namespace
 
 bool PixelRegion::Intersects(int xa, int ya, int xb, int yb) const {
@@ -69,10 +62,10 @@ void CropToRegion(Frame& frame, const PixelRegion& region) {
         const std::size_t row = static_cast<std::size_t>(y) * w;
         std::size_t at = 0;
         for (const auto& [a, b] : RowSpans(region, y, frame.width)) {
-            FillBackground(frame, row + at, static_cast<std::size_t>(a) - at);
+            frame.SetBackground(row + at, static_cast<std::size_t>(a) - at);
             at = static_cast<std::size_t>(b);
         }
-        FillBackground(frame, row + at, w - at);
+        frame.SetBackground(row + at, w - at);
     }
 }
 

@@ -7,11 +7,13 @@ SceneTables::SceneTables(const FlatScene& scene) {
     halfSpaces.reserve(scene.halfSpaces.size());
     constantNormal.assign(scene.halfSpaces.size(), false);
     planeNormal.assign(scene.halfSpaces.size(), Vec3{});
+    packedPlaneNormal.assign(scene.halfSpaces.size(), PackedNormal{});
     for (std::size_t h = 0; h < scene.halfSpaces.size(); ++h) {
         halfSpaces.push_back(RayHalfSpace::From(scene.halfSpaces[h], reference[h]));
         if (scene.halfSpaces[h].isPlane) {
             constantNormal[h] = true;
             planeNormal[h] = scene.WorldNormal(static_cast<int>(h), Vec3{});
+            packedPlaneNormal[h] = PackedNormal(planeNormal[h]);
         }
     }
     bodyFirstTag.reserve(scene.bodies.size() + 1);

@@ -11,6 +11,7 @@
 
 #include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/frame/packed_normal.h"
 
 namespace quadrix::raycast {
 
@@ -35,9 +36,11 @@ struct SceneTables {
     std::vector<std::int32_t> bodyFirstTag;  // body b's literals are tags [first[b], first[b+1])
     std::vector<bool> bodyValid;             // false when a literal names a missing half-space
     // Per half-space: true for a plane, whose world normal (FlatScene::WorldNormal) is the same
-    // at every point and is computed once here, in `planeNormal`.
+    // at every point and is computed once here, in `planeNormal`, and packed as the Frame holds
+    // it in `packedPlaneNormal` (frame/packed_normal.h), so pixels do not pack it again.
     std::vector<bool> constantNormal;
     std::vector<Vec3> planeNormal;
+    std::vector<PackedNormal> packedPlaneNormal;
     // 0, 1, 2, … (one per tag): body b's literal tags as an array, tagSequence.data() +
     // bodyFirstTag[b] (TileReduction::ReduceBody takes its literals as an array).
     std::vector<std::int32_t> tagSequence;

@@ -269,7 +269,7 @@ bool TileReduction::TryFlatFill(const CsgProgram& program, const Rect& r, int x0
     const Tag& near = tables_.TagOf(nearTag);
     const auto hsIndex = static_cast<std::size_t>(near.halfSpace);
     const RayHalfSpace& hs = tables_.halfSpaces[hsIndex];
-    const PackedNormal normal(tables_.planeNormal[hsIndex]);
+    const PackedNormal normal = tables_.packedPlaneNormal[hsIndex];
     for (int j = y0; j < y1; ++j) {
         const double y = j + 0.5;
         std::size_t k = out.Index(x0, j);

@@ -22,8 +22,8 @@ void WriteHit(const FlatScene& scene, const SceneTables& tables, const Hit& hit,
     out.depth[k] = static_cast<float>(hit.t);
     const auto hsIndex = static_cast<std::size_t>(tag.halfSpace);
     out.normal[k] = tables.constantNormal[hsIndex]
-                        ? tables.planeNormal[hsIndex]
-                        : scene.WorldNormal(tag.halfSpace, {x, y, hit.t});
+                        ? tables.packedPlaneNormal[hsIndex]
+                        : PackedNormal(scene.WorldNormal(tag.halfSpace, {x, y, hit.t}));
     out.surface[k] = tag.halfSpace;
     out.body[k] = tag.body;
 }
@@ -94,14 +94,8 @@ void RenderSubTile(const FlatScene& scene, const SceneTables& tables, std::size_
 }  // namespace
 
 void FillBackground(Frame& frame, int x0, int y0, int x1, int y1) {
-    const auto n = static_cast<std::size_t>(x1 - x0);
-    for (int j = y0; j < y1; ++j) {
-        const auto k = static_cast<std::ptrdiff_t>(frame.Index(x0, j));
-        std::fill_n(frame.depth.begin() + k, n, HUGE_VALF);
-        std::fill_n(frame.normal.begin() + k, n, PackedNormal{});
-        std::fill_n(frame.surface.begin() + k, n, Frame::kNone);
-        std::fill_n(frame.body.begin() + k, n, Frame::kNone);
-    }
+    for (int j = y0; j < y1; ++j)
+        frame.SetBackground(frame.Index(x0, j), static_cast<std::size_t>(x1 - x0));
 }
 
 std::vector<Rect> TileRects(int bx0, int by0, int bx1, int by1) {
