@@ -534,7 +534,7 @@ TEST(FlattenNormals, WorldNormalOfASphereFacesTheViewer) {
 namespace quadrix {
 namespace {
 
-// ∪(ballᵢ − drill): the drill is one FlatBody per operand over the same half-spaces, and its box
+// ∪(ballᵢ ∩ drill): the drill is one FlatBody per operand over the same half-spaces, and its box
 // is computed once and shared (flattener.cpp, FirstWithSameLiterals). The same solid written
 // with a separate copy of the drill's half-spaces per operand computes every box on its own: the
 // two flat scenes must agree bit for bit, and the drill's boxes must bound it (a cylinder along x
@@ -554,7 +554,9 @@ TEST(FlattenBounds, BodiesSharingLiteralsShareExactlyTheBoxesComputedAlone) {
         }
         t += "csg u (";
         for (int i = 0; i < 6; ++i)
-            t += fmt::format("{}(s{} - drill{})", i ? " | " : "", i,
+            // (An intersection: differences subtracting the same body are grouped into one,
+            // hierarchy.h, and would leave one drill.)
+            t += fmt::format("{}(s{} & drill{})", i ? " | " : "", i,
                              copies ? std::to_string(i) : "");
         t += ");\nview v dop 0 0 -1;\n";
         scene::Scene s;

@@ -15,8 +15,10 @@
 // CSG trees: chains of one associative operator are merged (a | b | c → one kUnion with three
 // children, also across references to other CSG solids); difference chains (a - b) - c become one
 // kDifference [a, b, c], and a subtrahend that is a union is spliced (a - (b | c) = a - b - c).
-// An instance/array used as an operand is the union of everything it draws. A union of nothing
-// (an operand instance of zero copies) is an empty kUnion node: the empty set.
+// Differences in a union or intersection that subtract the same bodies are grouped,
+// ∪ᵢ (aᵢ − s) → (∪ᵢ aᵢ) − s (common_subtrahends.h), so a solid costs the same however its tree
+// is written. An instance/array used as an operand is the union of everything it draws. A union of
+// nothing (an operand instance of zero copies) is an empty kUnion node: the empty set.
 //
 // Colors: a body's own color, else the innermost enclosing CSG solid or instance with one, else
 // white. Names: paths such as "stack_of_bundles[1]/bundle_of_tubes[3]/tube" (instance ids with

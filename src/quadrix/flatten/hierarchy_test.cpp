@@ -326,6 +326,166 @@ TEST(FlattenCsg, InstanceOperandIsTheUnionOfWhatItDraws) {
     EXPECT_EQ(hemis, 2);
 }
 
+// ∪ᵢ (xᵢ − d) is made as (∪ᵢ xᵢ) − d: the same tree as the nested form, one leaf of d.
+TEST(FlattenCsg, DifferencesSubtractingTheSameBodyAreGroupedIntoTheNestedForm) {
+    auto names = [](const Walked& w, int node) {
+        std::vector<std::string> out;
+        for (int c : w.flat.nodes[node].children) {
+            const FlatCsgNode& n = w.flat.nodes[c];
+            out.push_back(n.isLeaf ? w.flat.bodies[n.body].name : "<node>");
+        }
+        return out;
+    };
+    scene::Scene distributed = FourSpheres();
+    {
+        CsgBuilder b;  // ((a - d) | (b - d)) | (c - d)
+        int n = b.Op(CsgOp::kUnion,
+                     b.Op(CsgOp::kUnion, b.Op(CsgOp::kDifference, b.Body(0), b.Body(3)),
+                          b.Op(CsgOp::kDifference, b.Body(1), b.Body(3))),
+                     b.Op(CsgOp::kDifference, b.Body(2), b.Body(3)));
+        AddCsg(distributed.top, "u", b, n);
+    }
+    scene::Scene nested = FourSpheres();
+    {
+        CsgBuilder b;  // ((a | b) | c) - d
+        int n = b.Op(CsgOp::kDifference,
+                     b.Op(CsgOp::kUnion, b.Op(CsgOp::kUnion, b.Body(0), b.Body(1)), b.Body(2)),
+                     b.Body(3));
+        AddCsg(nested.top, "u", b, n);
+    }
+    for (const scene::Scene* s : {&distributed, &nested}) {
+        Walked w = Walk(*s);
+        ASSERT_TRUE(w.ok);
+        ASSERT_EQ(w.flat.solids.size(), 1u);
+        EXPECT_EQ(w.flat.bodies.size(), 4u);  // one d, not three
+        EXPECT_EQ(w.result.bodyLocs.size(), 4u);
+        const int root = w.flat.solids[0].root;
+        ASSERT_FALSE(w.flat.nodes[root].isLeaf);
+        EXPECT_EQ(w.flat.nodes[root].op, CsgOp::kDifference);
+        EXPECT_EQ(names(w, root), (std::vector<std::string>{"<node>", "u/d"}));
+        const int u = w.flat.nodes[root].children[0];
+        EXPECT_EQ(w.flat.nodes[u].op, CsgOp::kUnion);
+        EXPECT_EQ(names(w, u), (std::vector<std::string>{"u/a", "u/b", "u/c"}));
+        for (const FlatBody& body : w.flat.bodies) EXPECT_EQ(body.solid, 0);
+        for (std::size_t i = 0; i < w.flat.nodes.size(); ++i)
+            for (int c : w.flat.nodes[i].children) EXPECT_LT(c, int(i));
+        // Every node is reachable: nothing was made and left over.
+        std::vector<int> parents(w.flat.nodes.size(), 0);
+        for (const FlatCsgNode& n : w.flat.nodes)
+            for (int c : n.children) ++parents[c];
+        for (std::size_t i = 0; i < w.flat.nodes.size(); ++i)
+            EXPECT_EQ(parents[i], int(i) == root ? 0 : 1) << "node " << i;
+    }
+}
+
+TEST(FlattenCsg, IntersectionsOfDifferencesAreGroupedAndTheGroupStandsAtItsFirstMember) {
+    {
+        scene::Scene s = FourSpheres();
+        CsgBuilder b;  // (a - d) & (b - d) → (a & b) - d
+        int n = b.Op(CsgOp::kIntersection, b.Op(CsgOp::kDifference, b.Body(0), b.Body(3)),
+                     b.Op(CsgOp::kDifference, b.Body(1), b.Body(3)));
+        AddCsg(s.top, "i", b, n);
+        Walked w = Walk(s);
+        ASSERT_TRUE(w.ok);
+        EXPECT_EQ(w.flat.bodies.size(), 4u);  // a, d, b; and c, drawn on its own
+        ASSERT_EQ(w.flat.solids.back().name, "i");
+        const FlatCsgNode& root = w.flat.nodes[w.flat.solids.back().root];
+        EXPECT_EQ(root.op, CsgOp::kDifference);
+        ASSERT_EQ(root.children.size(), 2u);
+        EXPECT_EQ(w.flat.nodes[root.children[0]].op, CsgOp::kIntersection);
+        EXPECT_EQ(w.flat.nodes[root.children[0]].children.size(), 2u);
+        EXPECT_EQ(w.flat.bodies[w.flat.nodes[root.children[1]].body].name, "i/d");
+    }
+    {
+        scene::Scene s = FourSpheres();
+        CsgBuilder b;  // (((a - d) | b) | (c - d)) | (a - c) → [(a | c) - d, b, a - c]
+        int n = b.Op(
+            CsgOp::kUnion,
+            b.Op(CsgOp::kUnion,
+                 b.Op(CsgOp::kUnion, b.Op(CsgOp::kDifference, b.Body(0), b.Body(3)), b.Body(1)),
+                 b.Op(CsgOp::kDifference, b.Body(2), b.Body(3))),
+            b.Op(CsgOp::kDifference, b.Body(0), b.Body(2)));
+        AddCsg(s.top, "m", b, n);
+        Walked w = Walk(s);
+        ASSERT_TRUE(w.ok);
+        EXPECT_EQ(w.flat.bodies.size(), 6u);  // a, c, d; b; a, c
+        const FlatCsgNode& root = w.flat.nodes[w.flat.solids[0].root];
+        EXPECT_EQ(root.op, CsgOp::kUnion);
+        ASSERT_EQ(root.children.size(), 3u);
+        const FlatCsgNode& g = w.flat.nodes[root.children[0]];
+        EXPECT_EQ(g.op, CsgOp::kDifference);
+        ASSERT_EQ(g.children.size(), 2u);
+        EXPECT_EQ(w.flat.nodes[g.children[0]].children.size(), 2u);  // a | c
+        EXPECT_TRUE(w.flat.nodes[root.children[1]].isLeaf);
+        EXPECT_EQ(w.flat.bodies[w.flat.nodes[root.children[1]].body].name, "m/b");
+        EXPECT_EQ(w.flat.nodes[root.children[2]].op, CsgOp::kDifference);
+    }
+}
+
+// Copies that would not be the same leaf are not grouped: another inherited color, another
+// instance copy (another transform), a subtrahend that is not a single body.
+TEST(FlattenCsg, DifferencesAreGroupedOnlyWhenTheirSubtrahendsAreTheSameLeaves) {
+    {
+        scene::Scene s = FourSpheres();
+        CsgBuilder b1;  // x = a - d, red
+        AddCsg(s.top, "x", b1, b1.Op(CsgOp::kDifference, b1.Body(0), b1.Body(3)), Color{1, 0, 0});
+        CsgBuilder b2;  // u = x | (b - d)
+        int n = b2.Op(CsgOp::kUnion, b2.Csg(0), b2.Op(CsgOp::kDifference, b2.Body(1), b2.Body(3)));
+        AddCsg(s.top, "u", b2, n);
+        Walked w = Walk(s);
+        ASSERT_TRUE(w.ok);
+        ASSERT_EQ(w.flat.bodies.size(), 5u);  // c drawn on its own; a, d; b, d
+        ASSERT_EQ(w.flat.solids.back().name, "u");
+        const FlatCsgNode& root = w.flat.nodes[w.flat.solids.back().root];
+        EXPECT_EQ(root.op, CsgOp::kUnion);
+        ASSERT_EQ(root.children.size(), 2u);
+        const FlatCsgNode& first = w.flat.nodes[root.children[0]];
+        const FlatCsgNode& second = w.flat.nodes[root.children[1]];
+        EXPECT_EQ(w.flat.bodies[w.flat.nodes[first.children[1]].body].color, (Color{1, 0, 0}));
+        EXPECT_EQ(w.flat.bodies[w.flat.nodes[second.children[1]].body].color, (Color{1, 1, 1}));
+    }
+    {
+        scene::Scene s;
+        scene::Scope def;
+        def.id = "holed";
+        AddBody(def, "ball", {AddSphere(def, "s", {0, 0, 0}, 1)});
+        AddBody(def, "hole", {AddSphere(def, "h", {0, 0, 0}, 0.5)});
+        CsgBuilder b;
+        AddCsg(def, "shell", b, b.Op(CsgOp::kDifference, b.Body(0), b.Body(1)));
+        s.definitions.push_back(def);
+        int arr = AddInstance(s.top, "row", 0, Transform(), 3, Transform::Translate({3, 0, 0}));
+        int q = AddSphere(s.top, "q", {0, 5, 0}, 1);
+        AddBody(s.top, "extra", {q});
+        CsgBuilder u;
+        AddCsg(s.top, "u", u, u.Op(CsgOp::kUnion, u.Inst(arr), u.Body(0)));
+        Walked w = Walk(s);
+        ASSERT_TRUE(w.ok);
+        EXPECT_EQ(w.flat.bodies.size(), 7u);  // three shells of two bodies, and extra
+        const FlatCsgNode& root = w.flat.nodes[w.flat.solids[0].root];
+        ASSERT_EQ(root.children.size(), 4u);
+        for (int k = 0; k < 3; ++k) {
+            const FlatCsgNode& shell = w.flat.nodes[root.children[k]];
+            EXPECT_EQ(shell.op, CsgOp::kDifference);
+            EXPECT_EQ(shell.children.size(), 2u);
+        }
+    }
+    {
+        scene::Scene s = FourSpheres();
+        CsgBuilder b;  // (a - (c | d)) | (b - (c | d)): the subtrahends are spliced unions
+        int n =
+            b.Op(CsgOp::kUnion,
+                 b.Op(CsgOp::kDifference, b.Body(0), b.Op(CsgOp::kUnion, b.Body(2), b.Body(3))),
+                 b.Op(CsgOp::kDifference, b.Body(1), b.Op(CsgOp::kUnion, b.Body(2), b.Body(3))));
+        AddCsg(s.top, "v", b, n);
+        Walked w = Walk(s);
+        ASSERT_TRUE(w.ok);
+        EXPECT_EQ(w.flat.bodies.size(), 6u);
+        const FlatCsgNode& root = w.flat.nodes[w.flat.solids[0].root];
+        ASSERT_EQ(root.children.size(), 2u);
+        EXPECT_EQ(w.flat.nodes[root.children[0]].children.size(), 3u);
+    }
+}
+
 TEST(FlattenCsg, ZeroCopyOperandIsAnEmptyUnion) {
     scene::Scene s = FourSpheres();
     scene::Scope def;
