@@ -46,7 +46,13 @@ class BoxTree {
 
     // Calls visit(k) for the items whose box's (x, y) projection may contain (x, y) (closed).
     template <class Visit>
-    void Column(double x, double y, Visit&& visit) const;
+    void Column(double x, double y, Visit&& visit) const {
+        ColumnBefore(x, y, HUGE_VAL, visit);
+    }
+    // The same, skipping the items whose box starts at or beyond depth zMax (box.lo.z >= zMax;
+    // with zMax = +inf, Column): the part of the column before zMax.
+    template <class Visit>
+    void ColumnBefore(double x, double y, double zMax, Visit&& visit) const;
 
     // The slab test of one box against a segment (used by the tree and by its callers).
     static bool SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1);
@@ -80,8 +86,10 @@ inline bool BoxTree::SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d,
         }
         double t0 = (lo - p[k]) / d[k], t1 = (hi - p[k]) / d[k];
         if (t0 > t1) std::swap(t0, t1);
-        s0 = std::fmax(s0, t0);
-        s1 = std::fmin(s1, t1);
+        // std::fmax / std::fmin by comparison (the same values: t0, t1 are never NaN for a
+        // finite p, and a NaN one is ignored either way), without a call into libm per slab.
+        s0 = t0 > s0 ? t0 : s0;
+        s1 = t1 < s1 ? t1 : s1;
         if (s0 > s1) return false;
     }
     return true;
@@ -110,7 +118,7 @@ bool BoxTree::Segment(const Vec3& p, const Vec3& d, double s0, double s1, Visit&
 }
 
 template <class Visit>
-void BoxTree::Column(double x, double y, Visit&& visit) const {
+void BoxTree::ColumnBefore(double x, double y, double zMax, Visit&& visit) const {
     for (std::int32_t k : always_) visit(k);
     if (nodes_.empty()) return;
     std::int32_t stack[kMaxDepth + 2];
@@ -119,6 +127,7 @@ void BoxTree::Column(double x, double y, Visit&& visit) const {
     while (top > 0) {
         const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
         if (x < n.box.lo.x || x > n.box.hi.x || y < n.box.lo.y || y > n.box.hi.y) continue;
+        if (zMax < HUGE_VAL && n.box.lo.z >= zMax) continue;
         if (n.count == 0) {
             stack[top++] = n.first;
             stack[top++] = n.first + 1;

@@ -161,6 +161,19 @@ void MarkShadingJumpsOn(const Frame& f, const Image& image, std::vector<std::uin
     }
 }
 
+// Where the samples of pixel (x, y) probably see something: just past the deepest surface of the
+// pixel and its eight neighbours (+inf when none is covered). Only a first guess for the sample
+// tracer's depth windows; the samples do not depend on it.
+double DepthHint(const Frame& f, int x, int y) {
+    double deepest = -HUGE_VAL;
+    for (int v = std::max(y - 1, 0); v <= std::min(y + 1, f.height - 1); ++v)
+        for (int u = std::max(x - 1, 0); u <= std::min(x + 1, f.width - 1); ++u) {
+            const double z = f.depth[f.Index(u, v)];
+            if (std::isfinite(z) && z > deepest) deepest = z;
+        }
+    return deepest == -HUGE_VAL ? HUGE_VAL : deepest + 2 + 1e-6 * std::fabs(deepest);
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> FindEdges(const Frame& frame) { return FindEdgesOn(frame, {}); }
@@ -256,9 +269,10 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                     const std::uint64_t work = tRayLiterals;
                     ++local;
                     double r = 0, g = 0, b = 0, wsum = 0;
+                    const double hint = DepthHint(frame, x, y);
                     for (const SubPixel& s : SamplePositions(options.aaSamples, x, y)) {
                         const double px = x + s.u, py = y + s.v;
-                        const raycast::Sample hit = tracer.Trace(px, py, scratch);
+                        const raycast::Sample hit = tracer.Trace(px, py, scratch, hint);
                         const scene::Color c = shader.At(px, py, hit.surface, hit.body, hit.depth,
                                                          hit.normal, background);
                         const double wgt =

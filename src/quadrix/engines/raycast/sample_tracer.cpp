@@ -1,6 +1,7 @@
 #include "quadrix/engines/raycast/sample_tracer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "quadrix/engines/raycast/eval_names.h"
@@ -27,6 +28,23 @@ SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex)
     WideNodeTrees wide = WideNodeTrees::Build(scene, spatialIndex);
     wide_ = std::move(wide.trees);
     wideOf_ = std::move(wide.of);
+    // Depth windows for the solids with a wide node and finite depth bounds (see Trace).
+    windowed_.assign(scene.solids.size(), 0);
+    if (spatialIndex)
+        for (std::size_t s = 0; s < scene.solids.size(); ++s) {
+            const Box3& b = scene.solids[s].bounds;
+            windowed_[s] = std::isfinite(b.lo.z) && std::isfinite(b.hi.z) && b.lo.z < b.hi.z &&
+                           HasWideNode(scene.solids[s].root);
+        }
+}
+
+bool SampleTracer::HasWideNode(std::int32_t n) const {
+    if (wideOf_[static_cast<std::size_t>(n)] >= 0) return true;
+    const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
+    if (!node.isLeaf)
+        for (int c : node.children)
+            if (HasWideNode(c)) return true;
+    return false;
 }
 
 int SampleTracer::Depth(std::int32_t n) const {
@@ -42,7 +60,7 @@ SampleScratch::SampleScratch(const SampleTracer& tracer) {
     for (IntervalList& l : lists) slots.push_back(&l);
 }
 
-void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
+void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleScratch& s,
                         std::size_t slot) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     IntervalList& out = *s.slots[slot];
@@ -95,8 +113,8 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
     if (wide >= 0) {
         const std::int32_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
         if (from) hits.push_back(0);
-        wide_[static_cast<std::size_t>(wide)].Column(
-            x, y, [&](std::int32_t k) { hits.push_back(k + from); });
+        wide_[static_cast<std::size_t>(wide)].ColumnBefore(
+            x, y, zMax, [&](std::int32_t k) { hits.push_back(k + from); });
         std::sort(hits.begin() + static_cast<std::ptrdiff_t>(base) + from, hits.end());
         count = hits.size() - base;
         if (count == 0) return;  // a union met by no child: ∅
@@ -109,11 +127,13 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
     for (std::size_t i = 0; i < count; ++i) {
         const int c = child(i);
         const Box3& cb = scene_.nodes[static_cast<std::size_t>(c)].bounds;
-        // A child whose bounds miss the ray is ∅ there (bounds are conservative).
-        const bool misses = x < cb.lo.x || x > cb.hi.x || y < cb.lo.y || y > cb.hi.y;
+        // A child whose bounds miss the ray is ∅ there (bounds are conservative), and one that
+        // starts at or beyond zMax is ∅ before it.
+        const bool misses = x < cb.lo.x || x > cb.hi.x || y < cb.lo.y || y > cb.hi.y ||
+                            (zMax < HUGE_VAL && cb.lo.z >= zMax);
         if (first) {
             first = false;
-            if (!misses) Node(c, x, y, s, slot);
+            if (!misses) Node(c, x, y, zMax, s, slot);
             if (s.slots[slot]->empty() && node.op != scene::CsgOp::kUnion) return;
             continue;
         }
@@ -124,7 +144,7 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
             }
             continue;  // A ∪ ∅ = A − ∅ = A
         }
-        Node(c, x, y, s, slot + 1);
+        Node(c, x, y, zMax, s, slot + 1);
         IntervalList& acc = *s.slots[slot];
         const IntervalList& operand = *s.slots[slot + 1];
         IntervalList& result = *s.slots[slot + 2];
@@ -144,7 +164,19 @@ void SampleTracer::Node(std::int32_t n, double x, double y, SampleScratch& s,
     }
 }
 
-Sample SampleTracer::Trace(double x, double y, SampleScratch& scratch) const {
+SampleTracer::Window SampleTracer::FirstVisible(const IntervalList& set, double zMax, double& t,
+                                                std::int32_t& tag) const {
+    for (const Interval& v : set) {
+        if (!(v.lo < zMax)) return Window::kUndecided;
+        if (tables_.VisibleEnd(v.lo, v.loId, v.hi, v.hiId, t, tag))
+            return t < zMax ? Window::kFound : Window::kUndecided;
+        // No visible end: known only when the whole interval lies before zMax.
+        if (!(v.hi < zMax)) return Window::kUndecided;
+    }
+    return zMax == HUGE_VAL ? Window::kNone : Window::kUndecided;
+}
+
+Sample SampleTracer::Trace(double x, double y, SampleScratch& scratch, double depthHint) const {
     double bestT = HUGE_VAL;
     std::int32_t bestTag = -1, bestSolid = -1;
     // The solids whose bounds may contain (x, y), in byDepth_ order.
@@ -160,17 +192,36 @@ Sample SampleTracer::Trace(double x, double y, SampleScratch& scratch) const {
         if (x < solid.bounds.lo.x || x > solid.bounds.hi.x || y < solid.bounds.lo.y ||
             y > solid.bounds.hi.y)
             continue;
-        Node(solid.root, x, y, scratch, 0);
-        for (const Interval& v : *scratch.slots[0]) {
+        // Windows: the solid's set is made before zMax = the hint, then lo + (hi − lo)/64, /32,
+        // … /2 of its depth bounds beyond it, then whole, until its visible point lies before zMax
+        // (windowed_ solids; others whole at once). Each window's set equals the solid's before
+        // zMax, ids included. A window that decides nothing, beyond which the best point so far
+        // already lies, leaves the solid losing.
+        const Box3& b = solid.bounds;
+        const bool windowed = windowed_[static_cast<std::size_t>(s)];
+        double zMax = windowed && depthHint > b.lo.z && depthHint < b.hi.z ? depthHint : -HUGE_VAL;
+        for (int w = windowed ? -1 : kWindows; w <= kWindows; ++w) {
+            if (w >= 0) {
+                const double next =
+                    w == kWindows ? HUGE_VAL : b.lo.z + (b.hi.z - b.lo.z) * kWindowFraction[w];
+                if (!(next > zMax)) continue;  // within the window already tried
+                zMax = next;
+            } else if (zMax == -HUGE_VAL) {
+                continue;  // no hint inside the bounds
+            }
+            Node(solid.root, x, y, zMax, scratch, 0);
             double t;
             std::int32_t tag;
-            if (!tables_.VisibleEnd(v.lo, v.loId, v.hi, v.hiId, t, tag)) continue;
-            if (t < bestT || (t == bestT && s < bestSolid)) {
-                bestT = t;
-                bestTag = tag;
-                bestSolid = s;
+            const Window found = FirstVisible(*scratch.slots[0], zMax, t, tag);
+            if (found == Window::kFound) {
+                if (t < bestT || (t == bestT && s < bestSolid)) {
+                    bestT = t;
+                    bestTag = tag;
+                    bestSolid = s;
+                }
+                break;
             }
-            break;
+            if (found == Window::kNone || bestT < zMax) break;
         }
     }
     Sample out;

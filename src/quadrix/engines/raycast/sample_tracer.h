@@ -21,6 +21,18 @@
 // exactly), so a sample is bit for bit what it was without the trees; the literal evaluation
 // (LiteralOnRay) is untouched.
 //
+// Depth windows (solids with a wide node and finite depth bounds): a column through a cluster of
+// 10,000 spheres meets hundreds of them, but its visible point is on one of the first few. The
+// solid's set is first made only before zMax = lo + (hi − lo)/64 of its depth bounds: a child
+// whose box starts at or beyond zMax is ∅ there and skipped, like one whose box misses the column.
+// Set operations commute with the restriction to z < zMax, and the folds (interval_list.h) are
+// sweeps whose result before a depth depends only on the endpoints before it, so the list so made
+// equals the whole set before zMax, endpoint ids included; its intervals wholly before zMax are
+// exact. When the first visible end lies in them (strictly before zMax), it is the solid's visible
+// point, bit for bit; otherwise the window grows (1/64, 1/32, … 1/2, then the whole set; a caller's
+// depth hint, when it lies inside the solid's depth bounds, is tried first). A solid
+// whose window decided nothing while the best point so far lies before zMax cannot win and is left.
+//
 // Freeform surfaces are not traced (the isocurve drawer draws them, not raycast): a sample sees
 // only the quadric solids.
 #pragma once
@@ -68,8 +80,10 @@ class SampleTracer {
     explicit SampleTracer(const FlatScene& scene, bool spatialIndex = true);
 
     // The visible point of the ray through device (x, y). Thread-safe with one scratch per
-    // thread.
-    Sample Trace(double x, double y, SampleScratch& scratch) const;
+    // thread. depthHint: a depth the visible point probably lies before (the anti-aliasing pass
+    // gives the nearby pixels' deepest): the first depth window tried; the sample is the same
+    // whatever the hint (see Depth windows), only its cost changes.
+    Sample Trace(double x, double y, SampleScratch& scratch, double depthHint = HUGE_VAL) const;
     Sample Trace(double x, double y) const {
         SampleScratch scratch(*this);
         return Trace(x, y, scratch);
@@ -79,9 +93,19 @@ class SampleTracer {
     static constexpr std::size_t kWideNode = WideNodeTrees::kWideNode;
 
   private:
-    // *scratch.slots[slot] = the set of node n on the ray through (x, y).
-    void Node(std::int32_t n, double x, double y, SampleScratch& scratch, std::size_t slot) const;
+    // *scratch.slots[slot] = the set of node n on the ray through (x, y), exact before zMax
+    // (children that start at or beyond zMax are skipped; see Depth windows above).
+    void Node(std::int32_t n, double x, double y, double zMax, SampleScratch& scratch,
+              std::size_t slot) const;
     int Depth(std::int32_t n) const;
+    bool HasWideNode(std::int32_t n) const;
+    // The first visible end of `set`, made exact before zMax: kFound (t, tag set) when it lies
+    // before zMax; kNone when zMax is infinite and the set has none; else kUndecided.
+    enum class Window { kFound, kNone, kUndecided };
+    Window FirstVisible(const IntervalList& set, double zMax, double& t, std::int32_t& tag) const;
+    static constexpr int kWindows = 6;
+    static constexpr double kWindowFraction[kWindows] = {1.0 / 64, 1.0 / 32, 1.0 / 16,
+                                                         1.0 / 8,  1.0 / 4,  1.0 / 2};
 
     const FlatScene& scene_;
     SceneTables tables_;
@@ -90,6 +114,7 @@ class SampleTracer {
     BoxTree solidTree_;                  // over the solids' bounds
     std::vector<BoxTree> wide_;          // trees of the wide nodes
     std::vector<std::int32_t> wideOf_;   // node → index into wide_, or -1
+    std::vector<char> windowed_;         // per solid: traced in depth windows
     int maxDepth_ = 0;
 };
 
