@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "quadrix/io/pov_export.h"
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/pipeline.h"
 #include "quadrix/shade/antialias.h"
@@ -307,6 +308,42 @@ const std::string kLanguagePipe =
     "solid box block =at 3 0 3 =size 1.6 1.6 1.6;\n"
     "csg cut (block - hose); view v dop -.3 -.5 -1;";
 
+// A union of 40 spheres minus a drill: exported as ∪ (sphereᵢ − drill) (io/pov_export.h).
+const std::string kDrilledCluster = [] {
+    std::string t = "text:";
+    for (int i = 0; i < 40; ++i)
+        t += fmt::format("solid sphere s{} =at {:.4f} {:.4f} {:.4f} =r .8;\n", i,
+                         3 * std::sin(i * 1.7), 3 * std::cos(i * 2.3), std::sin(i * 0.9));
+    t += "solid cylinder drill =from 0 0 -3 =to 0 0 3 =r 1.2;\ncsg cluster ((";
+    for (int i = 0; i < 40; ++i) t += fmt::format("{}s{}", i ? " | " : "", i);
+    return t + ") - drill) =c .9 .7 .4;\nlight .2; light .8 .3 1 -.5;\nview v dop .2 .3 -1;\n";
+}();
+
+// The export writes the cluster distributed, one difference per sphere, and a union of few
+// operands minus a drill as it is.
+TEST(PovExport, AWideUnionMinusADrillIsWrittenDistributed) {
+    auto differences = [](const std::string& text) {
+        PipelineOptions o;
+        o.sceneText = text;
+        o.width = 64;
+        o.height = 48;
+        PipelineResult r;
+        Diagnostics d;
+        EXPECT_TRUE(RunPipeline(o, r, d)) << text;
+        const std::string pov = ExportPov(r.flat);
+        std::size_t n = 0;
+        for (std::size_t at = pov.find("difference {"); at != std::string::npos;
+             at = pov.find("difference {", at + 1))
+            ++n;
+        return n;
+    };
+    EXPECT_EQ(differences(kDrilledCluster.substr(5)), 40u);
+    EXPECT_EQ(differences("solid sphere left =at 0 0 0 =r 1; solid sphere right =at 1 0 0 =r 1;\n"
+                          "solid cylinder drill =from 0 0 -2 =to 0 0 2 =r .3;\n"
+                          "csg pair ((left | right) - drill); view v dop 0 0 -1;\n"),
+              1u);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Quartics, PovrayTest,
     ::testing::Values(PovCase{"TorusThroughHole", kTorusThroughHole, 200, 160, false, false, true},
@@ -338,7 +375,9 @@ INSTANTIATE_TEST_SUITE_P(
         PovCase{"Materials", "examples/materials.uq", 240, 180},
         PovCase{"MaterialsShadows", "examples/materials.uq", 240, 180, false, true},
         PovCase{"StackOfBundlesShadows", "examples/stack_of_bundles.uq", 200, 200, false, true},
-        PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240, false, true}),
+        PovCase{"MachinedPartShadows", "examples/machined_part.uq", 320, 240, false, true},
+        PovCase{"DrilledCluster", kDrilledCluster, 240, 180},
+        PovCase{"DrilledClusterShadows", kDrilledCluster, 240, 180, false, true}),
     [](const auto& info) { return std::string(info.param.name); });
 
 INSTANTIATE_TEST_SUITE_P(

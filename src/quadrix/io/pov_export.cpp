@@ -299,6 +299,24 @@ class PovWriter {
             Node(node.children[0], depth);
             return;
         }
+        if (node.op == scene::CsgOp::kDifference && DistributesWell(node)) {
+            // (∪ aᵢ) − S → ∪ (aᵢ − S): see pov_export.h.
+            const FlatCsgNode& minuend = scene_.nodes[node.children[0]];
+            Indent(depth);
+            out_ += "union {\n";
+            for (int a : minuend.children) {
+                Indent(depth + 1);
+                out_ += "difference {\n";
+                Node(a, depth + 2);
+                for (std::size_t k = 1; k < node.children.size(); ++k)
+                    Node(node.children[k], depth + 2);
+                Indent(depth + 1);
+                out_ += "}\n";
+            }
+            Indent(depth);
+            out_ += "}\n";
+            return;
+        }
         const char* op = node.op == scene::CsgOp::kUnion          ? "union"
                          : node.op == scene::CsgOp::kIntersection ? "intersection"
                                                                   : "difference";
@@ -308,6 +326,16 @@ class PovWriter {
         Indent(depth);
         out_ += "}\n";
     }
+
+    // A difference whose minuend is a union of more than kDistributedUnion operands and whose
+    // subtrahends are few (at most kDistributedSubtrahends bodies' worth of text per operand).
+    bool DistributesWell(const FlatCsgNode& node) const {
+        const FlatCsgNode& minuend = scene_.nodes[node.children[0]];
+        return !minuend.isLeaf && minuend.op == scene::CsgOp::kUnion &&
+               minuend.children.size() > kDistributedUnion &&
+               node.children.size() - 1 <= kDistributedSubtrahends;
+    }
+    static constexpr std::size_t kDistributedUnion = 8, kDistributedSubtrahends = 4;
 
     const FlatScene& scene_;
     const PovExportOptions& options_;

@@ -14,6 +14,12 @@
 //   body: opaque literals                    → intersection { … }
 //         transparent literals (and clips)   → clipped_by { intersection { … } } (bound, not drawn)
 //   CSG union / intersection / difference    → union / intersection / difference
+//   (∪ aᵢ) − S, a union of more than 8 operands minus at most 4 subtrahends
+//                                            → union { difference { aᵢ S } … } (the same set):
+//     POV-Ray bounds a difference by its minuend only, so a ray into the union's box tested
+//     every operand; written ∪ (aᵢ − S) each operand is bounded on its own (10,000 spheres − a
+//     drill: 47 s → about 2 s in POV-Ray at 1280 × 720). The walk writes both forms of such a
+//     solid this way (flatten/hierarchy.h groups ∪ (aᵢ − S) into (∪ aᵢ) − S for Quadrix).
 // Lights: ambient lights sum into global ambient_light; parallel lights become `parallel` light
 // sources far away in their (device-space) direction; point and spot lights are placed at their
 // device-space positions (spot: radius/falloff = cone/falloff, tightness 0). The default rig of a
