@@ -54,6 +54,14 @@ extern char** environ;
 namespace quadrix::bench {
 namespace {
 
+// Whether --only selects scene `name`: its text anywhere in the name, or with a trailing '$' the
+// whole name ("spheres10000$" is not "spheres100000").
+bool Selected(const std::string& name, const std::string& only) {
+    if (only.empty()) return true;
+    if (only.back() == '$') return name == only.substr(0, only.size() - 1);
+    return name.find(only) != std::string::npos;
+}
+
 // The machine every result was measured on (issue 24: these VMs change CPU between sessions):
 // the CPU model from /proc/cpuinfo, the core count and the load average when the run began.
 std::string MachineLine() {
@@ -310,7 +318,7 @@ std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::str
         "| scene | edge pixels | plain ms | --aa 4 | --aa 16 | --aa 64 |\n"
         "|---|---|---|---|---|---|\n";
     for (const BenchScene& scene : scenes) {
-        if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
+        if (!Selected(scene.name, only)) continue;
         RenderContext ctx;
         if (!Prepare(ctx, outDir + "/scenes/" + scene.name + ".uq", {1280, 720}) ||
             ctx.Flat().bodies.size() > 256)
@@ -412,7 +420,7 @@ std::string RayIndexTable(const std::vector<BenchScene>& scenes, const std::stri
         "gain | --aa 4: no trees | --aa 4: trees | gain |\n"
         "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const BenchScene& scene : scenes) {
-        if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
+        if (!Selected(scene.name, only)) continue;
         if (scene.name.find("spheres") == std::string::npos &&
             scene.name.find("machined") == std::string::npos)
             continue;
@@ -609,7 +617,8 @@ int main(int argc, char** argv) {
     app.add_option("--reps", reps, "Repetitions of Quadrix measurements (median)");
     app.add_option("--pov-reps", povReps,
                    "Repetitions of POV-Ray runs (median; 1 for slow scenes)");
-    app.add_option("--only", only, "Run only scenes whose name contains this text");
+    app.add_option("--only", only,
+                   "Run only scenes whose name contains this text (ending in '$': is exactly it)");
     app.add_option("--sizes", sizeList,
                    "Comma-separated image sizes WxH (default: the suite's three)");
     app.add_option("--threads", threads, "Worker threads for in-process frames (0 = all cores)");
@@ -704,7 +713,7 @@ int main(int argc, char** argv) {
     };
     const std::string phaseLog = outDir + "/scenes/phases.log";
     for (const BenchScene& scene : scenes) {
-        if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
+        if (!Selected(scene.name, only)) continue;
         std::string scenePath = outDir + "/scenes/" + scene.name + ".uq";
         std::ofstream(scenePath) << scene.text;
         for (Size size : sizes) {
