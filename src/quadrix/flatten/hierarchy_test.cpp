@@ -428,7 +428,9 @@ TEST(FlattenCsg, DifferencesAreGroupedOnlyWhenTheirSubtrahendsAreTheSameLeaves) 
     {
         scene::Scene s = FourSpheres();
         CsgBuilder b1;  // x = a - d, red
-        AddCsg(s.top, "x", b1, b1.Op(CsgOp::kDifference, b1.Body(0), b1.Body(3)), Color{1, 0, 0});
+        // (The root first: AddCsg takes the builder by value, and argument order is unspecified.)
+        const int x = b1.Op(CsgOp::kDifference, b1.Body(0), b1.Body(3));
+        AddCsg(s.top, "x", b1, x, Color{1, 0, 0});
         CsgBuilder b2;  // u = x | (b - d)
         int n = b2.Op(CsgOp::kUnion, b2.Csg(0), b2.Op(CsgOp::kDifference, b2.Body(1), b2.Body(3)));
         AddCsg(s.top, "u", b2, n);
@@ -451,13 +453,15 @@ TEST(FlattenCsg, DifferencesAreGroupedOnlyWhenTheirSubtrahendsAreTheSameLeaves) 
         AddBody(def, "ball", {AddSphere(def, "s", {0, 0, 0}, 1)});
         AddBody(def, "hole", {AddSphere(def, "h", {0, 0, 0}, 0.5)});
         CsgBuilder b;
-        AddCsg(def, "shell", b, b.Op(CsgOp::kDifference, b.Body(0), b.Body(1)));
+        const int shellRoot = b.Op(CsgOp::kDifference, b.Body(0), b.Body(1));
+        AddCsg(def, "shell", b, shellRoot);
         s.definitions.push_back(def);
         int arr = AddInstance(s.top, "row", 0, Transform(), 3, Transform::Translate({3, 0, 0}));
         int q = AddSphere(s.top, "q", {0, 5, 0}, 1);
         AddBody(s.top, "extra", {q});
         CsgBuilder u;
-        AddCsg(s.top, "u", u, u.Op(CsgOp::kUnion, u.Inst(arr), u.Body(0)));
+        const int unionRoot = u.Op(CsgOp::kUnion, u.Inst(arr), u.Body(0));
+        AddCsg(s.top, "u", u, unionRoot);
         Walked w = Walk(s);
         ASSERT_TRUE(w.ok);
         EXPECT_EQ(w.flat.bodies.size(), 7u);  // three shells of two bodies, and extra
