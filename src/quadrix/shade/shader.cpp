@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -112,6 +113,15 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
     // The shadow rays' box trees only when there are shadows (at 100,000 bodies they take as long
     // as reading the scene).
     if (shadows_) shadowTester_.emplace(scene, options.spatialIndex);
+    const std::array<double, 4>& last = deviceFromWorld_.m[3];
+    const bool affine = last[0] == 0 && last[1] == 0 && last[2] == 0 && last[3] == 1;
+    for (std::size_t k = 0; k < scene.lights.size(); ++k) {
+        fixedRay_.emplace_back();
+        // Under an affine map h = M (D, 0) has h_w = 0 and the ray is (h, ∞) whatever the point.
+        if (shadows_ && affine && scene.lights[k].kind == scene::Light::Kind::kParallel)
+            fixedRay_.back() =
+                DeviceShadowRay(deviceFromWorld_, Vec4(fixedLight_[k].toLight, 0.0), {}, {});
+    }
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     if (model_ == ShadingModel::kFast) {
         for (std::size_t i = 0; i < frame.surface.size(); ++i)
@@ -161,11 +171,11 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
         // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
         // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
         inShadow = [&, p](std::size_t k, const Incident& in) {
+            if (fixedRay_[k]) return shadowTester_->Blocked(p, *fixedRay_[k]);
             const scene::Light& l = scene_.lights[k];
             const Vec4 light = l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0)
                                                                        : Vec4(l.position, 1.0);
-            const DeviceRay ray = DeviceShadowRay(deviceFromWorld_, light, p, point);
-            return shadowTester_->Blocked(p, ray.d, ray.sMax);
+            return shadowTester_->Blocked(p, DeviceShadowRay(deviceFromWorld_, light, p, point));
         };
     }
     const PhongTerms t =

@@ -107,6 +107,9 @@ class PixelShader {
     Mat4 deviceFromWorld_;
     bool color_;
     std::vector<Incident> fixedLight_;
+    // The shadow ray of each parallel light under a parallel view (an affine device map): the
+    // same device ray at every pixel (DeviceShadowRay), made once. Empty optional otherwise.
+    std::vector<std::optional<DeviceRay>> fixedRay_;
     std::map<std::pair<int, int>, Vec3> meanNormal_;
 };
 

@@ -47,6 +47,23 @@ void NonPositive(double a, double h, double c, IntervalList& out) {
     }
 }
 
+// The polynomial a·s² + 2h·s + c of a plane or quadric half-space along p + s·d (the file
+// comment of shadows.h); the literal's set is where it is <= 0.
+struct LinePolynomial {
+    double a, h, c;
+};
+
+LinePolynomial OnLine(const FlatHalfSpace& h, const Vec3& p, const Vec3& d) {
+    if (h.isPlane) {
+        const Plane& pl = h.plane;
+        return {0, 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), pl.Evaluate(p)};
+    }
+    const Quadric& q = h.quadric;
+    const double a = q.A() * d.x * d.x + q.B() * d.y * d.y + q.C() * d.z * d.z +
+                     2 * (q.D() * d.x * d.y + q.E() * d.y * d.z + q.F() * d.x * d.z);
+    return {a, 0.5 * Dot(q.Gradient(p), d), q.Evaluate(p)};
+}
+
 // The set of a half-space literal on the line, into `set`; `tmp` is scratch.
 void LiteralInto(const FlatHalfSpace& h, bool complemented, const Vec3& p, const Vec3& d,
                  IntervalList& set, IntervalList& tmp) {
@@ -57,17 +74,69 @@ void LiteralInto(const FlatHalfSpace& h, bool complemented, const Vec3& p, const
         raw.clear();
         for (int i = 0; i < l.count; ++i)
             raw.Append(l.lo[static_cast<std::size_t>(i)], 0, l.hi[static_cast<std::size_t>(i)], 0);
-    } else if (h.isPlane) {
-        const Plane& pl = h.plane;
-        NonPositive(0, 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), pl.Evaluate(p), raw);
     } else {
-        const Quadric& q = h.quadric;
-        const double a = q.A() * d.x * d.x + q.B() * d.y * d.y + q.C() * d.z * d.z +
-                         2 * (q.D() * d.x * d.y + q.E() * d.y * d.z + q.F() * d.x * d.z);
-        const double hh = 0.5 * Dot(q.Gradient(p), d);
-        NonPositive(a, hh, q.Evaluate(p), raw);
+        const LinePolynomial q = OnLine(h, p, d);
+        NonPositive(q.a, q.h, q.c, raw);
     }
     if (complemented) Complement(tmp, set);
+}
+
+// A plane or quadric literal's set on the line without an IntervalList: at most two intervals,
+// appended by IntervalList::Append's rule (points and NaN dropped, touching pieces merged), as
+// NonPositive and Complement make them, so the same endpoints. NonPositive gives ∅, ℝ, a
+// half-line, [t0, t1] or (−∞, t0] ∪ [t1, ∞), and the complement of each is again one of these:
+// two pieces at most.
+struct Pieces {
+    double lo[2] = {0, 0}, hi[2] = {0, 0};
+    int n = 0;
+    void Append(double l, double h) {
+        if (!(l < h)) return;
+        if (n > 0 && l <= hi[n - 1]) {
+            if (h > hi[n - 1]) hi[n - 1] = h;
+            return;
+        }
+        lo[n] = l;
+        hi[n] = h;
+        ++n;
+    }
+};
+
+// Built in place into `out` (a Pieces returned by value was copied through the stack, and the
+// copy's wide loads of narrow stores stalled: 15 % slower than the lists).
+void LiteralPieces(const LinePolynomial& q, bool complemented, Pieces& out) {
+    Pieces raw;
+    Pieces& set = complemented ? raw : out;
+    const QuadraticRoots r = SolveQuadratic(q.a, q.h, q.c);
+    switch (r.kind) {  // NonPositive
+        case RootKind::kAll:
+            set.Append(-kInf, kInf);
+            break;
+        case RootKind::kNone:
+        case RootKind::kDouble:
+            if (q.a < 0 || (q.a == 0 && q.h == 0 && q.c <= 0)) set.Append(-kInf, kInf);
+            break;
+        case RootKind::kSingle:
+            if (q.h > 0)
+                set.Append(-kInf, r.t0);
+            else
+                set.Append(r.t0, kInf);
+            break;
+        case RootKind::kTwo:
+            if (q.a > 0) {
+                set.Append(r.t0, r.t1);
+            } else {
+                set.Append(-kInf, r.t0);
+                set.Append(r.t1, kInf);
+            }
+            break;
+    }
+    if (!complemented) return;
+    double lo = -kInf;  // Complement
+    for (int i = 0; i < raw.n; ++i) {
+        out.Append(lo, raw.lo[i]);
+        lo = raw.hi[i];
+    }
+    out.Append(lo, kInf);
 }
 
 // The interval lists of one thread's shadow rays, reused from ray to ray (no ray allocates once
@@ -120,9 +189,15 @@ DeviceRay DeviceShadowRay(const Mat4& deviceFromWorld, const Vec4& lightWorld, c
     const Vec4 row3{deviceFromWorld.m[3][0], deviceFromWorld.m[3][1], deviceFromWorld.m[3][2],
                     deviceFromWorld.m[3][3]};
     if (Dot(row3, Vec4(pWorld, 1.0)) < 0) h = -h;  // w_p > 0 on the same map
-    if (h.w > 0) return {Dehomogenize(h) - p, 1.0};
-    if (h.w == 0) return {h.xyz(), HUGE_VAL};
-    return {h.xyz() - p * h.w, HUGE_VAL};
+    DeviceRay ray;
+    if (h.w > 0) {
+        ray.d = Dehomogenize(h) - p;
+        ray.sMax = 1.0;
+    } else {
+        ray.d = h.w == 0 ? h.xyz() : h.xyz() - p * h.w;
+    }
+    ray.length = Length(ray.d);
+    return ray;
 }
 
 ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex) : scene_(scene) {
@@ -170,24 +245,112 @@ IntervalList ShadowTester::LiteralOnLine(const FlatHalfSpace& h, bool complement
     return set;
 }
 
+IntervalList ShadowTester::BodyOnSegment(int body, const Vec3& p, const Vec3& d, double s0,
+                                         double s1, bool generic) const {
+    std::vector<IntervalList> lists(5);
+    std::vector<IntervalList*> slots;
+    for (IntervalList& l : lists) slots.push_back(&l);
+    if (generic)
+        BodyGeneric(body, p, d, s0, s1, slots, 0);
+    else
+        Body(body, p, d, s0, s1, slots, 0);
+    return *slots[0];
+}
+
+// The fold starts from the window (s0, s1) rather than the whole line: every node's set is then
+// its exact set ∩ (s0, s1) (∩ distributes over ∪, ∩ and −), all that Blocked looks at, and a body
+// the segment leaves at once (a surface facing the light) empties after a few literals, so a
+// difference skips its subtrahends. Lists: a literal's set at k+1 (k+2 scratch), the fold at k+3.
+void ShadowTester::BodyGeneric(int body, const Vec3& p, const Vec3& d, double s0, double s1,
+                               std::vector<IntervalList*>& slots, std::size_t k) const {
+    slots[k]->clear();
+    slots[k]->Append(s0, Interval::kNoId, s1, Interval::kNoId);
+    for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(body)].literals) {
+        ++tRayLiterals;  // the shading budget's count (shade_budget.h)
+        LiteralInto(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)], l.complemented, p, d,
+                    *slots[k + 1], *slots[k + 2]);
+        Intersection(*slots[k], *slots[k + 1], *slots[k + 3]);
+        std::swap(slots[k], slots[k + 3]);
+        if (slots[k]->empty()) break;
+    }
+}
+
+// BodyGeneric's fold while the set is one interval [lo, hi] (a convex body, and most others on a
+// short segment): each literal's Pieces cut it by the rules of IntersectionOfOne (the later start,
+// the earlier end; empty unless lo < hi), with no list made. A literal that splits it in two, or
+// a quartic one, hands the set to the lists for the rest of the literals. The endpoints are those
+// of BodyGeneric (the tests compare them); the ids are not kept (all kNoId: shadow rays ask only
+// where the set is).
+void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, double s1,
+                        std::vector<IntervalList*>& slots, std::size_t k) const {
+    const std::vector<FlatLiteral>& literals =
+        scene_.bodies[static_cast<std::size_t>(body)].literals;
+    double lo = s0, hi = s1;
+    std::size_t i = 0;
+    bool lists = false;  // the set is in *slots[k] from literal i on
+    for (; i < literals.size(); ++i) {
+        const FlatHalfSpace& h = scene_.halfSpaces[static_cast<std::size_t>(literals[i].halfSpace)];
+        if (h.IsQuartic()) {
+            slots[k]->clear();
+            slots[k]->Append(lo, Interval::kNoId, hi, Interval::kNoId);
+            lists = true;
+            break;
+        }
+        ++tRayLiterals;
+        Pieces set;
+        LiteralPieces(OnLine(h, p, d), literals[i].complemented, set);
+        if (set.n == 0) {
+            hi = lo;  // empty
+        } else if (set.n == 1) {
+            if (set.lo[0] >= lo) lo = set.lo[0];
+            if (!(hi <= set.hi[0])) hi = set.hi[0];
+        } else {
+            // [lo, hi] ∩ [a0, b0] and [lo, hi] ∩ [a1, b1], b0 < a1: separated pieces.
+            const double l0 = set.lo[0] >= lo ? set.lo[0] : lo;
+            const double h0 = hi <= set.hi[0] ? hi : set.hi[0];
+            const double l1 = set.lo[1] >= lo ? set.lo[1] : lo;
+            const double h1 = hi <= set.hi[1] ? hi : set.hi[1];
+            const bool first = l0 < h0, second = l1 < h1;
+            if (first && second) {
+                slots[k]->clear();
+                slots[k]->Append(l0, Interval::kNoId, h0, Interval::kNoId);
+                slots[k]->Append(l1, Interval::kNoId, h1, Interval::kNoId);
+                lists = true;
+                ++i;
+                break;
+            }
+            if (first) {
+                lo = l0;
+                hi = h0;
+            } else if (second) {
+                lo = l1;
+                hi = h1;
+            } else {
+                hi = lo;
+            }
+        }
+        if (!(lo < hi)) break;
+    }
+    if (!lists) {
+        slots[k]->clear();
+        slots[k]->Append(lo, Interval::kNoId, hi, Interval::kNoId);
+        return;
+    }
+    for (; i < literals.size(); ++i) {  // BodyGeneric's loop from literal i
+        ++tRayLiterals;
+        LiteralInto(scene_.halfSpaces[static_cast<std::size_t>(literals[i].halfSpace)],
+                    literals[i].complemented, p, d, *slots[k + 1], *slots[k + 2]);
+        Intersection(*slots[k], *slots[k + 1], *slots[k + 3]);
+        std::swap(slots[k], slots[k + 3]);
+        if (slots[k]->empty()) break;
+    }
+}
+
 void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1,
                         std::vector<IntervalList*>& slots, std::size_t k, bool anyHit) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
-        // The fold starts from the window (s0, s1) rather than the whole line: every node's set is
-        // then its exact set ∩ (s0, s1) (∩ distributes over ∪, ∩ and −), all that Blocked looks
-        // at, and a body the segment leaves at once (a surface facing the light) empties after a
-        // few literals, so a difference skips its subtrahends.
-        slots[k]->clear();
-        slots[k]->Append(s0, Interval::kNoId, s1, Interval::kNoId);
-        for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(node.body)].literals) {
-            ++tRayLiterals;  // the shading budget's count (shade_budget.h)
-            LiteralInto(scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)], l.complemented, p,
-                        d, *slots[k + 1], *slots[k + 2]);
-            Intersection(*slots[k], *slots[k + 1], *slots[k + 3]);
-            std::swap(slots[k], slots[k + 3]);
-            if (slots[k]->empty()) break;
-        }
+        Body(node.body, p, d, s0, s1, slots, k);
         return;
     }
     if (anyHit && node.op == scene::CsgOp::kDifference && node.children.size() >= 2) {
@@ -291,7 +454,13 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
 }
 
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
-    const double len = Length(d);
+    return Blocked(p, DeviceRay{d, sMax, Length(d)});
+}
+
+bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray) const {
+    const Vec3& d = ray.d;
+    const double sMax = ray.sMax;
+    const double len = ray.length;
     if (!(len > 0)) return false;
     // The segment starts past the surface p lies on: 1e-4 pixel, plus far more than the rounding
     // of p's depth to the Frame's float (frame.h; half an ulp, 1.5e-5 pixel at |z| = 256), so

@@ -60,10 +60,12 @@
 namespace quadrix {
 
 // A shadow ray in device space: the light is unblocked when no solid meets p + s·d for s in
-// (ε/|d|, sMax).
+// (ε/|d|, sMax). length = |d|, computed once with d (a parallel light under a parallel view has
+// the same ray at every pixel, and the shader keeps it).
 struct DeviceRay {
     Vec3 d;
     double sMax = HUGE_VAL;
+    double length = 0;
 };
 
 // The device ray from the visible point p (device; pWorld is the same point in world space) toward
@@ -83,12 +85,25 @@ class ShadowTester {
     // True when a solid's set meets p + s·d for some s in (ε/|d|, sMax), p and d in device space;
     // ε = 1e-4 + 1024 · DepthRounding(p.z) pixels (shadows.cpp).
     bool Blocked(const Vec3& p, const Vec3& d, double sMax) const;
+    // The same for a DeviceRay (its length already computed).
+    bool Blocked(const Vec3& p, const DeviceRay& ray) const;
 
     // The set of s where a half-space literal holds on the line (exposed for tests).
     static IntervalList LiteralOnLine(const FlatHalfSpace& h, bool complemented, const Vec3& p,
                                       const Vec3& d);
+    // A body's set on the line clipped to [s0, s1]: the way Node computes it (a convex body kept
+    // as one interval, lists only once a literal splits it), and with interval lists throughout
+    // (generic = true, the reference of the tests: the same endpoints). tRayLiterals counts the
+    // literals evaluated, the same either way.
+    IntervalList BodyOnSegment(int body, const Vec3& p, const Vec3& d, double s0, double s1,
+                               bool generic) const;
 
   private:
+    // BodyOnSegment into *slots[k] (slots k+1.. scratch), without and with the one-interval path.
+    void Body(int body, const Vec3& p, const Vec3& d, double s0, double s1,
+              std::vector<IntervalList*>& slots, std::size_t k) const;
+    void BodyGeneric(int body, const Vec3& p, const Vec3& d, double s0, double s1,
+                     std::vector<IntervalList*>& slots, std::size_t k) const;
     // The node's set on the line, clipped to [s0, s1] (the bodies' folds start from it), left in
     // *slots[k]; slots k+1, ... are its scratch (shadows.cpp). Children whose boxes the segment
     // misses are taken as ∅. With anyHit only the set's emptiness matters: a union stops at its

@@ -7,6 +7,10 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
+
+#include "quadrix/util/ray_work.h"
 
 namespace quadrix {
 namespace {
@@ -203,6 +207,83 @@ TEST(ShadeShadows, ADifferenceOfAUnionAnswersAsItsDistributedForm) {
         EXPECT_GT(blocked, rays / 40) << balls;
         EXPECT_LT(blocked, rays - rays / 40) << balls;
     }
+}
+
+// The values of a list's endpoints (BodyOnSegment's fast path does not keep ids).
+std::vector<std::pair<double, double>> Ends(const IntervalList& l) {
+    std::vector<std::pair<double, double>> v;
+    for (const Interval& i : l) v.emplace_back(i.lo, i.hi);
+    return v;
+}
+
+TEST(ShadeShadows, TheOneIntervalBodyPathGivesTheListsEndpointsAndCount) {
+    // Bodies of random planes and quadrics of every kind (ellipsoids, cylinders, cones,
+    // hyperboloids: a of either sign, two-piece sets), complemented or not, some with a torus, on
+    // random segments, many of them grazing (planes parallel to the ray, rays through a cone's
+    // apex): the fast path's endpoints and literal count against the lists'.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    FlatScene s;
+    const QuarticSurface torus = *QuarticSurface::Torus({0.5, 0, 0}, {0, 0, 1}, 2, 0.7);
+    auto add = [&](int kind) {
+        FlatHalfSpace h;
+        if (kind == 0) {
+            h.isPlane = true;
+            h.plane = Plane{u(rng), u(rng), u(rng), u(rng)};
+        } else if (kind == 1) {
+            // A plane containing the x axis direction: rays along x are parallel to it.
+            h.isPlane = true;
+            h.plane = Plane{0, u(rng), u(rng), u(rng)};
+        } else if (kind == 2) {
+            h.SetQuartic(torus);
+        } else {
+            const double sign = kind == 3 ? 1.0 : (kind == 4 ? -1.0 : 0.0);
+            h.isPlane = false;
+            h.quadric = Quadric::FromCoefficients(
+                {1 + std::fabs(u(rng)), 1 + sign * std::fabs(u(rng)), sign * std::fabs(u(rng)),
+                 0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng), u(rng), u(rng), u(rng),
+                 kind == 5 ? 0.0 : u(rng)});
+        }
+        s.halfSpaces.push_back(h);
+        return static_cast<int>(s.halfSpaces.size()) - 1;
+    };
+    for (int b = 0; b < 400; ++b) {
+        FlatBody body;
+        const int n = 1 + static_cast<int>(rng() % 6);
+        for (int i = 0; i < n; ++i) {
+            const int kind = static_cast<int>(rng() % 12);
+            body.literals.push_back({add(kind < 6 ? kind : (kind < 9 ? 0 : 3)), rng() % 3 == 0});
+        }
+        s.bodies.push_back(body);
+    }
+    const ShadowTester t(s);
+    int checked = 0, split = 0, nonEmpty = 0;
+    for (int b = 0; b < 400; ++b) {
+        for (int r = 0; r < 40; ++r) {
+            const Vec3 p{u(rng) * 3, u(rng) * 3, u(rng) * 3};
+            const Vec3 d = r % 4 == 0
+                               ? Vec3{1, 0, 0}
+                               : (r % 4 == 1 ? Vec3{0, 0, 0} - p : Vec3{u(rng), u(rng), u(rng)});
+            const double s0 = r % 5 == 0 ? -HUGE_VAL : 0.01 * u(rng);
+            const double s1 = r % 3 == 0 ? HUGE_VAL : (r % 7 == 0 ? s0 : 2 + u(rng));
+            const std::uint64_t c0 = tRayLiterals;
+            const IntervalList want = t.BodyOnSegment(b, p, d, s0, s1, true);
+            const std::uint64_t c1 = tRayLiterals;
+            const IntervalList got = t.BodyOnSegment(b, p, d, s0, s1, false);
+            const std::uint64_t c2 = tRayLiterals;
+            EXPECT_EQ(Ends(got), Ends(want)) << "body " << b << " ray " << r;
+            EXPECT_EQ(c2 - c1, c1 - c0) << "body " << b << " ray " << r;
+            EXPECT_TRUE(got.IsCanonical());
+            ++checked;
+            split += want.size() > 1;
+            nonEmpty += !want.empty();
+        }
+    }
+    // Both kinds of answer common, and sets of two pieces among them (else the test proves
+    // little).
+    EXPECT_GT(nonEmpty, checked / 10);
+    EXPECT_LT(nonEmpty, checked - checked / 10);
+    EXPECT_GT(split, checked / 100);
 }
 
 }  // namespace
