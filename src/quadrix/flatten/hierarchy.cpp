@@ -398,19 +398,33 @@ class Walker {
             Collect(node.op, {Child(t, node.left), Child(t, node.right)}, children, depth);
             return children.size() == 1 ? children[0] : AddNode(node.op, std::move(children));
         }
-        // (a - b) - c → [a, b, c]: walk down the left spine.
+        Term minuend;
         std::vector<Term> subtrahends;
-        Term cur = t;
+        if (!Spine(t, minuend, subtrahends)) return -1;
+        return EmitDifference(std::move(minuend), std::move(subtrahends), depth);
+    }
+
+    // (a − b) − c → a, [b, c]: the minuend and the subtrahends in order, down the left spine of
+    // a normalised difference term t. False when normalising failed.
+    bool Spine(const Term& t, Term& minuend, std::vector<Term>& subtrahends) {
+        subtrahends.clear();
+        minuend = t;
         for (;;) {
-            Normalize(cur);
-            if (failed_) return -1;
-            if (cur.kind != Term::Kind::kNode || NodeOf(cur).op != CsgOp::kDifference) break;
-            subtrahends.push_back(Child(cur, NodeOf(cur).right));
-            cur = Child(cur, NodeOf(cur).left);
+            Normalize(minuend);
+            if (failed_) return false;
+            if (minuend.kind != Term::Kind::kNode || NodeOf(minuend).op != CsgOp::kDifference)
+                break;
+            subtrahends.push_back(Child(minuend, NodeOf(minuend).right));
+            minuend = Child(minuend, NodeOf(minuend).left);
         }
-        std::vector<int> children{Emit(cur, depth + 1)};
-        // a - (b | c) = a - b - c: subtrahends that are unions are spliced.
         std::reverse(subtrahends.begin(), subtrahends.end());
+        return true;
+    }
+
+    // The node of a difference's spine, at Emit's depth (which Emit has checked).
+    int EmitDifference(Term minuend, std::vector<Term> subtrahends, int depth) {
+        std::vector<int> children{Emit(std::move(minuend), depth + 1)};
+        // a - (b | c) = a - b - c: subtrahends that are unions are spliced.
         Collect(CsgOp::kUnion, std::move(subtrahends), children, depth);
         if (children.size() == 1) return children[0];
         return AddNode(CsgOp::kDifference, std::move(children));
@@ -465,19 +479,9 @@ class Walker {
     // within 1.2× of (∪ᵢ sphereᵢ) − drill); the picture is the same pixel for pixel, the Frame's
     // body id of a subtracted face being the one leaf's. A difference with another kind of
     // subtrahend is not grouped (false, nothing made). t is a normalised difference node.
-    bool GroupDifference(CsgOp op, const Term& t, DifferenceGroups& g, std::vector<int>& out,
-                         int depth) {
+    bool GroupDifference(CsgOp op, const Term& minuend, std::vector<Term>& subtrahends,
+                         DifferenceGroups& g, std::vector<int>& out, int depth) {
         if (depth > kMaxDepth) return false;  // Emit reports it
-        std::vector<Term> subtrahends;
-        Term cur = t;
-        for (;;) {
-            Normalize(cur);
-            if (failed_) return false;
-            if (cur.kind != Term::Kind::kNode || NodeOf(cur).op != CsgOp::kDifference) break;
-            subtrahends.push_back(Child(cur, NodeOf(cur).right));
-            cur = Child(cur, NodeOf(cur).left);
-        }
-        std::reverse(subtrahends.begin(), subtrahends.end());
         std::vector<Subtrahend> key;
         key.reserve(subtrahends.size());
         for (Term& s : subtrahends) {
@@ -489,7 +493,7 @@ class Walker {
         std::vector<int>& candidates = g.byHash[Hash(key)];
         for (int c : candidates)
             if (g.groups[c].key == key) {
-                Collect(op, {cur}, g.groups[c].minuends, depth + 1);
+                Collect(op, {minuend}, g.groups[c].minuends, depth + 1);
                 return true;
             }
         candidates.push_back(static_cast<int>(g.groups.size()));
@@ -498,7 +502,7 @@ class Walker {
         group.slot = out.size();
         out.push_back(-1);  // filled in by FinishGroups
         // The minuend's bodies before the subtrahends', as Emit makes them.
-        Collect(op, {cur}, group.minuends, depth + 1);
+        Collect(op, {minuend}, group.minuends, depth + 1);
         for (const Term& s : subtrahends) group.leaves.push_back(Leaf(s));
         return true;
     }
@@ -578,9 +582,17 @@ class Walker {
                 continue;
             }
             if (t.kind == Term::Kind::kNode && NodeOf(t).op == CsgOp::kDifference &&
-                GroupDifference(op, t, groups, out, depth))
+                depth + 1 <= kMaxDepth) {
+                // The spine once, for the grouping and, when it declines, for the node.
+                Term minuend;
+                std::vector<Term> subtrahends;
+                if (!Spine(t, minuend, subtrahends)) return;
+                if (GroupDifference(op, minuend, subtrahends, groups, out, depth)) continue;
+                if (failed_) return;
+                out.push_back(
+                    EmitDifference(std::move(minuend), std::move(subtrahends), depth + 1));
                 continue;
-            if (failed_) return;
+            }
             out.push_back(Emit(std::move(t), depth + 1));
         }
         if (!failed_) FinishGroups(op, groups, out);
