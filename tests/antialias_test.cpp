@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -363,6 +364,34 @@ TEST(Antialias, InteriorPixelsAreNotResampled) {
     EXPECT_EQ(st.samples, 16 * edgePixels);
     EXPECT_GT(changed, edgePixels / 4);  // most edge pixels are mixed
     EXPECT_LT(edgePixels, 160u * 120u / 4);
+}
+
+// An 8-bit output (ShadeOptions::linear false) reads only the bytes: the anti-aliasing and the
+// edge lines then write the bytes alone and make no Image::linear, and the bytes are those of the
+// run that keeps the floats (shadow boundaries included: their test reads the bytes or floats
+// that Shade made, as before the anti-aliasing).
+TEST(Antialias, AnEightBitOutputGetsTheSameBytesWithoutTheFloats) {
+    PipelineResult r = RenderFile("examples/machined_part.uq", 200, 150);
+    for (const bool shadows : {false, true}) {
+        ShadeOptions so;
+        so.shadows = shadows;
+        so.aaSamples = 4;
+        so.edges = true;
+        Image floats = Shade(r.frame, r.flat, so);
+        const AntialiasStats a = Antialias(r.frame, r.flat, so, floats);
+        DrawEdgeLines(r.frame, so, floats);
+        so.linear = false;
+        Image bytes = Shade(r.frame, r.flat, so);
+        ASSERT_TRUE(bytes.linear.empty());
+        const AntialiasStats b = Antialias(r.frame, r.flat, so, bytes);
+        EXPECT_GT(DrawEdgeLines(r.frame, so, bytes), 100u);
+        EXPECT_TRUE(bytes.linear.empty()) << shadows;
+        ASSERT_EQ(floats.linear.size(), floats.pixels.size());
+        EXPECT_GT(b.edgePixels, 500u);
+        EXPECT_EQ(a.edgePixels, b.edgePixels);
+        EXPECT_TRUE(std::equal(floats.pixels.begin(), floats.pixels.end(), bytes.pixels.begin()))
+            << shadows;
+    }
 }
 
 // A shadow's boundary is not an edge of the Frame (one surface of one body on both sides), but

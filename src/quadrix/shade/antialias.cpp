@@ -90,28 +90,49 @@ bool Read(const std::vector<std::uint8_t>& rows, int y) {
     return rows.empty() || rows[static_cast<std::size_t>(y)] != 0;
 }
 
+// The pairs of 4-neighbours of a w × h image in parallel, `pair(a, b, a2, b2)` as Separated
+// takes them, writing only pixels a and b: the horizontal pairs of each row (rowWanted), then the
+// vertical pairs of rows (y, y + 1) (pairWanted) for even y and then for odd y, so that no two
+// threads write one pixel at once. Each pixel's bits are an OR over its pairs: the same for any
+// order and thread count.
+template <typename RowWanted, typename PairWanted, typename Pair>
+void ForNeighbourPairs(const Frame& f, RowWanted rowWanted, PairWanted pairWanted, Pair pair) {
+    const int w = f.width, h = f.height;
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& r) {
+        for (int y = r.begin(); y < r.end(); ++y) {
+            if (!rowWanted(y)) continue;
+            for (int x = 0; x + 1 < w; ++x) {
+                const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
+                pair(a, b, x > 0 ? f.Index(x - 1, y) : a, x + 2 < w ? f.Index(x + 2, y) : b);
+            }
+        }
+    });
+    for (int parity = 0; parity < 2; ++parity) {
+        const int pairs = (h - parity) / 2;  // y = parity, parity + 2, ... < h - 1
+        tbb::parallel_for(tbb::blocked_range<int>(0, std::max(pairs, 0), 8),
+                          [&](const tbb::blocked_range<int>& r) {
+                              for (int i = r.begin(); i < r.end(); ++i) {
+                                  const int y = parity + 2 * i;
+                                  if (!pairWanted(y)) continue;
+                                  for (int x = 0; x < w; ++x) {
+                                      const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
+                                      pair(a, b, y > 0 ? f.Index(x, y - 1) : a,
+                                           y + 2 < h ? f.Index(x, y + 2) : b);
+                                  }
+                              }
+                          });
+    }
+}
+
 // FindEdges on the shaded rows of `rows` (the bits of the other rows are incomplete).
 std::vector<std::uint8_t> FindEdgesOn(const Frame& f, const std::vector<std::uint8_t>& rows) {
-    const int w = f.width, h = f.height;
-    std::vector<std::uint8_t> e(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-    for (int y = 0; y < h; ++y) {
-        if (!Shaded(rows, y)) continue;
-        for (int x = 0; x + 1 < w; ++x) {
-            const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
-            const std::size_t a2 = x > 0 ? f.Index(x - 1, y) : a;
-            const std::size_t b2 = x + 2 < w ? f.Index(x + 2, y) : b;
+    std::vector<std::uint8_t> e(
+        static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height), 0);
+    ForNeighbourPairs(
+        f, [&](int y) { return Shaded(rows, y); }, [&](int y) { return PairShaded(rows, y); },
+        [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
             if (Separated(f, a, b, a2, b2)) Mark(f, e, a, b);
-        }
-    }
-    for (int y = 0; y + 1 < h; ++y) {
-        if (!PairShaded(rows, y)) continue;
-        for (int x = 0; x < w; ++x) {
-            const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
-            const std::size_t a2 = y > 0 ? f.Index(x, y - 1) : a;
-            const std::size_t b2 = y + 2 < h ? f.Index(x, y + 2) : b;
-            if (Separated(f, a, b, a2, b2)) Mark(f, e, a, b);
-        }
-    }
+        });
     return e;
 }
 
@@ -127,13 +148,16 @@ void MarkShadingJumpsOn(const Frame& f, const Image& image, std::vector<std::uin
         return lin ? static_cast<double>(image.linear[i]) : image.pixels[i] / 255.0;
     };
     std::vector<double> lum(e.size());
-    for (int y = 0; y < h; ++y) {
-        if (!Read(rows, y)) continue;
-        const std::size_t end = f.Index(0, y) + static_cast<std::size_t>(w);
-        for (std::size_t k = f.Index(0, y); k < end; ++k)
-            lum[k] = ch >= 3 ? 0.2126 * value(k, 0) + 0.7152 * value(k, 1) + 0.0722 * value(k, 2)
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& r) {
+        for (int y = r.begin(); y < r.end(); ++y) {
+            if (!Read(rows, y)) continue;
+            const std::size_t end = f.Index(0, y) + static_cast<std::size_t>(w);
+            for (std::size_t k = f.Index(0, y); k < end; ++k)
+                lum[k] = ch >= 3
+                             ? 0.2126 * value(k, 0) + 0.7152 * value(k, 1) + 0.0722 * value(k, 2)
                              : value(k, 0);
-    }
+        }
+    });
     // A pair on one surface of one body whose brightness jumps: a shadow's boundary (the jump
     // test of depths, on luminance, with a floor of one 8-bit level).
     auto test = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
@@ -145,20 +169,9 @@ void MarkShadingJumpsOn(const Frame& f, const Image& image, std::vector<std::uin
             e[b] |= kEdgePixel;
         }
     };
-    for (int y = 0; y < h; ++y) {
-        if (!Shaded(rows, y)) continue;
-        for (int x = 0; x + 1 < w; ++x) {
-            const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
-            test(a, b, x > 0 ? f.Index(x - 1, y) : a, x + 2 < w ? f.Index(x + 2, y) : b);
-        }
-    }
-    for (int y = 0; y + 1 < h; ++y) {
-        if (!PairShaded(rows, y)) continue;
-        for (int x = 0; x < w; ++x) {
-            const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
-            test(a, b, y > 0 ? f.Index(x, y - 1) : a, y + 2 < h ? f.Index(x, y + 2) : b);
-        }
-    }
+    ForNeighbourPairs(
+        f, [&](int y) { return Shaded(rows, y); }, [&](int y) { return PairShaded(rows, y); },
+        test);
 }
 
 // Where the samples of pixel (x, y) probably see something: just past the deepest surface of the
@@ -242,7 +255,9 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     }
     const PixelShader shader(frame, scene, options);
     const raycast::SampleTracer tracer(scene, options.spatialIndex);
-    if (image.linear.size() != image.pixels.size()) {
+    // The unquantised values only when the output wants them (ShadeOptions::linear; an 8-bit
+    // file reads the bytes): 11 MB of floats at 1280×720 otherwise made and filled for nothing.
+    if (options.linear && image.linear.size() != image.pixels.size()) {
         image.linear.resize(image.pixels.size());
         for (std::size_t k = 0; k < image.pixels.size(); ++k)
             image.linear[k] = static_cast<float>(image.pixels[k] / 255.0);
@@ -282,7 +297,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                         b += wgt * Clamp01(c.b);
                         wsum += wgt;
                     }
-                    StorePixel(image, x, y, {r / wsum, g / wsum, b / wsum});
+                    StoreColor(image, x, y, {r / wsum, g / wsum, b / wsum});
                     budget.Spend(tRayLiterals - work);
                 }
             }
@@ -308,7 +323,7 @@ std::size_t DrawEdgeLinesRowKinds(const Frame& frame, const ShadeOptions& option
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width && Shaded(rows, y); ++x)
             if (edges[frame.Index(x, y)] & kEdgeLine) {
-                StorePixel(image, x, y, options.edgeColor);
+                StoreColor(image, x, y, options.edgeColor);
                 ++n;
             }
     return n;

@@ -210,6 +210,16 @@ void StorePixel(Image& image, int x, int y, const scene::Color& c) {
     }
 }
 
+void StoreColor(Image& image, int x, int y, const scene::Color& c) {
+    if (image.linear.size() == image.pixels.size()) {
+        StorePixel(image, x, y, c);
+        return;
+    }
+    std::uint8_t* p = image.At(x, y);
+    p[0] = ToByte(c.r);
+    if (image.channels == 3) p[1] = ToByte(c.g), p[2] = ToByte(c.b);
+}
+
 namespace {
 
 // The 8-bit bytes of a colour, RGB or gray, as ShadeRowKinds stores them.

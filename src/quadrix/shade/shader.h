@@ -116,6 +116,10 @@ class PixelShader {
 // Writes a linear color into pixel (x, y) of an image: its bytes (value·255, rounded) and its
 // unquantised `linear` entry, RGB or gray by image.channels.
 void StorePixel(Image& image, int x, int y, const scene::Color& c);
+// The same, but the unquantised entry only when the image has Image::linear (it is not made):
+// the passes over a shaded image (anti-aliasing, edge lines) for an 8-bit output, which reads
+// only the bytes.
+void StoreColor(Image& image, int x, int y, const scene::Color& c);
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options = {});
 
