@@ -16,8 +16,9 @@
 // monotone in the box (a box containing another passes whenever the smaller one passes, with the
 // same floating-point operations), so nothing an item's own test would accept is skipped.
 //
-// Order: items are visited in tree order, not index order; a caller whose result depends on the
-// order (the sample tracer folds children left to right) sorts what it collects.
+// Order: items are visited in tree order, not index order (a segment visits the nearer of two
+// subtrees first); a caller whose result depends on the order (the sample tracer folds children
+// left to right) sorts what it collects.
 #pragma once
 
 #include <cmath>
@@ -107,8 +108,15 @@ bool BoxTree::Segment(const Vec3& p, const Vec3& d, double s0, double s1, Visit&
         const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
         if (!SegmentHitsBox(n.box, p, d, s0, s1)) continue;
         if (n.count == 0) {
-            stack[top++] = n.first;
-            stack[top++] = n.first + 1;
+            // The child whose box centre lies earlier along d is visited first (pushed last), so
+            // that a caller that stops at its first hit (a shadow ray) meets the blockers near
+            // the segment's start sooner. (lo + hi)·d orders the centres; NaN keeps the order.
+            const Box3& a = nodes_[static_cast<std::size_t>(n.first)].box;
+            const Box3& b = nodes_[static_cast<std::size_t>(n.first + 1)].box;
+            const double ca = Dot(a.lo + a.hi, d), cb = Dot(b.lo + b.hi, d);
+            const bool bFirst = cb < ca;
+            stack[top++] = bFirst ? n.first : n.first + 1;
+            stack[top++] = bFirst ? n.first + 1 : n.first;
             continue;
         }
         for (std::int32_t i = n.first; i < n.first + n.count; ++i)
