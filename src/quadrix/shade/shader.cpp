@@ -327,13 +327,7 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
                 const scene::Color c =
                     shader.At(x + 0.5, y + 0.5, frame.surface[i], frame.body[i], frame.depth[i],
                               frame.normal[i], background, &cache);
-                if (options.linear) {
-                    StorePixel(image, x, y, c);
-                } else {
-                    std::uint8_t* p = image.At(x, y);
-                    p[0] = ToByte(c.r);
-                    if (image.channels == 3) p[1] = ToByte(c.g), p[2] = ToByte(c.b);
-                }
+                StoreColor(image, x, y, c);  // the floats too when options.linear made them
             }
         }
     };

@@ -16,37 +16,6 @@ namespace {
 
 constexpr double kInf = HUGE_VAL;
 
-// Where a·s² + 2h·s + c <= 0 (regularised), into `out` (cleared first).
-void NonPositive(double a, double h, double c, IntervalList& out) {
-    const QuadraticRoots r = SolveQuadratic(a, h, c);
-    out.clear();
-    switch (r.kind) {
-        case RootKind::kAll:
-            out.Append(-kInf, Interval::kNoId, kInf, Interval::kNoId);
-            return;
-        case RootKind::kNone:
-        case RootKind::kDouble:
-            // No sign change: the sign of a (of c when a = 0, h = 0).
-            if (a < 0 || (a == 0 && h == 0 && c <= 0))
-                out.Append(-kInf, Interval::kNoId, kInf, Interval::kNoId);
-            return;
-        case RootKind::kSingle:
-            if (h > 0)
-                out.Append(-kInf, Interval::kNoId, r.t0, 0);
-            else
-                out.Append(r.t0, 0, kInf, Interval::kNoId);
-            return;
-        case RootKind::kTwo:
-            if (a > 0) {
-                out.Append(r.t0, 0, r.t1, 0);
-            } else {
-                out.Append(-kInf, Interval::kNoId, r.t0, 0);
-                out.Append(r.t1, 0, kInf, Interval::kNoId);
-            }
-            return;
-    }
-}
-
 // The polynomial a·s² + 2h·s + c of a plane or quadric half-space along p + s·d (the file
 // comment of shadows.h); the literal's set is where it is <= 0.
 struct LinePolynomial {
@@ -64,28 +33,11 @@ LinePolynomial OnLine(const FlatHalfSpace& h, const Vec3& p, const Vec3& d) {
     return {a, 0.5 * Dot(q.Gradient(p), d), q.Evaluate(p)};
 }
 
-// The set of a half-space literal on the line, into `set`; `tmp` is scratch.
-void LiteralInto(const FlatHalfSpace& h, bool complemented, const Vec3& p, const Vec3& d,
-                 IntervalList& set, IntervalList& tmp) {
-    IntervalList& raw = complemented ? tmp : set;
-    if (h.IsQuartic()) {
-        // Any direction: the homogeneous line (p, 1) + s (d, 0) (math/quartic_surface.h).
-        const QuarticLineSet l = h.quartic->OnLine(Vec4(p, 1), Vec4(d, 0));
-        raw.clear();
-        for (int i = 0; i < l.count; ++i)
-            raw.Append(l.lo[static_cast<std::size_t>(i)], 0, l.hi[static_cast<std::size_t>(i)], 0);
-    } else {
-        const LinePolynomial q = OnLine(h, p, d);
-        NonPositive(q.a, q.h, q.c, raw);
-    }
-    if (complemented) Complement(tmp, set);
-}
-
-// A plane or quadric literal's set on the line without an IntervalList: at most two intervals,
-// appended by IntervalList::Append's rule (points and NaN dropped, touching pieces merged), as
-// NonPositive and Complement make them, so the same endpoints. NonPositive gives ∅, ℝ, a
-// half-line, [t0, t1] or (−∞, t0] ∪ [t1, ∞), and the complement of each is again one of these:
-// two pieces at most.
+// A plane or quadric literal's set on the line: where a·s² + 2h·s + c <= 0 (regularised), or its
+// closed complement for a complemented literal, as at most two intervals appended by
+// IntervalList::Append's rule (points and NaN dropped, touching pieces merged; the complement
+// is Complement's loop). The set is ∅, ℝ, a half-line, [t0, t1] or (−∞, t0] ∪ [t1, ∞), and the
+// complement of each is again one of these: two pieces at most.
 struct Pieces {
     double lo[2] = {0, 0}, hi[2] = {0, 0};
     int n = 0;
@@ -107,12 +59,13 @@ void LiteralPieces(const LinePolynomial& q, bool complemented, Pieces& out) {
     Pieces raw;
     Pieces& set = complemented ? raw : out;
     const QuadraticRoots r = SolveQuadratic(q.a, q.h, q.c);
-    switch (r.kind) {  // NonPositive
+    switch (r.kind) {
         case RootKind::kAll:
             set.Append(-kInf, kInf);
             break;
         case RootKind::kNone:
         case RootKind::kDouble:
+            // No sign change: the sign of a (of c when a = 0, h = 0).
             if (q.a < 0 || (q.a == 0 && q.h == 0 && q.c <= 0)) set.Append(-kInf, kInf);
             break;
         case RootKind::kSingle:
@@ -137,6 +90,26 @@ void LiteralPieces(const LinePolynomial& q, bool complemented, Pieces& out) {
         lo = raw.hi[i];
     }
     out.Append(lo, kInf);
+}
+
+// The set of a half-space literal on the line, into `set`; `tmp` is scratch.
+void LiteralInto(const FlatHalfSpace& h, bool complemented, const Vec3& p, const Vec3& d,
+                 IntervalList& set, IntervalList& tmp) {
+    if (h.IsQuartic()) {
+        IntervalList& raw = complemented ? tmp : set;
+        // Any direction: the homogeneous line (p, 1) + s (d, 0) (math/quartic_surface.h).
+        const QuarticLineSet l = h.quartic->OnLine(Vec4(p, 1), Vec4(d, 0));
+        raw.clear();
+        for (int i = 0; i < l.count; ++i)
+            raw.Append(l.lo[static_cast<std::size_t>(i)], 0, l.hi[static_cast<std::size_t>(i)], 0);
+        if (complemented) Complement(tmp, set);
+        return;
+    }
+    Pieces pieces;
+    LiteralPieces(OnLine(h, p, d), complemented, pieces);
+    set.clear();
+    for (int i = 0; i < pieces.n; ++i)
+        set.Append(pieces.lo[i], Interval::kNoId, pieces.hi[i], Interval::kNoId);
 }
 
 // The interval lists of one thread's shadow rays, reused from ray to ray (no ray allocates once
