@@ -221,6 +221,70 @@ TEST(RaycastCsg, RandomScenesMatchThePointClassificationOracle) {
     EXPECT_GT(covered, compared / 10);   // and the scenes are not mostly empty
 }
 
+// Unions and differences of more than eight operands (the tracer's filtered path: the operands
+// whose bounds hold the pixel found first, trace.cpp), nested, of bounded spheres and of
+// unbounded random quadrics, against the oracle; kernel=off so that every pixel goes through
+// Trace.
+TEST(RaycastCsg, WideUnionsAndDifferencesMatchTheOracle) {
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> u(0, 1);
+    const int w = 64, h = 48;
+    long compared = 0, skipped = 0, covered = 0;
+    double csgOps = 0;
+    for (int n = 0; n < 12; ++n) {
+        TestSceneBuilder b(w, h);
+        Box3 all;
+        auto spheres = [&](int count, double rmin, double rmax) {
+            std::vector<int> leaves;
+            for (int k = 0; k < count; ++k) {
+                Vec3 c{w * u(rng), h * u(rng), 100 + 60 * u(rng)};
+                double r = rmin + (rmax - rmin) * u(rng);
+                Box3 box = SphereBounds(c, r);
+                leaves.push_back(b.AddLeaf(b.AddBody({{b.AddSphere(c, r), false}}, box), box));
+                all.Extend(box);
+            }
+            return leaves;
+        };
+        std::vector<int> inner = spheres(10, 3, 9);
+        inner.push_back(b.AddLeaf(b.AddBody({{b.AddQuadric(RandomQuadric(rng, w, h).k), false}})));
+        std::vector<int> outer = spheres(25, 3, 12);
+        outer.insert(outer.begin() + 7, b.AddNode(CsgOp::kUnion, inner));
+        std::vector<int> cut = {b.AddNode(CsgOp::kUnion, outer, all)};
+        for (int s : spheres(12, 4, 10)) cut.push_back(s);
+        cut.push_back(b.AddLeaf(b.AddBody({{b.AddQuadric(RandomQuadric(rng, w, h).k), false}})));
+        b.AddSolid(b.AddNode(CsgOp::kDifference, cut, all), all);
+        std::vector<int> second = spheres(14, 2, 6);
+        b.AddSolid(b.AddNode(CsgOp::kUnion, second));
+        const FlatScene& scene = b.scene();
+        RenderOptions options;
+        options.engineOptions = {{"kernel", "off"}};
+        Frame f;
+        RenderStats stats = MakeRaycastEngine()->Render(scene, options, f);
+        csgOps += CounterOrFail(stats, "csg_operations");
+        for (int j = 0; j < h; ++j) {
+            for (int i = 0; i < w; ++i) {
+                OracleHit o = Oracle(scene, i + 0.5, j + 0.5);
+                if (o.ambiguous) {
+                    ++skipped;
+                    continue;
+                }
+                ++compared;
+                std::size_t k = f.Index(i, j);
+                ASSERT_EQ(f.Covered(i, j), o.covered)
+                    << "scene " << n << " pixel " << i << "," << j;
+                if (!o.covered) continue;
+                ++covered;
+                ASSERT_EQ(f.surface[k], o.surface) << "scene " << n << " pixel " << i << "," << j;
+                ASSERT_EQ(f.Solid(k), o.solid) << "scene " << n << " pixel " << i << "," << j;
+                ASSERT_NEAR(f.depth[k], o.t, 1e-9 * (1 + std::fabs(o.t)) + DepthRounding(o.t));
+            }
+        }
+    }
+    EXPECT_LT(skipped, compared / 50);
+    EXPECT_GT(covered, compared / 4);
+    EXPECT_GT(csgOps, 12 * w * h);  // unions and differences were folded, not short-cut
+}
+
 // The per-sub-tile kernels (lanes of one interval with a cut, RunKernel for the rest) against
 // Trace, bit for bit, on random trees of every operator and piece structure: kernel=off renders
 // every pixel with Trace.

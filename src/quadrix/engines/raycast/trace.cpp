@@ -52,6 +52,10 @@ inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, doub
     }
     const std::int32_t* child = p.children.data() + node.first;
     Evaluate(p, child[0], x, y, slot, cut);
+    if (node.count > kFilteredOperands && node.kind != NodeKind::kIntersection) {
+        EvaluateWide(p, node, x, y, slot, cut);
+        return;
+    }
     for (std::int32_t i = 1; i < node.count; ++i) {
         IntervalList& out = *slots_[slot];
         if (out.empty() && node.kind != NodeKind::kUnion) return;  // ∅ ∩ B = ∅ − B = ∅
@@ -91,6 +95,46 @@ inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, doub
         }
         std::swap(slots_[slot], slots_[slot + 2]);
     }
+}
+
+// The operands after the first of a wide union or difference: those whose bounds hold the pixel
+// found first, without a branch per operand (their bounds are met in no order a predictor could
+// learn: about half of a sub-tile's spheres cover any one of its pixels), then folded in their
+// order exactly as Evaluate folds them (an operand that misses is ∅, which leaves a union and a
+// difference as they are), so the result is the same bits.
+inline void Tracer::EvaluateWide(const CsgProgram& p, const ProgNode& node, double x, double y,
+                                 std::size_t slot, double cut) {
+    const std::int32_t* child = p.children.data() + node.first;
+    std::int32_t* const hits = hits_.data() + hitTop_;
+    std::int32_t n = 0;
+    for (std::int32_t i = 1; i < node.count; ++i) {
+        const ProgNode& c = p.nodes[static_cast<std::size_t>(child[i])];
+        const bool miss =
+            (x < c.xy.x0) | (x > c.xy.x1) | (y < c.xy.y0) | (y > c.xy.y1) | (c.zlo >= cut);
+        hits[n] = child[i];
+        n += !miss;
+    }
+    hitTop_ += static_cast<std::size_t>(n);
+    for (std::int32_t k = 0; k < n; ++k) {
+        IntervalList& out = *slots_[slot];
+        if (out.empty() && node.kind != NodeKind::kUnion) break;  // ∅ − B = ∅
+        if (reduction_.NodeEmpty(static_cast<std::size_t>(hits[k]))) continue;
+        Evaluate(p, hits[k], x, y, slot + 1, cut);
+        IntervalList& operand = *slots_[slot + 1];
+        if (operand.empty()) continue;  // A ∪ ∅ = A − ∅ = A
+        if (out.empty()) {              // union: ∅ ∪ B = B
+            std::swap(slots_[slot], slots_[slot + 1]);
+            continue;
+        }
+        ++counters_.csgOps;
+        IntervalList& scratch = *slots_[slot + 2];
+        if (node.kind == NodeKind::kUnion)
+            Union(out, operand, scratch);
+        else
+            Difference(out, operand, scratch);
+        std::swap(slots_[slot], slots_[slot + 2]);
+    }
+    hitTop_ -= static_cast<std::size_t>(n);
 }
 
 // A body is the intersection of its literals, taken in the body's order: each literal's set clips

@@ -66,6 +66,10 @@ class Tracer {
     // zlo >= cut are taken as ∅; see Trace).
     inline void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
                          double cut);
+    // Operands 1.. of a union or difference of more than kFilteredOperands (see trace.cpp).
+    inline void EvaluateWide(const CsgProgram& p, const ProgNode& node, double x, double y,
+                             std::size_t slot, double cut);
+    static constexpr std::int32_t kFilteredOperands = 8;
     // The rest of a body from the first literal with a two-piece set: the running interval `run`
     // intersected with `set`, then literals [next, last) as interval lists.
     inline void EvaluateBodyLists(const Interval& run, const RaySet& set, const std::int32_t* next,
@@ -85,12 +89,18 @@ class Tracer {
     // (operand and scratch). Results move between slots by swapping pointers.
     std::vector<IntervalList> lists_;
     std::vector<IntervalList*> slots_;
+    // EvaluateWide's operands that hold the pixel, a stack shared by the nested wide nodes
+    // (hitTop_ its height): as long as the program's `children` (SetCuts), so never reallocated
+    // during a pixel.
+    std::vector<std::int32_t> hits_;
+    std::size_t hitTop_ = 0;
 };
 
 // Per sub-tile (tiling.cpp), so defined here.
 inline void Tracer::SetCuts(const CsgProgram& program) {
     cuts_.clear();
     zlos_.clear();
+    if (hits_.size() < program.children.size()) hits_.resize(program.children.size());
     for (const ProgNode& n : program.nodes)
         if (n.kind == NodeKind::kBody) zlos_.push_back(n.zlo);
     for (std::size_t k : {8u, 32u, 128u, 512u}) {
