@@ -122,6 +122,12 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
     for (int sx = x0; sx < x1; sx += kSubTile)
         w.subTileRects.push_back(Centres(sx, y0, std::min(sx + kSubTile, x1), y1));
     BinProgram(w.tileProgram, w.subTileRects, true, w.subTileBins);
+    // Evaluations are added to the shared budget in chunks (one atomic add per sub-tile made both
+    // threads fight over its cache line: 2 % of the machined part's frame). The render still stops
+    // exactly when the whole render would pass the budget (work_budget.h): only the sum decides,
+    // and every chunk is added before the tile ends.
+    constexpr std::uint64_t kSpendChunk = 1 << 12;
+    std::uint64_t pending = 0;
     for (int sy = y0; sy < y1; sy += kSubTile) {
         for (int sx = x0; sx < x1; sx += kSubTile) {
             int ex = std::min(sx + kSubTile, x1), ey = std::min(sy + kSubTile, y1);
@@ -133,9 +139,14 @@ void RenderTile(const FlatScene& scene, const SceneTables& tables, const CsgProg
             const std::uint64_t before = w.counters.bodies;
             RenderSubTile(scene, tables, static_cast<std::size_t>((sx - x0) / kSubTile), sx, sy, ex,
                           ey, w, out);
-            if (w.budget) w.budget->Spend(w.counters.bodies - before);
+            pending += w.counters.bodies - before;
+            if (w.budget && pending >= kSpendChunk) {
+                w.budget->Spend(pending);
+                pending = 0;
+            }
         }
     }
+    if (w.budget && pending) w.budget->Spend(pending);
     w.tile.CopyTile(x0, y0, x1, y1, frame);
 }
 

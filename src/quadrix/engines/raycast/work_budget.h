@@ -37,8 +37,9 @@ class WorkBudget {
 
   private:
     const std::uint64_t perPixel_, limit_;
-    std::atomic<std::uint64_t> used_{0};
-    std::atomic<bool> exhausted_{false};
+    // On lines of their own: every sub-tile reads exhausted_, chunks of them write used_.
+    alignas(64) std::atomic<std::uint64_t> used_{0};
+    alignas(64) std::atomic<bool> exhausted_{false};
 };
 
 }  // namespace quadrix::raycast
