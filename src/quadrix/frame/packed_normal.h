@@ -78,7 +78,13 @@ struct PackedNormal {
 
   private:
     static std::uint32_t Snorm(double t) {
-        const double q = std::nearbyint(std::fmin(std::fmax(t, -1.0), 1.0) * 32767.0);
+        // std::nearbyint (round to nearest, ties to even) without its library call: the
+        // baseline x86-64 has no rounding instruction, and this runs for every pixel of a curved
+        // surface. Adding and subtracting 1.5 × 2^52 rounds |c| < 2^51 to an integer in the
+        // current rounding mode, as nearbyint does (a -0 becomes +0: the same 16 bits below).
+        constexpr double kRound = 6755399441055744.0;
+        const double c = std::fmin(std::fmax(t, -1.0), 1.0) * 32767.0;
+        const double q = (c + kRound) - kRound;
         return static_cast<std::uint16_t>(static_cast<std::int16_t>(q));
     }
     static double Unsnorm(std::uint32_t h) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
@@ -34,6 +35,50 @@ TEST(PackedNormal, ErrorIsBoundedEverywhere) {
     // 16 bits each: the worst error is of the order of the grid, not far below it (the bound is
     // not loose by orders of magnitude, and the encoding uses the grid it claims).
     EXPECT_GT(worst, PackedNormal::kMaxError / 4);
+}
+
+// The 16-bit halves are round(u·32767) with ties to even, as std::nearbyint gives them (the
+// encoder rounds without the library call): against a reference written with nearbyint, on
+// random vectors and on vectors whose u·32767 is an exact tie (k + ½, both parities) or one ulp
+// either side of it.
+TEST(PackedNormal, HalvesAreRoundedAsNearbyintRoundsThem) {
+    auto reference = [](const Vec3& n) {
+        const double l1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
+        double u = n.x / l1, v = n.y / l1;
+        if (n.z < 0) {
+            const double fu = (1 - std::fabs(v)) * (u < 0 ? -1.0 : 1.0);
+            const double fv = (1 - std::fabs(u)) * (v < 0 ? -1.0 : 1.0);
+            u = fu;
+            v = fv;
+        }
+        auto snorm = [](double t) {
+            const double q = std::nearbyint(std::fmin(std::fmax(t, -1.0), 1.0) * 32767.0);
+            return static_cast<std::uint32_t>(
+                static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
+        };
+        return snorm(u) << 16 | snorm(v);
+    };
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> g;
+    for (int i = 0; i < 1000000; ++i) {
+        const Vec3 n{g(rng), g(rng), g(rng)};
+        ASSERT_EQ(PackedNormal::Encode(n), reference(n)) << n.x << " " << n.y << " " << n.z;
+    }
+    // x / (|x| + |y| + |z|) with |x| + |y| + |z| = 1 exactly (z >= 0) is x itself: x·32767 = k + ½
+    // exactly for x = (k + ½) / 32767 when that quotient is exact enough, and the neighbours of x.
+    int ties = 0;
+    for (int k = -32767; k < 32767; k += 7) {
+        const double x = (k + 0.5) / 32767.0;
+        for (double xs : {std::nextafter(x, -2.0), x, std::nextafter(x, 2.0)}) {
+            const Vec3 n{xs, 0, 1 - std::fabs(xs)};
+            if (std::fabs(xs) + (1 - std::fabs(xs)) != 1) continue;
+            ties += xs * 32767.0 == k + 0.5;
+            ASSERT_EQ(PackedNormal::Encode(n), reference(n)) << k;
+            const Vec3 m{0, -xs, 1 - std::fabs(xs)};
+            ASSERT_EQ(PackedNormal::Encode(m), reference(m)) << k;
+        }
+    }
+    EXPECT_GT(ties, 1000);  // exact ties were met, so ties to even was tested
 }
 
 TEST(PackedNormal, AxesAreExact) {
