@@ -83,7 +83,9 @@ struct PackedNormal {
         // surface. Adding and subtracting 1.5 × 2^52 rounds |c| < 2^51 to an integer in the
         // current rounding mode, as nearbyint does (a -0 becomes +0: the same 16 bits below).
         constexpr double kRound = 6755399441055744.0;
-        const double c = std::fmin(std::fmax(t, -1.0), 1.0) * 32767.0;
+        // t is finite (Encode's callers divide finite values by a positive finite l1); the
+        // clamp by comparisons is std::fmin(std::fmax(t, -1), 1) without the library calls.
+        const double c = (t < -1.0 ? -1.0 : (t > 1.0 ? 1.0 : t)) * 32767.0;
         const double q = (c + kRound) - kRound;
         return static_cast<std::uint16_t>(static_cast<std::int16_t>(q));
     }

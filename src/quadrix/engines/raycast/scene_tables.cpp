@@ -5,25 +5,25 @@ namespace quadrix::raycast {
 SceneTables::SceneTables(const FlatScene& scene) {
     std::vector<Vec3> reference = ReferencePoints(scene);
     halfSpaces.reserve(scene.halfSpaces.size());
-    constantNormal.assign(scene.halfSpaces.size(), false);
+    constantNormal.assign(scene.halfSpaces.size(), 0);
     planeNormal.assign(scene.halfSpaces.size(), Vec3{});
     packedPlaneNormal.assign(scene.halfSpaces.size(), PackedNormal{});
     for (std::size_t h = 0; h < scene.halfSpaces.size(); ++h) {
         halfSpaces.push_back(RayHalfSpace::From(scene.halfSpaces[h], reference[h]));
         if (scene.halfSpaces[h].isPlane) {
-            constantNormal[h] = true;
+            constantNormal[h] = 1;
             planeNormal[h] = scene.WorldNormal(static_cast<int>(h), Vec3{});
             packedPlaneNormal[h] = PackedNormal(planeNormal[h]);
         }
     }
     bodyFirstTag.reserve(scene.bodies.size() + 1);
-    bodyValid.assign(scene.bodies.size(), true);
+    bodyValid.assign(scene.bodies.size(), 1);
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
         bodyFirstTag.push_back(static_cast<std::int32_t>(tags.size()));
         for (const FlatLiteral& lit : scene.bodies[b].literals) {
             if (lit.halfSpace < 0 ||
                 static_cast<std::size_t>(lit.halfSpace) >= scene.halfSpaces.size()) {
-                bodyValid[b] = false;
+                bodyValid[b] = 0;
                 continue;
             }
             const FlatHalfSpace& hs = scene.halfSpaces[static_cast<std::size_t>(lit.halfSpace)];

@@ -34,11 +34,12 @@ struct SceneTables {
     std::vector<RayHalfSpace> halfSpaces;
     std::vector<Tag> tags;
     std::vector<std::int32_t> bodyFirstTag;  // body b's literals are tags [first[b], first[b+1])
-    std::vector<bool> bodyValid;             // false when a literal names a missing half-space
+    std::vector<char>
+        bodyValid;  // 0 when a literal names a missing half-space (char: read per body)
     // Per half-space: true for a plane, whose world normal (FlatScene::WorldNormal) is the same
     // at every point and is computed once here, in `planeNormal`, and packed as the Frame holds
     // it in `packedPlaneNormal` (frame/packed_normal.h), so pixels do not pack it again.
-    std::vector<bool> constantNormal;
+    std::vector<char> constantNormal;  // char, not bool: read for every covered pixel
     std::vector<Vec3> planeNormal;
     std::vector<PackedNormal> packedPlaneNormal;
     // 0, 1, 2, … (one per tag): body b's literal tags as an array, tagSequence.data() +
