@@ -230,7 +230,7 @@ TEST(RaycastCsg, WideUnionsAndDifferencesMatchTheOracle) {
     std::uniform_real_distribution<double> u(0, 1);
     const int w = 64, h = 48;
     long compared = 0, skipped = 0, covered = 0;
-    double csgOps = 0;
+    double csgOps = 0, cutRetries = 0;
     for (int n = 0; n < 12; ++n) {
         TestSceneBuilder b(w, h);
         Box3 all;
@@ -261,6 +261,7 @@ TEST(RaycastCsg, WideUnionsAndDifferencesMatchTheOracle) {
         Frame f;
         RenderStats stats = MakeRaycastEngine()->Render(scene, options, f);
         csgOps += CounterOrFail(stats, "csg_operations");
+        cutRetries += CounterOrFail(stats, "depth_cut_retries");
         for (int j = 0; j < h; ++j) {
             for (int i = 0; i < w; ++i) {
                 OracleHit o = Oracle(scene, i + 0.5, j + 0.5);
@@ -283,6 +284,46 @@ TEST(RaycastCsg, WideUnionsAndDifferencesMatchTheOracle) {
     EXPECT_LT(skipped, compared / 50);
     EXPECT_GT(covered, compared / 4);
     EXPECT_GT(csgOps, 12 * w * h);  // unions and differences were folded, not short-cut
+    // Pixels went past the first depth cut, so the operands of several cut levels were merged
+    // back into operand order (trace.cpp, EvaluateWide).
+    EXPECT_GT(cutRetries, 100);
+}
+
+// Two coincident spheres in one wide union tie exactly everywhere; the earlier operand's surface
+// is the one a union keeps, whatever the bounds. Here a loose box puts the later copy below the
+// first depth cut and the earlier one above it, so the pixel's second pass meets them from two
+// cut levels (trace.cpp, GroupWideOperands) and must fold them in operand order: the Frame equals
+// the one where both boxes are tight (one level).
+TEST(RaycastCsg, ExactTiesInAWideUnionDoNotDependOnTheBounds) {
+    auto scene = [](bool looseLaterCopy) {
+        TestSceneBuilder b(16, 16);
+        std::vector<int> leaves;
+        Box3 all;
+        auto leaf = [&](const Vec3& c, double r, Box3 box) {
+            leaves.push_back(b.AddLeaf(b.AddBody({{b.AddSphere(c, r), false}}, box), box));
+            all.Extend(box);
+        };
+        // Nine small spheres in front, away from the pixels looked at: the first cut (the 9th
+        // nearest zlo of the sub-tile) is theirs, 99.7.
+        for (int k = 0; k < 9; ++k) leaf({1.5, 1.5, 100}, 0.3, SphereBounds({1.5, 1.5, 100}, 0.3));
+        const Vec3 c{5.5, 5.5, 200};
+        leaf(c, 1.8, SphereBounds(c, 1.8));  // operand 9
+        Box3 later = SphereBounds(c, 1.8);
+        if (looseLaterCopy) later.lo.z = 50;  // still a box of the sphere, below the first cut
+        leaf(c, 1.8, later);                  // operand 10, the same sphere
+        b.AddSolid(b.AddNode(CsgOp::kUnion, leaves, all), all);
+        return b.scene();
+    };
+    RenderOptions options;
+    options.engineOptions = {{"kernel", "off"}};
+    Frame tight, loose;
+    MakeRaycastEngine()->Render(scene(false), options, tight);
+    RenderStats stats = MakeRaycastEngine()->Render(scene(true), options, loose);
+    EXPECT_GT(CounterOrFail(stats, "depth_cut_retries"), 0);
+    ASSERT_TRUE(tight.Covered(5, 5));
+    const int earlier = tight.surface[tight.Index(5, 5)];
+    EXPECT_EQ(earlier, 9);  // the ninth sphere's half-space: the earlier copy wins the tie
+    EXPECT_EQ(FirstBitDifference(tight, loose), "");
 }
 
 // The per-sub-tile kernels (lanes of one interval with a cut, RunKernel for the rest) against

@@ -21,7 +21,8 @@ Hit Tracer::Trace(const CsgProgram& program, double x, double y) {
         }
         if (x < s.xy.x0 || x > s.xy.x1 || y < s.xy.y0 || y > s.xy.y1) continue;
         ++counters_.pixelSolids;
-        for (double cut : cuts_) {
+        for (level_ = 0; level_ < cuts_.size(); ++level_) {
+            const double cut = cuts_[level_];
             if (cut <= s.zlo) continue;  // the whole solid is cut away
             Evaluate(program, s.root, x, y, 0, cut);
             double t;
@@ -53,7 +54,7 @@ inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, doub
     const std::int32_t* child = p.children.data() + node.first;
     Evaluate(p, child[0], x, y, slot, cut);
     if (node.count > kFilteredOperands && node.kind != NodeKind::kIntersection) {
-        EvaluateWide(p, node, x, y, slot, cut);
+        EvaluateWide(p, node, n, x, y, slot, cut);
         return;
     }
     for (std::int32_t i = 1; i < node.count; ++i) {
@@ -102,18 +103,27 @@ inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, doub
 // learn: about half of a sub-tile's spheres cover any one of its pixels), then folded in their
 // order exactly as Evaluate folds them (an operand that misses is ∅, which leaves a union and a
 // difference as they are), so the result is the same bits.
-inline void Tracer::EvaluateWide(const CsgProgram& p, const ProgNode& node, double x, double y,
-                                 std::size_t slot, double cut) {
+//
+// Only the operands the cut leaves are visited (levels 0..level_ of GroupWideOperands: zlo below
+// the cut, or NaN, exactly those that Evaluate's test `zlo >= cut` keeps); the positions found
+// are put back in operand order when they come from more than one level.
+inline void Tracer::EvaluateWide(const CsgProgram& p, const ProgNode& node, std::int32_t n0,
+                                 double x, double y, std::size_t slot, double cut) {
     const std::int32_t* child = p.children.data() + node.first;
+    const std::int32_t* const order = byLevel_.data() + node.first + 1;
+    const std::int32_t* const ends = levelEnd_.data() + static_cast<std::size_t>(n0) * kLevels;
+    const std::int32_t end = ends[level_];
     std::int32_t* const hits = hits_.data() + hitTop_;
     std::int32_t n = 0;
-    for (std::int32_t i = 1; i < node.count; ++i) {
+    for (std::int32_t k = 0; k < end; ++k) {
+        const std::int32_t i = order[k];
         const ProgNode& c = p.nodes[static_cast<std::size_t>(child[i])];
-        const bool miss =
-            (x < c.xy.x0) | (x > c.xy.x1) | (y < c.xy.y0) | (y > c.xy.y1) | (c.zlo >= cut);
-        hits[n] = child[i];
+        const bool miss = (x < c.xy.x0) | (x > c.xy.x1) | (y < c.xy.y0) | (y > c.xy.y1);
+        hits[n] = i;
         n += !miss;
     }
+    if (ends[0] < end) std::sort(hits, hits + n);  // from several levels: back in operand order
+    for (std::int32_t k = 0; k < n; ++k) hits[k] = child[hits[k]];
     hitTop_ += static_cast<std::size_t>(n);
     for (std::int32_t k = 0; k < n; ++k) {
         IntervalList& out = *slots_[slot];
@@ -135,6 +145,40 @@ inline void Tracer::EvaluateWide(const CsgProgram& p, const ProgNode& node, doub
         std::swap(slots_[slot], slots_[slot + 2]);
     }
     hitTop_ -= static_cast<std::size_t>(n);
+}
+
+void Tracer::GroupWideOperands(const CsgProgram& program) {
+    if (byLevel_.size() < program.children.size()) byLevel_.resize(program.children.size());
+    if (levelEnd_.size() < program.nodes.size() * kLevels)
+        levelEnd_.resize(program.nodes.size() * kLevels);
+    const std::size_t levels = cuts_.size();
+    for (std::size_t n = 0; n < program.nodes.size(); ++n) {
+        const ProgNode& node = program.nodes[n];
+        if (node.kind == NodeKind::kBody || node.kind == NodeKind::kIntersection ||
+            node.count <= kFilteredOperands)
+            continue;
+        const std::int32_t* child = program.children.data() + node.first;
+        std::int32_t* const order = byLevel_.data() + node.first + 1;
+        std::int32_t* const ends = levelEnd_.data() + n * kLevels;
+        // The first level whose cut is above zlo (a NaN zlo is never cut: level 0); the last
+        // cut is +inf, so every operand has one.
+        auto levelOf = [&](std::int32_t i) {
+            const double z = program.nodes[static_cast<std::size_t>(child[i])].zlo;
+            std::size_t l = 0;
+            while (l + 1 < levels && !(z < cuts_[l]) && !std::isnan(z)) ++l;
+            return l;
+        };
+        // Counting sort by level, stable: each level keeps operand order.
+        std::int32_t count[kLevels] = {0, 0, 0, 0, 0};
+        for (std::int32_t i = 1; i < node.count; ++i) ++count[levelOf(i)];
+        std::int32_t start[kLevels], sum = 0;
+        for (std::size_t l = 0; l < kLevels; ++l) {
+            start[l] = sum;
+            sum += count[l];
+            ends[l] = sum;
+        }
+        for (std::int32_t i = 1; i < node.count; ++i) order[start[levelOf(i)]++] = i;
+    }
 }
 
 // A body is the intersection of its literals, taken in the body's order: each literal's set clips

@@ -67,8 +67,8 @@ class Tracer {
     inline void Evaluate(const CsgProgram& p, std::int32_t n, double x, double y, std::size_t slot,
                          double cut);
     // Operands 1.. of a union or difference of more than kFilteredOperands (see trace.cpp).
-    inline void EvaluateWide(const CsgProgram& p, const ProgNode& node, double x, double y,
-                             std::size_t slot, double cut);
+    inline void EvaluateWide(const CsgProgram& p, const ProgNode& node, std::int32_t n, double x,
+                             double y, std::size_t slot, double cut);
     static constexpr std::int32_t kFilteredOperands = 8;
     // The rest of a body from the first literal with a two-piece set: the running interval `run`
     // intersected with `set`, then literals [next, last) as interval lists.
@@ -94,6 +94,16 @@ class Tracer {
     // during a pixel.
     std::vector<std::int32_t> hits_;
     std::size_t hitTop_ = 0;
+    // The operands 1.. of every wide union or difference grouped by cut level (SetCuts): level L
+    // holds the operands whose zlo is below cuts_[L] and not below the cuts before it (NaN zlo,
+    // never cut: level 0), each level in operand order. byLevel_[first + 1 ..] lists their
+    // positions (1..count-1), levelEnd_[n * kLevels + L] the end of levels 0..L there. A pass
+    // with cut cuts_[L] visits levels 0..L only: the operands a cut leaves, not every operand.
+    static constexpr std::size_t kLevels = 5;  // at most four finite cuts, then +inf
+    void GroupWideOperands(const CsgProgram& program);
+    std::vector<std::int32_t> byLevel_;
+    std::vector<std::int32_t> levelEnd_;
+    std::size_t level_ = 0;  // the index in cuts_ of the pass under way (Trace)
 };
 
 // Per sub-tile (tiling.cpp), so defined here.
@@ -111,6 +121,7 @@ inline void Tracer::SetCuts(const CsgProgram& program) {
         if (std::isfinite(cut) && (cuts_.empty() || cut > cuts_.back())) cuts_.push_back(cut);
     }
     cuts_.push_back(HUGE_VAL);
+    GroupWideOperands(program);
 }
 
 }  // namespace quadrix::raycast
