@@ -52,6 +52,51 @@ BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size
     Build(0, items, 0, items.size(), boxes, centres);
 }
 
+BoxTree::HalfLineView BoxTree::ViewAlong(const Vec3& d) const {
+    HalfLineView view;
+    const double len = Length(d);
+    view.w = d / len;
+    // u across w: w × the axis least aligned with w, normalised; v = w × u.
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::fabs(view.w[k]) < std::fabs(view.w[axis])) axis = k;
+    Vec3 e;
+    e[axis] = 1;
+    view.u = Normalize(Cross(view.w, e));
+    view.v = Normalize(Cross(view.w, view.u));
+    // A box's extent on axis a by interval arithmetic, each term from the end that makes it
+    // smallest (largest); a zero component contributes nothing (an infinite side times 0). Padded
+    // by 1e-9 of the box's magnitude m = Σ max(|lo_k|, |hi_k|): the sums' rounding, and the
+    // rounding-level d·u and d·v times the distance along d from p to a point of the box (at most
+    // m + |p|; HalfLine pads p's side by 1e-9 |p|). A NaN extent culls nothing.
+    auto extent = [](const Box3& b, const Vec3& a, double pad, double& lo, double& hi) {
+        lo = 0;
+        hi = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (a[k] == 0) continue;
+            const double x = b.lo[k] * a[k], y = b.hi[k] * a[k];
+            lo += x < y ? x : y;
+            hi += x < y ? y : x;
+        }
+        lo -= pad;
+        hi += pad;
+    };
+    view.nodes.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        HalfLineView::Extent& x = view.nodes[i];
+        const Box3& b = nodes_[i].box;
+        double m = 0;
+        for (int k = 0; k < 3; ++k) m += std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k]));
+        const double pad = 1e-9 * m + 1e-300;
+        double wLo;
+        extent(b, view.u, pad, x.uLo, x.uHi);
+        extent(b, view.v, pad, x.vLo, x.vHi);
+        extent(b, view.w, pad, wLo, x.wHi);
+        x.wMid = 0.5 * wLo + 0.5 * x.wHi;
+    }
+    return view;
+}
+
 // Fills node `self` (already allocated) with items[lo, hi).
 void BoxTree::Build(std::int32_t self, std::vector<std::int32_t>& items, std::size_t lo,
                     std::size_t hi, const std::vector<Box3>& boxes,

@@ -86,6 +86,71 @@ TEST(BoxTree, QueriesVisitEveryItemWhoseBoxPasses) {
     }
 }
 
+// The view along one direction (HalfLine): every item whose box the half-line meets (the slab
+// test with s in [0, inf)) is visited, once, for random boxes of every kind, random and
+// axis-aligned directions, points inside and outside the scene, and points on a box's face;
+// and it culls about as well as Segment does.
+TEST(BoxTree, AHalfLineViewVisitsEveryItemTheHalfLineMeets) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-110, 110), dir(-1, 1);
+    std::size_t viewVisits = 0, segmentVisits = 0;
+    for (int n : {0, 1, 4, 5, 17, 600}) {
+        const std::vector<Box3> boxes = RandomBoxes(n, rng);
+        const BoxTree tree(boxes);
+        for (int di = 0; di < 12; ++di) {
+            Vec3 d{dir(rng), dir(rng), dir(rng)};
+            if (di == 0) d = {0, 0, 1};
+            if (di == 1) d = {-1, 0, 0};
+            if (di == 2) d.y = 0;
+            if (di == 3) d = d * 1e-3;  // a short direction vector: the same half-lines
+            const BoxTree::HalfLineView view = tree.ViewAlong(d);
+            for (int q = 0; q < 60; ++q) {
+                Vec3 p{u(rng), u(rng), u(rng)};
+                if (q % 6 == 0 && n > 0) {  // on a face of a box: the half-line starts on it
+                    const Box3& b = boxes[static_cast<std::size_t>(q) % boxes.size()];
+                    if (b.Finite()) p = {b.lo.x, 0.5 * (b.lo.y + b.hi.y), b.hi.z};
+                }
+                if (q % 6 == 1) p = p * 1e-6;  // near the origin, boxes far away
+                std::set<std::int32_t> seen;
+                tree.HalfLine(view, p, [&](std::int32_t k) {
+                    EXPECT_TRUE(seen.insert(k).second) << "visited twice";
+                    return false;
+                });
+                for (int k = 0; k < n; ++k) {
+                    if (BoxTree::SegmentHitsBox(boxes[static_cast<std::size_t>(k)], p, d, 0,
+                                                HUGE_VAL)) {
+                        EXPECT_TRUE(seen.count(k)) << n << " " << di << " " << q << " " << k;
+                    }
+                }
+                viewVisits += seen.size();
+                tree.Segment(p, d, 0, HUGE_VAL, [&](std::int32_t) {
+                    ++segmentVisits;
+                    return false;
+                });
+            }
+        }
+    }
+    // Looser than the slab test (an unbounded box spreads over the whole view), never tighter.
+    EXPECT_GE(viewVisits, segmentVisits);
+    // Finite boxes (a union of spheres): not much looser, and far fewer visits than items.
+    std::vector<Box3> finite;
+    for (const Box3& b : RandomBoxes(2000, rng))
+        if (b.Finite()) finite.push_back(b);
+    const BoxTree tree(finite);
+    std::size_t view = 0, segment = 0, queries = 0;
+    for (int di = 0; di < 20; ++di) {
+        const Vec3 d{dir(rng), dir(rng), dir(rng)};
+        const BoxTree::HalfLineView v = tree.ViewAlong(d);
+        for (int q = 0; q < 50; ++q, ++queries) {
+            const Vec3 p{u(rng), u(rng), u(rng)};
+            tree.HalfLine(v, p, [&](std::int32_t) { return ++view, false; });
+            tree.Segment(p, d, 0, HUGE_VAL, [&](std::int32_t) { return ++segment, false; });
+        }
+    }
+    EXPECT_LT(view, segment * 3 / 2);
+    EXPECT_LT(view, queries * finite.size() / 10);
+}
+
 TEST(BoxTree, ASegmentQueryStopsWhenAVisitSaysSo) {
     const std::vector<Box3> boxes(50, Box3{{-1, -1, -1}, {1, 1, 1}});
     const BoxTree tree(boxes);

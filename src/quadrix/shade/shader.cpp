@@ -118,9 +118,14 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
     for (std::size_t k = 0; k < scene.lights.size(); ++k) {
         fixedRay_.emplace_back();
         // Under an affine map h = M (D, 0) has h_w = 0 and the ray is (h, ∞) whatever the point.
-        if (shadows_ && affine && scene.lights[k].kind == scene::Light::Kind::kParallel)
+        if (shadows_ && affine && scene.lights[k].kind == scene::Light::Kind::kParallel) {
             fixedRay_.back() =
                 DeviceShadowRay(deviceFromWorld_, Vec4(fixedLight_[k].toLight, 0.0), {}, {});
+            // Every shadow ray of this light is a half-line along the same d: the box trees
+            // are tested in a view along it (BoxTree::ViewAlong).
+            if (fixedRay_.back()->length > 0 && fixedRay_.back()->sMax == HUGE_VAL)
+                fixedRay_.back()->view = shadowTester_->AddDirection(fixedRay_.back()->d);
+        }
     }
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     if (model_ == ShadingModel::kFast) {

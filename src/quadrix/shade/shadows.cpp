@@ -195,15 +195,15 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex) : scene_(s
     }
 }
 
-void ShadowTester::Wide(const FlatCsgNode& node, const BoxTree& tree, const Vec3& p, const Vec3& d,
+void ShadowTester::Wide(const FlatCsgNode& node, std::int32_t wide, const Vec3& p, const Vec3& d,
                         double s0, double s1, std::vector<IntervalList*>& slots, std::size_t k,
-                        bool anyHit) const {
+                        bool anyHit, int view) const {
     const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
     const bool union_ = node.op == scene::CsgOp::kUnion;
-    tree.Segment(p, d, s0, s1, [&](std::int32_t i) {
+    Query(static_cast<std::size_t>(wide) + 1, view, p, d, s0, s1, [&](std::int32_t i) {
         const int c = node.children[from + static_cast<std::size_t>(i)];
         if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
-        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_);
+        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, view);
         Fold(node.op, slots, k);
         // A union asked only whether it meets the segment is answered by its first child that
         // does; a difference whose minuend is used up stays empty.
@@ -320,7 +320,8 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
 }
 
 void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1,
-                        std::vector<IntervalList*>& slots, std::size_t k, bool anyHit) const {
+                        std::vector<IntervalList*>& slots, std::size_t k, bool anyHit,
+                        int view) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
         Body(node.body, p, d, s0, s1, slots, k);
@@ -329,7 +330,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
     if (anyHit && node.op == scene::CsgOp::kDifference && node.children.size() >= 2) {
         const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(node.children[0])];
         if (!minuend.isLeaf && minuend.op == scene::CsgOp::kUnion) {
-            DistributedDifference(n, p, d, s0, s1, slots, k);
+            DistributedDifference(n, p, d, s0, s1, slots, k, view);
             return;
         }
     }
@@ -342,10 +343,10 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
         if (node.op == scene::CsgOp::kDifference) {
             const int c = node.children[0];
             if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return;
-            Node(c, p, d, s0, s1, slots, k, false);
+            Node(c, p, d, s0, s1, slots, k, false, view);
             if (slots[k]->empty()) return;
         }
-        Wide(node, wide_[static_cast<std::size_t>(wide)], p, d, s0, s1, slots, k, anyHit);
+        Wide(node, wide, p, d, s0, s1, slots, k, anyHit, view);
         return;
     }
     bool first = true;
@@ -357,7 +358,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
             !HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1);
         if (first) {
             first = false;
-            if (!misses) Node(c, p, d, s0, s1, slots, k, anyHit && union_);
+            if (!misses) Node(c, p, d, s0, s1, slots, k, anyHit && union_, view);
             if (slots[k]->empty() ? !union_ : union_ && anyHit) return;
             continue;
         }
@@ -368,14 +369,15 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
             }
             continue;  // A ∪ ∅ = A − ∅ = A
         }
-        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_);
+        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, view);
         Fold(node.op, slots, k);
         if (slots[k]->empty() ? !union_ : union_ && anyHit) return;
     }
 }
 
 void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, double s0, double s1,
-                                         std::vector<IntervalList*>& slots, std::size_t k) const {
+                                         std::vector<IntervalList*>& slots, std::size_t k,
+                                         int view) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     const int m = node.children[0];
     const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(m)];
@@ -387,21 +389,21 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     // empty, left in slots[k]) when c − subtrahends meets the segment.
     auto operand = [&](int c) {
         if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
-        Node(c, p, d, s0, s1, slots, k + 1, false);
+        Node(c, p, d, s0, s1, slots, k + 1, false, view);
         if (slots[k + 1]->empty()) return false;
         if (!haveSubtrahends) {
             haveSubtrahends = true;
             auto subtrahend = [&](int b) {
                 if (!HitsBox(scene_.nodes[static_cast<std::size_t>(b)].bounds, p, d, s0, s1))
                     return false;
-                Node(b, p, d, s0, s1, slots, k + 2, false);
+                Node(b, p, d, s0, s1, slots, k + 2, false, view);
                 Union(*slots[k], *slots[k + 2], *slots[k + 3]);
                 std::swap(slots[k], slots[k + 3]);
                 return false;
             };
             const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
             if (wide >= 0) {
-                wide_[static_cast<std::size_t>(wide)].Segment(p, d, s0, s1, [&](std::int32_t i) {
+                Query(static_cast<std::size_t>(wide) + 1, view, p, d, s0, s1, [&](std::int32_t i) {
                     return subtrahend(node.children[1 + static_cast<std::size_t>(i)]);
                 });
             } else {
@@ -416,7 +418,7 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     const std::int32_t wide = wideOf_[static_cast<std::size_t>(m)];
     bool found = false;
     if (wide >= 0) {
-        found = wide_[static_cast<std::size_t>(wide)].Segment(p, d, s0, s1, [&](std::int32_t i) {
+        found = Query(static_cast<std::size_t>(wide) + 1, view, p, d, s0, s1, [&](std::int32_t i) {
             return operand(minuend.children[static_cast<std::size_t>(i)]);
         });
     } else {
@@ -424,6 +426,14 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
             if ((found = operand(c))) break;
     }
     if (!found) slots[k]->clear();
+}
+
+int ShadowTester::AddDirection(const Vec3& d) {
+    std::vector<BoxTree::HalfLineView> views;
+    views.push_back(solids_.ViewAlong(d));
+    for (const BoxTree& t : wide_) views.push_back(t.ViewAlong(d));
+    views_.push_back(std::move(views));
+    return static_cast<int>(views_.size()) - 1;
 }
 
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
@@ -442,11 +452,13 @@ bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray) const {
     const double s0 = (1e-4 + 1024 * DepthRounding(p.z)) / len;
     std::vector<IntervalList*>& slots =
         ThreadScratch(static_cast<std::size_t>(maxDepth_) + 6).slots;
-    return solids_.Segment(p, d, s0, sMax, [&](std::int32_t i) {
+    // The trees' views along d serve a half-line of their direction (AddDirection).
+    const int view = ray.view >= 0 && sMax == HUGE_VAL ? ray.view : -1;
+    return Query(0, view, p, d, s0, sMax, [&](std::int32_t i) {
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(i)];
         const FlatCsgNode& root = scene_.nodes[static_cast<std::size_t>(solid.root)];
         if (!HitsBox(root.bounds, p, d, s0, sMax)) return false;
-        Node(solid.root, p, d, s0, sMax, slots, 0, true);
+        Node(solid.root, p, d, s0, sMax, slots, 0, true, view);
         for (const Interval& in : *slots[0])
             if (in.hi > s0 && in.lo < sMax) return true;
         return false;
