@@ -185,40 +185,50 @@ FlatScene RandomCsgScene(std::mt19937_64& rng, int w, int h) {
     return b.scene();
 }
 
+struct OracleCounts {
+    long compared = 0, skipped = 0, covered = 0;
+};
+
+// Every pixel of scene number n's Frame f against the oracle (ambiguous rays counted and
+// skipped): coverage, surface, solid, the body (each half-space belongs to one body in these
+// scenes, so it follows from the surface) and the depth, the same roots up to the different
+// grouping of the per-pixel coefficients.
+void CompareToOracle(const FlatScene& scene, const Frame& f, int n, OracleCounts& c) {
+    for (int j = 0; j < f.height; ++j) {
+        for (int i = 0; i < f.width; ++i) {
+            OracleHit o = Oracle(scene, i + 0.5, j + 0.5);
+            if (o.ambiguous) {
+                ++c.skipped;
+                continue;
+            }
+            ++c.compared;
+            std::size_t k = f.Index(i, j);
+            ASSERT_EQ(f.Covered(i, j), o.covered) << "scene " << n << " pixel " << i << "," << j;
+            if (!o.covered) continue;
+            ++c.covered;
+            ASSERT_EQ(f.surface[k], o.surface) << "scene " << n << " pixel " << i << "," << j;
+            ASSERT_EQ(f.Solid(k), o.solid) << "scene " << n << " pixel " << i << "," << j;
+            const FlatBody& body = scene.bodies[static_cast<std::size_t>(f.body[k])];
+            EXPECT_TRUE(
+                std::any_of(body.literals.begin(), body.literals.end(),
+                            [&](const FlatLiteral& l) { return l.halfSpace == o.surface; }));
+            ASSERT_NEAR(f.depth[k], o.t, 1e-9 * (1 + std::fabs(o.t)) + DepthRounding(o.t));
+        }
+    }
+}
+
 TEST(RaycastCsg, RandomScenesMatchThePointClassificationOracle) {
     std::mt19937_64 rng(2024);
     const int w = 48, h = 40;
-    long compared = 0, skipped = 0, covered = 0;
+    OracleCounts counts;
     for (int n = 0; n < 40; ++n) {
         FlatScene scene = RandomCsgScene(rng, w, h);
         Frame f = Render(scene);
-        for (int j = 0; j < h; ++j) {
-            for (int i = 0; i < w; ++i) {
-                OracleHit o = Oracle(scene, i + 0.5, j + 0.5);
-                if (o.ambiguous) {
-                    ++skipped;
-                    continue;
-                }
-                ++compared;
-                std::size_t k = f.Index(i, j);
-                ASSERT_EQ(f.Covered(i, j), o.covered)
-                    << "scene " << n << " pixel " << i << "," << j;
-                if (!o.covered) continue;
-                ++covered;
-                ASSERT_EQ(f.surface[k], o.surface) << "scene " << n << " pixel " << i << "," << j;
-                ASSERT_EQ(f.Solid(k), o.solid) << "scene " << n << " pixel " << i << "," << j;
-                // Each half-space belongs to one body here, so the body follows from the surface.
-                const FlatBody& body = scene.bodies[static_cast<std::size_t>(f.body[k])];
-                EXPECT_TRUE(
-                    std::any_of(body.literals.begin(), body.literals.end(),
-                                [&](const FlatLiteral& l) { return l.halfSpace == o.surface; }));
-                // Same roots up to the different grouping of the per-pixel coefficients.
-                ASSERT_NEAR(f.depth[k], o.t, 1e-9 * (1 + std::fabs(o.t)) + DepthRounding(o.t));
-            }
-        }
+        CompareToOracle(scene, f, n, counts);
+        if (::testing::Test::HasFatalFailure()) return;
     }
-    EXPECT_LT(skipped, compared / 100);  // the oracle's blind spots stay rare
-    EXPECT_GT(covered, compared / 10);   // and the scenes are not mostly empty
+    EXPECT_LT(counts.skipped, counts.compared / 100);  // the oracle's blind spots stay rare
+    EXPECT_GT(counts.covered, counts.compared / 10);   // and the scenes are not mostly empty
 }
 
 // Unions and differences of more than eight operands (the tracer's filtered path: the operands
@@ -229,7 +239,7 @@ TEST(RaycastCsg, WideUnionsAndDifferencesMatchTheOracle) {
     std::mt19937_64 rng(99);
     std::uniform_real_distribution<double> u(0, 1);
     const int w = 64, h = 48;
-    long compared = 0, skipped = 0, covered = 0;
+    OracleCounts counts;
     double csgOps = 0, cutRetries = 0;
     for (int n = 0; n < 12; ++n) {
         TestSceneBuilder b(w, h);
@@ -262,27 +272,11 @@ TEST(RaycastCsg, WideUnionsAndDifferencesMatchTheOracle) {
         RenderStats stats = MakeRaycastEngine()->Render(scene, options, f);
         csgOps += CounterOrFail(stats, "csg_operations");
         cutRetries += CounterOrFail(stats, "depth_cut_retries");
-        for (int j = 0; j < h; ++j) {
-            for (int i = 0; i < w; ++i) {
-                OracleHit o = Oracle(scene, i + 0.5, j + 0.5);
-                if (o.ambiguous) {
-                    ++skipped;
-                    continue;
-                }
-                ++compared;
-                std::size_t k = f.Index(i, j);
-                ASSERT_EQ(f.Covered(i, j), o.covered)
-                    << "scene " << n << " pixel " << i << "," << j;
-                if (!o.covered) continue;
-                ++covered;
-                ASSERT_EQ(f.surface[k], o.surface) << "scene " << n << " pixel " << i << "," << j;
-                ASSERT_EQ(f.Solid(k), o.solid) << "scene " << n << " pixel " << i << "," << j;
-                ASSERT_NEAR(f.depth[k], o.t, 1e-9 * (1 + std::fabs(o.t)) + DepthRounding(o.t));
-            }
-        }
+        CompareToOracle(scene, f, n, counts);
+        if (::testing::Test::HasFatalFailure()) return;
     }
-    EXPECT_LT(skipped, compared / 50);
-    EXPECT_GT(covered, compared / 4);
+    EXPECT_LT(counts.skipped, counts.compared / 50);
+    EXPECT_GT(counts.covered, counts.compared / 4);
     EXPECT_GT(csgOps, 12 * w * h);  // unions and differences were folded, not short-cut
     // Pixels went past the first depth cut, so the operands of several cut levels were merged
     // back into operand order (trace.cpp, EvaluateWide).
