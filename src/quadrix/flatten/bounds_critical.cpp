@@ -35,7 +35,10 @@
 // bound to be tight; to keep boxes as tight as the relaxation's, the stage declines (nullopt: the
 // later stages decide) when a certified side lies more than 1e-7 × (size + |coordinate|) from its
 // candidate, 1e-5 for a nappe (kTight: a candidate was missed, or the KKT multipliers do not
-// exist, as at an apex). It also declines when
+// exist, as at an apex), beyond the certificate's own allowance for a nappe's rounding-level
+// neck (which it adds by construction: a long slim cone far from the origin, the helicopter's
+// tail boom, has a neck allowance of ~2e-5 of its box, and the relaxation it was sent to, at
+// ~1 ms, adds the same). It also declines when
 //   - the body has no quadric, two or more, a non-convex one, or more than 16 planes;
 //   - a feasible candidate lies on a face of R that is not B0's (S is unbounded, or it leaves
 //     the bootstrap box, which would be a bug: then the later stages decide safely);
@@ -427,7 +430,8 @@ std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const
     std::vector<const InsideFn*> fns;
     for (const InsideFn& f : shaping) fns.push_back(&f);
     Box3 box = b0;
-    if (!CertifyExtremes(fns, nappes, region, interior, extremes, box)) return std::nullopt;
+    double neck[6] = {0, 0, 0, 0, 0, 0};
+    if (!CertifyExtremes(fns, nappes, region, interior, extremes, box, neck)) return std::nullopt;
     // Tight: every certified side within kTight of its candidate.
     for (int side = 0; side < 6; ++side) {
         const int axis = side / 2;
@@ -435,7 +439,7 @@ std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const
         const double size = box.hi[axis] - box.lo[axis];
         const double value = points.Value(side);
         const double tight = nappes[quadric].ok ? kTightNappe : kTight;
-        if (!(std::fabs(certified - value) <= tight * (size + std::fabs(value))))
+        if (!(std::fabs(certified - value) <= tight * (size + std::fabs(value)) + neck[side]))
             return std::nullopt;
     }
     return box;

@@ -111,10 +111,12 @@ struct CandidateExtreme {
 // The weak-duality certificate of the relaxation (bounds_relaxation.cpp) applied to given
 // extreme points of the six sides: shrinks `work` to the certified box, or returns false (work
 // unchanged) when a side could not be certified or a nappe is not separated from its twin by a
-// plane. `interior` is a point of the body (it orients the nappes).
+// plane. `interior` is a point of the body (it orients the nappes). `neck`, when given, receives
+// per side the part of its certified bound that allows for a nappe's rounding-level neck
+// (0 without nappes): the bound lies that much beyond the candidate by construction.
 bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<Nappe>& nappes,
                      const Box3& region, const Vec3& interior, const CandidateExtreme extremes[6],
-                     Box3& work);
+                     Box3& work, double neck[6] = nullptr);
 
 // Stage (b2), see bounds_search.cpp: refines the sides selected by sides[2·axis + (sign > 0)];
 // false when the set is proven empty.

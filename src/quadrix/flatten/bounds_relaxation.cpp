@@ -255,11 +255,11 @@ class ConvexRelaxation {
     // literals, then the region's faces as listed in the constructor) with the ball around the
     // region, or around `ball` when given (which must be known to contain the set).
     double CertifyAt(const double e[3], const Vec3& x, const std::vector<double>& lambda,
-                     const Box3* ball) const {
+                     const Box3* ball, double* neckOut = nullptr) const {
         const double p[3] = {x.x, x.y, x.z};
-        if (!ball) return Certify(e, p, lambda, centre_, radius_);
+        if (!ball) return Certify(e, p, lambda, centre_, radius_, neckOut);
         const double radius = 0.5 * Length(ball->Size()) * (1 + 1e-9) + 1e-300;
-        return Certify(e, p, lambda, ball->Center(), radius);
+        return Certify(e, p, lambda, ball->Center(), radius, neckOut);
     }
 
     // The certificate of the last Maximize for this side, with the ball around a smaller
@@ -496,7 +496,7 @@ class ConvexRelaxation {
     // is well conditioned (its rounding then costs far less than the 1% added), else bounded by
     // |r|² / (4 λmin(M)) with Weyl's λmin.
     double Certify(const double e[3], const double x[3], const std::vector<double>& lambda,
-                   const Vec3& centre, double radius) const {
+                   const Vec3& centre, double radius, double* neckOut = nullptr) const {
         constexpr double kGamma = 64 * kEps;
         double lhat = e[0] * x[0] + e[1] * x[1] + e[2] * x[2];
         double errL = std::fabs(lhat);
@@ -537,6 +537,7 @@ class ConvexRelaxation {
             }
             m0 += w * f.lamMin;
         }
+        if (neckOut) *neckOut = neckSlack;
         double base = lhat + kGamma * errL + neckSlack;
         // The ball |x - c|² <= R² around the region: f_ball = (|x - c|² - R²)/R², gradient
         // 2(x - c)/R², λmin = 1/R²; -f_ball <= 1 in the region.
@@ -734,7 +735,7 @@ RelaxationOutcome BoundByConvexRelaxation(const std::vector<const InsideFn*>& fn
 
 bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<Nappe>& nappes,
                      const Box3& region, const Vec3& interior, const CandidateExtreme extremes[6],
-                     Box3& work) {
+                     Box3& work, double neck[6]) {
     ConvexRelaxation relaxation(fns, nappes, region);
     // A nappe's certificate is its supporting plane, valid only when the body lies in the nappe
     // its axis points to: orient by the interior point, and require a separating plane (the
@@ -760,15 +761,19 @@ bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<
             double e[3] = {0, 0, 0};
             e[axis] = side % 2 ? 1 : -1;
             const CandidateExtreme& c = extremes[side];
-            const double bound = relaxation.CertifyAt(e, c.x, c.lambda, pass ? &ball : nullptr);
+            double neckSlack = 0;
+            const double bound =
+                relaxation.CertifyAt(e, c.x, c.lambda, pass ? &ball : nullptr, &neckSlack);
             if (!std::isfinite(bound)) {
                 if (pass == 0) return false;
                 continue;
             }
+            const double before = side % 2 ? box.hi[axis] : -box.lo[axis];
             if (side % 2)
                 box.hi[axis] = std::fmin(box.hi[axis], bound);
             else
                 box.lo[axis] = std::fmax(box.lo[axis], -bound);
+            if (neck && (pass == 0 || bound < before)) neck[side] = neckSlack;
         }
         if (box.Empty()) return false;
     }
