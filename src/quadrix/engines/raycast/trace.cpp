@@ -77,25 +77,31 @@ inline void Tracer::Evaluate(const CsgProgram& p, std::int32_t n, double x, doub
             }
             continue;  // A ∪ ∅ = A − ∅ = A
         }
-        if (out.empty()) {  // union: ∅ ∪ B = B
-            std::swap(slots_[slot], slots_[slot + 1]);
-            continue;
-        }
-        ++counters_.csgOps;
-        IntervalList& scratch = *slots_[slot + 2];
-        switch (node.kind) {
-            case NodeKind::kUnion:
-                Union(out, operand, scratch);
-                break;
-            case NodeKind::kIntersection:
-                Intersection(out, operand, scratch);
-                break;
-            default:
-                Difference(out, operand, scratch);
-                break;
-        }
-        std::swap(slots_[slot], slots_[slot + 2]);
+        Fold(node.kind, slot);
     }
+}
+
+inline void Tracer::Fold(NodeKind kind, std::size_t slot) {
+    IntervalList& out = *slots_[slot];
+    if (out.empty()) {  // union: ∅ ∪ B = B
+        std::swap(slots_[slot], slots_[slot + 1]);
+        return;
+    }
+    ++counters_.csgOps;
+    IntervalList& operand = *slots_[slot + 1];
+    IntervalList& scratch = *slots_[slot + 2];
+    switch (kind) {
+        case NodeKind::kUnion:
+            Union(out, operand, scratch);
+            break;
+        case NodeKind::kIntersection:
+            Intersection(out, operand, scratch);
+            break;
+        default:
+            Difference(out, operand, scratch);
+            break;
+    }
+    std::swap(slots_[slot], slots_[slot + 2]);
 }
 
 // The operands after the first of a wide union or difference: those whose bounds hold the pixel
@@ -130,25 +136,17 @@ inline void Tracer::EvaluateWide(const CsgProgram& p, const ProgNode& node, std:
         if (out.empty() && node.kind != NodeKind::kUnion) break;  // ∅ − B = ∅
         if (reduction_.NodeEmpty(static_cast<std::size_t>(hits[k]))) continue;
         Evaluate(p, hits[k], x, y, slot + 1, cut);
-        IntervalList& operand = *slots_[slot + 1];
-        if (operand.empty()) continue;  // A ∪ ∅ = A − ∅ = A
-        if (out.empty()) {              // union: ∅ ∪ B = B
-            std::swap(slots_[slot], slots_[slot + 1]);
-            continue;
-        }
-        ++counters_.csgOps;
-        IntervalList& scratch = *slots_[slot + 2];
-        if (node.kind == NodeKind::kUnion)
-            Union(out, operand, scratch);
-        else
-            Difference(out, operand, scratch);
-        std::swap(slots_[slot], slots_[slot + 2]);
+        if (slots_[slot + 1]->empty()) continue;  // A ∪ ∅ = A − ∅ = A
+        Fold(node.kind, slot);
     }
     hitTop_ -= static_cast<std::size_t>(n);
 }
 
 void Tracer::GroupWideOperands(const CsgProgram& program) {
-    if (byLevel_.size() < program.children.size()) byLevel_.resize(program.children.size());
+    if (byLevel_.size() < program.children.size()) {
+        byLevel_.resize(program.children.size());
+        levelOf_.resize(program.children.size());
+    }
     if (levelEnd_.size() < program.nodes.size() * kLevels)
         levelEnd_.resize(program.nodes.size() * kLevels);
     const std::size_t levels = cuts_.size();
@@ -160,24 +158,25 @@ void Tracer::GroupWideOperands(const CsgProgram& program) {
         const std::int32_t* child = program.children.data() + node.first;
         std::int32_t* const order = byLevel_.data() + node.first + 1;
         std::int32_t* const ends = levelEnd_.data() + n * kLevels;
-        // The first level whose cut is above zlo (a NaN zlo is never cut: level 0); the last
-        // cut is +inf, so every operand has one.
-        auto levelOf = [&](std::int32_t i) {
+        // Each operand's level: the first level whose cut is above its zlo (a NaN zlo is never
+        // cut: level 0); the last cut is +inf, so every operand has one.
+        std::uint8_t* const level = levelOf_.data() + node.first;
+        std::int32_t count[kLevels] = {0, 0, 0, 0, 0};
+        for (std::int32_t i = 1; i < node.count; ++i) {
             const double z = program.nodes[static_cast<std::size_t>(child[i])].zlo;
             std::size_t l = 0;
             while (l + 1 < levels && !(z < cuts_[l]) && !std::isnan(z)) ++l;
-            return l;
-        };
+            level[i] = static_cast<std::uint8_t>(l);
+            ++count[l];
+        }
         // Counting sort by level, stable: each level keeps operand order.
-        std::int32_t count[kLevels] = {0, 0, 0, 0, 0};
-        for (std::int32_t i = 1; i < node.count; ++i) ++count[levelOf(i)];
         std::int32_t start[kLevels], sum = 0;
         for (std::size_t l = 0; l < kLevels; ++l) {
             start[l] = sum;
             sum += count[l];
             ends[l] = sum;
         }
-        for (std::int32_t i = 1; i < node.count; ++i) order[start[levelOf(i)]++] = i;
+        for (std::int32_t i = 1; i < node.count; ++i) order[start[level[i]]++] = i;
     }
 }
 

@@ -70,6 +70,9 @@ class Tracer {
     inline void EvaluateWide(const CsgProgram& p, const ProgNode& node, std::int32_t n, double x,
                              double y, std::size_t slot, double cut);
     static constexpr std::int32_t kFilteredOperands = 8;
+    // Folds the non-empty operand in slot+1 into the running set in `slot` by the node's
+    // operation (∅ ∪ B = B by a swap; Evaluate and EvaluateWide have returned for ∅ ∩ B, ∅ − B).
+    inline void Fold(NodeKind kind, std::size_t slot);
     // The rest of a body from the first literal with a two-piece set: the running interval `run`
     // intersected with `set`, then literals [next, last) as interval lists.
     inline void EvaluateBodyLists(const Interval& run, const RaySet& set, const std::int32_t* next,
@@ -102,6 +105,7 @@ class Tracer {
     static constexpr std::size_t kLevels = 5;  // at most four finite cuts, then +inf
     void GroupWideOperands(const CsgProgram& program);
     std::vector<std::int32_t> byLevel_;
+    std::vector<std::uint8_t> levelOf_;  // GroupWideOperands scratch: each operand's level
     std::vector<std::int32_t> levelEnd_;
     std::size_t level_ = 0;  // the index in cuts_ of the pass under way (Trace)
 };
