@@ -319,11 +319,16 @@ Box3 IntersectionBounds(std::span<const BoundLiteral> literals, const BoundsOpti
             if (stats) ++stats->analyticOnly;
             return *box;
         }
-    if (options.criticalPoints)
-        if (auto box = CriticalPointBox(shaping, b0, options)) {
-            if (stats) ++stats->criticalPointBoxes;
+    if (options.criticalPoints) {
+        bool neckWide = false;
+        if (auto box = CriticalPointBox(shaping, b0, options, &neckWide)) {
+            if (stats) {
+                ++stats->criticalPointBoxes;
+                stats->neckWideBoxes += neckWide;
+            }
             return *box;
         }
+    }
     Box3 work = b0;
     // Literal classes: planes and positive semidefinite quadrics (convex), nappes (convex
     // components), the rest (non-convex: left to the branch-and-bound).

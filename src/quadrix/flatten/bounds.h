@@ -115,6 +115,7 @@ struct BoundsStats {
     std::int64_t boxesTested = 0;         // boxes classified against literals
     std::int64_t budgetExhausted = 0;     // directions that stopped on the box budget
     std::int64_t criticalPointBoxes = 0;  // bodies bounded by stage (a'')
+    std::int64_t neckWideBoxes = 0;       // of those, tight only within a nappe's neck allowance
 };
 
 struct BoundLiteral {

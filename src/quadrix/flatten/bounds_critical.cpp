@@ -368,7 +368,7 @@ std::optional<Box3> CylinderBootstrap(const InsideFn& q, const std::vector<Insid
 }  // namespace
 
 std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const Box3& b0,
-                                     const BoundsOptions& options) {
+                                     const BoundsOptions& options, bool* neckWide) {
     int quadric = -1;
     std::size_t planes = 0;
     for (std::size_t j = 0; j < shaping.size(); ++j) {
@@ -432,16 +432,20 @@ std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const
     Box3 box = b0;
     double neck[6] = {0, 0, 0, 0, 0, 0};
     if (!CertifyExtremes(fns, nappes, region, interior, extremes, box, neck)) return std::nullopt;
-    // Tight: every certified side within kTight of its candidate.
+    // Tight: every certified side within kTight of its candidate (beyond the neck allowance).
+    bool wide = false;
     for (int side = 0; side < 6; ++side) {
         const int axis = side / 2;
         const double certified = side % 2 ? box.hi[axis] : -box.lo[axis];
         const double size = box.hi[axis] - box.lo[axis];
         const double value = points.Value(side);
         const double tight = nappes[quadric].ok ? kTightNappe : kTight;
-        if (!(std::fabs(certified - value) <= tight * (size + std::fabs(value)) + neck[side]))
-            return std::nullopt;
+        const double gap = std::fabs(certified - value),
+                     allowed = tight * (size + std::fabs(value));
+        if (!(gap <= allowed + neck[side])) return std::nullopt;
+        wide |= !(gap <= allowed);
     }
+    if (neckWide) *neckWide = wide;
     return box;
 }
 

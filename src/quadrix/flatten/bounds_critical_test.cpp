@@ -143,7 +143,7 @@ TEST(BoundsCritical, ObliqueConeFrustumsHaveTheirAnalyticBoxes) {
 TEST(BoundsCritical, LongSlimConesFarFromTheOriginAreDecidedHere) {
     std::mt19937_64 rng(41);
     std::uniform_real_distribution<double> u(-1, 1), slope(0.03, 0.08), far(8, 20);
-    int decided = 0;
+    int decided = 0, wide = 0;
     double worst = 0;
     for (int trial = 0; trial < 40; ++trial) {
         const double length = 1, h0 = 0.5 + 0.5 * (u(rng) + 1);
@@ -154,6 +154,7 @@ TEST(BoundsCritical, LongSlimConesFarFromTheOriginAreDecidedHere) {
         BoundsStats stats;
         const Box3 got = IntersectionBounds(b.Literals(), {}, &stats);
         decided += static_cast<int>(stats.criticalPointBoxes);
+        wide += static_cast<int>(stats.neckWideBoxes);
         EXPECT_EQ(stats.convexSolves, 0) << trial;
         const double size = Size(exact) + Magnitude(exact);
         ExpectContainsAndTight(got, exact, 1e-4 * size, trial);
@@ -161,9 +162,14 @@ TEST(BoundsCritical, LongSlimConesFarFromTheOriginAreDecidedHere) {
             worst = std::fmax(worst,
                               std::fmax(exact.lo[i] - got.lo[i], got.hi[i] - exact.hi[i]) / size);
     }
-    std::printf("[ bounds (a'') ] long slim cones: %d of 40 decided, widest side %.1e\n", decided,
-                worst);
+    std::printf(
+        "[ bounds (a'') ] long slim cones: %d of 40 decided (%d within the neck allowance "
+        "only), widest side %.1e\n",
+        decided, wide, worst);
     EXPECT_EQ(decided, 40);
+    // Those are marked (BoundsStats::neckWideBoxes): the Flattener does not move their boxes
+    // to translates, whose pad assumes kTightNappe.
+    EXPECT_GE(wide, 30);
 }
 
 // A sphere cut by an oblique plane n·x <= d (|n| = 1): along ±e_i the extreme is the pole

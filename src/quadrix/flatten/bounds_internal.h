@@ -97,9 +97,11 @@ RelaxationOutcome BoundByWorkingSetRelaxation(const std::vector<const InsideFn*>
 
 // Stage (a''), see bounds_critical.cpp: the certified box of a body of one convex quadric (or a
 // nappe) and planes from the critical points of the coordinates; nullopt when the stage does not
-// apply or cannot certify a tight box (then the relaxation decides).
+// apply or cannot certify a tight box (then the relaxation decides). `neckWide`, when given, is
+// set when some side is tight only within a nappe's neck allowance (more than kTightNappe from
+// its candidate): such a box is as loose as the relaxation's, not within 1e-5 of the true one.
 std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const Box3& b0,
-                                     const BoundsOptions& options);
+                                     const BoundsOptions& options, bool* neckWide = nullptr);
 
 // A candidate extreme point of one side and its Lagrange multipliers, indexed like the
 // constraints of a relaxation over `fns` and a region: the literals, then the region's faces

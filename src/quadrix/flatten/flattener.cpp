@@ -385,7 +385,8 @@ class FlattenerImpl {
     // Bounds reused by translation (`reuse`, TranslationReuse): a body that is a translate of an
     // earlier one by t gets the earlier one's box moved by t when that box came from the exact
     // stages (analytic, polytope vertices or critical points: within kTight of the true extremes,
-    // bounds.h) and lies well inside the search region. The box moved by t holds the translate
+    // bounds.h; not a critical-point box tight only within a nappe's neck allowance) and lies
+    // well inside the search region. The box moved by t holds the translate
     // of the earlier body exactly (rounded outward); the body's own coefficients are that
     // translate to rounding (two transforms of one statement with one linear part). The body's
     // own box would differ from it by the two certificates' allowances, at most kTightNappe =
@@ -408,7 +409,8 @@ class FlattenerImpl {
                                       BoundsStats st;
                                       out.box[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
                                       searched[i] = st.analyticOnly == 0;
-                                      tight[i] = st.convexSolves == 0 && st.boxesPopped == 0;
+                                      tight[i] = st.convexSolves == 0 && st.boxesPopped == 0 &&
+                                                 st.neckWideBoxes == 0;
                                       done[i] = 1;
                                   }
                               });
