@@ -173,14 +173,23 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     ShadowTest inShadow;
     if (shadows_) {
         const Vec3 p{x, y, depth};
+        // The surface the ray starts on (shadows.h: its literal is tried first); freeform
+        // surfaces cast no shadow rays of their own kind, so none for them.
+        ShadowOrigin origin;
+        if (body >= 0 && surface >= 0 &&
+            static_cast<std::size_t>(surface) < scene_.halfSpaces.size()) {
+            origin.body = body;
+            origin.halfSpace = surface;
+        }
         // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
         // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
-        inShadow = [&, p](std::size_t k, const Incident& in) {
-            if (fixedRay_[k]) return shadowTester_->Blocked(p, *fixedRay_[k]);
+        inShadow = [&, p, origin](std::size_t k, const Incident& in) {
+            if (fixedRay_[k]) return shadowTester_->Blocked(p, *fixedRay_[k], origin);
             const scene::Light& l = scene_.lights[k];
             const Vec4 light = l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0)
                                                                        : Vec4(l.position, 1.0);
-            return shadowTester_->Blocked(p, DeviceShadowRay(deviceFromWorld_, light, p, point));
+            return shadowTester_->Blocked(p, DeviceShadowRay(deviceFromWorld_, light, p, point),
+                                          origin);
         };
     }
     const PhongTerms t =

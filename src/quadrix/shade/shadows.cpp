@@ -197,13 +197,13 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex) : scene_(s
 
 void ShadowTester::Wide(const FlatCsgNode& node, std::int32_t wide, const Vec3& p, const Vec3& d,
                         double s0, double s1, std::vector<IntervalList*>& slots, std::size_t k,
-                        bool anyHit, int view) const {
+                        bool anyHit, const Walk& walk) const {
     const std::size_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
     const bool union_ = node.op == scene::CsgOp::kUnion;
-    Query(static_cast<std::size_t>(wide) + 1, view, p, d, s0, s1, [&](std::int32_t i) {
+    Query(static_cast<std::size_t>(wide) + 1, walk.view, p, d, s0, s1, [&](std::int32_t i) {
         const int c = node.children[from + static_cast<std::size_t>(i)];
         if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
-        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, view);
+        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, walk);
         Fold(node.op, slots, k);
         // A union asked only whether it meets the segment is answered by its first child that
         // does; a difference whose minuend is used up stays empty.
@@ -255,9 +255,32 @@ void ShadowTester::BodyGeneric(int body, const Vec3& p, const Vec3& d, double s0
 // of BodyGeneric (the tests compare them); the ids are not kept (all kNoId: shadow rays ask only
 // where the set is).
 void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, double s1,
-                        std::vector<IntervalList*>& slots, std::size_t k) const {
+                        std::vector<IntervalList*>& slots, std::size_t k, int first) const {
     const std::vector<FlatLiteral>& literals =
         scene_.bodies[static_cast<std::size_t>(body)].literals;
+    if (first >= 0) {
+        // The literal of the surface the segment starts on, alone, cut to [s0, s1] as the loop
+        // below cuts (the same comparisons): empty there, the body is empty (file comment).
+        for (const FlatLiteral& l : literals) {
+            if (l.halfSpace != first) continue;
+            const FlatHalfSpace& h = scene_.halfSpaces[static_cast<std::size_t>(first)];
+            if (h.IsQuartic()) break;
+            ++tRayLiterals;
+            Pieces set;
+            LiteralPieces(OnLine(h, p, d), l.complemented, set);
+            bool meets = false;
+            for (int j = 0; j < set.n; ++j) {
+                const double lo = set.lo[j] >= s0 ? set.lo[j] : s0;
+                const double hi = s1 <= set.hi[j] ? s1 : set.hi[j];
+                meets |= lo < hi;
+            }
+            if (!meets) {
+                slots[k]->clear();
+                return;
+            }
+            break;
+        }
+    }
     double lo = s0, hi = s1;
     std::size_t i = 0;
     bool lists = false;  // the set is in *slots[k] from literal i on
@@ -321,16 +344,17 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
 
 void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1,
                         std::vector<IntervalList*>& slots, std::size_t k, bool anyHit,
-                        int view) const {
+                        const Walk& walk) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (node.isLeaf) {
-        Body(node.body, p, d, s0, s1, slots, k);
+        Body(node.body, p, d, s0, s1, slots, k,
+             node.body == walk.origin.body ? walk.origin.halfSpace : -1);
         return;
     }
     if (anyHit && node.op == scene::CsgOp::kDifference && node.children.size() >= 2) {
         const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(node.children[0])];
         if (!minuend.isLeaf && minuend.op == scene::CsgOp::kUnion) {
-            DistributedDifference(n, p, d, s0, s1, slots, k, view);
+            DistributedDifference(n, p, d, s0, s1, slots, k, walk);
             return;
         }
     }
@@ -343,10 +367,10 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
         if (node.op == scene::CsgOp::kDifference) {
             const int c = node.children[0];
             if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return;
-            Node(c, p, d, s0, s1, slots, k, false, view);
+            Node(c, p, d, s0, s1, slots, k, false, walk);
             if (slots[k]->empty()) return;
         }
-        Wide(node, wide, p, d, s0, s1, slots, k, anyHit, view);
+        Wide(node, wide, p, d, s0, s1, slots, k, anyHit, walk);
         return;
     }
     bool first = true;
@@ -358,7 +382,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
             !HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1);
         if (first) {
             first = false;
-            if (!misses) Node(c, p, d, s0, s1, slots, k, anyHit && union_, view);
+            if (!misses) Node(c, p, d, s0, s1, slots, k, anyHit && union_, walk);
             if (slots[k]->empty() ? !union_ : union_ && anyHit) return;
             continue;
         }
@@ -369,7 +393,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
             }
             continue;  // A ∪ ∅ = A − ∅ = A
         }
-        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, view);
+        Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, walk);
         Fold(node.op, slots, k);
         if (slots[k]->empty() ? !union_ : union_ && anyHit) return;
     }
@@ -377,7 +401,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
 
 void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, double s0, double s1,
                                          std::vector<IntervalList*>& slots, std::size_t k,
-                                         int view) const {
+                                         const Walk& walk) const {
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     const int m = node.children[0];
     const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(m)];
@@ -389,23 +413,24 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     // empty, left in slots[k]) when c − subtrahends meets the segment.
     auto operand = [&](int c) {
         if (!HitsBox(scene_.nodes[static_cast<std::size_t>(c)].bounds, p, d, s0, s1)) return false;
-        Node(c, p, d, s0, s1, slots, k + 1, false, view);
+        Node(c, p, d, s0, s1, slots, k + 1, false, walk);
         if (slots[k + 1]->empty()) return false;
         if (!haveSubtrahends) {
             haveSubtrahends = true;
             auto subtrahend = [&](int b) {
                 if (!HitsBox(scene_.nodes[static_cast<std::size_t>(b)].bounds, p, d, s0, s1))
                     return false;
-                Node(b, p, d, s0, s1, slots, k + 2, false, view);
+                Node(b, p, d, s0, s1, slots, k + 2, false, walk);
                 Union(*slots[k], *slots[k + 2], *slots[k + 3]);
                 std::swap(slots[k], slots[k + 3]);
                 return false;
             };
             const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
             if (wide >= 0) {
-                Query(static_cast<std::size_t>(wide) + 1, view, p, d, s0, s1, [&](std::int32_t i) {
-                    return subtrahend(node.children[1 + static_cast<std::size_t>(i)]);
-                });
+                Query(static_cast<std::size_t>(wide) + 1, walk.view, p, d, s0, s1,
+                      [&](std::int32_t i) {
+                          return subtrahend(node.children[1 + static_cast<std::size_t>(i)]);
+                      });
             } else {
                 for (std::size_t j = 1; j < node.children.size(); ++j) subtrahend(node.children[j]);
             }
@@ -418,9 +443,9 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     const std::int32_t wide = wideOf_[static_cast<std::size_t>(m)];
     bool found = false;
     if (wide >= 0) {
-        found = Query(static_cast<std::size_t>(wide) + 1, view, p, d, s0, s1, [&](std::int32_t i) {
-            return operand(minuend.children[static_cast<std::size_t>(i)]);
-        });
+        found = Query(
+            static_cast<std::size_t>(wide) + 1, walk.view, p, d, s0, s1,
+            [&](std::int32_t i) { return operand(minuend.children[static_cast<std::size_t>(i)]); });
     } else {
         for (int c : minuend.children)
             if ((found = operand(c))) break;
@@ -440,7 +465,7 @@ bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     return Blocked(p, DeviceRay{d, sMax, Length(d)});
 }
 
-bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray) const {
+bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrigin& origin) const {
     const Vec3& d = ray.d;
     const double sMax = ray.sMax;
     const double len = ray.length;
@@ -453,12 +478,14 @@ bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray) const {
     std::vector<IntervalList*>& slots =
         ThreadScratch(static_cast<std::size_t>(maxDepth_) + 6).slots;
     // The trees' views along d serve a half-line of their direction (AddDirection).
-    const int view = ray.view >= 0 && sMax == HUGE_VAL ? ray.view : -1;
-    return Query(0, view, p, d, s0, sMax, [&](std::int32_t i) {
+    Walk walk;
+    walk.view = ray.view >= 0 && sMax == HUGE_VAL ? ray.view : -1;
+    walk.origin = origin;
+    return Query(0, walk.view, p, d, s0, sMax, [&](std::int32_t i) {
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(i)];
         const FlatCsgNode& root = scene_.nodes[static_cast<std::size_t>(solid.root)];
         if (!HitsBox(root.bounds, p, d, s0, sMax)) return false;
-        Node(solid.root, p, d, s0, sMax, slots, 0, true, view);
+        Node(solid.root, p, d, s0, sMax, slots, 0, true, walk);
         for (const Interval& in : *slots[0])
             if (in.hi > s0 && in.lo < sMax) return true;
         return false;

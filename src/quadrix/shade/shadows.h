@@ -45,6 +45,16 @@
 // segment. The per-literal evaluation is untouched; only which literals are evaluated changes.
 // A shadow ray's answer does not depend on the order of a union or of the subtrahends.
 //
+// The surface a ray starts on (ShadowOrigin: the Frame's surface and body at the shaded point): a
+// body's set on the segment is empty when one of its literals' is, so the origin body's literal
+// of that surface is evaluated first, alone. The segment leaves that surface at once where it
+// faces the light (every lit point but those on the inside of a hole), and the body is then known
+// empty after one literal instead of after all those that come before it (the machined part's
+// block has 14). Where that literal's set does meet the segment the body is evaluated as without
+// an origin. Either way the answer is the body's evaluation in its own order: the fold only ever
+// shrinks the set (exact max/min of the same roots), so a literal whose set misses the segment
+// empties it in any order.
+//
 // Limits: only solids the Flattener kept (those whose bounds meet the image and lie in front of
 // the eye) cast shadows.
 #pragma once
@@ -77,6 +87,13 @@ struct DeviceRay {
 DeviceRay DeviceShadowRay(const Mat4& deviceFromWorld, const Vec4& lightWorld, const Vec3& p,
                           const Vec3& pWorld);
 
+// The surface a shadow ray starts on: the Frame's ids at the shaded point (a half-space index and
+// its body), or -1 for none (see the file comment).
+struct ShadowOrigin {
+    int body = -1;
+    int halfSpace = -1;
+};
+
 class ShadowTester {
   public:
     // spatialIndex = false: no box trees, every solid and child is box-tested per ray (the
@@ -94,8 +111,9 @@ class ShadowTester {
     // True when a solid's set meets p + s·d for some s in (ε/|d|, sMax), p and d in device space;
     // ε = 1e-4 + 1024 · DepthRounding(p.z) pixels (shadows.cpp).
     bool Blocked(const Vec3& p, const Vec3& d, double sMax) const;
-    // The same for a DeviceRay (its length already computed).
-    bool Blocked(const Vec3& p, const DeviceRay& ray) const;
+    // The same for a DeviceRay (its length already computed), starting on `origin`'s surface
+    // (the same answer as without it; fewer literals evaluated).
+    bool Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrigin& origin = {}) const;
 
     // The set of s where a half-space literal holds on the line (exposed for tests).
     static IntervalList LiteralOnLine(const FlatHalfSpace& h, bool complemented, const Vec3& p,
@@ -108,9 +126,16 @@ class ShadowTester {
                                bool generic) const;
 
   private:
+    // What a segment's traversal carries: the trees' view along d (AddDirection's id, or -1) and
+    // the surface it starts on.
+    struct Walk {
+        int view = -1;
+        ShadowOrigin origin;
+    };
     // BodyOnSegment into *slots[k] (slots k+1.. scratch), without and with the one-interval path.
+    // `first`: a half-space whose literal in the body is tried first, alone (-1: none).
     void Body(int body, const Vec3& p, const Vec3& d, double s0, double s1,
-              std::vector<IntervalList*>& slots, std::size_t k) const;
+              std::vector<IntervalList*>& slots, std::size_t k, int first = -1) const;
     void BodyGeneric(int body, const Vec3& p, const Vec3& d, double s0, double s1,
                      std::vector<IntervalList*>& slots, std::size_t k) const;
     // The node's set on the line, clipped to [s0, s1] (the bodies' folds start from it), left in
@@ -118,13 +143,14 @@ class ShadowTester {
     // misses are taken as ∅. With anyHit only the set's emptiness matters: a union stops at its
     // first child that meets the segment.
     void Node(int node, const Vec3& p, const Vec3& d, double s0, double s1,
-              std::vector<IntervalList*>& slots, std::size_t k, bool anyHit, int view) const;
+              std::vector<IntervalList*>& slots, std::size_t k, bool anyHit,
+              const Walk& walk) const;
     // *slots[k] (the minuend's set for a difference, else empty) folded by the node's union or
     // difference with the set of each child the segment may meet: children 0, 1, ... of a
     // union, 1, 2, ... of a difference.
     void Wide(const FlatCsgNode& node, std::int32_t wide, const Vec3& p, const Vec3& d, double s0,
               double s1, std::vector<IntervalList*>& slots, std::size_t k, bool anyHit,
-              int view) const;
+              const Walk& walk) const;
     // Node n, a difference whose minuend is a union, asked only whether its set meets the
     // segment: (∪ Aᵢ) − B₁ − … − Bₘ = ∪ (Aᵢ − (B₁ ∪ … ∪ Bₘ)) (regularised sets are a Boolean
     // algebra), so the operands Aᵢ are tried one at a time and the first one left non-empty
@@ -132,7 +158,8 @@ class ShadowTester {
     // shadow ray through a dense union minus a tool stops at its first blocker instead of
     // making the union of every operand it crosses. slots[k] as Node.
     void DistributedDifference(int n, const Vec3& p, const Vec3& d, double s0, double s1,
-                               std::vector<IntervalList*>& slots, std::size_t k, int view) const;
+                               std::vector<IntervalList*>& slots, std::size_t k,
+                               const Walk& walk) const;
     // tree.Segment(p, d, s0, s1, visit), or its view's HalfLine when `view` >= 0 (s1 = +inf):
     // tree 0 is solids_, tree w + 1 is wide_[w].
     template <class Visit>
