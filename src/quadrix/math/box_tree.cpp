@@ -64,37 +64,48 @@ BoxTree::HalfLineView BoxTree::ViewAlong(const Vec3& d) const {
     e[axis] = 1;
     view.u = Normalize(Cross(view.w, e));
     view.v = Normalize(Cross(view.w, view.u));
+    view.nodes.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i) view.nodes[i] = view.Project(nodes_[i].box);
+    return view;
+}
+
+BoxTree::HalfLineView::Extent BoxTree::HalfLineView::Project(const Box3& b) const {
     // A box's extent on axis a by interval arithmetic, each term from the end that makes it
     // smallest (largest); a zero component contributes nothing (an infinite side times 0). Padded
     // by 1e-9 of the box's magnitude m = Σ max(|lo_k|, |hi_k|): the sums' rounding, and the
     // rounding-level d·u and d·v times the distance along d from p to a point of the box (at most
-    // m + |p|; HalfLine pads p's side by 1e-9 |p|). A NaN extent culls nothing.
-    auto extent = [](const Box3& b, const Vec3& a, double pad, double& lo, double& hi) {
+    // m + |p|; At pads p's side by 1e-9 |p|). A NaN extent culls nothing.
+    auto extent = [](const Box3& box, const Vec3& a, double pad, double& lo, double& hi) {
         lo = 0;
         hi = 0;
         for (int k = 0; k < 3; ++k) {
             if (a[k] == 0) continue;
-            const double x = b.lo[k] * a[k], y = b.hi[k] * a[k];
+            const double x = box.lo[k] * a[k], y = box.hi[k] * a[k];
             lo += x < y ? x : y;
             hi += x < y ? y : x;
         }
         lo -= pad;
         hi += pad;
     };
-    view.nodes.resize(nodes_.size());
-    for (std::size_t i = 0; i < nodes_.size(); ++i) {
-        HalfLineView::Extent& x = view.nodes[i];
-        const Box3& b = nodes_[i].box;
-        double m = 0;
-        for (int k = 0; k < 3; ++k) m += std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k]));
-        const double pad = 1e-9 * m + 1e-300;
-        double wLo;
-        extent(b, view.u, pad, x.uLo, x.uHi);
-        extent(b, view.v, pad, x.vLo, x.vHi);
-        extent(b, view.w, pad, wLo, x.wHi);
-        x.wMid = 0.5 * wLo + 0.5 * x.wHi;
-    }
-    return view;
+    Extent x;
+    double m = 0;
+    for (int k = 0; k < 3; ++k) m += std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k]));
+    const double pad = 1e-9 * m + 1e-300;
+    double wLo;
+    extent(b, u, pad, x.uLo, x.uHi);
+    extent(b, v, pad, x.vLo, x.vHi);
+    extent(b, w, pad, wLo, x.wHi);
+    x.wMid = 0.5 * wLo + 0.5 * x.wHi;
+    return x;
+}
+
+BoxTree::HalfLineView::Probe BoxTree::HalfLineView::At(const Vec3& p) const {
+    // p's coordinates, widened by far more than their rounding (and than d·u, d·v, which are
+    // rounding-level, times the distance to any box: the extents carry that part).
+    const double pu = Dot(p, u), pv = Dot(p, v), pw = Dot(p, w);
+    const double m = std::fabs(p.x) + std::fabs(p.y) + std::fabs(p.z);
+    const double tol = 1e-9 * m + 1e-300;
+    return {pu - tol, pu + tol, pv - tol, pv + tol, pw - tol};
 }
 
 // Fills node `self` (already allocated) with items[lo, hi).

@@ -71,6 +71,20 @@ class BoxTree {
         };
         Vec3 u, v, w;
         std::vector<Extent> nodes;  // per node of the tree
+        // Any box's extent on the view's axes, as the nodes' (padded outward), for callers that
+        // test boxes of their own along the same half-lines (ShadowTester: its CSG nodes).
+        Extent Project(const Box3& b) const;
+        // A half-line's start p on the view's axes, widened as HalfLine widens it; Meets is
+        // HalfLine's node test: false only when the half-line from p misses a box of extent e.
+        struct Probe {
+            double uLo, uHi, vLo, vHi, wLo;
+        };
+        Probe At(const Vec3& p) const;
+        static bool Meets(const Extent& e, const Probe& q) {
+            // Written so that a NaN extent culls nothing.
+            return !(q.uHi < e.uLo || q.uLo > e.uHi || q.vHi < e.vLo || q.vLo > e.vHi ||
+                     q.wLo > e.wHi);
+        }
     };
     HalfLineView ViewAlong(const Vec3& d) const;
     // Calls visit(k) for the items whose box the half-line p + s·d, s >= 0, may meet (d the
@@ -150,20 +164,13 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
     for (std::int32_t k : always_)
         if (visit(k)) return true;
     if (nodes_.empty()) return false;
-    // p's coordinates, widened by far more than their rounding (and than d·u, d·v, which are
-    // rounding-level, times the distance to any box: the extents carry that part).
-    const double pu = Dot(p, view.u), pv = Dot(p, view.v), pw = Dot(p, view.w);
-    const double m = std::fabs(p.x) + std::fabs(p.y) + std::fabs(p.z);
-    const double tol = 1e-9 * m + 1e-300;
-    const double uLo = pu - tol, uHi = pu + tol, vLo = pv - tol, vHi = pv + tol, wLo = pw - tol;
+    const HalfLineView::Probe q = view.At(p);
     std::int32_t stack[kMaxDepth + 2];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const std::int32_t i = stack[--top];
-        const HalfLineView::Extent& e = view.nodes[static_cast<std::size_t>(i)];
-        // Written so that a NaN extent culls nothing.
-        if (uHi < e.uLo || uLo > e.uHi || vHi < e.vLo || vLo > e.vHi || wLo > e.wHi) continue;
+        if (!HalfLineView::Meets(view.nodes[static_cast<std::size_t>(i)], q)) continue;
         const Node& n = nodes_[static_cast<std::size_t>(i)];
         if (n.count == 0) {
             // The nearer child along d first (pushed last), as Segment does.

@@ -211,6 +211,39 @@ TEST(ShadeShadows, ADifferenceOfAUnionAnswersAsItsDistributedForm) {
     }
 }
 
+// A parallel light under a parallel view: the shader makes views of the box trees and of the CSG
+// nodes' boxes along the light (AddDirection), which test a box with five comparisons, looser
+// than the slab test, never tighter. The answers are those without the views, on every ray, in
+// directions along the axes and oblique ones, for a few operands and for many (box trees).
+TEST(ShadeShadows, ViewsAlongALightGiveTheSameAnswers) {
+    for (int balls : {5, 200})
+        for (bool distributed : {false, true}) {
+            const FlatScene scene = BallsMinusDrills(balls, distributed, 29);
+            ShadowTester t(scene);
+            const Vec3 directions[] = {{0, 0, -1}, {1, 0, 0}, {0.3, -0.5, 0.8}, {-2, 1, 0.5}};
+            std::vector<int> ids;
+            for (const Vec3& d : directions) ids.push_back(t.AddDirection(d));
+            std::mt19937 rng(37);
+            std::uniform_real_distribution<double> u(-1, 1);
+            int blocked = 0, rays = 0;
+            for (int i = 0; i < 3000; ++i) {
+                const std::size_t k = static_cast<std::size_t>(i) % ids.size();
+                const Vec3& d = directions[k];
+                // Half the rays aimed through the balls' region, so that both answers are common.
+                const Vec3 p = i % 2 ? Vec3{u(rng), u(rng), u(rng)} * 8
+                                     : Vec3{u(rng), u(rng), u(rng)} * 3 -
+                                           Normalize(d) * (3 + 6 * std::fabs(u(rng)));
+                const bool want = t.Blocked(p, d, HUGE_VAL);
+                const DeviceRay ray{d, HUGE_VAL, Length(d), ids[k]};
+                EXPECT_EQ(t.Blocked(p, ray), want) << balls << " " << distributed << " ray " << i;
+                blocked += want;
+                ++rays;
+            }
+            EXPECT_GT(blocked, rays / 40) << balls;
+            EXPECT_LT(blocked, rays - rays / 40) << balls;
+        }
+}
+
 // The values of a list's endpoints (BodyOnSegment's fast path does not keep ids).
 std::vector<std::pair<double, double>> Ends(const IntervalList& l) {
     std::vector<std::pair<double, double>> v;
