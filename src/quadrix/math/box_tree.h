@@ -71,8 +71,7 @@ class BoxTree {
         };
         Vec3 u, v, w;
         std::vector<Extent> nodes;  // per node of the tree
-        // Any box's extent on the view's axes, as the nodes' (padded outward), for callers that
-        // test boxes of their own along the same half-lines (ShadowTester: its CSG nodes).
+        // Any box's extent on the view's axes, as the nodes' (padded outward).
         Extent Project(const Box3& b) const;
         // A half-line's start p on the view's axes, widened as HalfLine widens it; Meets is
         // HalfLine's node test: false only when the half-line from p misses a box of extent e.

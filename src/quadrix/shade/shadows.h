@@ -126,19 +126,14 @@ class ShadowTester {
                                bool generic) const;
 
   private:
-    // What a segment's traversal carries: the trees' view along d (AddDirection's id, or -1),
-    // with the CSG nodes' extents in it and the segment's start there (the nodes' boxes are then
-    // tested as the trees' nodes are: five comparisons, looser than the slab test, never
-    // tighter), and the surface it starts on.
+    // What a segment's traversal carries: the trees' view along d (AddDirection's id, or -1)
+    // and the surface it starts on.
     struct Walk {
         int view = -1;
-        const BoxTree::HalfLineView::Extent* nodeExtents = nullptr;
-        BoxTree::HalfLineView::Probe probe{};
         ShadowOrigin origin;
     };
-    // Whether the segment may meet CSG node n's box (false: n is ∅ on it).
-    bool NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1,
-                  const Walk& walk) const;
+    // Whether the segment meets CSG node n's box by the slab test (false: n is ∅ on it).
+    bool NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1) const;
     // BodyOnSegment into *slots[k] (slots k+1.. scratch), without and with the one-interval path.
     // `first`: a half-space whose literal in the body is tried first, alone (-1: none).
     void Body(int body, const Vec3& p, const Vec3& d, double s0, double s1,
@@ -181,10 +176,8 @@ class ShadowTester {
     std::vector<BoxTree> wide_;         // trees of the wide nodes
     std::vector<std::int32_t> wideOf_;  // node → index into wide_, or -1
     int maxDepth_ = 0;                  // the deepest node below a solid's root (root: 0)
-    // AddDirection's views: views_[id][tree], trees numbered as Query numbers them; and
-    // nodeExtents_[id][n], CSG node n's box on the same axes.
+    // AddDirection's views: views_[id][tree], trees numbered as Query numbers them.
     std::vector<std::vector<BoxTree::HalfLineView>> views_;
-    std::vector<std::vector<BoxTree::HalfLineView::Extent>> nodeExtents_;
 };
 
 }  // namespace quadrix

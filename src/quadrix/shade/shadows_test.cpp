@@ -211,10 +211,10 @@ TEST(ShadeShadows, ADifferenceOfAUnionAnswersAsItsDistributedForm) {
     }
 }
 
-// A parallel light under a parallel view: the shader makes views of the box trees and of the CSG
-// nodes' boxes along the light (AddDirection), which test a box with five comparisons, looser
-// than the slab test, never tighter. The answers are those without the views, on every ray, in
-// directions along the axes and oblique ones, for a few operands and for many (box trees).
+// A parallel light under a parallel view: the shader makes views of the box trees along the light
+// (AddDirection), which test a tree node with five comparisons, looser than the slab test, never
+// tighter. The answers are those without the views, on every ray, in directions along the axes
+// and oblique ones, for a few operands and for many (box trees).
 TEST(ShadeShadows, ViewsAlongALightGiveTheSameAnswers) {
     for (int balls : {5, 200})
         for (bool distributed : {false, true}) {
