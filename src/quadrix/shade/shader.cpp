@@ -173,8 +173,8 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     ShadowTest inShadow;
     if (shadows_) {
         const Vec3 p{x, y, depth};
-        // The surface the ray starts on (shadows.h: its literal is tried first); freeform
-        // surfaces cast no shadow rays of their own kind, so none for them.
+        // The surface the ray starts on (shadows.h: its literal is tried first); none for a
+        // freeform surface's pixel (its id is past the half-spaces: no literal to try).
         ShadowOrigin origin;
         if (body >= 0 && surface >= 0 &&
             static_cast<std::size_t>(surface) < scene_.halfSpaces.size()) {
