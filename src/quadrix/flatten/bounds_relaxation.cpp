@@ -251,15 +251,73 @@ class ConvexRelaxation {
         return bound;
     }
 
+    // The part of the certificate that depends on the point x̂ and the multipliers only, not on
+    // the ball: the Lagrangian's value, gradient and Hessian sums with their rounding allowances.
+    // CertifyExtremes certifies the same (x̂, λ) of a side with several balls (its passes), so it
+    // makes these once per side. `ok` is false when a nappe's supporting plane has no point of
+    // the nappe near x̂ (the certificate is then infinite).
+    struct Sums {
+        bool ok = false;
+        double lhat = 0, errL = 0, m0 = 0, neckSlack = 0;
+        double r[3] = {0, 0, 0}, errR[3] = {1, 1, 1};
+        InsideFn mSum;  // Σ λ_i A_i, in an InsideFn to reuse Cholesky
+        // The Cholesky solve of μ = 0 (M = mSum, r̃ = r: the same for every ball), made on first
+        // use: 0 not yet, 1 made and `form0` holds rᵀM⁻¹r, -1 no factorisation or no finite form.
+        mutable int form0State = 0;
+        mutable double form0 = 0;
+    };
+
+    Sums MakeSums(const double e[3], const double x[3], const std::vector<double>& lambda) const {
+        Sums s;
+        s.lhat = e[0] * x[0] + e[1] * x[1] + e[2] * x[2];
+        s.errL = std::fabs(s.lhat);
+        for (int j = 0; j < 3; ++j) s.r[j] = e[j];
+        for (std::size_t i = 0; i < cons_.size(); ++i) {
+            double w = lambda[i];
+            if (w == 0) continue;
+            InsideFn f = cons_[i];
+            if (nappes_[i].ok) {
+                // The supporting plane through the apex, ∇f(p)·(x - apex) <= 0, from a point p
+                // of the nappe near x̂.
+                const Nappe& n = nappes_[i];
+                Vec3 p;
+                if (!PointInNappe(cons_[i], n, x, p)) return s;
+                double pp[3] = {p.x, p.y, p.z};
+                Local at = EvaluateLocal(cons_[i], pp);
+                f = InsideFn{};
+                f.isPlane = true;
+                for (int j = 0; j < 3; ++j) f.b[j] = 0.5 * at.g[j];
+                f.k = -(at.g[0] * n.apex.x + at.g[1] * n.apex.y + at.g[2] * n.apex.z);
+                // A rounding-level one-sheet neck (R > 0) lets the nappe poke out of the cone by
+                // its radius sqrt(R/β) near the apex.
+                double gnorm = std::sqrt(at.g[0] * at.g[0] + at.g[1] * at.g[1] + at.g[2] * at.g[2]);
+                s.neckSlack += 2 * w * gnorm * std::sqrt(n.rPlus / n.beta);
+            }
+            Local l = EvaluateLocal(f, x);
+            s.lhat -= w * l.v;
+            s.errL += w * (std::fabs(l.v) + l.mag);
+            for (int j = 0; j < 3; ++j) {
+                s.r[j] -= w * l.g[j];
+                double gm = 2 * (std::fabs(f.a[j][0] * x[0]) + std::fabs(f.a[j][1] * x[1]) +
+                                 std::fabs(f.a[j][2] * x[2]) + std::fabs(f.b[j]));
+                s.errR[j] += w * (std::fabs(l.g[j]) + gm);
+                for (int k = 0; k < 3; ++k) s.mSum.a[j][k] += w * f.a[j][k];
+            }
+            s.m0 += w * f.lamMin;
+        }
+        s.ok = true;
+        return s;
+    }
+
     // The certificate of a given point and multipliers (indexed like the constraints: the
     // literals, then the region's faces as listed in the constructor) with the ball around the
     // region, or around `ball` when given (which must be known to contain the set).
-    double CertifyAt(const double e[3], const Vec3& x, const std::vector<double>& lambda,
-                     const Box3* ball, double* neckOut = nullptr) const {
+    double CertifyAt(const Sums& sums, const Vec3& x, const Box3* ball) const {
+        if (!sums.ok) return kInf;
         const double p[3] = {x.x, x.y, x.z};
-        if (!ball) return Certify(e, p, lambda, centre_, radius_, neckOut);
+        if (!ball) return Certify(sums, p, centre_, radius_);
         const double radius = 0.5 * Length(ball->Size()) * (1 + 1e-9) + 1e-300;
-        return Certify(e, p, lambda, ball->Center(), radius, neckOut);
+        return Certify(sums, p, ball->Center(), radius);
     }
 
     // The certificate of the last Maximize for this side, with the ball around a smaller
@@ -497,48 +555,21 @@ class ConvexRelaxation {
     // |r|² / (4 λmin(M)) with Weyl's λmin.
     double Certify(const double e[3], const double x[3], const std::vector<double>& lambda,
                    const Vec3& centre, double radius, double* neckOut = nullptr) const {
+        const Sums sums = MakeSums(e, x, lambda);
+        if (!sums.ok) return kInf;
+        if (neckOut) *neckOut = sums.neckSlack;
+        return Certify(sums, x, centre, radius);
+    }
+
+    // The same from the sums of (x̂, λ), with the ball |x - centre| <= radius. A μ candidate is
+    // skipped, with the same result, where its bound without the (non-negative) quadratic term
+    // already reaches the best one, or where it repeats an earlier μ.
+    double Certify(const Sums& sums, const double x[3], const Vec3& centre, double radius) const {
         constexpr double kGamma = 64 * kEps;
-        double lhat = e[0] * x[0] + e[1] * x[1] + e[2] * x[2];
-        double errL = std::fabs(lhat);
-        double r[3] = {e[0], e[1], e[2]}, errR[3] = {1, 1, 1};
-        double m0 = 0;
-        InsideFn mSum;  // Σ λ_i A_i, in an InsideFn to reuse Cholesky
-        double neckSlack = 0;
-        for (std::size_t i = 0; i < cons_.size(); ++i) {
-            double w = lambda[i];
-            if (w == 0) continue;
-            InsideFn f = cons_[i];
-            if (nappes_[i].ok) {
-                // The supporting plane through the apex, ∇f(p)·(x - apex) <= 0, from a point p
-                // of the nappe near x̂.
-                const Nappe& n = nappes_[i];
-                Vec3 p;
-                if (!PointInNappe(cons_[i], n, x, p)) return kInf;
-                double pp[3] = {p.x, p.y, p.z};
-                Local at = EvaluateLocal(cons_[i], pp);
-                f = InsideFn{};
-                f.isPlane = true;
-                for (int j = 0; j < 3; ++j) f.b[j] = 0.5 * at.g[j];
-                f.k = -(at.g[0] * n.apex.x + at.g[1] * n.apex.y + at.g[2] * n.apex.z);
-                // A rounding-level one-sheet neck (R > 0) lets the nappe poke out of the cone by
-                // its radius sqrt(R/β) near the apex.
-                double gnorm = std::sqrt(at.g[0] * at.g[0] + at.g[1] * at.g[1] + at.g[2] * at.g[2]);
-                neckSlack += 2 * w * gnorm * std::sqrt(n.rPlus / n.beta);
-            }
-            Local l = EvaluateLocal(f, x);
-            lhat -= w * l.v;
-            errL += w * (std::fabs(l.v) + l.mag);
-            for (int j = 0; j < 3; ++j) {
-                r[j] -= w * l.g[j];
-                double gm = 2 * (std::fabs(f.a[j][0] * x[0]) + std::fabs(f.a[j][1] * x[1]) +
-                                 std::fabs(f.a[j][2] * x[2]) + std::fabs(f.b[j]));
-                errR[j] += w * (std::fabs(l.g[j]) + gm);
-                for (int k = 0; k < 3; ++k) mSum.a[j][k] += w * f.a[j][k];
-            }
-            m0 += w * f.lamMin;
-        }
-        if (neckOut) *neckOut = neckSlack;
-        double base = lhat + kGamma * errL + neckSlack;
+        const double* r = sums.r;
+        const double* errR = sums.errR;
+        const double m0 = sums.m0;
+        double base = sums.lhat + kGamma * sums.errL + sums.neckSlack;
         // The ball |x - c|² <= R² around the region: f_ball = (|x - c|² - R²)/R², gradient
         // 2(x - c)/R², λmin = 1/R²; -f_ball <= 1 in the region.
         double r2 = radius * radius;
@@ -561,7 +592,15 @@ class ConvexRelaxation {
         const double diameter = 2 * radius;
         const double muR = 0.5 * r0 * radius, muM = 2 * std::fmax(0.0, -m0) * r2;
         const double muCandidates[5] = {0, muR, muM, muR + muM, 10 * (muR + muM)};
-        for (double mu : muCandidates) {
+        const bool gbFinite = std::isfinite(gb[0]) && std::isfinite(gb[1]) && std::isfinite(gb[2]);
+        for (int c = 0; c < 5; ++c) {
+            const double mu = muCandidates[c];
+            bool repeat = false;
+            for (int c2 = 0; c2 < c; ++c2) repeat |= muCandidates[c2] == mu;
+            if (repeat) continue;
+            // quad >= 0 below (or NaN, which is not kept): this μ cannot lower the best.
+            const double partial = base - mu * fb + kGamma * mu * 4;
+            if (partial >= best) continue;
             double m = m0 + mu / r2;
             m = m > 0 ? m * (1 - 1e-12) : m * (1 + 1e-12);
             // r = r̃ + δ with |δ_j| <= γ errR_j: (r̃+δ)ᵀM⁻¹(r̃+δ) <= (√(r̃ᵀM⁻¹r̃) + |δ|/√λmin)².
@@ -576,21 +615,33 @@ class ConvexRelaxation {
             double quad = std::sqrt(rNorm2) * diameter + std::fmax(0.0, -m) * diameter * diameter;
             if (m > 0) {
                 quad = std::fmin(quad, rNorm2 / (4 * m));
-                InsideFn mm = mSum;
-                for (int j = 0; j < 3; ++j) mm.a[j][j] += mu / r2;
-                const int idx[3] = {0, 1, 2};
-                double l[3][3], condition;
-                if (Cholesky(mm, idx, 3, l, condition, 1e8)) {
-                    double y[3];
-                    CholeskySolve(l, 3, rt, y);
-                    double form = rt[0] * y[0] + rt[1] * y[1] + rt[2] * y[2];
-                    if (form >= 0 && std::isfinite(form)) {
-                        double root = std::sqrt(1.01 * form) + std::sqrt(delta2 / m);
-                        quad = std::fmin(quad, 0.25 * root * root);
+                double form = 0;
+                bool haveForm = false;
+                if (mu == 0 && gbFinite && sums.form0State != 0) {
+                    haveForm = sums.form0State > 0;
+                    form = sums.form0;
+                } else {
+                    InsideFn mm = sums.mSum;
+                    for (int j = 0; j < 3; ++j) mm.a[j][j] += mu / r2;
+                    const int idx[3] = {0, 1, 2};
+                    double l[3][3], condition;
+                    if (Cholesky(mm, idx, 3, l, condition, 1e8)) {
+                        double y[3];
+                        CholeskySolve(l, 3, rt, y);
+                        form = rt[0] * y[0] + rt[1] * y[1] + rt[2] * y[2];
+                        haveForm = form >= 0 && std::isfinite(form);
+                    }
+                    if (mu == 0 && gbFinite) {
+                        sums.form0State = haveForm ? 1 : -1;
+                        sums.form0 = form;
                     }
                 }
+                if (haveForm) {
+                    double root = std::sqrt(1.01 * form) + std::sqrt(delta2 / m);
+                    quad = std::fmin(quad, 0.25 * root * root);
+                }
             }
-            double bound = base - mu * fb + kGamma * mu * 4 + quad;
+            double bound = partial + quad;
             if (std::isfinite(bound)) best = std::fmin(best, bound);
         }
         return best;
@@ -751,6 +802,15 @@ bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<
     constexpr int kMaxPasses = 12;
     Box3 box = work;
     double previous = kInf;
+    // Each side certifies the same (x̂, λ) in every pass, with a smaller ball: its sums once.
+    ConvexRelaxation::Sums sums[6];
+    for (int side = 0; side < 6; ++side) {
+        double e[3] = {0, 0, 0};
+        e[side / 2] = side % 2 ? 1 : -1;
+        const CandidateExtreme& c = extremes[side];
+        const double p[3] = {c.x.x, c.x.y, c.x.z};
+        sums[side] = relaxation.MakeSums(e, p, c.lambda);
+    }
     for (int pass = 0; pass < kMaxPasses; ++pass) {
         const Box3 ball = box.Intersected(region);
         const double size = Length(ball.Size());
@@ -758,12 +818,9 @@ bool CertifyExtremes(const std::vector<const InsideFn*>& fns, const std::vector<
         previous = pass > 0 ? size : Length(region.Size());
         for (int side = 0; side < 6; ++side) {
             const int axis = side / 2;
-            double e[3] = {0, 0, 0};
-            e[axis] = side % 2 ? 1 : -1;
             const CandidateExtreme& c = extremes[side];
-            double neckSlack = 0;
-            const double bound =
-                relaxation.CertifyAt(e, c.x, c.lambda, pass ? &ball : nullptr, &neckSlack);
+            const double neckSlack = sums[side].ok ? sums[side].neckSlack : 0.0;
+            const double bound = relaxation.CertifyAt(sums[side], c.x, pass ? &ball : nullptr);
             if (!std::isfinite(bound)) {
                 if (pass == 0) return false;
                 continue;
