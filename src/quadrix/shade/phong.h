@@ -16,13 +16,14 @@
 // bit-identical to the historical shader (multiplications by 1 are exact).
 #pragma once
 
-#include <functional>
+#include <cstddef>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/math/vec.h"
 #include "quadrix/scene/scene.h"
 #include "quadrix/shade/lighting.h"
+#include "quadrix/util/function_ref.h"
 
 namespace quadrix {
 
@@ -39,8 +40,9 @@ struct PhongTerms {
     scene::Color specular{0, 0, 0};
 };
 
-// Whether light k (an index into the lights) is blocked before it reaches the point.
-using ShadowTest = std::function<bool(std::size_t light, const Incident& incident)>;
+// Whether light k (an index into the lights) is blocked before it reaches the point. A reference
+// to the caller's test (util/function_ref.h): the shader makes one per pixel.
+using ShadowTest = FunctionRef<bool(std::size_t light, const Incident& incident)>;
 
 // The terms at world point `point` (needed by point and spot lights only). A light for which
 // `inShadow` (when given) says true contributes nothing but is asked only where n·l > 0.

@@ -170,28 +170,26 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     const Reflectance& m = mc.reflectance;
     Vec3 point{0, 0, 0};
     if (needPoint_) point = viewer_.WorldPoint({x, y, depth});
-    ShadowTest inShadow;
-    if (shadows_) {
-        const Vec3 p{x, y, depth};
-        // The surface the ray starts on (shadows.h: its literal is tried first); none for a
-        // freeform surface's pixel (its id is past the half-spaces: no literal to try).
-        ShadowOrigin origin;
-        if (body >= 0 && surface >= 0 &&
-            static_cast<std::size_t>(surface) < scene_.halfSpaces.size()) {
-            origin.body = body;
-            origin.halfSpace = surface;
-        }
-        // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
-        // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
-        inShadow = [&, p, origin](std::size_t k, const Incident& in) {
-            if (fixedRay_[k]) return shadowTester_->Blocked(p, *fixedRay_[k], origin);
-            const scene::Light& l = scene_.lights[k];
-            const Vec4 light = l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0)
-                                                                       : Vec4(l.position, 1.0);
-            return shadowTester_->Blocked(p, DeviceShadowRay(deviceFromWorld_, light, p, point),
-                                          origin);
-        };
+    const Vec3 p{x, y, depth};
+    // The surface the ray starts on (shadows.h: its literal is tried first); none for a
+    // freeform surface's pixel (its id is past the half-spaces: no literal to try).
+    ShadowOrigin origin;
+    if (body >= 0 && surface >= 0 && static_cast<std::size_t>(surface) < scene_.halfSpaces.size()) {
+        origin.body = body;
+        origin.halfSpace = surface;
     }
+    // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
+    // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
+    const auto blocked = [&](std::size_t k, const Incident& in) {
+        if (fixedRay_[k]) return shadowTester_->Blocked(p, *fixedRay_[k], origin);
+        const scene::Light& l = scene_.lights[k];
+        const Vec4 light =
+            l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0) : Vec4(l.position, 1.0);
+        return shadowTester_->Blocked(p, DeviceShadowRay(deviceFromWorld_, light, p, point),
+                                      origin);
+    };
+    ShadowTest inShadow;
+    if (shadows_) inShadow = blocked;
     const PhongTerms t =
         PhongAt(scene_.lights, point, n, viewer_.TowardViewer(point), m, inShadow, &fixedLight_);
     const scene::Color& base = mc.base;
