@@ -127,6 +127,11 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
                 fixedRay_.back()->view = shadowTester_->AddDirection(fixedRay_.back()->d);
         }
     }
+    localWithShadows_ =
+        shadows_ && !needPoint_ && model_ != ShadingModel::kFast && scene.lights.size() <= 64;
+    for (std::size_t k = 0; k < scene.lights.size(); ++k)
+        localWithShadows_ = localWithShadows_ &&
+                            (scene.lights[k].kind == scene::Light::Kind::kAmbient || fixedRay_[k]);
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     if (model_ == ShadingModel::kFast) {
         for (std::size_t i = 0; i < frame.surface.size(); ++i)
@@ -147,6 +152,17 @@ struct PixelShader::MaterialCache {
     scene::Color base;
 };
 
+ShadowOrigin PixelShader::OriginOf(std::int32_t surface, std::int32_t body) const {
+    // The surface the ray starts on (shadows.h: its literal is tried first); none for a
+    // freeform surface's pixel (its id is past the half-spaces: no literal to try).
+    ShadowOrigin origin;
+    if (body >= 0 && surface >= 0 && static_cast<std::size_t>(surface) < scene_.halfSpaces.size()) {
+        origin.body = body;
+        origin.halfSpace = surface;
+    }
+    return origin;
+}
+
 scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int32_t body,
                              double depth, const Vec3& normal, const scene::Color& background,
                              MaterialCache* cache) const {
@@ -157,27 +173,10 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
         auto it = meanNormal_.find({surface, body});
         if (it != meanNormal_.end()) n = it->second;
     }
-    MaterialCache local;
-    MaterialCache& mc = cache ? *cache : local;
-    if (mc.surface != surface || mc.body != body) {
-        mc.surface = surface;
-        mc.body = body;
-        mc.finish = scene_.SurfaceFinish(surface, body);
-        mc.reflectance = ReflectanceOf(mc.finish, options_, reflection_);
-        mc.base = scene_.SurfaceColor(surface, body);
-    }
-    const scene::Finish& finish = mc.finish;
-    const Reflectance& m = mc.reflectance;
     Vec3 point{0, 0, 0};
     if (needPoint_) point = viewer_.WorldPoint({x, y, depth});
     const Vec3 p{x, y, depth};
-    // The surface the ray starts on (shadows.h: its literal is tried first); none for a
-    // freeform surface's pixel (its id is past the half-spaces: no literal to try).
-    ShadowOrigin origin;
-    if (body >= 0 && surface >= 0 && static_cast<std::size_t>(surface) < scene_.halfSpaces.size()) {
-        origin.body = body;
-        origin.halfSpace = surface;
-    }
+    const ShadowOrigin origin = OriginOf(surface, body);
     // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
     // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
     const auto blocked = [&](std::size_t k, const Incident& in) {
@@ -190,6 +189,47 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     };
     ShadowTest inShadow;
     if (shadows_) inShadow = blocked;
+    return Lit(surface, body, n, point, background, cache, inShadow);
+}
+
+std::uint64_t PixelShader::ShadowMask(double x, double y, std::int32_t surface, std::int32_t body,
+                                      double depth, const Vec3& normal) const {
+    // The lights PhongAt asks (phong.cpp): not ambient, lighting the normal's side; all of them
+    // fixed here (LocalWithShadows), each with its device ray.
+    const Vec3 p{x, y, depth};
+    const ShadowOrigin origin = OriginOf(surface, body);
+    std::uint64_t mask = 0;
+    for (std::size_t k = 0; k < fixedLight_.size(); ++k) {
+        const Incident& in = fixedLight_[k];
+        if (in.ambient) continue;
+        if (!(Dot(normal, in.toLight) > 0)) continue;
+        if (shadowTester_->Blocked(p, *fixedRay_[k], origin)) mask |= std::uint64_t{1} << k;
+    }
+    return mask;
+}
+
+scene::Color PixelShader::AtWithMask(std::int32_t surface, std::int32_t body, const Vec3& normal,
+                                     std::uint64_t mask, const scene::Color& background,
+                                     MaterialCache* cache) const {
+    if (surface == Frame::kNone) return background;
+    const auto blocked = [mask](std::size_t k, const Incident&) { return (mask >> k & 1) != 0; };
+    return Lit(surface, body, normal, Vec3{0, 0, 0}, background, cache, blocked);
+}
+
+scene::Color PixelShader::Lit(std::int32_t surface, std::int32_t body, const Vec3& n,
+                              const Vec3& point, const scene::Color& background,
+                              MaterialCache* cache, const ShadowTest& inShadow) const {
+    MaterialCache local;
+    MaterialCache& mc = cache ? *cache : local;
+    if (mc.surface != surface || mc.body != body) {
+        mc.surface = surface;
+        mc.body = body;
+        mc.finish = scene_.SurfaceFinish(surface, body);
+        mc.reflectance = ReflectanceOf(mc.finish, options_, reflection_);
+        mc.base = scene_.SurfaceColor(surface, body);
+    }
+    const scene::Finish& finish = mc.finish;
+    const Reflectance& m = mc.reflectance;
     const PhongTerms t =
         PhongAt(scene_.lights, point, n, viewer_.TowardViewer(point), m, inShadow, &fixedLight_);
     const scene::Color& base = mc.base;
@@ -286,6 +326,55 @@ void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
     }
 }
 
+// Row y as ShadeRowLocal, with shadows (PixelShader::LocalWithShadows): every covered pixel's
+// shadow rays are traced (ShadowMask), and a pixel repeating the previous covered pixel's
+// (surface, body), normal bits and blocked lights repeats its bytes; only the others are shaded
+// (AtWithMask: PhongAt with the answers already known).
+void ShadeRowLocalShadowed(const PixelShader& shader, const Frame& frame, int y,
+                           const scene::Color& background, Image& image,
+                           PixelShader::MaterialCache& cache) {
+    const std::size_t row = frame.Index(0, y);
+    const std::int32_t* surface = frame.surface.data() + row;
+    const std::int32_t* body = frame.body.data() + row;
+    const PackedNormal* normal = frame.normal.data() + row;
+    const float* depth = frame.depth.data() + row;
+    const int width = frame.width;
+    const bool rgb = image.channels == 3;
+    std::uint8_t* out = image.At(0, y);
+    const PixelBytes back(
+        shader.AtWithMask(Frame::kNone, Frame::kNone, Vec3{}, 0, background, &cache));
+    PixelBytes last;
+    std::int32_t lastSurface = Frame::kNone, lastBody = Frame::kNone;
+    PackedNormal lastNormal;
+    std::uint64_t lastMask = 0;
+    for (int x = 0; x < width; ++x) {
+        const std::int32_t s = surface[x];
+        const PixelBytes* bytes = &back;
+        if (s != Frame::kNone) {
+            const std::int32_t b = body[x];
+            const Vec3 n = normal[x];
+            const std::uint64_t mask = shader.ShadowMask(x + 0.5, y + 0.5, s, b, depth[x], n);
+            if (s != lastSurface || b != lastBody || !(normal[x] == lastNormal) ||
+                mask != lastMask) {
+                lastSurface = s;
+                lastBody = b;
+                lastNormal = normal[x];
+                lastMask = mask;
+                last = PixelBytes(shader.AtWithMask(s, b, n, mask, background, &cache));
+            }
+            bytes = &last;
+        }
+        if (rgb) {
+            std::uint8_t* p = out + 3 * static_cast<std::size_t>(x);
+            p[0] = bytes->v[0];
+            p[1] = bytes->v[1];
+            p[2] = bytes->v[2];
+        } else {
+            out[x] = bytes->v[0];
+        }
+    }
+}
+
 }  // namespace
 
 Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
@@ -303,6 +392,8 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
     const ShadingModel model = options.fast ? ShadingModel::kFast : options.model;
     const bool local = !options.linear && !options.shadows && model != ShadingModel::kFast &&
                        !NeedsPoint(scene, model);
+    // The same with shadows, where the lights' answers are the only other input (8-bit only).
+    const bool localShadowed = !options.linear && shader.LocalWithShadows();
     Image image(frame.width, frame.height, shader.Color() ? 3 : 1);
     if (options.linear) image.linear.assign(image.pixels.size(), 0.0f);
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
@@ -332,6 +423,10 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
             const scene::Color background = shader.Background(y, frame.height);
             if (local) {
                 ShadeRowLocal(shader, frame, y, background, image, cache);
+                continue;
+            }
+            if (localShadowed) {
+                ShadeRowLocalShadowed(shader, frame, y, background, image, cache);
                 continue;
             }
             for (int x = 0; x < frame.width; ++x) {

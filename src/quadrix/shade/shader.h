@@ -92,12 +92,32 @@ class PixelShader {
     scene::Color At(double x, double y, std::int32_t surface, std::int32_t body, double depth,
                     const Vec3& normal, const scene::Color& background,
                     MaterialCache* cache = nullptr) const;
+    // Where shadows are on but the colour still depends only on (surface, body), the normal,
+    // the background and which lights are blocked (every light ambient or parallel under a
+    // parallel view, not the fast model, at most 64 lights): ShadeRowKinds then asks
+    // ShadowMask per pixel and repeats the previous pixel's bytes where all of those repeat.
+    bool LocalWithShadows() const { return localWithShadows_; }
+    // Bit k: light k is blocked at the pixel, asked only for the lights At asks (those whose
+    // light reaches the surface's side, n·l > 0). Only where LocalWithShadows().
+    std::uint64_t ShadowMask(double x, double y, std::int32_t surface, std::int32_t body,
+                             double depth, const Vec3& normal) const;
+    // At, with the lights' shadow answers of ShadowMask instead of asking them.
+    scene::Color AtWithMask(std::int32_t surface, std::int32_t body, const Vec3& normal,
+                            std::uint64_t mask, const scene::Color& background,
+                            MaterialCache* cache) const;
     // The background of row y of `height` (a vertical gradient, or one color).
     scene::Color Background(int y, int height) const;
     // Whether the image is RGB (some color involved) rather than gray.
     bool Color() const { return color_; }
 
   private:
+    // At's colour once the normal and the shadow test are known.
+    scene::Color Lit(std::int32_t surface, std::int32_t body, const Vec3& n, const Vec3& point,
+                     const scene::Color& background, MaterialCache* cache,
+                     const ShadowTest& inShadow) const;
+    // The shadow origin of a pixel on (surface, body): shadows.h.
+    ShadowOrigin OriginOf(std::int32_t surface, std::int32_t body) const;
+
     const FlatScene& scene_;
     ShadeOptions options_;
     ShadingModel model_, reflection_;
@@ -111,6 +131,7 @@ class PixelShader {
     // same device ray at every pixel (DeviceShadowRay), made once. Empty optional otherwise.
     std::vector<std::optional<DeviceRay>> fixedRay_;
     std::map<std::pair<int, int>, Vec3> meanNormal_;
+    bool localWithShadows_ = false;
 };
 
 // Writes a linear color into pixel (x, y) of an image: its bytes (value·255, rounded) and its

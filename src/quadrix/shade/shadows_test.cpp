@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "quadrix/pipeline/render_context.h"
+#include "quadrix/shade/shader.h"
 #include "quadrix/util/ray_work.h"
 
 namespace quadrix {
@@ -386,6 +387,69 @@ TEST(ShadeShadows, TheSurfaceARayStartsOnIsTriedFirstWithTheSameAnswers) {
         static_cast<double>(without) / leaving);
     // Measured: 2.84 and 6.37.
     EXPECT_LT(static_cast<double>(withOrigin), 0.6 * static_cast<double>(without));
+}
+
+}  // namespace
+}  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// 8-bit shading with shadows under a parallel view and parallel lights repeats a pixel's bytes
+// where its (surface, body), normal and blocked lights repeat the previous pixel's (shader.cpp
+// ShadeRowLocalShadowed): the bytes must be those of shading every pixel, which the linear
+// output still does. One light and two (two bits of the mask).
+TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
+    RenderContext ctx(1);
+    Diagnostics diags;
+    InputRequest in;
+    in.paths = {std::string(QUADRIX_SOURCE_DIR) + "/examples/machined_part.uq"};
+    ViewRequest view;
+    view.width = 160;
+    view.height = 120;
+    Frame frame;
+    RenderReport report;
+    ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(view, diags) &&
+                ctx.Render(EngineRequest{}, frame, report, diags));
+    FlatScene flat = ctx.Flat();
+    for (int lights = 1; lights <= 2; ++lights) {
+        if (lights == 2) {
+            scene::Light side;
+            side.kind = scene::Light::Kind::kParallel;
+            side.direction = Normalize(Vec3{-1, 0.3, -0.4});
+            side.intensity = 0.4;
+            flat.lights.push_back(side);
+        }
+        {
+            ShadeOptions o;
+            o.shadows = true;
+            const PixelShader shader(frame, flat, o);
+            ASSERT_TRUE(shader.LocalWithShadows());
+            // Both kinds of pixel are there: some lit, some shadowed by each light.
+            std::uint64_t anyBlocked = 0;
+            int shadowed = 0;
+            for (int y = 0; y < frame.height; ++y)
+                for (int x = 0; x < frame.width; ++x) {
+                    const std::size_t i = frame.Index(x, y);
+                    if (frame.surface[i] == Frame::kNone) continue;
+                    const std::uint64_t m =
+                        shader.ShadowMask(x + 0.5, y + 0.5, frame.surface[i], frame.body[i],
+                                          frame.depth[i], frame.normal[i]);
+                    anyBlocked |= m;
+                    shadowed += m != 0;
+                }
+            EXPECT_GT(shadowed, 10);
+            o.linear = false;
+            const Image runs = Shade(frame, flat, o);
+            o.linear = true;
+            const Image each = Shade(frame, flat, o);
+            ASSERT_EQ(runs.channels, 3);
+            EXPECT_EQ(runs.pixels, each.pixels) << lights << " lights";
+            if (lights == 2) {
+                EXPECT_EQ(anyBlocked & 6, 6u) << "both lights block somewhere";
+            }
+        }
+    }
 }
 
 }  // namespace

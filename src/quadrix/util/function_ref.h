@@ -20,13 +20,16 @@ class FunctionRef;
 
 template <class R, class... Args>
 class FunctionRef<R(Args...)> {
+    // A callable object (not a plain function, not another FunctionRef) callable as R(Args...).
+    template <class F>
+    static constexpr bool kReferable =
+        !std::is_same_v<std::remove_cvref_t<F>, FunctionRef> &&
+        !std::is_function_v<std::remove_reference_t<F>> && std::is_invocable_r_v<R, F&, Args...>;
+
   public:
     FunctionRef() = default;
 
-    template <class F>
-        requires(!std::is_same_v<std::remove_cvref_t<F>, FunctionRef> &&
-                 !std::is_function_v<std::remove_reference_t<F>> &&
-                 std::is_invocable_r_v<R, F&, Args...>)
+    template <class F, std::enable_if_t<kReferable<F>, int> = 0>
     FunctionRef(F&& f) noexcept  // NOLINT(google-explicit-constructor): as std::function
         : object_(const_cast<void*>(static_cast<const void*>(std::addressof(f)))),
           call_([](void* object, Args... args) -> R {
