@@ -345,14 +345,18 @@ void ShadeRowLocalShadowed(const PixelShader& shader, const Frame& frame, int y,
         shader.AtWithMask(Frame::kNone, Frame::kNone, Vec3{}, 0, background, &cache));
     PixelBytes last;
     std::int32_t lastSurface = Frame::kNone, lastBody = Frame::kNone;
-    PackedNormal lastNormal;
+    PackedNormal lastNormal, decoded;
+    Vec3 n = decoded;  // the normal of `decoded`'s bits, decoded once per run of them
     std::uint64_t lastMask = 0;
     for (int x = 0; x < width; ++x) {
         const std::int32_t s = surface[x];
         const PixelBytes* bytes = &back;
         if (s != Frame::kNone) {
             const std::int32_t b = body[x];
-            const Vec3 n = normal[x];
+            if (!(normal[x] == decoded)) {
+                decoded = normal[x];
+                n = decoded;
+            }
             const std::uint64_t mask = shader.ShadowMask(x + 0.5, y + 0.5, s, b, depth[x], n);
             if (s != lastSurface || b != lastBody || !(normal[x] == lastNormal) ||
                 mask != lastMask) {
