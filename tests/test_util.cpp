@@ -115,4 +115,14 @@ bool HaveProgram(const std::string& name) {
     return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
 }
 
+bool RenderToFrame(RenderContext& ctx, const InputRequest& in, int width, int height, Frame& frame,
+                   Diagnostics& diags) {
+    ViewRequest view;
+    view.width = width;
+    view.height = height;
+    RenderReport report;
+    return ctx.Read(in, diags) && ctx.Flatten(view, diags) &&
+           ctx.Render(EngineRequest{}, frame, report, diags);
+}
+
 }  // namespace quadrix::testing

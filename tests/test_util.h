@@ -1,11 +1,12 @@
 // Helpers shared by the scene-level tests: running the quadrix binary, temporary directories,
-// reading PNM images back.
+// reading PNM images back, rendering a scene to a Frame in process.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "quadrix/io/image.h"
+#include "quadrix/pipeline/render_context.h"
 
 namespace quadrix::testing {
 
@@ -52,5 +53,11 @@ bool FileExists(const std::string& path);
 // Binary PGM/PPM (P5/P6, maxval 255). Returns false on any problem.
 bool ReadPnm(const std::string& path, Image& image);
 bool HaveProgram(const std::string& name);
+
+// Reads `in`, flattens it at width × height in the scene's own view and renders it with the
+// default engine into `frame`: the pipeline's four calls as the render command makes them. false,
+// with the diagnostics in `diags`, on any error.
+bool RenderToFrame(RenderContext& ctx, const InputRequest& in, int width, int height, Frame& frame,
+                   Diagnostics& diags);
 
 }  // namespace quadrix::testing

@@ -12,6 +12,7 @@
 
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/row_shading.h"
+#include "test_util.h"
 
 namespace quadrix {
 namespace {
@@ -183,13 +184,7 @@ TEST(SectionHatch, NothingWithoutASection) {
     Diagnostics diags;
     InputRequest in;
     in.text = Scene("");
-    ViewRequest view;
-    view.width = 32;
-    view.height = 24;
-    EngineRequest engine;
-    RenderReport report;
-    ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(view, diags) &&
-                ctx.Render(engine, frame, report, diags));
+    ASSERT_TRUE(testing::RenderToFrame(ctx, in, 32, 24, frame, diags));
     EXPECT_FALSE(SectionHatchOf(ctx.Flat(), kHatchSpacingPixels));
     ShadeOptions so;
     so.hatch = true;

@@ -14,6 +14,7 @@
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/shader.h"
 #include "quadrix/util/ray_work.h"
+#include "test_util.h"
 
 namespace quadrix {
 namespace {
@@ -332,14 +333,9 @@ TEST(ShadeShadows, TheSurfaceARayStartsOnIsTriedFirstWithTheSameAnswers) {
     RenderContext ctx(1);
     Diagnostics diags;
     InputRequest in;
-    in.paths = {std::string(QUADRIX_SOURCE_DIR) + "/examples/machined_part.uq"};
-    ViewRequest view;
-    view.width = 160;
-    view.height = 120;
+    in.paths = {testing::SourcePath("examples/machined_part.uq")};
     Frame frame;
-    RenderReport report;
-    ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(view, diags) &&
-                ctx.Render(EngineRequest{}, frame, report, diags));
+    ASSERT_TRUE(testing::RenderToFrame(ctx, in, 160, 120, frame, diags));
     const FlatScene& flat = ctx.Flat();
     const ShadowTester t(flat);
     const Vec3 directions[] = {{0.3, -1, -0.6}, {-0.8, -0.2, -0.5}, {0.1, 0.7, -0.7}, {1, 0, 0}};
@@ -403,14 +399,9 @@ TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
     RenderContext ctx(1);
     Diagnostics diags;
     InputRequest in;
-    in.paths = {std::string(QUADRIX_SOURCE_DIR) + "/examples/machined_part.uq"};
-    ViewRequest view;
-    view.width = 160;
-    view.height = 120;
+    in.paths = {testing::SourcePath("examples/machined_part.uq")};
     Frame frame;
-    RenderReport report;
-    ASSERT_TRUE(ctx.Read(in, diags) && ctx.Flatten(view, diags) &&
-                ctx.Render(EngineRequest{}, frame, report, diags));
+    ASSERT_TRUE(testing::RenderToFrame(ctx, in, 160, 120, frame, diags));
     FlatScene flat = ctx.Flat();
     for (int lights = 1; lights <= 2; ++lights) {
         if (lights == 2) {
