@@ -282,57 +282,15 @@ struct PixelBytes {
 };
 
 // Row y of an 8-bit image whose shading is local (ShadeRowKinds): a pixel's colour depends only
-// on its (surface, body), its normal and the row's background, so a pixel repeating the previous
-// covered pixel's three (the normal's packed bits) (a plane's run) repeats its bytes, and every
-// background pixel of the row gets the same bytes; only the others are shaded (PixelShader::At).
-// The Frame's depth is not read.
+// on its (surface, body), its normal, the row's background and, with `shadows`
+// (PixelShader::LocalWithShadows), on which lights are blocked there (ShadowMask, traced for every
+// covered pixel). A pixel repeating all of those of the previous covered pixel (a plane's run)
+// repeats its bytes, and every background pixel of the row gets the same bytes; only the others
+// are shaded (AtWithMask: PhongAt with the shadows' answers known; At's colour without shadows).
+// The Frame's depth is read for the shadow rays only.
 void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
-                   const scene::Color& background, Image& image,
-                   PixelShader::MaterialCache& cache) {
-    const std::size_t row = frame.Index(0, y);
-    const std::int32_t* surface = frame.surface.data() + row;
-    const std::int32_t* body = frame.body.data() + row;
-    const PackedNormal* normal = frame.normal.data() + row;
-    const int width = frame.width;
-    const bool rgb = image.channels == 3;
-    std::uint8_t* out = image.At(0, y);
-    const PixelBytes back(
-        shader.At(0.5, y + 0.5, Frame::kNone, Frame::kNone, HUGE_VAL, Vec3{}, background, &cache));
-    PixelBytes last;
-    std::int32_t lastSurface = Frame::kNone, lastBody = Frame::kNone;
-    PackedNormal lastNormal;
-    for (int x = 0; x < width; ++x) {
-        const std::int32_t s = surface[x];
-        const PixelBytes* bytes = &back;
-        if (s != Frame::kNone) {
-            const std::int32_t b = body[x];
-            if (s != lastSurface || b != lastBody || !(normal[x] == lastNormal)) {
-                lastSurface = s;
-                lastBody = b;
-                lastNormal = normal[x];
-                last =
-                    PixelBytes(shader.At(x + 0.5, y + 0.5, s, b, 0, normal[x], background, &cache));
-            }
-            bytes = &last;
-        }
-        if (rgb) {
-            std::uint8_t* p = out + 3 * static_cast<std::size_t>(x);
-            p[0] = bytes->v[0];
-            p[1] = bytes->v[1];
-            p[2] = bytes->v[2];
-        } else {
-            out[x] = bytes->v[0];
-        }
-    }
-}
-
-// Row y as ShadeRowLocal, with shadows (PixelShader::LocalWithShadows): every covered pixel's
-// shadow rays are traced (ShadowMask), and a pixel repeating the previous covered pixel's
-// (surface, body), normal bits and blocked lights repeats its bytes; only the others are shaded
-// (AtWithMask: PhongAt with the answers already known).
-void ShadeRowLocalShadowed(const PixelShader& shader, const Frame& frame, int y,
-                           const scene::Color& background, Image& image,
-                           PixelShader::MaterialCache& cache) {
+                   const scene::Color& background, Image& image, PixelShader::MaterialCache& cache,
+                   bool shadows) {
     const std::size_t row = frame.Index(0, y);
     const std::int32_t* surface = frame.surface.data() + row;
     const std::int32_t* body = frame.body.data() + row;
@@ -357,7 +315,8 @@ void ShadeRowLocalShadowed(const PixelShader& shader, const Frame& frame, int y,
                 decoded = normal[x];
                 n = decoded;
             }
-            const std::uint64_t mask = shader.ShadowMask(x + 0.5, y + 0.5, s, b, depth[x], n);
+            const std::uint64_t mask =
+                shadows ? shader.ShadowMask(x + 0.5, y + 0.5, s, b, depth[x], n) : 0;
             if (s != lastSurface || b != lastBody || !(normal[x] == lastNormal) ||
                 mask != lastMask) {
                 lastSurface = s;
@@ -425,12 +384,8 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
                 ~Spend() { budget.Spend(tRayLiterals - start); }
             } spend{budget, work};
             const scene::Color background = shader.Background(y, frame.height);
-            if (local) {
-                ShadeRowLocal(shader, frame, y, background, image, cache);
-                continue;
-            }
-            if (localShadowed) {
-                ShadeRowLocalShadowed(shader, frame, y, background, image, cache);
+            if (local || localShadowed) {
+                ShadeRowLocal(shader, frame, y, background, image, cache, localShadowed);
                 continue;
             }
             for (int x = 0; x < frame.width; ++x) {

@@ -393,7 +393,7 @@ namespace {
 
 // 8-bit shading with shadows under a parallel view and parallel lights repeats a pixel's bytes
 // where its (surface, body), normal and blocked lights repeat the previous pixel's (shader.cpp
-// ShadeRowLocalShadowed): the bytes must be those of shading every pixel, which the linear
+// ShadeRowLocal): the bytes must be those of shading every pixel, which the linear
 // output still does. One light and two (two bits of the mask).
 TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
     RenderContext ctx(1);
