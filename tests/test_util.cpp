@@ -125,4 +125,12 @@ bool RenderToFrame(RenderContext& ctx, const InputRequest& in, int width, int he
            ctx.Render(EngineRequest{}, frame, report, diags);
 }
 
+bool RenderToFrame(RenderContext& ctx, const std::string& sourceFile, int width, int height,
+                   Frame& frame) {
+    Diagnostics diags;
+    InputRequest in;
+    in.paths = {SourcePath(sourceFile)};
+    return RenderToFrame(ctx, in, width, height, frame, diags);
+}
+
 }  // namespace quadrix::testing

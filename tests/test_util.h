@@ -59,5 +59,8 @@ bool HaveProgram(const std::string& name);
 // with the diagnostics in `diags`, on any error.
 bool RenderToFrame(RenderContext& ctx, const InputRequest& in, int width, int height, Frame& frame,
                    Diagnostics& diags);
+// The same for a file of the source tree (SourcePath), e.g. "examples/machined_part.uq".
+bool RenderToFrame(RenderContext& ctx, const std::string& sourceFile, int width, int height,
+                   Frame& frame);
 
 }  // namespace quadrix::testing

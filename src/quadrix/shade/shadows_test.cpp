@@ -331,11 +331,8 @@ TEST(ShadeShadows, TheOneIntervalBodyPathGivesTheListsEndpointsAndCount) {
 // not after those before them in its list of 14).
 TEST(ShadeShadows, TheSurfaceARayStartsOnIsTriedFirstWithTheSameAnswers) {
     RenderContext ctx(1);
-    Diagnostics diags;
-    InputRequest in;
-    in.paths = {testing::SourcePath("examples/machined_part.uq")};
     Frame frame;
-    ASSERT_TRUE(testing::RenderToFrame(ctx, in, 160, 120, frame, diags));
+    ASSERT_TRUE(testing::RenderToFrame(ctx, "examples/machined_part.uq", 160, 120, frame));
     const FlatScene& flat = ctx.Flat();
     const ShadowTester t(flat);
     const Vec3 directions[] = {{0.3, -1, -0.6}, {-0.8, -0.2, -0.5}, {0.1, 0.7, -0.7}, {1, 0, 0}};
@@ -397,11 +394,8 @@ namespace {
 // output still does. One light and two (two bits of the mask).
 TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
     RenderContext ctx(1);
-    Diagnostics diags;
-    InputRequest in;
-    in.paths = {testing::SourcePath("examples/machined_part.uq")};
     Frame frame;
-    ASSERT_TRUE(testing::RenderToFrame(ctx, in, 160, 120, frame, diags));
+    ASSERT_TRUE(testing::RenderToFrame(ctx, "examples/machined_part.uq", 160, 120, frame));
     FlatScene flat = ctx.Flat();
     for (int lights = 1; lights <= 2; ++lights) {
         if (lights == 2) {
