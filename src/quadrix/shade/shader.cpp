@@ -127,11 +127,13 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
                 fixedRay_.back()->view = shadowTester_->AddDirection(fixedRay_.back()->d);
         }
     }
-    localWithShadows_ =
-        shadows_ && !needPoint_ && model_ != ShadingModel::kFast && scene.lights.size() <= 64;
-    for (std::size_t k = 0; k < scene.lights.size(); ++k)
-        localWithShadows_ = localWithShadows_ &&
+    localShading_ = !needPoint_ && model_ != ShadingModel::kFast;
+    if (shadows_) {
+        localShading_ = localShading_ && scene.lights.size() <= 64;
+        for (std::size_t k = 0; k < scene.lights.size(); ++k)
+            localShading_ = localShading_ &&
                             (scene.lights[k].kind == scene::Light::Kind::kAmbient || fixedRay_[k]);
+    }
     // Fast shading: one normal per (surface, body) pair, the mean of its visible normals.
     if (model_ == ShadingModel::kFast) {
         for (std::size_t i = 0; i < frame.surface.size(); ++i)
@@ -195,7 +197,7 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
 std::uint64_t PixelShader::ShadowMask(double x, double y, std::int32_t surface, std::int32_t body,
                                       double depth, const Vec3& normal) const {
     // The lights PhongAt asks (phong.cpp): not ambient, lighting the normal's side; all of them
-    // fixed here (LocalWithShadows), each with its device ray.
+    // fixed here (LocalShading), each with its device ray.
     const Vec3 p{x, y, depth};
     const ShadowOrigin origin = OriginOf(surface, body);
     std::uint64_t mask = 0;
@@ -283,7 +285,7 @@ struct PixelBytes {
 
 // Row y of an 8-bit image whose shading is local (ShadeRowKinds): a pixel's colour depends only
 // on its (surface, body), its normal, the row's background and, with `shadows`
-// (PixelShader::LocalWithShadows), on which lights are blocked there (ShadowMask, traced for every
+// (PixelShader::LocalShading), on which lights are blocked there (ShadowMask, traced for every
 // covered pixel). A pixel repeating all of those of the previous covered pixel (a plane's run)
 // repeats its bytes, and every background pixel of the row gets the same bytes; only the others
 // are shaded (AtWithMask: PhongAt with the shadows' answers known; At's colour without shadows).
@@ -347,16 +349,10 @@ Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& opti
 Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
                     const std::vector<std::uint8_t>& kinds) {
     const PixelShader shader(frame, scene, options);
-    // Whether PixelShader::At depends only on (surface, body), the normal and the background: no
-    // shadows, no world point (point or spot lights, highlights under perspective), not the fast
-    // model. The repeat of a previous pixel's bytes (below) only then, and for 8-bit output:
-    // Image::linear would need its floats repeated too, which is not worth it for the one output
-    // that reads them.
-    const ShadingModel model = options.fast ? ShadingModel::kFast : options.model;
-    const bool local = !options.linear && !options.shadows && model != ShadingModel::kFast &&
-                       !NeedsPoint(scene, model);
-    // The same with shadows, where the lights' answers are the only other input (8-bit only).
-    const bool localShadowed = !options.linear && shader.LocalWithShadows();
+    // The repeat of a previous pixel's bytes (below) where the shading is local
+    // (PixelShader::LocalShading), and for 8-bit output only: Image::linear would need its
+    // floats repeated too, which is not worth it for the one output that reads them.
+    const bool local = !options.linear && shader.LocalShading();
     Image image(frame.width, frame.height, shader.Color() ? 3 : 1);
     if (options.linear) image.linear.assign(image.pixels.size(), 0.0f);
     // Rows in parallel (oneTBB): each pixel depends only on its own Frame entry, so the image
@@ -384,8 +380,8 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
                 ~Spend() { budget.Spend(tRayLiterals - start); }
             } spend{budget, work};
             const scene::Color background = shader.Background(y, frame.height);
-            if (local || localShadowed) {
-                ShadeRowLocal(shader, frame, y, background, image, cache, localShadowed);
+            if (local) {
+                ShadeRowLocal(shader, frame, y, background, image, cache, options.shadows);
                 continue;
             }
             for (int x = 0; x < frame.width; ++x) {

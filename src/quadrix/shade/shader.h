@@ -92,13 +92,14 @@ class PixelShader {
     scene::Color At(double x, double y, std::int32_t surface, std::int32_t body, double depth,
                     const Vec3& normal, const scene::Color& background,
                     MaterialCache* cache = nullptr) const;
-    // Where shadows are on but the colour still depends only on (surface, body), the normal,
-    // the background and which lights are blocked (every light ambient or parallel under a
-    // parallel view, not the fast model, at most 64 lights): ShadeRowKinds then asks
-    // ShadowMask per pixel and repeats the previous pixel's bytes where all of those repeat.
-    bool LocalWithShadows() const { return localWithShadows_; }
+    // Whether a pixel's colour depends only on its (surface, body), its normal, the background
+    // and, with shadows, which lights are blocked there: no world point (point or spot lights,
+    // highlights or shadows under perspective), not the fast model, and with shadows only
+    // ambient and parallel lights (at most 64). ShadeRowKinds then repeats the previous pixel's
+    // bytes where all of those repeat (asking ShadowMask per pixel with shadows).
+    bool LocalShading() const { return localShading_; }
     // Bit k: light k is blocked at the pixel, asked only for the lights At asks (those whose
-    // light reaches the surface's side, n·l > 0). Only where LocalWithShadows().
+    // light reaches the surface's side, n·l > 0). Only with shadows and LocalShading().
     std::uint64_t ShadowMask(double x, double y, std::int32_t surface, std::int32_t body,
                              double depth, const Vec3& normal) const;
     // At, with the lights' shadow answers of ShadowMask instead of asking them.
@@ -131,7 +132,7 @@ class PixelShader {
     // same device ray at every pixel (DeviceShadowRay), made once. Empty optional otherwise.
     std::vector<std::optional<DeviceRay>> fixedRay_;
     std::map<std::pair<int, int>, Vec3> meanNormal_;
-    bool localWithShadows_ = false;
+    bool localShading_ = false;
 };
 
 // Writes a linear color into pixel (x, y) of an image: its bytes (value·255, rounded) and its

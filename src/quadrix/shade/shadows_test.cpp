@@ -409,7 +409,7 @@ TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
             ShadeOptions o;
             o.shadows = true;
             const PixelShader shader(frame, flat, o);
-            ASSERT_TRUE(shader.LocalWithShadows());
+            ASSERT_TRUE(shader.LocalShading());
             // Both kinds of pixel are there: some lit, some shadowed by each light.
             std::uint64_t anyBlocked = 0;
             int shadowed = 0;
