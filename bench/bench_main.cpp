@@ -338,8 +338,8 @@ std::string AntialiasTable(const std::vector<BenchScene>& scenes, const std::str
                         .count());
                 if (edges) {  // the pixels Antialias re-renders (shade/antialias.h), counted
                     ShadeOptions plain;
-                    std::vector<std::uint8_t> marked = FindEdges(frame);
-                    MarkShadingJumps(frame, ctx.Shade(frame, plain), marked);
+                    const std::vector<std::uint8_t> marked =
+                        FindEdgesAndShadingJumps(frame, ctx.Shade(frame, plain));
                     *edges = static_cast<std::size_t>(
                         std::count_if(marked.begin(), marked.end(), [](auto m) { return m != 0; }));
                 }

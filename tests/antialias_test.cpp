@@ -395,9 +395,9 @@ TEST(Antialias, AnEightBitOutputGetsTheSameBytesWithoutTheFloats) {
 }
 
 // A shadow's boundary is not an edge of the Frame (one surface of one body on both sides), but
-// with shadows on its pixels are resampled too (MarkShadingJumps): on a flat floor under one
-// parallel light, a pixel is fully lit, fully shadowed, or — only next to the shadow's boundary —
-// in between. Without resampling there would be no pixel in between.
+// with shadows on its pixels are resampled too (FindEdgesAndShadingJumps): on a flat floor under
+// one parallel light, a pixel is fully lit, fully shadowed, or — only next to the shadow's boundary
+// — in between. Without resampling there would be no pixel in between.
 TEST(Antialias, ShadowBoundariesAreResampled) {
     PipelineResult r = Render(
         "solid box floor =at 0 -1 0 =size 8 .2 8; solid sphere ball =at 0 .5 0 =r .8;\n"
@@ -449,6 +449,102 @@ TEST(Antialias, ShadowBoundariesAreResampled) {
         }
     EXPECT_GT(boundary, 20u);
     EXPECT_GT(between, boundary / 3) << between << " of " << boundary;
+}
+
+// FindEdgesAndShadingJumps against its definition (antialias.h, item 1), written out here with a
+// whole image of luminances: FindEdges' bits, plus kEdgePixel on both pixels of every pair of
+// 4-neighbours on one surface of one body whose luminance L jumps, |L_b − L_a| > 4 · max(|L_a −
+// L_a2|, |L_b2 − L_b|) + 1/255 (a2, b2 the next pixels outward, or a, b at the border). The
+// picture is 96 × 75, so that the shadow's boundary crosses the implementation's bands of 16 rows
+// (and their last, shorter one), with 8-bit and with float pixels; and the bits do not depend on
+// where the bands fall (the picture moved down in taller Frames).
+TEST(Antialias, ShadingJumpsAreTheDefinitionsPairs) {
+    const int w = 96, h = 75;
+    PipelineResult r = Render(
+        "solid box floor =at 0 -1 0 =size 8 .2 8 =c .9 .6 .3;\n"
+        "solid sphere ball =at 0 .5 0 =r .8 =c steelblue;\n"
+        "light .2; light sun .8 .6 1 .3;\n"
+        "view v vrp 0 -1 0 cop 0 20 -.01 whh 3.5;\n",
+        w, h);
+    const Frame& f = r.frame;
+    for (bool linear : {false, true}) {
+        ShadeOptions so;
+        so.shadows = true;
+        so.linear = linear;
+        const Image image = Shade(f, r.flat, so);
+        ASSERT_EQ(image.linear.size() == image.pixels.size(), linear);
+        ASSERT_EQ(image.channels, 3);
+        std::vector<double> lum(f.surface.size());
+        for (std::size_t k = 0; k < lum.size(); ++k) {
+            auto v = [&](int c) {
+                const std::size_t i = k * 3 + static_cast<std::size_t>(c);
+                return linear ? static_cast<double>(image.linear[i]) : image.pixels[i] / 255.0;
+            };
+            lum[k] = 0.2126 * v(0) + 0.7152 * v(1) + 0.0722 * v(2);
+        }
+        std::vector<std::uint8_t> expected = FindEdges(f);
+        auto pair = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
+            if (f.surface[a] < 0 || f.surface[a] != f.surface[b] || f.body[a] != f.body[b]) return;
+            const double slope = std::max(std::fabs(lum[a] - lum[a2]), std::fabs(lum[b2] - lum[b]));
+            if (std::fabs(lum[b] - lum[a]) > 4 * slope + 1.0 / 255) {
+                expected[a] |= kEdgePixel;
+                expected[b] |= kEdgePixel;
+            }
+        };
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x + 1 < w; ++x)
+                pair(f.Index(x, y), f.Index(x + 1, y), f.Index(x > 0 ? x - 1 : x, y),
+                     f.Index(x + 2 < w ? x + 2 : x + 1, y));
+        for (int y = 0; y + 1 < h; ++y)
+            for (int x = 0; x < w; ++x)
+                pair(f.Index(x, y), f.Index(x, y + 1), f.Index(x, y > 0 ? y - 1 : y),
+                     f.Index(x, y + 2 < h ? y + 2 : y + 1));
+        const std::vector<std::uint8_t> edges = FindEdges(f);
+        const std::vector<std::uint8_t> got = FindEdgesAndShadingJumps(f, image);
+        std::size_t jumps = 0, mismatches = 0;
+        std::set<int> rows;
+        for (std::size_t k = 0; k < got.size(); ++k) {
+            mismatches += got[k] != expected[k];
+            if ((got[k] & kEdgePixel) && !(edges[k] & kEdgePixel)) {
+                ++jumps;
+                rows.insert(static_cast<int>(k) / w);
+            }
+        }
+        EXPECT_EQ(mismatches, 0u) << "linear " << linear;
+        // The shadow's boundary adds pixels of its own, on rows either side of band edges.
+        EXPECT_GT(jumps, 40u) << "linear " << linear;
+        int straddled = 0;  // band edges (rows 16k − 1 and 16k) with the boundary on both sides
+        for (int y = 16; y < h; y += 16) straddled += rows.count(y - 1) && rows.count(y);
+        EXPECT_GE(straddled, 1) << "linear " << linear;
+
+        // The same picture 1 ... 16 rows lower in a taller Frame (background above): the
+        // bands' edges fall on every row of the picture in turn (the ball's outline is level
+        // at its top and bottom), and a pixel's bits, which depend on the pixels up to 2 rows
+        // away, are the same away from the picture's top and bottom.
+        for (int shift = 1; shift <= 16; ++shift) {
+            Frame g(w, h + shift);
+            g.bodySolid = f.bodySolid;
+            Image moved(w, h + shift, image.channels);
+            if (linear) moved.linear.assign(moved.pixels.size(), 0.0f);
+            for (std::size_t k = 0; k < f.surface.size(); ++k) {
+                const std::size_t m = k + static_cast<std::size_t>(shift * w);
+                g.depth[m] = f.depth[k];
+                g.normal[m] = f.normal[k];
+                g.surface[m] = f.surface[k];
+                g.body[m] = f.body[k];
+                for (std::size_t c = 0; c < 3; ++c) {
+                    moved.pixels[m * 3 + c] = image.pixels[k * 3 + c];
+                    if (linear) moved.linear[m * 3 + c] = image.linear[k * 3 + c];
+                }
+            }
+            const std::vector<std::uint8_t> gotMoved = FindEdgesAndShadingJumps(g, moved);
+            std::size_t differ = 0;
+            for (int y = 2; y + 2 < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    differ += got[f.Index(x, y)] != gotMoved[g.Index(x, y + shift)];
+            EXPECT_EQ(differ, 0u) << "linear " << linear << ", moved " << shift << " rows";
+        }
+    }
 }
 
 // Edge lines: one pixel wide, on the covered side of a silhouette, and every silhouette pixel.

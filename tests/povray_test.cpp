@@ -193,7 +193,7 @@ TEST_P(PovrayTest, ShadedPictureMatchesAwayFromEdges) {
 // Instantiated on the quick parallel-view cases only (POV-Ray's supersampling costs seconds on the
 // larger ones; perspective exports are shaded with device-space normals); measured once on all of
 // them (docs/shading.md): every case passes, StackOfBundlesShadows since shadow boundaries are
-// resampled too (shade/antialias.h MarkShadingJumps; it had 1.08 % off before).
+// resampled too (shade/antialias.h FindEdgesAndShadingJumps; it had 1.08 % off before).
 class PovrayAntialiasedTest : public ::testing::TestWithParam<PovCase> {};
 
 TEST_P(PovrayAntialiasedTest, PicturesMatchEverywhere) {

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -90,88 +91,146 @@ bool Read(const std::vector<std::uint8_t>& rows, int y) {
     return rows.empty() || rows[static_cast<std::size_t>(y)] != 0;
 }
 
-// The pairs of 4-neighbours of a w × h image in parallel, `pair(a, b, a2, b2)` as Separated
-// takes them, writing only pixels a and b: the horizontal pairs of each row (rowWanted), then the
-// vertical pairs of rows (y, y + 1) (pairWanted) for even y and then for odd y, so that no two
-// threads write one pixel at once. Each pixel's bits are an OR over its pairs: the same for any
-// order and thread count.
-template <typename RowWanted, typename PairWanted, typename Pair>
-void ForNeighbourPairs(const Frame& f, RowWanted rowWanted, PairWanted pairWanted, Pair pair) {
-    const int w = f.width, h = f.height;
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& r) {
-        for (int y = r.begin(); y < r.end(); ++y) {
-            if (!rowWanted(y)) continue;
-            for (int x = 0; x + 1 < w; ++x) {
-                const std::size_t a = f.Index(x, y), b = f.Index(x + 1, y);
-                pair(a, b, x > 0 ? f.Index(x - 1, y) : a, x + 2 < w ? f.Index(x + 2, y) : b);
-            }
+// The luminance of the shaded image's rows, for the test of shading jumps
+// (FindEdgesAndShadingJumps), computed a row at a time into a small per-thread cache (a whole image
+// of doubles was 7.4 MB of fresh memory at 1280×720). Rows that are not read (row_shading.h) have
+// luminance 0.
+class RowLuminance {
+  public:
+    // Inactive (no jumps to find) without an image or with one of another size than the Frame.
+    RowLuminance(const Frame& f, const Image* image, const std::vector<std::uint8_t>& rows)
+        : f_(f), image_(image), rows_(rows) {
+        if (image && (image->width != f.width || image->height != f.height)) image_ = nullptr;
+        if (!image_) return;
+        linear_ = image_->linear.size() == image_->pixels.size();
+        // 8-bit samples: the products 0.2126 · (v / 255) and so on, once per byte value; their
+        // sums, in the same order, are the luminances the samples give (the same doubles).
+        for (int v = 0; v < 256; ++v) {
+            const double unit = v / 255.0;
+            weighted_[0][v] = 0.2126 * unit;
+            weighted_[1][v] = 0.7152 * unit;
+            weighted_[2][v] = 0.0722 * unit;
         }
-    });
-    for (int parity = 0; parity < 2; ++parity) {
-        const int pairs = (h - parity) / 2;  // y = parity, parity + 2, ... < h - 1
-        tbb::parallel_for(tbb::blocked_range<int>(0, std::max(pairs, 0), 8),
-                          [&](const tbb::blocked_range<int>& r) {
-                              for (int i = r.begin(); i < r.end(); ++i) {
-                                  const int y = parity + 2 * i;
-                                  if (!pairWanted(y)) continue;
-                                  for (int x = 0; x < w; ++x) {
-                                      const std::size_t a = f.Index(x, y), b = f.Index(x, y + 1);
-                                      pair(a, b, y > 0 ? f.Index(x, y - 1) : a,
-                                           y + 2 < h ? f.Index(x, y + 2) : b);
-                                  }
-                              }
-                          });
     }
-}
+    bool Active() const { return image_ != nullptr; }
 
-// FindEdges on the shaded rows of `rows` (the bits of the other rows are incomplete).
-std::vector<std::uint8_t> FindEdgesOn(const Frame& f, const std::vector<std::uint8_t>& rows) {
-    std::vector<std::uint8_t> e(
-        static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height), 0);
-    ForNeighbourPairs(
-        f, [&](int y) { return Shaded(rows, y); }, [&](int y) { return PairShaded(rows, y); },
-        [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
-            if (Separated(f, a, b, a2, b2)) Mark(f, e, a, b);
-        });
-    return e;
-}
-
-// MarkShadingJumps on the shaded rows of `rows`; the image is read on the halo rows too.
-void MarkShadingJumpsOn(const Frame& f, const Image& image, std::vector<std::uint8_t>& e,
-                        const std::vector<std::uint8_t>& rows) {
-    const int w = f.width, h = f.height;
-    if (image.width != w || image.height != h) return;
-    const bool lin = image.linear.size() == image.pixels.size();
-    const int ch = image.channels;
-    auto value = [&](std::size_t k, int c) {
-        const std::size_t i = k * static_cast<std::size_t>(ch) + static_cast<std::size_t>(c);
-        return lin ? static_cast<double>(image.linear[i]) : image.pixels[i] / 255.0;
+    // Row y's values, kept in one of four slots (row y in slot y mod 4): the four rows a pair of
+    // rows (y, y + 1) looks at, y − 1 ... y + 2, never evict one another.
+    struct Cache {
+        std::array<int, 4> row = {-1, -1, -1, -1};
+        std::array<std::vector<double>, 4> values;
     };
-    std::vector<double> lum(e.size());
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& r) {
-        for (int y = r.begin(); y < r.end(); ++y) {
-            if (!Read(rows, y)) continue;
-            const std::size_t end = f.Index(0, y) + static_cast<std::size_t>(w);
-            for (std::size_t k = f.Index(0, y); k < end; ++k)
-                lum[k] = ch >= 3
-                             ? 0.2126 * value(k, 0) + 0.7152 * value(k, 1) + 0.0722 * value(k, 2)
-                             : value(k, 0);
+    const double* Row(int y, Cache& cache) const {
+        const auto slot = static_cast<std::size_t>(y & 3);
+        std::vector<double>& out = cache.values[slot];
+        out.resize(static_cast<std::size_t>(f_.width));
+        if (cache.row[slot] == y) return out.data();
+        cache.row[slot] = y;
+        if (!Read(rows_, y)) {
+            std::fill(out.begin(), out.end(), 0.0);
+            return out.data();
         }
-    });
-    // A pair on one surface of one body whose brightness jumps: a shadow's boundary (the jump
-    // test of depths, on luminance, with a floor of one 8-bit level).
-    auto test = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
-        if (f.surface[a] < 0 || f.surface[a] != f.surface[b] || f.body[a] != f.body[b]) return;
-        const double d = std::fabs(lum[b] - lum[a]);
-        const double slope = std::max(std::fabs(lum[a] - lum[a2]), std::fabs(lum[b2] - lum[b]));
+        const auto ch = static_cast<std::size_t>(image_->channels);
+        const std::size_t first = f_.Index(0, y) * ch;
+        if (linear_) {
+            const float* v = image_->linear.data() + first;
+            for (std::size_t x = 0; x < out.size(); ++x, v += ch)
+                out[x] = ch >= 3 ? 0.2126 * static_cast<double>(v[0]) +
+                                       0.7152 * static_cast<double>(v[1]) +
+                                       0.0722 * static_cast<double>(v[2])
+                                 : static_cast<double>(v[0]);
+        } else {
+            const std::uint8_t* v = image_->pixels.data() + first;
+            for (std::size_t x = 0; x < out.size(); ++x, v += ch)
+                out[x] = ch >= 3 ? weighted_[0][v[0]] + weighted_[1][v[1]] + weighted_[2][v[2]]
+                                 : v[0] / 255.0;
+        }
+        return out.data();
+    }
+
+  private:
+    const Frame& f_;
+    const Image* image_;
+    const std::vector<std::uint8_t>& rows_;
+    bool linear_ = false;
+    double weighted_[3][256] = {};
+};
+
+// The edge bits of the shaded rows of `rows` (the bits of the other rows are incomplete): the
+// pairs of 4-neighbours an edge separates (Separated, Mark) and, when `jumps` is active, those of
+// one surface of one body whose brightness jumps (a shadow's boundary: the jump test of depths on
+// luminance, with a floor of one 8-bit level).
+//
+// A pair (a, b) comes with a2, the pixel beyond a, and b2, the one beyond b, on the same line (a
+// and b themselves at the image's border), and writes only its own two pixels. Each pixel's bits
+// are an OR over its pairs: the same for any order and thread count. The rows are swept in bands
+// of kBand rows in parallel, each band's horizontal pairs and the vertical pairs within it row by
+// row (each row's luminance made once); then the vertical pairs that straddle two bands, which
+// no two threads share.
+std::vector<std::uint8_t> EdgesOn(const Frame& f, const RowLuminance& jumps,
+                                  const std::vector<std::uint8_t>& rows) {
+    constexpr int kBand = 16;
+    const int w = f.width, h = f.height;
+    std::vector<std::uint8_t> e(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    // la, lb, la2, lb2: the luminances of a, b, a2, b2 (unused when jumps is inactive).
+    auto pair = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2, double la,
+                    double lb, double la2, double lb2) {
+        if (Separated(f, a, b, a2, b2)) {
+            Mark(f, e, a, b);
+            return;
+        }
+        // Not separated: one surface of one body (or both background).
+        if (!jumps.Active() || f.surface[a] < 0) return;
+        const double d = std::fabs(lb - la);
+        const double slope = std::max(std::fabs(la - la2), std::fabs(lb2 - lb));
         if (d > 4 * slope + 1.0 / 255) {
             e[a] |= kEdgePixel;
             e[b] |= kEdgePixel;
         }
     };
-    ForNeighbourPairs(
-        f, [&](int y) { return Shaded(rows, y); }, [&](int y) { return PairShaded(rows, y); },
-        test);
+    const std::vector<double> none(static_cast<std::size_t>(w), 0.0);
+    auto luminance = [&](int y, RowLuminance::Cache& cache) {
+        return jumps.Active() ? jumps.Row(y, cache) : none.data();
+    };
+    auto horizontal = [&](int y, RowLuminance::Cache& cache) {
+        if (!Shaded(rows, y)) return;
+        const double* l = luminance(y, cache);
+        for (int x = 0; x + 1 < w; ++x) {
+            const int xa2 = x > 0 ? x - 1 : x, xb2 = x + 2 < w ? x + 2 : x + 1;
+            pair(f.Index(x, y), f.Index(x + 1, y), f.Index(xa2, y), f.Index(xb2, y), l[x], l[x + 1],
+                 l[xa2], l[xb2]);
+        }
+    };
+    auto vertical = [&](int y, RowLuminance::Cache& cache) {  // the pairs of rows (y, y + 1)
+        if (!PairShaded(rows, y)) return;
+        const int ya2 = y > 0 ? y - 1 : y, yb2 = y + 2 < h ? y + 2 : y + 1;
+        const double* la2 = luminance(ya2, cache);
+        const double* la = luminance(y, cache);
+        const double* lb = luminance(y + 1, cache);
+        const double* lb2 = luminance(yb2, cache);
+        for (int x = 0; x < w; ++x)
+            pair(f.Index(x, y), f.Index(x, y + 1), f.Index(x, ya2), f.Index(x, yb2), la[x], lb[x],
+                 la2[x], lb2[x]);
+    };
+    const int bands = (h + kBand - 1) / kBand;
+    tbb::parallel_for(0, bands, [&](int band) {
+        RowLuminance::Cache cache;
+        const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
+        for (int y = y0; y < y1; ++y) {
+            horizontal(y, cache);
+            if (y + 1 < y1) vertical(y, cache);
+        }
+    });
+    tbb::parallel_for(1, bands, [&](int band) {
+        RowLuminance::Cache cache;
+        vertical(band * kBand - 1, cache);
+    });
+    return e;
+}
+
+// FindEdges on the shaded rows of `rows`.
+std::vector<std::uint8_t> FindEdgesOn(const Frame& f, const std::vector<std::uint8_t>& rows) {
+    return EdgesOn(f, RowLuminance(f, nullptr, rows), rows);
 }
 
 // Where the samples of pixel (x, y) probably see something: just past the deepest surface of the
@@ -191,8 +250,8 @@ double DepthHint(const Frame& f, int x, int y) {
 
 std::vector<std::uint8_t> FindEdges(const Frame& frame) { return FindEdgesOn(frame, {}); }
 
-void MarkShadingJumps(const Frame& frame, const Image& image, std::vector<std::uint8_t>& edges) {
-    MarkShadingJumpsOn(frame, image, edges, {});
+std::vector<std::uint8_t> FindEdgesAndShadingJumps(const Frame& frame, const Image& image) {
+    return EdgesOn(frame, RowLuminance(frame, &image, {}), {});
 }
 
 bool ValidAaSamples(int samples) {
@@ -233,8 +292,9 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     AntialiasStats stats;
     if (options.aaSamples < 2 || frame.width == 0 || frame.height == 0) return stats;
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<std::uint8_t> edges = FindEdgesOn(frame, rows);
-    if (options.shadows) MarkShadingJumpsOn(frame, image, edges, rows);
+    // With shadows, the pairs whose shading jumps too (a shadow's boundary) in the same pass.
+    std::vector<std::uint8_t> edges =
+        EdgesOn(frame, RowLuminance(frame, options.shadows ? &image : nullptr, rows), rows);
     // Keep away from freeform surfaces: no point tracer for them.
     const auto firstFreeform = static_cast<std::int32_t>(scene.halfSpaces.size());
     if (!scene.freeforms.empty()) {

@@ -52,9 +52,10 @@ constexpr double kCreaseDegrees = 20;
 // to the background is the nearer one).
 constexpr std::uint8_t kEdgePixel = 1, kEdgeLine = 2;
 std::vector<std::uint8_t> FindEdges(const Frame& frame);
-// Adds kEdgePixel to the pairs of 4-neighbours of one surface and body whose brightness in the
-// shaded `image` jumps (shadow boundaries; see the file comment).
-void MarkShadingJumps(const Frame& frame, const Image& image, std::vector<std::uint8_t>& edges);
+// FindEdges, plus kEdgePixel on the pairs of 4-neighbours of one surface and body whose
+// brightness in the shaded `image` (of the Frame's size) jumps: shadow boundaries (see the file
+// comment). The pixels Antialias re-renders when shadows are on.
+std::vector<std::uint8_t> FindEdgesAndShadingJumps(const Frame& frame, const Image& image);
 
 // The N = k·k sub-pixel positions (u, v) in [0, 1)² of pixel (i, j) (see the file comment).
 struct SubPixel {

@@ -4,11 +4,12 @@
 // A pixel's shading (shader.h) reads only its own Frame entry, but the anti-aliasing and the edge
 // lines (antialias.h) compare 4-neighbours and the pixels beyond them: the edge bits of a row
 // depend on the Frame up to kShadeHaloRows = 2 rows away and, with shadows (the shadow-boundary
-// test, MarkShadingJumps), on the base shading of those rows. So ShadeRows needs the Frame to hold
-// the picture's pixels on the rows and on the two rows around each span (the halo); it base-shades
-// the halo rows when the shadow-boundary test reads them, and finds edges, resamples and draws edge
-// lines on the rows only. The image's other rows are left unset. The fast model is not local (its
-// normal per surface is the mean over the whole Frame): for it the caller shades the whole Frame.
+// test, FindEdgesAndShadingJumps), on the base shading of those rows. So ShadeRows needs the Frame
+// to hold the picture's pixels on the rows and on the two rows around each span (the halo); it
+// base-shades the halo rows when the shadow-boundary test reads them, and finds edges, resamples
+// and draws edge lines on the rows only. The image's other rows are left unset. The fast model is
+// not local (its normal per surface is the mean over the whole Frame): for it the caller shades the
+// whole Frame.
 #pragma once
 
 #include <cstdint>
