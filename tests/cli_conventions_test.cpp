@@ -56,6 +56,31 @@ TEST(CliConventions, HelpListsSubcommandsAndDescribesOne) {
     EXPECT_NE(unknown.err.find("did you mean 'render'?"), std::string::npos) << unknown.err;
 }
 
+// A command line that names a subcommand builds only that one (main.cpp); `quadrix help NAME`
+// builds them all. Each describes itself the same either way (options, footer; `help NAME`
+// writes its usage line without the program's name), and each runs (it is dispatched by the
+// name parsed, not by a lookup of every subcommand).
+TEST(CliConventions, ASubcommandBuiltAloneIsTheOneOfTheFullTable) {
+    for (const char* sub :
+         {"render", "export", "pipe", "compare", "engines", "draw", "batch", "view"}) {
+        CommandResult alone = Quadrix(std::string(sub) + " --help");
+        CommandResult inTable = Quadrix(std::string("help ") + sub);
+        EXPECT_EQ(alone.exitCode, 0) << sub << ": " << alone.err;
+        std::string out = alone.out;
+        const std::string usage = std::string("Usage: quadrix ") + sub;
+        if (const std::size_t at = out.find(usage); at != std::string::npos)
+            out.replace(at, usage.size(), std::string("Usage: ") + sub);
+        EXPECT_EQ(out, inTable.out) << sub;
+    }
+    CommandResult engines = Quadrix("engines");
+    EXPECT_EQ(engines.exitCode, 0) << engines.err;
+    EXPECT_NE(engines.out.find("raycast:"), std::string::npos) << engines.out;
+    CommandResult man = Quadrix("man");
+    EXPECT_EQ(man.exitCode, 0) << man.err;
+    for (const char* sub : {"render", "export", "draw", "batch", "view"})
+        EXPECT_NE(man.out.find(sub), std::string::npos) << sub;
+}
+
 TEST(CliConventions, UnknownSubcommandSuggestsTheClosest) {
     CommandResult r = Quadrix("rendr scene.uq -o x.png");
     EXPECT_EQ(r.exitCode, 2);

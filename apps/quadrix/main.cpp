@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "commands.h"
@@ -99,31 +102,49 @@ int Run(int argc, char** argv) {
     app.require_subcommand(1);
     app.fallthrough(false);
 
+    // The subcommands, in the order `quadrix --help` lists them. A command line that names one
+    // (other than help and man, which describe the others) builds only that one: CLI11's tables
+    // of every subcommand's options were about 1 ms of each process (docs/performance.md).
     quadrix::cli::RenderArgs renderArgs;
-    quadrix::cli::AddRenderCommand(app, renderArgs);
     quadrix::cli::ExportArgs exportArgs;
-    quadrix::cli::AddExportCommand(app, exportArgs);
-    quadrix::cli::AddUqCommand(app);
     quadrix::cli::PipeArgs pipeArgs;
-    quadrix::cli::AddPipeCommand(app, pipeArgs);
     quadrix::cli::CompareArgs compareArgs;
-    quadrix::cli::AddCompareCommand(app, compareArgs);
     bool enginesMarkdown = false;
-    quadrix::cli::AddEnginesCommand(app, enginesMarkdown);
     quadrix::cli::DrawArgs drawArgs;
-    quadrix::cli::AddDrawCommand(app, drawArgs);
     std::string helpTopic;
-    app.add_subcommand("help", "Print this text, or the options of one subcommand")
-        ->add_option("subcommand", helpTopic, "The subcommand to describe");
-    app.footer(
-        "Exit status: 0 success, 1 an error in the scene or input (or a failed output), 2 a "
-        "usage error (unknown subcommand, option, engine or bad option value); see docs/cli.md.");
     quadrix::cli::ManArgs manArgs;
-    quadrix::cli::AddManCommand(app, manArgs);
     quadrix::cli::BatchArgs batchArgs;
-    quadrix::cli::AddBatchCommand(app, batchArgs);
     quadrix::cli::ViewArgs viewArgs;
-    quadrix::cli::AddViewCommand(app, viewArgs);
+    const std::pair<const char*, std::function<void()>> subcommands[] = {
+        {"render", [&] { quadrix::cli::AddRenderCommand(app, renderArgs); }},
+        {"export", [&] { quadrix::cli::AddExportCommand(app, exportArgs); }},
+        {"uq", [&] { quadrix::cli::AddUqCommand(app); }},
+        {"pipe", [&] { quadrix::cli::AddPipeCommand(app, pipeArgs); }},
+        {"compare", [&] { quadrix::cli::AddCompareCommand(app, compareArgs); }},
+        {"engines", [&] { quadrix::cli::AddEnginesCommand(app, enginesMarkdown); }},
+        {"draw", [&] { quadrix::cli::AddDrawCommand(app, drawArgs); }},
+        {"help",
+         [&] {
+             app.add_subcommand("help", "Print this text, or the options of one subcommand")
+                 ->add_option("subcommand", helpTopic, "The subcommand to describe");
+         }},
+        {"man", [&] { quadrix::cli::AddManCommand(app, manArgs); }},
+        {"batch", [&] { quadrix::cli::AddBatchCommand(app, batchArgs); }},
+        {"view", [&] { quadrix::cli::AddViewCommand(app, viewArgs); }},
+    };
+    const std::string_view named = argc >= 2 ? argv[1] : "";
+    const bool justOne = named != "help" && named != "man" &&
+                         std::any_of(std::begin(subcommands), std::end(subcommands),
+                                     [&](const auto& s) { return named == s.first; });
+    for (const auto& [name, add] : subcommands) {
+        // The subcommands made after it inherit the footer (man, batch, view).
+        if (std::string_view(name) == "man")
+            app.footer(
+                "Exit status: 0 success, 1 an error in the scene or input (or a failed output), 2 "
+                "a usage error (unknown subcommand, option, engine or bad option value); see "
+                "docs/cli.md.");
+        if (!justOne || named == name) add();
+    }
     // Every subcommand answers --version (docs/cli.md), and exit codes follow docs/cli.md.
     for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
         sub->set_version_flag("--version", std::string("quadrix ") + QUADRIX_VERSION);
@@ -147,19 +168,22 @@ int Run(int argc, char** argv) {
         std::fprintf(stderr, "quadrix: error: %s\n(run 'quadrix --help' for usage)\n", e.what());
         return 2;
     }
-    if (app.got_subcommand("render")) {
+    // The subcommand parsed (by name: got_subcommand would throw for one not built).
+    const std::vector<CLI::App*> parsed = app.get_subcommands();
+    const std::string got = parsed.empty() ? std::string() : parsed.front()->get_name();
+    if (got == "render") {
         renderArgs.exitWhenDone = true;  // a one-shot process: no freeing pass (render_command)
         return quadrix::cli::RunRender(renderArgs);
     }
-    if (app.got_subcommand("export")) return quadrix::cli::RunExport(exportArgs);
-    if (app.got_subcommand("pipe")) return quadrix::cli::RunPipe(pipeArgs);
-    if (app.got_subcommand("compare")) return quadrix::cli::RunCompare(compareArgs);
-    if (app.got_subcommand("engines")) return quadrix::cli::RunEngines(enginesMarkdown);
-    if (app.got_subcommand("draw")) return quadrix::cli::RunDraw(drawArgs);
-    if (app.got_subcommand("help")) return RunHelp(app, helpTopic);
-    if (app.got_subcommand("man")) return quadrix::cli::RunMan(app, manArgs);
-    if (app.got_subcommand("batch")) return quadrix::cli::RunBatch(batchArgs);
-    if (app.got_subcommand("view")) return quadrix::cli::RunView(viewArgs);
+    if (got == "export") return quadrix::cli::RunExport(exportArgs);
+    if (got == "pipe") return quadrix::cli::RunPipe(pipeArgs);
+    if (got == "compare") return quadrix::cli::RunCompare(compareArgs);
+    if (got == "engines") return quadrix::cli::RunEngines(enginesMarkdown);
+    if (got == "draw") return quadrix::cli::RunDraw(drawArgs);
+    if (got == "help") return RunHelp(app, helpTopic);
+    if (got == "man") return quadrix::cli::RunMan(app, manArgs);
+    if (got == "batch") return quadrix::cli::RunBatch(batchArgs);
+    if (got == "view") return quadrix::cli::RunView(viewArgs);
     return 2;
 }
 
