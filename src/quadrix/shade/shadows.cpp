@@ -504,14 +504,18 @@ bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrig
     Walk walk;
     walk.view = ray.view >= 0 && sMax == HUGE_VAL ? ray.view : -1;
     walk.origin = origin;
-    return Query(0, walk.view, p, d, s0, sMax, [&](std::int32_t i) {
+    auto solidBlocks = [&](std::int32_t i) {
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(i)];
         if (!NodeHits(solid.root, p, d, s0, sMax)) return false;
         Node(solid.root, p, d, s0, sMax, slots, 0, true, walk);
         for (const Interval& in : *slots[0])
             if (in.hi > s0 && in.lo < sMax) return true;
         return false;
-    });
+    };
+    // One solid (one CSG object, the usual part): the tree of solids would only visit it, after
+    // a test of its box no tighter than the root's own slab test; so that test alone.
+    if (scene_.solids.size() == 1) return solidBlocks(0);
+    return Query(0, walk.view, p, d, s0, sMax, solidBlocks);
 }
 
 }  // namespace quadrix
