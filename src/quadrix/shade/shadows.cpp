@@ -22,7 +22,10 @@ struct LinePolynomial {
     double a, h, c;
 };
 
-LinePolynomial OnLine(const FlatHalfSpace& h, const Vec3& p, const Vec3& d) {
+// Inlined into its callers (Body: once per literal of every shadow ray): as a call it was about
+// 2 % of a shadowed picture's instructions.
+[[gnu::always_inline]] inline LinePolynomial OnLine(const FlatHalfSpace& h, const Vec3& p,
+                                                    const Vec3& d) {
     if (h.isPlane) {
         const Plane& pl = h.plane;
         return {0, 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), pl.Evaluate(p)};
