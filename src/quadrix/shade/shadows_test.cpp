@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadrix/math/quadratic.h"
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/shader.h"
 #include "quadrix/util/ray_work.h"
@@ -51,6 +52,51 @@ FlatScene Spheres(const Vec3& a, double ra, const Vec3& b, double rb) {
     solid.root = 2;
     s.solids.push_back(solid);
     return s;
+}
+
+// A plane literal's set on a line (shadows.cpp computes its root in place for coefficients in
+// the solver's unscaled range) is where SolveQuadratic puts it: the half-line up to or from its
+// one root, the whole line or nothing when the line is parallel to the plane. Coefficients from
+// 2^-300 to 2^300 (both sides of the in-place range), zero components, lines parallel to the
+// plane, and a NaN.
+TEST(ShadeShadows, APlanesSetOnALineIsTheSolversHalfLine) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::uniform_int_distribution<int> exponent(-300, 300);
+    std::size_t cases = 0, wrong = 0, single = 0;
+    for (int q = 0; q < 200000; ++q) {
+        const double scale = std::ldexp(1.0, exponent(rng));
+        FlatHalfSpace h;
+        h.isPlane = true;
+        h.plane = {u(rng) * scale, q % 7 == 0 ? 0.0 : u(rng) * scale, u(rng) * scale,
+                   u(rng) * scale * (q % 3 == 0 ? 1e3 : 1.0)};
+        const Vec3 p{u(rng) * 10, u(rng) * 10, u(rng) * 10};
+        Vec3 d{u(rng), u(rng), u(rng)};
+        if (q % 11 == 0) d = {-h.plane.b, h.plane.a, 0};  // parallel to the plane
+        if (q == 12345) h.plane.d = std::nan("");
+        const Plane& pl = h.plane;
+        // OnLine's polynomial (shadows.cpp), in the same order of operations.
+        const double hh = 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), c = pl.Evaluate(p);
+        const QuadraticRoots r = SolveQuadratic(0, hh, c);
+        IntervalList expected;
+        if (r.kind == RootKind::kAll || ((r.kind == RootKind::kNone) && hh == 0 && c <= 0)) {
+            expected.Append(-HUGE_VAL, Interval::kNoId, HUGE_VAL, Interval::kNoId);
+        } else if (r.kind == RootKind::kSingle) {
+            ++single;
+            if (hh > 0)
+                expected.Append(-HUGE_VAL, Interval::kNoId, r.t0, Interval::kNoId);
+            else
+                expected.Append(r.t0, Interval::kNoId, HUGE_VAL, Interval::kNoId);
+        }
+        const IntervalList got = ShadowTester::LiteralOnLine(h, false, p, d);
+        ++cases;
+        bool same = got.size() == expected.size();
+        for (std::size_t i = 0; same && i < got.size(); ++i)
+            same = got[i].lo == expected[i].lo && got[i].hi == expected[i].hi;
+        wrong += !same;
+    }
+    EXPECT_EQ(wrong, 0u) << "of " << cases;
+    EXPECT_GT(single, cases / 2);
 }
 
 TEST(ShadeShadows, RaysAreBlockedExactlyWhenTheyMeetTheSphere) {
