@@ -422,10 +422,7 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     // Node n's box passed this test (every Node call follows a NodeHits of the same segment);
     // the minuend's box is usually the same box (a difference is bounded by its minuend), and
     // then so is the answer.
-    const Box3& nb = node.bounds;
-    const Box3& mb = minuend.bounds;
-    const bool sameBox = nb.lo.x == mb.lo.x && nb.lo.y == mb.lo.y && nb.lo.z == mb.lo.z &&
-                         nb.hi.x == mb.hi.x && nb.hi.y == mb.hi.y && nb.hi.z == mb.hi.z;
+    const bool sameBox = node.bounds.lo == minuend.bounds.lo && node.bounds.hi == minuend.bounds.hi;
     if (!sameBox && !NodeHits(m, p, d, s0, s1)) return;
     bool haveSubtrahends = false;
     // Operand c of the minuend's union: its set in slots[k + 1]; the subtrahends' union, made
