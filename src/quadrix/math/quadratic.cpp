@@ -28,7 +28,10 @@ double DifferenceOfProducts(double a, double b, double c, double d) {
     return (x.p - y.p) + (x.e - y.e);
 }
 
-QuadraticRoots SolveQuadratic(double a, double h, double c) {
+namespace detail {
+
+// The whole solver; SolveQuadratic (quadratic.h) answers the unscaled linear case inline.
+QuadraticRoots SolveQuadraticGeneral(double a, double h, double c) {
     QuadraticRoots r;
     if (!std::isfinite(a) || !std::isfinite(h) || !std::isfinite(c)) return r;  // kNone
 
@@ -97,5 +100,7 @@ QuadraticRoots SolveQuadratic(double a, double h, double c) {
     r.t1 = t1;
     return r;
 }
+
+}  // namespace detail
 
 }  // namespace quadrix

@@ -26,6 +26,7 @@
 // as such, Δ < 0 has no real root. Non-finite coefficients give kNone.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 namespace quadrix {
@@ -80,6 +81,25 @@ struct QuadraticRoots {
 // (already rounded) coefficients has a relative error of at most about 5u + u²·(h² + |a c|)/Δ,
 // u = 2^-53 (error analysis in quadratic.cpp; the second term only matters for rays within ~1e-16
 // of tangency); roots overflow to ±inf only when their exact value is out of range.
-QuadraticRoots SolveQuadratic(double a, double h, double c);
+//
+// A linear equation whose coefficients need no scaling (a = 0, h ≠ 0, max(|h|, |c|) in
+// [2^-200, 2^200], the range in which the solver scales nothing: quadratic.cpp) is solved inline,
+// −c / (2h), the same root the solver gives; planes along rays are the common callers' case
+// (shadow rays, the literal evaluators, trimming). Everything else, NaN included (it fails the
+// comparisons), goes to the general solver.
+namespace detail {
+QuadraticRoots SolveQuadraticGeneral(double a, double h, double c);
+}  // namespace detail
+
+inline QuadraticRoots SolveQuadratic(double a, double h, double c) {
+    const double ah = std::fabs(h), ac = std::fabs(c);
+    if (a == 0 && h != 0 && ah <= 0x1p200 && ac <= 0x1p200 && (ah >= 0x1p-200 || ac >= 0x1p-200)) {
+        QuadraticRoots r;
+        r.kind = RootKind::kSingle;
+        r.t0 = r.t1 = -c / (2.0 * h);  // 2.0 * h is exact
+        return r;
+    }
+    return detail::SolveQuadraticGeneral(a, h, c);
+}
 
 }  // namespace quadrix

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -219,6 +220,43 @@ TEST(MathQuadratic, RandomLinearEquations) {
         long double exact = -static_cast<long double>(c) / (2.0L * h);
         EXPECT_LE(std::fabs(r.t0 - exact), kU * exact * 1.01L);
     }
+}
+
+// The inline linear case (quadratic.h) gives what the general solver gives, bit for bit, on
+// both sides of its range [2^-200, 2^200]: coefficients from 2^-1074 to 2^1023, zeros, infinities
+// and NaN. Fails when the inline root is rounded otherwise (e.g. −c · (0.5 / h)) or when its range
+// test admits a case the solver scales.
+TEST(MathQuadratic, InlineLinearCaseIsTheGeneralSolvers) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::uniform_int_distribution<int> exponent(-1074, 1023);
+    std::uniform_int_distribution<int> near(-260, 260);
+    const double specials[] = {0.0,          -0.0,
+                               HUGE_VAL,     -HUGE_VAL,
+                               std::nan(""), 0x1p-200,
+                               0x1p200,      0x1.fffffffffffffp199,
+                               0x1p-201,     0x1.0000000000001p200};
+    std::size_t inlined = 0;
+    for (int n = 0; n < 400000; ++n) {
+        auto pick = [&](int k) {
+            if (k % 13 == 0) return specials[(n / 13 + k) % 10];
+            return u(rng) * std::ldexp(1.0, k % 2 ? exponent(rng) : near(rng));
+        };
+        const double h = pick(n), c = pick(n + 5);
+        const QuadraticRoots got = SolveQuadratic(0, h, c);
+        const QuadraticRoots want = detail::SolveQuadraticGeneral(0, h, c);
+        ASSERT_EQ(got.kind, want.kind) << h << " " << c;
+        if (got.kind == RootKind::kSingle || got.kind == RootKind::kDouble) {
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(got.t0), std::bit_cast<std::uint64_t>(want.t0))
+                << h << " " << c;
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(got.t1), std::bit_cast<std::uint64_t>(want.t1))
+                << h << " " << c;
+        }
+        const double ah = std::fabs(h), ac = std::fabs(c);
+        inlined += h != 0 && ah <= 0x1p200 && ac <= 0x1p200 && (ah >= 0x1p-200 || ac >= 0x1p-200);
+    }
+    EXPECT_GT(inlined, 100000u);  // both paths are exercised
+    EXPECT_LT(inlined, 300000u);
 }
 
 }  // namespace

@@ -61,18 +61,8 @@ struct Pieces {
 void LiteralPieces(const LinePolynomial& q, bool complemented, Pieces& out) {
     Pieces raw;
     Pieces& set = complemented ? raw : out;
-    // A plane (a = 0, h ≠ 0) with coefficients in SolveQuadratic's unscaled range
-    // [2^-200, 2^200] (quadratic.cpp): its linear case, −c / (2h), without the call; the same
-    // root. Everything else (and a NaN, which fails the comparisons) goes to the solver.
-    QuadraticRoots r;
-    const double ah = std::fabs(q.h), ac = std::fabs(q.c);
-    if (q.a == 0 && q.h != 0 && ah <= 0x1p200 && ac <= 0x1p200 &&
-        (ah >= 0x1p-200 || ac >= 0x1p-200)) {
-        r.kind = RootKind::kSingle;
-        r.t0 = r.t1 = -q.c / (2.0 * q.h);
-    } else {
-        r = SolveQuadratic(q.a, q.h, q.c);
-    }
+    // A plane's root is made inline by SolveQuadratic (quadratic.h) without a call.
+    const QuadraticRoots r = SolveQuadratic(q.a, q.h, q.c);
     switch (r.kind) {
         case RootKind::kAll:
             set.Append(-kInf, kInf);

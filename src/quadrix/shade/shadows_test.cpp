@@ -54,9 +54,9 @@ FlatScene Spheres(const Vec3& a, double ra, const Vec3& b, double rb) {
     return s;
 }
 
-// A plane literal's set on a line (shadows.cpp computes its root in place for coefficients in
-// the solver's unscaled range) is where SolveQuadratic puts it: the half-line up to or from its
-// one root, the whole line or nothing when the line is parallel to the plane. Coefficients from
+// A plane literal's set on a line (SolveQuadratic answers its root inline for coefficients in
+// the unscaled range, quadratic.h) is where the general solver puts it: the half-line up to or from
+// its one root, the whole line or nothing when the line is parallel to the plane. Coefficients from
 // 2^-300 to 2^300 (both sides of the in-place range), zero components, lines parallel to the
 // plane, and a NaN.
 TEST(ShadeShadows, APlanesSetOnALineIsTheSolversHalfLine) {
@@ -77,7 +77,7 @@ TEST(ShadeShadows, APlanesSetOnALineIsTheSolversHalfLine) {
         const Plane& pl = h.plane;
         // OnLine's polynomial (shadows.cpp), in the same order of operations.
         const double hh = 0.5 * (pl.a * d.x + pl.b * d.y + pl.c * d.z), c = pl.Evaluate(p);
-        const QuadraticRoots r = SolveQuadratic(0, hh, c);
+        const QuadraticRoots r = detail::SolveQuadraticGeneral(0, hh, c);
         IntervalList expected;
         if (r.kind == RootKind::kAll || ((r.kind == RootKind::kNone) && hh == 0 && c <= 0)) {
             expected.Append(-HUGE_VAL, Interval::kNoId, HUGE_VAL, Interval::kNoId);
