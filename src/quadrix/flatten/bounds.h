@@ -101,6 +101,10 @@ struct BoundsOptions {
     // Stage (a'') for bodies of one convex quadric and at most 16 planes (bounds_critical.cpp);
     // off only to compare it with the relaxation in tests.
     bool criticalPoints = true;
+    // Stage (a'') leaves out of its enumeration the faces of a capped cylinder's bootstrap box,
+    // which lie apart from the body (bounds_critical.cpp); true only to check in tests that this
+    // changes no box.
+    bool criticalPointsOnApartFaces = false;
     // Stage (a) of the uncomplemented quadric literals, made once for the half-spaces these
     // bounds are taken over (flatten/literal_cache.h); null: each literal's is made as needed.
     // The boxes are the same bits either way.

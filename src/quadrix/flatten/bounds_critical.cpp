@@ -46,7 +46,10 @@
 //   - a nappe is not separated from its twin by one of the planes (the certificate's supporting
 //     plane needs it; capped cones are separated by their small-end cap).
 // Cost: ~10-20 µs for a capped cylinder or cone (56 vertex solves, 28 edges, 24 conics, the
-// certificate), where the interior-point method took ~1 ms.
+// certificate), where the interior-point method took ~1 ms. A capped cylinder whose region is its
+// bootstrap box enumerates only its own planes and B0's faces (the bootstrap box's faces lie apart
+// from the body: CriticalPoints), no vertex, one edge and six conics: about 37 % fewer
+// instructions for the 1,024 bodies the 10,131-body helicopter bounds itself.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -108,15 +111,20 @@ bool Solve3(const Vec3& r0, const Vec3& r1, const Vec3& r2, double c0, double c1
 class CriticalPoints {
   public:
     // cons: the literals then the region's six faces (CandidateExtreme's order); `quadric` the
-    // index of the quadric; artificial[j]: constraint j is a face at the search limit.
+    // index of the quadric; artificial[j]: constraint j is a face at the search limit or of the
+    // bootstrap box; apart[j]: a face of the bootstrap box, which lies apart from the body (the
+    // box holds a ball that holds the body, grown by 1e-6 of its radius: no point of such a face
+    // is within the feasibility tolerance of the body, 1e-9 of the region's diameter, so no
+    // active set including it yields a candidate, and it takes no part in the enumeration; it
+    // stays a constraint for the feasibility test and the multipliers).
     CriticalPoints(std::vector<InsideFn> cons, int quadric, std::vector<char> artificial,
-                   double diameter)
+                   const std::vector<char>& apart, double diameter)
         : cons_(std::move(cons)),
           artificial_(std::move(artificial)),
           quadric_(quadric),
           diameter_(diameter) {
         for (std::size_t j = 0; j < cons_.size(); ++j)
-            if (cons_[j].isPlane) planes_.push_back(static_cast<int>(j));
+            if (cons_[j].isPlane && !apart[j]) planes_.push_back(static_cast<int>(j));
     }
 
     // The candidate extremes of the six sides; false when the stage must decline.
@@ -409,7 +417,7 @@ std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const
     const Box3 region = b0.Intersected(outer);
     if (region.Empty()) return std::nullopt;
     std::vector<InsideFn> cons = shaping;
-    std::vector<char> artificial(shaping.size(), 0);
+    std::vector<char> artificial(shaping.size(), 0), apart(shaping.size(), 0);
     for (int i = 0; i < 3; ++i)
         for (int sign = -1; sign <= 1; sign += 2) {
             InsideFn p;
@@ -417,12 +425,15 @@ std::optional<Box3> CriticalPointBox(const std::vector<InsideFn>& shaping, const
             p.b[i] = 0.5 * sign;
             p.k = sign > 0 ? -region.hi[i] : region.lo[i];
             cons.push_back(p);
-            artificial.push_back(sign > 0 ? !(b0.hi[i] < outer.hi[i]) : !(b0.lo[i] > outer.lo[i]));
+            const bool ofB0 = sign > 0 ? b0.hi[i] < outer.hi[i] : b0.lo[i] > outer.lo[i];
+            const bool atLimit = sign > 0 ? !(outer.hi[i] < limit) : !(outer.lo[i] > -limit);
+            artificial.push_back(!ofB0);
+            apart.push_back(!ofB0 && !atLimit && !options.criticalPointsOnApartFaces);
         }
     // The distance tolerance only where the region is not the search limit's (for a cone: B0).
     bool bounded = true;
     for (int i = 0; i < 3; ++i) bounded &= outer.hi[i] < limit || b0.hi[i] < limit;
-    CriticalPoints points(std::move(cons), quadric, std::move(artificial),
+    CriticalPoints points(std::move(cons), quadric, std::move(artificial), apart,
                           bounded ? Length(region.Size()) : 0.0);
     CandidateExtreme extremes[6];
     Vec3 interior;
