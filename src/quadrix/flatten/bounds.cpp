@@ -411,29 +411,31 @@ Box3 BodyBounds(const FlatScene& scene, const FlatBody& body, const BoundsOption
     return IntersectionBounds(lits, options, stats);
 }
 
+Box3 TreeNodeBounds(const FlatCsgNode& node, const Box3& leafBody,
+                    const std::vector<Box3>& nodeBoxes) {
+    if (node.isLeaf) return leafBody;
+    Box3 box;
+    switch (node.op) {
+        case scene::CsgOp::kUnion:
+            for (int c : node.children) box.Extend(nodeBoxes[c]);
+            break;
+        case scene::CsgOp::kIntersection:
+            box = Box3::Everything();
+            for (int c : node.children) box = box.Intersected(nodeBoxes[c]);
+            if (node.children.empty()) box = Box3{};
+            break;
+        case scene::CsgOp::kDifference:
+            if (!node.children.empty()) box = nodeBoxes[node.children[0]];
+            break;
+    }
+    return box.Empty() ? Box3{} : box;  // one canonical empty box
+}
+
 std::vector<Box3> TreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes) {
     std::vector<Box3> out(scene.nodes.size());
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         const FlatCsgNode& node = scene.nodes[i];
-        if (node.isLeaf) {
-            out[i] = bodyBoxes[node.body];
-            continue;
-        }
-        Box3 box;
-        switch (node.op) {
-            case scene::CsgOp::kUnion:
-                for (int c : node.children) box.Extend(out[c]);
-                break;
-            case scene::CsgOp::kIntersection:
-                box = Box3::Everything();
-                for (int c : node.children) box = box.Intersected(out[c]);
-                if (node.children.empty()) box = Box3{};
-                break;
-            case scene::CsgOp::kDifference:
-                if (!node.children.empty()) box = out[node.children[0]];
-                break;
-        }
-        out[i] = box.Empty() ? Box3{} : box;  // one canonical empty box
+        out[i] = TreeNodeBounds(node, node.isLeaf ? bodyBoxes[node.body] : Box3{}, out);
     }
     return out;
 }

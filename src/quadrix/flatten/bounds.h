@@ -148,6 +148,10 @@ Box3 BodyBounds(const FlatScene& scene, const FlatBody& body, const BoundsOption
 // Node bounds from per-body boxes (indexed like scene.bodies): union / intersection / minuend.
 // Nodes must be stored children before parents (as the Flattener emits them).
 std::vector<Box3> TreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes);
+// One node of TreeBounds: a leaf's box is `leafBody` (its body's), another node's combines its
+// children's boxes in `nodeBoxes`. A node's box is thus a function of its subtree alone.
+Box3 TreeNodeBounds(const FlatCsgNode& node, const Box3& leafBody,
+                    const std::vector<Box3>& nodeBoxes);
 
 // Fills body, node and solid bounds of a FlatScene; solids are clipped to the image in x and y.
 void ComputeSceneBounds(FlatScene& scene, const BoundsOptions& options = {},

@@ -231,10 +231,7 @@ class FlattenerImpl {
                                                    PaddedBoxes(true), bo, &passesEye_);
         auto makeExact = [&](const std::vector<std::size_t>& which) {
             MakeSolidsExact(which, bo);
-            const std::vector<Box3> solidFit = FitSolidBoxes(
-                flat, firstSame_, view_.fitClips, finalPlanes_, view_.perspective ? view_.d : 0.0,
-                view_.fitNear, PaddedBoxes(true), bo);
-            for (std::size_t s = 0; s < solidFit.size(); ++s) fitBoxes[s] = solidFit[s];
+            RefitSolids(which, bo, fitBoxes);
         };
         const bool autoFit = !view_.whw && !view_.whh;
         if (autoFit && !boxes_.AllExact()) SettleExtremes(fitBoxes, solidExact_, makeExact);
@@ -646,17 +643,66 @@ class FlattenerImpl {
     // Body boxes grown by their pad (the boxes reused by translation; `grow` false: shrunk, an
     // empty box where the pad exceeds it): between them lies the body's own box.
     std::vector<Box3> PaddedBoxes(bool grow) const {
-        std::vector<Box3> out = boxes_.box;
-        const double sign = grow ? 1 : -1;
-        for (std::size_t i = 0; i < out.size(); ++i) {
-            if (boxes_.exact[i] || out[i].Empty()) continue;
-            for (int a = 0; a < 3; ++a) {
-                out[i].lo[a] -= sign * boxes_.pad[i][a];
-                out[i].hi[a] += sign * boxes_.pad[i][a];
-            }
-            if (out[i].Empty()) out[i] = Box3{};
-        }
+        std::vector<Box3> out(boxes_.box.size());
+        for (std::size_t i = 0; i < out.size(); ++i) out[i] = PaddedBox(i, grow);
         return out;
+    }
+    Box3 PaddedBox(std::size_t i, bool grow) const {
+        Box3 out = boxes_.box[i];
+        if (boxes_.exact[i] || out.Empty()) return out;
+        const double sign = grow ? 1 : -1;
+        for (int a = 0; a < 3; ++a) {
+            out.lo[a] -= sign * boxes_.pad[i][a];
+            out.hi[a] += sign * boxes_.pad[i][a];
+        }
+        return out.Empty() ? Box3{} : out;
+    }
+
+    // FitSolidBoxes' box of each solid of `which` (provisional space, the padded body boxes), into
+    // fitBoxes[s], from the solid's own bodies and subtree: a body's box is its padded box, a
+    // node's box and fit box are functions of its subtree (TreeNodeBounds, FitNodeBounds), so
+    // each is bit for bit the one FitSolidBoxes makes over every solid. After
+    // MakeSolidsExact(which) the other solids' boxes are unchanged (their bodies' are), so this
+    // replaces a FitSolidBoxes of the whole scene (three of them made the fit's settling cost
+    // as much as the first fit boxes of 10,000 bodies). Boxes are reused only without clip,
+    // fbp or section planes (TranslationReuse), so the fit planes are the final ones; were they
+    // not, the whole scene's FitSolidBoxes decides.
+    void RefitSolids(const std::vector<std::size_t>& which, const BoundsOptions& bo,
+                     std::vector<Box3>& fitBoxes) const {
+        const FlatScene& flat = flat_;
+        const double farDepth = view_.perspective ? view_.d : 0.0;
+        if (view_.fitClips != finalPlanes_) {
+            const std::vector<Box3> solidFit =
+                FitSolidBoxes(flat, firstSame_, view_.fitClips, finalPlanes_, farDepth,
+                              view_.fitNear, PaddedBoxes(true), bo);
+            for (std::size_t s : which) fitBoxes[s] = solidFit[s];
+            return;
+        }
+        std::vector<int> nodes, stack;
+        for (std::size_t s : which) {
+            stack.assign(1, flat.solids[s].root);
+            while (!stack.empty()) {
+                const int n = stack.back();
+                stack.pop_back();
+                nodes.push_back(n);
+                const FlatCsgNode& node = flat.nodes[static_cast<std::size_t>(n)];
+                if (!node.isLeaf)
+                    stack.insert(stack.end(), node.children.begin(), node.children.end());
+            }
+        }
+        std::sort(nodes.begin(), nodes.end());  // children before parents
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        std::vector<Box3> nodeBoxes(flat.nodes.size()), fit(flat.nodes.size());
+        for (int n : nodes) {
+            const auto i = static_cast<std::size_t>(n);
+            const FlatCsgNode& node = flat.nodes[i];
+            const Box3 body =
+                node.isLeaf ? PaddedBox(static_cast<std::size_t>(node.body), true) : Box3{};
+            nodeBoxes[i] = TreeNodeBounds(node, body, nodeBoxes);
+            fit[i] = FitNodeBounds(node, nodeBoxes[i], body, fit, farDepth, view_.fitNear);
+        }
+        for (std::size_t s : which)
+            fitBoxes[s] = fit[static_cast<std::size_t>(flat.solids[s].root)];
     }
 
     // Bounds the bodies of solids `which` directly where their boxes were reused (in parallel).

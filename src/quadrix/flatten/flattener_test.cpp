@@ -696,6 +696,68 @@ TEST(FlattenBounds, BoxesReusedByTranslationKeepTheWindowAndHoldTheBodies) {
     }
 }
 
+// The same with CSG solids (two rods and a ball in a union, 45 of them by translation): the
+// solids that may decide the auto-fitted window are bounded directly and their fit boxes made
+// again from their own subtrees (RefitSolids in flattener.cpp); the window is bit for bit the one
+// of the direct bounds in three views. Fails when a subtree's nodes are combined out of order
+// (a parent before its children) or a solid gets another's fit box.
+TEST(FlattenBounds, CsgSolidsSettledForTheWindowKeepIt) {
+    scene::Scene s;
+    const double r = 3, h = 20;
+    const Quadric cyl = Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, 0, -r * r});
+    const Plane top{0, 0, 1, -h}, bottom{0, 0, -1, 0};
+    for (int rot = 0; rot < 3; ++rot)
+        for (int k = 0; k < 15; ++k) {
+            const Transform t =
+                Transform::Translate({41.0 * k - 300, 13.0 * rot + 0.7 * k, 4.0 * k - 20 * rot}) *
+                Transform::Rotate(0, 25 + 30 * rot) * Transform::Rotate(2, 10 + 17 * rot);
+            const Transform u = t * Transform::Translate({8, 0, 5}) * Transform::Rotate(1, 60);
+            const std::string n = std::to_string(rot) + "_" + std::to_string(k);
+            CsgBuilder b;
+            const int a = b.Body(AddBody(s.top, "a" + n,
+                                         {AddQuadric(s.top, "ca" + n, cyl.Transformed(t).k),
+                                          AddPlane(s.top, "ta" + n, top.Transformed(t)),
+                                          AddPlane(s.top, "ba" + n, bottom.Transformed(t))}));
+            const int c = b.Body(AddBody(s.top, "b" + n,
+                                         {AddQuadric(s.top, "cb" + n, cyl.Transformed(u).k),
+                                          AddPlane(s.top, "tb" + n, top.Transformed(u)),
+                                          AddPlane(s.top, "bb" + n, bottom.Transformed(u))}));
+            const int ball = b.Body(
+                AddBody(s.top, "s" + n, {AddSphere(s.top, "s" + n, t.MapPoint({0, 0, h}), 5)}));
+            AddCsg(s.top, "part" + n, b,
+                   b.Op(scene::CsgOp::kUnion, b.Op(scene::CsgOp::kUnion, a, c), ball));
+        }
+    int settled = 0;
+    for (const Vec3& vpn : {Vec3{0.4, -0.5, -1}, Vec3{-1, 0.2, -0.3}, Vec3{0.1, 1, -0.2}}) {
+        scene::View v = MakeView("v");
+        v.vpn = vpn;
+        v.dop = -vpn;
+        s.views = {v};
+        FlattenOptions o;
+        o.width = 640;
+        o.height = 360;
+        o.viewName = "v";
+        Diagnostics d1, d2;
+        std::optional<FlatScene> reused = Flatten(s, o, d1);
+        o.reuseBoundsByTranslation = false;
+        std::optional<FlatScene> direct = Flatten(s, o, d2);
+        ASSERT_TRUE(reused && direct);
+        ASSERT_EQ(reused->solids.size(), 45u);
+        EXPECT_EQ(reused->projection.deviceFromWorld.Matrix().m,
+                  direct->projection.deviceFromWorld.Matrix().m);
+        ASSERT_EQ(reused->bodies.size(), direct->bodies.size());
+        // The solids at the window's sides were bounded directly (their boxes are the direct
+        // ones, bit for bit), and some others were not (boxes moved by translation).
+        int same = 0;
+        for (std::size_t b = 0; b < reused->bodies.size(); ++b)
+            same += reused->bodies[b].bounds.lo == direct->bodies[b].bounds.lo &&
+                    reused->bodies[b].bounds.hi == direct->bodies[b].bounds.hi;
+        EXPECT_LT(same, static_cast<int>(reused->bodies.size()));
+        settled += same > 3 * 3;  // more than the three references' bodies
+    }
+    EXPECT_EQ(settled, 3);
+}
+
 // A generated model in the shape of an imported vehicle (flatten/hierarchy.cpp reserves its lists
 // from the guard's counts; SceneScale, TranslationReuse and the bounds run in parallel): rods
 // placed in the top scope (translates of each other, so boxes are reused), CSG solids over them

@@ -63,35 +63,39 @@ Box3 CombineFit(const FlatCsgNode& node, const std::vector<Box3>& fit) {
 
 }  // namespace
 
+Box3 FitNodeBounds(const FlatCsgNode& node, const Box3& real, const Box3& leafBody,
+                   const std::vector<Box3>& fit, double farDepth, double nearDepth) {
+    if (real.Empty()) return Box3{};  // the empty box
+    if (node.isLeaf) {
+        Box3 b = leafBody;
+        bool reachesInfinity =
+            (farDepth > 0 && !(b.hi.z < farDepth * (1 - 1e-9))) || ReachesNearPlane(b, nearDepth);
+        for (int axis = 0; axis < 3; ++axis)
+            if (reachesInfinity || !FiniteOn(b, axis)) SetUnknown(b, axis);
+        return b;
+    }
+    Box3 b = CombineFit(node, fit);
+    // Where both are known the node's own box can only tighten the fit interval.
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!FiniteOn(b, axis) || !FiniteOn(real, axis)) continue;
+        double lo = std::fmax(b.lo[axis], real.lo[axis]);
+        double hi = std::fmin(b.hi[axis], real.hi[axis]);
+        if (lo <= hi) {
+            b.lo[axis] = lo;
+            b.hi[axis] = hi;
+        }
+    }
+    return b;
+}
+
 std::vector<Box3> FitTreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes,
                                 const std::vector<Box3>& nodeBoxes, double farDepth,
                                 double nearDepth) {
     std::vector<Box3> fit(scene.nodes.size());
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         const FlatCsgNode& node = scene.nodes[i];
-        const Box3& real = nodeBoxes[i];
-        if (real.Empty()) continue;  // the empty box
-        if (node.isLeaf) {
-            Box3 b = bodyBoxes[node.body];
-            bool reachesInfinity = (farDepth > 0 && !(b.hi.z < farDepth * (1 - 1e-9))) ||
-                                   ReachesNearPlane(b, nearDepth);
-            for (int axis = 0; axis < 3; ++axis)
-                if (reachesInfinity || !FiniteOn(b, axis)) SetUnknown(b, axis);
-            fit[i] = b;
-            continue;
-        }
-        Box3 b = CombineFit(node, fit);
-        // Where both are known the node's own box can only tighten the fit interval.
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!FiniteOn(b, axis) || !FiniteOn(real, axis)) continue;
-            double lo = std::fmax(b.lo[axis], real.lo[axis]);
-            double hi = std::fmin(b.hi[axis], real.hi[axis]);
-            if (lo <= hi) {
-                b.lo[axis] = lo;
-                b.hi[axis] = hi;
-            }
-        }
-        fit[i] = b;
+        fit[i] = FitNodeBounds(node, nodeBoxes[i], node.isLeaf ? bodyBoxes[node.body] : Box3{}, fit,
+                               farDepth, nearDepth);
     }
     return fit;
 }

@@ -52,6 +52,11 @@ namespace quadrix {
 std::vector<Box3> FitTreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes,
                                 const std::vector<Box3>& nodeBoxes, double farDepth = 0,
                                 double nearDepth = -HUGE_VAL);
+// One node of FitTreeBounds: `real` is its TreeBounds box, `leafBody` (for a leaf) its body's
+// conservative box, `fit` the fit boxes of its children. A node's fit box is thus a function of
+// its subtree alone.
+Box3 FitNodeBounds(const FlatCsgNode& node, const Box3& real, const Box3& leafBody,
+                   const std::vector<Box3>& fit, double farDepth = 0, double nearDepth = -HUGE_VAL);
 // True when `box` reaches the near plane at depth `nearDepth` (< 0) as FitTreeBounds counts it.
 inline bool ReachesNearPlane(const Box3& box, double nearDepth) {
     return std::isfinite(nearDepth) && nearDepth < 0 && !box.Empty() &&
