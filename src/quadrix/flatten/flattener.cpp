@@ -37,6 +37,7 @@
 #include <deque>
 #include <functional>
 #include <optional>
+#include <span>
 #include <unordered_map>
 
 #include "quadrix/flatten/bounds.h"
@@ -807,21 +808,33 @@ class FlattenerImpl {
         return solidBoxes;
     }
 
-    // The bodies under each solid's root (children before parents, so one pass from the roots).
-    std::vector<std::vector<int>> BodiesOfSolids() const {
-        std::vector<std::vector<int>> out(flat_.solids.size());
+    // The bodies under each solid's root, in the order of a depth-first walk from the root, all
+    // in one array (one allocation, not one per solid).
+    struct SolidBodies {
+        std::vector<std::size_t> start;  // per solid, and one past the last
+        std::vector<int> bodies;
+        std::span<const int> operator[](std::size_t s) const {
+            return {bodies.data() + start[s], bodies.data() + start[s + 1]};
+        }
+    };
+    SolidBodies BodiesOfSolids() const {
+        SolidBodies out;
+        out.start.reserve(flat_.solids.size() + 1);
+        out.bodies.reserve(flat_.bodies.size());
         std::vector<int> stack;
         for (std::size_t s = 0; s < flat_.solids.size(); ++s) {
+            out.start.push_back(out.bodies.size());
             stack.assign(1, flat_.solids[s].root);
             while (!stack.empty()) {
                 const FlatCsgNode& node = flat_.nodes[static_cast<std::size_t>(stack.back())];
                 stack.pop_back();
                 if (node.isLeaf)
-                    out[s].push_back(node.body);
+                    out.bodies.push_back(node.body);
                 else
                     stack.insert(stack.end(), node.children.begin(), node.children.end());
             }
         }
+        out.start.push_back(out.bodies.size());
         return out;
     }
 
@@ -832,7 +845,7 @@ class FlattenerImpl {
     static void SomeFitSolidBoxes(
         const FlatScene& flat, const std::vector<const FlatHalfSpace*>& halfSpaces,
         const std::vector<Plane>& fitClips, const std::vector<Plane>& finalClips, double farDepth,
-        double nearDepth, const BoundsOptions& bo, const std::vector<std::vector<int>>& bodiesOf,
+        double nearDepth, const BoundsOptions& bo, const SolidBodies& bodiesOf,
         const std::vector<std::size_t>& firstSame, const std::vector<std::size_t>& which,
         std::vector<Box3>& solidBoxes) {
         bool same = fitClips.size() == finalClips.size();
@@ -952,7 +965,7 @@ class FlattenerImpl {
     void RefineFit(WindowFit& fit, std::vector<Box3>& fitBoxes, std::vector<char> firstKnown,
                    MakeFirst&& makeFirstKnown) {
         const std::size_t nSolids = flat_.solids.size();
-        const std::vector<std::vector<int>>& bodiesOf = bodiesOf_;
+        const SolidBodies& bodiesOf = bodiesOf_;
         const std::vector<std::size_t>& firstSame = firstSame_;
         struct Look {
             WindowFit fit;
@@ -1423,7 +1436,7 @@ class FlattenerImpl {
     std::vector<char> eyeInside_;             // per solid (FindSolidsAroundEye)
     std::vector<char> passesEye_;             // per solid: its box reaches the fit's near plane
     BodyBoxes boxes_;                         // per body, provisional space (AllBodyBounds)
-    std::vector<std::vector<int>> bodiesOf_;  // per solid: its bodies
+    SolidBodies bodiesOf_;                    // per solid: its bodies
     std::vector<std::size_t> firstSame_;      // per body (FirstWithSameLiterals)
     std::vector<char> solidExact_;            // per solid: every body's box is its own
 };
