@@ -662,12 +662,11 @@ class FlattenerImpl {
     // FitSolidBoxes' box of each solid of `which` (provisional space, the padded body boxes), into
     // fitBoxes[s], from the solid's own bodies and subtree: a body's box is its padded box, a
     // node's box and fit box are functions of its subtree (TreeNodeBounds, FitNodeBounds), so
-    // each is bit for bit the one FitSolidBoxes makes over every solid. After
-    // MakeSolidsExact(which) the other solids' boxes are unchanged (their bodies' are), so this
-    // replaces a FitSolidBoxes of the whole scene (three of them made the fit's settling cost
-    // as much as the first fit boxes of 10,000 bodies). Boxes are reused only without clip,
-    // fbp or section planes (TranslationReuse), so the fit planes are the final ones; were they
-    // not, the whole scene's FitSolidBoxes decides.
+    // each is bit for bit the one FitSolidBoxes makes over every solid. MakeSolidsExact(which)
+    // changes the boxes of the bodies of `which` only, so the other solids' fit boxes stand, and
+    // this replaces a FitSolidBoxes of the whole scene per settling round. Boxes are reused only
+    // without clip, fbp or section planes (TranslationReuse), so the fit planes are the final
+    // ones; were they not, the whole scene's FitSolidBoxes would decide.
     void RefitSolids(const std::vector<std::size_t>& which, const BoundsOptions& bo,
                      std::vector<Box3>& fitBoxes) const {
         const FlatScene& flat = flat_;
