@@ -724,8 +724,10 @@ TEST(FlattenBounds, CsgSolidsSettledForTheWindowKeepIt) {
                                           AddPlane(s.top, "bb" + n, bottom.Transformed(u))}));
             const int ball = b.Body(
                 AddBody(s.top, "s" + n, {AddSphere(s.top, "s" + n, t.MapPoint({0, 0, h}), 5)}));
-            AddCsg(s.top, "part" + n, b,
-                   b.Op(scene::CsgOp::kUnion, b.Op(scene::CsgOp::kUnion, a, c), ball));
+            // The root first: the builder is passed by value, and the order in which a call's
+            // arguments are evaluated is unspecified.
+            const int root = b.Op(scene::CsgOp::kUnion, b.Op(scene::CsgOp::kUnion, a, c), ball);
+            AddCsg(s.top, "part" + n, b, root);
         }
     int settled = 0;
     for (const Vec3& vpn : {Vec3{0.4, -0.5, -1}, Vec3{-1, 0.2, -0.3}, Vec3{0.1, 1, -0.2}}) {
@@ -741,7 +743,9 @@ TEST(FlattenBounds, CsgSolidsSettledForTheWindowKeepIt) {
         std::optional<FlatScene> reused = Flatten(s, o, d1);
         o.reuseBoundsByTranslation = false;
         std::optional<FlatScene> direct = Flatten(s, o, d2);
-        ASSERT_TRUE(reused && direct);
+        ASSERT_TRUE(reused && direct)
+            << (d1.Items().empty() ? std::string() : d1.Items()[0].Format(false)) << " / "
+            << (d2.Items().empty() ? std::string() : d2.Items()[0].Format(false));
         ASSERT_EQ(reused->solids.size(), 45u);
         EXPECT_EQ(reused->projection.deviceFromWorld.Matrix().m,
                   direct->projection.deviceFromWorld.Matrix().m);
