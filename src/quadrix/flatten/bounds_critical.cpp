@@ -48,7 +48,7 @@
 // Cost: ~10-20 µs for a capped cylinder or cone (56 vertex solves, 28 edges, 24 conics, the
 // certificate), where the interior-point method took ~1 ms. A capped cylinder whose region is its
 // bootstrap box enumerates only its own planes and B0's faces (the bootstrap box's faces lie apart
-// from the body: CriticalPoints), no vertex, one edge and six conics: about 37 % fewer
+// from the body: CriticalPoints), no vertex, one edge and six conics: about a third fewer
 // instructions for the 1,024 bodies the 10,131-body helicopter bounds itself.
 #include <algorithm>
 #include <cmath>
@@ -113,10 +113,13 @@ class CriticalPoints {
     // cons: the literals then the region's six faces (CandidateExtreme's order); `quadric` the
     // index of the quadric; artificial[j]: constraint j is a face at the search limit or of the
     // bootstrap box; apart[j]: a face of the bootstrap box, which lies apart from the body (the
-    // box holds a ball that holds the body, grown by 1e-6 of its radius: no point of such a face
-    // is within the feasibility tolerance of the body, 1e-9 of the region's diameter, so no
-    // active set including it yields a candidate, and it takes no part in the enumeration; it
-    // stays a constraint for the feasibility test and the multipliers).
+    // box holds a ball that holds the body, grown by 1e-6 of its radius, a thousand times the
+    // feasibility tolerance of 1e-9 of the region's diameter), so active sets including it yield
+    // no feasible candidate and it takes no part in the enumeration; it stays a constraint for
+    // the feasibility test and the multipliers. (Only a body with a wedge sharp enough to pass a
+    // point that far away within the tolerance of each constraint could tell: there the full
+    // enumeration would decline and the later stages decide, while this one still certifies its
+    // box, which holds the body either way.)
     CriticalPoints(std::vector<InsideFn> cons, int quadric, std::vector<char> artificial,
                    const std::vector<char>& apart, double diameter)
         : cons_(std::move(cons)),
