@@ -29,7 +29,8 @@ Box3 LiteralBox(const FlatHalfSpace& halfSpace, bool complemented) {
     return AnalyticBox(MakeInsideFn(halfSpace, complemented), &centre, &hasCentre);
 }
 
-double HalfSpaceScale(const FlatHalfSpace& hs, const Box3* literalBox) {
+double HalfSpaceScale(const FlatHalfSpace& hs, const Box3* literalBox,
+                      const double* quadricExtent) {
     if (hs.IsQuartic()) {  // the largest coordinate of its box
         const Box3 box = hs.quartic->SpaceBounds();
         double s = 0;
@@ -55,31 +56,26 @@ double HalfSpaceScale(const FlatHalfSpace& hs, const Box3* literalBox) {
     else if (bMax > 0)
         s = std::fabs(q.K()) / bMax;
     // An ellipsoid too ill-conditioned for the analytic box (LiteralBox declines it): its extent
-    // |c| + sqrt(R / λmin), c = -A⁻¹b the centre, R = -f(c). A ball scaled by 1e6 along x has
-    // λmin 1e-12 of the others and a scale of 1 from the largest coefficients, so its 1e6 extent
-    // passed 1e-3 × the search limit and was called unbounded. Eigenvalues below 1e-14 of the
-    // largest are rounding noise (a rotated cylinder; an ellipsoid that elongated is a cylinder to
-    // double precision anyway) and are left out.
-    if (aMax > 0) {
-        const double a[3][3] = {
-            {q.A(), q.D(), q.F()}, {q.D(), q.B(), q.E()}, {q.F(), q.E(), q.C()}};
-        double vals[3], vecs[3][3], off = 0;
-        SymmetricEigen(a, vals, vecs, off);
-        if (vals[0] > 1e-14 * std::fabs(vals[2])) {
-            // c = -Σ (v_i·b / λ_i) v_i, R = bᵀA⁻¹b - K = Σ (v_i·b)² / λ_i - K.
-            const double b[3] = {q.G(), q.H(), q.J()};
-            double c[3] = {0, 0, 0}, r = -q.K();
-            for (int i = 0; i < 3; ++i) {
-                const double vb = vecs[0][i] * b[0] + vecs[1][i] * b[1] + vecs[2][i] * b[2];
-                r += vb * vb / vals[i];
-                for (int j = 0; j < 3; ++j) c[j] -= vb / vals[i] * vecs[j][i];
-            }
-            const double extent = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) +
-                                  std::sqrt(std::fmax(r, 0.0) / vals[0]);
-            if (std::isfinite(extent)) s = std::fmax(s, extent);
-        }
+    // |c| + sqrt(R / λmin), c = -A⁻¹b the centre, R = -f(c) (QuadricExtent). A ball scaled by 1e6
+    // along x has λmin 1e-12 of the others and a scale of 1 from the largest coefficients, so its
+    // 1e6 extent passed 1e-3 × the search limit and was called unbounded. Eigenvalues below 1e-14
+    // of the largest are rounding noise (a rotated cylinder; an ellipsoid that elongated is a
+    // cylinder to double precision anyway) and are left out. Both come from one inside function
+    // and its eigen-decomposition (or from the LiteralCache, which made the same).
+    Box3 box;
+    double extent = 0;
+    if (literalBox && quadricExtent) {
+        box = *literalBox;
+        extent = *quadricExtent;
+    } else {
+        InsideEigen eigen;
+        const InsideFn f = MakeInsideFn(hs, false, &eigen);
+        extent = QuadricExtent(f, eigen);
+        Vec3 centre;
+        bool hasCentre;
+        box = literalBox ? *literalBox : AnalyticBox(f, &centre, &hasCentre);
     }
-    const Box3 box = literalBox ? *literalBox : LiteralBox(hs, false);
+    if (aMax > 0) s = std::fmax(s, extent);
     for (int i = 0; i < 3; ++i) {
         if (std::isfinite(box.lo[i])) s = std::fmax(s, std::fabs(box.lo[i]));
         if (std::isfinite(box.hi[i])) s = std::fmax(s, std::fabs(box.hi[i]));

@@ -133,8 +133,10 @@ Box3 LiteralBox(const FlatHalfSpace& halfSpace, bool complemented);
 
 // A length characterising where a half-space lies (distance of a plane from the origin, size and
 // position of a quadric); used by the Flattener to choose searchLimit. 0 when unknown.
-// `literalBox`, when given, is LiteralBox(halfSpace, false) already made (LiteralCache).
-double HalfSpaceScale(const FlatHalfSpace& halfSpace, const Box3* literalBox = nullptr);
+// `literalBox` and `quadricExtent`, when given, are LiteralBox(halfSpace, false) and the
+// quadric's extent already made from one inside function (LiteralCache::Entry).
+double HalfSpaceScale(const FlatHalfSpace& halfSpace, const Box3* literalBox = nullptr,
+                      const double* quadricExtent = nullptr);
 
 // Conservative bounds of the intersection of the literals. Infinite coordinates mean unbounded
 // on that side; an empty box means the set is provably empty.

@@ -26,7 +26,22 @@ struct InsideFn {
     double lamMin = 0, lamMax = 0;
 };
 
-InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented);
+// The eigen-decomposition MakeInsideFn made of a quadric's normalised A (its eigenvalue bounds
+// come from it), for the callers that need more of it (HalfSpaceScale): values ascending, unit
+// vectors as columns. Not `ok` for a plane or an A whose norm is 0 or not finite.
+struct InsideEigen {
+    bool ok = false;
+    double vals[3] = {0, 0, 0};
+    double vecs[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+};
+
+InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented, InsideEigen* eigen = nullptr);
+
+// The extent of the uncomplemented quadric's set about the origin when its normalised A is
+// positive definite beyond rounding (eigenvalues above 1e-14 of the largest): |c| + sqrt(R/λmin)
+// with c = -A⁻¹b and R = bᵀA⁻¹b - k, from f and the eigen-decomposition of its A (scale free:
+// the same for f and any positive multiple of it); 0 otherwise.
+double QuadricExtent(const InsideFn& f, const InsideEigen& eigen);
 
 double EvaluateAt(const InsideFn& f, const double p[3]);
 

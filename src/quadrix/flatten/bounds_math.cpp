@@ -12,7 +12,7 @@ namespace {
 
 // Eigenvalue bounds widened by the Gershgorin remainder and a rounding allowance relative to
 // ‖A‖ (Jacobi is backward stable: a few ulps of ‖A‖ per sweep).
-void ComputeEigenBounds(InsideFn& f) {
+void ComputeEigenBounds(InsideFn& f, InsideEigen* eigen) {
     double frob = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) frob += f.a[i][j] * f.a[i][j];
@@ -28,6 +28,13 @@ void ComputeEigenBounds(InsideFn& f) {
     }
     double vals[3], vecs[3][3], off;
     SymmetricEigen(f.a, vals, vecs, off);
+    if (eigen) {
+        eigen->ok = true;
+        for (int i = 0; i < 3; ++i) {
+            eigen->vals[i] = vals[i];
+            for (int j = 0; j < 3; ++j) eigen->vecs[i][j] = vecs[i][j];
+        }
+    }
     double safety = 64 * kEps * frob + off;
     f.lamMin = vals[0] - safety;
     f.lamMax = vals[2] + safety;
@@ -35,7 +42,8 @@ void ComputeEigenBounds(InsideFn& f) {
 
 }  // namespace
 
-InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented) {
+InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented, InsideEigen* eigen) {
+    if (eigen) *eigen = InsideEigen{};
     InsideFn f;
     double sign = complemented ? -1.0 : 1.0;
     if (hs.IsQuartic()) {
@@ -72,8 +80,22 @@ InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented) {
     f.b[1] = q.H() * s;
     f.b[2] = q.J() * s;
     f.k = q.K() * s;
-    ComputeEigenBounds(f);
+    ComputeEigenBounds(f, eigen);
     return f;
+}
+
+double QuadricExtent(const InsideFn& f, const InsideEigen& e) {
+    if (f.isPlane || !e.ok || !(e.vals[0] > 1e-14 * std::fabs(e.vals[2]))) return 0;
+    // c = -Σ (v_i·b / λ_i) v_i, R = bᵀA⁻¹b - k = Σ (v_i·b)² / λ_i - k.
+    double c[3] = {0, 0, 0}, r = -f.k;
+    for (int i = 0; i < 3; ++i) {
+        const double vb = e.vecs[0][i] * f.b[0] + e.vecs[1][i] * f.b[1] + e.vecs[2][i] * f.b[2];
+        r += vb * vb / e.vals[i];
+        for (int j = 0; j < 3; ++j) c[j] -= vb / e.vals[i] * e.vecs[j][i];
+    }
+    const double extent = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) +
+                          std::sqrt(std::fmax(r, 0.0) / e.vals[0]);
+    return std::isfinite(extent) ? extent : 0;
 }
 
 double EvaluateAt(const InsideFn& f, const double p[3]) {

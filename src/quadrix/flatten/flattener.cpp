@@ -67,7 +67,8 @@ double SceneScale(const FlatScene& flat, const ViewSetup& view, const LiteralCac
                 const FlatHalfSpace& h = flat.halfSpaces[i];
                 if (h.isClip || h.name == kSectionName) continue;
                 const LiteralCache::Entry* e = literals.Find(&h);
-                m = std::fmax(m, HalfSpaceScale(h, e ? &e->box : nullptr));
+                m = std::fmax(m,
+                              HalfSpaceScale(h, e ? &e->box : nullptr, e ? &e->extent : nullptr));
             }
             return m;
         },

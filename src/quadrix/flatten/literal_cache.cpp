@@ -21,8 +21,10 @@ LiteralCache LiteralCache::Build(std::span<const FlatHalfSpace> halfSpaces) {
                           for (std::size_t i = r.begin(); i < r.end(); ++i) {
                               if (c.slot[i] < 0) continue;
                               Entry& e = c.entries[static_cast<std::size_t>(c.slot[i])];
-                              e.fn = bounds_detail::MakeInsideFn(halfSpaces[i], false);
+                              bounds_detail::InsideEigen eigen;
+                              e.fn = bounds_detail::MakeInsideFn(halfSpaces[i], false, &eigen);
                               e.box = bounds_detail::AnalyticBox(e.fn, &e.centre, &e.hasCentre);
+                              e.extent = bounds_detail::QuadricExtent(e.fn, eigen);
                           }
                       });
     return c;

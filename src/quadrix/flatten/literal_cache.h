@@ -32,6 +32,7 @@ struct LiteralCache {
         Box3 box;                    // AnalyticBox(fn, &centre, &hasCentre)
         Vec3 centre;
         bool hasCentre = false;
+        double extent = 0;  // QuadricExtent(fn, the eigen-decomposition fn was made with)
     };
 
     // Entries for the quadric half-spaces of `halfSpaces`, made in parallel.

@@ -82,9 +82,10 @@ TEST(LiteralCache, BoxesAreBitForBitThoseMadeWithoutIt) {
         EXPECT_EQ(a.boxesPopped, b.boxesPopped);
     }
     EXPECT_GT(served, 200);  // the cache was used, not bypassed
-    // HalfSpaceScale with the cached box is the one that makes it.
+    // HalfSpaceScale with the cached box and extent is the one that makes them, bit for bit.
     for (const FlatHalfSpace& h : halfSpaces) {
         if (const LiteralCache::Entry* e = cache.Find(&h)) {
+            EXPECT_EQ(HalfSpaceScale(h, &e->box, &e->extent), HalfSpaceScale(h));
             EXPECT_EQ(HalfSpaceScale(h, &e->box), HalfSpaceScale(h));
         }
     }
