@@ -220,6 +220,18 @@ void BuildProgram(const FlatScene& scene, CsgProgram& out) {
 
 namespace {
 
+// Room in dst for all of src (a pruned program is never bigger than its source). A thread's
+// scratch program grows once to the size it needs instead of by doubling: each doubling moved the
+// nodes into fresh memory, and on the engines' worker threads (whose heaps start empty) the pages
+// of every size up to the full program were first-touched, about 2 × its size in page faults
+// (the 10,131-body helicopter: 560 faults of about 11 µs in the frame). Reserving writes nothing:
+// pages a small program does not reach are never touched.
+void ReserveFor(const CsgProgram& src, CsgProgram& dst) {
+    dst.nodes.reserve(src.nodes.size());
+    dst.children.reserve(src.children.size());
+    dst.solids.reserve(src.solids.size());
+}
+
 // One solid of PruneProgram.
 void PruneSolid(const ProgramSource& source, const ProgSolid& s, const Rect& r, CsgProgram& dst,
                 std::vector<std::int32_t>& stack, const BinView& view) {
@@ -264,6 +276,7 @@ void FillLists(std::size_t nb, std::int32_t* starts, std::vector<std::int32_t>& 
 void PruneProgram(const CsgProgram& src, const Rect& r, CsgProgram& dst,
                   std::vector<std::int32_t>& stack) {
     dst.Clear();
+    ReserveFor(src, dst);
     ProgramSource source{src};
     for (const ProgSolid& s : src.solids) PruneSolid(source, s, r, dst, stack, {});
     // Tightened zlo values may reorder the solids.
@@ -314,6 +327,7 @@ void BinProgram(const CsgProgram& src, const std::vector<Rect>& rects, bool alon
 void PruneProgram(const CsgProgram& src, const ProgramBins& bins, std::size_t bin, const Rect& r,
                   CsgProgram& dst, std::vector<std::int32_t>& stack) {
     dst.Clear();
+    ReserveFor(src, dst);
     ProgramSource source{src};
     const BinView view{&bins, bin};
     for (std::int32_t i = bins.solidStarts[bin]; i < bins.solidStarts[bin + 1]; ++i)
