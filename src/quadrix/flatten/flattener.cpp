@@ -48,6 +48,7 @@
 #include "quadrix/flatten/window_fit.h"
 #include "quadrix/lang/big_arrays.h"
 #include "quadrix/scene/light_rig.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 
@@ -60,7 +61,7 @@ constexpr double kInf = HUGE_VAL;
 // (The perspective near plane, at depth -1e4 d, would inflate it for nothing.)
 // In parallel: the largest of the half-spaces' scales is the same in any order (fmax).
 double SceneScale(const FlatScene& flat, const ViewSetup& view, const LiteralCache& literals) {
-    double s = tbb::parallel_reduce(
+    double s = ParallelReduce(
         tbb::blocked_range<std::size_t>(0, flat.halfSpaces.size(), 1024), 0.0,
         [&](const tbb::blocked_range<std::size_t>& r, double m) {
             for (std::size_t i = r.begin(); i < r.end(); ++i) {
@@ -401,18 +402,18 @@ class FlattenerImpl {
         out.exact.assign(n, 1);
         std::vector<char> searched(n, 0), tight(n, 0), done(n, 0);
         auto direct = [&](const std::vector<std::size_t>& which) {
-            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 8),
-                              [&](const tbb::blocked_range<std::size_t>& r) {
-                                  for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                                      const std::size_t i = which[j];
-                                      BoundsStats st;
-                                      out.box[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
-                                      searched[i] = st.analyticOnly == 0;
-                                      tight[i] = st.convexSolves == 0 && st.boxesPopped == 0 &&
-                                                 st.neckWideBoxes == 0;
-                                      done[i] = 1;
-                                  }
-                              });
+            ParallelFor(tbb::blocked_range<std::size_t>(0, which.size(), 8),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                            for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                const std::size_t i = which[j];
+                                BoundsStats st;
+                                out.box[i] = BodyBounds(flat, flat.bodies[i], bo, &st);
+                                searched[i] = st.analyticOnly == 0;
+                                tight[i] = st.convexSolves == 0 && st.boxesPopped == 0 &&
+                                           st.neckWideBoxes == 0;
+                                done[i] = 1;
+                            }
+                        });
         };
         auto refOf = [&](std::size_t i) { return reuse ? reuse->ref[i] : i; };
         std::vector<std::size_t> own, later;
@@ -495,11 +496,11 @@ class FlattenerImpl {
         std::vector<Norm> norms;
         lang::ReserveAdvised(norms, flat_.halfSpaces.size());
         norms.resize(flat_.halfSpaces.size());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, norms.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t h = range.begin(); h < range.end(); ++h)
-                                  NormaliseLiteral(flat_.halfSpaces[h], norms[h]);
-                          });
+        ParallelFor(tbb::blocked_range<std::size_t>(0, norms.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t h = range.begin(); h < range.end(); ++h)
+                            NormaliseLiteral(flat_.halfSpaces[h], norms[h]);
+                    });
         // A x for the normalised A of a quadric (lin: A B C D E F).
         auto mulA = [](const double* q, const Vec3& x) {
             return Vec3{q[0] * x.x + q[3] * x.y + q[5] * x.z, q[3] * x.x + q[1] * x.y + q[4] * x.z,
@@ -573,28 +574,27 @@ class FlattenerImpl {
         // Each body's group key (in parallel), then the groups in body order.
         std::vector<std::uint64_t> keys(n);
         std::vector<char> keyed(n);
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, n, 256),
-            [&](const tbb::blocked_range<std::size_t>& range) {
-                for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                    const auto& lits = flat_.bodies[i].literals;
-                    bool ok = !lits.empty();
-                    std::uint64_t key = 1469598103934665603ull;
-                    auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
-                    for (const FlatLiteral& l : lits) {
-                        const Norm& nm = norms[static_cast<std::size_t>(l.halfSpace)];
-                        ok = ok && nm.ok;
-                        mix(static_cast<std::uint64_t>(nm.plane) * 2 + l.complemented);
-                        // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched to
-                        // 1e-12 below.
-                        for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
-                            mix(static_cast<std::uint64_t>(
-                                std::llround(std::ldexp(nm.lin[k], 36))));
-                    }
-                    keys[i] = key;
-                    keyed[i] = ok;
-                }
-            });
+        ParallelFor(tbb::blocked_range<std::size_t>(0, n, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                            const auto& lits = flat_.bodies[i].literals;
+                            bool ok = !lits.empty();
+                            std::uint64_t key = 1469598103934665603ull;
+                            auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
+                            for (const FlatLiteral& l : lits) {
+                                const Norm& nm = norms[static_cast<std::size_t>(l.halfSpace)];
+                                ok = ok && nm.ok;
+                                mix(static_cast<std::uint64_t>(nm.plane) * 2 + l.complemented);
+                                // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched
+                                // to 1e-12 below.
+                                for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
+                                    mix(static_cast<std::uint64_t>(
+                                        std::llround(std::ldexp(nm.lin[k], 36))));
+                            }
+                            keys[i] = key;
+                            keyed[i] = ok;
+                        }
+                    });
         // Body i is matched against the first kCandidates bodies of its group that were not
         // matched themselves (in body order). Once a group has that many, its candidates are
         // fixed: the later bodies of the group are matched afterwards, in parallel, against the
@@ -634,11 +634,11 @@ class FlattenerImpl {
             match(i, bucket);
             if (r.ref[i] == i) bucket.push_back(i);
         }
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, later.size(), 256),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t k = range.begin(); k < range.end(); ++k)
-                                  match(later[k].first, *later[k].second);
-                          });
+        ParallelFor(tbb::blocked_range<std::size_t>(0, later.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k < range.end(); ++k)
+                            match(later[k].first, *later[k].second);
+                    });
         return r;
     }
 
@@ -717,15 +717,15 @@ class FlattenerImpl {
         }
         std::sort(bodies.begin(), bodies.end());
         bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                                  const std::size_t i = bodies[j];
-                                  boxes_.box[i] = BodyBounds(flat_, flat_.bodies[i], bo);
-                                  boxes_.exact[i] = 1;
-                                  boxes_.pad[i] = Vec3{0, 0, 0};
-                              }
-                          });
+        ParallelFor(tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                            const std::size_t i = bodies[j];
+                            boxes_.box[i] = BodyBounds(flat_, flat_.bodies[i], bo);
+                            boxes_.exact[i] = 1;
+                            boxes_.pad[i] = Vec3{0, 0, 0};
+                        }
+                    });
     }
 
     // Culling with reused boxes: a solid is dropped when its box misses the image (ToDevice,
@@ -871,7 +871,7 @@ class FlattenerImpl {
                 }
             }
         std::vector<Box3> bodyBoxes(flat.bodies.size());
-        tbb::parallel_for(
+        ParallelFor(
             tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
             [&](const tbb::blocked_range<std::size_t>& r) {
                 std::vector<BoundLiteral> lits;
@@ -1019,20 +1019,20 @@ class FlattenerImpl {
                         }
                 const std::size_t base = look.mapped.size();
                 look.mapped.resize(base + fresh.size());
-                tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fresh.size(), 512),
-                                  [&](const tbb::blocked_range<std::size_t>& r) {
-                                      for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                                          FlatHalfSpace& h = look.mapped[base + j];
-                                          h = flat_.halfSpaces[fresh[j]];
-                                          if (h.IsQuartic())
-                                              h.TransformBy(look.dev);
-                                          else if (h.isPlane)
-                                              h.plane = h.plane.Transformed(look.dev);
-                                          else
-                                              h.quadric = h.quadric.Transformed(look.dev);
-                                          look.halfSpaces[fresh[j]] = &h;
-                                      }
-                                  });
+                ParallelFor(tbb::blocked_range<std::size_t>(0, fresh.size(), 512),
+                            [&](const tbb::blocked_range<std::size_t>& r) {
+                                for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                                    FlatHalfSpace& h = look.mapped[base + j];
+                                    h = flat_.halfSpaces[fresh[j]];
+                                    if (h.IsQuartic())
+                                        h.TransformBy(look.dev);
+                                    else if (h.isPlane)
+                                        h.plane = h.plane.Transformed(look.dev);
+                                    else
+                                        h.quadric = h.quadric.Transformed(look.dev);
+                                    look.halfSpaces[fresh[j]] = &h;
+                                }
+                            });
                 std::vector<Box3> dev = look.boxes;
                 SomeFitSolidBoxes(flat_, look.halfSpaces, look.fitClips, look.finalClips,
                                   view_.perspective ? look.fit.k * view_.d : 0.0,
@@ -1217,29 +1217,29 @@ class FlattenerImpl {
         Transform dev =
             Transform::Translate({fit.ox, fit.oy, 0}) * Transform::Scale({fit.k, fit.k, fit.k});
         // Each half-space and each body box on its own: in parallel.
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flat.halfSpaces.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                                  FlatHalfSpace& h = flat.halfSpaces[i];
-                                  if (h.IsQuartic()) {
-                                      h.TransformBy(dev);
-                                  } else if (h.isPlane) {
-                                      h.plane = h.plane.Transformed(dev);
-                                      RescaleCoefficients(h.plane);
-                                  } else {
-                                      h.quadric = h.quadric.Transformed(dev);
-                                      RescaleCoefficients(h.quadric);
-                                  }
-                              }
-                          });
+        ParallelFor(tbb::blocked_range<std::size_t>(0, flat.halfSpaces.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                            FlatHalfSpace& h = flat.halfSpaces[i];
+                            if (h.IsQuartic()) {
+                                h.TransformBy(dev);
+                            } else if (h.isPlane) {
+                                h.plane = h.plane.Transformed(dev);
+                                RescaleCoefficients(h.plane);
+                            } else {
+                                h.quadric = h.quadric.Transformed(dev);
+                                RescaleCoefficients(h.quadric);
+                            }
+                        }
+                    });
         std::vector<Box3> devBodies(bodyBoxes.size());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodyBoxes.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                                  devBodies[i] = MapBox(fit, bodyBoxes[i]);
-                                  flat.bodies[i].bounds = devBodies[i];
-                              }
-                          });
+        ParallelFor(tbb::blocked_range<std::size_t>(0, bodyBoxes.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                            devBodies[i] = MapBox(fit, bodyBoxes[i]);
+                            flat.bodies[i].bounds = devBodies[i];
+                        }
+                    });
         std::vector<Box3> nodes = TreeBounds(flat, devBodies);
         for (std::size_t i = 0; i < nodes.size(); ++i) flat.nodes[i].bounds = nodes[i];
         Box3 image{{0, 0, -kInf}, {double(flat.width), double(flat.height), kInf}};

@@ -5,6 +5,8 @@
 
 #include <functional>
 
+#include "quadrix/util/parallel.h"
+
 namespace quadrix {
 
 LiteralCache LiteralCache::Build(std::span<const FlatHalfSpace> halfSpaces) {
@@ -16,17 +18,17 @@ LiteralCache LiteralCache::Build(std::span<const FlatHalfSpace> halfSpaces) {
     for (std::size_t i = 0; i < halfSpaces.size(); ++i)
         if (halfSpaces[i].IsQuadric()) c.slot[i] = n++;
     c.entries.resize(static_cast<std::size_t>(n));
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, halfSpaces.size(), 512),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                              if (c.slot[i] < 0) continue;
-                              Entry& e = c.entries[static_cast<std::size_t>(c.slot[i])];
-                              bounds_detail::InsideEigen eigen;
-                              e.fn = bounds_detail::MakeInsideFn(halfSpaces[i], false, &eigen);
-                              e.box = bounds_detail::AnalyticBox(e.fn, &e.centre, &e.hasCentre);
-                              e.extent = bounds_detail::QuadricExtent(e.fn, eigen);
-                          }
-                      });
+    ParallelFor(tbb::blocked_range<std::size_t>(0, halfSpaces.size(), 512),
+                [&](const tbb::blocked_range<std::size_t>& r) {
+                    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        if (c.slot[i] < 0) continue;
+                        Entry& e = c.entries[static_cast<std::size_t>(c.slot[i])];
+                        bounds_detail::InsideEigen eigen;
+                        e.fn = bounds_detail::MakeInsideFn(halfSpaces[i], false, &eigen);
+                        e.box = bounds_detail::AnalyticBox(e.fn, &e.centre, &e.hasCentre);
+                        e.extent = bounds_detail::QuadricExtent(e.fn, eigen);
+                    }
+                });
     return c;
 }
 

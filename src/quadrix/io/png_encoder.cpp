@@ -14,6 +14,7 @@
 
 #include "quadrix/frame/frame.h"
 #include "quadrix/io/phase_times.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 
@@ -200,7 +201,7 @@ std::string EncodePng(const PngRaster& r, std::FILE* out) {
         static_cast<int>(std::clamp<std::size_t>((128u << 10) / (rowBytes + 1), 1, 1u << 14));
     const int strips = (r.height + rowsPerStrip - 1) / rowsPerStrip;
     std::vector<Strip> s(static_cast<std::size_t>(strips));
-    tbb::parallel_for(0, strips, [&](int k) {
+    ParallelFor(0, strips, [&](int k) {
         const int y0 = k * rowsPerStrip, y1 = std::min(r.height, y0 + rowsPerStrip);
         CompressStrip(r, rowBytes, y0, y1, k + 1 == strips, s[static_cast<std::size_t>(k)]);
     });

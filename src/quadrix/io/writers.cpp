@@ -23,6 +23,7 @@
 #include "quadrix/io/phase_times.h"
 #include "quadrix/io/png_encoder.h"
 #include "quadrix/math/srgb.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 
@@ -239,11 +240,11 @@ std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
     // The samples encoded in parallel, then the header and the samples in one writev.
     std::vector<std::uint8_t> encoded(source.pixels.size());
     SrgbPairTable();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, encoded.size(), 1 << 18),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          EncodeSrgbRow(source.pixels.data() + r.begin(),
-                                        encoded.data() + r.begin(), r.size());
-                      });
+    ParallelFor(tbb::blocked_range<std::size_t>(0, encoded.size(), 1 << 18),
+                [&](const tbb::blocked_range<std::size_t>& r) {
+                    EncodeSrgbRow(source.pixels.data() + r.begin(), encoded.data() + r.begin(),
+                                  r.size());
+                });
     MarkPhase("encode");  // io/phase_times.h
     if (std::fflush(f.stream()) != 0) return fmt::format("cannot write '{}'", f.path());
     const int fd = fileno(f.stream());

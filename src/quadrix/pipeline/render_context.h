@@ -137,7 +137,9 @@ inline constexpr CounterDecl kCompositionCounters[] = {
 
 class RenderContext {
   public:
-    // threads: 0 = all hardware threads.
+    // threads: 0 = chosen at each Flatten: inline for a small job (at most 128 × 128 pixels and
+    // a small scene), else all hardware threads; 1 = inline, without oneTBB (util/parallel.h:
+    // its start costs 2-3.5 ms); n = an arena of n threads.
     explicit RenderContext(int threads = 0);
     ~RenderContext();
     RenderContext(const RenderContext&) = delete;
@@ -182,6 +184,11 @@ class RenderContext {
 
     // Stage 4, in the context's arena (its threads, as stage 3).
     Image Shade(const Frame& frame, const ShadeOptions& options) const;
+
+    // Whether the context's work runs inline, on the calling thread without oneTBB (a context of
+    // one thread, or a small job chosen by Flatten), and how many threads it uses.
+    bool Inline() const;
+    int Threads() const;
 
     // Runs `work` in the context's arena, so that its parallel loops use the context's threads
     // (`--threads`) and no others: the front ends' own shading of rows (sort-first) and the

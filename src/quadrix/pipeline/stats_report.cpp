@@ -119,10 +119,10 @@ std::string FormatStatsText(const StatsInput& in) {
     const FlatScene& flat = ctx.Flat();
     std::string s = fmt::format(
         "engine {}  {}x{}  solids {}  bodies {}  half-spaces {}  covered {} px\n"
-        "read {:.3f} s  flatten {:.3f} s  render {:.3f} s  shade+write {:.3f} s\n",
+        "read {:.3f} s  flatten {:.3f} s  render {:.3f} s  shade+write {:.3f} s  threads {}{}\n",
         r.engine, in.frame->width, in.frame->height, flat.solids.size(), flat.bodies.size(),
         flat.halfSpaces.size(), in.frame->CoveredCount(), ctx.readSeconds, ctx.flattenSeconds,
-        r.seconds, in.shadeWriteSeconds);
+        r.seconds, in.shadeWriteSeconds, ctx.Threads(), ctx.Inline() ? " (inline)" : "");
     for (const auto& [path, imp] : ctx.Inputs().imports)
         s += fmt::format("{}: {}, {} solids drawn; {}{}{}\n", path, imp.format, imp.solids,
                          imp.CensusText(),

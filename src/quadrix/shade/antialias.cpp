@@ -13,6 +13,7 @@
 #include "quadrix/engines/raycast/sample_tracer.h"
 #include "quadrix/shade/row_shading.h"
 #include "quadrix/shade/shade_budget.h"
+#include "quadrix/util/parallel.h"
 #include "quadrix/util/ray_work.h"
 
 namespace quadrix {
@@ -213,7 +214,7 @@ std::vector<std::uint8_t> EdgesOn(const Frame& f, const RowLuminance& jumps,
                  la2[x], lb2[x]);
     };
     const int bands = (h + kBand - 1) / kBand;
-    tbb::parallel_for(0, bands, [&](int band) {
+    ParallelFor(0, bands, [&](int band) {
         RowLuminance::Cache cache;
         const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
         for (int y = y0; y < y1; ++y) {
@@ -221,7 +222,7 @@ std::vector<std::uint8_t> EdgesOn(const Frame& f, const RowLuminance& jumps,
             if (y + 1 < y1) vertical(y, cache);
         }
     });
-    tbb::parallel_for(1, bands, [&](int band) {
+    ParallelFor(1, bands, [&](int band) {
         RowLuminance::Cache cache;
         vertical(band * kBand - 1, cache);
     });
@@ -331,7 +332,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                        static_cast<std::uint64_t>(frame.width) *
                            static_cast<std::uint64_t>(frame.height) *
                            static_cast<std::uint64_t>(side * side));
-    tbb::parallel_for(
+    ParallelFor(
         tbb::blocked_range<int>(0, frame.height, 4), [&](const tbb::blocked_range<int>& span) {
             std::size_t local = 0;
             raycast::SampleScratch scratch(tracer);

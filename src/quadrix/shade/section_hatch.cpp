@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "quadrix/shade/row_shading.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 
@@ -121,7 +122,7 @@ std::size_t HatchSectionRowKinds(const Frame& frame, const FlatScene& scene,
     const Ratio family[2] = {HatchRatio(worldFromDevice, device, HatchAcross(*hatch, 0)),
                              HatchRatio(worldFromDevice, device, HatchAcross(*hatch, 1))};
     std::atomic<std::size_t> count{0};
-    tbb::parallel_for(tbb::blocked_range<int>(0, frame.height, 16), [&](const auto& range) {
+    ParallelFor(tbb::blocked_range<int>(0, frame.height, 16), [&](const auto& range) {
         std::size_t local = 0;
         for (int y = range.begin(); y < range.end(); ++y) {
             if (!rows.empty() && rows[static_cast<std::size_t>(y)] != kRowShaded) continue;

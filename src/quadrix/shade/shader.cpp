@@ -14,6 +14,7 @@
 #include "quadrix/shade/row_shading.h"
 #include "quadrix/shade/shade_budget.h"
 #include "quadrix/shade/shadows.h"
+#include "quadrix/util/parallel.h"
 #include "quadrix/util/ray_work.h"
 
 namespace quadrix {
@@ -393,7 +394,7 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
             }
         }
     };
-    tbb::parallel_for(tbb::blocked_range<int>(0, frame.height, 16), shadeRows);
+    ParallelFor(tbb::blocked_range<int>(0, frame.height, 16), shadeRows);
     if (options.shadows) budget.ThrowIfExhausted(scene);
     return image;
 }

@@ -13,6 +13,7 @@
 #include "quadrix/io/writers.h"
 #include "quadrix/pipeline/drawing_output.h"
 #include "quadrix/shade/section_hatch.h"
+#include "quadrix/util/parallel.h"
 #include "quadrix/viewer/edges.h"
 #include "quadrix/viewer/picking.h"
 
@@ -68,13 +69,13 @@ FrameArray<std::uint32_t> DisplayPixels(const Image& image) {
     std::uint32_t* o = out.data();
     const tbb::blocked_range<std::size_t> all(0, n, std::size_t{1} << 15);
     if (image.channels == 3 && image.pixels.size() == 3 * n) {
-        tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& r) {
+        ParallelFor(all, [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t i = r.begin(); i < r.end(); ++i)
                 o[i] = std::uint32_t{t[p[3 * i]]} << 16 | std::uint32_t{t[p[3 * i + 1]]} << 8 |
                        t[p[3 * i + 2]];
         });
     } else if (image.pixels.size() == n) {
-        tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& r) {
+        ParallelFor(all, [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t i = r.begin(); i < r.end(); ++i) o[i] = t[p[i]] * 0x010101u;
         });
     } else {

@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "quadrix/engines/isocurve/counters.h"
+#include "quadrix/util/parallel.h"
 #include "quadrix/util/seconds_since.h"
 
 namespace quadrix::isocurve {
@@ -105,7 +106,7 @@ IsocurveStats RenderFreeform(const std::vector<FreeformDrawable>& drawables,
     std::vector<Extraction> ex(drawables.size());
     // Surfaces are independent: extract them in parallel (the drawing below is sequential, so
     // the Frame and the statistics are the same for any number of threads).
-    tbb::parallel_for(std::size_t{0}, drawables.size(), [&](std::size_t i) {
+    ParallelFor(std::size_t{0}, drawables.size(), [&](std::size_t i) {
         ex[i] = ExtractFor(*drawables[i].surface, st.delta, options);
     });
     st.extractSeconds = SecondsSince(start);

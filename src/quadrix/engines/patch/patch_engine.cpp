@@ -19,6 +19,7 @@
 #include "quadrix/engines/patch/patch.h"
 #include "quadrix/engines/patch/patch_processor.h"
 #include "quadrix/engines/patch/timing_model.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 namespace {
@@ -177,7 +178,7 @@ template <class Fn>
 BandStats ForEachBand(int height, Fn&& bandFn) {
     const int bands = (height + kBandRows - 1) / kBandRows;
     std::vector<BandStats> perBand(static_cast<std::size_t>(bands));
-    tbb::parallel_for(tbb::blocked_range<int>(0, bands), [&](const tbb::blocked_range<int>& r) {
+    ParallelFor(tbb::blocked_range<int>(0, bands), [&](const tbb::blocked_range<int>& r) {
         for (int b = r.begin(); b < r.end(); ++b)
             bandFn(b * kBandRows, std::min(height, (b + 1) * kBandRows),
                    perBand[static_cast<std::size_t>(b)]);

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "quadrix/util/parallel.h"
+
 namespace quadrix::pixelpowers {
 namespace {
 
@@ -422,10 +424,10 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, Frame& f
         }
     };
     auto run = [&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
-                          [&](const tbb::blocked_range<int>& range) {
-                              for (int t = range.begin(); t < range.end(); ++t) runTile(t);
-                          });
+        ParallelFor(tbb::blocked_range<int>(0, tilesX * tilesY, 1),
+                    [&](const tbb::blocked_range<int>& range) {
+                        for (int t = range.begin(); t < range.end(); ++t) runTile(t);
+                    });
     };
     run();
     MachineCounters total;

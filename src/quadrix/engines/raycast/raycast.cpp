@@ -55,6 +55,7 @@
 #include "quadrix/engines/raycast/settings.h"
 #include "quadrix/engines/raycast/tiling.h"
 #include "quadrix/engines/raycast/worker.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 namespace raycast {
@@ -147,28 +148,27 @@ class RaycastEngine final : public Engine {
                 }
                 return;
             }
-            tbb::parallel_for(
-                tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
-                [&](const tbb::blocked_range<int>& range) {
-                    Worker& w = workers.local();
-                    w.budget = &budget;
-                    for (int k = range.begin(); k < range.end(); ++k) {
-                        int x0 = bx0 + (k % kTilesX) * kTileW;
-                        int y0 = by0 + (k / kTilesX) * kTileH;
-                        if (x0 >= bx1 || y0 >= by1) continue;
-                        if (region && !region->Intersects(x0, y0, x0 + kTileW, y0 + kTileH))
-                            continue;
-                        RenderTile(scene, tables, block, bins,
-                                   static_cast<std::size_t>((y0 - by0) / kTileH), x0, y0,
-                                   std::min(x0 + kTileW, bx1), std::min(y0 + kTileH, by1), w,
-                                   frame);
-                    }
-                });
+            ParallelFor(tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
+                        [&](const tbb::blocked_range<int>& range) {
+                            Worker& w = workers.local();
+                            w.budget = &budget;
+                            for (int k = range.begin(); k < range.end(); ++k) {
+                                int x0 = bx0 + (k % kTilesX) * kTileW;
+                                int y0 = by0 + (k / kTilesX) * kTileH;
+                                if (x0 >= bx1 || y0 >= by1) continue;
+                                if (region && !region->Intersects(x0, y0, x0 + kTileW, y0 + kTileH))
+                                    continue;
+                                RenderTile(scene, tables, block, bins,
+                                           static_cast<std::size_t>((y0 - by0) / kTileH), x0, y0,
+                                           std::min(x0 + kTileW, bx1), std::min(y0 + kTileH, by1),
+                                           w, frame);
+                            }
+                        });
         };
-        tbb::parallel_for(tbb::blocked_range<int>(0, blocksX * blocksY, 1),
-                          [&](const tbb::blocked_range<int>& range) {
-                              for (int b = range.begin(); b < range.end(); ++b) renderBlock(b);
-                          });
+        ParallelFor(tbb::blocked_range<int>(0, blocksX * blocksY, 1),
+                    [&](const tbb::blocked_range<int>& range) {
+                        for (int b = range.begin(); b < range.end(); ++b) renderBlock(b);
+                    });
 
         Counters total;
         for (const Worker& w : workers) total.Add(w.counters);

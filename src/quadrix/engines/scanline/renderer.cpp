@@ -24,6 +24,7 @@
 #include "quadrix/engines/scanline/stack_verifier.h"
 #include "quadrix/engines/scanline/vertex_processing.h"
 #include "quadrix/engines/scanline/vertex_table.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix::scanline {
 
@@ -369,7 +370,7 @@ void RenderScanlines(const FlatScene& scene, std::vector<ShowEdge>& edges,
     const int bands = (h + kBand - 1) / kBand;
     std::mutex mutex;
     // Bands run in the caller's arena (Engine::Render, the render context).
-    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
+    ParallelFor(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
         for (int b = r.begin(); b < r.end(); ++b) {
             RendererCounters local;
             ScanRenderer(scene, edges, faces, units, pixelBody, stackBody, vt, settings, frame,

@@ -1,0 +1,66 @@
+// The parallel loops of the pipeline, and a way to run them without oneTBB (issue 24: small jobs).
+//
+// oneTBB starts on its first use in a process: its governor (loading its allocator, probing for
+// other runtimes), the arena and a worker thread cost 2-3.5 ms on these machines, measured with
+// an empty task_arena::execute — more than all the work of a 64 × 64 render. A thread inside a
+// SerialScope runs ParallelFor and ParallelReduce inline over the whole range, in order, and
+// never touches oneTBB; RenderContext does so for a context of one thread (`--threads 1`, and
+// the small jobs the front ends give one thread). Every loop of the pipeline is written to give
+// the same result for any number of threads and any split of its range, so inline is one more
+// such split: the same bits.
+//
+//   ParallelFor(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {...});
+//   ParallelFor(0, n, [&](int i) {...});
+//   double m = ParallelReduce(range, 0.0, body, join);
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace quadrix {
+
+// Whether this thread's parallel loops run inline (a SerialScope is open on it).
+inline bool& SerialLoopsOnThisThread() {
+    thread_local bool serial = false;
+    return serial;
+}
+
+// While it lives, the parallel loops started by this thread run inline (nesting is allowed).
+class SerialScope {
+  public:
+    SerialScope() : before_(SerialLoopsOnThisThread()) { SerialLoopsOnThisThread() = true; }
+    ~SerialScope() { SerialLoopsOnThisThread() = before_; }
+    SerialScope(const SerialScope&) = delete;
+    SerialScope& operator=(const SerialScope&) = delete;
+
+  private:
+    bool before_;
+};
+
+template <class Range, class Body>
+void ParallelFor(const Range& range, const Body& body) {
+    if (SerialLoopsOnThisThread()) {
+        if (!range.empty()) body(range);
+        return;
+    }
+    tbb::parallel_for(range, body);
+}
+
+template <class Index, class Function>
+void ParallelFor(Index first, Index last, const Function& f) {
+    if (SerialLoopsOnThisThread()) {
+        for (Index i = first; i < last; ++i) f(i);
+        return;
+    }
+    tbb::parallel_for(first, last, f);
+}
+
+template <class Range, class Value, class Body, class Join>
+Value ParallelReduce(const Range& range, const Value& identity, const Body& body,
+                     const Join& join) {
+    if (SerialLoopsOnThisThread()) return range.empty() ? identity : body(range, identity);
+    return tbb::parallel_reduce(range, identity, body, join);
+}
+
+}  // namespace quadrix

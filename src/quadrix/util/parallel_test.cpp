@@ -1,0 +1,86 @@
+// The parallel loops (parallel.h): inside a SerialScope they run the whole range once, in order,
+// on the calling thread; outside, oneTBB splits them; nesting restores the state before.
+#include "quadrix/util/parallel.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <thread>
+#include <vector>
+
+namespace quadrix {
+namespace {
+
+TEST(ParallelLoops, ASerialScopeRunsTheWholeRangeOnceInOrderOnTheCallingThread) {
+    tbb::task_arena arena(2);
+    arena.execute([] {
+        const std::thread::id me = std::this_thread::get_id();
+        SerialScope serial;
+        int calls = 0;
+        ParallelFor(tbb::blocked_range<int>(0, 1000, 1), [&](const tbb::blocked_range<int>& r) {
+            ++calls;
+            EXPECT_EQ(r.begin(), 0);
+            EXPECT_EQ(r.end(), 1000);
+            EXPECT_EQ(std::this_thread::get_id(), me);
+        });
+        EXPECT_EQ(calls, 1);
+        std::vector<int> order;
+        ParallelFor(3, 9, [&](int i) {
+            order.push_back(i);
+            EXPECT_EQ(std::this_thread::get_id(), me);
+        });
+        EXPECT_EQ(order, (std::vector<int>{3, 4, 5, 6, 7, 8}));
+        ParallelFor(tbb::blocked_range<int>(5, 5), [&](const tbb::blocked_range<int>&) {
+            ADD_FAILURE() << "an empty range runs no body";
+        });
+        const double sum = ParallelReduce(
+            tbb::blocked_range<int>(1, 101, 1), 0.5,
+            [](const tbb::blocked_range<int>& r, double s) {
+                for (int i = r.begin(); i < r.end(); ++i) s += i;
+                return s;
+            },
+            [](double a, double b) { return a + b; });
+        EXPECT_EQ(sum, 5050.5);
+        EXPECT_EQ(ParallelReduce(
+                      tbb::blocked_range<int>(0, 0), 7,
+                      [](const tbb::blocked_range<int>&, int) { return -1; },
+                      [](int a, int b) { return a + b; }),
+                  7);
+    });
+}
+
+TEST(ParallelLoops, WithoutAScopeOneTbbSplitsTheRange) {
+    EXPECT_FALSE(SerialLoopsOnThisThread());
+    tbb::task_arena arena(2);
+    arena.execute([] {
+        std::atomic<int> calls{0}, sum{0};
+        ParallelFor(tbb::blocked_range<int>(0, 1000, 1), [&](const tbb::blocked_range<int>& r) {
+            ++calls;
+            for (int i = r.begin(); i < r.end(); ++i) sum += i;
+        });
+        EXPECT_GT(calls.load(), 1);
+        EXPECT_EQ(sum.load(), 499500);
+    });
+}
+
+TEST(ParallelLoops, ScopesNestAndRestore) {
+    EXPECT_FALSE(SerialLoopsOnThisThread());
+    {
+        SerialScope outer;
+        EXPECT_TRUE(SerialLoopsOnThisThread());
+        {
+            SerialScope inner;
+            EXPECT_TRUE(SerialLoopsOnThisThread());
+        }
+        EXPECT_TRUE(SerialLoopsOnThisThread());
+        // Another thread's loops are its own business.
+        bool other = true;
+        std::thread([&] { other = SerialLoopsOnThisThread(); }).join();
+        EXPECT_FALSE(other);
+    }
+    EXPECT_FALSE(SerialLoopsOnThisThread());
+}
+
+}  // namespace
+}  // namespace quadrix
