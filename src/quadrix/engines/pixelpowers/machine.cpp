@@ -1,7 +1,6 @@
 #include "quadrix/engines/pixelpowers/machine.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -393,10 +392,10 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, Frame& f
     int width = std::max(scene.width, 0), height = std::max(scene.height, 0);
     frame.Reset(width, height);
     int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
-    tbb::enumerable_thread_specific<Worker> workers;
+    PerThread<Worker> workers;
     const Vec3 key = KeyLight(scene);
     auto runTile = [&](int t) {
-        Worker& w = workers.local();
+        Worker& w = workers.Local();
         int x0 = (t % tilesX) * kTile, y0 = (t / tilesX) * kTile;
         int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
         ++w.counters.tiles;
@@ -431,7 +430,7 @@ MachineCounters Execute(const Program& program, const FlatScene& scene, Frame& f
     };
     run();
     MachineCounters total;
-    for (const Worker& w : workers) total.Add(w.counters);
+    workers.ForEach([&](const Worker& w) { total.Add(w.counters); });
     return total;
 }
 

@@ -37,7 +37,6 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -114,7 +113,7 @@ class RaycastEngine final : public Engine {
         int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
         constexpr int kTilesX = kBlock / kTileW, kTilesY = kBlock / kTileH;
         const Settings settings = ReadSettings(options);
-        tbb::enumerable_thread_specific<Worker> workers(&tables, full.maxDepth, settings);
+        PerThread<Worker> workers(&tables, full.maxDepth, settings);
         // A region (sort-first): the blocks and tiles outside it are skipped (Engine::Render
         // makes their pixels background); those inside are the same rectangles, pruned the same
         // way, as in a render of the whole picture, so their pixels are the same bits.
@@ -133,9 +132,9 @@ class RaycastEngine final : public Engine {
             // The block's tiles are its rows (tiling.h): its program binned over them.
             ProgramBins bins;
             BinProgram(block, TileRects(bx0, by0, bx1, by1), false, bins);
-            ++workers.local().counters.blocks;
+            ++workers.Local().counters.blocks;
             if (block.solids.empty()) {
-                workers.local().counters.pixels +=
+                workers.Local().counters.pixels +=
                     static_cast<std::uint64_t>((bx1 - bx0) * (by1 - by0));
                 if (!region) {
                     FillBackground(frame, bx0, by0, bx1, by1);
@@ -150,7 +149,7 @@ class RaycastEngine final : public Engine {
             }
             ParallelFor(tbb::blocked_range<int>(0, kTilesX * kTilesY, 1),
                         [&](const tbb::blocked_range<int>& range) {
-                            Worker& w = workers.local();
+                            Worker& w = workers.Local();
                             w.budget = &budget;
                             for (int k = range.begin(); k < range.end(); ++k) {
                                 int x0 = bx0 + (k % kTilesX) * kTileW;
@@ -171,7 +170,7 @@ class RaycastEngine final : public Engine {
                     });
 
         Counters total;
-        for (const Worker& w : workers) total.Add(w.counters);
+        workers.ForEach([&](const Worker& w) { total.Add(w.counters); });
         if (budget.Exhausted()) {
             // Name the solid of most operands (a flat union's root holds them all).
             std::size_t widest = 0;

@@ -2,7 +2,7 @@
 // programs of the current tile and sub-tile, the counters, and the phases of a sub-tile, each
 // owning its own state — tile reduction (tile_reduction.h), body batches (body_batch.h), the
 // scalar path (trace.h) and kernels (kernel.h) — plus the tile's staging copy (pixel_rows.h).
-// A Worker is made in place per thread (tbb::enumerable_thread_specific) and never copied: its
+// A Worker is made in place per thread (PerThread, util/parallel.h) and never copied: its
 // phases refer to each other and to its counters.
 #pragma once
 
