@@ -215,6 +215,9 @@ TEST(OutputFormats, JsonStatsOfEveryEngine) {
         EXPECT_EQ(j["engine"], info.name);
         EXPECT_EQ(j["width"], kW);
         EXPECT_EQ(j["height"], kH);
+        // 128 × 64 pixels of a small scene with the threads not given: run inline.
+        EXPECT_EQ(j["threads"]["count"], 1) << info.name;
+        EXPECT_EQ(j["threads"]["inline"], true) << info.name;
         ASSERT_TRUE(j["counters"].is_object()) << info.name;
         EXPECT_FALSE(j["counters"].empty()) << info.name << " reports no counters";
         for (const auto& [name, value] : j["counters"].items())

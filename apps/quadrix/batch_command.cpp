@@ -18,7 +18,9 @@ void AddBatchCommand(CLI::App& app, BatchArgs& args) {
         "batch", "Render the jobs of a file of JSON lines (docs/batch.md); runs under mpirun");
     cmd->add_option("jobfile", args.jobFile, "Job file: one JSON object per line ('-' = stdin)")
         ->required();
-    cmd->add_option("--threads", args.threads, "Worker threads per process (0 = all cores)")
+    cmd->add_option("--threads", args.threads,
+                    "Worker threads per process (0 = all cores, or inline for a picture of at "
+                    "most 128x128 pixels of a small scene; 1 = inline, without oneTBB)")
         ->check(CLI::Range(0, 1024));
     cmd->add_flag("--restart", args.restart,
                   "Render every frame again, even those whose outputs exist (default: resume)");

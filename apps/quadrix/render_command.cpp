@@ -85,7 +85,9 @@ void AddRenderCommand(CLI::App& app, RenderArgs& args) {
     cmd->add_flag("--stats", args.stats, "Print timings and engine counters to standard error");
     cmd->add_flag("--json", args.json,
                   "With --stats: the statistics as one JSON object on standard output");
-    cmd->add_option("--threads", args.threads, "Worker threads (0 = all cores)")
+    cmd->add_option("--threads", args.threads,
+                    "Worker threads (0 = all cores, or inline for a picture of at most 128x128 "
+                    "pixels of a small scene; 1 = inline, without oneTBB)")
         ->check(CLI::Range(0, 1024));
     cmd->add_option("--engine-opt", args.engineOptions,
                     "Engine-specific setting KEY=VALUE (repeatable; see docs/ for each engine)");

@@ -155,6 +155,7 @@ std::string FormatStatsJson(const StatsInput& in) {
                     {"flatten", ctx.flattenSeconds},
                     {"render", r.seconds},
                     {"shade_write", in.shadeWriteSeconds}};
+    j["threads"] = {{"count", ctx.Threads()}, {"inline", ctx.Inline()}};
     json imports = json::array();
     for (const auto& [path, imp] : ctx.Inputs().imports)
         imports.push_back({{"path", path},
