@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 
 #include "quadrix/engines/engine_limit.h"
 #include "quadrix/engines/isocurve/isocurve_engine.h"
@@ -326,9 +327,14 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     lastReusedWorld_ = worldValid_;
     std::optional<FlatScene> flat;
     if (arena_->chooses) arena_->serial = SmallJob(scene_, view.width, view.height);
-    // In the context's arena, so that its parallel steps use the threads asked for.
+    // In the context's arena, so that its parallel steps use the threads asked for. The first
+    // time, oneTBB and the arena start on another thread meanwhile: the flatten begins with its
+    // serial walk of the scene's hierarchy, and its first parallel loop joins the arena
+    // (util/parallel.h LoopArenaScope), waiting for the start if it is not done. (Started while
+    // the scene is read instead, the two contended for the process's memory map; the walk
+    // touches little fresh memory.)
     bool worldFailed = false;
-    InArena([&] {
+    auto flatten = [&] {
         if (!worldValid_ && !flattenedOnce_) {
             flat = quadrix::Flatten(scene_, fo, diags);  // the first view: in one go
             ++worldFlattens;
@@ -346,7 +352,21 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
             worldValid_ = true;
         }
         flat = FlattenView(scene_, world_, fo, diags);
-    });
+    };
+    if (arena_->serial) {
+        InArena(flatten);
+    } else {
+        struct Starter {  // joined however the flatten ends
+            std::thread thread;
+            ~Starter() {
+                if (thread.joinable()) thread.join();
+            }
+        } starter;
+        if (!arena_->arena.is_active())
+            starter.thread = std::thread([arena = &arena_->arena] { arena->initialize(); });
+        LoopArenaScope loops(&arena_->arena);
+        flatten();
+    }
     flattenSeconds = SecondsSince(t0);
     if (worldFailed || !flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);

@@ -18,6 +18,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 
 #include <optional>
 #include <utility>
@@ -42,13 +43,44 @@ class SerialScope {
     bool before_;
 };
 
+// The arena this thread's loops run in when it is in none (null: oneTBB's default), set by a
+// LoopArenaScope. RenderContext::Flatten runs the flatten under one instead of inside
+// task_arena::execute, so that its serial start (reading the scene's hierarchy) runs while
+// another thread starts oneTBB and the arena; the first loop waits for the start if it is not
+// done (task_arena's initialisation is once and thread-safe).
+inline tbb::task_arena*& LoopArenaOnThisThread() {
+    thread_local tbb::task_arena* arena = nullptr;
+    return arena;
+}
+
+class LoopArenaScope {
+  public:
+    explicit LoopArenaScope(tbb::task_arena* arena) : before_(LoopArenaOnThisThread()) {
+        LoopArenaOnThisThread() = arena;
+    }
+    ~LoopArenaScope() { LoopArenaOnThisThread() = before_; }
+    LoopArenaScope(const LoopArenaScope&) = delete;
+    LoopArenaScope& operator=(const LoopArenaScope&) = delete;
+
+  private:
+    tbb::task_arena* before_;
+};
+
+// Runs f in this thread's loop arena, or here when it has none (execute from inside the same
+// arena, as in a nested loop, runs f directly).
+template <class F>
+auto InLoopArena(const F& f) {
+    if (tbb::task_arena* arena = LoopArenaOnThisThread()) return arena->execute(f);
+    return f();
+}
+
 template <class Range, class Body>
 void ParallelFor(const Range& range, const Body& body) {
     if (SerialLoopsOnThisThread()) {
         if (!range.empty()) body(range);
         return;
     }
-    tbb::parallel_for(range, body);
+    InLoopArena([&] { tbb::parallel_for(range, body); });
 }
 
 template <class Index, class Function>
@@ -57,14 +89,14 @@ void ParallelFor(Index first, Index last, const Function& f) {
         for (Index i = first; i < last; ++i) f(i);
         return;
     }
-    tbb::parallel_for(first, last, f);
+    InLoopArena([&] { tbb::parallel_for(first, last, f); });
 }
 
 template <class Range, class Value, class Body, class Join>
 Value ParallelReduce(const Range& range, const Value& identity, const Body& body,
                      const Join& join) {
     if (SerialLoopsOnThisThread()) return range.empty() ? identity : body(range, identity);
-    return tbb::parallel_reduce(range, identity, body, join);
+    return InLoopArena([&] { return tbb::parallel_reduce(range, identity, body, join); });
 }
 
 // One T per thread of the loops that use it (an engine's scratch and counters): oneTBB's

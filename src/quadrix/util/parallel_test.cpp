@@ -64,6 +64,45 @@ TEST(ParallelLoops, WithoutAScopeOneTbbSplitsTheRange) {
     });
 }
 
+TEST(ParallelLoops, ALoopArenaScopeRunsTheLoopsInItsArena) {
+    // An arena of one thread, started on another thread meanwhile (as RenderContext::Flatten
+    // does); the default arena has two.
+    tbb::task_arena one(1);
+    std::thread starter([&] { one.initialize(); });
+    std::atomic<int> widest{0};
+    auto note = [&] {
+        const int c = tbb::this_task_arena::max_concurrency();
+        int w = widest.load();
+        while (c > w && !widest.compare_exchange_weak(w, c)) {
+        }
+    };
+    {
+        LoopArenaScope loops(&one);
+        ParallelFor(tbb::blocked_range<int>(0, 100, 1), [&](const tbb::blocked_range<int>&) {
+            note();
+            // A nested loop stays in the same arena.
+            ParallelFor(0, 4, [&](int) { note(); });
+        });
+        const int sum = ParallelReduce(
+            tbb::blocked_range<int>(0, 10, 1), 0,
+            [&](const tbb::blocked_range<int>& r, int v) {
+                note();
+                for (int i = r.begin(); i < r.end(); ++i) v += i;
+                return v;
+            },
+            [](int a, int b) { return a + b; });
+        EXPECT_EQ(sum, 45);
+    }
+    starter.join();
+    EXPECT_EQ(widest.load(), 1);
+    EXPECT_EQ(LoopArenaOnThisThread(), nullptr);
+    // Without the scope: the default arena's threads.
+    widest = 0;
+    ParallelFor(tbb::blocked_range<int>(0, 100, 1),
+                [&](const tbb::blocked_range<int>&) { note(); });
+    EXPECT_EQ(widest.load(), tbb::this_task_arena::max_concurrency());
+}
+
 TEST(ParallelLoops, ScopesNestAndRestore) {
     EXPECT_FALSE(SerialLoopsOnThisThread());
     {
