@@ -19,14 +19,26 @@ inline constexpr int kRescaleExponent = 64;
 
 // The power-of-two exponent to scale by (0 = leave as is) for a largest magnitude `big`.
 inline int RescaleExponent(double big) {
+    // The usual case first, without ilogb: ilogb(big) is in [-64, 64] exactly when big is in
+    // [2^-64, 2^65).
+    static_assert(kRescaleExponent == 64);
+    if (big >= 0x1p-64 && big < 0x1p65) return 0;
     if (!(big > 0) || !std::isfinite(big)) return 0;
     const int e = std::ilogb(big);
     return e > kRescaleExponent || e < -kRescaleExponent ? -e : 0;
 }
 
+// The largest |v| of the values that are not NaN (0 when none is): what nested std::fmax of the
+// magnitudes gives, without a call per value.
+template <class... D>
+inline double LargestMagnitude(D... v) {
+    double big = 0;
+    ((big = std::fabs(v) > big ? std::fabs(v) : big), ...);
+    return big;
+}
+
 inline void RescaleCoefficients(Plane& p) {
-    const double big = std::fmax(std::fmax(std::fabs(p.a), std::fabs(p.b)),
-                                 std::fmax(std::fabs(p.c), std::fabs(p.d)));
+    const double big = LargestMagnitude(p.a, p.b, p.c, p.d);
     if (const int e = RescaleExponent(big); e != 0) {
         p.a = std::ldexp(p.a, e);
         p.b = std::ldexp(p.b, e);
@@ -37,7 +49,7 @@ inline void RescaleCoefficients(Plane& p) {
 
 inline void RescaleCoefficients(Quadric& q) {
     double big = 0;
-    for (double v : q.k) big = std::fmax(big, std::fabs(v));
+    for (double v : q.k) big = std::fabs(v) > big ? std::fabs(v) : big;  // NaN: left out
     if (const int e = RescaleExponent(big); e != 0)
         for (double& v : q.k) v = std::ldexp(v, e);
 }
