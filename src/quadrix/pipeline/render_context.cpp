@@ -118,9 +118,8 @@ std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
 }
 
 // A context of one thread runs its work inline, without oneTBB (util/parallel.h: its start costs
-// more than a small render); the arena is then never initialised.
-// A context whose threads were not given (0) chooses at each Flatten: inline for a small job
-// (SmallJob), else all the threads.
+// more than a small render); the arena is then never initialised. A context whose threads were
+// not given (0) chooses at each Flatten: inline for a small job (SmallJob), else all the threads.
 struct RenderContext::Arena {
     explicit Arena(int threads)
         : arena(threads > 0 ? threads : tbb::task_arena::automatic),
@@ -163,6 +162,7 @@ bool SmallJob(const scene::Scene& scene, int width, int height) {
 }
 
 }  // namespace
+
 RenderContext::~RenderContext() = default;
 
 bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {

@@ -4,8 +4,8 @@
 // other runtimes), the arena and a worker thread cost 2-3.5 ms on these machines, measured with
 // an empty task_arena::execute — more than all the work of a 64 × 64 render. A thread inside a
 // SerialScope runs ParallelFor and ParallelReduce inline over the whole range, in order, and
-// never touches oneTBB; RenderContext does so for a context of one thread (`--threads 1`, and
-// the small jobs the front ends give one thread). Every loop of the pipeline is written to give
+// never touches oneTBB; RenderContext does so for a context of one thread (`--threads 1`) and,
+// when the threads were not given, for a small job. Every loop of the pipeline is written to give
 // the same result for any number of threads and any split of its range, so inline is one more
 // such split: the same bits.
 //
