@@ -22,9 +22,16 @@ int ReferenceExponent(double big) {
 
 std::vector<double> AwkwardDoubles() {
     const double inf = std::numeric_limits<double>::infinity();
-    std::vector<double> v{0.0, -0.0, inf, -inf, std::nan(""), 1.0, -1.0,
+    std::vector<double> v{0.0,
+                          -0.0,
+                          inf,
+                          -inf,
+                          std::nan(""),
+                          1.0,
+                          -1.0,
                           std::numeric_limits<double>::denorm_min(),
-                          std::numeric_limits<double>::min(), std::numeric_limits<double>::max()};
+                          std::numeric_limits<double>::min(),
+                          std::numeric_limits<double>::max()};
     for (double edge : {0x1p-64, 0x1p65, 0x1p-65, 0x1p64}) {
         v.push_back(edge);
         v.push_back(std::nextafter(edge, 0.0));
