@@ -3,8 +3,6 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
-#include "quadrix/util/parallel.h"
-
 namespace quadrix {
 
 struct Cancellation::Active {
@@ -27,13 +25,9 @@ bool Cancellation::Run(const std::function<void()>& work) {
         if (Cancelled()) return false;
         active_ = &active;
     }
-    // One task in our context: the loops `work` starts are bound to it as their parent. Inline
-    // loops (util/parallel.h) start no task: `work` runs to its end and the answer is the flag.
-    if (SerialLoopsOnThisThread())
-        work();
-    else
-        tbb::parallel_for(
-            0, 1, [&](int) { work(); }, active.context);
+    // One task in our context: the loops `work` starts are bound to it as their parent.
+    tbb::parallel_for(
+        0, 1, [&](int) { work(); }, active.context);
     {
         std::lock_guard lock(mutex_);
         active_ = nullptr;

@@ -120,6 +120,8 @@ std::vector<std::pair<std::string, double>> RenderReport::Counters() const {
 // A context of one thread runs its work inline, without oneTBB (util/parallel.h: its start costs
 // more than a small render); the arena is then never initialised. A context whose threads were
 // not given (0) chooses at each Flatten: inline for a small job (SmallJob), else all the threads.
+// A cancellable context (the viewer's) always goes through the arena: oneTBB stops a cancelled
+// loop between its tasks, an inline loop only at its end (RenderContext::Inline).
 struct RenderContext::Arena {
     explicit Arena(int threads)
         : arena(threads > 0 ? threads : tbb::task_arena::automatic),
@@ -129,8 +131,8 @@ struct RenderContext::Arena {
     bool serial;
     const bool chooses;
     template <class Work>
-    void Run(const Work& work) {
-        if (serial) {
+    void Run(bool inlineRun, const Work& work) {
+        if (inlineRun) {
             SerialScope inline_;
             work();
         } else {
@@ -353,7 +355,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
         }
         flat = FlattenView(scene_, world_, fo, diags);
     };
-    if (arena_->serial) {
+    if (Inline()) {
         InArena(flatten);
     } else {
         struct Starter {  // joined however the flatten ends
@@ -445,12 +447,7 @@ void RenderContext::StrictRefusal(const std::string& engine,
 
 bool RenderContext::Execute(const std::function<void()>& work) {
     bool done = true;
-    // Cancellable work (the viewer's) goes through the arena even for one thread: oneTBB stops
-    // a cancelled loop between its tasks, an inline loop only at its end.
-    if (cancel_)
-        arena_->arena.execute([&] { done = cancel_->Run(work); });
-    else
-        arena_->Run(work);
+    arena_->Run(Inline(), [&] { done = cancel_ ? cancel_->Run(work) : (work(), true); });
     return done;
 }
 
@@ -637,11 +634,13 @@ bool RenderContext::RenderAroundQuartics(const EngineRequest& request,
     return true;
 }
 
-bool RenderContext::Inline() const { return arena_->serial; }
+bool RenderContext::Inline() const { return arena_->serial && !cancel_; }
 
-int RenderContext::Threads() const { return arena_->serial ? 1 : arena_->arena.max_concurrency(); }
+int RenderContext::Threads() const { return Inline() ? 1 : arena_->arena.max_concurrency(); }
 
-void RenderContext::InArena(const std::function<void()>& work) const { arena_->Run(work); }
+void RenderContext::InArena(const std::function<void()>& work) const {
+    arena_->Run(Inline(), work);
+}
 
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {
     Image image;

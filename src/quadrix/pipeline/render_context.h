@@ -186,7 +186,8 @@ class RenderContext {
     Image Shade(const Frame& frame, const ShadeOptions& options) const;
 
     // Whether the context's work runs inline, on the calling thread without oneTBB (a context of
-    // one thread, or a small job chosen by Flatten), and how many threads it uses.
+    // one thread, or a small job chosen by Flatten; never with a Cancellation), and how many
+    // threads it uses.
     bool Inline() const;
     int Threads() const;
 
