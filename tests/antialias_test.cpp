@@ -22,6 +22,7 @@
 #include "quadrix/pipeline/render_context.h"
 #include "quadrix/shade/shader.h"
 #include "quadrix/shade/shadows.h"
+#include "quadrix/util/ray_work.h"
 #include "test_util.h"
 
 namespace quadrix::testing {
@@ -335,6 +336,83 @@ TEST(SampleTracer, DepthWindowsAndHintsChangeNoSample) {
         throughTheCut +=
             r.frame.surface[k] != Frame::kNone && whole.frame.depth[k] < r.frame.depth[k] - 1;
     EXPECT_GT(throughTheCut, 200);
+}
+
+// Regions change no sample (sample_tracer.h, Regions): samples traced after SetRegion, in the
+// rectangle, equal those traced without one, field by field and bit for bit, over squares of 8
+// pixels (as the anti-aliasing pass makes them), single pixels, thin strips and rectangles with
+// fractional corners, including samples on the rectangle's border. And the regions do leave out
+// literals: the machined part's samples evaluate fewer than half of them.
+TEST(SampleTracer, RegionsChangeNoSample) {
+    struct Case {
+        std::string name;
+        PipelineResult r;
+    };
+    std::vector<Case> cases;
+    for (const char* path :
+         {"examples/machined_part.uq", "examples/stack_of_bundles.uq", "examples/tube.uq"})
+        cases.push_back({path, RenderFile(path, 96, 72)});
+    cases.push_back({"wide", Render(WideScene(), 96, 72)});
+    for (Case& c : cases) {
+        const raycast::SampleTracer tracer(c.r.flat);
+        raycast::SampleScratch plain(tracer), regioned(tracer);
+        const int w = c.r.frame.width, h = c.r.frame.height;
+        std::uint64_t withRegion = 0, without = 0;
+        int covered = 0, n = 0;
+        auto check = [&](const eval::Rect& rect, double x, double y) {
+            std::uint64_t before = tRayLiterals;
+            const raycast::Sample want = tracer.Trace(x, y, plain);
+            without += tRayLiterals - before;
+            before = tRayLiterals;
+            const raycast::Sample got = tracer.Trace(x, y, regioned);
+            withRegion += tRayLiterals - before;
+            const std::string at = fmt::format("{} ({}, {}) in [{}, {}] x [{}, {}]", c.name, x, y,
+                                               rect.x0, rect.x1, rect.y0, rect.y1);
+            ASSERT_EQ(got.surface, want.surface) << at;
+            ASSERT_EQ(got.body, want.body) << at;
+            ASSERT_EQ(got.solid, want.solid) << at;
+            ASSERT_EQ(got.depth, want.depth) << at;
+            ASSERT_EQ(got.normal.x, want.normal.x) << at;
+            ASSERT_EQ(got.normal.y, want.normal.y) << at;
+            ASSERT_EQ(got.normal.z, want.normal.z) << at;
+            covered += got.Covered();
+            ++n;
+        };
+        // Squares of 8 pixels, each sampled on a 5 × 5 grid that includes its border.
+        for (int y0 = 0; y0 < h; y0 += 8)
+            for (int x0 = 0; x0 < w; x0 += 8) {
+                const eval::Rect rect{double(x0), double(std::min(w, x0 + 8)), double(y0),
+                                      double(std::min(h, y0 + 8))};
+                tracer.SetRegion(rect, regioned);
+                for (int a = 0; a <= 4; ++a)
+                    for (int b = 0; b <= 4; ++b)
+                        check(rect, rect.x0 + (rect.x1 - rect.x0) * a / 4,
+                              rect.y0 + (rect.y1 - rect.y0) * b / 4);
+            }
+        // Single pixels, strips and rectangles with fractional corners.
+        for (int k = 0; k < 400; ++k) {
+            const double x0 = std::fmod(k * 7.31, w - 3.0), y0 = std::fmod(k * 3.77, h - 3.0);
+            const double dx = k % 3 == 0 ? 1.0 : (k % 3 == 1 ? 0.01 : 2.6);
+            const double dy = k % 4 == 0 ? 1.0 : (k % 4 == 1 ? 2.3 : 0.37);
+            const eval::Rect rect{x0, x0 + dx, y0, y0 + dy};
+            tracer.SetRegion(rect, regioned);
+            for (double u : {0.0, 0.13, 0.5, 0.87, 1.0})
+                check(rect, x0 + u * dx, y0 + (1 - u) * dy);
+        }
+        EXPECT_GT(covered, n / 4) << c.name;
+        EXPECT_LE(withRegion, without) << c.name;
+        if (c.name == "examples/machined_part.uq") {
+            EXPECT_LT(2 * withRegion, without);
+        }
+        // Cleared: the samples are again traced without a region, anywhere.
+        tracer.ClearRegion(regioned);
+        for (int k = 0; k < 50; ++k) {
+            const double x = std::fmod(k * 5.3, double(w)), y = std::fmod(k * 2.9, double(h));
+            const raycast::Sample a = tracer.Trace(x, y, regioned), b = tracer.Trace(x, y, plain);
+            ASSERT_EQ(a.surface, b.surface) << c.name;
+            ASSERT_EQ(a.depth, b.depth) << c.name;
+        }
+    }
 }
 
 // Anti-aliasing changes edge pixels only, and only towards their samples' mean.

@@ -479,6 +479,24 @@ std::string BodyOfLiterals(int n) {
     return s + "body big (" + lits + ");\n";
 }
 
+// A 2 × 2 × 2 block seen end-on with n thin holes drilled along the view, all literals of one body:
+// complemented cylinders parallel to the rays, which no rectangle's reduction can drop (each holds
+// on all of a ray or none of it, tile_reduction.h), and so many holes that nearly every pixel is an
+// edge pixel.
+std::string BlockWithHoles(int n) {
+    std::string s =
+        "plane pr <1 0 0 -1>; plane pl <-1 0 0 -1>; plane pt <0 1 0 -1>; plane pb <0 -1 0 -1>;\n"
+        "plane pf <0 0 1 -1>; plane pk <0 0 -1 -1>;\n";
+    std::string lits = "pr pl pt pb pf pk";
+    for (int i = 0; i < n; ++i) {
+        const double x = std::fmod(i * 0.6180339887, 1.0) * 2 - 1, y = (i + 0.5) / n * 2 - 1;
+        s += fmt::format("quadric c{} <1 1 0 0 0 0 {:.6f} {:.6f} 0 {:.8f}>;\n", i, -x, -y,
+                         x * x + y * y - 1e-4);
+        lits += " !c" + std::to_string(i);
+    }
+    return s + "body big (" + lits + ");\nview v dop 0 0 -1;\n";
+}
+
 // n balls of radius 0.3 on a 3-D grid, unioned.
 std::string UnionOfSmallBalls(int n) {
     std::string s, u;
@@ -846,6 +864,7 @@ std::vector<BadInput> FrontEndRows() {
 std::vector<BadInput> ThirdPassRows() {
     const std::string sphere = "quadric s <1 1 1 0 0 0 0 0 0 -1>;\nbody ball (s);\n";
     const FileText big = Lazy([] { return BodyOfLiterals(20000); });
+    const FileText holes = Lazy([] { return BlockWithHoles(8000); });
     const FileText lit = Lazy([] { return BodyOfLiterals(20000) + "light l1 1 0 0 -1;\n"; });
     auto row = [](const char* name, Files files, const std::string& command,
                   const std::string& expect, const std::string& setup = {}) {
@@ -885,18 +904,25 @@ std::vector<BadInput> ThirdPassRows() {
             "pipe p.pipe -o ro.uq", R"(cannot write.*ro\.uq.*read-only)",
             "echo old > ro.uq; chmod 444 ro.uq"),
         // ---- The shading budget (shade/shade_budget.h): a body of 20,000 literals gets no
-        // default anti-aliasing or shadows (a note), and asked for, a clean error, not minutes.
+        // default anti-aliasing or shadows (a note), and asked for, a picture when the rays'
+        // work stays within the budget and a clean error, not minutes, when it does not.
         // Shadow rays from the lit side leave the convex body after a few literals: within the
         // budget, a picture.
         ok("WideBodyExplicitShadows", {{"main.uq", lit}},
            "render main.uq --shadows --aa off --size 48x48 -o out.ppm", "test -s out.ppm"),
         ok("WideBodyDefaultPicture", {{"main.uq", lit}}, "render main.uq --size 48x48 -o out.ppm",
            "test -s out.ppm"),
-        {"WideBodyExplicitAa",
-         {{"main.uq", big}},
+        // The sample rays reduce each body on the rectangle of their edge pixels
+        // (sample_tracer.h, Regions), as raycast does on its tiles: a convex body of 20,000
+        // planes costs them a few literals each, within the budget.
+        ok("WideBodyExplicitAa", {{"main.uq", big}},
+           "render main.uq --aa 4 --size 48x48 -o out.ppm", "test -s out.ppm"),
+        // Literals no reduction can drop, on nearly every pixel: past the budget.
+        {"UnreducibleBodyExplicitAa",
+         {{"main.uq", holes}},
          "--aa 4 --size 48x48",
          R"(error: anti-aliasing: the rays would evaluate more than \d+ literals.*body 'big' )"
-         R"(has 20000 literals.*--aa off)"},
+         R"(has 8006 literals.*--aa off)"},
         // ---- quadrix compare: the bounded reader, the image limits and the memory budget.
         row("CompareDevZero", {}, "compare /dev/zero /dev/zero",
             R"(error: cannot read '/dev/zero': it is larger than 256 MiB)"),

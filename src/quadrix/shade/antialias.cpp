@@ -20,33 +20,6 @@ namespace quadrix {
 
 namespace {
 
-bool Covered(const Frame& f, std::size_t k) { return f.surface[k] != Frame::kNone; }
-
-// Whether an edge separates pixels a and b (4-neighbours); a2 is the pixel beyond a and b2 the
-// one beyond b on the same line (or a and b themselves at the image border).
-bool Separated(const Frame& f, std::size_t a, std::size_t b, std::size_t a2, std::size_t b2) {
-    if (f.surface[a] != f.surface[b] || f.body[a] != f.body[b] || f.Solid(a) != f.Solid(b))
-        return true;
-    if (!Covered(f, a)) return false;  // both background
-    static const double kCos = std::cos(kCreaseDegrees * std::numbers::pi / 180);
-    if (PackedNormal::AngleExceeds(f.normal[a], f.normal[b], kCos)) return true;
-    const double za = f.depth[a], zb = f.depth[b];
-    double slope = 0;
-    if (a2 != a && f.surface[a2] == f.surface[a])
-        slope = std::max(slope, std::fabs(za - f.depth[a2]));
-    if (b2 != b && f.surface[b2] == f.surface[b])
-        slope = std::max(slope, std::fabs(f.depth[b2] - zb));
-    // The Frame's depths are floats (frame.h): a step below a few of their ulps is rounding.
-    return std::fabs(zb - za) > 4 * slope + 1e-6 * (1 + std::fabs(za));
-}
-
-void Mark(const Frame& f, std::vector<std::uint8_t>& e, std::size_t a, std::size_t b) {
-    e[a] |= kEdgePixel;
-    e[b] |= kEdgePixel;
-    // The nearer pixel carries the line; an exact tie (same depth, other ids) the first one.
-    e[f.depth[b] < f.depth[a] ? b : a] |= kEdgeLine;
-}
-
 std::uint64_t Mix(std::uint64_t z) {  // splitmix64's finaliser
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
@@ -157,8 +130,85 @@ class RowLuminance {
     double weighted_[3][256] = {};
 };
 
+// The Frame's arrays as the pair tests read them.
+struct EdgeArrays {
+    const std::int32_t* surface;
+    const std::int32_t* body;
+    const PackedNormal* normal;
+    const float* depth;
+    std::uint8_t* e;
+};
+
+// The test of one pair of 4-neighbours (a, b) (antialias.h, 1.): a2 is the pixel beyond a and b2
+// the one beyond b on the same line; hasA2 / hasB2 are false where there is none (at the image's
+// border the definition takes a2 = a, b2 = b, whose slope counts for nothing). la, lb, la2, lb2:
+// their luminances, read only when `jumps`.
+//
+// An edge separates them when their surface, body or solid differ, when their normals differ by
+// more than kCreaseDegrees, or when their depths jump. The solids need no test of their own: a
+// pixel's solid is a function of its body (Frame::Solid), so two pixels of one body are of one
+// solid. Both pixels of a separated pair get kEdgePixel, and the nearer one kEdgeLine (an exact
+// tie, other ids at the same depth: a). Otherwise, with `jumps`, a pair on one surface of one body
+// whose luminance jumps gets kEdgePixel.
+inline void PairTest(const EdgeArrays f, std::size_t a, std::size_t b, std::size_t a2,
+                     std::size_t b2, bool hasA2, bool hasB2, bool jumps, double la, double lb,
+                     double la2, double lb2, double cosLimit) {
+    const std::int32_t sa = f.surface[a];
+    bool separated = sa != f.surface[b] || f.body[a] != f.body[b];
+    if (!separated) {
+        if (sa == Frame::kNone) return;  // both background: no edge, no shading
+        if (PackedNormal::AngleExceeds(f.normal[a], f.normal[b], cosLimit)) {
+            separated = true;
+        } else {
+            const double za = f.depth[a], zb = f.depth[b];
+            double slope = 0;
+            if (hasA2 && f.surface[a2] == sa) slope = std::max(slope, std::fabs(za - f.depth[a2]));
+            if (hasB2 && f.surface[b2] == sa) slope = std::max(slope, std::fabs(f.depth[b2] - zb));
+            // The Frame's depths are floats (frame.h): a step below a few of their ulps is
+            // rounding.
+            separated = std::fabs(zb - za) > 4 * slope + 1e-6 * (1 + std::fabs(za));
+        }
+    }
+    if (separated) {
+        f.e[a] |= kEdgePixel;
+        f.e[b] |= kEdgePixel;
+        f.e[f.depth[b] < f.depth[a] ? b : a] |= kEdgeLine;
+        return;
+    }
+    // Not separated: one surface of one body (or both background, returned above).
+    if (!jumps || sa < 0) return;
+    const double d = std::fabs(lb - la);
+    const double slope = std::max(std::fabs(la - la2), std::fabs(lb2 - lb));
+    if (d > 4 * slope + 1.0 / 255) {
+        f.e[a] |= kEdgePixel;
+        f.e[b] |= kEdgePixel;
+    }
+}
+
+// The horizontal pairs of the row starting at pixel r, and the vertical pairs of the rows starting
+// at ra and rb (ra2, rb2: the rows beyond them), w pixels wide; l*: the rows' luminances. Every
+// argument by value: the result's bytes are chars, which may alias anything the loop reads
+// through memory, so nothing it needs is left there.
+void HorizontalPairs(const EdgeArrays f, const std::size_t r, const std::size_t w, const double* l,
+                     const bool jumps, const double cosLimit) {
+    for (std::size_t x = 0; x + 1 < w; ++x) {
+        const bool hasA2 = x > 0, hasB2 = x + 2 < w;
+        const std::size_t xa2 = hasA2 ? x - 1 : x, xb2 = hasB2 ? x + 2 : x + 1;
+        PairTest(f, r + x, r + x + 1, r + xa2, r + xb2, hasA2, hasB2, jumps, l[x], l[x + 1], l[xa2],
+                 l[xb2], cosLimit);
+    }
+}
+void VerticalPairs(const EdgeArrays f, const std::size_t ra, const std::size_t rb,
+                   const std::size_t ra2, const std::size_t rb2, const bool hasA2, const bool hasB2,
+                   const std::size_t w, const double* la, const double* lb, const double* la2,
+                   const double* lb2, const bool jumps, const double cosLimit) {
+    for (std::size_t x = 0; x < w; ++x)
+        PairTest(f, ra + x, rb + x, ra2 + x, rb2 + x, hasA2, hasB2, jumps, la[x], lb[x], la2[x],
+                 lb2[x], cosLimit);
+}
+
 // The edge bits of the shaded rows of `rows` (the bits of the other rows are incomplete): the
-// pairs of 4-neighbours an edge separates (Separated, Mark) and, when `jumps` is active, those of
+// pairs of 4-neighbours an edge separates (PairTest) and, when `jumps` is active, those of
 // one surface of one body whose brightness jumps (a shadow's boundary: the jump test of depths on
 // luminance, with a floor of one 8-bit level).
 //
@@ -173,45 +223,30 @@ std::vector<std::uint8_t> EdgesOn(const Frame& f, const RowLuminance& jumps,
     constexpr int kBand = 16;
     const int w = f.width, h = f.height;
     std::vector<std::uint8_t> e(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-    // la, lb, la2, lb2: the luminances of a, b, a2, b2 (unused when jumps is inactive).
-    auto pair = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2, double la,
-                    double lb, double la2, double lb2) {
-        if (Separated(f, a, b, a2, b2)) {
-            Mark(f, e, a, b);
-            return;
-        }
-        // Not separated: one surface of one body (or both background).
-        if (!jumps.Active() || f.surface[a] < 0) return;
-        const double d = std::fabs(lb - la);
-        const double slope = std::max(std::fabs(la - la2), std::fabs(lb2 - lb));
-        if (d > 4 * slope + 1.0 / 255) {
-            e[a] |= kEdgePixel;
-            e[b] |= kEdgePixel;
-        }
-    };
+    const EdgeArrays arrays{f.surface.data(), f.body.data(), f.normal.data(), f.depth.data(),
+                            e.data()};
+    static const double kCos = std::cos(kCreaseDegrees * std::numbers::pi / 180);
+    const double cosLimit = kCos;
+    const bool active = jumps.Active();
     const std::vector<double> none(static_cast<std::size_t>(w), 0.0);
     auto luminance = [&](int y, RowLuminance::Cache& cache) {
-        return jumps.Active() ? jumps.Row(y, cache) : none.data();
+        return active ? jumps.Row(y, cache) : none.data();
     };
+    const auto uw = static_cast<std::size_t>(w);
     auto horizontal = [&](int y, RowLuminance::Cache& cache) {
         if (!Shaded(rows, y)) return;
-        const double* l = luminance(y, cache);
-        for (int x = 0; x + 1 < w; ++x) {
-            const int xa2 = x > 0 ? x - 1 : x, xb2 = x + 2 < w ? x + 2 : x + 1;
-            pair(f.Index(x, y), f.Index(x + 1, y), f.Index(xa2, y), f.Index(xb2, y), l[x], l[x + 1],
-                 l[xa2], l[xb2]);
-        }
+        HorizontalPairs(arrays, f.Index(0, y), uw, luminance(y, cache), active, cosLimit);
     };
     auto vertical = [&](int y, RowLuminance::Cache& cache) {  // the pairs of rows (y, y + 1)
         if (!PairShaded(rows, y)) return;
-        const int ya2 = y > 0 ? y - 1 : y, yb2 = y + 2 < h ? y + 2 : y + 1;
+        const bool hasA2 = y > 0, hasB2 = y + 2 < h;
+        const int ya2 = hasA2 ? y - 1 : y, yb2 = hasB2 ? y + 2 : y + 1;
         const double* la2 = luminance(ya2, cache);
         const double* la = luminance(y, cache);
         const double* lb = luminance(y + 1, cache);
         const double* lb2 = luminance(yb2, cache);
-        for (int x = 0; x < w; ++x)
-            pair(f.Index(x, y), f.Index(x, y + 1), f.Index(x, ya2), f.Index(x, yb2), la[x], lb[x],
-                 la2[x], lb2[x]);
+        VerticalPairs(arrays, f.Index(0, y), f.Index(0, y + 1), f.Index(0, ya2), f.Index(0, yb2),
+                      hasA2, hasB2, uw, la, lb, la2, lb2, active, cosLimit);
     };
     const int bands = (h + kBand - 1) / kBand;
     ParallelFor(0, bands, [&](int band) {
@@ -332,38 +367,72 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                        static_cast<std::uint64_t>(frame.width) *
                            static_cast<std::uint64_t>(frame.height) *
                            static_cast<std::uint64_t>(side * side));
-    ParallelFor(
-        tbb::blocked_range<int>(0, frame.height, 4), [&](const tbb::blocked_range<int>& span) {
-            std::size_t local = 0;
-            raycast::SampleScratch scratch(tracer);
-            for (int y = span.begin(); y < span.end(); ++y) {
-                if (!Shaded(rows, y)) continue;
-                const scene::Color background = shader.Background(y, frame.height);
-                for (int x = 0; x < frame.width; ++x) {
-                    if (!(edges[frame.Index(x, y)] & kEdgePixel)) continue;
-                    if (budget.Exhausted()) break;
-                    const std::uint64_t work = tRayLiterals;
-                    ++local;
-                    double r = 0, g = 0, b = 0, wsum = 0;
-                    const double hint = DepthHint(frame, x, y);
-                    for (const SubPixel& s : SamplePositions(options.aaSamples, x, y)) {
-                        const double px = x + s.u, py = y + s.v;
-                        const raycast::Sample hit = tracer.Trace(px, py, scratch, hint);
-                        const scene::Color c = shader.At(px, py, hit.surface, hit.body, hit.depth,
-                                                         hit.normal, background);
-                        const double wgt =
-                            options.aaMitchell ? Mitchell1(s.u - 0.5) * Mitchell1(s.v - 0.5) : 1.0;
-                        r += wgt * Clamp01(c.r);
-                        g += wgt * Clamp01(c.g);
-                        b += wgt * Clamp01(c.b);
-                        wsum += wgt;
-                    }
-                    StoreColor(image, x, y, {r / wsum, g / wsum, b / wsum});
-                    budget.Spend(tRayLiterals - work);
-                }
+    // The edge pixels go by squares of kRegion × kRegion pixels: the samples of a square's edge
+    // pixels lie in the rectangle around them, on which the tracer reduces each body it meets
+    // once (SampleTracer::SetRegion; the samples are the same as pixel by pixel).
+    constexpr int kRegion = 8;
+    const int bands = (frame.height + kRegion - 1) / kRegion;
+    ParallelFor(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& span) {
+        std::size_t local = 0;
+        raycast::SampleScratch scratch(tracer);
+        auto edge = [&](int x, int y) {
+            return Shaded(rows, y) && (edges[frame.Index(x, y)] & kEdgePixel);
+        };
+        // Pixel (x, y)'s samples, shaded and filtered into the image; false once the budget is
+        // spent.
+        auto resample = [&](int x, int y, const scene::Color& background) {
+            if (budget.Exhausted()) return false;
+            const std::uint64_t work = tRayLiterals;
+            ++local;
+            double r = 0, g = 0, b = 0, wsum = 0;
+            const double hint = DepthHint(frame, x, y);
+            for (const SubPixel& s : SamplePositions(options.aaSamples, x, y)) {
+                const double px = x + s.u, py = y + s.v;
+                const raycast::Sample hit = tracer.Trace(px, py, scratch, hint);
+                const scene::Color c =
+                    shader.At(px, py, hit.surface, hit.body, hit.depth, hit.normal, background);
+                const double wgt =
+                    options.aaMitchell ? Mitchell1(s.u - 0.5) * Mitchell1(s.v - 0.5) : 1.0;
+                r += wgt * Clamp01(c.r);
+                g += wgt * Clamp01(c.g);
+                b += wgt * Clamp01(c.b);
+                wsum += wgt;
             }
-            count += local;
-        });
+            StoreColor(image, x, y, {r / wsum, g / wsum, b / wsum});
+            budget.Spend(tRayLiterals - work);
+            return true;
+        };
+        auto square = [&](int x0, int y0) {
+            const int x1 = std::min(frame.width, x0 + kRegion);
+            const int y1 = std::min(frame.height, y0 + kRegion);
+            int xlo = x1, xhi = x0 - 1, ylo = y1, yhi = y0 - 1;
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x)
+                    if (edge(x, y)) {
+                        xlo = std::min(xlo, x);
+                        xhi = std::max(xhi, x);
+                        ylo = std::min(ylo, y);
+                        yhi = std::max(yhi, y);
+                    }
+            if (xhi < xlo) return true;
+            // Sample positions are x + u, y + v with u, v in (0, 1).
+            tracer.SetRegion({static_cast<double>(xlo), static_cast<double>(xhi + 1),
+                              static_cast<double>(ylo), static_cast<double>(yhi + 1)},
+                             scratch);
+            for (int y = ylo; y <= yhi; ++y) {
+                const scene::Color background = shader.Background(y, frame.height);
+                for (int x = xlo; x <= xhi; ++x)
+                    if (edge(x, y) && !resample(x, y, background)) return false;
+            }
+            return true;
+        };
+        bool going = true;
+        for (int band = span.begin(); going && band < span.end(); ++band)
+            for (int x0 = 0; going && x0 < frame.width; x0 += kRegion)
+                going = square(x0, band * kRegion);
+        tracer.ClearRegion(scratch);
+        count += local;
+    });
     budget.ThrowIfExhausted(scene);
     stats.edgePixels = count.load();
     int k = 1;

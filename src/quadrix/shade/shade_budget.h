@@ -6,7 +6,11 @@
 // the literals of one body: a body of 10⁵ literals costs 10⁵ evaluations per sample ray, and the
 // default anti-aliasing of such a body took 17 s of CPU at 64×64 and over 100 s at 512×512 while
 // raycast drew the Frame in 0.6 s (its tile reduction drops the literals that cannot bound a
-// tile). So a pass may evaluate at most
+// tile). The sample rays now reduce each body the same way on the rectangle of the edge pixels
+// they serve (engines/raycast/sample_tracer.h, Regions), so a convex body of many planes costs them
+// a few literals each; what no rectangle can drop (planes and cylinders parallel to the rays,
+// quadric surfaces every ray of the rectangle meets) and the shadow rays, which are not reduced,
+// still cost every literal. So a pass may evaluate at most
 //     max(kShadeLiteralsFloor, kShadeLiteralsPerRay × rays)
 // literals, where `rays` is what the pass would trace were every pixel of the image an edge pixel
 // (anti-aliasing: pixels × samples) or covered (shadows: pixels × shadow-casting lights). Past it

@@ -55,6 +55,25 @@ int SampleTracer::Depth(std::int32_t n) const {
     return d;
 }
 
+void SampleTracer::SetRegion(const Rect& r, SampleScratch& scratch) const {
+    if (!scratch.region) {
+        scratch.region = std::make_unique<SampleRegion>(tables_);
+        scratch.region->bodies.resize(tables_.bodyValid.size());
+    }
+    SampleRegion& g = *scratch.region;
+    g.rect = r;
+    g.active = true;
+    g.tags.clear();
+    if (++g.stamp == 0) {  // wrapped: forget every body's stamp
+        for (SampleRegion::Body& b : g.bodies) b.stamp = 0;
+        g.stamp = 1;
+    }
+}
+
+void SampleTracer::ClearRegion(SampleScratch& scratch) const {
+    if (scratch.region) scratch.region->active = false;
+}
+
 SampleScratch::SampleScratch(const SampleTracer& tracer) {
     lists.resize(static_cast<std::size_t>(tracer.MaxDepth()) + 3);
     for (IntervalList& l : lists) slots.push_back(&l);
@@ -68,10 +87,24 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
     if (node.isLeaf) {
         const auto b = static_cast<std::size_t>(node.body);
         if (tables_.BodyVoid(b)) return;
+        const std::int32_t* tag = tables_.BodyTags(b);
+        std::size_t count = tables_.BodyTagCount(b);
+        if (s.region && s.region->active) {  // the body's literals reduced on the region
+            SampleRegion& g = *s.region;
+            SampleRegion::Body& rb = g.bodies[b];
+            if (rb.stamp != g.stamp) {
+                rb.stamp = g.stamp;
+                rb.begin = static_cast<std::int32_t>(g.tags.size());
+                rb.empty = g.reduction.ReduceLiterals(tag, count, g.rect, g.tags);
+                rb.end = static_cast<std::int32_t>(g.tags.size());
+            }
+            if (rb.empty) return;  // ∅ on every ray of the region
+            tag = g.tags.data() + rb.begin;
+            count = static_cast<std::size_t>(rb.end - rb.begin);
+        }
         out.Append(-HUGE_VAL, Interval::kNoId, HUGE_VAL, Interval::kNoId);
         LiteralCounters unused;
-        const std::int32_t* tag = tables_.BodyTags(b);
-        for (std::size_t k = 0; k < tables_.BodyTagCount(b); ++k) {
+        for (std::size_t k = 0; k < count; ++k) {
             ++tRayLiterals;  // the shading budget's count (shade/shade_budget.h)
             const Tag& t = tables_.TagOf(tag[k]);
             const RaySet set =

@@ -206,6 +206,11 @@ inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, c
     return false;
 }
 
+bool TileReduction::ReduceLiterals(const std::int32_t* tags, std::size_t n, const Rect& r,
+                                   std::vector<std::int32_t>& out) {
+    return ReduceBody(tags, n, r, out);
+}
+
 // TryFlatFill's plane test for the body of program node bodyNode on r: the tag of the one opaque
 // near plane that every kept far plane lies beyond by a margin at the four corner centres, or −1
 // when the body's kept literals are not such planes.

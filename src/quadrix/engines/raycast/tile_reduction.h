@@ -54,6 +54,15 @@ class TileReduction {
     // Once per sub-tile: each body of the sub-tile program from the strip's literals.
     void PrepareTile(const CsgProgram& program, const Rect& r);
 
+    // The same reduction for one body on any rectangle r of the image plane (the sample tracer's
+    // regions, sample_tracer.h): appends to `out` the literals of tags[0, n) (a body's, in its
+    // order) that may bound the body somewhere in r and returns false, or returns true with
+    // nothing appended when the body is provably empty on every ray of r. The proofs hold on the
+    // whole closed rectangle, not only at pixel centres: plane bounds are linear in (x, y) and
+    // ClassifyQuadric bounds the discriminant over the rectangle.
+    bool ReduceLiterals(const std::int32_t* tags, std::size_t n, const Rect& r,
+                        std::vector<std::int32_t>& out);
+
     // PrepareTile's result per node of the sub-tile program: a body's kept literals are
     // TileTags()[NodeTags(n).first, NodeTags(n).second); NodeEmpty(n): a body empty on every ray
     // of the sub-tile.
