@@ -47,6 +47,7 @@
 #include "quadrix/flatten/view_setup.h"
 #include "quadrix/flatten/window_fit.h"
 #include "quadrix/lang/big_arrays.h"
+#include "quadrix/math/round_scaled.h"
 #include "quadrix/scene/light_rig.h"
 #include "quadrix/util/parallel.h"
 
@@ -588,8 +589,7 @@ class FlattenerImpl {
                                 // Hashed on a grid of 2^-36 (the entries are in [-1, 1]); matched
                                 // to 1e-12 below.
                                 for (int k = 0; k < (nm.plane ? 3 : 6); ++k)
-                                    mix(static_cast<std::uint64_t>(
-                                        std::llround(std::ldexp(nm.lin[k], 36))));
+                                    mix(static_cast<std::uint64_t>(RoundScaled<36>(nm.lin[k])));
                             }
                             keys[i] = key;
                             keyed[i] = ok;
