@@ -14,8 +14,9 @@ namespace {
 // doubles of every magnitude down to the subnormals, exact halves and the neighbours of halves on
 // the 2^-36 grid, and the ends of the range.
 TEST(RoundScaled, IsLlroundOfLdexp) {
-    std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0x1p-37, -0x1p-37, 0x1p-36, 3 * 0x1p-37,
-                                  -3 * 0x1p-37, 0x1p-1074, -0x1p-1074, 0x1p-1022, 0.5, -0.5};
+    std::vector<double> values = {0.0,        -0.0,      1.0,         -1.0,         0x1p-37,
+                                  -0x1p-37,   0x1p-36,   3 * 0x1p-37, -3 * 0x1p-37, 0x1p-1074,
+                                  -0x1p-1074, 0x1p-1022, 0.5,         -0.5};
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     std::uniform_int_distribution<int> exponent(-1074, 0);

@@ -77,6 +77,9 @@ class SampleTracer;
 // reduced there, each the first time a sample meets the body since the rectangle was set.
 struct SampleRegion {
     explicit SampleRegion(const SceneTables& tables) : reduction(tables, Settings{}, counters) {}
+    // `reduction` refers to `counters`: never copied or moved (SampleScratch holds it by pointer).
+    SampleRegion(const SampleRegion&) = delete;
+    SampleRegion& operator=(const SampleRegion&) = delete;
     struct Body {
         std::uint32_t stamp = 0;          // reduced on the rectangle of this stamp
         bool empty = false;               // proved empty on every ray of it
