@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cmath>
+#include <tuple>
 
 #include "quadrix/math/quadric.h"
 
@@ -48,8 +49,7 @@ inline void RescaleCoefficients(Plane& p) {
 }
 
 inline void RescaleCoefficients(Quadric& q) {
-    double big = 0;
-    for (double v : q.k) big = std::fabs(v) > big ? std::fabs(v) : big;  // NaN: left out
+    const double big = std::apply([](auto... v) { return LargestMagnitude(v...); }, q.k);
     if (const int e = RescaleExponent(big); e != 0)
         for (double& v : q.k) v = std::ldexp(v, e);
 }

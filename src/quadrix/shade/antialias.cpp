@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
@@ -372,12 +373,13 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     // once (SampleTracer::SetRegion; the samples are the same as pixel by pixel).
     constexpr int kRegion = 8;
     const int bands = (frame.height + kRegion - 1) / kRegion;
+    // One scratch per thread, kept across its tasks (a region holds per-body state for the whole
+    // scene).
+    PerThread<raycast::SampleScratch> scratches(std::cref(tracer));
     ParallelFor(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& span) {
         std::size_t local = 0;
-        raycast::SampleScratch scratch(tracer);
-        auto edge = [&](int x, int y) {
-            return Shaded(rows, y) && (edges[frame.Index(x, y)] & kEdgePixel);
-        };
+        raycast::SampleScratch& scratch = scratches.Local();
+        auto edge = [&](int x, int y) { return (edges[frame.Index(x, y)] & kEdgePixel) != 0; };
         // Pixel (x, y)'s samples, shaded and filtered into the image; false once the budget is
         // spent.
         auto resample = [&](int x, int y, const scene::Color& background) {
@@ -406,7 +408,8 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             const int x1 = std::min(frame.width, x0 + kRegion);
             const int y1 = std::min(frame.height, y0 + kRegion);
             int xlo = x1, xhi = x0 - 1, ylo = y1, yhi = y0 - 1;
-            for (int y = y0; y < y1; ++y)
+            for (int y = y0; y < y1; ++y) {
+                if (!Shaded(rows, y)) continue;
                 for (int x = x0; x < x1; ++x)
                     if (edge(x, y)) {
                         xlo = std::min(xlo, x);
@@ -414,12 +417,14 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                         ylo = std::min(ylo, y);
                         yhi = std::max(yhi, y);
                     }
+            }
             if (xhi < xlo) return true;
             // Sample positions are x + u, y + v with u, v in (0, 1).
             tracer.SetRegion({static_cast<double>(xlo), static_cast<double>(xhi + 1),
                               static_cast<double>(ylo), static_cast<double>(yhi + 1)},
                              scratch);
             for (int y = ylo; y <= yhi; ++y) {
+                if (!Shaded(rows, y)) continue;
                 const scene::Color background = shader.Background(y, frame.height);
                 for (int x = xlo; x <= xhi; ++x)
                     if (edge(x, y) && !resample(x, y, background)) return false;
