@@ -160,6 +160,26 @@ TEST(ImportBrlcad, V5TreeMatricesAndInverseScale) {
     EXPECT_NEAR(im->report.bounds.hi.z, 104, 1e-9);  // Quadrix z = model y
 }
 
+TEST(ImportBrlcad, PlacementsOfOnePrimitiveAreSharedAndNamedByIndex) {
+    // One sphere used four times: twice with the identity, once with an identity written with a
+    // negative zero (equal entries: the same placement), once moved. Each distinct placement is
+    // one body, and its half-spaces are named "<primitive>.<index in the scene>".
+    std::string text =
+        "title {t}\nunits mm\n"
+        "put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n"
+        "put {r} comb region yes tree {u {u {l s} {l s}} {u {l s {1 -0 0 0  0 1 0 0  0 0 1 0  "
+        "0 0 0 1}} {l s {1 0 0 10  0 1 0 0  0 0 1 0  0 0 0 1}}}}\n";
+    auto im = Import(text, {{"r"}, false});
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    ASSERT_EQ(im->scene.top.bodies.size(), 2u);
+    ASSERT_EQ(im->scene.top.halfSpaces.size(), 2u);
+    EXPECT_EQ(im->scene.top.halfSpaces[0].id, "s.0");
+    EXPECT_EQ(im->scene.top.halfSpaces[1].id, "s.1");
+    EXPECT_TRUE(Inside(im->scene, "r", Q(0, 0, 0)));
+    EXPECT_TRUE(Inside(im->scene, "r", Q(10, 0, 0)));
+    EXPECT_FALSE(Inside(im->scene, "r", Q(5, 0, 0)));
+}
+
 TEST(ImportBrlcad, RegionBooleansAboveRegionsAreDistributed) {
     // FORMAT.md §5.2: group-level (R1 ∪ R2) − R3 → (R1 − R3) ∪ (R2 − R3), named after R1, R2.
     std::string text =

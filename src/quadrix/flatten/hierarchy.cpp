@@ -10,6 +10,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <unordered_map>
 
 #include "quadrix/flatten/coefficient_scale.h"
@@ -210,17 +212,29 @@ struct InstanceIter {
     Transform deltaK;  // delta^k
 };
 
+inline const std::string kNoPath;
+
+// a + b + c in one allocation (names are built once per body and half-space).
+std::string Joined(std::string_view a, std::string_view b, std::string_view c = {}) {
+    std::string s;
+    s.reserve(a.size() + b.size() + c.size());
+    s.append(a).append(b).append(c);
+    return s;
+}
+
 // An item of work while collecting the operands of an n-ary node.
 struct Term {
     enum class Kind { kRef, kNode, kInstanceCopy, kPopScope, kChildren };
     Kind kind = Kind::kRef;
     ScopeInst* si = nullptr;
-    SolidRef ref;                        // kRef
-    int csg = -1;                        // kNode: csg index in si->scope
-    int node = -1;                       // kNode: node index in that csg
-    std::optional<Color> color;          // innermost enclosing csg/instance color
-    scene::Finish finish;                // likewise, property by property
-    std::string path;                    // csg ids inside the scope instance, "" or "c/"
+    SolidRef ref;                // kRef
+    int csg = -1;                // kNode: csg index in si->scope
+    int node = -1;               // kNode: node index in that csg
+    std::optional<Color> color;  // innermost enclosing csg/instance color
+    scene::Finish finish;        // likewise, property by property
+    // CSG ids inside the scope instance, "" or "c/": an entry of Walker::paths_ (copying a Term
+    // copies no string).
+    const std::string* path = &kNoPath;
     std::shared_ptr<InstanceIter> iter;  // kInstanceCopy
     // kChildren: nodes of csg `csg` still to collect in this context, the next one last (the
     // right operands of a chain: 4 bytes each instead of a Term).
@@ -229,8 +243,9 @@ struct Term {
 
 class Walker {
   public:
-    Walker(const scene::Scene& scene, FlatScene& out, HierarchyResult& result, Diagnostics& diags)
-        : scene_(scene), out_(out), result_(result), diags_(diags) {}
+    Walker(const scene::Scene& scene, FlatScene& out, HierarchyResult& result, Diagnostics& diags,
+           int clipLiterals)
+        : scene_(scene), out_(out), result_(result), diags_(diags), clipLiterals_(clipLiterals) {}
 
     bool Run(const Transform& targetFromWorld) {
         worldFromTarget_ = targetFromWorld.Inverted();
@@ -254,7 +269,7 @@ class Walker {
         for (std::size_t i = 0; i < s.bodies.size() && !failed_; ++i) {
             if (s.bodies[i].usedAsOperand) continue;
             Term t = RefTerm(si, {SolidRef::Kind::kBody, int(i)}, color, finish);
-            AddSolid(t, si.path + BodyName(s.bodies[i], int(i)), s.bodies[i].loc);
+            AddSolid(t, Joined(si.path, BodyName(s.bodies[i], int(i))), s.bodies[i].loc);
         }
         for (std::size_t i = 0; i < s.instances.size() && !failed_; ++i) {
             const scene::Instance& inst = s.instances[i];
@@ -291,7 +306,7 @@ class Walker {
         for (std::size_t i = 0; i < s.csgs.size() && !failed_; ++i) {
             if (s.csgs[i].usedAsOperand) continue;
             Term t = RefTerm(si, {SolidRef::Kind::kCsg, int(i)}, color, finish);
-            AddSolid(t, si.path + CsgName(s.csgs[i], int(i)), s.csgs[i].loc);
+            AddSolid(t, Joined(si.path, CsgName(s.csgs[i], int(i))), s.csgs[i].loc);
         }
     }
 
@@ -347,7 +362,7 @@ class Walker {
             t.node = c.root;
             if (c.color) t.color = c.color;
             t.finish = scene::Finish::Over(c.finish, t.finish);
-            t.path += CsgName(c, t.csg) + "/";
+            t.path = &paths_.emplace_back(Joined(*t.path, CsgName(c, t.csg), "/"));
         }
         Fail(t.si->scope->loc, "internal error: CSG references loop");
     }
@@ -436,8 +451,11 @@ class Walker {
         int body = -1;
         std::optional<Color> color;
         scene::Finish finish;
-        std::string path;
-        bool operator==(const Subtrahend&) const = default;
+        const std::string* path = &kNoPath;  // compared by its characters
+        bool operator==(const Subtrahend& o) const {
+            return scope == o.scope && body == o.body && color == o.color && finish == o.finish &&
+                   *path == *o.path;
+        }
     };
     // Differences of one Collect that subtract the same bodies: (∪ᵢ minuendᵢ) − leaves.
     struct DifferenceGroup {
@@ -464,7 +482,7 @@ class Walker {
         for (const Subtrahend& s : key) {
             h = Mix(Mix(h, s.scope), std::uint64_t(std::uint32_t(s.body)));
             if (s.color) h = Mix(Mix(Mix(h, Bits(s.color->r)), Bits(s.color->g)), Bits(s.color->b));
-            h = Mix(h, std::hash<std::string>{}(s.path));
+            h = Mix(h, std::hash<std::string>{}(*s.path));
         }
         return h;
     }
@@ -610,7 +628,7 @@ class Walker {
         si.scope = &def;
         si.serial = nextSerial_++;
         si.t = it.parent->t * it.deltaK * inst.init;
-        si.path = CopyPath(it.parent->path + t.path, inst, it.k);
+        si.path = CopyPath(Joined(it.parent->path, *t.path), inst, it.k);
         si.hsMap.assign(def.halfSpaces.size(), -1);
         Term next = t;
         next.iter = std::make_shared<InstanceIter>(it);
@@ -643,7 +661,8 @@ class Walker {
         ScopeInst& si = *t.si;
         const scene::Body& body = si.scope->bodies[t.ref.index];
         FlatBody fb;
-        fb.literals.reserve(body.literals.size());
+        // Room for the clip literals the Flattener appends to every body.
+        fb.literals.reserve(body.literals.size() + static_cast<std::size_t>(clipLiterals_));
         for (const scene::Literal& l : body.literals) {
             int hs = HalfSpaceIndex(si, l.halfSpace, body.loc);
             if (failed_) return -1;
@@ -652,7 +671,8 @@ class Walker {
         fb.color = body.color ? *body.color : (t.color ? *t.color : Color{});
         fb.finish = scene::Finish::Over(body.finish, t.finish);
         fb.solid = currentSolid_;
-        fb.name = si.path + t.path + BodyName(body, t.ref.index);
+        fb.name = body.id.empty() ? Joined(si.path, *t.path, BodyName(body, t.ref.index))
+                                  : Joined(si.path, *t.path, body.id);
         out_.bodies.push_back(std::move(fb));
         result_.bodyLocs.push_back(body.loc);
         FlatCsgNode leaf;
@@ -693,7 +713,7 @@ class Walker {
             finite = f.quadric.AllFinite();
         }
         f.transparent = hs.transparent;
-        f.name = si.path + hs.id;
+        f.name = Joined(si.path, hs.id);
         if (!finite) {
             Fail(hs.loc, fmt::format("half-space '{}' has non-finite coefficients after its "
                                      "transforms and the view transformation",
@@ -715,6 +735,8 @@ class Walker {
     int currentSolid_ = -1;
     std::uint64_t nextSerial_ = 0;
     std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded
+    std::deque<std::string> paths_;  // Term::path strings (a deque: they stay where they are)
+    int clipLiterals_ = 0;           // HierarchyLimits::clipLiteralsPerBody
 };
 
 }  // namespace
@@ -768,7 +790,7 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
     lang::ReserveAdvised(out.bodies, out.bodies.size() + nBody);
     lang::ReserveAdvised(result.bodyLocs, result.bodyLocs.size() + nBody);
     lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);
-    Walker walker(scene, out, result, diags);
+    Walker walker(scene, out, result, diags, limits.clipLiteralsPerBody);
     return walker.Run(targetFromWorld);
 }
 

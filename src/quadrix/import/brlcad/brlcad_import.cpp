@@ -4,9 +4,12 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <set>
+#include <unordered_map>
 
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
@@ -256,6 +259,16 @@ class Converter {
         return out;
     }
 
+    // "name.n" (what fmt::format("{}.{}", name, n) makes) in one allocation.
+    static std::string NumberedId(const std::string& name, std::size_t n) {
+        char digits[24];
+        const auto end = std::to_chars(digits, digits + sizeof digits, n).ptr;
+        std::string id;
+        id.reserve(name.size() + 1 + static_cast<std::size_t>(end - digits));
+        id.append(name).append(1, '.').append(digits, end);
+        return id;
+    }
+
     int Leaf(int primIndex, const Mat4& pathMatrix, const SourceLoc& refLoc) {
         const Primitive& p = db_.primitives[primIndex];
         if (!converted_[primIndex]) converted_[primIndex] = ConvertPrimitive(p);
@@ -311,7 +324,7 @@ class Converter {
             body.usedAsOperand = true;
             for (const ShapeHalfSpace& h : sb) {
                 scene::HalfSpace hs;
-                hs.id = fmt::format("{}.{}", p.name, scene_.top.halfSpaces.size());
+                hs.id = NumberedId(p.name, scene_.top.halfSpaces.size());
                 hs.loc = p.loc;
                 hs.transparent = h.transparent;
                 SetSceneSurface(Placed(h, *t), hs);
@@ -628,7 +641,24 @@ class Converter {
     };
     std::vector<Missing> missing_;  // reached, not drawable, in the order they were reached
     std::set<std::string> warnedMissing_;
-    std::map<std::array<double, 17>, int> leafCache_;
+    // A primitive under a placement (the 16 entries of the total matrix, then the primitive's
+    // index) to its leaf. Keys are equal when their entries compare equal (-0 = +0); they are
+    // finite (Normalised, Transform::FromMatrix).
+    using LeafKey = std::array<double, 17>;
+    struct LeafKeyHash {
+        std::size_t operator()(const LeafKey& k) const {
+            std::uint64_t h = 0x243f6a8885a308d3ULL;
+            for (double x : k) {
+                const double y = x + 0.0;  // -0 and +0 hash alike, as they compare equal
+                std::uint64_t u;
+                std::memcpy(&u, &y, sizeof u);
+                h = (h ^ u) * 0x100000001b3ULL;
+                h ^= h >> 29;
+            }
+            return static_cast<std::size_t>(h);
+        }
+    };
+    std::unordered_map<LeafKey, int, LeafKeyHash> leafCache_;
     std::string refParent_;
     std::size_t emitted_ = 0;
     bool aborted_ = false;
