@@ -267,6 +267,41 @@ TEST(SampleTracer, BoxTreesChangeNoSampleAndNoShadow) {
     EXPECT_GT(lit, 30);
 }
 
+// The wide-node trees are made once per flat scene and shared (RenderContext::Shade keeps them
+// for the shadow rays and the samples): the picture with shadows and anti-aliasing is the one made
+// with trees of its own and the one made without trees, again from the kept trees, and after the
+// scene is flattened anew (another size: other bounds) the one a fresh context makes, so the
+// trees of the earlier flat scene are not used for it.
+TEST(SampleTracer, SharedWideTreesChangeNoPicture) {
+    InputRequest in;
+    in.text = WideScene();
+    ShadeOptions so;
+    so.shadows = true;
+    so.aaSamples = 4;
+    ShadeOptions plain = so;
+    plain.spatialIndex = false;
+    RenderContext ctx;
+    Frame frame;
+    Diagnostics diags;
+    ASSERT_TRUE(RenderToFrame(ctx, in, 120, 90, frame, diags));
+    const Image shared = ctx.Shade(frame, so);
+    EXPECT_EQ(shared.pixels, ctx.Shade(frame, so).pixels);  // the kept trees
+    Image own = Shade(frame, ctx.Flat(), so);
+    Antialias(frame, ctx.Flat(), so, own);
+    EXPECT_EQ(shared.pixels, own.pixels);
+    EXPECT_EQ(shared.pixels, ctx.Shade(frame, plain).pixels);
+    Frame other;
+    ASSERT_TRUE(RenderToFrame(ctx, in, 96, 128, other, diags));
+    RenderContext fresh;
+    Frame again;
+    ASSERT_TRUE(RenderToFrame(fresh, in, 96, 128, again, diags));
+    const Image second = ctx.Shade(other, so);
+    EXPECT_EQ(second.pixels, fresh.Shade(again, so).pixels);
+    EXPECT_EQ(second.pixels, ctx.Shade(other, plain).pixels);
+    std::set<std::uint8_t> values(second.pixels.begin(), second.pixels.end());
+    EXPECT_GT(values.size(), 20u);  // shaded, with shadows and edges
+}
+
 // The sample tracer's depth windows (sample_tracer.h) and its depth hint change no sample: a
 // cluster of 300 spheres of many sizes minus a drill, cut by a transparent front clipping plane (so
 // rays also enter through a transparent face, whose interval's visible end is its far one), traced

@@ -112,11 +112,21 @@ BoxTree::HalfLineView::Probe BoxTree::HalfLineView::At(const Vec3& p) const {
 void BoxTree::Build(std::int32_t self, std::vector<std::int32_t>& items, std::size_t lo,
                     std::size_t hi, const std::vector<Box3>& boxes,
                     const std::vector<Vec3>& centres) {
+    // The union of the items' boxes and the spread of their centres, by comparisons: every box
+    // here is Ordered (no NaN), where Box3::Extend's fmin/fmax are library calls (a tenth of the
+    // shading of 10,000 spheres went into building three trees). Equal values, ±0 aside, which
+    // every test of the tree compares as equal.
     Box3 box, spread;
     for (std::size_t i = lo; i < hi; ++i) {
         const auto k = static_cast<std::size_t>(items[i]);
-        box.Extend(boxes[k]);
-        spread.Extend(centres[k]);
+        const Box3& b = boxes[k];
+        const Vec3& c = centres[k];
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = b.lo[a] < box.lo[a] ? b.lo[a] : box.lo[a];
+            box.hi[a] = b.hi[a] > box.hi[a] ? b.hi[a] : box.hi[a];
+            spread.lo[a] = c[a] < spread.lo[a] ? c[a] : spread.lo[a];
+            spread.hi[a] = c[a] > spread.hi[a] ? c[a] : spread.hi[a];
+        }
     }
     nodes_[static_cast<std::size_t>(self)].box = box;
     if (hi - lo <= static_cast<std::size_t>(kLeafSize)) {

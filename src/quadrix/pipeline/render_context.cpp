@@ -372,6 +372,10 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     flattenSeconds = SecondsSince(t0);
     if (worldFailed || !flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);
+    {
+        const std::lock_guard<std::mutex> lock(wideMutex_);
+        wideTrees_.reset();
+    }
     const std::string invalid = flat_.Validate();
     QUADRIX_CHECK(invalid.empty(), "{}", invalid);
     flatValid_ = true;
@@ -649,14 +653,22 @@ Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) cons
 }
 
 Image RenderContext::ShadeInArena(const Frame& frame, const ShadeOptions& options) const {
-    Image image = quadrix::Shade(frame, flat_, options);
+    // The wide-node trees once per flat scene, for the shadow rays and the samples.
+    std::shared_ptr<const WideNodeTrees> wide;
+    if ((options.shadows || options.aaSamples > 1) && options.spatialIndex) {
+        const std::lock_guard<std::mutex> lock(wideMutex_);
+        if (!wideTrees_)
+            wideTrees_ = std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(flat_, true));
+        wide = wideTrees_;
+    }
+    Image image = quadrix::Shade(frame, flat_, options, wide);
     // Edge pixels re-rendered by sub-pixel samples, the section's hatching
     // (shade/section_hatch.h), then the edge lines (shade/antialias.h).
     if (options.aaSamples > 1) {
         if (cancel_)
-            cancel_->Run([&] { Antialias(frame, flat_, options, image); });
+            cancel_->Run([&] { Antialias(frame, flat_, options, image, wide); });
         else
-            Antialias(frame, flat_, options, image);
+            Antialias(frame, flat_, options, image, wide);
     }
     if (options.hatch) HatchSection(frame, flat_, options, image);
     if (options.edges) DrawEdgeLines(frame, options, image);

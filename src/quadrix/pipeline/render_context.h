@@ -36,6 +36,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,7 @@
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/flatten/flattener.h"
+#include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/frame/pixel_region.h"
 #include "quadrix/import/rt_view.h"
@@ -235,6 +237,11 @@ class RenderContext {
     bool readOk_ = false;     // the last Read had no error
     FlatScene flat_;
     bool flatValid_ = false, lastReused_ = false;
+    // The box trees of flat_'s wide CSG nodes (flatten/wide_node_trees.h), made by the first
+    // Shade that needs them (shadows or anti-aliasing) and shared by its shadow rays and samples
+    // and by every later Shade of the same flat scene (the viewer's frames); dropped by Flatten.
+    mutable std::mutex wideMutex_;
+    mutable std::shared_ptr<const WideNodeTrees> wideTrees_;
     WorldScene world_;  // the kept world stage, valid with worldValid_
     bool worldValid_ = false, lastReusedWorld_ = false;
     bool flattenedOnce_ = false;  // the scene was flattened for one view (one-shot)

@@ -319,13 +319,14 @@ std::vector<SubPixel> SamplePositions(int samples, int i, int j) {
 }
 
 AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
-                         Image& image) {
-    return AntialiasRowKinds(frame, scene, options, image, {});
+                         Image& image, std::shared_ptr<const WideNodeTrees> wide) {
+    return AntialiasRowKinds(frame, scene, options, image, {}, std::move(wide));
 }
 
 AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                                  const ShadeOptions& options, Image& image,
-                                 const std::vector<std::uint8_t>& rows) {
+                                 const std::vector<std::uint8_t>& rows,
+                                 std::shared_ptr<const WideNodeTrees> wide) {
     AntialiasStats stats;
     if (options.aaSamples < 2 || frame.width == 0 || frame.height == 0) return stats;
     const auto t0 = std::chrono::steady_clock::now();
@@ -350,8 +351,10 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
         for (std::size_t k = 0; k < edges.size(); ++k)
             if (near[k]) edges[k] &= static_cast<std::uint8_t>(~kEdgePixel);
     }
-    const PixelShader shader(frame, scene, options);
-    const raycast::SampleTracer tracer(scene, options.spatialIndex);
+    if (!wide && options.spatialIndex)  // one build for the shader's shadow rays and the tracer
+        wide = std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, true));
+    const PixelShader shader(frame, scene, options, wide);
+    const raycast::SampleTracer tracer(scene, options.spatialIndex, wide);
     // The unquantised values only when the output wants them (ShadeOptions::linear; an 8-bit
     // file reads the bytes): 11 MB of floats at 1280×720 otherwise made and filled for nothing.
     if (options.linear && image.linear.size() != image.pixels.size()) {

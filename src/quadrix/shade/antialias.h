@@ -36,6 +36,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
@@ -74,8 +75,9 @@ struct AntialiasStats {
 
 // Re-renders the edge pixels of `image` (made by Shade(frame, scene, options)) with
 // options.aaSamples samples each. No-op when aaSamples < 2.
+// `wide`: the flat scene's wide-node trees (PixelShader), or null.
 AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
-                         Image& image);
+                         Image& image, std::shared_ptr<const WideNodeTrees> wide = nullptr);
 
 // Paints the kEdgeLine pixels of the Frame in options.edgeColor: exact silhouette, intersection
 // and crease lines one pixel wide, on the front side of each edge. Returns how many.

@@ -28,8 +28,13 @@ Image ShadeRows(const Frame& frame, const FlatScene& scene, const ShadeOptions& 
     const std::vector<std::uint8_t> rows =
         spans.empty() ? std::vector<std::uint8_t>(static_cast<std::size_t>(frame.height), 0)
                       : RowKinds(spans, frame.height);
-    Image image = ShadeRowKinds(frame, scene, options, rows);
-    if (options.aaSamples > 1) AntialiasRowKinds(frame, scene, options, image, rows);
+    // The wide-node trees once for both passes (PixelShader).
+    std::shared_ptr<const WideNodeTrees> wide =
+        (options.shadows || options.aaSamples > 1) && options.spatialIndex
+            ? std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, true))
+            : nullptr;
+    Image image = ShadeRowKinds(frame, scene, options, rows, wide);
+    if (options.aaSamples > 1) AntialiasRowKinds(frame, scene, options, image, rows, wide);
     if (options.hatch) HatchSectionRowKinds(frame, scene, options, image, rows);
     if (options.edges) DrawEdgeLinesRowKinds(frame, options, image, rows);
     return image;

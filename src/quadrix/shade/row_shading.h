@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
@@ -45,11 +46,14 @@ Image ShadeRows(const Frame& frame, const FlatScene& scene, const ShadeOptions& 
 
 // The row-limited forms of Shade, Antialias and DrawEdgeLines that the whole-picture ones call
 // with empty `rows` (from RowKinds).
+// `wide`: the flat scene's wide-node trees (PixelShader), or null.
 Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
-                    const std::vector<std::uint8_t>& rows);
+                    const std::vector<std::uint8_t>& rows,
+                    std::shared_ptr<const WideNodeTrees> wide = nullptr);
 AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                                  const ShadeOptions& options, Image& image,
-                                 const std::vector<std::uint8_t>& rows);
+                                 const std::vector<std::uint8_t>& rows,
+                                 std::shared_ptr<const WideNodeTrees> wide = nullptr);
 std::size_t DrawEdgeLinesRowKinds(const Frame& frame, const ShadeOptions& options, Image& image,
                                   const std::vector<std::uint8_t>& rows);
 

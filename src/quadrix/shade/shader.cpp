@@ -100,7 +100,8 @@ Reflectance ReflectanceOf(const scene::Finish& f, const ShadeOptions& o, Shading
 
 }  // namespace
 
-PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options)
+PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
+                         std::shared_ptr<const WideNodeTrees> wide)
     : scene_(scene),
       options_(options),
       model_(options.fast ? ShadingModel::kFast : options.model),
@@ -113,7 +114,7 @@ PixelShader::PixelShader(const Frame& frame, const FlatScene& scene, const Shade
     for (const scene::Light& l : scene.lights) fixedLight_.push_back(IncidentLight(l, {}));
     // The shadow rays' box trees only when there are shadows (at 100,000 bodies they take as long
     // as reading the scene).
-    if (shadows_) shadowTester_.emplace(scene, options.spatialIndex);
+    if (shadows_) shadowTester_.emplace(scene, options.spatialIndex, std::move(wide));
     const std::array<double, 4>& last = deviceFromWorld_.m[3];
     const bool affine = last[0] == 0 && last[1] == 0 && last[2] == 0 && last[3] == 1;
     for (std::size_t k = 0; k < scene.lights.size(); ++k) {
@@ -343,13 +344,15 @@ void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
 
 }  // namespace
 
-Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options) {
-    return ShadeRowKinds(frame, scene, options, {});
+Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
+            std::shared_ptr<const WideNodeTrees> wide) {
+    return ShadeRowKinds(frame, scene, options, {}, std::move(wide));
 }
 
 Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
-                    const std::vector<std::uint8_t>& kinds) {
-    const PixelShader shader(frame, scene, options);
+                    const std::vector<std::uint8_t>& kinds,
+                    std::shared_ptr<const WideNodeTrees> wide) {
+    const PixelShader shader(frame, scene, options, std::move(wide));
     // The repeat of a previous pixel's bytes (below) where the shading is local
     // (PixelShader::LocalShading), and for 8-bit output only: Image::linear would need its
     // floats repeated too, which is not worth it for the one output that reads them.

@@ -30,11 +30,13 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/flatten/wide_node_trees.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/io/image.h"
 #include "quadrix/shade/phong.h"
@@ -84,7 +86,10 @@ struct ShadeOptions {
 // per frame (the fast model's mean normals are taken from `frame`); At() is thread-safe.
 class PixelShader {
   public:
-    PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options);
+    // `wide`: the flat scene's wide-node trees for the shadow rays, made once for every pass
+    // over one flat scene (the render context keeps them); null: made here when needed.
+    PixelShader(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
+                std::shared_ptr<const WideNodeTrees> wide = nullptr);
     // What At() looks up per (surface, body) — finish, reflectance, colour — kept between calls
     // by a caller that shades runs of pixels (a row mostly repeats its neighbour's surface). One
     // per thread; defined in shader.cpp.
@@ -143,7 +148,8 @@ void StorePixel(Image& image, int x, int y, const scene::Color& c);
 // only the bytes.
 void StoreColor(Image& image, int x, int y, const scene::Color& c);
 
-Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options = {});
+Image Shade(const Frame& frame, const FlatScene& scene, const ShadeOptions& options = {},
+            std::shared_ptr<const WideNodeTrees> wide = nullptr);
 
 // Intensity of a surface with world normal n under the scene's ambient and parallel lights
 // (Lambert, before color, in [0,1]; point and spot lights, which need the surface point, are

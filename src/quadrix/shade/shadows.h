@@ -59,6 +59,7 @@
 // the eye) cast shadows.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
@@ -98,7 +99,10 @@ class ShadowTester {
   public:
     // spatialIndex = false: no box trees, every solid and child is box-tested per ray (the
     // benchmark's "before"; the answers are the same).
-    explicit ShadowTester(const FlatScene& scene, bool spatialIndex = true);
+    // `wide`: the scene's wide-node trees made once for every tracer of one flat scene
+    // (WideNodeTrees::Shared); null: made here.
+    explicit ShadowTester(const FlatScene& scene, bool spatialIndex = true,
+                          std::shared_ptr<const WideNodeTrees> wide = nullptr);
     // Nodes with more children than this get a box tree over them.
     static constexpr std::size_t kWideNode = WideNodeTrees::kWideNode;
 
@@ -163,19 +167,18 @@ class ShadowTester {
                                std::vector<IntervalList*>& slots, std::size_t k,
                                const Walk& walk) const;
     // tree.Segment(p, d, s0, s1, visit), or its view's HalfLine when `view` >= 0 (s1 = +inf):
-    // tree 0 is solids_, tree w + 1 is wide_[w].
+    // tree 0 is solids_, tree w + 1 is wide_->trees[w].
     template <class Visit>
     bool Query(std::size_t tree, int view, const Vec3& p, const Vec3& d, double s0, double s1,
                Visit&& visit) const {
-        const BoxTree& t = tree == 0 ? solids_ : wide_[tree - 1];
+        const BoxTree& t = tree == 0 ? solids_ : wide_->trees[tree - 1];
         if (view >= 0) return t.HalfLine(views_[static_cast<std::size_t>(view)][tree], p, visit);
         return t.Segment(p, d, s0, s1, visit);
     }
     const FlatScene& scene_;
-    BoxTree solids_;                    // over scene_.solids[k].bounds
-    std::vector<BoxTree> wide_;         // trees of the wide nodes
-    std::vector<std::int32_t> wideOf_;  // node → index into wide_, or -1
-    int maxDepth_ = 0;                  // the deepest node below a solid's root (root: 0)
+    BoxTree solids_;                             // over scene_.solids[k].bounds
+    std::shared_ptr<const WideNodeTrees> wide_;  // trees of the wide nodes, node → tree
+    int maxDepth_ = 0;                           // the deepest node below a solid's root (root: 0)
     // AddDirection's views: views_[id][tree], trees numbered as Query numbers them.
     std::vector<std::vector<BoxTree::HalfLineView>> views_;
 };

@@ -113,7 +113,10 @@ class SampleTracer {
   public:
     // spatialIndex = false: no box trees, every solid and child is bounds-tested per sample (the
     // benchmark's "before"; the samples are the same).
-    explicit SampleTracer(const FlatScene& scene, bool spatialIndex = true);
+    // `wide`: the scene's wide-node trees made once for every tracer of one flat scene
+    // (WideNodeTrees::Shared); null: made here.
+    explicit SampleTracer(const FlatScene& scene, bool spatialIndex = true,
+                          std::shared_ptr<const WideNodeTrees> wide = nullptr);
 
     // The visible point of the ray through device (x, y). Thread-safe with one scratch per
     // thread. depthHint: a depth the visible point probably lies before (the anti-aliasing pass
@@ -153,9 +156,8 @@ class SampleTracer {
     std::vector<std::int32_t> byDepth_;  // solid indices by nearest device depth (bounds.lo.z)
     std::vector<std::int32_t> rank_;     // solid index → its position in byDepth_
     BoxTree solidTree_;                  // over the solids' bounds
-    std::vector<BoxTree> wide_;          // trees of the wide nodes
-    std::vector<std::int32_t> wideOf_;   // node → index into wide_, or -1
-    std::vector<char> windowed_;         // per solid: traced in depth windows
+    std::shared_ptr<const WideNodeTrees> wide_;  // trees of the wide nodes, node → tree
+    std::vector<char> windowed_;                 // per solid: traced in depth windows
     int maxDepth_ = 0;
 };
 
