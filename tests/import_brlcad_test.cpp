@@ -723,6 +723,33 @@ TEST(ImportBrlcad, V5DeepTreesOnAOneMebibyteStack) {
     }
 }
 
+TEST(ImportBrlcad, V5NestedListsFindTheirBracesOnce) {
+    // Every brace of a tree is matched once (ReadWord remembers the matches it passes): the
+    // nested operands are the same words, a backslash still escapes a brace, and a brace that is
+    // never closed is reported where it opens.
+    const std::string head =
+        "title {t}\nunits mm\n"
+        "put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n"
+        "put {t\\}u} ell V {10 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n";
+    auto im = Import(head +
+                         "put {r} comb region yes tree {u {u {l s} {l t\\}u}} {u {l s {1 0 0 "
+                         "0  0 1 0 5  0 0 1 0  0 0 0 1}} {l s {1 0 0 0  0 1 0 0  0 0 1 5  0 0 0 "
+                         "1}}}}\n",
+                     {{"r"}, false});
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    EXPECT_EQ(im->report.solids, 1);  // one region of four placed spheres
+    for (const Vec3& p : {Q(0, 0, 0), Q(10, 0, 0), Q(0, 5, 0), Q(0, 0, 5)})
+        EXPECT_TRUE(Inside(im->scene, "r", p)) << p.x << " " << p.y << " " << p.z;
+    EXPECT_FALSE(Inside(im->scene, "r", Q(5, 0, 0)));
+    const std::string open = "put {r} comb region yes tree {u {l s} {u {l s} {l s}}\n";
+    auto bad = Import(head + open, {{"r"}, false});
+    EXPECT_FALSE(bad->ok);
+    const std::string where = fmt::format("test.asc:5:{}:", open.find("{u") + 1);
+    EXPECT_NE(AllMessages(bad->diags).find(where), std::string::npos) << AllMessages(bad->diags);
+    EXPECT_NE(AllMessages(bad->diags).find("unbalanced"), std::string::npos)
+        << AllMessages(bad->diags);
+}
+
 TEST(ImportBrlcad, NumbersBeyondIntAreRangeErrors) {
     // Issue 23: converted to int unchecked (UBSan float-cast-overflow).
     const std::string sphere = "title {t}\nput {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n";

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <unordered_map>
+#include <vector>
 
 #include "quadrix/import/brlcad/readers.h"
 
@@ -55,15 +57,30 @@ class V5Reader {
                   bool inList = false) {
         w.offset = base + i;
         if (t[i] == '{') {
-            int depth = 0;
-            std::size_t s = i;
-            for (; i < t.size(); ++i) {
-                if (t[i] == '\\') {
-                    ++i;
-                    continue;
+            // The matching brace: counted from here (a backslash escapes the next character),
+            // recording the match of every brace opened on the way (braceEnd_), so that the
+            // nested words List reads later find their ends at once. Without it a combination
+            // tree, a chain of nested lists, was scanned again at every level (its text times its
+            // depth: most of reading a model with long unions).
+            const std::size_t s = i;
+            const auto known = braceEnd_.find(base + s);
+            if (known != braceEnd_.end() && known->second - base < t.size()) {
+                i = known->second - base;
+            } else {
+                std::vector<std::size_t>& open = openBraces_;
+                open.clear();
+                for (; i < t.size(); ++i) {
+                    if (t[i] == '\\') {
+                        ++i;
+                        continue;
+                    }
+                    if (t[i] == '{') open.push_back(i);
+                    if (t[i] == '}' && !open.empty()) {
+                        braceEnd_[base + open.back()] = base + i;
+                        open.pop_back();
+                        if (open.empty()) break;
+                    }
                 }
-                if (t[i] == '{') ++depth;
-                if (t[i] == '}' && --depth == 0) break;
             }
             if (i >= t.size()) {
                 Error(base + s, "unbalanced '{': the brace is never closed");
@@ -671,6 +688,9 @@ class V5Reader {
     }
 
     TextMap map_;
+    // ReadWord's matches: the file offset of a '{' to that of its '}', and its scratch stack.
+    std::unordered_map<std::size_t, std::size_t> braceEnd_;
+    std::vector<std::size_t> openBraces_;
     Database& db_;
     Diagnostics& diags_;
     std::map<std::string, std::vector<std::pair<std::string, Word>>> attrs_;
