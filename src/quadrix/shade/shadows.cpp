@@ -179,13 +179,16 @@ DeviceRay DeviceShadowRay(const Mat4& deviceFromWorld, const Vec4& lightWorld, c
 
 ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex,
                            std::shared_ptr<const WideNodeTrees> wide)
-    : scene_(scene), wide_(std::move(wide)) {
+    : scene_(scene), wideTrees_(std::move(wide)) {
     std::vector<Box3> boxes;
     for (const FlatSolid& solid : scene.solids)
         boxes.push_back(scene.nodes[static_cast<std::size_t>(solid.root)].bounds);
     solids_ = BoxTree(boxes, spatialIndex);
-    if (!wide_)
-        wide_ = std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, spatialIndex));
+    if (!wideTrees_)
+        wideTrees_ =
+            std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, spatialIndex));
+    wide_ = wideTrees_->trees.data();
+    wideOf_ = wideTrees_->of.data();
     // The deepest node below a root (the root at depth 0), without recursion: a node's depth is
     // its parent's + 1, walked from every root.
     std::vector<std::pair<std::int32_t, int>> stack;
@@ -366,7 +369,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
     const bool union_ = node.op == scene::CsgOp::kUnion;
     // anyHit: the caller only asks whether the set is empty, so a union may stop at its first
     // child that meets the segment (its set is then not the whole union's, but not empty).
-    const std::int32_t wide = wide_->of[static_cast<std::size_t>(n)];
+    const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
     if (wide >= 0) {
         slots[k]->clear();
         if (node.op == scene::CsgOp::kDifference) {
@@ -432,7 +435,7 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
                 std::swap(slots[k], slots[k + 3]);
                 return false;
             };
-            const std::int32_t wide = wide_->of[static_cast<std::size_t>(n)];
+            const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
             if (wide >= 0) {
                 Query(static_cast<std::size_t>(wide) + 1, walk.view, p, d, s0, s1,
                       [&](std::int32_t i) {
@@ -447,7 +450,7 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
         std::swap(slots[k], slots[k + 2]);
         return true;
     };
-    const std::int32_t wide = wide_->of[static_cast<std::size_t>(m)];
+    const std::int32_t wide = wideOf_[static_cast<std::size_t>(m)];
     bool found = false;
     if (wide >= 0) {
         found = Query(
@@ -463,7 +466,7 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
 int ShadowTester::AddDirection(const Vec3& d) {
     std::vector<BoxTree::HalfLineView> views;
     views.push_back(solids_.ViewAlong(d));
-    for (const BoxTree& t : wide_->trees) views.push_back(t.ViewAlong(d));
+    for (const BoxTree& t : wideTrees_->trees) views.push_back(t.ViewAlong(d));
     views_.push_back(std::move(views));
     return static_cast<int>(views_.size()) - 1;
 }

@@ -167,18 +167,22 @@ class ShadowTester {
                                std::vector<IntervalList*>& slots, std::size_t k,
                                const Walk& walk) const;
     // tree.Segment(p, d, s0, s1, visit), or its view's HalfLine when `view` >= 0 (s1 = +inf):
-    // tree 0 is solids_, tree w + 1 is wide_->trees[w].
+    // tree 0 is solids_, tree w + 1 is wide_[w].
     template <class Visit>
     bool Query(std::size_t tree, int view, const Vec3& p, const Vec3& d, double s0, double s1,
                Visit&& visit) const {
-        const BoxTree& t = tree == 0 ? solids_ : wide_->trees[tree - 1];
+        const BoxTree& t = tree == 0 ? solids_ : wide_[tree - 1];
         if (view >= 0) return t.HalfLine(views_[static_cast<std::size_t>(view)][tree], p, visit);
         return t.Segment(p, d, s0, s1, visit);
     }
     const FlatScene& scene_;
-    BoxTree solids_;                             // over scene_.solids[k].bounds
-    std::shared_ptr<const WideNodeTrees> wide_;  // trees of the wide nodes, node → tree
-    int maxDepth_ = 0;                           // the deepest node below a solid's root (root: 0)
+    BoxTree solids_;  // over scene_.solids[k].bounds
+    // The trees of the wide nodes (shared, kept alive here) and, read per node visited, their
+    // arrays: wideOf_[node] = index into wide_, or -1.
+    std::shared_ptr<const WideNodeTrees> wideTrees_;
+    const BoxTree* wide_ = nullptr;
+    const std::int32_t* wideOf_ = nullptr;
+    int maxDepth_ = 0;  // the deepest node below a solid's root (root: 0)
     // AddDirection's views: views_[id][tree], trees numbered as Query numbers them.
     std::vector<std::vector<BoxTree::HalfLineView>> views_;
 };

@@ -12,7 +12,7 @@ namespace quadrix::raycast {
 
 SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex,
                            std::shared_ptr<const WideNodeTrees> wide)
-    : scene_(scene), tables_(scene), wide_(std::move(wide)) {
+    : scene_(scene), tables_(scene), wideTrees_(std::move(wide)) {
     byDepth_.resize(scene.solids.size());
     for (std::size_t s = 0; s < byDepth_.size(); ++s) byDepth_[s] = static_cast<std::int32_t>(s);
     std::stable_sort(byDepth_.begin(), byDepth_.end(), [&](std::int32_t a, std::int32_t b) {
@@ -26,8 +26,11 @@ SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex,
     std::vector<Box3> boxes;
     for (const FlatSolid& solid : scene.solids) boxes.push_back(solid.bounds);
     solidTree_ = BoxTree(boxes, spatialIndex);
-    if (!wide_)
-        wide_ = std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, spatialIndex));
+    if (!wideTrees_)
+        wideTrees_ =
+            std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, spatialIndex));
+    wide_ = wideTrees_->trees.data();
+    wideOf_ = wideTrees_->of.data();
     // Depth windows for the solids with a wide node and finite depth bounds (see Trace).
     windowed_.assign(scene.solids.size(), 0);
     if (spatialIndex)
@@ -39,7 +42,7 @@ SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex,
 }
 
 bool SampleTracer::HasWideNode(std::int32_t n) const {
-    if (wide_->of[static_cast<std::size_t>(n)] >= 0) return true;
+    if (wideOf_[static_cast<std::size_t>(n)] >= 0) return true;
     const FlatCsgNode& node = scene_.nodes[static_cast<std::size_t>(n)];
     if (!node.isLeaf)
         for (int c : node.children)
@@ -134,7 +137,7 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
     // its tree finds, in their order in the node. The wide node's list is a range [base, end) of
     // s.hits, a stack: the children's own lists go above it and are popped when they return; read
     // by index (pushes may reallocate).
-    const std::int32_t wide = wide_->of[static_cast<std::size_t>(n)];
+    const std::int32_t wide = wideOf_[static_cast<std::size_t>(n)];
     std::vector<std::int32_t>& hits = s.hits;
     const std::size_t base = hits.size();
     struct Pop {
@@ -146,7 +149,7 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
     if (wide >= 0) {
         const std::int32_t from = node.op == scene::CsgOp::kDifference ? 1 : 0;
         if (from) hits.push_back(0);
-        wide_->trees[static_cast<std::size_t>(wide)].ColumnBefore(
+        wide_[static_cast<std::size_t>(wide)].ColumnBefore(
             x, y, zMax, [&](std::int32_t k) { hits.push_back(k + from); });
         std::sort(hits.begin() + static_cast<std::ptrdiff_t>(base) + from, hits.end());
         count = hits.size() - base;

@@ -156,8 +156,12 @@ class SampleTracer {
     std::vector<std::int32_t> byDepth_;  // solid indices by nearest device depth (bounds.lo.z)
     std::vector<std::int32_t> rank_;     // solid index → its position in byDepth_
     BoxTree solidTree_;                  // over the solids' bounds
-    std::shared_ptr<const WideNodeTrees> wide_;  // trees of the wide nodes, node → tree
-    std::vector<char> windowed_;                 // per solid: traced in depth windows
+    // The trees of the wide nodes (shared, kept alive here) and, read per node visited, their
+    // arrays: wideOf_[node] = index into wide_, or -1.
+    std::shared_ptr<const WideNodeTrees> wideTrees_;
+    const BoxTree* wide_ = nullptr;
+    const std::int32_t* wideOf_ = nullptr;
+    std::vector<char> windowed_;  // per solid: traced in depth windows
     int maxDepth_ = 0;
 };
 
