@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "quadrix/flatten/flat_scene.h"
@@ -36,6 +37,11 @@ struct WideNodeTrees {
             t.trees.emplace_back(boxes, index);
         }
         return t;
+    }
+    // Build, to be shared: one build serves every tracer of a flat scene (the render context keeps
+    // it for the shadow rays and the anti-aliasing samples of its pictures).
+    static std::shared_ptr<const WideNodeTrees> Shared(const FlatScene& scene, bool index) {
+        return std::make_shared<const WideNodeTrees>(Build(scene, index));
     }
 };
 

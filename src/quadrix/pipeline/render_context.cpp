@@ -657,8 +657,7 @@ Image RenderContext::ShadeInArena(const Frame& frame, const ShadeOptions& option
     std::shared_ptr<const WideNodeTrees> wide;
     if ((options.shadows || options.aaSamples > 1) && options.spatialIndex) {
         const std::lock_guard<std::mutex> lock(wideMutex_);
-        if (!wideTrees_)
-            wideTrees_ = std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(flat_, true));
+        if (!wideTrees_) wideTrees_ = WideNodeTrees::Shared(flat_, true);
         wide = wideTrees_;
     }
     Image image = quadrix::Shade(frame, flat_, options, wide);

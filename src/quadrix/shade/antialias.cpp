@@ -352,7 +352,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             if (near[k]) edges[k] &= static_cast<std::uint8_t>(~kEdgePixel);
     }
     if (!wide && options.spatialIndex)  // one build for the shader's shadow rays and the tracer
-        wide = std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, true));
+        wide = WideNodeTrees::Shared(scene, true);
     const PixelShader shader(frame, scene, options, wide);
     const raycast::SampleTracer tracer(scene, options.spatialIndex, wide);
     // The unquantised values only when the output wants them (ShadeOptions::linear; an 8-bit

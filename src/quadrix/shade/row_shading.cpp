@@ -31,7 +31,7 @@ Image ShadeRows(const Frame& frame, const FlatScene& scene, const ShadeOptions& 
     // The wide-node trees once for both passes (PixelShader).
     std::shared_ptr<const WideNodeTrees> wide =
         (options.shadows || options.aaSamples > 1) && options.spatialIndex
-            ? std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, true))
+            ? WideNodeTrees::Shared(scene, true)
             : nullptr;
     Image image = ShadeRowKinds(frame, scene, options, rows, wide);
     if (options.aaSamples > 1) AntialiasRowKinds(frame, scene, options, image, rows, wide);

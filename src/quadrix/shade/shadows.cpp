@@ -184,9 +184,7 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex,
     for (const FlatSolid& solid : scene.solids)
         boxes.push_back(scene.nodes[static_cast<std::size_t>(solid.root)].bounds);
     solids_ = BoxTree(boxes, spatialIndex);
-    if (!wideTrees_)
-        wideTrees_ =
-            std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, spatialIndex));
+    if (!wideTrees_) wideTrees_ = WideNodeTrees::Shared(scene, spatialIndex);
     wide_ = wideTrees_->trees.data();
     wideOf_ = wideTrees_->of.data();
     // The deepest node below a root (the root at depth 0), without recursion: a node's depth is

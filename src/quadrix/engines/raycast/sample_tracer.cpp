@@ -26,9 +26,7 @@ SampleTracer::SampleTracer(const FlatScene& scene, bool spatialIndex,
     std::vector<Box3> boxes;
     for (const FlatSolid& solid : scene.solids) boxes.push_back(solid.bounds);
     solidTree_ = BoxTree(boxes, spatialIndex);
-    if (!wideTrees_)
-        wideTrees_ =
-            std::make_shared<const WideNodeTrees>(WideNodeTrees::Build(scene, spatialIndex));
+    if (!wideTrees_) wideTrees_ = WideNodeTrees::Shared(scene, spatialIndex);
     wide_ = wideTrees_->trees.data();
     wideOf_ = wideTrees_->of.data();
     // Depth windows for the solids with a wide node and finite depth bounds (see Trace).

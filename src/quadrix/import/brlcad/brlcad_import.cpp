@@ -642,8 +642,9 @@ class Converter {
     std::vector<Missing> missing_;  // reached, not drawable, in the order they were reached
     std::set<std::string> warnedMissing_;
     // A primitive under a placement (the 16 entries of the total matrix, then the primitive's
-    // index) to its leaf. Keys are equal when their entries compare equal (-0 = +0); they are
-    // finite (Normalised, Transform::FromMatrix).
+    // index) to its leaf. Keys are equal when their entries compare equal (-0 = +0); a key with
+    // a NaN entry (a matrix whose product overflowed) equals none, and Transform::FromMatrix
+    // then refuses it.
     using LeafKey = std::array<double, 17>;
     struct LeafKeyHash {
         std::size_t operator()(const LeafKey& k) const {

@@ -61,11 +61,14 @@ class V5Reader {
             // recording the match of every brace opened on the way (braceEnd_), so that the
             // nested words List reads later find their ends at once. Without it a combination
             // tree, a chain of nested lists, was scanned again at every level (its text times its
-            // depth: most of reading a model with long unions).
+            // depth: most of reading a model with long unions). The matches are kept by offset in
+            // the file's text, which every word's text is a view of (`base` is the offset used in
+            // messages, one short for the content of a quoted word).
             const std::size_t s = i;
-            const auto known = braceEnd_.find(base + s);
-            if (known != braceEnd_.end() && known->second - base < t.size()) {
-                i = known->second - base;
+            const auto origin = static_cast<std::size_t>(t.data() - map_.text().data());
+            const auto known = braceEnd_.find(origin + s);
+            if (known != braceEnd_.end() && known->second - origin < t.size()) {
+                i = known->second - origin;
             } else {
                 std::vector<std::size_t>& open = openBraces_;
                 open.clear();
@@ -76,7 +79,7 @@ class V5Reader {
                     }
                     if (t[i] == '{') open.push_back(i);
                     if (t[i] == '}' && !open.empty()) {
-                        braceEnd_[base + open.back()] = base + i;
+                        braceEnd_[origin + open.back()] = origin + i;
                         open.pop_back();
                         if (open.empty()) break;
                     }
