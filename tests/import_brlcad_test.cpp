@@ -741,6 +741,15 @@ TEST(ImportBrlcad, V5NestedListsFindTheirBracesOnce) {
     for (const Vec3& p : {Q(0, 0, 0), Q(10, 0, 0), Q(0, 5, 0), Q(0, 0, 5)})
         EXPECT_TRUE(Inside(im->scene, "r", p)) << p.x << " " << p.y << " " << p.z;
     EXPECT_FALSE(Inside(im->scene, "r", Q(5, 0, 0)));
+    // A tree given as a quoted word: its braced operands are matched at their places too.
+    auto quoted = Import(head +
+                             "put {r} comb region yes tree \"u {u {l s} {l t\\}u}} {l s {1 0 0 "
+                             "0  0 1 0 5  0 0 1 0  0 0 0 1}}\"\n",
+                         {{"r"}, false});
+    ASSERT_TRUE(quoted->ok) << AllMessages(quoted->diags);
+    for (const Vec3& p : {Q(0, 0, 0), Q(10, 0, 0), Q(0, 5, 0)})
+        EXPECT_TRUE(Inside(quoted->scene, "r", p)) << p.x << " " << p.y << " " << p.z;
+    EXPECT_FALSE(Inside(quoted->scene, "r", Q(0, 0, 5)));
     const std::string open = "put {r} comb region yes tree {u {l s} {u {l s} {l s}}\n";
     auto bad = Import(head + open, {{"r"}, false});
     EXPECT_FALSE(bad->ok);
