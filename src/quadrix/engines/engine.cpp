@@ -3,6 +3,7 @@
 #include <tbb/task_arena.h>
 
 #include "quadrix/engines/registry.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 
@@ -41,7 +42,11 @@ RenderStats Engine::Render(const FlatScene& scene, const RenderOptions& options,
     RenderStats stats;
     if (options.threads > 0) {
         tbb::task_arena arena(options.threads);
-        stats = arena.execute([&] { return Draw(scene, parsed, frame); });
+        stats = arena.execute([&] {
+            // The loops in this arena, not in a caller's loop arena (util/parallel.h).
+            LoopArenaScope own(nullptr);
+            return Draw(scene, parsed, frame);
+        });
     } else {
         stats = Draw(scene, parsed, frame);
     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <thread>
 
 #include "quadrix/engines/engine_limit.h"
@@ -127,16 +128,37 @@ struct RenderContext::Arena {
         : arena(threads > 0 ? threads : tbb::task_arena::automatic),
           serial(threads == 1),
           chooses(threads <= 0) {}
+    ~Arena() {
+        if (starter.joinable()) starter.join();
+    }
+    Arena(const Arena&) = delete;
+    Arena& operator=(const Arena&) = delete;
     tbb::task_arena arena;
     bool serial;
     const bool chooses;
+    // oneTBB and the arena start on this thread (Start), while the caller goes on: loops begun
+    // meanwhile run their first grains on the caller's thread (util/parallel.h LoopArenaScope).
+    std::thread starter;
+    std::once_flag started;
+    void Start() {
+        std::call_once(started, [this] {
+            if (!arena.is_active()) starter = std::thread([this] { arena.initialize(); });
+        });
+    }
+    // `work` inline (a context of one thread), inside the arena (a cancellable context: oneTBB
+    // cancels the loops of its task group), or with the arena as its loops' (the others; the
+    // arena started if it is not).
     template <class Work>
-    void Run(bool inlineRun, const Work& work) {
+    void Run(bool inlineRun, bool cancellable, const Work& work) {
         if (inlineRun) {
             SerialScope inline_;
             work();
-        } else {
+        } else if (cancellable) {
             arena.execute(work);
+        } else {
+            Start();
+            LoopArenaScope loops(&arena);
+            work();
         }
     }
 };
@@ -330,9 +352,10 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     std::optional<FlatScene> flat;
     if (arena_->chooses) arena_->serial = SmallJob(scene_, view.width, view.height);
     // In the context's arena, so that its parallel steps use the threads asked for. The first
-    // time, oneTBB and the arena start on another thread meanwhile: the flatten begins with its
-    // serial walk of the scene's hierarchy, and its first parallel loop joins the arena
-    // (util/parallel.h LoopArenaScope), waiting for the start if it is not done. (Started while
+    // time, oneTBB and the arena start on another thread meanwhile (Arena::Start): the flatten
+    // begins with its serial walk of the scene's hierarchy, and loops begun before the arena is
+    // active run their first grains on this thread (util/parallel.h LoopArenaScope); so does the
+    // render of a scene whose flatten is done before the start. (Started while
     // the scene is read instead, the two contended for the process's memory map; the walk
     // touches little fresh memory.)
     bool worldFailed = false;
@@ -358,14 +381,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     if (Inline()) {
         InArena(flatten);
     } else {
-        struct Starter {  // joined however the flatten ends
-            std::thread thread;
-            ~Starter() {
-                if (thread.joinable()) thread.join();
-            }
-        } starter;
-        if (!arena_->arena.is_active())
-            starter.thread = std::thread([arena = &arena_->arena] { arena->initialize(); });
+        arena_->Start();
         LoopArenaScope loops(&arena_->arena);
         flatten();
     }
@@ -451,7 +467,8 @@ void RenderContext::StrictRefusal(const std::string& engine,
 
 bool RenderContext::Execute(const std::function<void()>& work) {
     bool done = true;
-    arena_->Run(Inline(), [&] { done = cancel_ ? cancel_->Run(work) : (work(), true); });
+    arena_->Run(Inline(), cancel_ != nullptr,
+                [&] { done = cancel_ ? cancel_->Run(work) : (work(), true); });
     return done;
 }
 
@@ -643,7 +660,7 @@ bool RenderContext::Inline() const { return arena_->serial && !cancel_; }
 int RenderContext::Threads() const { return Inline() ? 1 : arena_->arena.max_concurrency(); }
 
 void RenderContext::InArena(const std::function<void()>& work) const {
-    arena_->Run(Inline(), work);
+    arena_->Run(Inline(), cancel_ != nullptr, work);
 }
 
 Image RenderContext::Shade(const Frame& frame, const ShadeOptions& options) const {

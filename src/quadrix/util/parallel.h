@@ -20,6 +20,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include <cstddef>
 #include <optional>
 #include <utility>
 
@@ -44,15 +45,19 @@ class SerialScope {
 };
 
 // The arena this thread's loops run in when it is in none (null: oneTBB's default), set by a
-// LoopArenaScope. RenderContext::Flatten runs the flatten under one instead of inside
-// task_arena::execute, so that its serial start (reading the scene's hierarchy) runs while
-// another thread starts oneTBB and the arena; the first loop waits for the start if it is not
-// done (task_arena's initialisation is once and thread-safe).
+// LoopArenaScope. RenderContext runs its work under one instead of inside task_arena::execute,
+// so that it goes on while another thread starts oneTBB and the arena (2-4 ms on these
+// machines; longer than the whole flatten of a small part). A loop started before the arena is
+// active does not wait for it: this thread runs the range's first grains itself, one at a time,
+// until the arena is active, and gives it the rest (RunWhileStarting). Every loop gives the same
+// result for any split of its range (above), so that is one more split: the same bits.
 inline tbb::task_arena*& LoopArenaOnThisThread() {
     thread_local tbb::task_arena* arena = nullptr;
     return arena;
 }
 
+// The arena must be active or being started by another thread: a loop does not start it (one
+// begun while it is inactive runs here, grain by grain, until it is active).
 class LoopArenaScope {
   public:
     explicit LoopArenaScope(tbb::task_arena* arena) : before_(LoopArenaOnThisThread()) {
@@ -74,13 +79,39 @@ auto InLoopArena(const F& f) {
     return f();
 }
 
-template <class Range, class Body>
-void ParallelFor(const Range& range, const Body& body) {
+// Whether this thread's loop arena is still starting (another thread is initialising it).
+inline bool LoopArenaStarting() {
+    const tbb::task_arena* arena = LoopArenaOnThisThread();
+    return arena != nullptr && !arena->is_active();
+}
+
+// While the loop arena is starting: runs f on range's grains from its beginning, in order, each a
+// blocked_range of at most grainsize() indices, until the range is done or the arena is active;
+// returns what is left (empty when done).
+template <class T, class F>
+tbb::blocked_range<T> RunWhileStarting(const tbb::blocked_range<T>& range, const F& f) {
+    const T end = range.end();
+    const std::size_t grain = range.grainsize() > 0 ? range.grainsize() : 1;
+    T begin = range.begin();
+    while (begin < end && LoopArenaStarting()) {
+        const T next = static_cast<std::size_t>(end - begin) > grain
+                           ? static_cast<T>(begin + static_cast<T>(grain))
+                           : end;
+        f(tbb::blocked_range<T>(begin, next, range.grainsize()));
+        begin = next;
+    }
+    return tbb::blocked_range<T>(begin, end, range.grainsize());
+}
+
+template <class T, class Body>
+void ParallelFor(const tbb::blocked_range<T>& range, const Body& body) {
     if (SerialLoopsOnThisThread()) {
         if (!range.empty()) body(range);
         return;
     }
-    InLoopArena([&] { tbb::parallel_for(range, body); });
+    const tbb::blocked_range<T> rest = RunWhileStarting(range, body);
+    if (rest.empty()) return;
+    InLoopArena([&] { tbb::parallel_for(rest, body); });
 }
 
 template <class Index, class Function>
@@ -89,14 +120,25 @@ void ParallelFor(Index first, Index last, const Function& f) {
         for (Index i = first; i < last; ++i) f(i);
         return;
     }
+    while (first < last && LoopArenaStarting()) f(first++);
+    if (!(first < last)) return;
     InLoopArena([&] { tbb::parallel_for(first, last, f); });
 }
 
-template <class Range, class Value, class Body, class Join>
-Value ParallelReduce(const Range& range, const Value& identity, const Body& body,
+// join(value of the range's first part, value of the rest): the parts in order.
+template <class T, class Value, class Body, class Join>
+Value ParallelReduce(const tbb::blocked_range<T>& range, const Value& identity, const Body& body,
                      const Join& join) {
     if (SerialLoopsOnThisThread()) return range.empty() ? identity : body(range, identity);
-    return InLoopArena([&] { return tbb::parallel_reduce(range, identity, body, join); });
+    Value first = identity;
+    bool some = false;
+    const tbb::blocked_range<T> rest = RunWhileStarting(range, [&](const auto& r) {
+        first = body(r, first);
+        some = true;
+    });
+    if (rest.empty()) return first;
+    Value last = InLoopArena([&] { return tbb::parallel_reduce(rest, identity, body, join); });
+    return some ? join(first, last) : last;
 }
 
 // One T per thread of the loops that use it (an engine's scratch and counters): oneTBB's

@@ -6,7 +6,9 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace quadrix {
@@ -65,10 +67,12 @@ TEST(ParallelLoops, WithoutAScopeOneTbbSplitsTheRange) {
 }
 
 TEST(ParallelLoops, ALoopArenaScopeRunsTheLoopsInItsArena) {
-    // An arena of one thread, started on another thread meanwhile (as RenderContext::Flatten
-    // does); the default arena has two.
+    // An arena of one thread, started on another thread (as RenderContext does); the default
+    // arena has two. Started before the loops: loops begun while it starts run their first
+    // grains outside it (the next test).
     tbb::task_arena one(1);
     std::thread starter([&] { one.initialize(); });
+    starter.join();
     std::atomic<int> widest{0};
     auto note = [&] {
         const int c = tbb::this_task_arena::max_concurrency();
@@ -93,7 +97,6 @@ TEST(ParallelLoops, ALoopArenaScopeRunsTheLoopsInItsArena) {
             [](int a, int b) { return a + b; });
         EXPECT_EQ(sum, 45);
     }
-    starter.join();
     EXPECT_EQ(widest.load(), 1);
     EXPECT_EQ(LoopArenaOnThisThread(), nullptr);
     // Without the scope: the default arena's threads.
@@ -101,6 +104,63 @@ TEST(ParallelLoops, ALoopArenaScopeRunsTheLoopsInItsArena) {
     ParallelFor(tbb::blocked_range<int>(0, 100, 1),
                 [&](const tbb::blocked_range<int>&) { note(); });
     EXPECT_EQ(widest.load(), tbb::this_task_arena::max_concurrency());
+}
+
+TEST(ParallelLoops, BeforeTheArenaIsActiveLoopsRunGrainByGrainOnTheCallingThread) {
+    // An arena nobody starts stays inactive: every loop runs here, its grains in order.
+    tbb::task_arena idle(2);
+    const std::thread::id me = std::this_thread::get_id();
+    LoopArenaScope loops(&idle);
+    EXPECT_TRUE(LoopArenaStarting());
+    std::vector<std::pair<int, int>> grains;
+    ParallelFor(tbb::blocked_range<int>(0, 10, 3), [&](const tbb::blocked_range<int>& r) {
+        EXPECT_EQ(std::this_thread::get_id(), me);
+        grains.emplace_back(r.begin(), r.end());
+    });
+    EXPECT_EQ(grains, (std::vector<std::pair<int, int>>{{0, 3}, {3, 6}, {6, 9}, {9, 10}}));
+    std::vector<std::size_t> order;
+    ParallelFor(std::size_t{3}, std::size_t{7}, [&](std::size_t i) { order.push_back(i); });
+    EXPECT_EQ(order, (std::vector<std::size_t>{3, 4, 5, 6}));
+    // A reduction's parts joined in order (a join that is not commutative shows it).
+    const std::string digits = ParallelReduce(
+        tbb::blocked_range<int>(0, 10, 4), std::string(),
+        [](const tbb::blocked_range<int>& r, std::string s) {
+            for (int i = r.begin(); i < r.end(); ++i) s += static_cast<char>('0' + i);
+            return s + "|";
+        },
+        [](const std::string& a, const std::string& b) { return a + b; });
+    EXPECT_EQ(digits, "0123|4567|89|");
+    EXPECT_FALSE(idle.is_active());
+}
+
+TEST(ParallelLoops, LoopsBegunWhileTheArenaStartsCoverTheirRangeOnce) {
+    // The arena started on another thread while the loops run (RenderContext): each index is
+    // visited once whichever part ran before the start was done, and the reduction is exact.
+    for (int round = 0; round < 20; ++round) {
+        tbb::task_arena two(2);
+        std::thread starter([&] { two.initialize(); });
+        std::vector<std::atomic<int>> seen(20000);
+        long long sum = 0;
+        {
+            LoopArenaScope loops(&two);
+            ParallelFor(tbb::blocked_range<std::size_t>(0, seen.size(), 16),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                            for (std::size_t i = r.begin(); i < r.end(); ++i) ++seen[i];
+                        });
+            ParallelFor(0, 5000, [&](int i) { ++seen[static_cast<std::size_t>(i)]; });
+            sum = ParallelReduce(
+                tbb::blocked_range<int>(0, 20000, 8), 0LL,
+                [](const tbb::blocked_range<int>& r, long long v) {
+                    for (int i = r.begin(); i < r.end(); ++i) v += i;
+                    return v;
+                },
+                [](long long a, long long b) { return a + b; });
+        }
+        starter.join();
+        for (std::size_t i = 0; i < seen.size(); ++i)
+            ASSERT_EQ(seen[i].load(), i < 5000 ? 2 : 1) << "index " << i << ", round " << round;
+        EXPECT_EQ(sum, 20000LL * 19999 / 2);
+    }
 }
 
 TEST(ParallelLoops, ScopesNestAndRestore) {
