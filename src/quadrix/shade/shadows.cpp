@@ -189,6 +189,19 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex,
     wideOf_ = wideTrees_->of.data();
     // The deepest node below a root (the root at depth 0), without recursion: a node's depth is
     // its parent's + 1, walked from every root.
+    subtrahendOf_.assign(scene.bodies.size(), -1);
+    leafOf_.assign(scene.bodies.size(), -1);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        const FlatCsgNode& node = scene.nodes[n];
+        if (node.isLeaf || node.op != scene::CsgOp::kDifference) continue;
+        for (std::size_t j = 1; j < node.children.size(); ++j) {
+            const FlatCsgNode& c = scene.nodes[static_cast<std::size_t>(node.children[j])];
+            if (c.isLeaf && c.body >= 0 && static_cast<std::size_t>(c.body) < scene.bodies.size()) {
+                subtrahendOf_[static_cast<std::size_t>(c.body)] = static_cast<std::int32_t>(n);
+                leafOf_[static_cast<std::size_t>(c.body)] = node.children[j];
+            }
+        }
+    }
     std::vector<std::pair<std::int32_t, int>> stack;
     for (const FlatSolid& solid : scene.solids) stack.emplace_back(solid.root, 0);
     while (!stack.empty()) {
@@ -348,6 +361,22 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
     }
 }
 
+double ShadowTester::PastOrigin(const Vec3& p, const Vec3& d, double s0, double s1,
+                                std::vector<IntervalList*>& slots, std::size_t k,
+                                const Walk& walk) const {
+    // The body's set is the one the node's subtrahends' union or fold takes in (the same call),
+    // so the node's set on (s0, t) is empty, and on (t, s1) every operand's and subtrahend's set
+    // is the one made on (s0, s1) cut to (t, s1): the folds start from the window and cut it by
+    // the same comparisons of the same roots (shadows.h). The answer on (s0, s1) is the same. A
+    // leaf whose box the segment misses is not taken in (as there), whatever its literals say.
+    const std::size_t b = static_cast<std::size_t>(walk.origin.body);
+    if (!NodeHits(leafOf_[b], p, d, s0, s1)) return s0;
+    Body(walk.origin.body, p, d, s0, s1, slots, k + 1, walk.origin.halfSpace);
+    const IntervalList& in = *slots[k + 1];
+    if (in.empty() || !(in.begin()->lo <= s0)) return s0;
+    return in.begin()->hi;
+}
+
 void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s1,
                         std::vector<IntervalList*>& slots, std::size_t k, bool anyHit,
                         const Walk& walk) const {
@@ -356,6 +385,14 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
         Body(node.body, p, d, s0, s1, slots, k,
              node.body == walk.origin.body ? walk.origin.halfSpace : -1);
         return;
+    }
+    if (walk.origin.body >= 0 &&
+        subtrahendOf_[static_cast<std::size_t>(walk.origin.body)] == static_cast<std::int32_t>(n)) {
+        s0 = PastOrigin(p, d, s0, s1, slots, k, walk);
+        if (!(s0 < s1)) {
+            slots[k]->clear();
+            return;
+        }
     }
     if (anyHit && node.op == scene::CsgOp::kDifference && node.children.size() >= 2) {
         const FlatCsgNode& minuend = scene_.nodes[static_cast<std::size_t>(node.children[0])];

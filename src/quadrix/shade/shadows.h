@@ -166,6 +166,14 @@ class ShadowTester {
     void DistributedDifference(int n, const Vec3& p, const Vec3& d, double s0, double s1,
                                std::vector<IntervalList*>& slots, std::size_t k,
                                const Walk& walk) const;
+    // For a difference node of which the segment's origin body is a subtrahend leaf: that body's
+    // set on the segment (its literal of the surface first, as Body evaluates it) into
+    // *slots[k+1]; when it holds the segment's start, its first interval [s0, t] is not in the
+    // node's set, and the node's set is wholly made on (t, s1): returns t, else s0. A ray from a
+    // hole's wall or a slot's floor starts in the removed tool, and the part is then looked at
+    // only beyond it (where the tool's own set, made again, is usually empty at once).
+    double PastOrigin(const Vec3& p, const Vec3& d, double s0, double s1,
+                      std::vector<IntervalList*>& slots, std::size_t k, const Walk& walk) const;
     // tree.Segment(p, d, s0, s1, visit), or its view's HalfLine when `view` >= 0 (s1 = +inf):
     // tree 0 is solids_, tree w + 1 is wide_[w].
     template <class Visit>
@@ -183,6 +191,9 @@ class ShadowTester {
     const BoxTree* wide_ = nullptr;
     const std::int32_t* wideOf_ = nullptr;
     int maxDepth_ = 0;  // the deepest node below a solid's root (root: 0)
+    // Per body: the difference node of which it is a subtrahend leaf (a child other than the
+    // first), else -1, and that leaf (PastOrigin).
+    std::vector<std::int32_t> subtrahendOf_, leafOf_;
     // AddDirection's views: views_[id][tree], trees numbered as Query numbers them.
     std::vector<std::vector<BoxTree::HalfLineView>> views_;
 };

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <utility>
@@ -426,6 +427,101 @@ TEST(ShadeShadows, TheSurfaceARayStartsOnIsTriedFirstWithTheSameAnswers) {
         static_cast<double>(without) / leaving);
     // Measured: 2.84 and 6.37.
     EXPECT_LT(static_cast<double>(withOrigin), 0.6 * static_cast<double>(without));
+}
+
+// A ray from a subtracted tool's surface (a hole's wall, a slot's floor) that starts inside the
+// tool: the part is looked at only beyond the tool (ShadowTester::PastOrigin), with the answers
+// of the ray without an origin at every covered pixel, in directions into and out of the
+// surfaces; the difference as a plain node, inside a union, and with a union as its minuend (the
+// distributed form).
+TEST(ShadeShadows, RaysFromASubtrahendLookOnlyBeyondItWithTheSameAnswers) {
+    const std::string common = R"(
+plane right <1 0 0 -10>;  plane left <-1 0 0 -10>;
+plane top <0 1 0 -10>;  plane bottom <0 -1 0 -10>;
+plane back <0 0 1 -10>;  plane front <0 0 -1 -10>;
+body block (right left top bottom back front);
+quadric hq <1 0 1 0 0 0 0 0 0 -9>;
+plane hlo <0 -1 0 -12>;  plane hhi <0 1 0 -12>;
+body hole (hq hlo hhi);
+plane sr <1 0 0 -8>;  plane sl <-1 0 0 4>;  plane sf <0 -1 0 6>;  plane st <0 1 0 -12>;
+plane sb <0 0 1 -12>;  plane sfr <0 0 -1 -12>;
+body slot (sr sl sf st sb sfr);
+quadric ball <1 1 1 0 0 0 -20 0 0 364>;
+quadric bore <0 1 1 0 0 0 0 0 0 -4>;
+body b1 (ball);  body b2 (bore);
+view v dop .9 1.1 -1.3;
+)";
+    const char* solids[] = {"csg part (block - hole - slot);",
+                            "csg part ((block - hole - slot) | (b1 - b2));",
+                            "csg part ((block | b1) - hole - slot - b2);"};
+    const Vec3 directions[] = {{0.3, -1, -0.6}, {-0.8, -0.2, -0.5}, {0.1, 0.7, -0.7},
+                               {1, 0, 0},       {0, 0, 1},          {-0.2, 0.9, 0.4}};
+    for (const char* solid : solids) {
+        RenderContext ctx(1);
+        Frame frame;
+        InputRequest in;
+        in.text = common + solid;
+        Diagnostics diags;
+        ASSERT_TRUE(testing::RenderToFrame(ctx, in, 160, 120, frame, diags)) << solid;
+        const FlatScene& flat = ctx.Flat();
+        const ShadowTester t(flat);
+        // The bodies of the tools: those whose name ends in hole, slot or b2.
+        auto tool = [&](int body) {
+            const std::string& n = flat.bodies[static_cast<std::size_t>(body)].name;
+            for (const char* end : {"hole", "slot", "b2"})
+                if (n.size() >= std::strlen(end) && n.ends_with(end)) return true;
+            return false;
+        };
+        std::uint64_t withOrigin = 0, without = 0;
+        int fromTools = 0, blocked = 0, rays = 0;
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                const std::size_t i = frame.Index(x, y);
+                if (frame.surface[i] == Frame::kNone) continue;
+                const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
+                const ShadowOrigin origin{frame.body[i], frame.surface[i]};
+                // The tool's outward normal (its literal's gradient, negated where complemented):
+                // the part's surface faces the other way, and the shader casts rays only toward
+                // lights on the part's side, into the tool.
+                const FlatHalfSpace& h =
+                    flat.halfSpaces[static_cast<std::size_t>(origin.halfSpace)];
+                Vec3 toolOut = h.isPlane ? h.plane.Normal() : h.quadric.Gradient(p);
+                for (const FlatLiteral& l :
+                     flat.bodies[static_cast<std::size_t>(origin.body)].literals)
+                    if (l.halfSpace == origin.halfSpace) {
+                        if (l.complemented) toolOut = Vec3{0, 0, 0} - toolOut;
+                        break;
+                    }
+                for (const Vec3& d : directions) {
+                    const DeviceRay ray{d, HUGE_VAL, Length(d)};
+                    const std::uint64_t c0 = tRayLiterals;
+                    const bool want = t.Blocked(p, ray);
+                    const std::uint64_t c1 = tRayLiterals;
+                    ASSERT_EQ(t.Blocked(p, ray, origin), want) << solid << " " << x << " " << y;
+                    if (tool(origin.body) && Dot(toolOut, d) < 0 && !want) {
+                        withOrigin += tRayLiterals - c1;
+                        without += c1 - c0;
+                        ++fromTools;
+                    }
+                    blocked += want;
+                    ++rays;
+                }
+            }
+        EXPECT_GT(fromTools, 200) << solid;
+        EXPECT_GT(blocked, rays / 20) << solid;
+        EXPECT_LT(blocked, rays - rays / 20) << solid;
+        // The rays that gain: those that leave the part through the tool (a lit hole wall).
+        // One that meets the part beyond the tool pays for the tool's set first, about as many
+        // literals as it saves.
+        std::printf(
+            "[ shadows ] %s: %d rays from the tools into them and out, %.2f literals a "
+            "ray with the origin, %.2f without\n",
+            solid, fromTools, static_cast<double>(withOrigin) / fromTools,
+            static_cast<double>(without) / fromTools);
+        // Measured: 11.19 against 12.72, 9.62 against 10.97, 9.26 against 12.12 (the same
+        // without PastOrigin: the tool's literal of the surface does not empty it).
+        EXPECT_LT(static_cast<double>(withOrigin), 0.95 * static_cast<double>(without)) << solid;
+    }
 }
 
 }  // namespace
