@@ -312,6 +312,26 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
             break;
         }
         ++tRayLiterals;
+        if (h.isPlane) {
+            // A plane crossed by the segment: SolveQuadratic's inline root and LiteralPieces'
+            // one piece (below the root where the polynomial rises, above it for the complement),
+            // cut as below, without the Pieces; the same comparisons of the same numbers.
+            const LinePolynomial q = OnLine(h, p, d);
+            const double ah = std::fabs(q.h), ac = std::fabs(q.c);
+            if (q.h != 0 && ah <= 0x1p200 && ac <= 0x1p200 && (ah >= 0x1p-200 || ac >= 0x1p-200)) {
+                const double root = -q.c / (2.0 * q.h);
+                const bool below = (q.h > 0) != literals[i].complemented;
+                const double pieceLo = below ? -kInf : root, pieceHi = below ? root : kInf;
+                if (!(pieceLo < pieceHi)) {
+                    hi = lo;  // empty
+                } else {
+                    if (pieceLo >= lo) lo = pieceLo;
+                    if (!(hi <= pieceHi)) hi = pieceHi;
+                }
+                if (!(lo < hi)) break;
+                continue;
+            }
+        }
         Pieces set;
         LiteralPieces(OnLine(h, p, d), literals[i].complemented, set);
         if (set.n == 0) {

@@ -301,10 +301,11 @@ std::vector<std::pair<double, double>> Ends(const IntervalList& l) {
 }
 
 TEST(ShadeShadows, TheOneIntervalBodyPathGivesTheListsEndpointsAndCount) {
-    // Bodies of random planes and quadrics of every kind (ellipsoids, cylinders, cones,
-    // hyperboloids: a of either sign, two-piece sets), complemented or not, some with a torus, on
-    // random segments, many of them grazing (planes parallel to the ray, rays through a cone's
-    // apex): the fast path's endpoints and literal count against the lists'.
+    // Bodies of random planes (some scaled by 2^±300, past the inline root's range) and quadrics
+    // of every kind (ellipsoids, cylinders, cones, hyperboloids: a of either sign, two-piece
+    // sets), complemented or not, some with a torus, on random segments, many of them grazing
+    // (planes parallel to the ray, rays through a cone's apex): the fast path's endpoints and
+    // literal count against the lists'.
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-1, 1);
     FlatScene s;
@@ -318,6 +319,12 @@ TEST(ShadeShadows, TheOneIntervalBodyPathGivesTheListsEndpointsAndCount) {
             // A plane containing the x axis direction: rays along x are parallel to it.
             h.isPlane = true;
             h.plane = Plane{0, u(rng), u(rng), u(rng)};
+        } else if (kind == 6) {
+            // Coefficients far outside the range the solvers take inline (quadratic.h): the
+            // general solver's root.
+            const double scale = rng() % 2 ? 0x1p300 : 0x1p-300;
+            h.isPlane = true;
+            h.plane = Plane{scale * u(rng), scale * u(rng), scale * u(rng), scale * u(rng)};
         } else if (kind == 2) {
             h.SetQuartic(torus);
         } else {
@@ -336,7 +343,8 @@ TEST(ShadeShadows, TheOneIntervalBodyPathGivesTheListsEndpointsAndCount) {
         const int n = 1 + static_cast<int>(rng() % 6);
         for (int i = 0; i < n; ++i) {
             const int kind = static_cast<int>(rng() % 12);
-            body.literals.push_back({add(kind < 6 ? kind : (kind < 9 ? 0 : 3)), rng() % 3 == 0});
+            body.literals.push_back(
+                {add(kind < 6 ? kind : (kind < 8 ? 0 : (kind < 10 ? 6 : 3))), rng() % 3 == 0});
         }
         s.bodies.push_back(body);
     }
