@@ -96,6 +96,23 @@ void LiteralPieces(const LinePolynomial& q, bool complemented, Pieces& out) {
     out.Append(lo, kInf);
 }
 
+// A plane literal's set on the line where SolveQuadratic takes the root inline (a plane crossed
+// by the line, coefficients in its unscaled range: the common case): LiteralPieces' one piece,
+// [lo, hi] (below the root where the polynomial rises, above it for the complement; lo >= hi
+// where LiteralPieces drops it), from the same numbers and comparisons, without the Pieces.
+// false: LiteralPieces decides. q is a plane's (a = 0).
+[[gnu::always_inline]] inline bool PlanePiece(const LinePolynomial& q, bool complemented,
+                                              double& lo, double& hi) {
+    const double ah = std::fabs(q.h), ac = std::fabs(q.c);
+    if (!(q.h != 0 && ah <= 0x1p200 && ac <= 0x1p200 && (ah >= 0x1p-200 || ac >= 0x1p-200)))
+        return false;
+    const double root = -q.c / (2.0 * q.h);  // SolveQuadratic's inline root
+    const bool below = (q.h > 0) != complemented;
+    lo = below ? -kInf : root;
+    hi = below ? root : kInf;
+    return true;
+}
+
 // The set of a half-space literal on the line, into `set`; `tmp` is scratch.
 void LiteralInto(const FlatHalfSpace& h, bool complemented, const Vec3& p, const Vec3& d,
                  IntervalList& set, IntervalList& tmp) {
@@ -285,13 +302,23 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
             const FlatHalfSpace& h = scene_.halfSpaces[static_cast<std::size_t>(first)];
             if (h.IsQuartic()) break;
             ++tRayLiterals;
-            Pieces set;
-            LiteralPieces(OnLine(h, p, d), l.complemented, set);
+            const LinePolynomial q = OnLine(h, p, d);
             bool meets = false;
-            for (int j = 0; j < set.n; ++j) {
-                const double lo = set.lo[j] >= s0 ? set.lo[j] : s0;
-                const double hi = s1 <= set.hi[j] ? s1 : set.hi[j];
-                meets |= lo < hi;
+            double pieceLo, pieceHi;
+            if (h.isPlane && PlanePiece(q, l.complemented, pieceLo, pieceHi)) {
+                if (pieceLo < pieceHi) {
+                    const double lo = pieceLo >= s0 ? pieceLo : s0;
+                    const double hi = s1 <= pieceHi ? s1 : pieceHi;
+                    meets = lo < hi;
+                }
+            } else {
+                Pieces set;
+                LiteralPieces(q, l.complemented, set);
+                for (int j = 0; j < set.n; ++j) {
+                    const double lo = set.lo[j] >= s0 ? set.lo[j] : s0;
+                    const double hi = s1 <= set.hi[j] ? s1 : set.hi[j];
+                    meets |= lo < hi;
+                }
             }
             if (!meets) {
                 slots[k]->clear();
@@ -312,25 +339,17 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
             break;
         }
         ++tRayLiterals;
-        if (h.isPlane) {
-            // A plane crossed by the segment: SolveQuadratic's inline root and LiteralPieces'
-            // one piece (below the root where the polynomial rises, above it for the complement),
-            // cut as below, without the Pieces; the same comparisons of the same numbers.
-            const LinePolynomial q = OnLine(h, p, d);
-            const double ah = std::fabs(q.h), ac = std::fabs(q.c);
-            if (q.h != 0 && ah <= 0x1p200 && ac <= 0x1p200 && (ah >= 0x1p-200 || ac >= 0x1p-200)) {
-                const double root = -q.c / (2.0 * q.h);
-                const bool below = (q.h > 0) != literals[i].complemented;
-                const double pieceLo = below ? -kInf : root, pieceHi = below ? root : kInf;
-                if (!(pieceLo < pieceHi)) {
-                    hi = lo;  // empty
-                } else {
-                    if (pieceLo >= lo) lo = pieceLo;
-                    if (!(hi <= pieceHi)) hi = pieceHi;
-                }
-                if (!(lo < hi)) break;
-                continue;
+        double pieceLo, pieceHi;
+        if (h.isPlane && PlanePiece(OnLine(h, p, d), literals[i].complemented, pieceLo, pieceHi)) {
+            // The one piece cut as below (set.n == 1), or empty (set.n == 0).
+            if (!(pieceLo < pieceHi)) {
+                hi = lo;
+            } else {
+                if (pieceLo >= lo) lo = pieceLo;
+                if (!(hi <= pieceHi)) hi = pieceHi;
             }
+            if (!(lo < hi)) break;
+            continue;
         }
         Pieces set;
         LiteralPieces(OnLine(h, p, d), literals[i].complemented, set);
