@@ -378,13 +378,8 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
         }
         flat = FlattenView(scene_, world_, fo, diags);
     };
-    if (Inline()) {
-        InArena(flatten);
-    } else {
-        arena_->Start();
-        LoopArenaScope loops(&arena_->arena);
-        flatten();
-    }
+    // Under the loop arena even for a cancellable context (the flatten is not cancelled).
+    arena_->Run(Inline(), false, flatten);
     flattenSeconds = SecondsSince(t0);
     if (worldFailed || !flat || diags.ErrorCount() != errorsBefore) return false;
     flat_ = std::move(*flat);
