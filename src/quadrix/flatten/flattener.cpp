@@ -101,6 +101,13 @@ struct BodyBoxes {
     }
 };
 
+// Per body: the box of its extent pieces (hierarchy.h) grown by a rounding allowance, where
+// `has` (FlattenerImpl::ExtentBoxes).
+struct Extents {
+    std::vector<char> has;
+    std::vector<Box3> box;
+};
+
 // A literal normalised for TranslationReuse: the linear part (3 for a plane, 6 for a quadric)
 // and the rest (d; b and k), all divided by the largest |entry| of the linear part; not `ok` for
 // a quartic or a degenerate or non-finite one.
@@ -220,8 +227,9 @@ class FlattenerImpl {
         bo.searchLimit = 1e6 * SceneScale(flat, view_, literals);
         bo.literals = &literals;
         bool anySearched = false;
-        const Reuse reuse = TranslationReuse(nClip);
-        boxes_ = AllBodyBounds(flat, firstSame_, bo, &anySearched, &reuse);
+        const Extents extents = ExtentBoxes(nClip);
+        const Reuse reuse = TranslationReuse(nClip, extents);
+        boxes_ = AllBodyBounds(flat, firstSame_, bo, &anySearched, &reuse, &extents);
         bodiesOf_ = BodiesOfSolids();
         solidExact_.assign(flat.solids.size(), 1);
         for (std::size_t s = 0; s < flat.solids.size(); ++s)
@@ -316,6 +324,17 @@ class FlattenerImpl {
         flat.freeforms = world.flat.freeforms;
         hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
         hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
+        // The bodies' extents follow the half-spaces into provisional space where that map is
+        // affine (parallel views).
+        hierarchy_.bodyExtents = world.hierarchy.bodyExtents;
+        if (IsAffine(view_.provFromWorld.Matrix())) {
+            hierarchy_.extentPieces.reserve(world.hierarchy.extentPieces.size());
+            for (const ExtentPiece& piece : world.hierarchy.extentPieces)
+                hierarchy_.extentPieces.push_back(
+                    MappedPiece(piece, view_.provFromWorld.Matrix()));
+        } else {
+            for (auto& range : hierarchy_.bodyExtents) range.end = range.begin;
+        }
         if (nClip > 0)
             for (FlatBody& b : flat.bodies)
                 for (FlatLiteral& l : b.literals) l.halfSpace += nClip;
@@ -395,7 +414,8 @@ class FlattenerImpl {
     // window fit and the culling use it to decide which solids to bound directly after all.
     static BodyBoxes AllBodyBounds(const FlatScene& flat, const std::vector<std::size_t>& first,
                                    const BoundsOptions& bo, bool* anySearched,
-                                   const Reuse* reuse = nullptr) {
+                                   const Reuse* reuse = nullptr,
+                                   const Extents* extents = nullptr) {
         const std::size_t n = first.size();
         BodyBoxes out;
         out.box.resize(n);
@@ -417,11 +437,30 @@ class FlattenerImpl {
                         });
         };
         auto refOf = [&](std::size_t i) { return reuse ? reuse->ref[i] : i; };
+        const double inside = 1e-4 * bo.searchLimit;
+        // A body's extent box (ExtentBoxes) holds its true box to rounding (the pieces and the
+        // literals are one placement of one shape): like a translated box it stands for the
+        // body's own within `pad`, where it lies well inside the search region.
+        auto fromExtent = [&](std::size_t i) {
+            if (!extents || extents->has.empty() || !extents->has[i]) return false;
+            const Box3& eb = extents->box[i];
+            if (!eb.Finite()) return false;
+            Vec3 pad;
+            for (int a = 0; a < 3; ++a) {
+                const double reach = std::fmax(std::fabs(eb.lo[a]), std::fabs(eb.hi[a]));
+                if (!(reach < inside)) return false;
+                pad[a] = 2e-5 * ((eb.hi[a] - eb.lo[a]) + reach);
+            }
+            out.box[i] = eb;
+            out.pad[i] = pad;
+            out.exact[i] = 0;
+            done[i] = 1;
+            return true;
+        };
         std::vector<std::size_t> own, later;
         for (std::size_t i = 0; i < n; ++i)
-            if (first[i] == i) (refOf(i) == i ? own : later).push_back(i);
+            if (first[i] == i && !fromExtent(i)) (refOf(i) == i ? own : later).push_back(i);
         direct(own);
-        const double inside = 1e-4 * bo.searchLimit;
         std::vector<std::size_t> fallback;
         for (std::size_t i : later) {
             const std::size_t r = first[refOf(i)];
@@ -463,6 +502,42 @@ class FlattenerImpl {
         return out;
     }
 
+    // Per body, the box of its extent pieces (hierarchy.h: an imported primitive's exact image
+    // under its placement and the view), where the body has them: grown per axis by 1e-9 of its
+    // size and reach, far above the roundings of the pieces' and the literals' coefficients
+    // (each a few ulps of one affine map of one shape) and far below the pad that the window
+    // fit and the culling allow a box that is not the body's own (AllBodyBounds). Under the
+    // conditions of TranslationReuse (parallel views without clip, fit or section planes, more
+    // than a few solids): a body the literals of other planes cut would be smaller than its
+    // extent.
+    Extents ExtentBoxes(int nClip) const {
+        Extents e;
+        const std::size_t n = flat_.bodies.size();
+        constexpr std::size_t kFewSolids = 6;  // as in TranslationReuse
+        if (!options_.boundsFromExtents || view_.perspective || nClip != 0 ||
+            !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids ||
+            hierarchy_.bodyExtents.size() != n)
+            return e;
+        e.has.assign(n, 0);
+        e.box.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const HierarchyResult::ExtentRange& range = hierarchy_.bodyExtents[i];
+            if (range.begin == range.end) continue;
+            Box3 box;
+            for (std::uint32_t k = range.begin; k < range.end; ++k)
+                box.Extend(PieceBox(hierarchy_.extentPieces[k]));
+            for (int a = 0; a < 3; ++a) {
+                const double grow = 1e-9 * ((box.hi[a] - box.lo[a]) +
+                                            std::fmax(std::fabs(box.lo[a]), std::fabs(box.hi[a])));
+                box.lo[a] -= grow;
+                box.hi[a] += grow;
+            }
+            e.box[i] = box;
+            e.has[i] = 1;
+        }
+        return e;
+    }
+
     // Which bodies are translates of an earlier one (AllBodyBounds), read from the coefficients
     // (an imported model places every primitive instance in the top scope with its path matrix
     // applied, so the hierarchy does not say). Bodies are grouped by their literals' kinds,
@@ -478,7 +553,7 @@ class FlattenerImpl {
     // of the world is one of provisional space and moves every literal: parallel views without clip
     // or section planes (those are not moved with the body). Elsewhere every body is its own
     // reference.
-    Reuse TranslationReuse(int nClip) const {
+    Reuse TranslationReuse(int nClip, const Extents& extents) const {
         const std::size_t n = flat_.bodies.size();
         Reuse r;
         r.ref.resize(n);
@@ -494,13 +569,25 @@ class FlattenerImpl {
             return r;
         // Per half-space, in parallel (a pure function of its coefficients); big lists in huge
         // pages (lang/big_arrays.h).
+        // Bodies bounded from their extents (ExtentBoxes) take no part: only the half-spaces
+        // of the others are normalised.
+        auto byExtent = [&](std::size_t i) { return !extents.has.empty() && extents.has[i]; };
+        std::vector<char> used(flat_.halfSpaces.size(), 0);
+        bool any = false;
+        for (std::size_t i = 0; i < n; ++i)
+            if (!byExtent(i))
+                for (const FlatLiteral& l : flat_.bodies[i].literals) {
+                    used[static_cast<std::size_t>(l.halfSpace)] = 1;
+                    any = true;
+                }
+        if (!any) return r;
         std::vector<Norm> norms;
         lang::ReserveAdvised(norms, flat_.halfSpaces.size());
         norms.resize(flat_.halfSpaces.size());
         ParallelFor(tbb::blocked_range<std::size_t>(0, norms.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t h = range.begin(); h < range.end(); ++h)
-                            NormaliseLiteral(flat_.halfSpaces[h], norms[h]);
+                            if (used[h]) NormaliseLiteral(flat_.halfSpaces[h], norms[h]);
                     });
         // A x for the normalised A of a quadric (lin: A B C D E F).
         auto mulA = [](const double* q, const Vec3& x) {
@@ -579,7 +666,7 @@ class FlattenerImpl {
                     [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i < range.end(); ++i) {
                             const auto& lits = flat_.bodies[i].literals;
-                            bool ok = !lits.empty();
+                            bool ok = !lits.empty() && !byExtent(i);
                             std::uint64_t key = 1469598103934665603ull;
                             auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
                             for (const FlatLiteral& l : lits) {

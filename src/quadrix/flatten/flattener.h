@@ -59,6 +59,10 @@ struct FlattenOptions {
     // Bodies that are translates of another (parallel views without clip planes) reuse its box
     // moved by the shift (flattener.cpp); off only to compare with direct bounds in tests.
     bool reuseBoundsByTranslation = true;
+    // Bodies whose reader gave their extent (scene::Body::extent: imported primitives) take
+    // their box from it under the same conditions (flattener.cpp); off only to compare with
+    // direct bounds in tests.
+    bool boundsFromExtents = true;
 };
 inline constexpr const char* kSectionName = "<section>";
 

@@ -675,6 +675,14 @@ class Walker {
                                   : Joined(si.path, *t.path, body.id);
         out_.bodies.push_back(std::move(fb));
         result_.bodyLocs.push_back(body.loc);
+        HierarchyResult::ExtentRange extent;
+        extent.begin = extent.end = static_cast<std::uint32_t>(result_.extentPieces.size());
+        if (!body.extent.empty() && IsAffine(si.t.Matrix())) {
+            for (const ExtentPiece& piece : body.extent)
+                result_.extentPieces.push_back(MappedPiece(piece, si.t.Matrix()));
+            extent.end = static_cast<std::uint32_t>(result_.extentPieces.size());
+        }
+        result_.bodyExtents.push_back(extent);
         FlatCsgNode leaf;
         leaf.isLeaf = true;
         leaf.body = static_cast<int>(out_.bodies.size()) - 1;
@@ -789,6 +797,7 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
     lang::ReserveAdvised(result.halfSpaceLocs, result.halfSpaceLocs.size() + nHalf);
     lang::ReserveAdvised(out.bodies, out.bodies.size() + nBody);
     lang::ReserveAdvised(result.bodyLocs, result.bodyLocs.size() + nBody);
+    lang::ReserveAdvised(result.bodyExtents, result.bodyExtents.size() + nBody);
     lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);
     Walker walker(scene, out, result, diags, limits.clipLiteralsPerBody);
     return walker.Run(targetFromWorld);

@@ -53,6 +53,14 @@ struct HierarchyResult {
     std::vector<bool> solidIsCsg;      // per FlatSolid: drawn from a csg statement
     // Per FlatHalfSpace appended by the walk: its half-space statement.
     std::vector<SourceLoc> halfSpaceLocs;
+    // Per FlatBody: its extent (scene::Body::extent) mapped to the target space, the pieces
+    // extentPieces[begin, end); empty where the body has none or its map to the target space is
+    // not affine (a perspective view).
+    struct ExtentRange {
+        std::uint32_t begin = 0, end = 0;
+    };
+    std::vector<ExtentRange> bodyExtents;
+    std::vector<ExtentPiece> extentPieces;
 };
 
 // Appends the drawn solids of `scene` to `out` (halfSpaces, bodies, nodes, solids), transformed

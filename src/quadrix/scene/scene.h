@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "quadrix/freeform/surface.h"
+#include "quadrix/math/extent_piece.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/quadric.h"
 #include "quadrix/math/quartic_surface.h"
@@ -92,6 +93,11 @@ struct Literal {
 struct Body {
     std::string id;
     std::vector<Literal> literals;
+    // Where the reader knows the body's shape (an imported primitive of one body): pieces in
+    // the scope's space whose convex hull has the body's bounding box (math/extent_piece.h), so
+    // that its box under an affine placement and view is exact without a search. Empty: not
+    // known. The set itself is the literals'; the pieces only describe its box.
+    std::vector<ExtentPiece> extent;
     std::optional<Color> color;
     Finish finish;
     bool usedAsOperand = false;  // set by the reader when a CSG solid names this body

@@ -322,6 +322,7 @@ class Converter {
             body.id = p.name;
             body.loc = p.loc;
             body.usedAsOperand = true;
+            body.extent = BodyExtent(cr.shape, total);
             for (const ShapeHalfSpace& h : sb) {
                 scene::HalfSpace hs;
                 hs.id = NumberedId(p.name, scene_.top.halfSpaces.size());

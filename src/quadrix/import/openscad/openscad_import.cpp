@@ -575,6 +575,7 @@ class Builder {
             body.id = csg.id;
             body.loc = map_.At(n.offset);
             body.usedAsOperand = true;
+            body.extent = BodyExtent(cr.shape, total);
             if (color) {
                 body.color = color->color;
                 body.finish.opacity = color->alpha;

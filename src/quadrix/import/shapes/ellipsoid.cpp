@@ -15,6 +15,7 @@ ShapeResult EllipsoidShape(const Vec3& centre, const Vec3& a, const Vec3& b, con
     r.ok = true;
     r.shape.bodies.push_back({f.Quad(DiagonalQuadric(1, 1, 1, -1))});
     r.shape.extent.push_back({centre, a, b, c});
+    r.shape.extentExact = true;
     return r;
 }
 

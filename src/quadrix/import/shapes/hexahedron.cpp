@@ -73,6 +73,15 @@ ShapeResult HexahedronShape(const std::array<Vec3, 8>& vertices) {
     r.ok = true;
     r.shape.bodies.push_back(std::move(body));
     for (const Vec3& v : vertices) r.shape.extent.push_back({v, {}, {}, {}});
+    // The vertices are the solid's corners when it is convex and every face's vertices lie on
+    // its plane to rounding (a face twisted within kHexahedronTol has a corner elsewhere).
+    double reach = 0;
+    for (const Vec3& v : vertices) reach = std::fmax(reach, Length(v));
+    bool planar = convex;
+    for (const auto& face : kHexahedronFaces)
+        if (auto h = planar ? FacePlane(vertices, face, centre) : std::nullopt)
+            for (int k : face) planar = planar && std::fabs(h->plane.Evaluate(vertices[k])) <= 1e-12 * reach;
+    r.shape.extentExact = planar;
     return r;
 }
 

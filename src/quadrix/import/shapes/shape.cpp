@@ -20,18 +20,6 @@ bool ShapeContains(const Shape& shape, const Vec3& p, double tol) {
     return false;
 }
 
-Box3 PieceBox(const ExtentPiece& piece, const Mat4& m) {
-    Vec3 c = m.MapPoint(piece.c);
-    Vec3 a = m.MapVector(piece.a), b = m.MapVector(piece.b), d = m.MapVector(piece.d);
-    Box3 box;
-    for (std::size_t i = 0; i < 3; ++i) {
-        double e = std::sqrt(a[i] * a[i] + b[i] * b[i] + d[i] * d[i]);
-        box.lo[i] = c[i] - e;
-        box.hi[i] = c[i] + e;
-    }
-    return box;
-}
-
 Box3 ShapeBox(const Shape& shape, const Mat4& m) {
     Box3 box;
     for (const ExtentPiece& piece : shape.extent) box.Extend(PieceBox(piece, m));
@@ -48,6 +36,16 @@ Box3 ShapeBox(const Shape& shape, const Mat4& m) {
         box.Extend(s);
     }
     return box;
+}
+
+std::vector<ExtentPiece> BodyExtent(const Shape& shape, const Mat4& m) {
+    std::vector<ExtentPiece> out;
+    if (shape.bodies.size() != 1 || !shape.extentExact || !shape.extentSums.empty() ||
+        shape.unbounded || !IsAffine(m))
+        return out;
+    out.reserve(shape.extent.size());
+    for (const ExtentPiece& piece : shape.extent) out.push_back(MappedPiece(piece, m));
+    return out;
 }
 
 void SetSceneSurface(const ShapeHalfSpace& placed, scene::HalfSpace& hs) {

@@ -3,7 +3,7 @@
 // <= 0; a literal may be complemented), in the primitive's own coordinates, plus "extent pieces"
 // that bound it exactly under any affine map.
 //
-// Extents: every shape lists pieces, ellipsoids c + a·α + b·β + d·γ with α²+β²+γ² <= 1 (an ellipse
+// Extents: every shape lists pieces (math/extent_piece.h), ellipsoids c + a·α + b·β + d·γ with α²+β²+γ² <= 1 (an ellipse
 // when d = 0, a point when all are 0), whose convex hull has the same bounding box as the shape.
 // Under an affine map a piece stays a piece, so the box of a transformed shape is exact as well:
 // c_i ± sqrt(a_i² + b_i² + d_i²). A torus is not the hull of ellipsoids but a Minkowski sum (its
@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrix/math/extent_piece.h"
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/plane_or_quadric.h"
 #include "quadrix/math/quadric.h"
@@ -34,14 +35,14 @@ struct ShapeHalfSpace : PlaneOrQuadric {
 };
 using ShapeBody = std::vector<ShapeHalfSpace>;
 
-struct ExtentPiece {
-    Vec3 c, a, b, d;
-};
-
 struct Shape {
     std::vector<ShapeBody> bodies;  // union
     std::vector<ExtentPiece> extent;
     std::vector<std::vector<ExtentPiece>> extentSums;  // Minkowski sums of pieces (torus, eto)
+    // Set by the builders whose pieces' hull has exactly the shape's box under every affine map
+    // (an ellipsoid, a cone's end ellipses, a polytope's vertices); false where the pieces or
+    // sums only contain it (a rotate-extruded profile's end discs, an elliptical torus).
+    bool extentExact = false;
     bool unbounded = false;                            // half-spaces
 };
 
@@ -61,10 +62,13 @@ ShapeHalfSpace Placed(const ShapeHalfSpace& h, const Transform& t);
 // True when p is inside the shape (some body has every half-space <= tol).
 bool ShapeContains(const Shape& shape, const Vec3& p, double tol = 0);
 
-// Box of a piece after the affine map M (normalised so that M(3,3) = 1 and row 3 = 0 0 0 1).
-Box3 PieceBox(const ExtentPiece& piece, const Mat4& m);
 // Box of a bounded shape after M: its pieces and its sums of pieces.
 Box3 ShapeBox(const Shape& shape, const Mat4& m);
+
+// The extent a scene body made from the shape keeps (scene::Body::extent): its pieces after M
+// when the shape is one body whose pieces are exact (extentExact, no sums) and M is affine;
+// empty otherwise (the body is then bounded from its literals).
+std::vector<ExtentPiece> BodyExtent(const Shape& shape, const Mat4& m);
 
 // The kind and surface of a placed half-space copied into a scene half-space (plane, quadric or
 // quartic); the caller sets id, position and transparency. Shared by both importers.

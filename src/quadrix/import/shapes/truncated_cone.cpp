@@ -40,6 +40,7 @@ ConeShape GeneralCone(const Vec3& v, const Vec3& h, const Vec3& a, const Vec3& b
     auto unit = [](const Vec3& u) { return Length(u) > 0 ? Normalize(u) : Vec3{}; };
     r.shape.extent.push_back({v, a, b, {}});
     r.shape.extent.push_back({v + h, unit(a) * Length(c), unit(b) * Length(d), {}});
+    r.shape.extentExact = true;  // on each ruling a coordinate is linear: its ends decide
     return r;
 }
 
@@ -89,6 +90,7 @@ ConeShape TruncatedConeShape(const Vec3& v0, const Vec3& h0, const Vec3& a0, con
     r.shape.bodies.push_back(std::move(*body));
     r.shape.extent.push_back({v, a, b, {}});
     r.shape.extent.push_back({v + h, a * k, b * k, {}});
+    r.shape.extentExact = true;
     return r;
 }
 
