@@ -6,12 +6,16 @@
 #include <pthread.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <random>
 #include <sstream>
 
+#include "quadrix/engines/registry.h"
+#include "quadrix/flatten/flattener.h"
+#include "quadrix/frame/frame.h"
 #include "quadrix/import/brlcad/brlcad_import.h"
 #include "quadrix/import/rt_view.h"
 #include "quadrix/pipeline/inputs.h"
@@ -782,6 +786,139 @@ TEST(ImportBrlcad, NumbersBeyondIntAreRangeErrors) {
         EXPECT_NE(AllMessages(im->diags).find(expect), std::string::npos) << text << "\n"
                                                                           << AllMessages(im->diags);
     }
+}
+
+// --- boxes from the primitives' extents (scene::Body::extent, flattener.cpp ExtentBoxes) ---
+
+// 20 regions of a rod (a cone frustum), a ball (an ellipsoid) and a block (an arb8) less a bore,
+// each placed with its own rotation, and a nearly twisted arb8 (a face out of plane by 3e-4:
+// bounded directly, its vertices are not its corners).
+std::string RotatedAssembly() {
+    std::string s =
+        "title {extents}\nunits mm\n"
+        "put {rod} tgc V {0 0 0} H {0 0 20} A {3 0 0} B {0 3 0} C {2 0 0} D {0 2 0}\n"
+        "put {ball} ell V {0 0 25} A {5 0 0} B {0 4 0} C {0 0 3}\n"
+        "put {blk} arb8 V1 {-4 -4 -2} V2 {4 -4 -2} V3 {4 4 -2} V4 {-4 4 -2} V5 {-4 -4 2} "
+        "V6 {4 -4 2} V7 {4 4 2} V8 {-4 4 2}\n"
+        "put {bore} tgc V {0 0 -5} H {0 0 40} A {1 0 0} B {0 1 0} C {1 0 0} D {0 1 0}\n"
+        "put {skew} arb8 V1 {0 0 0} V2 {20 0 0} V3 {20 20 0.0003} V4 {0 20 0} V5 {0 0 20} "
+        "V6 {20 0 20} V7 {20 20 20} V8 {0 20 20}\n";
+    std::string all;
+    for (int k = 0; k < 20; ++k) {
+        const Mat4 m = (Transform::Translate({30.0 * (k % 5), 35.0 * (k / 5), 3.0 * k}) *
+                        Transform::Rotate(0, 17.0 * k) * Transform::Rotate(1, 29.0 + 11 * k))
+                           .Matrix();
+        std::string mt;
+        for (int i = 0; i < 16; ++i)
+            mt += fmt::format("{}{:.17g}", i ? " " : "", m.m[i / 4][i % 4]);
+        const std::string name = fmt::format("part{}.r", k);
+        s += fmt::format(
+            "put {{{0}}} comb region yes tree {{- {{u {{u {{l rod {{{1}}}}} {{l ball {{{1}}}}}}} "
+            "{{l blk {{{1}}}}}}} {{l bore {{{1}}}}}}}\n"
+            "attr set {{{0}}} {{region}} {{R}} {{region_id}} {{{2}}}\n",
+            name, mt, 100 + k);
+        all = all.empty() ? fmt::format("{{l {}}}", name)
+                          : fmt::format("{{u {} {{l {}}}}}", all, name);
+    }
+    s += "put {skew.r} comb region yes tree {l skew}\n"
+         "attr set {skew.r} {region} {R} {region_id} {99}\n";
+    s += fmt::format("put {{all.g}} comb region no tree {{u {} {{l skew.r}}}}\n", all);
+    return s;
+}
+
+Frame DrawWithRaycast(const FlatScene& flat) {
+    const EngineInfo* info = FindEngine("raycast");
+    Frame frame;
+    if (!info) return frame;
+    info->make()->Render(flat, RenderOptions{}, frame);
+    return frame;
+}
+
+template <typename A>
+bool SameBytes(const A& a, const A& b) {
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(*a.data())) == 0;
+}
+
+// Flattens `imported` in two views with and without the extents' boxes: the window is bit for
+// bit the one of the direct bounds, the same solids are kept, every body's box is within the
+// pad 2e-5 × (size + |coordinate|) of its direct one (the allowance the fit and the culling give
+// a box that is not the body's own), and raycast draws the same frame bit for bit. Returns how
+// many bodies' boxes came from their extents (they differ from the direct ones in some bit).
+int ExpectExtentBoxesDrawTheSame(const scene::Scene& imported, const Box3& bounds,
+                                 const std::string& what) {
+    int fromExtents = 0;
+    for (const auto& [az, el] : {std::pair{35.0, 25.0}, std::pair{-120.0, -40.0}}) {
+        scene::Scene s = imported;
+        const scene::View view = MakeAzElView(az, el, bounds, std::nullopt, 160, 120);
+        s.views = {view};
+        FlattenOptions o;
+        o.width = 160;
+        o.height = 120;
+        o.viewName = view.id;
+        Diagnostics d1, d2;
+        const std::optional<FlatScene> extents = Flatten(s, o, d1);
+        o.boundsFromExtents = false;
+        const std::optional<FlatScene> direct = Flatten(s, o, d2);
+        const std::string where = fmt::format("{} az {} el {}", what, az, el);
+        EXPECT_TRUE(extents && direct) << where << "\n" << AllMessages(d1) << AllMessages(d2);
+        if (!extents || !direct) return fromExtents;
+        EXPECT_EQ(extents->projection.deviceFromWorld.Matrix().m,
+                  direct->projection.deviceFromWorld.Matrix().m)
+            << where;
+        EXPECT_EQ(extents->solids.size(), direct->solids.size()) << where;
+        EXPECT_EQ(extents->bodies.size(), direct->bodies.size()) << where;
+        if (extents->solids.size() != direct->solids.size() ||
+            extents->bodies.size() != direct->bodies.size())
+            return fromExtents;
+        for (std::size_t k = 0; k < extents->solids.size(); ++k)
+            EXPECT_EQ(extents->solids[k].name, direct->solids[k].name) << where;
+        for (std::size_t b = 0; b < extents->bodies.size(); ++b) {
+            const Box3& a = extents->bodies[b].bounds;
+            const Box3& e = direct->bodies[b].bounds;
+            bool differs = false;
+            for (int axis = 0; axis < 3; ++axis) {
+                if (a.lo[axis] == e.lo[axis] && a.hi[axis] == e.hi[axis]) continue;  // or infinite
+                const double tol = 2e-5 * ((e.hi[axis] - e.lo[axis]) +
+                                           std::fmax(std::fabs(e.lo[axis]), std::fabs(e.hi[axis])));
+                EXPECT_NEAR(a.lo[axis], e.lo[axis], tol)
+                    << where << " body " << extents->bodies[b].name;
+                EXPECT_NEAR(a.hi[axis], e.hi[axis], tol)
+                    << where << " body " << extents->bodies[b].name;
+                differs = true;
+            }
+            fromExtents += differs;
+        }
+        const Frame fa = DrawWithRaycast(*extents), fb = DrawWithRaycast(*direct);
+        EXPECT_GT(fb.CoveredCount(), 500u) << where;
+        EXPECT_TRUE(SameBytes(fa.depth, fb.depth) && SameBytes(fa.normal, fb.normal) &&
+                    SameBytes(fa.surface, fb.surface) && SameBytes(fa.body, fb.body))
+            << where << ": the frames differ";
+    }
+    return fromExtents;
+}
+
+TEST(ImportBrlcad, BoxesFromExtentsKeepTheWindowTheSolidsAndTheFrame) {
+    auto im = Import(RotatedAssembly());
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    // 80 bodies: the rods, balls and blocks have extents, the bores too (subtracted), the skewed
+    // block none.
+    std::size_t withExtent = 0;
+    for (const scene::Body& b : im->scene.top.bodies) withExtent += !b.extent.empty();
+    EXPECT_EQ(im->scene.top.bodies.size(), 81u);
+    EXPECT_EQ(withExtent, 80u);
+    EXPECT_GT(ExpectExtentBoxesDrawTheSame(im->scene, im->report.bounds, "assembly"), 100);
+}
+
+TEST(ImportBrlcadSamples, BoxesFromExtentsKeepTheWindowTheSolidsAndTheFrame) {
+    if (!std::filesystem::exists(kSampleDir)) GTEST_SKIP() << "no " << kSampleDir;
+    int fromExtents = 0;
+    for (const Sample& sample : kSamples) {
+        auto im = Import(ReadAll(std::string(kSampleDir) + "/" + sample.file));
+        ASSERT_TRUE(im->ok) << sample.file;
+        fromExtents += ExpectExtentBoxesDrawTheSame(im->scene, im->report.bounds, sample.file);
+    }
+    EXPECT_GT(fromExtents, 1000);
 }
 
 }  // namespace

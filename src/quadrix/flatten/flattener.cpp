@@ -227,7 +227,7 @@ class FlattenerImpl {
         bo.searchLimit = 1e6 * SceneScale(flat, view_, literals);
         bo.literals = &literals;
         bool anySearched = false;
-        const Extents extents = ExtentBoxes(nClip);
+        const Extents extents = ExtentBoxes(nClip, literals);
         const Reuse reuse = TranslationReuse(nClip, extents);
         boxes_ = AllBodyBounds(flat, firstSame_, bo, &anySearched, &reuse, &extents);
         bodiesOf_ = BodiesOfSolids();
@@ -330,8 +330,7 @@ class FlattenerImpl {
         if (IsAffine(view_.provFromWorld.Matrix())) {
             hierarchy_.extentPieces.reserve(world.hierarchy.extentPieces.size());
             for (const ExtentPiece& piece : world.hierarchy.extentPieces)
-                hierarchy_.extentPieces.push_back(
-                    MappedPiece(piece, view_.provFromWorld.Matrix()));
+                hierarchy_.extentPieces.push_back(MappedPiece(piece, view_.provFromWorld.Matrix()));
         } else {
             for (auto& range : hierarchy_.bodyExtents) range.end = range.begin;
         }
@@ -414,8 +413,7 @@ class FlattenerImpl {
     // window fit and the culling use it to decide which solids to bound directly after all.
     static BodyBoxes AllBodyBounds(const FlatScene& flat, const std::vector<std::size_t>& first,
                                    const BoundsOptions& bo, bool* anySearched,
-                                   const Reuse* reuse = nullptr,
-                                   const Extents* extents = nullptr) {
+                                   const Reuse* reuse = nullptr, const Extents* extents = nullptr) {
         const std::size_t n = first.size();
         BodyBoxes out;
         out.box.resize(n);
@@ -510,7 +508,15 @@ class FlattenerImpl {
     // conditions of TranslationReuse (parallel views without clip, fit or section planes, more
     // than a few solids): a body the literals of other planes cut would be smaller than its
     // extent.
-    Extents ExtentBoxes(int nClip) const {
+    //
+    // The fit and the culling take the body's own box to lie within `pad` of this one (it holds
+    // the true box, as the body's own box does, within kTight = 1e-7 of it where that is
+    // certified tight). Where the body's own box could be looser, a body with a quartic or a
+    // complemented quadric, or a quadric with a clearly negative eigenvalue (a cone's nappes,
+    // whose certificate may be as loose as the convex relaxation's, bounds_internal.h), it is
+    // bounded directly. (Were another certificate loose too, the window would be the one of a
+    // box that still holds the solid, tighter than that certificate's, never cutting it.)
+    Extents ExtentBoxes(int nClip, const LiteralCache& literals) const {
         Extents e;
         const std::size_t n = flat_.bodies.size();
         constexpr std::size_t kFewSolids = 6;  // as in TranslationReuse
@@ -523,6 +529,18 @@ class FlattenerImpl {
         for (std::size_t i = 0; i < n; ++i) {
             const HierarchyResult::ExtentRange& range = hierarchy_.bodyExtents[i];
             if (range.begin == range.end) continue;
+            bool tight = true;
+            for (const FlatLiteral& l : flat_.bodies[i].literals) {
+                const FlatHalfSpace& h = flat_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+                if (!h.IsQuartic() && h.isPlane) continue;
+                const LiteralCache::Entry* entry =
+                    h.IsQuartic() || l.complemented ? nullptr : literals.Find(&h);
+                const double big =
+                    entry ? std::fmax(std::fabs(entry->fn.lamMin), std::fabs(entry->fn.lamMax))
+                          : 0.0;
+                tight = tight && entry && entry->fn.lamMin >= -1e-9 * big;
+            }
+            if (!tight) continue;
             Box3 box;
             for (std::uint32_t k = range.begin; k < range.end; ++k)
                 box.Extend(PieceBox(hierarchy_.extentPieces[k]));

@@ -10,8 +10,7 @@ bool IsAffine(const Mat4& m) {
 }
 
 ExtentPiece MappedPiece(const ExtentPiece& piece, const Mat4& m) {
-    return {m.MapPoint(piece.c), m.MapVector(piece.a), m.MapVector(piece.b),
-            m.MapVector(piece.d)};
+    return {m.MapPoint(piece.c), m.MapVector(piece.a), m.MapVector(piece.b), m.MapVector(piece.d)};
 }
 
 Box3 PieceBox(const ExtentPiece& piece) {

@@ -80,7 +80,8 @@ ShapeResult HexahedronShape(const std::array<Vec3, 8>& vertices) {
     bool planar = convex;
     for (const auto& face : kHexahedronFaces)
         if (auto h = planar ? FacePlane(vertices, face, centre) : std::nullopt)
-            for (int k : face) planar = planar && std::fabs(h->plane.Evaluate(vertices[k])) <= 1e-12 * reach;
+            for (int k : face)
+                planar = planar && std::fabs(h->plane.Evaluate(vertices[k])) <= 1e-12 * reach;
     r.shape.extentExact = planar;
     return r;
 }

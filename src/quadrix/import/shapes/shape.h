@@ -3,12 +3,13 @@
 // <= 0; a literal may be complemented), in the primitive's own coordinates, plus "extent pieces"
 // that bound it exactly under any affine map.
 //
-// Extents: every shape lists pieces (math/extent_piece.h), ellipsoids c + a·α + b·β + d·γ with α²+β²+γ² <= 1 (an ellipse
-// when d = 0, a point when all are 0), whose convex hull has the same bounding box as the shape.
-// Under an affine map a piece stays a piece, so the box of a transformed shape is exact as well:
-// c_i ± sqrt(a_i² + b_i² + d_i²). A torus is not the hull of ellipsoids but a Minkowski sum (its
-// ring circle plus a ball); `extentSums` lists such sums of pieces, whose box is the sum of the
-// pieces' boxes (exact for the torus; for an elliptical torus or a pipe bend a containing sum).
+// Extents: every shape lists pieces (math/extent_piece.h), ellipsoids c + a·α + b·β + d·γ with
+// α²+β²+γ² <= 1 (an ellipse when d = 0, a point when all are 0), whose convex hull has the same
+// bounding box as the shape. Under an affine map a piece stays a piece, so the box of a transformed
+// shape is exact as well: c_i ± sqrt(a_i² + b_i² + d_i²). A torus is not the hull of ellipsoids but
+// a Minkowski sum (its ring circle plus a ball); `extentSums` lists such sums of pieces, whose box
+// is the sum of the pieces' boxes (exact for the torus; for an elliptical torus or a pipe bend a
+// containing sum).
 //
 // Builders. The primitives that both importers draw are built by format-neutral functions, one
 // concept a file, each stating its maths: ellipsoid.h (ellipsoids and spheres), hexahedron.h
@@ -43,7 +44,7 @@ struct Shape {
     // (an ellipsoid, a cone's end ellipses, a polytope's vertices); false where the pieces or
     // sums only contain it (a rotate-extruded profile's end discs, an elliptical torus).
     bool extentExact = false;
-    bool unbounded = false;                            // half-spaces
+    bool unbounded = false;  // half-spaces
 };
 
 // What a shape builder returns: the shape, or (ok false) why its parameters bound no solid, in

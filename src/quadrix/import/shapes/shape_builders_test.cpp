@@ -306,5 +306,40 @@ TEST(ShapeBuilders, LocalFrameMapsTextbookFormsIntoShapeSpace) {
     }
 }
 
+// The extent a scene body keeps (BodyExtent): the pieces after the placement, only for a shape of
+// one body whose pieces' hull has exactly its box (an ellipsoid, a cone, a convex hexahedron with
+// planar faces) under an affine placement; none for a torus (a Minkowski sum), a twisted or
+// nearly twisted hexahedron, or a perspective map.
+TEST(ShapeBuilders, BodyExtentOnlyWhereThePiecesGiveTheExactBox) {
+    const Mat4 place =
+        (Transform::Translate({5, -3, 2}) * Transform::Rotate(0, 30) * Transform::Rotate(2, 50))
+            .Matrix();
+    const ShapeResult ell = EllipsoidShape({1, 2, 3}, {2, 0, 0}, {0, 1, 0}, {0, 0, 0.5});
+    ASSERT_TRUE(ell.ok);
+    const std::vector<ExtentPiece> e = BodyExtent(ell.shape, place);
+    ASSERT_EQ(e.size(), 1u);
+    EXPECT_EQ(e[0].c, place.MapPoint({1, 2, 3}));
+    EXPECT_EQ(e[0].a, place.MapVector({2, 0, 0}));
+    const ConeShape cyl =
+        TruncatedConeShape({0, 0, 0}, {0, 0, 4}, {2, 0, 0}, {0, 2, 0}, {1, 0, 0}, {0, 1, 0});
+    ASSERT_TRUE(cyl.ok);
+    EXPECT_EQ(BodyExtent(cyl.shape, place).size(), 2u);  // the two end discs
+    EXPECT_EQ(BodyExtent(BoxShape({0, 0, 0}, {1, 2, 3}).shape, place).size(), 8u);
+    // Not exact: a torus's box is a sum of pieces.
+    EXPECT_TRUE(BodyExtent(TorusShape({0, 0, 0}, {0, 0, 1}, 3, 1).shape, place).empty());
+    // A base twisted by 0.0003, within kHexahedronTol: convex to the builder (no box planes),
+    // but its corner is not where the vertex is.
+    const ShapeResult nearlyTwisted =
+        HexahedronShape({Vec3{0, 0, 0}, Vec3{2, 0, 0}, Vec3{2, 2, 0.0003}, Vec3{0, 2, 0},
+                         Vec3{0, 0, 2}, Vec3{2, 0, 2}, Vec3{2, 2, 2}, Vec3{0, 2, 2}});
+    ASSERT_TRUE(nearlyTwisted.ok);
+    EXPECT_EQ(nearlyTwisted.shape.bodies[0].size(), 6u);
+    EXPECT_TRUE(BodyExtent(nearlyTwisted.shape, place).empty());
+    // Perspective: no extent.
+    Mat4 perspective = place;
+    perspective.m[3][2] = -0.01;
+    EXPECT_TRUE(BodyExtent(ell.shape, perspective).empty());
+}
+
 }  // namespace
 }  // namespace quadrix::import
