@@ -324,15 +324,19 @@ class FlattenerImpl {
         flat.freeforms = world.flat.freeforms;
         hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
         hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
-        // The bodies' extents follow the half-spaces into provisional space where that map is
-        // affine (parallel views).
-        hierarchy_.bodyExtents = world.hierarchy.bodyExtents;
-        if (IsAffine(view_.provFromWorld.Matrix())) {
-            hierarchy_.extentPieces.reserve(world.hierarchy.extentPieces.size());
-            for (const ExtentPiece& piece : world.hierarchy.extentPieces)
-                hierarchy_.extentPieces.push_back(MappedPiece(piece, view_.provFromWorld.Matrix()));
-        } else {
-            for (auto& range : hierarchy_.bodyExtents) range.end = range.begin;
+        // The bodies' boxes from their extents (FlattenHierarchy), in provisional space where
+        // the map there is affine (parallel views).
+        const Mat4& m = view_.provFromWorld.Matrix();
+        const bool affine = IsAffine(m) && world.hierarchy.bodyExtents.size() == flat.bodies.size();
+        for (std::size_t i = 0; i < flat.bodies.size(); ++i) {
+            Box3 box = Box3::Everything();
+            if (affine) {
+                const HierarchyResult::ExtentRange& range = world.hierarchy.bodyExtents[i];
+                if (range.begin != range.end) box = Box3{};
+                for (std::uint32_t k = range.begin; k < range.end; ++k)
+                    box.Extend(PieceBox(world.hierarchy.extentPieces[k], m));
+            }
+            flat.bodies[i].bounds = box;
         }
         if (nClip > 0)
             for (FlatBody& b : flat.bodies)
@@ -521,14 +525,13 @@ class FlattenerImpl {
         const std::size_t n = flat_.bodies.size();
         constexpr std::size_t kFewSolids = 6;  // as in TranslationReuse
         if (!options_.boundsFromExtents || view_.perspective || nClip != 0 ||
-            !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids ||
-            hierarchy_.bodyExtents.size() != n)
+            !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids)
             return e;
         e.has.assign(n, 0);
         e.box.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            const HierarchyResult::ExtentRange& range = hierarchy_.bodyExtents[i];
-            if (range.begin == range.end) continue;
+            Box3 box = flat_.bodies[i].bounds;  // FlattenHierarchy, PlaceWorld
+            if (!box.Finite()) continue;
             bool tight = true;
             for (const FlatLiteral& l : flat_.bodies[i].literals) {
                 const FlatHalfSpace& h = flat_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
@@ -541,9 +544,6 @@ class FlattenerImpl {
                 tight = tight && entry && entry->fn.lamMin >= -1e-9 * big;
             }
             if (!tight) continue;
-            Box3 box;
-            for (std::uint32_t k = range.begin; k < range.end; ++k)
-                box.Extend(PieceBox(hierarchy_.extentPieces[k]));
             for (int a = 0; a < 3; ++a) {
                 const double grow = 1e-9 * ((box.hi[a] - box.lo[a]) +
                                             std::fmax(std::fabs(box.lo[a]), std::fabs(box.hi[a])));
@@ -1552,6 +1552,7 @@ std::optional<WorldScene> FlattenWorld(const scene::Scene& scene, Diagnostics& d
     WorldScene world;
     HierarchyLimits limits;
     limits.clipLiteralsPerBody = kMostClipLiteralsPerBody;
+    limits.keepExtentPieces = true;
     if (!FlattenHierarchy(scene, Transform{}, limits, world.flat, world.hierarchy, diags))
         return std::nullopt;
     return world;

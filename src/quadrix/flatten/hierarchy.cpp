@@ -244,8 +244,13 @@ struct Term {
 class Walker {
   public:
     Walker(const scene::Scene& scene, FlatScene& out, HierarchyResult& result, Diagnostics& diags,
-           int clipLiterals)
-        : scene_(scene), out_(out), result_(result), diags_(diags), clipLiterals_(clipLiterals) {}
+           const HierarchyLimits& limits)
+        : scene_(scene),
+          out_(out),
+          result_(result),
+          diags_(diags),
+          clipLiterals_(limits.clipLiteralsPerBody),
+          keepExtentPieces_(limits.keepExtentPieces) {}
 
     bool Run(const Transform& targetFromWorld) {
         worldFromTarget_ = targetFromWorld.Inverted();
@@ -673,16 +678,24 @@ class Walker {
         fb.solid = currentSolid_;
         fb.name = body.id.empty() ? Joined(si.path, *t.path, BodyName(body, t.ref.index))
                                   : Joined(si.path, *t.path, body.id);
-        out_.bodies.push_back(std::move(fb));
-        result_.bodyLocs.push_back(body.loc);
+        // The box of the body's extent, where it has one (in the FlatBody it writes anyway: no
+        // fresh memory for it).
         HierarchyResult::ExtentRange extent;
         extent.begin = extent.end = static_cast<std::uint32_t>(result_.extentPieces.size());
+        fb.bounds = Box3::Everything();
         if (!body.extent.empty() && IsAffine(si.t.Matrix())) {
-            for (const ExtentPiece& piece : body.extent)
-                result_.extentPieces.push_back(MappedPiece(piece, si.t.Matrix()));
+            Box3 box;
+            for (const ExtentPiece& piece : body.extent) {
+                const ExtentPiece placed = MappedPiece(piece, si.t.Matrix());
+                box.Extend(PieceBox(placed));
+                if (keepExtentPieces_) result_.extentPieces.push_back(placed);
+            }
+            fb.bounds = box;
             extent.end = static_cast<std::uint32_t>(result_.extentPieces.size());
         }
-        result_.bodyExtents.push_back(extent);
+        if (keepExtentPieces_) result_.bodyExtents.push_back(extent);
+        out_.bodies.push_back(std::move(fb));
+        result_.bodyLocs.push_back(body.loc);
         FlatCsgNode leaf;
         leaf.isLeaf = true;
         leaf.body = static_cast<int>(out_.bodies.size()) - 1;
@@ -745,6 +758,7 @@ class Walker {
     std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded
     std::deque<std::string> paths_;  // Term::path strings (a deque: they stay where they are)
     int clipLiterals_ = 0;           // HierarchyLimits::clipLiteralsPerBody
+    bool keepExtentPieces_ = false;  // HierarchyLimits::keepExtentPieces
 };
 
 }  // namespace
@@ -797,9 +811,10 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
     lang::ReserveAdvised(result.halfSpaceLocs, result.halfSpaceLocs.size() + nHalf);
     lang::ReserveAdvised(out.bodies, out.bodies.size() + nBody);
     lang::ReserveAdvised(result.bodyLocs, result.bodyLocs.size() + nBody);
-    lang::ReserveAdvised(result.bodyExtents, result.bodyExtents.size() + nBody);
+    if (limits.keepExtentPieces)
+        lang::ReserveAdvised(result.bodyExtents, result.bodyExtents.size() + nBody);
     lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);
-    Walker walker(scene, out, result, diags, limits.clipLiteralsPerBody);
+    Walker walker(scene, out, result, diags, limits);
     return walker.Run(targetFromWorld);
 }
 

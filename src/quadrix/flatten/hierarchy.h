@@ -43,6 +43,9 @@ struct HierarchyLimits {
     double maxBodies = 2'000'000;
     double maxLiterals = 20'000'000;  // including the clip literals appended to every body
     int clipLiteralsPerBody = 0;      // counted against maxLiterals
+    // Also list every body's extent pieces in the target space (HierarchyResult): for the world
+    // stage, whose boxes are made again for every view.
+    bool keepExtentPieces = false;
 };
 
 inline constexpr int kMaxNesting = 256;
@@ -53,9 +56,9 @@ struct HierarchyResult {
     std::vector<bool> solidIsCsg;      // per FlatSolid: drawn from a csg statement
     // Per FlatHalfSpace appended by the walk: its half-space statement.
     std::vector<SourceLoc> halfSpaceLocs;
-    // Per FlatBody: its extent (scene::Body::extent) mapped to the target space, the pieces
-    // extentPieces[begin, end); empty where the body has none or its map to the target space is
-    // not affine (a perspective view).
+    // With HierarchyLimits::keepExtentPieces, per FlatBody: its extent (scene::Body::extent)
+    // mapped to the target space, the pieces extentPieces[begin, end); empty where the body has
+    // none or its map to the target space is not affine (a perspective view).
     struct ExtentRange {
         std::uint32_t begin = 0, end = 0;
     };
@@ -64,7 +67,9 @@ struct HierarchyResult {
 };
 
 // Appends the drawn solids of `scene` to `out` (halfSpaces, bodies, nodes, solids), transformed
-// by targetFromWorld. false (with errors in diags) on a limit, a cycle or a bad reference.
+// by targetFromWorld. A FlatBody's `bounds` is the box of its extent in the target space
+// (scene::Body::extent, math/extent_piece.h) where it has one and its map there is affine, else
+// Box3::Everything(). false (with errors in diags) on a limit, a cycle or a bad reference.
 bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorld,
                       const HierarchyLimits& limits, FlatScene& out, HierarchyResult& result,
                       Diagnostics& diags);
