@@ -9,8 +9,32 @@ bool IsAffine(const Mat4& m) {
     return m.m[3][0] == 0 && m.m[3][1] == 0 && m.m[3][2] == 0 && m.m[3][3] == 1;
 }
 
+namespace {
+
+// m·(p, 1) and m·(v, 0) for an affine m, in Mat4::operator*'s order of operations, so the same
+// values (the build keeps products and sums apart: -ffp-contract=off; the last row's w is 1).
+Vec3 AffinePoint(const Mat4& m, const Vec3& p) {
+    return {m.m[0][0] * p.x + m.m[0][1] * p.y + m.m[0][2] * p.z + m.m[0][3],
+            m.m[1][0] * p.x + m.m[1][1] * p.y + m.m[1][2] * p.z + m.m[1][3],
+            m.m[2][0] * p.x + m.m[2][1] * p.y + m.m[2][2] * p.z + m.m[2][3]};
+}
+Vec3 AffineVector(const Mat4& m, const Vec3& v) {
+    return {m.m[0][0] * v.x + m.m[0][1] * v.y + m.m[0][2] * v.z,
+            m.m[1][0] * v.x + m.m[1][1] * v.y + m.m[1][2] * v.z,
+            m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
+}
+
+}  // namespace
+
 ExtentPiece MappedPiece(const ExtentPiece& piece, const Mat4& m) {
-    return {m.MapPoint(piece.c), m.MapVector(piece.a), m.MapVector(piece.b), m.MapVector(piece.d)};
+    if (!IsAffine(m))
+        return {m.MapPoint(piece.c), m.MapVector(piece.a), m.MapVector(piece.b),
+                m.MapVector(piece.d)};
+    const Vec3 zero{0, 0, 0};
+    if (piece.a == zero && piece.b == zero && piece.d == zero)  // a point (a polytope's corner)
+        return {AffinePoint(m, piece.c), zero, zero, zero};
+    return {AffinePoint(m, piece.c), AffineVector(m, piece.a), AffineVector(m, piece.b),
+            AffineVector(m, piece.d)};
 }
 
 Box3 PieceBox(const ExtentPiece& piece) {

@@ -22,7 +22,9 @@ struct ExtentPiece {
 // True when m is affine: its last row is exactly 0 0 0 1.
 bool IsAffine(const Mat4& m);
 
-// The piece under the affine map m (IsAffine(m)).
+// The piece under the map m: its image when m is affine (otherwise each point and vector is
+// mapped by Mat4::MapPoint and MapVector, which is not the image of the ellipsoid). For an affine
+// m the same values as MapPoint and MapVector, in fewer operations.
 ExtentPiece MappedPiece(const ExtentPiece& piece, const Mat4& m);
 
 // The piece's box (not rounded outward), and its box after the affine map m.

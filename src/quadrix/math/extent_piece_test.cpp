@@ -47,6 +47,32 @@ TEST(MathExtentPiece, ADiscsBoxUnderRotationsIsExact) {
     }
 }
 
+// For an affine map the piece's image is what Mat4::MapPoint and MapVector give, value for value
+// (the importers' boxes and the walk's agree); for a projective one MappedPiece falls back to them.
+TEST(MathExtentPiece, MappedPieceIsMapPointAndMapVector) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-100, 100);
+    for (int trial = 0; trial < 200; ++trial) {
+        Mat4 m;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j) m.m[i][j] = u(rng);
+        m.m[3][0] = m.m[3][1] = m.m[3][2] = 0;
+        m.m[3][3] = 1;
+        if (trial % 2) m.m[3][2] = 0.01 * u(rng);  // projective
+        const ExtentPiece p{{u(rng), u(rng), u(rng)},
+                            {u(rng), u(rng), u(rng)},
+                            {u(rng), u(rng), u(rng)},
+                            trial % 3 ? Vec3{u(rng), u(rng), u(rng)} : Vec3{}};
+        const ExtentPiece q = MappedPiece(p, m);
+        EXPECT_EQ(q.c, m.MapPoint(p.c)) << trial;
+        EXPECT_EQ(q.a, m.MapVector(p.a)) << trial;
+        EXPECT_EQ(q.b, m.MapVector(p.b)) << trial;
+        EXPECT_EQ(q.d, m.MapVector(p.d)) << trial;
+        const ExtentPiece point{p.c, {}, {}, {}};
+        EXPECT_EQ(MappedPiece(point, m).c, m.MapPoint(p.c)) << trial;
+    }
+}
+
 // An ellipsoid's box is its centre ± the lengths of the rows of its semi-axis matrix; a point
 // piece's box is the point.
 TEST(MathExtentPiece, EllipsoidAndPointBoxes) {
