@@ -820,17 +820,28 @@ class FlattenerImpl {
                     bodies.push_back(static_cast<std::size_t>(b));
             solidExact_[s] = 1;
         }
-        std::sort(bodies.begin(), bodies.end());
-        bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
-        ParallelFor(tbb::blocked_range<std::size_t>(0, bodies.size(), 4),
+        // Bodies with the same literals (FirstWithSameLiterals) are bounded once.
+        std::vector<std::size_t> firsts;
+        firsts.reserve(bodies.size());
+        for (std::size_t i : bodies) firsts.push_back(firstSame_[i]);
+        std::sort(firsts.begin(), firsts.end());
+        firsts.erase(std::unique(firsts.begin(), firsts.end()), firsts.end());
+        ParallelFor(tbb::blocked_range<std::size_t>(0, firsts.size(), 4),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                            const std::size_t i = bodies[j];
+                            const std::size_t i = firsts[j];
+                            if (boxes_.exact[i]) continue;
                             boxes_.box[i] = BodyBounds(flat_, flat_.bodies[i], bo);
                             boxes_.exact[i] = 1;
                             boxes_.pad[i] = Vec3{0, 0, 0};
                         }
                     });
+        for (std::size_t i : bodies) {
+            const std::size_t f = firstSame_[i];
+            boxes_.box[i] = boxes_.box[f];
+            boxes_.exact[i] = 1;
+            boxes_.pad[i] = Vec3{0, 0, 0};
+        }
     }
 
     // Culling with reused boxes: a solid is dropped when its box misses the image (ToDevice,
