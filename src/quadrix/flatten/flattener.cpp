@@ -415,6 +415,7 @@ class FlattenerImpl {
     // own box would differ from it by the two certificates' allowances, at most kTightNappe =
     // 1e-5 × (size + |coordinate|) each: `pad` (2e-5 of that) bounds the difference, and the
     // window fit and the culling use it to decide which solids to bound directly after all.
+    // A body with an extent box (`extents`, ExtentBoxes) takes it the same way, with the same pad.
     static BodyBoxes AllBodyBounds(const FlatScene& flat, const std::vector<std::size_t>& first,
                                    const BoundsOptions& bo, bool* anySearched,
                                    const Reuse* reuse = nullptr, const Extents* extents = nullptr) {
@@ -585,8 +586,6 @@ class FlattenerImpl {
         if (!options_.reuseBoundsByTranslation || view_.perspective || nClip != 0 ||
             !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids)
             return r;
-        // Per half-space, in parallel (a pure function of its coefficients); big lists in huge
-        // pages (lang/big_arrays.h).
         // Bodies bounded from their extents (ExtentBoxes) take no part: only the half-spaces
         // of the others are normalised.
         auto byExtent = [&](std::size_t i) { return !extents.has.empty() && extents.has[i]; };
@@ -599,6 +598,8 @@ class FlattenerImpl {
                     any = true;
                 }
         if (!any) return r;
+        // Per half-space, in parallel (a pure function of its coefficients); big lists in huge
+        // pages (lang/big_arrays.h).
         std::vector<Norm> norms;
         lang::ReserveAdvised(norms, flat_.halfSpaces.size());
         norms.resize(flat_.halfSpaces.size());
