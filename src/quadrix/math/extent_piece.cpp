@@ -50,4 +50,10 @@ Box3 PieceBox(const ExtentPiece& piece) {
 
 Box3 PieceBox(const ExtentPiece& piece, const Mat4& m) { return PieceBox(MappedPiece(piece, m)); }
 
+Box3 PiecesBox(const std::vector<ExtentPiece>& pieces) {
+    Box3 box;
+    for (const ExtentPiece& piece : pieces) box.Extend(PieceBox(piece));
+    return box;
+}
+
 }  // namespace quadrix

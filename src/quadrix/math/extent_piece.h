@@ -10,6 +10,8 @@
 // and the Flattener bounds such bodies from them (flattener.h).
 #pragma once
 
+#include <vector>
+
 #include "quadrix/math/mat4.h"
 #include "quadrix/math/vec.h"
 
@@ -30,5 +32,8 @@ ExtentPiece MappedPiece(const ExtentPiece& piece, const Mat4& m);
 // The piece's box (not rounded outward), and its box after the affine map m.
 Box3 PieceBox(const ExtentPiece& piece);
 Box3 PieceBox(const ExtentPiece& piece, const Mat4& m);
+
+// The box of the pieces' hull: their boxes' union (empty for no pieces).
+Box3 PiecesBox(const std::vector<ExtentPiece>& pieces);
 
 }  // namespace quadrix

@@ -317,12 +317,16 @@ class Converter {
             return -1;
         }
         Expr e;
+        // A primitive of one body keeps its placed extent; its box is ShapeBox's (the same
+        // pieces mapped the same way), without mapping them twice.
+        std::vector<ExtentPiece> extent = BodyExtent(cr.shape, total);
+        const Box3 extentBox = PiecesBox(extent);
         for (const ShapeBody& sb : cr.shape.bodies) {
             scene::Body body;
             body.id = p.name;
             body.loc = p.loc;
             body.usedAsOperand = true;
-            body.extent = BodyExtent(cr.shape, total);
+            body.extent = std::move(extent);  // empty unless the shape is this one body
             for (const ShapeHalfSpace& h : sb) {
                 scene::HalfSpace hs;
                 hs.id = NumberedId(p.name, scene_.top.halfSpaces.size());
@@ -339,7 +343,7 @@ class Converter {
         if (cr.shape.unbounded) {
             e.box = Box3::Everything();
         } else {
-            e.box = ShapeBox(cr.shape, total);
+            e.box = extentBox.Empty() ? ShapeBox(cr.shape, total) : extentBox;
         }
         int idx = AddExpr(std::move(e));
         leafCache_[key] = idx;

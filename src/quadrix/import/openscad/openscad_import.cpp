@@ -570,12 +570,16 @@ class Builder {
             return -1;
         }
         int root = -1;
+        // A shape of one body keeps its placed extent; its box is ShapeBox's (the same pieces
+        // mapped the same way), without mapping them twice.
+        std::vector<ExtentPiece> extent = BodyExtent(cr.shape, total);
+        const Box3 extentBox = PiecesBox(extent);
         for (const ShapeBody& sb : cr.shape.bodies) {
             scene::Body body;
             body.id = csg.id;
             body.loc = map_.At(n.offset);
             body.usedAsOperand = true;
-            body.extent = BodyExtent(cr.shape, total);
+            body.extent = std::move(extent);  // empty unless the shape is this one body
             if (color) {
                 body.color = color->color;
                 body.finish.opacity = color->alpha;
@@ -597,7 +601,7 @@ class Builder {
             int li = Add(csg, leaf);
             root = root < 0 ? li : Op(csg, scene::CsgOp::kUnion, root, li);
         }
-        box = ShapeBox(cr.shape, total);
+        box = extentBox.Empty() ? ShapeBox(cr.shape, total) : extentBox;
         return root;
     }
 
