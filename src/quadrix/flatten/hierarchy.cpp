@@ -684,13 +684,10 @@ class Walker {
         extent.begin = extent.end = static_cast<std::uint32_t>(result_.extentPieces.size());
         fb.bounds = Box3::Everything();
         if (!body.extent.empty() && IsAffine(si.t.Matrix())) {
-            Box3 box;
-            for (const ExtentPiece& piece : body.extent) {
-                const ExtentPiece placed = MappedPiece(piece, si.t.Matrix());
-                box.Extend(PieceBox(placed));
-                if (keepExtentPieces_) result_.extentPieces.push_back(placed);
-            }
-            fb.bounds = box;
+            fb.bounds = PiecesBox(body.extent, si.t.Matrix());
+            if (keepExtentPieces_)
+                for (const ExtentPiece& piece : body.extent)
+                    result_.extentPieces.push_back(MappedPiece(piece, si.t.Matrix()));
             extent.end = static_cast<std::uint32_t>(result_.extentPieces.size());
         }
         if (keepExtentPieces_) result_.bodyExtents.push_back(extent);

@@ -56,4 +56,30 @@ Box3 PiecesBox(const std::vector<ExtentPiece>& pieces) {
     return box;
 }
 
+Box3 PiecesBox(const std::vector<ExtentPiece>& pieces, const Mat4& m) {
+    Box3 box;
+    if (!IsAffine(m)) {
+        for (const ExtentPiece& piece : pieces) box.Extend(PieceBox(piece, m));
+        return box;
+    }
+    const Vec3 zero{0, 0, 0};
+    for (const ExtentPiece& piece : pieces) {
+        // PieceBox(MappedPiece(piece, m)), operation for operation.
+        const Vec3 c = AffinePoint(m, piece.c);
+        double e[3] = {0, 0, 0};
+        if (!(piece.a == zero && piece.b == zero && piece.d == zero)) {
+            const Vec3 a = AffineVector(m, piece.a), b = AffineVector(m, piece.b),
+                       d = AffineVector(m, piece.d);
+            for (std::size_t i = 0; i < 3; ++i)
+                e[i] = std::sqrt(a[i] * a[i] + b[i] * b[i] + d[i] * d[i]);
+        }
+        for (std::size_t i = 0; i < 3; ++i) {
+            const double lo = c[i] - e[i], hi = c[i] + e[i];
+            if (lo < box.lo[i]) box.lo[i] = lo;
+            if (hi > box.hi[i]) box.hi[i] = hi;
+        }
+    }
+    return box;
+}
+
 }  // namespace quadrix

@@ -33,7 +33,9 @@ ExtentPiece MappedPiece(const ExtentPiece& piece, const Mat4& m);
 Box3 PieceBox(const ExtentPiece& piece);
 Box3 PieceBox(const ExtentPiece& piece, const Mat4& m);
 
-// The box of the pieces' hull: their boxes' union (empty for no pieces).
+// The box of the pieces' hull: their boxes' union (empty for no pieces); with m, of their
+// images under m, the values of PieceBox(piece, m) without making the mapped pieces.
 Box3 PiecesBox(const std::vector<ExtentPiece>& pieces);
+Box3 PiecesBox(const std::vector<ExtentPiece>& pieces, const Mat4& m);
 
 }  // namespace quadrix

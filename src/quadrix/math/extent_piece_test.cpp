@@ -70,6 +70,12 @@ TEST(MathExtentPiece, MappedPieceIsMapPointAndMapVector) {
         EXPECT_EQ(q.d, m.MapVector(p.d)) << trial;
         const ExtentPiece point{p.c, {}, {}, {}};
         EXPECT_EQ(MappedPiece(point, m).c, m.MapPoint(p.c)) << trial;
+        // The hull's box without the mapped pieces: the same values.
+        Box3 expect = PieceBox(p, m);
+        expect.Extend(PieceBox(point, m));
+        const Box3 got = PiecesBox({p, point}, m);
+        EXPECT_EQ(got.lo, expect.lo) << trial;
+        EXPECT_EQ(got.hi, expect.hi) << trial;
     }
 }
 
