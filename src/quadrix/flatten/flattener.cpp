@@ -505,14 +505,26 @@ class FlattenerImpl {
         return out;
     }
 
+    // Whether a box that is not a body's own (moved from a translate, TranslationReuse, or made
+    // from its extent, ExtentBoxes) may stand in for it: only where a translation of the world is
+    // one of provisional space and the body's literals are its own, parallel views without clip,
+    // fit or section planes (those are not moved with the body and cut it smaller than its
+    // extent), and with more than a few solids: such a box only saves work for a solid that does
+    // not reach the window's edge, one that may is bounded directly anyway (SettleExtremes), and
+    // with at most six solids each may hold one of the six extremes (a union of 100,000 spheres
+    // is one solid), so the search is skipped; the flat scene is the same either way.
+    bool BoxesMayStandIn(int nClip) const {
+        constexpr std::size_t kFewSolids = 6;
+        return !view_.perspective && nClip == 0 && view_.fitClips.empty() &&
+               flat_.solids.size() > kFewSolids;
+    }
+
     // Per body, the box of its extent pieces (hierarchy.h: an imported primitive's exact image
     // under its placement and the view), where the body has them: grown per axis by 1e-9 of its
     // size and reach, far above the roundings of the pieces' and the literals' coefficients
     // (each a few ulps of one affine map of one shape) and far below the pad that the window
-    // fit and the culling allow a box that is not the body's own (AllBodyBounds). Under the
-    // conditions of TranslationReuse (parallel views without clip, fit or section planes, more
-    // than a few solids): a body the literals of other planes cut would be smaller than its
-    // extent.
+    // fit and the culling allow a box that is not the body's own (AllBodyBounds). Where such a
+    // box may stand in (BoxesMayStandIn).
     //
     // The fit and the culling take the body's own box to lie within `pad` of this one (it holds
     // the true box, as the body's own box does, within kTight = 1e-7 of it where that is
@@ -524,10 +536,7 @@ class FlattenerImpl {
     Extents ExtentBoxes(int nClip, const LiteralCache& literals) const {
         Extents e;
         const std::size_t n = flat_.bodies.size();
-        constexpr std::size_t kFewSolids = 6;  // as in TranslationReuse
-        if (!options_.boundsFromExtents || view_.perspective || nClip != 0 ||
-            !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids)
-            return e;
+        if (!options_.boundsFromExtents || !BoxesMayStandIn(nClip)) return e;
         e.has.assign(n, 0);
         e.box.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
@@ -578,14 +587,7 @@ class FlattenerImpl {
         r.ref.resize(n);
         for (std::size_t i = 0; i < n; ++i) r.ref[i] = i;
         r.shift.assign(n, Vec3{0, 0, 0});
-        // A reused box only saves work for a solid that does not reach the window's edge: one
-        // that may is bounded directly anyway (SettleExtremes). With at most six solids each may
-        // hold one of the six extremes (a union of 100,000 spheres is one solid), so nothing is
-        // reused and the search for translates is skipped; the flat scene is the same either way.
-        constexpr std::size_t kFewSolids = 6;
-        if (!options_.reuseBoundsByTranslation || view_.perspective || nClip != 0 ||
-            !view_.fitClips.empty() || flat_.solids.size() <= kFewSolids)
-            return r;
+        if (!options_.reuseBoundsByTranslation || !BoxesMayStandIn(nClip)) return r;
         // Bodies bounded from their extents (ExtentBoxes) take no part: only the half-spaces
         // of the others are normalised.
         auto byExtent = [&](std::size_t i) { return !extents.has.empty() && extents.has[i]; };
