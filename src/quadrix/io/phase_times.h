@@ -6,14 +6,18 @@
 // standard error just before the process exits:
 //
 //     quadrix phases: main=T0 start=T1 read=T2 ... exit=Tn
+//     quadrix faults: main=F0 start=F1 ... exit=Fn
+//     quadrix peak KiB: main=R0 start=R1 ... exit=Rn
 //
 // every T the steady clock (CLOCK_MONOTONIC on Linux, the same clock in every process of the
 // machine) in nanoseconds, so that a parent that noted the clock before spawning the process and
 // after reaping it (bench/bench_main.cpp) gets the start-up (spawn → main → start) and the exit
-// (the last mark → reaped) too. A phase that did not happen is absent (e.g. encode for a .qxf).
-// Without the variable MarkPhase costs one load and a branch; nothing is printed. Marks are kept
-// in a fixed table (no allocation, the last mark of a name wins), so the library's own marks
-// (the PNG encoder marks "encode") cost nothing in a long-running process either.
+// (the last mark → reaped) too. F is the process's minor page faults so far and R its peak
+// resident set so far (getrusage, every thread), so that a phase's first-touched memory shows. A
+// phase that did not happen is absent (e.g. encode for a .qxf). Without the variable MarkPhase
+// costs one load and a branch; nothing is printed. Marks are kept in a fixed table (no allocation,
+// the last mark of a name wins), so the library's own marks (the PNG encoder marks "encode") cost
+// nothing in a long-running process either.
 #pragma once
 
 #include <cstdio>
