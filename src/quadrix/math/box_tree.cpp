@@ -34,6 +34,49 @@ Vec3 Centre(const Box3& b) {
 
 }  // namespace
 
+namespace {
+
+// v as a float no greater (Down) or no less (Up) than v.
+float Down(double v) {
+    float f = static_cast<float>(v);
+    if (static_cast<double>(f) > v) f = std::nextafter(f, -HUGE_VALF);
+    return f;
+}
+float Up(double v) {
+    float f = static_cast<float>(v);
+    if (static_cast<double>(f) < v) f = std::nextafter(f, HUGE_VALF);
+    return f;
+}
+
+// A grid's cells over spans w × h: about the median item's size (mw × mh) and at most twice
+// as many as the items.
+struct GridShape {
+    int nx = 1, ny = 1;
+};
+GridShape ShapeGrid(double w, double h, double mw, double mh, std::size_t items) {
+    auto cells = [](double span, double item) {
+        if (!(span > 0)) return 1.0;
+        return item > 0 ? std::clamp(std::ceil(span / item), 1.0, 4096.0) : 4096.0;
+    };
+    double nx = cells(w, mw), ny = cells(h, mh);
+    const double most = 2.0 * static_cast<double>(items);
+    if (nx * ny > most) {
+        const double f = std::sqrt(nx * ny / most);
+        nx = std::max(1.0, std::floor(nx / f));
+        ny = std::max(1.0, std::floor(ny / f));
+    }
+    return {static_cast<int>(nx), static_cast<int>(ny)};
+}
+
+double Median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+}  // namespace
+
 BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size()) {
     std::vector<std::int32_t> items;
     std::vector<Vec3> centres(boxes.size());
@@ -49,7 +92,77 @@ BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size
     nodes_.reserve(2 * (items.size() / kLeafSize + 1));
     nodes_.emplace_back();
     order_.reserve(items.size());
+    if (items.size() >= kGridItems) BuildGrid(boxes, items);
     Build(0, items, 0, items.size(), boxes, centres);
+}
+
+void BoxTree::BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::int32_t>& items) {
+    ColumnGrid g;
+    std::vector<std::int32_t> binned;
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+    std::vector<double> widths, heights;
+    for (std::int32_t k : items) {
+        const Box3& b = boxes[static_cast<std::size_t>(k)];
+        if (!std::isfinite(b.lo.x) || !std::isfinite(b.hi.x) || !std::isfinite(b.lo.y) ||
+            !std::isfinite(b.hi.y)) {
+            g.wide.push_back(k);
+            continue;
+        }
+        binned.push_back(k);
+        x0 = std::min(x0, b.lo.x);
+        x1 = std::max(x1, b.hi.x);
+        y0 = std::min(y0, b.lo.y);
+        y1 = std::max(y1, b.hi.y);
+        widths.push_back(b.hi.x - b.lo.x);
+        heights.push_back(b.hi.y - b.lo.y);
+    }
+    if (binned.empty()) return;
+    const GridShape shape =
+        ShapeGrid(x1 - x0, y1 - y0, Median(widths), Median(heights), binned.size());
+    g.nx = shape.nx;
+    g.ny = shape.ny;
+    g.x0 = x0;
+    g.y0 = y0;
+    g.invW = x1 > x0 ? shape.nx / (x1 - x0) : 0;
+    g.invH = y1 > y0 ? shape.ny / (y1 - y0) : 0;
+    if (!std::isfinite(g.invW) || !std::isfinite(g.invH)) return;  // spans beyond doubles
+    const std::size_t nCells = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+    g.start.assign(nCells + 1, 0);
+    std::size_t refs = 0;
+    for (std::int32_t k : binned) {
+        const Box3& b = boxes[static_cast<std::size_t>(k)];
+        const std::size_t w = static_cast<std::size_t>(g.CellX(b.hi.x) - g.CellX(b.lo.x) + 1);
+        const std::size_t h = static_cast<std::size_t>(g.CellY(b.hi.y) - g.CellY(b.lo.y) + 1);
+        refs += w * h;
+    }
+    // Items spread over many cells (boxes much larger than the median): the tree serves better.
+    if (refs > 16 * binned.size()) return;
+    for (std::int32_t k : binned) {
+        const Box3& b = boxes[static_cast<std::size_t>(k)];
+        for (int j = g.CellY(b.lo.y); j <= g.CellY(b.hi.y); ++j)
+            for (int i = g.CellX(b.lo.x); i <= g.CellX(b.hi.x); ++i)
+                ++g.start[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nx) +
+                          static_cast<std::size_t>(i) + 1];
+    }
+    for (std::size_t c = 0; c < nCells; ++c) g.start[c + 1] += g.start[c];
+    g.entries.resize(refs);
+    std::vector<std::int32_t> fill(g.start.begin(), g.start.end() - 1);
+    for (std::int32_t k : binned) {
+        const Box3& b = boxes[static_cast<std::size_t>(k)];
+        const ColumnGrid::Entry e{Down(b.lo.x), Up(b.hi.x),   Down(b.lo.y),
+                                  Up(b.hi.y),   Down(b.lo.z), k};
+        for (int j = g.CellY(b.lo.y); j <= g.CellY(b.hi.y); ++j)
+            for (int i = g.CellX(b.lo.x); i <= g.CellX(b.hi.x); ++i)
+                g.entries[static_cast<std::size_t>(
+                    fill[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nx) +
+                         static_cast<std::size_t>(i)]++)] = e;
+    }
+    for (std::size_t c = 0; c < nCells; ++c)
+        std::sort(g.entries.begin() + g.start[c], g.entries.begin() + g.start[c + 1],
+                  [](const ColumnGrid::Entry& a, const ColumnGrid::Entry& b) {
+                      return a.loZ < b.loZ || (a.loZ == b.loZ && a.item < b.item);
+                  });
+    grid_.push_back(std::move(g));
 }
 
 BoxTree::HalfLineView BoxTree::ViewAlong(const Vec3& d) const {
@@ -66,7 +179,76 @@ BoxTree::HalfLineView BoxTree::ViewAlong(const Vec3& d) const {
     view.v = Normalize(Cross(view.w, view.u));
     view.nodes.resize(nodes_.size());
     for (std::size_t i = 0; i < nodes_.size(); ++i) view.nodes[i] = view.Project(nodes_[i].box);
+    if (order_.size() >= kGridItems) BuildViewGrid(view);
     return view;
+}
+
+void BoxTree::BuildViewGrid(HalfLineView& view) const {
+    using Grid = HalfLineView::Grid;
+    Grid g;
+    std::vector<std::int32_t> leaves;
+    double u0 = HUGE_VAL, u1 = -HUGE_VAL, v0 = HUGE_VAL, v1 = -HUGE_VAL;
+    std::vector<double> widths, heights;
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        if (nodes_[i].count == 0) continue;
+        const HalfLineView::Extent& x = view.nodes[i];
+        const auto l = static_cast<std::int32_t>(i);
+        if (!std::isfinite(x.uLo) || !std::isfinite(x.uHi) || !std::isfinite(x.vLo) ||
+            !std::isfinite(x.vHi) || !(x.uLo <= x.uHi) || !(x.vLo <= x.vHi)) {
+            g.loose.push_back(l);
+            continue;
+        }
+        leaves.push_back(l);
+        u0 = std::min(u0, x.uLo);
+        u1 = std::max(u1, x.uHi);
+        v0 = std::min(v0, x.vLo);
+        v1 = std::max(v1, x.vHi);
+        widths.push_back(x.uHi - x.uLo);
+        heights.push_back(x.vHi - x.vLo);
+    }
+    if (leaves.empty()) return;
+    const GridShape shape =
+        ShapeGrid(u1 - u0, v1 - v0, Median(widths), Median(heights), leaves.size());
+    g.nu = shape.nx;
+    g.nv = shape.ny;
+    g.u0 = u0;
+    g.v0 = v0;
+    g.invU = u1 > u0 ? shape.nx / (u1 - u0) : 0;
+    g.invV = v1 > v0 ? shape.ny / (v1 - v0) : 0;
+    if (!std::isfinite(g.invU) || !std::isfinite(g.invV)) return;
+    auto cellU = [&](double u) { return ColumnGrid::Cell((u - g.u0) * g.invU, g.nu); };
+    auto cellV = [&](double v) { return ColumnGrid::Cell((v - g.v0) * g.invV, g.nv); };
+    const std::size_t nCells = static_cast<std::size_t>(g.nu) * static_cast<std::size_t>(g.nv);
+    g.start.assign(nCells + 1, 0);
+    std::size_t refs = 0;
+    for (std::int32_t l : leaves) {
+        const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
+        refs += static_cast<std::size_t>(cellU(x.uHi) - cellU(x.uLo) + 1) *
+                static_cast<std::size_t>(cellV(x.vHi) - cellV(x.vLo) + 1);
+    }
+    if (refs > 16 * leaves.size()) return;
+    auto each = [&](std::int32_t l, auto&& f) {
+        const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
+        for (int j = cellV(x.vLo); j <= cellV(x.vHi); ++j)
+            for (int i = cellU(x.uLo); i <= cellU(x.uHi); ++i)
+                f(static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nu) +
+                  static_cast<std::size_t>(i));
+    };
+    for (std::int32_t l : leaves) each(l, [&](std::size_t c) { ++g.start[c + 1]; });
+    for (std::size_t c = 0; c < nCells; ++c) g.start[c + 1] += g.start[c];
+    g.entries.resize(refs);
+    std::vector<std::int32_t> fill(g.start.begin(), g.start.end() - 1);
+    for (std::int32_t l : leaves) {
+        const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
+        const Grid::Entry e{Down(x.uLo), Up(x.uHi), Down(x.vLo), Up(x.vHi), Up(x.wHi), l};
+        each(l, [&](std::size_t c) { g.entries[static_cast<std::size_t>(fill[c]++)] = e; });
+    }
+    for (std::size_t c = 0; c < nCells; ++c)
+        std::sort(g.entries.begin() + g.start[c], g.entries.begin() + g.start[c + 1],
+                  [](const Grid::Entry& a, const Grid::Entry& b) {
+                      return a.wHi < b.wHi || (a.wHi == b.wHi && a.leaf < b.leaf);
+                  });
+    view.grid.push_back(std::move(g));
 }
 
 BoxTree::HalfLineView::Extent BoxTree::HalfLineView::Project(const Box3& b) const {

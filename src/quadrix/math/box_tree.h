@@ -16,11 +16,18 @@
 // monotone in the box (a box containing another passes whenever the smaller one passes, with the
 // same floating-point operations), so nothing an item's own test would accept is skipped.
 //
+// Grids: a tree of at least kGridItems items also keeps a uniform grid over its items' (x, y)
+// extents for the column queries, and a view along a direction one over its leaves' extents
+// across that direction for the half-lines (ColumnGrid, HalfLineView::Grid): in a dense scene a
+// query then reads one cell's short list instead of walking the tree from its root. They visit
+// what the tree would (every item whose own box passes), in their own order.
+//
 // Order: items are visited in tree order, not index order (a segment visits the nearer of two
-// subtrees first); a caller whose result depends on the order (the sample tracer folds children
-// left to right) sorts what it collects.
+// subtrees first), or in a grid cell's order (by depth); a caller whose result depends on the
+// order (the sample tracer folds children left to right) sorts what it collects.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -51,9 +58,17 @@ class BoxTree {
         ColumnBefore(x, y, HUGE_VAL, visit);
     }
     // The same, skipping the items whose box starts at or beyond depth zMax (box.lo.z >= zMax;
-    // with zMax = +inf, Column): the part of the column before zMax.
+    // with zMax = +inf, Column): the part of the column before zMax. A tree of at least
+    // kGridItems items answers it from its column grid (below) instead of its nodes.
     template <class Visit>
     void ColumnBefore(double x, double y, double zMax, Visit&& visit) const;
+
+    // The column grid: a uniform grid over the (x, y) extents of the items, each cell listing
+    // the items whose extent meets it by the depth where they start. A column at (x, y) looks at
+    // one cell's list, in depth order, up to zMax, instead of walking the tree from its root:
+    // the anti-aliasing samples of a union of 10,000 spheres tested about 55 tree nodes each.
+    // Cell sides about the items' median extent, so that an item lies in a few cells.
+    static constexpr std::size_t kGridItems = 256;
 
     // The slab test of one box against a segment (used by the tree and by its callers).
     static bool SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1);
@@ -84,6 +99,24 @@ class BoxTree {
             return !(q.uHi < e.uLo || q.uLo > e.uHi || q.vHi < e.vLo || q.vLo > e.vHi ||
                      q.wLo > e.wHi);
         }
+        // A tree of at least kGridItems items: a uniform grid over its leaves' extents on u and
+        // v, each cell listing the leaves whose extent meets it by wHi ascending. A half-line
+        // whose probe lies in one cell looks at that cell's leaves from the first that reaches
+        // past its start, nearest first, instead of walking the tree (a probe across a cell
+        // border walks the tree). Cells as the column grid's (ColumnGrid): CellU monotone,
+        // entries rounded outward to floats, so every leaf the tree would reach is listed.
+        struct Grid {
+            struct Entry {
+                float uLo, uHi, vLo, vHi, wHi;
+                std::int32_t leaf;
+            };
+            double u0 = 0, v0 = 0, invU = 0, invV = 0;
+            int nu = 1, nv = 1;
+            std::vector<std::int32_t> start;
+            std::vector<Entry> entries;
+            std::vector<std::int32_t> loose;  // leaves with a NaN or infinite u or v extent
+        };
+        std::vector<Grid> grid;  // one, or none
     };
     HalfLineView ViewAlong(const Vec3& d) const;
     // Calls visit(k) for the items whose box the half-line p + s·d, s >= 0, may meet (d the
@@ -92,6 +125,32 @@ class BoxTree {
     bool HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) const;
 
   private:
+    // Cell i in x covers [x0 + i / invW, x0 + (i + 1) / invW), the first and last cells reaching
+    // to ∓∞: CellX is floor((x − x0) · invW) clamped to [0, nx), monotone in x (a rounded
+    // subtraction and product by a positive number are), so an item listed in the cells from
+    // CellX(lo.x) to CellX(hi.x) is in the cell of every x it holds. Entries keep the item's
+    // extents as floats rounded outward and its lo.z rounded down: a looser test than the
+    // item's own (every item that passes that is visited), in 24 bytes.
+    struct ColumnGrid {
+        struct Entry {
+            float loX, hiX, loY, hiY, loZ;
+            std::int32_t item;
+        };
+        double x0 = 0, y0 = 0, invW = 0, invH = 0;
+        int nx = 1, ny = 1;
+        std::vector<std::int32_t> start;  // cell c's entries: [start[c], start[c + 1])
+        std::vector<Entry> entries;       // per cell, by loZ ascending
+        std::vector<std::int32_t> wide;   // items with an infinite side in x or y: in no cell
+        static int Cell(double t, int n) {
+            if (!(t >= 0)) return 0;
+            return t < n ? static_cast<int>(t) : n - 1;
+        }
+        int CellX(double x) const { return Cell((x - x0) * invW, nx); }
+        int CellY(double y) const { return Cell((y - y0) * invH, ny); }
+    };
+    void BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::int32_t>& items);
+    void BuildViewGrid(HalfLineView& view) const;
+
     struct Node {
         Box3 box;
         // Inner node: children at `first` and `first + 1` of nodes_ (count = 0). Leaf: items
@@ -105,11 +164,14 @@ class BoxTree {
     std::vector<Node> nodes_;             // nodes_[0] is the root (when any item is bounded)
     std::vector<std::int32_t> order_;     // the items of the leaves
     std::vector<std::int32_t> always_;    // items whose boxes are never culled
+    std::vector<ColumnGrid> grid_;        // the column grid: one, or none (fewer items)
     static constexpr int kMaxDepth = 64;  // the median split gives depth <= log2(n) + 1
 };
 
-inline bool BoxTree::SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0,
-                                    double s1) {
+// (always_inline: every shadow ray tests boxes with it; out of line, as the compiler once chose,
+// its calls cost about 1 % of a whole render of the machined part.)
+[[gnu::always_inline]] inline bool BoxTree::SegmentHitsBox(const Box3& b, const Vec3& p,
+                                                           const Vec3& d, double s0, double s1) {
     // Slab test; NaN or empty boxes are not culled (conservative).
     for (int k = 0; k < 3; ++k) {
         const double lo = b.lo[k], hi = b.hi[k];
@@ -164,6 +226,36 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
         if (visit(k)) return true;
     if (nodes_.empty()) return false;
     const HalfLineView::Probe q = view.At(p);
+    if (!view.grid.empty()) {
+        const HalfLineView::Grid& g = view.grid.front();
+        const int i = ColumnGrid::Cell((q.uLo - g.u0) * g.invU, g.nu);
+        const int j = ColumnGrid::Cell((q.vLo - g.v0) * g.invV, g.nv);
+        if (i == ColumnGrid::Cell((q.uHi - g.u0) * g.invU, g.nu) &&
+            j == ColumnGrid::Cell((q.vHi - g.v0) * g.invV, g.nv) && q.wLo == q.wLo) {
+            auto leaf = [&](std::int32_t l) {
+                const Node& n = nodes_[static_cast<std::size_t>(l)];
+                for (std::int32_t k = n.first; k < n.first + n.count; ++k)
+                    if (visit(order_[static_cast<std::size_t>(k)])) return true;
+                return false;
+            };
+            for (std::int32_t l : g.loose)
+                if (HalfLineView::Meets(view.nodes[static_cast<std::size_t>(l)], q) && leaf(l))
+                    return true;
+            const auto c = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nu) +
+                           static_cast<std::size_t>(i);
+            const HalfLineView::Grid::Entry* e = g.entries.data() + g.start[c];
+            const HalfLineView::Grid::Entry* end = g.entries.data() + g.start[c + 1];
+            // The first leaf reaching past the start: wHi >= q.wLo (floats rounded up).
+            e = std::lower_bound(e, end, q.wLo, [](const HalfLineView::Grid::Entry& x, double w) {
+                return x.wHi < w;
+            });
+            for (; e != end; ++e) {
+                if (q.uHi < e->uLo || q.uLo > e->uHi || q.vHi < e->vLo || q.vLo > e->vHi) continue;
+                if (leaf(e->leaf)) return true;
+            }
+            return false;
+        }
+    }
     std::int32_t stack[kMaxDepth + 2];
     int top = 0;
     stack[top++] = 0;
@@ -189,6 +281,22 @@ template <class Visit>
 void BoxTree::ColumnBefore(double x, double y, double zMax, Visit&& visit) const {
     for (std::int32_t k : always_) visit(k);
     if (nodes_.empty()) return;
+    // The grid, for a column at a point (a NaN coordinate passes every box: the tree's walk).
+    if (!grid_.empty() && x == x && y == y) {
+        const ColumnGrid& g = grid_.front();
+        for (std::int32_t k : g.wide) visit(k);
+        const auto c = static_cast<std::size_t>(g.CellY(y)) * static_cast<std::size_t>(g.nx) +
+                       static_cast<std::size_t>(g.CellX(x));
+        const ColumnGrid::Entry* e = g.entries.data() + g.start[c];
+        const ColumnGrid::Entry* end = g.entries.data() + g.start[c + 1];
+        const bool cut = zMax < HUGE_VAL;
+        for (; e != end; ++e) {
+            if (cut && e->loZ >= zMax) break;
+            if (x < e->loX || x > e->hiX || y < e->loY || y > e->hiY) continue;
+            visit(e->item);
+        }
+        return;
+    }
     std::int32_t stack[kMaxDepth + 2];
     int top = 0;
     stack[top++] = 0;

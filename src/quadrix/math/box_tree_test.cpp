@@ -151,6 +151,89 @@ TEST(BoxTree, AHalfLineViewVisitsEveryItemTheHalfLineMeets) {
     EXPECT_LT(view, queries * finite.size() / 10);
 }
 
+// The column grid (a tree of at least kGridItems items): ColumnBefore visits, once, every item
+// whose box holds (x, y) and starts before zMax, for boxes of every kind, query points on box
+// sides and on the grid's cell borders (where the cell of a point is a rounding away from its
+// neighbour), far outside the scene, and NaN; and only a few others.
+TEST(BoxTree, TheColumnGridVisitsEveryItemBeforeTheDepth) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-110, 110), unit(0, 1);
+    for (int n : {255, 256, 3000}) {
+        std::vector<Box3> boxes = RandomBoxes(n, rng);
+        // A row of touching boxes: their shared sides are cell borders for some grid sizes.
+        for (int i = 0; i < 40; ++i)
+            boxes.push_back(Box3{{-20.0 + i, 5, -3}, {-19.0 + i, 6, 2 + 0.1 * i}});
+        const BoxTree tree(boxes);
+        std::size_t visited = 0, passed = 0;
+        for (int q = 0; q < 2000; ++q) {
+            double x = u(rng), y = u(rng);
+            const Box3& b = boxes[static_cast<std::size_t>(q) % boxes.size()];
+            if (q % 4 == 1 && b.Finite()) x = b.lo.x, y = b.hi.y;  // on a corner
+            if (q % 4 == 2 && b.Finite()) x = b.hi.x, y = std::nextafter(b.lo.y, -HUGE_VAL);
+            if (q % 4 == 3) x = -20 + q % 41, y = 5 + (q % 3) * 0.5;  // the row's sides
+            if (q == 7) x = std::nan("");
+            if (q == 8) x = 1e300, y = -1e300;
+            const double zMax = q % 5 == 0 ? HUGE_VAL : u(rng);
+            std::set<std::int32_t> seen;
+            tree.ColumnBefore(x, y, zMax, [&](std::int32_t k) {
+                EXPECT_TRUE(seen.insert(k).second) << "visited twice";
+            });
+            for (std::size_t k = 0; k < boxes.size(); ++k) {
+                const Box3& c = boxes[k];
+                const bool nanBox = !(c.lo.y == c.lo.y);
+                if ((ColumnHits(c, x, y) || nanBox) && (zMax == HUGE_VAL || !(c.lo.z >= zMax))) {
+                    EXPECT_TRUE(seen.count(static_cast<std::int32_t>(k)))
+                        << n << " " << q << " " << k << " at " << x << ", " << y;
+                    ++passed;
+                }
+            }
+            visited += seen.size();
+        }
+        // Few visits beyond those that pass: the empty, NaN and x- or y-unbounded boxes (each
+        // n / 50 of them, visited by every query whatever its depth) and the floats rounded
+        // outward; all of them would be 2000 × (n + 40).
+        EXPECT_LE(visited, passed + passed / 50 + 2000 * 3 * (n / 50 + 1)) << n;
+    }
+}
+
+// The view's grid (a tree of at least kGridItems items): HalfLine visits every item the
+// half-line meets when it starts on a box's corner farthest along d (where the half-line only
+// touches that box, at the end of its w extent), on its face, or anywhere, in dense scenes.
+TEST(BoxTree, TheViewGridVisitsEveryItemTheHalfLineMeets) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> u(-110, 110), dir(-1, 1);
+    std::size_t checked = 0;
+    for (int n : {300, 3000}) {
+        const std::vector<Box3> boxes = RandomBoxes(n, rng);
+        const BoxTree tree(boxes);
+        for (int di = 0; di < 8; ++di) {
+            Vec3 d{dir(rng), dir(rng), dir(rng)};
+            if (di == 0) d = {0.3, -0.5, 1};
+            const BoxTree::HalfLineView view = tree.ViewAlong(d);
+            for (int q = 0; q < 300; ++q) {
+                Vec3 p{u(rng), u(rng), u(rng)};
+                const Box3& b = boxes[static_cast<std::size_t>(q * 7) % boxes.size()];
+                if (b.Finite() && q % 3 != 2)
+                    for (int k = 0; k < 3; ++k)  // the corner farthest along d, or a face's
+                        p[k] = q % 3 == 1 && k == 0 ? 0.5 * (b.lo[k] + b.hi[k])
+                                                    : (d[k] > 0 ? b.hi[k] : b.lo[k]);
+                std::set<std::int32_t> seen;
+                tree.HalfLine(view, p, [&](std::int32_t k) {
+                    EXPECT_TRUE(seen.insert(k).second) << "visited twice";
+                    return false;
+                });
+                for (int k = 0; k < n; ++k)
+                    if (BoxTree::SegmentHitsBox(boxes[static_cast<std::size_t>(k)], p, d, 0,
+                                                HUGE_VAL)) {
+                        EXPECT_TRUE(seen.count(k)) << n << " " << di << " " << q << " " << k;
+                        ++checked;
+                    }
+            }
+        }
+    }
+    EXPECT_GT(checked, 10000u);  // the test looked at many hits
+}
+
 TEST(BoxTree, ASegmentQueryStopsWhenAVisitSaysSo) {
     const std::vector<Box3> boxes(50, Box3{{-1, -1, -1}, {1, 1, 1}});
     const BoxTree tree(boxes);
