@@ -1,6 +1,7 @@
 #include "quadrix/math/box_tree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace quadrix {
@@ -31,10 +32,6 @@ Vec3 Centre(const Box3& b) {
     }
     return c;
 }
-
-}  // namespace
-
-namespace {
 
 // v as a float no greater (Down) or no less (Up) than v.
 float Down(double v) {
@@ -73,6 +70,42 @@ double Median(std::vector<double> v) {
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
     std::nth_element(v.begin(), mid, v.end());
     return *mid;
+}
+
+// Lists each of `items` in the cells [i0, i1] × [j0, j1] = cellsOf(item) of a grid nx cells wide
+// (cell j·nx + i): start[c] .. start[c + 1] are cell c's entries, make(item) each, sorted by
+// `before`. False, with nothing filled, when that would take more than 16 entries an item (boxes
+// much larger than the median: the tree serves them better).
+template <class Entry, class Cells, class Make, class Before>
+bool Bin(const std::vector<std::int32_t>& items, int nx, std::size_t nCells, const Cells& cellsOf,
+         const Make& make, const Before& before, std::vector<std::int32_t>& start,
+         std::vector<Entry>& entries) {
+    auto each = [&](std::int32_t k, auto&& f) {
+        const std::array<int, 4> c = cellsOf(k);
+        for (int j = c[2]; j <= c[3]; ++j)
+            for (int i = c[0]; i <= c[1]; ++i)
+                f(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) +
+                  static_cast<std::size_t>(i));
+    };
+    std::size_t refs = 0;
+    for (std::int32_t k : items) {
+        const std::array<int, 4> c = cellsOf(k);
+        refs +=
+            static_cast<std::size_t>(c[1] - c[0] + 1) * static_cast<std::size_t>(c[3] - c[2] + 1);
+    }
+    if (refs > 16 * items.size()) return false;
+    start.assign(nCells + 1, 0);
+    for (std::int32_t k : items) each(k, [&](std::size_t c) { ++start[c + 1]; });
+    for (std::size_t c = 0; c < nCells; ++c) start[c + 1] += start[c];
+    entries.resize(refs);
+    std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+    for (std::int32_t k : items) {
+        const Entry e = make(k);
+        each(k, [&](std::size_t c) { entries[static_cast<std::size_t>(fill[c]++)] = e; });
+    }
+    for (std::size_t c = 0; c < nCells; ++c)
+        std::sort(entries.begin() + start[c], entries.begin() + start[c + 1], before);
+    return true;
 }
 
 }  // namespace
@@ -127,41 +160,20 @@ void BoxTree::BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::i
     g.invH = y1 > y0 ? shape.ny / (y1 - y0) : 0;
     if (!std::isfinite(g.invW) || !std::isfinite(g.invH)) return;  // spans beyond doubles
     const std::size_t nCells = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
-    g.start.assign(nCells + 1, 0);
-    std::size_t refs = 0;
-    for (std::int32_t k : binned) {
+    auto cellsOf = [&](std::int32_t k) {
         const Box3& b = boxes[static_cast<std::size_t>(k)];
-        const std::size_t w = static_cast<std::size_t>(g.CellX(b.hi.x) - g.CellX(b.lo.x) + 1);
-        const std::size_t h = static_cast<std::size_t>(g.CellY(b.hi.y) - g.CellY(b.lo.y) + 1);
-        refs += w * h;
-    }
-    // Items spread over many cells (boxes much larger than the median): the tree serves better.
-    if (refs > 16 * binned.size()) return;
-    for (std::int32_t k : binned) {
+        return std::array<int, 4>{g.CellX(b.lo.x), g.CellX(b.hi.x), g.CellY(b.lo.y),
+                                  g.CellY(b.hi.y)};
+    };
+    auto make = [&](std::int32_t k) {
         const Box3& b = boxes[static_cast<std::size_t>(k)];
-        for (int j = g.CellY(b.lo.y); j <= g.CellY(b.hi.y); ++j)
-            for (int i = g.CellX(b.lo.x); i <= g.CellX(b.hi.x); ++i)
-                ++g.start[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nx) +
-                          static_cast<std::size_t>(i) + 1];
-    }
-    for (std::size_t c = 0; c < nCells; ++c) g.start[c + 1] += g.start[c];
-    g.entries.resize(refs);
-    std::vector<std::int32_t> fill(g.start.begin(), g.start.end() - 1);
-    for (std::int32_t k : binned) {
-        const Box3& b = boxes[static_cast<std::size_t>(k)];
-        const ColumnGrid::Entry e{Down(b.lo.x), Up(b.hi.x),   Down(b.lo.y),
-                                  Up(b.hi.y),   Down(b.lo.z), k};
-        for (int j = g.CellY(b.lo.y); j <= g.CellY(b.hi.y); ++j)
-            for (int i = g.CellX(b.lo.x); i <= g.CellX(b.hi.x); ++i)
-                g.entries[static_cast<std::size_t>(
-                    fill[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nx) +
-                         static_cast<std::size_t>(i)]++)] = e;
-    }
-    for (std::size_t c = 0; c < nCells; ++c)
-        std::sort(g.entries.begin() + g.start[c], g.entries.begin() + g.start[c + 1],
-                  [](const ColumnGrid::Entry& a, const ColumnGrid::Entry& b) {
-                      return a.loZ < b.loZ || (a.loZ == b.loZ && a.item < b.item);
-                  });
+        return ColumnGrid::Entry{Down(b.lo.x), Up(b.hi.x),   Down(b.lo.y),
+                                 Up(b.hi.y),   Down(b.lo.z), k};
+    };
+    auto before = [](const ColumnGrid::Entry& a, const ColumnGrid::Entry& b) {
+        return a.loZ < b.loZ || (a.loZ == b.loZ && a.item < b.item);
+    };
+    if (!Bin(binned, g.nx, nCells, cellsOf, make, before, g.start, g.entries)) return;
     grid_.push_back(std::move(g));
 }
 
@@ -219,35 +231,18 @@ void BoxTree::BuildViewGrid(HalfLineView& view) const {
     auto cellU = [&](double u) { return ColumnGrid::Cell((u - g.u0) * g.invU, g.nu); };
     auto cellV = [&](double v) { return ColumnGrid::Cell((v - g.v0) * g.invV, g.nv); };
     const std::size_t nCells = static_cast<std::size_t>(g.nu) * static_cast<std::size_t>(g.nv);
-    g.start.assign(nCells + 1, 0);
-    std::size_t refs = 0;
-    for (std::int32_t l : leaves) {
+    auto cellsOf = [&](std::int32_t l) {
         const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
-        refs += static_cast<std::size_t>(cellU(x.uHi) - cellU(x.uLo) + 1) *
-                static_cast<std::size_t>(cellV(x.vHi) - cellV(x.vLo) + 1);
-    }
-    if (refs > 16 * leaves.size()) return;
-    auto each = [&](std::int32_t l, auto&& f) {
-        const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
-        for (int j = cellV(x.vLo); j <= cellV(x.vHi); ++j)
-            for (int i = cellU(x.uLo); i <= cellU(x.uHi); ++i)
-                f(static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nu) +
-                  static_cast<std::size_t>(i));
+        return std::array<int, 4>{cellU(x.uLo), cellU(x.uHi), cellV(x.vLo), cellV(x.vHi)};
     };
-    for (std::int32_t l : leaves) each(l, [&](std::size_t c) { ++g.start[c + 1]; });
-    for (std::size_t c = 0; c < nCells; ++c) g.start[c + 1] += g.start[c];
-    g.entries.resize(refs);
-    std::vector<std::int32_t> fill(g.start.begin(), g.start.end() - 1);
-    for (std::int32_t l : leaves) {
+    auto make = [&](std::int32_t l) {
         const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
-        const Grid::Entry e{Down(x.uLo), Up(x.uHi), Down(x.vLo), Up(x.vHi), Up(x.wHi), l};
-        each(l, [&](std::size_t c) { g.entries[static_cast<std::size_t>(fill[c]++)] = e; });
-    }
-    for (std::size_t c = 0; c < nCells; ++c)
-        std::sort(g.entries.begin() + g.start[c], g.entries.begin() + g.start[c + 1],
-                  [](const Grid::Entry& a, const Grid::Entry& b) {
-                      return a.wHi < b.wHi || (a.wHi == b.wHi && a.leaf < b.leaf);
-                  });
+        return Grid::Entry{Down(x.uLo), Up(x.uHi), Down(x.vLo), Up(x.vHi), Up(x.wHi), l};
+    };
+    auto before = [](const Grid::Entry& a, const Grid::Entry& b) {
+        return a.wHi < b.wHi || (a.wHi == b.wHi && a.leaf < b.leaf);
+    };
+    if (!Bin(leaves, g.nu, nCells, cellsOf, make, before, g.start, g.entries)) return;
     view.grid.push_back(std::move(g));
 }
 

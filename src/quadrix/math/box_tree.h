@@ -230,8 +230,10 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
         const HalfLineView::Grid& g = view.grid.front();
         const int i = ColumnGrid::Cell((q.uLo - g.u0) * g.invU, g.nu);
         const int j = ColumnGrid::Cell((q.vLo - g.v0) * g.invV, g.nv);
+        // (A NaN in the probe passes every extent: the tree's walk.)
         if (i == ColumnGrid::Cell((q.uHi - g.u0) * g.invU, g.nu) &&
-            j == ColumnGrid::Cell((q.vHi - g.v0) * g.invV, g.nv) && q.wLo == q.wLo) {
+            j == ColumnGrid::Cell((q.vHi - g.v0) * g.invV, g.nv) &&
+            !std::isnan(q.uLo + q.uHi + q.vLo + q.vHi + q.wLo)) {
             auto leaf = [&](std::int32_t l) {
                 const Node& n = nodes_[static_cast<std::size_t>(l)];
                 for (std::int32_t k = n.first; k < n.first + n.count; ++k)
