@@ -45,26 +45,6 @@ float Up(double v) {
     return f;
 }
 
-// A grid's cells over spans w × h: about the median item's size (mw × mh) and at most twice
-// as many as the items.
-struct GridShape {
-    int nx = 1, ny = 1;
-};
-GridShape ShapeGrid(double w, double h, double mw, double mh, std::size_t items) {
-    auto cells = [](double span, double item) {
-        if (!(span > 0)) return 1.0;
-        return item > 0 ? std::clamp(std::ceil(span / item), 1.0, 4096.0) : 4096.0;
-    };
-    double nx = cells(w, mw), ny = cells(h, mh);
-    const double most = 2.0 * static_cast<double>(items);
-    if (nx * ny > most) {
-        const double f = std::sqrt(nx * ny / most);
-        nx = std::max(1.0, std::floor(nx / f));
-        ny = std::max(1.0, std::floor(ny / f));
-    }
-    return {static_cast<int>(nx), static_cast<int>(ny)};
-}
-
 double Median(std::vector<double> v) {
     if (v.empty()) return 0;
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -72,35 +52,41 @@ double Median(std::vector<double> v) {
     return *mid;
 }
 
-// Lists each of `items` in the cells [i0, i1] × [j0, j1] = cellsOf(item) of a grid nx cells wide
-// (cell j·nx + i): start[c] .. start[c + 1] are cell c's entries, make(item) each, sorted by
-// `before`. False, with nothing filled, when that would take more than 16 entries an item (boxes
-// much larger than the median: the tree serves them better).
-template <class Entry, class Cells, class Make, class Before>
-bool Bin(const std::vector<std::int32_t>& items, int nx, std::size_t nCells, const Cells& cellsOf,
-         const Make& make, const Before& before, std::vector<std::int32_t>& start,
+// Lists items[k] in the cells its rectangle rects[k] meets (cells.start[c] .. cells.start[c + 1]
+// are cell c's entries, make(item) each, sorted by `before`). False, with nothing filled, when that
+// would take more than 16 entries an item (boxes much larger than the median: the tree serves them
+// better).
+template <class Entry, class Make, class Before>
+bool Bin(const std::vector<std::int32_t>& items, const std::vector<std::array<double, 4>>& rects,
+         const Make& make, const Before& before, BoxTree::GridCells& cells,
          std::vector<Entry>& entries) {
-    auto each = [&](std::int32_t k, auto&& f) {
+    auto cellsOf = [&](std::size_t k) {
+        const std::array<double, 4>& r = rects[k];
+        return std::array<int, 4>{cells.CellX(r[0]), cells.CellX(r[1]), cells.CellY(r[2]),
+                                  cells.CellY(r[3])};
+    };
+    auto each = [&](std::size_t k, auto&& f) {
         const std::array<int, 4> c = cellsOf(k);
         for (int j = c[2]; j <= c[3]; ++j)
-            for (int i = c[0]; i <= c[1]; ++i)
-                f(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) +
-                  static_cast<std::size_t>(i));
+            for (int i = c[0]; i <= c[1]; ++i) f(cells.Index(i, j));
     };
+    const std::size_t nCells =
+        static_cast<std::size_t>(cells.nx) * static_cast<std::size_t>(cells.ny);
+    std::vector<std::int32_t>& start = cells.start;
     std::size_t refs = 0;
-    for (std::int32_t k : items) {
+    for (std::size_t k = 0; k < items.size(); ++k) {
         const std::array<int, 4> c = cellsOf(k);
         refs +=
             static_cast<std::size_t>(c[1] - c[0] + 1) * static_cast<std::size_t>(c[3] - c[2] + 1);
     }
     if (refs > 16 * items.size()) return false;
     start.assign(nCells + 1, 0);
-    for (std::int32_t k : items) each(k, [&](std::size_t c) { ++start[c + 1]; });
+    for (std::size_t k = 0; k < items.size(); ++k) each(k, [&](std::size_t c) { ++start[c + 1]; });
     for (std::size_t c = 0; c < nCells; ++c) start[c + 1] += start[c];
     entries.resize(refs);
     std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-    for (std::int32_t k : items) {
-        const Entry e = make(k);
+    for (std::size_t k = 0; k < items.size(); ++k) {
+        const Entry e = make(items[k]);
         each(k, [&](std::size_t c) { entries[static_cast<std::size_t>(fill[c]++)] = e; });
     }
     for (std::size_t c = 0; c < nCells; ++c)
@@ -109,6 +95,40 @@ bool Bin(const std::vector<std::int32_t>& items, int nx, std::size_t nCells, con
 }
 
 }  // namespace
+
+bool BoxTree::GridCells::Frame(const std::vector<std::array<double, 4>>& rects) {
+    if (rects.empty()) return false;
+    double xLo = HUGE_VAL, xHi = -HUGE_VAL, yLo = HUGE_VAL, yHi = -HUGE_VAL;
+    std::vector<double> widths, heights;
+    widths.reserve(rects.size());
+    heights.reserve(rects.size());
+    for (const std::array<double, 4>& r : rects) {
+        xLo = std::min(xLo, r[0]);
+        xHi = std::max(xHi, r[1]);
+        yLo = std::min(yLo, r[2]);
+        yHi = std::max(yHi, r[3]);
+        widths.push_back(r[1] - r[0]);
+        heights.push_back(r[3] - r[2]);
+    }
+    auto cells = [](double span, double item) {
+        if (!(span > 0)) return 1.0;
+        return item > 0 ? std::clamp(std::ceil(span / item), 1.0, 4096.0) : 4096.0;
+    };
+    double cx = cells(xHi - xLo, Median(widths)), cy = cells(yHi - yLo, Median(heights));
+    const double most = 2.0 * static_cast<double>(rects.size());
+    if (cx * cy > most) {
+        const double f = std::sqrt(cx * cy / most);
+        cx = std::max(1.0, std::floor(cx / f));
+        cy = std::max(1.0, std::floor(cy / f));
+    }
+    nx = static_cast<int>(cx);
+    ny = static_cast<int>(cy);
+    x0 = xLo;
+    y0 = yLo;
+    invX = xHi > xLo ? cx / (xHi - xLo) : 0;
+    invY = yHi > yLo ? cy / (yHi - yLo) : 0;
+    return std::isfinite(invX) && std::isfinite(invY);  // false: spans beyond doubles
+}
 
 BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size()) {
     std::vector<std::int32_t> items;
@@ -132,8 +152,7 @@ BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size
 void BoxTree::BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::int32_t>& items) {
     ColumnGrid g;
     std::vector<std::int32_t> binned;
-    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
-    std::vector<double> widths, heights;
+    std::vector<std::array<double, 4>> rects;
     for (std::int32_t k : items) {
         const Box3& b = boxes[static_cast<std::size_t>(k)];
         if (!std::isfinite(b.lo.x) || !std::isfinite(b.hi.x) || !std::isfinite(b.lo.y) ||
@@ -142,29 +161,9 @@ void BoxTree::BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::i
             continue;
         }
         binned.push_back(k);
-        x0 = std::min(x0, b.lo.x);
-        x1 = std::max(x1, b.hi.x);
-        y0 = std::min(y0, b.lo.y);
-        y1 = std::max(y1, b.hi.y);
-        widths.push_back(b.hi.x - b.lo.x);
-        heights.push_back(b.hi.y - b.lo.y);
+        rects.push_back({b.lo.x, b.hi.x, b.lo.y, b.hi.y});
     }
-    if (binned.empty()) return;
-    const GridShape shape =
-        ShapeGrid(x1 - x0, y1 - y0, Median(widths), Median(heights), binned.size());
-    g.nx = shape.nx;
-    g.ny = shape.ny;
-    g.x0 = x0;
-    g.y0 = y0;
-    g.invW = x1 > x0 ? shape.nx / (x1 - x0) : 0;
-    g.invH = y1 > y0 ? shape.ny / (y1 - y0) : 0;
-    if (!std::isfinite(g.invW) || !std::isfinite(g.invH)) return;  // spans beyond doubles
-    const std::size_t nCells = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
-    auto cellsOf = [&](std::int32_t k) {
-        const Box3& b = boxes[static_cast<std::size_t>(k)];
-        return std::array<int, 4>{g.CellX(b.lo.x), g.CellX(b.hi.x), g.CellY(b.lo.y),
-                                  g.CellY(b.hi.y)};
-    };
+    if (!g.Frame(rects)) return;
     auto make = [&](std::int32_t k) {
         const Box3& b = boxes[static_cast<std::size_t>(k)];
         return ColumnGrid::Entry{Down(b.lo.x), Up(b.hi.x),   Down(b.lo.y),
@@ -173,7 +172,7 @@ void BoxTree::BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::i
     auto before = [](const ColumnGrid::Entry& a, const ColumnGrid::Entry& b) {
         return a.loZ < b.loZ || (a.loZ == b.loZ && a.item < b.item);
     };
-    if (!Bin(binned, g.nx, nCells, cellsOf, make, before, g.start, g.entries)) return;
+    if (!Bin(binned, rects, make, before, g, g.entries)) return;
     grid_.push_back(std::move(g));
 }
 
@@ -199,8 +198,7 @@ void BoxTree::BuildViewGrid(HalfLineView& view) const {
     using Grid = HalfLineView::Grid;
     Grid g;
     std::vector<std::int32_t> leaves;
-    double u0 = HUGE_VAL, u1 = -HUGE_VAL, v0 = HUGE_VAL, v1 = -HUGE_VAL;
-    std::vector<double> widths, heights;
+    std::vector<std::array<double, 4>> rects;
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
         if (nodes_[i].count == 0) continue;
         const HalfLineView::Extent& x = view.nodes[i];
@@ -211,30 +209,9 @@ void BoxTree::BuildViewGrid(HalfLineView& view) const {
             continue;
         }
         leaves.push_back(l);
-        u0 = std::min(u0, x.uLo);
-        u1 = std::max(u1, x.uHi);
-        v0 = std::min(v0, x.vLo);
-        v1 = std::max(v1, x.vHi);
-        widths.push_back(x.uHi - x.uLo);
-        heights.push_back(x.vHi - x.vLo);
+        rects.push_back({x.uLo, x.uHi, x.vLo, x.vHi});
     }
-    if (leaves.empty()) return;
-    const GridShape shape =
-        ShapeGrid(u1 - u0, v1 - v0, Median(widths), Median(heights), leaves.size());
-    g.nu = shape.nx;
-    g.nv = shape.ny;
-    g.u0 = u0;
-    g.v0 = v0;
-    g.invU = u1 > u0 ? shape.nx / (u1 - u0) : 0;
-    g.invV = v1 > v0 ? shape.ny / (v1 - v0) : 0;
-    if (!std::isfinite(g.invU) || !std::isfinite(g.invV)) return;
-    auto cellU = [&](double u) { return ColumnGrid::Cell((u - g.u0) * g.invU, g.nu); };
-    auto cellV = [&](double v) { return ColumnGrid::Cell((v - g.v0) * g.invV, g.nv); };
-    const std::size_t nCells = static_cast<std::size_t>(g.nu) * static_cast<std::size_t>(g.nv);
-    auto cellsOf = [&](std::int32_t l) {
-        const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
-        return std::array<int, 4>{cellU(x.uLo), cellU(x.uHi), cellV(x.vLo), cellV(x.vHi)};
-    };
+    if (!g.Frame(rects)) return;
     auto make = [&](std::int32_t l) {
         const HalfLineView::Extent& x = view.nodes[static_cast<std::size_t>(l)];
         return Grid::Entry{Down(x.uLo), Up(x.uHi), Down(x.vLo), Up(x.vHi), Up(x.wHi), l};
@@ -242,7 +219,7 @@ void BoxTree::BuildViewGrid(HalfLineView& view) const {
     auto before = [](const Grid::Entry& a, const Grid::Entry& b) {
         return a.wHi < b.wHi || (a.wHi == b.wHi && a.leaf < b.leaf);
     };
-    if (!Bin(leaves, g.nu, nCells, cellsOf, make, before, g.start, g.entries)) return;
+    if (!Bin(leaves, rects, make, before, g, g.entries)) return;
     view.grid.push_back(std::move(g));
 }
 

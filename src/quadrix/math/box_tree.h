@@ -28,6 +28,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -73,6 +74,32 @@ class BoxTree {
     // The slab test of one box against a segment (used by the tree and by its callers).
     static bool SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1);
 
+    // The cells of a uniform grid over the plane of two axes (a column grid's x and y, a view
+    // grid's u and v): cell i along the first axis covers [x0 + i / invX, x0 + (i + 1) / invX),
+    // the first and last cells reaching to ∓∞. CellX is floor((x − x0) · invX) clamped to
+    // [0, nx), monotone in x (a rounded subtraction and a product by a positive number are), so
+    // an item listed in the cells from CellX(lo) to CellX(hi) is in the cell of every x it holds;
+    // likewise along the second axis.
+    struct GridCells {
+        double x0 = 0, y0 = 0, invX = 0, invY = 0;
+        int nx = 1, ny = 1;
+        std::vector<std::int32_t> start;  // cell j·nx + i: entries [start[c], start[c + 1])
+        static int Cell(double t, int n) {
+            if (!(t >= 0)) return 0;
+            return t < n ? static_cast<int>(t) : n - 1;
+        }
+        int CellX(double x) const { return Cell((x - x0) * invX, nx); }
+        int CellY(double y) const { return Cell((y - y0) * invY, ny); }
+        std::size_t Index(int i, int j) const {
+            return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) +
+                   static_cast<std::size_t>(i);
+        }
+        // Lays the cells over rectangles {xLo, xHi, yLo, yHi} (finite): their bounding rectangle
+        // in cells about the median rectangle's size, at most twice as many as the rectangles.
+        // False when there is none or the spans exceed doubles.
+        bool Frame(const std::vector<std::array<double, 4>>& rects);
+    };
+
     // The tree seen along one direction d, for the half-lines p + s·d, s >= 0, that all share it
     // (the shadow rays of a parallel light under a parallel view: one per covered pixel). Per
     // node: its box's extent on two unit axes u, v across d and on w = d/|d|, padded outward.
@@ -100,19 +127,16 @@ class BoxTree {
                      q.wLo > e.wHi);
         }
         // A tree of at least kGridItems items: a uniform grid over its leaves' extents on u and
-        // v, each cell listing the leaves whose extent meets it by wHi ascending. A half-line
-        // whose probe lies in one cell looks at that cell's leaves from the first that reaches
-        // past its start, nearest first, instead of walking the tree (a probe across a cell
-        // border walks the tree). Cells as the column grid's (ColumnGrid): CellU monotone,
-        // entries rounded outward to floats, so every leaf the tree would reach is listed.
-        struct Grid {
+        // v (GridCells), each cell listing the leaves whose extent meets it by wHi ascending. A
+        // half-line whose probe lies in one cell looks at that cell's leaves from the first that
+        // reaches past its start, nearest first, instead of walking the tree (a probe across a
+        // cell border walks the tree). Entries are rounded outward to floats, so every leaf the
+        // tree would reach is listed.
+        struct Grid : GridCells {
             struct Entry {
                 float uLo, uHi, vLo, vHi, wHi;
                 std::int32_t leaf;
             };
-            double u0 = 0, v0 = 0, invU = 0, invV = 0;
-            int nu = 1, nv = 1;
-            std::vector<std::int32_t> start;
             std::vector<Entry> entries;
             std::vector<std::int32_t> loose;  // leaves with a NaN or infinite u or v extent
         };
@@ -125,28 +149,16 @@ class BoxTree {
     bool HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) const;
 
   private:
-    // Cell i in x covers [x0 + i / invW, x0 + (i + 1) / invW), the first and last cells reaching
-    // to ∓∞: CellX is floor((x − x0) · invW) clamped to [0, nx), monotone in x (a rounded
-    // subtraction and product by a positive number are), so an item listed in the cells from
-    // CellX(lo.x) to CellX(hi.x) is in the cell of every x it holds. Entries keep the item's
-    // extents as floats rounded outward and its lo.z rounded down: a looser test than the
-    // item's own (every item that passes that is visited), in 24 bytes.
-    struct ColumnGrid {
+    // The column grid (GridCells over x and y). Entries keep the item's extents as floats
+    // rounded outward and its lo.z rounded down: a looser test than the item's own (every item
+    // that passes that is visited), in 24 bytes.
+    struct ColumnGrid : GridCells {
         struct Entry {
             float loX, hiX, loY, hiY, loZ;
             std::int32_t item;
         };
-        double x0 = 0, y0 = 0, invW = 0, invH = 0;
-        int nx = 1, ny = 1;
-        std::vector<std::int32_t> start;  // cell c's entries: [start[c], start[c + 1])
-        std::vector<Entry> entries;       // per cell, by loZ ascending
-        std::vector<std::int32_t> wide;   // items with an infinite side in x or y: in no cell
-        static int Cell(double t, int n) {
-            if (!(t >= 0)) return 0;
-            return t < n ? static_cast<int>(t) : n - 1;
-        }
-        int CellX(double x) const { return Cell((x - x0) * invW, nx); }
-        int CellY(double y) const { return Cell((y - y0) * invH, ny); }
+        std::vector<Entry> entries;      // per cell, by loZ ascending
+        std::vector<std::int32_t> wide;  // items with an infinite side in x or y: in no cell
     };
     void BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::int32_t>& items);
     void BuildViewGrid(HalfLineView& view) const;
@@ -228,11 +240,9 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
     const HalfLineView::Probe q = view.At(p);
     if (!view.grid.empty()) {
         const HalfLineView::Grid& g = view.grid.front();
-        const int i = ColumnGrid::Cell((q.uLo - g.u0) * g.invU, g.nu);
-        const int j = ColumnGrid::Cell((q.vLo - g.v0) * g.invV, g.nv);
+        const int i = g.CellX(q.uLo), j = g.CellY(q.vLo);
         // (A NaN in the probe passes every extent: the tree's walk.)
-        if (i == ColumnGrid::Cell((q.uHi - g.u0) * g.invU, g.nu) &&
-            j == ColumnGrid::Cell((q.vHi - g.v0) * g.invV, g.nv) &&
+        if (i == g.CellX(q.uHi) && j == g.CellY(q.vHi) &&
             !std::isnan(q.uLo + q.uHi + q.vLo + q.vHi + q.wLo)) {
             auto leaf = [&](std::int32_t l) {
                 const Node& n = nodes_[static_cast<std::size_t>(l)];
@@ -243,8 +253,7 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
             for (std::int32_t l : g.loose)
                 if (HalfLineView::Meets(view.nodes[static_cast<std::size_t>(l)], q) && leaf(l))
                     return true;
-            const auto c = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.nu) +
-                           static_cast<std::size_t>(i);
+            const std::size_t c = g.Index(i, j);
             const HalfLineView::Grid::Entry* e = g.entries.data() + g.start[c];
             const HalfLineView::Grid::Entry* end = g.entries.data() + g.start[c + 1];
             // The first leaf reaching past the start: wHi >= q.wLo (floats rounded up).
@@ -287,8 +296,7 @@ void BoxTree::ColumnBefore(double x, double y, double zMax, Visit&& visit) const
     if (!grid_.empty() && x == x && y == y) {
         const ColumnGrid& g = grid_.front();
         for (std::int32_t k : g.wide) visit(k);
-        const auto c = static_cast<std::size_t>(g.CellY(y)) * static_cast<std::size_t>(g.nx) +
-                       static_cast<std::size_t>(g.CellX(x));
+        const std::size_t c = g.Index(g.CellX(x), g.CellY(y));
         const ColumnGrid::Entry* e = g.entries.data() + g.start[c];
         const ColumnGrid::Entry* end = g.entries.data() + g.start[c + 1];
         const bool cut = zMax < HUGE_VAL;
