@@ -204,7 +204,8 @@ void BoxTree::BuildViewGrid(HalfLineView& view) const {
         const HalfLineView::Extent& x = view.nodes[i];
         const auto l = static_cast<std::int32_t>(i);
         if (!std::isfinite(x.uLo) || !std::isfinite(x.uHi) || !std::isfinite(x.vLo) ||
-            !std::isfinite(x.vHi) || !(x.uLo <= x.uHi) || !(x.vLo <= x.vHi)) {
+            !std::isfinite(x.vHi) || !(x.uLo <= x.uHi) || !(x.vLo <= x.vHi) ||
+            std::isnan(x.wHi)) {  // (a NaN wHi could not be sorted)
             g.loose.push_back(l);
             continue;
         }

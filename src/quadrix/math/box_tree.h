@@ -138,7 +138,8 @@ class BoxTree {
                 std::int32_t leaf;
             };
             std::vector<Entry> entries;
-            std::vector<std::int32_t> loose;  // leaves with a NaN or infinite u or v extent
+            // Leaves with a NaN or infinite u or v extent, or a NaN wHi: tested one by one.
+            std::vector<std::int32_t> loose;
         };
         std::vector<Grid> grid;  // one, or none
     };

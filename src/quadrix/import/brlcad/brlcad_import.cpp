@@ -317,10 +317,9 @@ class Converter {
             return -1;
         }
         Expr e;
-        // A primitive of one body keeps its placed extent; its box is ShapeBox's (the same
-        // pieces mapped the same way), without mapping them twice.
+        // A primitive of one body keeps its placed extent (and its box is that extent's).
         std::vector<ExtentPiece> extent = BodyExtent(cr.shape, total);
-        const Box3 extentBox = PiecesBox(extent);
+        e.box = cr.shape.unbounded ? Box3::Everything() : ShapeBox(cr.shape, total, extent);
         for (const ShapeBody& sb : cr.shape.bodies) {
             scene::Body body;
             body.id = p.name;
@@ -339,11 +338,6 @@ class Converter {
             }
             e.bodies.push_back(static_cast<int>(scene_.top.bodies.size()));
             scene_.top.bodies.push_back(std::move(body));
-        }
-        if (cr.shape.unbounded) {
-            e.box = Box3::Everything();
-        } else {
-            e.box = extentBox.Empty() ? ShapeBox(cr.shape, total) : extentBox;
         }
         int idx = AddExpr(std::move(e));
         leafCache_[key] = idx;

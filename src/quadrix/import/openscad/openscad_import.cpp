@@ -570,10 +570,9 @@ class Builder {
             return -1;
         }
         int root = -1;
-        // A shape of one body keeps its placed extent; its box is ShapeBox's (the same pieces
-        // mapped the same way), without mapping them twice.
+        // A shape of one body keeps its placed extent (and its box is that extent's).
         std::vector<ExtentPiece> extent = BodyExtent(cr.shape, total);
-        const Box3 extentBox = PiecesBox(extent);
+        box = ShapeBox(cr.shape, total, extent);
         for (const ShapeBody& sb : cr.shape.bodies) {
             scene::Body body;
             body.id = csg.id;
@@ -601,7 +600,6 @@ class Builder {
             int li = Add(csg, leaf);
             root = root < 0 ? li : Op(csg, scene::CsgOp::kUnion, root, li);
         }
-        box = extentBox.Empty() ? ShapeBox(cr.shape, total) : extentBox;
         return root;
     }
 

@@ -38,6 +38,11 @@ Box3 ShapeBox(const Shape& shape, const Mat4& m) {
     return box;
 }
 
+Box3 ShapeBox(const Shape& shape, const Mat4& m, const std::vector<ExtentPiece>& bodyExtent) {
+    const Box3 box = PiecesBox(bodyExtent);
+    return box.Empty() ? ShapeBox(shape, m) : box;
+}
+
 std::vector<ExtentPiece> BodyExtent(const Shape& shape, const Mat4& m) {
     std::vector<ExtentPiece> out;
     if (shape.bodies.size() != 1 || !shape.extentExact || !shape.extentSums.empty() ||

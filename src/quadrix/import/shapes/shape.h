@@ -70,6 +70,9 @@ Box3 ShapeBox(const Shape& shape, const Mat4& m);
 // when the shape is one body whose pieces are exact (extentExact, no sums) and M is affine;
 // empty otherwise (the body is then bounded from its literals).
 std::vector<ExtentPiece> BodyExtent(const Shape& shape, const Mat4& m);
+// ShapeBox(shape, m) given BodyExtent(shape, m): the box of that placed extent where it has
+// one (the same pieces mapped the same way, not mapped again).
+Box3 ShapeBox(const Shape& shape, const Mat4& m, const std::vector<ExtentPiece>& bodyExtent);
 
 // The kind and surface of a placed half-space copied into a scene half-space (plane, quadric or
 // quartic); the caller sets id, position and transparency. Shared by both importers.
