@@ -8,13 +8,14 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <climits>
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
-#include <random>
 
 namespace quadrix {
 
@@ -265,12 +266,23 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
     // not block it), so no moment may pass with the file on disk and not in the table. Unlinking
     // a name whose file was not created yet is harmless.
     int fd = -1;
-    std::random_device entropy;
     static constexpr char kChars[] =
         "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+    // Six random characters from one getentropy call (std::random_device's set-up and six reads
+    // cost more than the rest of the name); the clock and a counter if it fails. O_EXCL, not
+    // the randomness, keeps two writers apart.
+    static std::atomic<unsigned> counter{0};
     for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+        unsigned char random[6];
+        if (getentropy(random, sizeof random) != 0) {
+            const auto t = static_cast<std::uint64_t>(
+                               std::chrono::steady_clock::now().time_since_epoch().count()) +
+                           counter.fetch_add(1) * 0x9E3779B97F4A7C15ull;
+            for (int b = 0; b < 6; ++b) random[b] = static_cast<unsigned char>(t >> (8 * b + 7));
+        }
         const std::size_t n = buffer.size() - 1;  // the six X before the NUL
-        for (std::size_t k = n - 6; k < n; ++k) buffer[k] = kChars[entropy() % (sizeof kChars - 1)];
+        for (std::size_t k = n - 6; k < n; ++k)
+            buffer[k] = kChars[random[k - (n - 6)] % (sizeof kChars - 1)];
         tmp_ = buffer.data();
         slot_ = RegisterTemporary(tmp_);
         fd = open(buffer.data(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);

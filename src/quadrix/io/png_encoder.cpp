@@ -135,7 +135,49 @@ StripScratch& ThreadScratch() {
     return scratch;
 }
 
-// Filtered rows y0..y1 deflated (raw, level 1); the first strip carries the zlib header.
+// Rows y0..y1 filtered into `raw` (rawBytes of them) and their Adler-32.
+void FilterRows(const PngRaster& r, std::size_t rowBytes, int y0, int y1, std::uint8_t* raw,
+                Strip& s) {
+    const std::size_t stride = rowBytes + 1;
+    for (int y = y0; y < y1; ++y) {
+        std::uint8_t* p = raw + static_cast<std::size_t>(y - y0) * stride;
+        p[0] = static_cast<std::uint8_t>(r.filter);
+        r.row(y, p + 1);
+        if (r.filter == 1) {  // Sub, in place from the right: byte k - bpp is still unfiltered
+            const std::size_t bpp = static_cast<std::size_t>(r.channels * r.bitDepth / 8);
+            for (std::size_t k = rowBytes; k-- > bpp;) p[1 + k] -= p[1 + k - bpp];
+        }
+    }
+    s.rawBytes = static_cast<std::size_t>(y1 - y0) * stride;
+    s.adler = Adler32(1L, raw, s.rawBytes);
+}
+
+// The rows in `raw` deflated by `z` into s.chunk after room for the chunk's length and type and,
+// when `header` (the first strip) is not null, the zlib header's two bytes; `out` holds `bound`
+// bytes. The Adler-32 (last strip) and the CRC are appended by the caller.
+void Deflate(z_stream& z, std::uint8_t* raw, std::uint8_t* out, std::size_t bound, bool last,
+             const std::uint8_t* header, Strip& s) {
+    z.next_in = raw;
+    z.avail_in = static_cast<uInt>(s.rawBytes);
+    z.next_out = out;
+    z.avail_out = static_cast<uInt>(bound);
+    const int rc = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    const bool done = last ? rc == Z_STREAM_END : (rc == Z_OK && z.avail_in == 0);
+    if (!done) {
+        s.ok = false;
+        return;
+    }
+    const std::size_t n = bound - z.avail_out;
+    const std::size_t head = 8 + (header ? 2 : 0);
+    std::vector<std::uint8_t>& c = s.chunk;
+    c.reserve(head + n + 8);
+    c.resize(head);
+    if (header) c[8] = header[0], c[9] = header[1];
+    c.insert(c.end(), out, out + n);
+}
+
+// Filtered rows y0..y1 deflated (raw, level 1, 32 KiB window); the first strip carries the zlib
+// header.
 void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, bool last, Strip& s) {
     StripScratch& t = ThreadScratch();
     z_stream& z = t.z;
@@ -149,42 +191,40 @@ void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, boo
         s.ok = false;
         return;
     }
-    const std::size_t stride = rowBytes + 1;
-    const std::size_t rawBytes = static_cast<std::size_t>(y1 - y0) * stride;
+    const std::size_t rawBytes = static_cast<std::size_t>(y1 - y0) * (rowBytes + 1);
     const std::size_t bound = deflateBound(&z, rawBytes) + 16;
     std::uint8_t *raw = nullptr, *out = nullptr;
     t.Buffers(rawBytes, bound, raw, out);
-    for (int y = y0; y < y1; ++y) {
-        std::uint8_t* p = raw + static_cast<std::size_t>(y - y0) * stride;
-        p[0] = static_cast<std::uint8_t>(r.filter);
-        r.row(y, p + 1);
-        if (r.filter == 1) {  // Sub, in place from the right: byte k - bpp is still unfiltered
-            const std::size_t bpp = static_cast<std::size_t>(r.channels * r.bitDepth / 8);
-            for (std::size_t k = rowBytes; k-- > bpp;) p[1 + k] -= p[1 + k - bpp];
-        }
-    }
-    s.rawBytes = rawBytes;
-    s.adler = Adler32(1L, raw, rawBytes);
+    FilterRows(r, rowBytes, y0, y1, raw, s);
+    static constexpr std::uint8_t kHeader[2] = {0x78, 0x01};  // CM 8, 32 KiB window; FLEVEL 0
+    Deflate(z, raw, out, bound, last, y0 == 0 ? kHeader : nullptr, s);
+}
 
-    z.next_in = raw;
-    z.avail_in = static_cast<uInt>(rawBytes);
-    z.next_out = out;
-    z.avail_out = static_cast<uInt>(bound);
-    const int rc = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
-    const bool done = last ? rc == Z_STREAM_END : (rc == Z_OK && z.avail_in == 0);
-    if (!done) {
+// A small image (one strip of fewer than kSmallImage bytes of filtered rows) in one deflate
+// stream whose window just holds it: 2^w bytes, w = 9..15, and a hash table of as many entries
+// (memLevel w − 7), allocated on the heap for this image. The thread's 2 MiB arena and its 32 KiB
+// window state would be first touched for a few KiB of rows: 0.26 ms for the huge page on this
+// project's Intel machines, about 0.3 ms on the AMD ones, where this state's 10-20 small pages
+// cost 0.01-0.04 ms and 0.2-0.4 ms (docs/performance.md "Small pictures"). The zlib header says
+// the window (CINFO = w − 8) so that a decoder may use no more.
+constexpr std::size_t kSmallImage = 64u << 10;
+void CompressSmall(const PngRaster& r, std::size_t rowBytes, Strip& s) {
+    const std::size_t rawBytes = static_cast<std::size_t>(r.height) * (rowBytes + 1);
+    int w = 9;
+    while (w < 15 && (std::size_t{1} << w) < rawBytes) ++w;
+    z_stream z{};
+    if (deflateInit2(&z, 1, Z_DEFLATED, -w, w - 7, Z_DEFAULT_STRATEGY) != Z_OK) {
         s.ok = false;
         return;
     }
-    const std::size_t n = bound - z.avail_out;
-    // The chunk: length and type (filled in by the caller), the zlib header for the first strip,
-    // the data; the Adler-32 (last strip) and the CRC are appended by the caller.
-    const std::size_t head = 8 + (y0 == 0 ? 2 : 0);
-    std::vector<std::uint8_t>& c = s.chunk;
-    c.reserve(head + n + 8);
-    c.resize(head);
-    if (y0 == 0) c[8] = 0x78, c[9] = 0x01;  // CM 8, 32 KiB window; FLEVEL 0; FCHECK
-    c.insert(c.end(), out, out + n);
+    const std::size_t bound = deflateBound(&z, rawBytes) + 16;
+    std::vector<std::uint8_t> buffer(rawBytes + bound);
+    FilterRows(r, rowBytes, 0, r.height, buffer.data(), s);
+    // CMF: CM 8, CINFO w − 8; FLG: FLEVEL 0, no dictionary, FCHECK making CMF·256 + FLG ≡ 0 (31).
+    const auto cmf = static_cast<std::uint8_t>(0x08 | ((w - 8) << 4));
+    const std::uint8_t header[2] = {cmf, static_cast<std::uint8_t>((31 - cmf * 256 % 31) % 31)};
+    Deflate(z, buffer.data(), buffer.data() + rawBytes, bound, true, header, s);
+    deflateEnd(&z);
 }
 
 }  // namespace
@@ -201,10 +241,13 @@ std::string EncodePng(const PngRaster& r, std::FILE* out) {
         static_cast<int>(std::clamp<std::size_t>((128u << 10) / (rowBytes + 1), 1, 1u << 14));
     const int strips = (r.height + rowsPerStrip - 1) / rowsPerStrip;
     std::vector<Strip> s(static_cast<std::size_t>(strips));
-    ParallelFor(0, strips, [&](int k) {
-        const int y0 = k * rowsPerStrip, y1 = std::min(r.height, y0 + rowsPerStrip);
-        CompressStrip(r, rowBytes, y0, y1, k + 1 == strips, s[static_cast<std::size_t>(k)]);
-    });
+    if (strips == 1 && static_cast<std::size_t>(r.height) * (rowBytes + 1) < kSmallImage)
+        CompressSmall(r, rowBytes, s[0]);
+    else
+        ParallelFor(0, strips, [&](int k) {
+            const int y0 = k * rowsPerStrip, y1 = std::min(r.height, y0 + rowsPerStrip);
+            CompressStrip(r, rowBytes, y0, y1, k + 1 == strips, s[static_cast<std::size_t>(k)]);
+        });
     MarkPhase("encode");  // io/phase_times.h: what follows is the file's writing
     uLong adler = 1;
     for (const Strip& x : s) {

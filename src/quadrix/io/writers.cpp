@@ -82,8 +82,18 @@ const std::vector<std::uint16_t>& SrgbPairTable() {
     return table;
 }
 
-// n samples at `in` → their sRGB bytes at `out`.
-void EncodeSrgbRow(const std::uint8_t* in, std::uint8_t* out, std::size_t n) {
+// Whether an image of n samples is encoded through SrgbPairTable: building it (65,536 entries,
+// 32 pages) costs as much as the lookups it saves on 2^17 samples; a smaller picture is encoded
+// a sample at a time (the same bytes).
+bool UsePairs(std::size_t n) { return n >= (std::size_t{1} << 17); }
+
+// n samples at `in` → their sRGB bytes at `out`, by pairs (SrgbPairTable) or one at a time.
+void EncodeSrgbRow(const std::uint8_t* in, std::uint8_t* out, std::size_t n, bool byPairs) {
+    if (!byPairs) {
+        const std::uint8_t* t = SrgbTable().data();
+        for (std::size_t k = 0; k < n; ++k) out[k] = t[in[k]];
+        return;
+    }
     const std::uint16_t* pairs = SrgbPairTable().data();
     std::size_t k = 0;
     for (; k + 2 <= n; k += 2) {
@@ -181,8 +191,11 @@ std::string WritePng(OutputFile& f, const Image& image, const PngOptions& option
     if (sixteen) {
         r.row = [&](int y, std::uint8_t* out) { EncodeRow16(image, y, out); };
     } else if (options.srgb) {
-        SrgbPairTable();  // built before the threads ask for it
-        r.row = [&](int y, std::uint8_t* out) { EncodeSrgbRow(image.At(0, y), out, stride); };
+        const bool byPairs = UsePairs(image.pixels.size());
+        if (byPairs) SrgbPairTable();  // built before the threads ask for it
+        r.row = [&, byPairs](int y, std::uint8_t* out) {
+            EncodeSrgbRow(image.At(0, y), out, stride, byPairs);
+        };
     } else {
         r.row = [&](int y, std::uint8_t* out) { std::memcpy(out, image.At(0, y), stride); };
     }
@@ -239,11 +252,12 @@ std::string WritePnm(OutputFile& f, const Image& image, PnmKind kind) {
                                 channels == 3 ? '6' : '5', image.width, image.height);
     // The samples encoded in parallel, then the header and the samples in one writev.
     std::vector<std::uint8_t> encoded(source.pixels.size());
-    SrgbPairTable();
+    const bool byPairs = UsePairs(encoded.size());
+    if (byPairs) SrgbPairTable();
     ParallelFor(tbb::blocked_range<std::size_t>(0, encoded.size(), 1 << 18),
                 [&](const tbb::blocked_range<std::size_t>& r) {
                     EncodeSrgbRow(source.pixels.data() + r.begin(), encoded.data() + r.begin(),
-                                  r.size());
+                                  r.size(), byPairs);
                 });
     MarkPhase("encode");  // io/phase_times.h
     if (std::fflush(f.stream()) != 0) return fmt::format("cannot write '{}'", f.path());
