@@ -59,6 +59,10 @@ endif()
 # The program's modules: Cairo, OpenEXR, MPI (CMakeLists.txt, src/quadrix/util/module_loader.h).
 install(TARGETS ${QUADRIX_MODULES} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadrix
   COMPONENT runtime)
+if(TARGET quadrix_lineedit)  # the line editor of the uq> prompt (CMakeLists.txt)
+  install(TARGETS quadrix_lineedit LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadrix
+    COMPONENT runtime)
+endif()
 install(TARGETS quadrix_shared EXPORT QuadrixTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT development
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -1,8 +1,8 @@
-// The optional modules of the program (src/quadrix/util/module_loader.h): Cairo, OpenEXR and
-// Open MPI are not linked into quadrix but loaded by the commands that need them, so that every
-// other command starts without their ~30 libraries. Checked on the real program: what it links,
-// what a render loads (the dynamic loader's own trace, LD_DEBUG), that drawings, EXR files and
-// MPI runs work through the modules, and that a missing module is a clear error with no output.
+// The optional modules of the program (src/quadrix/util/module_loader.h): Cairo, OpenEXR,
+// Open MPI and libedit are not linked into quadrix but loaded by the commands that need them, so
+// that every other command starts without their ~30 libraries. Checked on the real program: what it
+// links, what a render loads (the dynamic loader's own trace, LD_DEBUG), that drawings, EXR files
+// and MPI runs work through the modules, and that a missing module is a clear error with no output.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -30,10 +30,10 @@ std::string LoadedObjects(const std::string& args) {
     return r.out;
 }
 
-TEST(Modules, TheProgramLinksNeitherCairoNorOpenExrNorMpi) {
+TEST(Modules, TheProgramLinksNoLibraryOfAModule) {
     const CommandResult libs = RunShell("ldd " + QuadrixBinary());
     ASSERT_EQ(libs.exitCode, 0) << libs.err;
-    for (const char* lib : {"libcairo", "libOpenEXR", "libmpi", "libSDL2"})
+    for (const char* lib : {"libcairo", "libOpenEXR", "libmpi", "libSDL2", "libedit"})
         EXPECT_EQ(libs.out.find(lib), std::string::npos) << lib << " in\n" << libs.out;
 }
 
@@ -98,6 +98,38 @@ TEST(Modules, AMissingModuleIsAClearErrorAndNothingIsWritten) {
     EXPECT_EQ(png.exitCode, 0) << png.err;
     const CommandResult ls = RunShell("ls '" + dir.path() + "'");
     EXPECT_EQ(ls.out, "t.png\n");
+}
+
+// The uq> prompt on a terminal (a pseudo-terminal from script(1), util-linux) edits its lines
+// with libedit through quadrix-lineedit.so: the history file it writes is libedit's. Without the
+// module the prompt says so once and reads plain lines.
+TEST(Modules, ThePromptOnATerminalEditsLinesThroughItsModule) {
+    TempDir dir;
+    const std::string binDir = RunShell("dirname '" + QuadrixBinary() + "'").out;
+    const std::string module = binDir.substr(0, binDir.find('\n')) + "/quadrix-lineedit.so";
+    if (RunShell("test -e '" + module + "'").exitCode != 0)
+        GTEST_SKIP() << "built without libedit (Debian: libedit-dev): no " << module;
+    if (RunShell("command -v script").exitCode != 0)
+        GTEST_SKIP() << "no script(1) (util-linux) to give the prompt a terminal";
+    RunShell("mkdir -p '" + dir.File("home") + "' '" + dir.File("empty") + "'");
+    const std::string session =
+        "printf 'quadric q1 <1 1 1 0 0 0 0 0 0 -1>;\\nquit;\\n' | HOME='" + dir.File("home") + "' ";
+    const std::string prompt = " script -qec '" + QuadrixBinary() + " -i' /dev/null";
+    const CommandResult edited = RunShell(session + "LD_DEBUG=files" + prompt + " 2>&1");
+    EXPECT_EQ(edited.exitCode, 0) << edited.out;
+    EXPECT_NE(edited.out.find("quadrix-lineedit.so"), std::string::npos) << edited.out;
+    EXPECT_NE(edited.out.find("libedit"), std::string::npos) << edited.out;
+    const CommandResult history = RunShell("cat '" + dir.File("home/.quadrix_history") + "'");
+    EXPECT_EQ(history.out.rfind("_HiStOrY_V2_\n", 0), 0u) << history.out;
+    EXPECT_NE(history.out.find("quadric\\040q1\\040<1"), std::string::npos) << history.out;
+    const CommandResult plain =
+        RunShell(session + "QUADRIX_MODULE_DIR='" + dir.File("empty") + "'" + prompt + " 2>&1");
+    EXPECT_EQ(plain.exitCode, 0) << plain.out;
+    EXPECT_NE(plain.out.find("quadrix: no line editing at this prompt: the module "
+                             "quadrix-lineedit.so is missing"),
+              std::string::npos)
+        << plain.out;
+    EXPECT_NE(plain.out.find("uq> "), std::string::npos) << plain.out;
 }
 
 TEST(Modules, AProcessStartedByAnMpiLauncherWithoutTheModuleStopsBeforeRendering) {

@@ -13,17 +13,17 @@
 #include <optional>
 #include <utility>
 
-#ifdef QUADRIX_HAVE_LIBEDIT
-#include <editline/readline.h>
-#endif
-
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flattener.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/io/output_file.h"
 #include "quadrix/pipeline/drawing_output.h"
 #include "quadrix/shade/shader.h"
+#include "quadrix/util/module_loader.h"
 #include "uq_help.h"
+#ifdef QUADRIX_HAVE_LIBEDIT
+#include "line_edit_module.h"
+#endif
 
 namespace quadrix::cli {
 
@@ -81,63 +81,52 @@ class PlainLineInput : public LineInput {
 };
 
 #ifdef QUADRIX_HAVE_LIBEDIT
-// Tab completion through libedit's readline interface: C callbacks, so the completer of the one
-// line editor of the process lives here.
-LineInput::Completer gCompleter;
-std::vector<std::string> gMatches;
-
-char* NextMatch(const char*, int state) {
-    static std::size_t next = 0;
-    if (state == 0) next = 0;
-    if (next >= gMatches.size()) return nullptr;
-    return strdup(gMatches[next++].c_str());
-}
-
-char** Complete(const char* text, int start, int) {
-    rl_attempted_completion_over = 1;  // no file-name completion instead
-    gMatches.clear();
-    if (gCompleter) {
-        const std::string before(rl_line_buffer ? rl_line_buffer : "",
-                                 static_cast<std::size_t>(std::max(start, 0)));
-        gMatches = gCompleter(text, before);
-    }
-    return rl_completion_matches(text, NextMatch);
-}
-
-// Line editing and history with libedit's readline interface (BSD license). The history is kept
-// across sessions in ~/.quadrix_history.
+// Line editing and history through the module quadrix-lineedit.so (line_edit_module.h). The
+// history is kept across sessions in ~/.quadrix_history.
 class EditLineInput : public LineInput {
   public:
-    void SetCompleter(Completer completer) override {
-        gCompleter = std::move(completer);
-        rl_attempted_completion_function = Complete;
-        rl_basic_word_break_characters = " \t\n;()<>!|&-=\"";
-    }
-    EditLineInput() {
-        using_history();
-        if (const char* home = std::getenv("HOME"); home && *home) {
+    explicit EditLineInput(const LineEditModule& m) : m_(m) {
+        if (const char* home = std::getenv("HOME"); home && *home)
             historyPath_ = std::string(home) + "/.quadrix_history";
-            read_history(historyPath_.c_str());  // absent on the first session: fine
-        }
+        m_.begin(historyPath_.c_str());  // a history absent on the first session: fine
     }
     ~EditLineInput() override {
-        if (!historyPath_.empty()) write_history(historyPath_.c_str());
+        m_.setCompleter(nullptr, nullptr, nullptr);
+        m_.end(historyPath_.c_str());
+    }
+    void SetCompleter(Completer completer) override {
+        completer_ = std::move(completer);
+        m_.setCompleter(&EditLineInput::Complete, this, " \t\n;()<>!|&-=\"");
     }
     bool ReadLine(const std::string& prompt, std::string& line) override {
-        char* text = readline(prompt.c_str());
-        if (!text) {
-            std::fputc('\n', stdout);
-            return false;
-        }
-        line = text;
-        std::free(text);
-        if (line.find_first_not_of(" \t") != std::string::npos) add_history(line.c_str());
-        return true;
+        return m_.readLine(prompt.c_str(), &line);
     }
 
   private:
+    static void Complete(void* self, const std::string& word, const std::string& before,
+                         std::vector<std::string>* out) {
+        const Completer& c = static_cast<EditLineInput*>(self)->completer_;
+        if (c) *out = c(word, before);
+    }
+    const LineEditModule& m_;
     std::string historyPath_;
+    Completer completer_;
 };
+
+// The line editor module, loaded on first use; null, with `*error` set, when it cannot be.
+const LineEditModule* LineEditor(std::string* error) {
+    const auto entry = reinterpret_cast<const LineEditModule* (*)()>(
+        LoadModuleSymbol("quadrix-lineedit.so", "quadrix_lineedit_module", error));
+    if (!entry) return nullptr;
+    const LineEditModule* m = entry();
+    if (m->abi != kLineEditModuleAbi || !m->begin || !m->end || !m->readLine || !m->setCompleter) {
+        *error = "quadrix-lineedit.so is from another build of Quadrix (interface " +
+                 std::to_string(m->abi) + ", this program's " + std::to_string(kLineEditModuleAbi) +
+                 ")";
+        return nullptr;
+    }
+    return m;
+}
 #endif
 
 std::string Lower(std::string s) {
@@ -161,7 +150,13 @@ bool Blank(const std::string& s) { return s.find_first_not_of(" \t\r\n") == std:
 std::unique_ptr<LineInput> MakeLineInput(std::FILE* in, std::FILE* promptOut) {
     bool terminal = isatty(fileno(in)) != 0;
 #ifdef QUADRIX_HAVE_LIBEDIT
-    if (terminal && in == stdin && promptOut == stdout) return std::make_unique<EditLineInput>();
+    if (terminal && in == stdin && promptOut == stdout) {
+        std::string error;
+        if (const LineEditModule* m = LineEditor(&error))
+            return std::make_unique<EditLineInput>(*m);
+        std::fprintf(stderr, "quadrix: no line editing at this prompt: %s; reading plain lines\n",
+                     error.c_str());
+    }
 #endif
     return std::make_unique<PlainLineInput>(in, promptOut, !terminal);
 }

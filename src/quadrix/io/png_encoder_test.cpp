@@ -66,10 +66,10 @@ TEST(PngEncoder, ManyStripsReadBackExactly) {
     // 1000×300 RGB8: 3,001 bytes a row, 43 rows a strip, 7 strips; 16-bit: 14 strips. Under
     // 64 KiB of rows, one stream with a window of 2^9 (1×1) to 2^15 bytes (150×145 RGB8: 65,395
     // bytes of rows, more than its window) and a header that says so (libpng checks it).
-    for (const Case c : {Case{1000, 300, 3, 8}, Case{1000, 300, 3, 16}, Case{777, 401, 1, 8},
-                         Case{1, 1, 1, 8}, Case{1, 5000, 3, 8}, Case{70000, 1, 1, 16},
-                         Case{64, 64, 3, 8}, Case{150, 145, 3, 8}, Case{20, 20, 3, 16},
-                         Case{300, 7, 1, 8}, Case{151, 145, 3, 8}}) {
+    for (const Case c :
+         {Case{1000, 300, 3, 8}, Case{1000, 300, 3, 16}, Case{777, 401, 1, 8}, Case{1, 1, 1, 8},
+          Case{1, 5000, 3, 8}, Case{70000, 1, 1, 16}, Case{64, 64, 3, 8}, Case{150, 145, 3, 8},
+          Case{20, 20, 3, 16}, Case{300, 7, 1, 8}, Case{151, 145, 3, 8}}) {
         const std::size_t rowBytes = static_cast<std::size_t>(c.w) * c.channels * c.depth / 8;
         std::vector<std::uint8_t> want(rowBytes * static_cast<std::size_t>(c.h));
         // Runs (compressible) and noise (not), so that strips end in both kinds of data.
