@@ -1,6 +1,7 @@
 // A RenderContext of one thread, or one whose threads were not given running a small job, runs
-// its stages inline without oneTBB (util/parallel.h, pipeline/render_context.h); the Frame and
-// the picture are bit for bit those of two threads.
+// its stages inline without oneTBB (util/parallel.h, pipeline/render_context.h), the latter with
+// a helper thread for its anti-aliasing (shader.h aaHelperThread); the Frame and the picture are
+// bit for bit those of two threads.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -39,6 +40,7 @@ InlineRun RenderMachinedPartWith(int threads, int w, int h) {
     EXPECT_TRUE(ctx.Render(engine, out.frame, report, diags));
     ShadeOptions so;
     so.shadows = true;
+    so.aaSamples = 4;  // a small job chosen inline anti-aliases on a helper thread too
     out.image = ctx.Shade(out.frame, so);
     ctx.InArena([&] { out.inlineInside = SerialLoopsOnThisThread(); });
     out.inlineRun = ctx.Inline();

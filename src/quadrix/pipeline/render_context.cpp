@@ -676,10 +676,15 @@ Image RenderContext::ShadeInArena(const Frame& frame, const ShadeOptions& option
     // Edge pixels re-rendered by sub-pixel samples, the section's hatching
     // (shade/section_hatch.h), then the edge lines (shade/antialias.h).
     if (options.aaSamples > 1) {
-        if (cancel_)
+        if (cancel_) {
             cancel_->Run([&] { Antialias(frame, flat_, options, image, wide); });
-        else
-            Antialias(frame, flat_, options, image, wide);
+        } else {
+            // A small job chosen inline still has the machine's second processor for its
+            // heaviest pass (shader.h aaHelperThread).
+            ShadeOptions aa = options;
+            aa.aaHelperThread = Inline() && arena_->chooses && AvailableProcessors() >= 2;
+            Antialias(frame, flat_, aa, image, wide);
+        }
     }
     if (options.hatch) HatchSection(frame, flat_, options, image);
     if (options.edges) DrawEdgeLines(frame, options, image);

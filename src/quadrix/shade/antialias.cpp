@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <thread>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
 #include "quadrix/shade/row_shading.h"
@@ -379,9 +380,11 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     // One scratch per thread, kept across its tasks (a region holds per-body state for the whole
     // scene).
     PerThread<raycast::SampleScratch> scratches(std::cref(tracer));
-    ParallelFor(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& span) {
+    // The squares k0 .. k1 − 1 (row by row: square k is in band k / across) with `scratch` (one
+    // thread's).
+    const int across = (frame.width + kRegion - 1) / kRegion;
+    auto squares = [&](int k0, int k1, raycast::SampleScratch& scratch) {
         std::size_t local = 0;
-        raycast::SampleScratch& scratch = scratches.Local();
         auto edge = [&](int x, int y) { return (edges[frame.Index(x, y)] & kEdgePixel) != 0; };
         // Pixel (x, y)'s samples, shaded and filtered into the image; false once the budget is
         // spent.
@@ -434,13 +437,24 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             }
             return true;
         };
-        bool going = true;
-        for (int band = span.begin(); going && band < span.end(); ++band)
-            for (int x0 = 0; going && x0 < frame.width; x0 += kRegion)
-                going = square(x0, band * kRegion);
+        for (int k = k0; k < k1; ++k)
+            if (!square(k % across * kRegion, k / across * kRegion)) break;
         tracer.ClearRegion(scratch);
         count += local;
-    });
+    };
+    if (options.aaHelperThread && SerialLoopsOnThisThread() && bands >= 2) {
+        // A square at a time, to this thread or the helper, whichever is free first.
+        raycast::SampleScratch helperScratch(tracer);
+        const std::thread::id self = std::this_thread::get_id();
+        OnTwoThreads(bands * across, [&](int k) {
+            squares(k, k + 1,
+                    std::this_thread::get_id() == self ? scratches.Local() : helperScratch);
+        });
+    } else {
+        ParallelFor(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& span) {
+            squares(span.begin() * across, span.end() * across, scratches.Local());
+        });
+    }
     budget.ThrowIfExhausted(scene);
     stats.edgePixels = count.load();
     int k = 1;

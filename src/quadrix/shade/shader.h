@@ -65,6 +65,10 @@ struct ShadeOptions {
     // edge pixel (0 or 1 = off; 4, 16, 64), and the reconstruction filter.
     int aaSamples = 0;
     bool aaMitchell = false;  // false: box filter over the pixel; true: Mitchell–Netravali
+    // A small job run inline (RenderContext: the threads were not given and the job is small)
+    // may anti-alias on two threads, the second a plain std::thread (util/parallel.h
+    // OnTwoThreads), when the process may run on two processors. The picture is the same.
+    bool aaHelperThread = false;
     // Silhouette and crease lines from the Frame (antialias.h DrawEdgeLines), over the shading.
     bool edges = false;
     scene::Color edgeColor{0, 0, 0};

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -179,6 +181,50 @@ TEST(ParallelLoops, ScopesNestAndRestore) {
         EXPECT_FALSE(other);
     }
     EXPECT_FALSE(SerialLoopsOnThisThread());
+}
+
+// OnTwoThreads: every item once, on the calling thread or the one helper (in a SerialScope of
+// its own, so its loops stay inline), both done on return; a helper's exception is rethrown.
+TEST(ParallelLoops, OnTwoThreadsRunsEveryItemOnceOnTwoThreadsAtMost) {
+    const std::thread::id me = std::this_thread::get_id();
+    constexpr int kItems = 2000;
+    std::vector<std::atomic<int>> runs(kItems);
+    std::vector<std::thread::id> by(kItems);
+    std::atomic<int> helperItems{0};
+    OnTwoThreads(kItems, [&](int i) {
+        ++runs[static_cast<std::size_t>(i)];
+        by[static_cast<std::size_t>(i)] = std::this_thread::get_id();
+        if (std::this_thread::get_id() != me) {
+            ++helperItems;
+            EXPECT_TRUE(SerialLoopsOnThisThread());
+        }
+        // Some work, so that the helper, once it has a processor, takes items too.
+        volatile double x = i;
+        for (int k = 0; k < 2000; ++k) x = x * 0.999 + 1;
+    });
+    std::vector<std::thread::id> threads;
+    for (int i = 0; i < kItems; ++i) {
+        EXPECT_EQ(runs[static_cast<std::size_t>(i)].load(), 1) << i;
+        if (std::find(threads.begin(), threads.end(), by[static_cast<std::size_t>(i)]) ==
+            threads.end())
+            threads.push_back(by[static_cast<std::size_t>(i)]);
+    }
+    EXPECT_LE(threads.size(), 2u);
+    EXPECT_FALSE(SerialLoopsOnThisThread());  // the caller's state is untouched
+    // An item that throws, on whichever thread runs it: the exception reaches the caller once
+    // both threads have stopped, and no item runs twice.
+    std::vector<std::atomic<int>> seen(kItems);
+    try {
+        OnTwoThreads(kItems, [&](int i) {
+            ++seen[static_cast<std::size_t>(i)];
+            if (i == 700) throw std::runtime_error("item 700");
+        });
+        ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "item 700");
+    }
+    EXPECT_EQ(seen[700].load(), 1);
+    for (int i = 0; i < kItems; ++i) EXPECT_LE(seen[static_cast<std::size_t>(i)].load(), 1);
 }
 
 }  // namespace
