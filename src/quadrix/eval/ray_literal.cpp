@@ -6,7 +6,7 @@
 #endif
 
 #include "quadrix/math/quadratic.h"
-#include "quadrix/util/target_clones.h"
+#include "quadrix/util/cpu_features.h"
 
 namespace quadrix::eval {
 
@@ -303,7 +303,7 @@ void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t t
 // project builds with -ffp-contract=off and no fast-math), so the bits are the same; the √ is a
 // separate pass with SSE2 intrinsics because std::sqrt's errno handling stops the vectoriser.
 template <bool kFlip>
-QUADRIX_TARGET_CLONES_TEMPLATE int QuadricBatchFast(
+[[gnu::always_inline]] inline int QuadricBatchFastBody(
     const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n, const double* __restrict xs,
     const double* __restrict ys, double* __restrict lo, std::int64_t* __restrict loId,
     double* __restrict hi, std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,
@@ -436,6 +436,39 @@ QUADRIX_TARGET_CLONES_TEMPLATE int QuadricBatchFast(
         }
     }
     return live;
+}
+
+// QuadricBatchFastBody built for AVX2 and for the baseline (util/cpu_features.h).
+template <bool kFlip>
+QUADRIX_AVX2 int QuadricBatchFastAvx2(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,
+                                      const double* __restrict xs, const double* __restrict ys,
+                                      double* __restrict lo, std::int64_t* __restrict loId,
+                                      double* __restrict hi, std::int64_t* __restrict hiId,
+                                      std::uint8_t* __restrict flag, double* __restrict cut,
+                                      std::uint8_t* __restrict need) {
+    return QuadricBatchFastBody<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi, hiId, flag, cut,
+                                       need);
+}
+template <bool kFlip>
+int QuadricBatchFastBaseline(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,
+                             const double* __restrict xs, const double* __restrict ys,
+                             double* __restrict lo, std::int64_t* __restrict loId,
+                             double* __restrict hi, std::int64_t* __restrict hiId,
+                             std::uint8_t* __restrict flag, double* __restrict cut,
+                             std::uint8_t* __restrict need) {
+    return QuadricBatchFastBody<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi, hiId, flag, cut,
+                                       need);
+}
+template <bool kFlip>
+int QuadricBatchFast(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,
+                     const double* __restrict xs, const double* __restrict ys,
+                     double* __restrict lo, std::int64_t* __restrict loId, double* __restrict hi,
+                     std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,
+                     double* __restrict cut, std::uint8_t* __restrict need) {
+    return gCpuHasAvx2 ? QuadricBatchFastAvx2<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi,
+                                                     hiId, flag, cut, need)
+                       : QuadricBatchFastBaseline<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi,
+                                                         hiId, flag, cut, need);
 }
 
 }  // namespace

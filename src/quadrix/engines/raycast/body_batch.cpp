@@ -4,7 +4,7 @@
 
 #include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/math/interval_list.h"
-#include "quadrix/util/target_clones.h"
+#include "quadrix/util/cpu_features.h"
 
 namespace quadrix::raycast {
 namespace {
@@ -12,15 +12,15 @@ namespace {
 // One plane literal over the n pixels of a body batch: r = -(px x + py y + pd)/c as EvaluateBody
 // computes it, a near bound replacing lo unless lo > r, a far bound replacing hi unless hi <= r;
 // `bad` becomes non-zero where r is not finite. Branch-free, so the compiler vectorises it; built
-// for AVX2 and for the baseline, chosen at load time (the results are the same bits: IEEE
+// for AVX2 and for the baseline (util/cpu_features.h; the results are the same bits: IEEE
 // division and comparisons, no FMA contraction).
 // kNear: a near bound (t >= r) into lo/loId; else a far bound (t <= r) into hi/hiId.
 template <bool kNear>
-QUADRIX_TARGET_CLONES_TEMPLATE void PlaneBatch(int n, const double* xs, const double* ys, double px,
-                                               double py, double pd, double c, std::int64_t tag,
-                                               double* __restrict bound,
-                                               std::int64_t* __restrict boundId,
-                                               double* __restrict bad) {
+[[gnu::always_inline]] inline void PlaneBatchBody(int n, const double* xs, const double* ys,
+                                                  double px, double py, double pd, double c,
+                                                  std::int64_t tag, double* __restrict bound,
+                                                  std::int64_t* __restrict boundId,
+                                                  double* __restrict bad) {
     for (int p = 0; p < n; ++p) {
         const double r = -(px * xs[p] + py * ys[p] + pd) / c;
         bad[p] = std::fabs(r) < HUGE_VAL ? bad[p] : 1.0;
@@ -28,6 +28,28 @@ QUADRIX_TARGET_CLONES_TEMPLATE void PlaneBatch(int n, const double* xs, const do
         bound[p] = take ? r : bound[p];
         boundId[p] = take ? tag : boundId[p];
     }
+}
+
+template <bool kNear>
+QUADRIX_AVX2 void PlaneBatchAvx2(int n, const double* xs, const double* ys, double px, double py,
+                                 double pd, double c, std::int64_t tag, double* __restrict bound,
+                                 std::int64_t* __restrict boundId, double* __restrict bad) {
+    PlaneBatchBody<kNear>(n, xs, ys, px, py, pd, c, tag, bound, boundId, bad);
+}
+template <bool kNear>
+void PlaneBatchBaseline(int n, const double* xs, const double* ys, double px, double py, double pd,
+                        double c, std::int64_t tag, double* __restrict bound,
+                        std::int64_t* __restrict boundId, double* __restrict bad) {
+    PlaneBatchBody<kNear>(n, xs, ys, px, py, pd, c, tag, bound, boundId, bad);
+}
+template <bool kNear>
+void PlaneBatch(int n, const double* xs, const double* ys, double px, double py, double pd,
+                double c, std::int64_t tag, double* __restrict bound,
+                std::int64_t* __restrict boundId, double* __restrict bad) {
+    if (gCpuHasAvx2)
+        PlaneBatchAvx2<kNear>(n, xs, ys, px, py, pd, c, tag, bound, boundId, bad);
+    else
+        PlaneBatchBaseline<kNear>(n, xs, ys, px, py, pd, c, tag, bound, boundId, bad);
 }
 
 // One literal of the body over the batch's pixels, in the body's order (as EvaluateBody).

@@ -2,15 +2,23 @@
 
 #include <cmath>
 
+#include "quadrix/util/cpu_features.h"
+
 namespace quadrix::raycast {
+
+namespace {
+
+// The loops' bodies, each built for AVX2 and for the baseline below (util/cpu_features.h).
 
 // A body's set from its batch: ∅ where the pixel centre is outside the body's bounds `r` or the
 // batch is kEmpty, its interval where kOne, its first interval and cut where kCut, `over` where
 // kScalar.
-__attribute__((target_clones("avx2", "default"))) void LanePush(
-    int np, const double* xs, const double* ys, const Rect& r, const std::uint8_t* state,
-    const double* lo, const double* hi, const double* cut, const std::int64_t* loId,
-    const std::int64_t* hiId, Lane& out, std::int64_t* __restrict over) {
+[[gnu::always_inline]] inline void LanePushBody(int np, const double* xs, const double* ys,
+                                                const Rect& r, const std::uint8_t* state,
+                                                const double* lo, const double* hi,
+                                                const double* cut, const std::int64_t* loId,
+                                                const std::int64_t* hiId, Lane& out,
+                                                std::int64_t* __restrict over) {
     for (int p = 0; p < np; ++p) {
         // Bitwise, not short-circuit, so that every comparison is made and the loop has no
         // branches (a skipped comparison could not be if-converted under -ftrapping-math).
@@ -28,7 +36,7 @@ __attribute__((target_clones("avx2", "default"))) void LanePush(
 }
 
 // a = a ∪ b (UnionOfOne; ∅ ∪ B = B, A ∪ ∅ = A); two disjoint pieces keep the first.
-__attribute__((target_clones("avx2", "default"))) void LaneUnion(int np, Lane& a, const Lane& b) {
+[[gnu::always_inline]] inline void LaneUnionBody(int np, Lane& a, const Lane& b) {
     for (int p = 0; p < np; ++p) {
         const double alo = a.lo[p], ahi = a.hi[p], blo = b.lo[p], bhi = b.hi[p];
         const std::int64_t aloId = a.loId[p], ahiId = a.hiId[p], bloId = b.loId[p],
@@ -61,8 +69,7 @@ __attribute__((target_clones("avx2", "default"))) void LaneUnion(int np, Lane& a
 }
 
 // a = a ∩ b (IntersectionOfOne; ∅ when either is ∅ or they meet in a point or not at all).
-__attribute__((target_clones("avx2", "default"))) void LaneIntersection(int np, Lane& a,
-                                                                        const Lane& b) {
+[[gnu::always_inline]] inline void LaneIntersectionBody(int np, Lane& a, const Lane& b) {
     for (int p = 0; p < np; ++p) {
         const bool openB = b.lo[p] >= a.lo[p], closeA = a.hi[p] <= b.hi[p];
         const double lo = openB ? b.lo[p] : a.lo[p], hi = closeA ? a.hi[p] : b.hi[p];
@@ -81,8 +88,7 @@ __attribute__((target_clones("avx2", "default"))) void LaneIntersection(int np, 
 // a = a − b (AppendDifferenceOfOne; ∅ − B = ∅, A − ∅ = A): b covering a's start leaves
 // [b.hi, a.hi] when b ends first; b before or after a leaves a; b starting inside a leaves
 // [a.lo, b.lo] and [b.hi, a.hi], each when not a point (both: the first, cut at b.hi).
-__attribute__((target_clones("avx2", "default"))) void LaneDifference(int np, Lane& a,
-                                                                      const Lane& b) {
+[[gnu::always_inline]] inline void LaneDifferenceBody(int np, Lane& a, const Lane& b) {
     for (int p = 0; p < np; ++p) {
         const bool na = a.n[p] != 0, nb = b.n[p] != 0;
         const double alo = a.lo[p], ahi = a.hi[p], blo = b.lo[p], bhi = b.hi[p];
@@ -110,6 +116,50 @@ __attribute__((target_clones("avx2", "default"))) void LaneDifference(int np, La
         a.n[p] = na & (!nb | nonEmpty);
         a.cut[p] = cutHere ? bhi : cut0;
     }
+}
+
+#define QUADRIX_LANE_OP(Name)                                                              \
+    QUADRIX_AVX2 void Name##Avx2(int np, Lane& a, const Lane& b) { Name##Body(np, a, b); } \
+    void Name##Baseline(int np, Lane& a, const Lane& b) { Name##Body(np, a, b); }
+QUADRIX_LANE_OP(LaneUnion)
+QUADRIX_LANE_OP(LaneIntersection)
+QUADRIX_LANE_OP(LaneDifference)
+#undef QUADRIX_LANE_OP
+
+QUADRIX_AVX2 void LanePushAvx2(int np, const double* xs, const double* ys, const Rect& r,
+                               const std::uint8_t* state, const double* lo, const double* hi,
+                               const double* cut, const std::int64_t* loId,
+                               const std::int64_t* hiId, Lane& out, std::int64_t* __restrict over) {
+    LanePushBody(np, xs, ys, r, state, lo, hi, cut, loId, hiId, out, over);
+}
+void LanePushBaseline(int np, const double* xs, const double* ys, const Rect& r,
+                      const std::uint8_t* state, const double* lo, const double* hi,
+                      const double* cut, const std::int64_t* loId, const std::int64_t* hiId,
+                      Lane& out, std::int64_t* __restrict over) {
+    LanePushBody(np, xs, ys, r, state, lo, hi, cut, loId, hiId, out, over);
+}
+
+}  // namespace
+
+void LanePush(int np, const double* xs, const double* ys, const Rect& r, const std::uint8_t* state,
+              const double* lo, const double* hi, const double* cut, const std::int64_t* loId,
+              const std::int64_t* hiId, Lane& out, std::int64_t* __restrict over) {
+    if (gCpuHasAvx2)
+        LanePushAvx2(np, xs, ys, r, state, lo, hi, cut, loId, hiId, out, over);
+    else
+        LanePushBaseline(np, xs, ys, r, state, lo, hi, cut, loId, hiId, out, over);
+}
+
+void LaneUnion(int np, Lane& a, const Lane& b) {
+    gCpuHasAvx2 ? LaneUnionAvx2(np, a, b) : LaneUnionBaseline(np, a, b);
+}
+
+void LaneIntersection(int np, Lane& a, const Lane& b) {
+    gCpuHasAvx2 ? LaneIntersectionAvx2(np, a, b) : LaneIntersectionBaseline(np, a, b);
+}
+
+void LaneDifference(int np, Lane& a, const Lane& b) {
+    gCpuHasAvx2 ? LaneDifferenceAvx2(np, a, b) : LaneDifferenceBaseline(np, a, b);
 }
 
 }  // namespace quadrix::raycast
