@@ -3,7 +3,11 @@
 #if defined(__x86_64__) || defined(__i386__)
 #if defined(__has_include)
 #if __has_include(<sys/platform/x86.h>)
+// The header is C: its inline functions return _Bool, which g++ takes as an extension and
+// clang++ does not.
+#define _Bool bool
 #include <sys/platform/x86.h>
+#undef _Bool
 #define QUADRIX_HAVE_GLIBC_X86_FEATURES 1
 #endif
 #endif
