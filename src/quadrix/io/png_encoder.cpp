@@ -203,10 +203,11 @@ void CompressStrip(const PngRaster& r, std::size_t rowBytes, int y0, int y1, boo
 // A small image (one strip of fewer than kSmallImage bytes of filtered rows) in one deflate
 // stream whose window just holds it: 2^w bytes, w = 9..15, and a hash table of as many entries
 // (memLevel w − 7), allocated on the heap for this image. The thread's 2 MiB arena and its 32 KiB
-// window state would be first touched for a few KiB of rows: 0.26 ms for the huge page on this
-// project's Intel machines, about 0.3 ms on the AMD ones, where this state's 10-20 small pages
-// cost 0.01-0.04 ms and 0.2-0.4 ms (docs/performance.md "Small pictures"). The zlib header says
-// the window (CINFO = w − 8) so that a decoder may use no more.
+// window state would be first touched for a few KiB of rows: its huge page costs 0.26 ms on this
+// project's Intel machine, where the about 30 small pages this state and these buffers touch cost
+// 0.04 ms (0.5 ms at the 18 µs a fault of the AMD machines, about what a huge page costs there;
+// docs/performance.md "Small pictures"). The zlib header says the window (CINFO = w − 8), so a
+// decoder may use no more.
 constexpr std::size_t kSmallImage = 64u << 10;
 void CompressSmall(const PngRaster& r, std::size_t rowBytes, Strip& s) {
     const std::size_t rawBytes = static_cast<std::size_t>(r.height) * (rowBytes + 1);

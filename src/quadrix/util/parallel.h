@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <exception>
 #include <optional>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -163,23 +164,28 @@ void OnTwoThreads(int n, const Item& item) {
         for (int i; !failed.load(std::memory_order_relaxed) && (i = next.fetch_add(1)) < n;)
             item(i);
     };
-    std::thread helper([&] {
-        SerialScope inline_;
-        try {
-            take();
-        } catch (...) {
-            failure = std::current_exception();
-            failed = true;
-        }
-    });
+    std::thread helper;
+    try {
+        helper = std::thread([&] {
+            SerialScope inline_;
+            try {
+                take();
+            } catch (...) {
+                failure = std::current_exception();
+                failed = true;
+            }
+        });
+    } catch (const std::system_error&) {
+        // No thread to be had (a process at its limit): every item here.
+    }
     try {
         take();
     } catch (...) {
         failed = true;
-        helper.join();
+        if (helper.joinable()) helper.join();
         throw;
     }
-    helper.join();
+    if (helper.joinable()) helper.join();
     if (failure) std::rethrow_exception(failure);
 }
 
