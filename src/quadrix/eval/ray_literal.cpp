@@ -438,27 +438,21 @@ template <bool kFlip>
     return live;
 }
 
-// QuadricBatchFastBody built for AVX2 and for the baseline (util/cpu_features.h).
-template <bool kFlip>
-QUADRIX_AVX2 int QuadricBatchFastAvx2(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,
-                                      const double* __restrict xs, const double* __restrict ys,
-                                      double* __restrict lo, std::int64_t* __restrict loId,
-                                      double* __restrict hi, std::int64_t* __restrict hiId,
-                                      std::uint8_t* __restrict flag, double* __restrict cut,
-                                      std::uint8_t* __restrict need) {
-    return QuadricBatchFastBody<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi, hiId, flag, cut,
-                                       need);
-}
-template <bool kFlip>
-int QuadricBatchFastBaseline(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,
-                             const double* __restrict xs, const double* __restrict ys,
-                             double* __restrict lo, std::int64_t* __restrict loId,
-                             double* __restrict hi, std::int64_t* __restrict hiId,
-                             std::uint8_t* __restrict flag, double* __restrict cut,
-                             std::uint8_t* __restrict need) {
-    return QuadricBatchFastBody<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi, hiId, flag, cut,
-                                       need);
-}
+// QuadricBatchFastBody built for AVX2 and for the baseline (util/cpu_features.h), from one
+// parameter list.
+#define QUADRIX_QUADRIC_BATCH_FAST(Name, Target)                                                  \
+    template <bool kFlip>                                                                         \
+    Target int Name(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,                \
+                    const double* __restrict xs, const double* __restrict ys,                     \
+                    double* __restrict lo, std::int64_t* __restrict loId, double* __restrict hi,  \
+                    std::int64_t* __restrict hiId, std::uint8_t* __restrict flag,                 \
+                    double* __restrict cut, std::uint8_t* __restrict need) {                      \
+        return QuadricBatchFastBody<kFlip>(hs, cutMode, tag, n, xs, ys, lo, loId, hi, hiId, flag, \
+                                           cut, need);                                            \
+    }
+QUADRIX_QUADRIC_BATCH_FAST(QuadricBatchFastAvx2, QUADRIX_AVX2)
+QUADRIX_QUADRIC_BATCH_FAST(QuadricBatchFastBaseline, )
+#undef QUADRIX_QUADRIC_BATCH_FAST
 template <bool kFlip>
 int QuadricBatchFast(const RayHalfSpace& hs, bool cutMode, std::int64_t tag, int n,
                      const double* __restrict xs, const double* __restrict ys,
