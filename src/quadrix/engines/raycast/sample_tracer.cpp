@@ -103,7 +103,10 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
             tag = g.tags.data() + rb.begin;
             count = static_cast<std::size_t>(rb.end - rb.begin);
         }
-        out.Append(-HUGE_VAL, Interval::kNoId, HUGE_VAL, Interval::kNoId);
+        // The body's set as one interval while every literal gives one piece (ClipTo's rules on
+        // a one-interval list, interval_list.cpp), as a list from the first that gives two.
+        Interval run{-HUGE_VAL, HUGE_VAL, Interval::kNoId, Interval::kNoId};
+        bool one = true;
         LiteralCounters unused;
         for (std::size_t k = 0; k < count; ++k) {
             ++tRayLiterals;  // the shading budget's count (shade/shade_budget.h)
@@ -114,6 +117,24 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
             if (set.count == 0) {
                 s.slots[slot]->clear();
                 return;
+            }
+            if (one && set.count == 1) {
+                const Interval& w = set.piece[0];
+                if (run.hi < w.lo || run.lo > w.hi) return;  // out is empty
+                if (!(run.lo > w.lo)) {
+                    run.lo = w.lo;
+                    run.loId = w.loId;
+                }
+                if (!(run.hi <= w.hi)) {
+                    run.hi = w.hi;
+                    run.hiId = w.hiId;
+                }
+                if (!(run.lo < run.hi)) return;  // a point: out is empty
+                continue;
+            }
+            if (one) {
+                one = false;
+                out.Append(run.lo, run.loId, run.hi, run.hiId);
             }
             IntervalList& acc = *s.slots[slot];
             if (set.count == 1) {  // in place, the same result as Intersection (interval_list.h)
@@ -129,6 +150,7 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
             }
             if (s.slots[slot]->empty()) return;
         }
+        if (one) out.Append(run.lo, run.loId, run.hi, run.hiId);
         return;
     }
     // The children to fold: all of them, or for a wide node the first of a difference and those
@@ -141,7 +163,9 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
     struct Pop {
         std::vector<std::int32_t>& v;
         std::size_t size;
-        ~Pop() { v.resize(size); }
+        ~Pop() {
+            if (v.size() != size) v.resize(size);  // (a node that is not wide pushed nothing)
+        }
     } pop{hits, base};
     std::size_t count = node.children.size();
     if (wide >= 0) {
