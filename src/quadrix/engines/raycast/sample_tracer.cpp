@@ -240,9 +240,13 @@ Sample SampleTracer::Trace(double x, double y, SampleScratch& scratch, double de
     // The solids whose bounds may contain (x, y), in byDepth_ order.
     std::vector<std::int32_t>& met = scratch.solids;
     met.clear();
-    solidTree_.Column(x, y,
-                      [&](std::int32_t k) { met.push_back(rank_[static_cast<std::size_t>(k)]); });
-    std::sort(met.begin(), met.end());
+    if (byDepth_.size() == 1) {  // one solid (one part): the loop below tests its bounds
+        met.push_back(0);
+    } else {
+        solidTree_.Column(
+            x, y, [&](std::int32_t k) { met.push_back(rank_[static_cast<std::size_t>(k)]); });
+        std::sort(met.begin(), met.end());
+    }
     for (std::int32_t r : met) {
         const std::int32_t s = byDepth_[static_cast<std::size_t>(r)];
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(s)];
