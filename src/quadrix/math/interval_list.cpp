@@ -206,15 +206,7 @@ void ClipTo(IntervalList& list, const Interval& w) {
         Interval v = d[i];
         if (v.hi < w.lo) continue;
         if (v.lo > w.hi) break;
-        if (!(v.lo > w.lo)) {
-            v.lo = w.lo;
-            v.loId = w.loId;
-        }
-        if (!(v.hi <= w.hi)) {
-            v.hi = w.hi;
-            v.hiId = w.hiId;
-        }
-        if (v.lo < v.hi) d[n++] = v;
+        if (ClipOne(v, w)) d[n++] = v;
     }
     list.Truncate(n);
 }

@@ -122,6 +122,21 @@ void Complement(const IntervalList& a, IntervalList& out);
 // IntervalList with the single interval `window`) ids included, without a second list (the raycast
 // engine clips a body's set by each half-line or interval literal this way).
 void ClipTo(IntervalList& list, const Interval& window);
+// ClipTo's rules for one interval v of a list against the window w, in place: it opens at the
+// later start, w's on a tie, and closes at the earlier end, v's on a tie. False when what is left
+// is a point or nothing (v is then to be dropped). The bodies of the engines' tracers keep their
+// set as one such interval while each literal gives one piece.
+inline bool ClipOne(Interval& v, const Interval& w) {
+    if (!(v.lo > w.lo)) {
+        v.lo = w.lo;
+        v.loId = w.loId;
+    }
+    if (!(v.hi <= w.hi)) {
+        v.hi = w.hi;
+        v.hiId = w.hiId;
+    }
+    return v.lo < v.hi;
+}
 
 // One interval against one interval, the commonest case in the engines' CSG: the sweep's
 // result written directly, from the same tie rules (events at equal t: starts before ends, a

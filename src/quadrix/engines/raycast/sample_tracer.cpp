@@ -103,8 +103,8 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
             tag = g.tags.data() + rb.begin;
             count = static_cast<std::size_t>(rb.end - rb.begin);
         }
-        // The body's set as one interval while every literal gives one piece (ClipTo's rules on
-        // a one-interval list, interval_list.cpp), as a list from the first that gives two.
+        // The body's set as one interval while every literal gives one piece (ClipOne: ClipTo's
+        // rules, interval_list.h), as a list from the first that gives two.
         Interval run{-HUGE_VAL, HUGE_VAL, Interval::kNoId, Interval::kNoId};
         bool one = true;
         LiteralCounters unused;
@@ -119,17 +119,7 @@ void SampleTracer::Node(std::int32_t n, double x, double y, double zMax, SampleS
                 return;
             }
             if (one && set.count == 1) {
-                const Interval& w = set.piece[0];
-                if (run.hi < w.lo || run.lo > w.hi) return;  // out is empty
-                if (!(run.lo > w.lo)) {
-                    run.lo = w.lo;
-                    run.loId = w.loId;
-                }
-                if (!(run.hi <= w.hi)) {
-                    run.hi = w.hi;
-                    run.hiId = w.hiId;
-                }
-                if (!(run.lo < run.hi)) return;  // a point: out is empty
+                if (!ClipOne(run, set.piece[0])) return;  // out is empty
                 continue;
             }
             if (one) {

@@ -245,16 +245,7 @@ void Tracer::EvaluateBody(std::int32_t body, std::int32_t node, double x, double
             }
             w = set.piece[0];
         }
-        // ClipTo's rules for one piece.
-        if (!(run.lo > w.lo)) {
-            run.lo = w.lo;
-            run.loId = w.loId;
-        }
-        if (!(run.hi <= w.hi)) {
-            run.hi = w.hi;
-            run.hiId = w.hiId;
-        }
-        if (!(run.lo < run.hi)) return;
+        if (!ClipOne(run, w)) return;  // ClipTo's rules for one piece
     }
     AppendPiece(result, run);
 }
