@@ -197,6 +197,7 @@ class FlattenerImpl {
             flat.halfSpaces.push_back(std::move(h));
         }
         const int nClip = static_cast<int>(flat.halfSpaces.size());
+        LiteralCacheBuilder literalBuilder;  // told by the one-shot walk (literal_cache.h)
         if (world_) {
             if (!PlaceWorld(nClip)) return std::nullopt;
         } else {
@@ -204,7 +205,11 @@ class FlattenerImpl {
             // composed transform per half-space, the fewest roundings).
             HierarchyLimits limits;
             limits.clipLiteralsPerBody = nClip;
-            if (!FlattenHierarchy(scene_, view_.provFromWorld, limits, flat, hierarchy_, diags_))
+            // The literal cache's entries are made meanwhile on another processor, when the
+            // loops may use one (not inline, util/parallel.h).
+            const bool alongside = !SerialLoopsOnThisThread() && AvailableProcessors() >= 2;
+            if (!FlattenHierarchy(scene_, view_.provFromWorld, limits, flat, hierarchy_, diags_,
+                                  alongside ? &literalBuilder : nullptr))
                 return std::nullopt;
         }
         if (flat.solids.empty() && flat.freeforms.empty()) {
@@ -222,7 +227,7 @@ class FlattenerImpl {
 
         // Stage (a) of every quadric literal once, for the scale and every body's first bounds
         // in provisional space (literal_cache.h); flat.halfSpaces stays as it is meanwhile.
-        LiteralCache literals = LiteralCache::Build(flat.halfSpaces);
+        LiteralCache literals = literalBuilder.Finish(flat.halfSpaces);
         BoundsOptions bo;
         bo.searchLimit = 1e6 * SceneScale(flat, view_, literals);
         bo.literals = &literals;

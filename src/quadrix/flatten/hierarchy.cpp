@@ -244,11 +244,12 @@ struct Term {
 class Walker {
   public:
     Walker(const scene::Scene& scene, FlatScene& out, HierarchyResult& result, Diagnostics& diags,
-           const HierarchyLimits& limits)
+           const HierarchyLimits& limits, HalfSpaceObserver* observer)
         : scene_(scene),
           out_(out),
           result_(result),
           diags_(diags),
+          observer_(observer),
           clipLiterals_(limits.clipLiteralsPerBody),
           keepExtentPieces_(limits.keepExtentPieces) {}
 
@@ -738,7 +739,12 @@ class Walker {
                                      f.name));
             return -1;
         }
+        if (observer_ && out_.halfSpaces.size() == out_.halfSpaces.capacity()) {
+            observer_->Growing();
+            observer_ = nullptr;
+        }
         out_.halfSpaces.push_back(std::move(f));
+        if (observer_) observer_->Appended(out_.halfSpaces.size());
         result_.halfSpaceLocs.push_back(hs.loc);
         si.hsMap[local] = static_cast<int>(out_.halfSpaces.size()) - 1;
         return si.hsMap[local];
@@ -748,6 +754,7 @@ class Walker {
     FlatScene& out_;
     HierarchyResult& result_;
     Diagnostics& diags_;
+    HalfSpaceObserver* observer_;  // null once told the array is growing
     Transform worldFromTarget_;
     bool failed_ = false;
     int currentSolid_ = -1;
@@ -762,7 +769,7 @@ class Walker {
 
 bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorld,
                       const HierarchyLimits& limits, FlatScene& out, HierarchyResult& result,
-                      Diagnostics& diags) {
+                      Diagnostics& diags, HalfSpaceObserver* observer) {
     // The guard first: nothing is built for a scene that would explode.
     Counter counter(scene, limits.clipLiteralsPerBody, diags);
     Counts total;
@@ -811,8 +818,11 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
     if (limits.keepExtentPieces)
         lang::ReserveAdvised(result.bodyExtents, result.bodyExtents.size() + nBody);
     lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);
-    Walker walker(scene, out, result, diags, limits);
-    return walker.Run(targetFromWorld);
+    if (observer) observer->Started(out.halfSpaces, nHalf);
+    Walker walker(scene, out, result, diags, limits, observer);
+    const bool ok = walker.Run(targetFromWorld);
+    if (observer) observer->Finished();
+    return ok;
 }
 
 }  // namespace quadrix

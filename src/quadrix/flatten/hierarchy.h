@@ -66,12 +66,29 @@ struct HierarchyResult {
     std::vector<ExtentPiece> extentPieces;
 };
 
+// Told by the walk about the half-spaces it appends to FlatScene::halfSpaces, in order (the
+// Flattener's LiteralCacheBuilder works on them meanwhile). All calls come from the walk's thread.
+class HalfSpaceObserver {
+  public:
+    // The array reserved for the walk, which expects to append up to `expected` half-spaces.
+    virtual void Started(const std::vector<FlatHalfSpace>& halfSpaces, std::size_t expected) = 0;
+    // halfSpaces[0, size) are final.
+    virtual void Appended(std::size_t size) = 0;
+    // The next append would move the array (its capacity is reached).
+    virtual void Growing() = 0;
+    // The walk has ended (whether or not it failed): nothing more is appended.
+    virtual void Finished() = 0;
+
+  protected:
+    ~HalfSpaceObserver() = default;
+};
+
 // Appends the drawn solids of `scene` to `out` (halfSpaces, bodies, nodes, solids), transformed
 // by targetFromWorld. A FlatBody's `bounds` is the box of its extent in the target space
 // (scene::Body::extent, math/extent_piece.h) where it has one and its map there is affine, else
 // Box3::Everything(). false (with errors in diags) on a limit, a cycle or a bad reference.
 bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorld,
                       const HierarchyLimits& limits, FlatScene& out, HierarchyResult& result,
-                      Diagnostics& diags);
+                      Diagnostics& diags, HalfSpaceObserver* observer = nullptr);
 
 }  // namespace quadrix

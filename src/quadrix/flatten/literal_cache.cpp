@@ -3,13 +3,44 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <functional>
+
+#if defined(__linux__)
+#include <pthread.h>
+#include <sched.h>
+#endif
+#include <system_error>
 
 #include "quadrix/util/parallel.h"
 
 namespace quadrix {
 
-LiteralCache LiteralCache::Build(std::span<const FlatHalfSpace> halfSpaces) {
+namespace {
+
+void MakeEntry(const FlatHalfSpace& h, LiteralCache::Entry& e) {
+    bounds_detail::InsideEigen eigen;
+    e.fn = bounds_detail::MakeInsideFn(h, false, &eigen);
+    e.box = bounds_detail::AnalyticBox(e.fn, &e.centre, &e.hasCentre);
+    e.extent = bounds_detail::QuadricExtent(e.fn, eigen);
+}
+
+// c over halfSpaces with its slots numbered, entries holding at least the made ones: the entries
+// of the quadrics from half-space `from` on, made in parallel.
+void MakeEntriesFrom(std::span<const FlatHalfSpace> halfSpaces, std::size_t from, LiteralCache& c) {
+    if (from >= halfSpaces.size()) return;
+    ParallelFor(tbb::blocked_range<std::size_t>(from, halfSpaces.size(), 512),
+                [&](const tbb::blocked_range<std::size_t>& r) {
+                    for (std::size_t i = r.begin(); i < r.end(); ++i)
+                        if (c.slot[i] >= 0)
+                            MakeEntry(halfSpaces[i],
+                                      c.entries[static_cast<std::size_t>(c.slot[i])]);
+                });
+}
+
+// The cache's array and slots, its entries `made` (the first ones, or none) and sized.
+LiteralCache Slots(std::span<const FlatHalfSpace> halfSpaces,
+                   std::vector<LiteralCache::Entry> made = {}) {
     LiteralCache c;
     c.base = halfSpaces.data();
     c.size = halfSpaces.size();
@@ -17,18 +48,16 @@ LiteralCache LiteralCache::Build(std::span<const FlatHalfSpace> halfSpaces) {
     std::int32_t n = 0;
     for (std::size_t i = 0; i < halfSpaces.size(); ++i)
         if (halfSpaces[i].IsQuadric()) c.slot[i] = n++;
+    c.entries = std::move(made);
     c.entries.resize(static_cast<std::size_t>(n));
-    ParallelFor(tbb::blocked_range<std::size_t>(0, halfSpaces.size(), 512),
-                [&](const tbb::blocked_range<std::size_t>& r) {
-                    for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                        if (c.slot[i] < 0) continue;
-                        Entry& e = c.entries[static_cast<std::size_t>(c.slot[i])];
-                        bounds_detail::InsideEigen eigen;
-                        e.fn = bounds_detail::MakeInsideFn(halfSpaces[i], false, &eigen);
-                        e.box = bounds_detail::AnalyticBox(e.fn, &e.centre, &e.hasCentre);
-                        e.extent = bounds_detail::QuadricExtent(e.fn, eigen);
-                    }
-                });
+    return c;
+}
+
+}  // namespace
+
+LiteralCache LiteralCache::Build(std::span<const FlatHalfSpace> halfSpaces) {
+    LiteralCache c = Slots(halfSpaces);
+    MakeEntriesFrom(halfSpaces, 0, c);
     return c;
 }
 
@@ -38,6 +67,90 @@ const LiteralCache::Entry* LiteralCache::Find(const FlatHalfSpace* h) const {
     if (size == 0 || less(h, base) || !less(h, base + size)) return nullptr;
     const std::int32_t s = slot[static_cast<std::size_t>(h - base)];
     return s < 0 ? nullptr : &entries[static_cast<std::size_t>(s)];
+}
+
+LiteralCacheBuilder::~LiteralCacheBuilder() { Stop(); }
+
+void LiteralCacheBuilder::Started(const std::vector<FlatHalfSpace>& halfSpaces,
+                                  std::size_t expected) {
+    if (thread_.joinable() || expected < kMinHalfSpaces || halfSpaces.capacity() >= kEnd) return;
+    base_ = halfSpaces.data();
+    state_.store(static_cast<std::uint32_t>(halfSpaces.size()), std::memory_order_relaxed);
+    try {
+        // Room for an entry per half-space the array can hold before it moves.
+        entries_.reserve(halfSpaces.capacity());
+        thread_ = std::thread([this] { Work(); });
+    } catch (const std::bad_alloc&) {
+        entries_ = {};  // no thread: Finish makes every entry
+    } catch (const std::system_error&) {
+        entries_ = {};
+    }
+}
+
+void LiteralCacheBuilder::Appended(std::size_t size) {
+    if (!thread_.joinable()) return;
+    state_.store(static_cast<std::uint32_t>(size), std::memory_order_release);
+    // The thread is woken every 256 half-spaces (a wake is a system call; it takes them all).
+    if (size % 256 == 0) state_.notify_one();
+}
+
+void LiteralCacheBuilder::Growing() { Stop(); }
+
+void LiteralCacheBuilder::Finished() {
+    if (!thread_.joinable()) return;
+    state_.fetch_or(kEnd, std::memory_order_release);
+    state_.notify_one();
+}
+
+void LiteralCacheBuilder::Stop() {
+    if (!thread_.joinable()) return;
+    state_.fetch_or(kStop, std::memory_order_release);
+#if defined(__linux__)
+    // Waited for now: back among the others, so that a busy machine does not keep it waiting
+    // (best effort; it ends soon anyway).
+    sched_param normal{};
+    pthread_setschedparam(thread_.native_handle(), SCHED_OTHER, &normal);
+#endif
+    state_.notify_one();
+    thread_.join();
+}
+
+void LiteralCacheBuilder::Work() {
+#if defined(__linux__)
+    // Below every other thread of the process (and of the machine): it takes only what the walk
+    // and oneTBB's start leave idle, and never pre-empts them.
+    sched_param idle{};
+    pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
+#endif
+    std::uint32_t seen = state_.load(std::memory_order_acquire);
+    for (;;) {
+        const std::size_t n = seen & ~(kStop | kEnd);
+        for (; done_ < n; ++done_) {
+            if (state_.load(std::memory_order_relaxed) & kStop) return;
+            const FlatHalfSpace& h = base_[done_];
+            if (h.IsQuadric()) MakeEntry(h, entries_.emplace_back());
+        }
+        if (seen & (kStop | kEnd)) return;
+        state_.wait(seen, std::memory_order_acquire);
+        seen = state_.load(std::memory_order_acquire);
+    }
+}
+
+LiteralCache LiteralCacheBuilder::Finish(std::span<const FlatHalfSpace> halfSpaces) {
+    Stop();
+    // The thread's entries are those of the quadrics among the first done_ half-spaces (the same
+    // values wherever the array now is); they stay where they are (the reserve holds them all).
+    std::size_t quadrics = 0;
+    const std::size_t done = std::min(done_, halfSpaces.size());
+    for (std::size_t i = 0; i < done; ++i) quadrics += halfSpaces[i].IsQuadric();
+    const bool kept = quadrics == entries_.size();
+    LiteralCache c =
+        Slots(halfSpaces, kept ? std::move(entries_) : std::vector<LiteralCache::Entry>{});
+    const std::size_t from = kept ? done : 0;
+    entries_ = {};
+    done_ = 0;
+    MakeEntriesFrom(halfSpaces, from, c);
+    return c;
 }
 
 }  // namespace quadrix

@@ -14,15 +14,24 @@
 // change while a BoundsOptions names the cache (the Flattener drops it before mapping the scene
 // to device space). Literals of other half-spaces, complemented ones, planes and quartics are
 // computed as before.
+//
+// LiteralCacheBuilder makes the same entries while the walk of a big scene appends the
+// half-spaces (FlattenHierarchy's HalfSpaceObserver): the walk is serial, and the entries of the
+// half-spaces it has finished are made meanwhile on a thread of their own, on the processor the
+// walk leaves idle; Finish makes the rest in parallel. Entry k is the one Build makes: the same
+// function of the same half-space.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <thread>
 #include <vector>
 
 #include "quadrix/flatten/bounds_internal.h"
 #include "quadrix/flatten/flat_scene.h"
+#include "quadrix/flatten/hierarchy.h"
 
 namespace quadrix {
 
@@ -46,6 +55,47 @@ struct LiteralCache {
     std::size_t size = 0;
     std::vector<std::int32_t> slot;  // per half-space: index into entries, or -1
     std::vector<Entry> entries;
+};
+
+// Builds a LiteralCache over the half-spaces a walk appends to one array, from a thread started by
+// Started while the walk goes on (hierarchy.h HalfSpaceObserver). The thread reads only
+// array[0, n) for the n of the last Appended, through the array's address at Started: the walk
+// calls Growing before the array would move, which stops the thread. Not thread-safe otherwise:
+// every member is called by the walk's thread.
+class LiteralCacheBuilder final : public HalfSpaceObserver {
+  public:
+    // Half-spaces a walk must be expected to append for the thread to be started (below that,
+    // the thread's start costs about as much as the entries).
+    static constexpr std::size_t kMinHalfSpaces = 4096;
+
+    LiteralCacheBuilder() = default;
+    ~LiteralCacheBuilder();  // stops the thread
+    LiteralCacheBuilder(const LiteralCacheBuilder&) = delete;
+    LiteralCacheBuilder& operator=(const LiteralCacheBuilder&) = delete;
+
+    void Started(const std::vector<FlatHalfSpace>& halfSpaces, std::size_t expected) override;
+    void Appended(std::size_t size) override;
+    void Growing() override;
+    void Finished() override;
+
+    // The cache over `halfSpaces` (the array the walk appended to, unchanged since): the thread
+    // stopped, the entries it has not made made in parallel (util/parallel.h).
+    LiteralCache Finish(std::span<const FlatHalfSpace> halfSpaces);
+
+  private:
+    void Stop();
+    void Work();
+
+    static constexpr std::uint32_t kStop = 1u << 31;  // end now
+    static constexpr std::uint32_t kEnd = 1u << 30;   // end when every half-space is done
+    std::thread thread_;
+    const FlatHalfSpace* base_ = nullptr;  // the array's address at Started
+    // Half-spaces appended (base_[0, n) final), with kStop once the thread must end.
+    std::atomic<std::uint32_t> state_{0};
+    // The thread's own, read after it is joined: half-spaces looked at, and the entries made
+    // for the quadrics among them (reserved at Started, so the thread never reallocates).
+    std::size_t done_ = 0;
+    std::vector<LiteralCache::Entry> entries_;
 };
 
 }  // namespace quadrix

@@ -91,5 +91,76 @@ TEST(LiteralCache, BoxesAreBitForBitThoseMadeWithoutIt) {
     }
 }
 
+bool SameEntry(const LiteralCache::Entry& a, const LiteralCache::Entry& b) {
+    return std::memcmp(&a.fn.a, &b.fn.a, sizeof a.fn.a) == 0 &&
+           std::memcmp(&a.fn.b, &b.fn.b, sizeof a.fn.b) == 0 && a.fn.k == b.fn.k &&
+           a.fn.lamMin == b.fn.lamMin && a.fn.lamMax == b.fn.lamMax && SameBits(a.box, b.box) &&
+           std::memcmp(&a.centre, &b.centre, sizeof a.centre) == 0 && a.hasCentre == b.hasCentre &&
+           a.extent == b.extent;
+}
+
+// Half-spaces as a walk appends them: planes and quadrics mixed, in a reserved array.
+std::vector<FlatHalfSpace> MixedHalfSpaces(std::size_t n, std::size_t reserve) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1), r(0.2, 2);
+    std::vector<FlatHalfSpace> hs;
+    hs.reserve(reserve);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i % 3 == 2) {
+            FlatHalfSpace p;
+            p.isPlane = true;
+            p.plane = {u(rng), u(rng), u(rng), u(rng)};
+            hs.push_back(p);
+        } else {
+            const Transform t = Transform::Translate({50 * u(rng), 50 * u(rng), 50 * u(rng)}) *
+                                bounds_test::RandomRotation(rng);
+            hs.push_back(bounds_test::QuadricHs(
+                bounds_test::Ellipsoid(r(rng), r(rng), r(rng)).Transformed(t)));
+        }
+    }
+    return hs;
+}
+
+void ExpectSameCache(const LiteralCache& got, const std::vector<FlatHalfSpace>& hs) {
+    const LiteralCache want = LiteralCache::Build(hs);
+    ASSERT_EQ(got.entries.size(), want.entries.size());
+    ASSERT_EQ(got.slot, want.slot);
+    EXPECT_EQ(got.base, hs.data());
+    EXPECT_EQ(got.size, hs.size());
+    for (std::size_t k = 0; k < want.entries.size(); ++k)
+        ASSERT_TRUE(SameEntry(got.entries[k], want.entries[k])) << "entry " << k;
+}
+
+// The builder's thread makes entries while half-spaces are appended; Finish makes the rest. The
+// cache is Build's, entry for entry, bit for bit: appended in bursts with the walk ending normally,
+// stopped mid-way (Finish before Finished), and told the array grows (the thread stops before it
+// moves; the entries it made are kept).
+TEST(LiteralCacheBuilder, MakesBuildsEntriesWhileTheWalkAppends) {
+    const std::size_t n = 3 * LiteralCacheBuilder::kMinHalfSpaces;
+    const std::vector<FlatHalfSpace> all = MixedHalfSpaces(n, n);
+    for (int mode = 0; mode < 3; ++mode) {
+        SCOPED_TRACE(mode);
+        std::vector<FlatHalfSpace> hs;
+        // mode 2: room for half of them, so the array grows once mid-way.
+        hs.reserve(mode == 2 ? n / 2 : n);
+        LiteralCacheBuilder builder;
+        builder.Started(hs, n);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (hs.size() == hs.capacity()) builder.Growing();
+            hs.push_back(all[i]);
+            if (mode != 2 || i < n / 2) builder.Appended(hs.size());
+            if (mode == 1 && i == n / 3) break;  // a walk that fails part-way
+        }
+        if (mode != 1) builder.Finished();
+        ExpectSameCache(builder.Finish(hs), hs);
+    }
+    // Too few half-spaces for a thread: Finish makes them all, the same.
+    std::vector<FlatHalfSpace> few = MixedHalfSpaces(300, 300);
+    LiteralCacheBuilder small;
+    small.Started(few, few.size());
+    small.Finished();
+    ExpectSameCache(small.Finish(few), few);
+}
+
 }  // namespace
 }  // namespace quadrix

@@ -301,7 +301,7 @@ class Converter {
         for (int i = 0; i < 16; ++i) key[i] = total.m[i / 4][i % 4];
         key[16] = primIndex;
         if (auto it = leafCache_.find(key); it != leafCache_.end()) return it->second;
-        auto t = Transform::FromMatrix(total);
+        const std::optional<Transform>& t = TransformOf(total);
         if (!t) {
             diags_.Error(refLoc, fmt::format("the matrices on the path to '{}' cannot be inverted: "
                                              "singular, not finite, or scales more than 1e14 apart",
@@ -326,6 +326,7 @@ class Converter {
             body.loc = p.loc;
             body.usedAsOperand = true;
             body.extent = std::move(extent);  // empty unless the shape is this one body
+            body.literals.reserve(sb.size());
             for (const ShapeHalfSpace& h : sb) {
                 scene::HalfSpace hs;
                 hs.id = NumberedId(p.name, scene_.top.halfSpaces.size());
@@ -342,6 +343,16 @@ class Converter {
         int idx = AddExpr(std::move(e));
         leafCache_[key] = idx;
         return idx;
+    }
+
+    // Transform::FromMatrix(total), made once for a run of leaves under the same matrix (the
+    // primitives of one region placed once; the same bits, as the matrix is the same bit for bit).
+    const std::optional<Transform>& TransformOf(const Mat4& total) {
+        if (!lastTransform_ || std::memcmp(&lastTotal_, &total, sizeof total) != 0) {
+            lastTotal_ = total;
+            lastTransform_ = Transform::FromMatrix(total);
+        }
+        return *lastTransform_;
     }
 
     void WarnMissing(const std::string& parent, const std::string& name, const SourceLoc& loc) {
@@ -659,6 +670,8 @@ class Converter {
         }
     };
     std::unordered_map<LeafKey, int, LeafKeyHash> leafCache_;
+    Mat4 lastTotal_;                                         // TransformOf's last matrix
+    std::optional<std::optional<Transform>> lastTransform_;  // and its transform, once made
     std::string refParent_;
     std::size_t emitted_ = 0;
     bool aborted_ = false;
