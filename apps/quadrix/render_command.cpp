@@ -267,6 +267,7 @@ int RunRender(const RenderArgs& args) {
     }
 
     RenderContext ctx(args.threads);
+    ctx.NameHalfSpaces(false);  // a picture, and messages about solids and bodies
     Frame frame;
     RenderReport report;
     ViewRequest view = po.View();

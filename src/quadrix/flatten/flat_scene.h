@@ -27,8 +27,10 @@ namespace quadrix {
 struct FlatHalfSpace : PlaneOrQuadric {
     bool transparent = false;
     bool isClip = false;  // a clipping plane added by the Flattener (front/back/near/far)
-    std::string
-        name;  // path for diagnostics, e.g. "stack_of_bundles[1]/bundle_of_tubes[3]/outer_tube"
+    // Path for pickers and the library, e.g. "stack_of_bundles[1]/bundle_of_tubes[3]/outer_tube";
+    // empty when the flatten was asked for none (FlattenOptions::halfSpaceNames), except for
+    // the clip and section planes the Flattener adds.
+    std::string name;
 };
 
 struct FlatLiteral {
@@ -38,9 +40,9 @@ struct FlatLiteral {
 
 struct FlatBody {
     std::vector<FlatLiteral> literals;
-    scene::Color color;  // resolved: the body's color, else its CSG solid's, else white
-    int solid = -1;      // the FlatSolid this body belongs to
-    std::string name;
+    scene::Color color;    // resolved: the body's color, else its CSG solid's, else white
+    int solid = -1;        // the FlatSolid this body belongs to
+    std::string name;      // path like FlatHalfSpace::name
     Box3 bounds;           // conservative device-space bounds (may be infinite)
     scene::Finish finish;  // resolved like color, property by property (unset = model default)
 };

@@ -205,6 +205,7 @@ class FlattenerImpl {
             // composed transform per half-space, the fewest roundings).
             HierarchyLimits limits;
             limits.clipLiteralsPerBody = nClip;
+            limits.halfSpaceNames = options_.halfSpaceNames;
             // The literal cache's entries are made meanwhile on another processor, when the
             // loops may use one (not inline, util/parallel.h).
             const bool alongside = !SerialLoopsOnThisThread() && AvailableProcessors() >= 2;

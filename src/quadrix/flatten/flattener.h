@@ -63,6 +63,12 @@ struct FlattenOptions {
     // their box from it under the same conditions (flattener.cpp); off only to compare with
     // direct bounds in tests.
     bool boundsFromExtents = true;
+    // Names of the half-spaces (FlatHalfSpace::name: paths such as "stack[1]/tube/outer"), which
+    // pickers and the library show. A command that shows none (a one-shot render: its messages
+    // name solids and bodies) leaves them empty: for a big model they are the walk's most
+    // frequent allocation. Bodies and solids are always named, and so is a half-space in a
+    // message of the walk.
+    bool halfSpaceNames = true;
 };
 inline constexpr const char* kSectionName = "<section>";
 

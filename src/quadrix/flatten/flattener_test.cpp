@@ -696,6 +696,64 @@ TEST(FlattenBounds, BoxesReusedByTranslationKeepTheWindowAndHoldTheBodies) {
     }
 }
 
+// FlattenOptions::halfSpaceNames off: the same flat scene bit for bit but for the half-spaces'
+// names, which are left empty; bodies and solids keep theirs.
+TEST(FlattenNames, HalfSpaceNamesOffChangesNothingButThoseNames) {
+    scene::Scene s;
+    const Quadric cyl = Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, 0, -9});
+    for (int k = 0; k < 12; ++k) {
+        const Transform t = Transform::Translate({30.0 * k, 2.0 * k, 0}) * Transform::Rotate(0, 20);
+        const int q = AddQuadric(s.top, "c", cyl.Transformed(t).k);
+        const int p1 = AddPlane(s.top, "t", Plane{0, 0, 1, -20}.Transformed(t));
+        const int p2 = AddPlane(s.top, "b", Plane{0, 0, -1, 0}.Transformed(t));
+        AddBody(s.top, "rod", {q, p1, p2});
+    }
+    scene::Scope def;
+    def.id = "pin";
+    AddBody(def, "pin", {AddSphere(def, "s", {0, 0, 0}, 4)});
+    s.definitions.push_back(def);
+    AddInstance(s.top, "pins", 0, Transform::Translate({0, -80, 0}), 5,
+                Transform::Translate({25, 0, 3}));
+    FlattenOptions o;
+    o.width = 320;
+    o.height = 200;
+    Diagnostics d1, d2;
+    const std::optional<FlatScene> named = Flatten(s, o, d1);
+    o.halfSpaceNames = false;
+    const std::optional<FlatScene> plain = Flatten(s, o, d2);
+    ASSERT_TRUE(named && plain);
+    EXPECT_EQ(named->projection.deviceFromWorld.Matrix().m,
+              plain->projection.deviceFromWorld.Matrix().m);
+    ASSERT_EQ(named->halfSpaces.size(), plain->halfSpaces.size());
+    for (std::size_t i = 0; i < named->halfSpaces.size(); ++i) {
+        const FlatHalfSpace &a = named->halfSpaces[i], &b = plain->halfSpaces[i];
+        EXPECT_EQ(a.isPlane, b.isPlane);
+        EXPECT_EQ(std::memcmp(&a.plane, &b.plane, sizeof a.plane), 0) << i;
+        EXPECT_EQ(std::memcmp(&a.quadric, &b.quadric, sizeof a.quadric), 0) << i;
+        EXPECT_EQ(a.isClip, b.isClip);
+        if (a.isClip) continue;
+        EXPECT_FALSE(a.name.empty()) << i;
+        EXPECT_TRUE(b.name.empty()) << i;
+    }
+    ASSERT_EQ(named->bodies.size(), 17u);
+    ASSERT_EQ(plain->bodies.size(), 17u);
+    for (std::size_t i = 0; i < named->bodies.size(); ++i) {
+        const FlatBody &a = named->bodies[i], &b = plain->bodies[i];
+        ASSERT_EQ(a.literals.size(), b.literals.size());
+        for (std::size_t l = 0; l < a.literals.size(); ++l)
+            EXPECT_EQ(a.literals[l].halfSpace, b.literals[l].halfSpace);
+        EXPECT_EQ(std::memcmp(&a.bounds, &b.bounds, sizeof a.bounds), 0) << i;
+        EXPECT_EQ(a.solid, b.solid);
+        EXPECT_EQ(a.name, b.name);
+    }
+    EXPECT_EQ(named->bodies[12].name, "pins[0]/pin");
+    ASSERT_EQ(named->solids.size(), plain->solids.size());
+    for (std::size_t i = 0; i < named->solids.size(); ++i) {
+        EXPECT_EQ(named->solids[i].name, plain->solids[i].name);
+        EXPECT_EQ(std::memcmp(&named->solids[i].bounds, &plain->solids[i].bounds, sizeof(Box3)), 0);
+    }
+}
+
 // The same with CSG solids (two rods and a ball in a union, 45 of them by translation): the
 // solids that may decide the auto-fitted window are bounded directly and their fit boxes made
 // again from their own subtrees (RefitSolids in flattener.cpp); the window is bit for bit the one

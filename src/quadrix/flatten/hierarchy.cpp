@@ -251,6 +251,7 @@ class Walker {
           diags_(diags),
           observer_(observer),
           clipLiterals_(limits.clipLiteralsPerBody),
+          halfSpaceNames_(limits.halfSpaceNames),
           keepExtentPieces_(limits.keepExtentPieces) {}
 
     bool Run(const Transform& targetFromWorld) {
@@ -732,11 +733,11 @@ class Walker {
             finite = f.quadric.AllFinite();
         }
         f.transparent = hs.transparent;
-        f.name = Joined(si.path, hs.id);
+        if (halfSpaceNames_) f.name = Joined(si.path, hs.id);
         if (!finite) {
             Fail(hs.loc, fmt::format("half-space '{}' has non-finite coefficients after its "
                                      "transforms and the view transformation",
-                                     f.name));
+                                     Joined(si.path, hs.id)));
             return -1;
         }
         if (observer_ && out_.halfSpaces.size() == out_.halfSpaces.capacity()) {
@@ -762,6 +763,7 @@ class Walker {
     std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded
     std::deque<std::string> paths_;  // Term::path strings (a deque: they stay where they are)
     int clipLiterals_ = 0;           // HierarchyLimits::clipLiteralsPerBody
+    bool halfSpaceNames_ = true;     // HierarchyLimits::halfSpaceNames
     bool keepExtentPieces_ = false;  // HierarchyLimits::keepExtentPieces
 };
 

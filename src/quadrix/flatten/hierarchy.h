@@ -46,6 +46,8 @@ struct HierarchyLimits {
     // Also list every body's extent pieces in the target space (HierarchyResult): for the world
     // stage, whose boxes are made again for every view.
     bool keepExtentPieces = false;
+    // FlatHalfSpace::name made (flattener.h FlattenOptions::halfSpaceNames).
+    bool halfSpaceNames = true;
 };
 
 inline constexpr int kMaxNesting = 256;

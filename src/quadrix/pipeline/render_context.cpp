@@ -347,6 +347,7 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
     fo.view = view.view;
     fo.lights = view.lights;
     fo.section = view.section;
+    fo.halfSpaceNames = halfSpaceNames_;
     const int errorsBefore = diags.ErrorCount();
     lastReusedWorld_ = worldValid_;
     std::optional<FlatScene> flat;

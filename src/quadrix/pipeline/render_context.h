@@ -165,6 +165,13 @@ class RenderContext {
 
     // Stage 2. false with errors in diags. Reuses the kept flat scene when nothing changed.
     bool Flatten(const ViewRequest& view, Diagnostics& diags);
+    // Whether the first view's flatten names the half-spaces (FlattenOptions::halfSpaceNames;
+    // on by default): a front end that never shows them (`render`: its messages name solids and
+    // bodies, and it picks nothing) turns it off before its first Flatten.
+    void NameHalfSpaces(bool on) {
+        if (on != halfSpaceNames_) flatValid_ = flattenedOnce_ = false;
+        halfSpaceNames_ = on;
+    }
     const FlatScene& Flat() const { return flat_; }
     // Whether the last Flatten call reused the kept result (for tests and --stats).
     bool LastFlattenReused() const { return lastReused_; }
@@ -245,6 +252,7 @@ class RenderContext {
     WorldScene world_;  // the kept world stage, valid with worldValid_
     bool worldValid_ = false, lastReusedWorld_ = false;
     bool flattenedOnce_ = false;  // the scene was flattened for one view (one-shot)
+    bool halfSpaceNames_ = true;  // NameHalfSpaces
     // The scene's lights are those AddRtLights made for the last rt-style view (the scene had
     // none): the next rt-style view replaces them with its own.
     bool rtLights_ = false;
