@@ -75,7 +75,8 @@ void LiteralCacheBuilder::Started(const std::vector<FlatHalfSpace>& halfSpaces,
                                   std::size_t expected) {
     if (thread_.joinable() || expected < kMinHalfSpaces || halfSpaces.capacity() >= kEnd) return;
     base_ = halfSpaces.data();
-    state_.store(static_cast<std::uint32_t>(halfSpaces.size()), std::memory_order_relaxed);
+    appended_ = halfSpaces.size();
+    state_.store(static_cast<std::uint32_t>(appended_), std::memory_order_relaxed);
     try {
         // Room for an entry per half-space the array can hold before it moves.
         entries_.reserve(halfSpaces.capacity());
@@ -89,8 +90,12 @@ void LiteralCacheBuilder::Started(const std::vector<FlatHalfSpace>& halfSpaces,
 
 void LiteralCacheBuilder::Appended(std::size_t size) {
     if (!thread_.joinable()) return;
+    appended_ = size;
+    // Published every 64 half-spaces (the thread reads the same word: fewer transfers of its
+    // cache line between the processors), the thread woken every 256 (a wake is a system call;
+    // it takes all that are published).
+    if (size % 64 != 0) return;
     state_.store(static_cast<std::uint32_t>(size), std::memory_order_release);
-    // The thread is woken every 256 half-spaces (a wake is a system call; it takes them all).
     if (size % 256 == 0) state_.notify_one();
 }
 
@@ -98,7 +103,7 @@ void LiteralCacheBuilder::Growing() { Stop(); }
 
 void LiteralCacheBuilder::Finished() {
     if (!thread_.joinable()) return;
-    state_.fetch_or(kEnd, std::memory_order_release);
+    state_.store(static_cast<std::uint32_t>(appended_) | kEnd, std::memory_order_release);
     state_.notify_one();
 }
 

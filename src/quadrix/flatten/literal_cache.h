@@ -90,8 +90,10 @@ class LiteralCacheBuilder final : public HalfSpaceObserver {
     static constexpr std::uint32_t kEnd = 1u << 30;   // end when every half-space is done
     std::thread thread_;
     const FlatHalfSpace* base_ = nullptr;  // the array's address at Started
-    // Half-spaces appended (base_[0, n) final), with kStop once the thread must end.
+    // Half-spaces published to the thread (base_[0, n) final), with kEnd once they are all
+    // (Finished) and kStop once the thread must end; appended_: the walk's last Appended.
     std::atomic<std::uint32_t> state_{0};
+    std::size_t appended_ = 0;
     // The thread's own, read after it is joined: half-spaces looked at, and the entries made
     // for the quadrics among them (reserved at Started, so the thread never reallocates).
     std::size_t done_ = 0;
