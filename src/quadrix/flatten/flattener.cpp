@@ -545,31 +545,37 @@ class FlattenerImpl {
         if (!options_.boundsFromExtents || !BoxesMayStandIn(nClip)) return e;
         e.has.assign(n, 0);
         e.box.resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            Box3 box = flat_.bodies[i].bounds;  // FlattenHierarchy, PlaceWorld
-            if (!box.Finite()) continue;
-            bool tight = true;
-            for (const FlatLiteral& l : flat_.bodies[i].literals) {
-                const FlatHalfSpace& h = flat_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
-                if (!h.IsQuartic() && h.isPlane) continue;
-                const LiteralCache::Entry* entry =
-                    h.IsQuartic() || l.complemented ? nullptr : literals.Find(&h);
-                const double big =
-                    entry ? std::fmax(std::fabs(entry->fn.lamMin), std::fabs(entry->fn.lamMax))
-                          : 0.0;
-                tight = tight && entry && entry->fn.lamMin >= -1e-9 * big;
-            }
-            if (!tight) continue;
-            for (int a = 0; a < 3; ++a) {
-                const double grow = 1e-9 * ((box.hi[a] - box.lo[a]) +
-                                            std::fmax(std::fabs(box.lo[a]), std::fabs(box.hi[a])));
-                box.lo[a] -= grow;
-                box.hi[a] += grow;
-            }
-            e.box[i] = box;
-            e.has[i] = 1;
-        }
+        // Bodies in parallel: each box is its own body's.
+        ParallelFor(tbb::blocked_range<std::size_t>(0, n, 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) ExtentBox(i, literals, e);
+                    });
         return e;
+    }
+
+    // ExtentBoxes' entry for body i.
+    void ExtentBox(std::size_t i, const LiteralCache& literals, Extents& e) const {
+        Box3 box = flat_.bodies[i].bounds;  // FlattenHierarchy, PlaceWorld
+        if (!box.Finite()) return;
+        bool tight = true;
+        for (const FlatLiteral& l : flat_.bodies[i].literals) {
+            const FlatHalfSpace& h = flat_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+            if (!h.IsQuartic() && h.isPlane) continue;
+            const LiteralCache::Entry* entry =
+                h.IsQuartic() || l.complemented ? nullptr : literals.Find(&h);
+            const double big =
+                entry ? std::fmax(std::fabs(entry->fn.lamMin), std::fabs(entry->fn.lamMax)) : 0.0;
+            tight = tight && entry && entry->fn.lamMin >= -1e-9 * big;
+        }
+        if (!tight) return;
+        for (int a = 0; a < 3; ++a) {
+            const double grow = 1e-9 * ((box.hi[a] - box.lo[a]) +
+                                        std::fmax(std::fabs(box.lo[a]), std::fabs(box.hi[a])));
+            box.lo[a] -= grow;
+            box.hi[a] += grow;
+        }
+        e.box[i] = box;
+        e.has[i] = 1;
     }
 
     // Which bodies are translates of an earlier one (AllBodyBounds), read from the coefficients
