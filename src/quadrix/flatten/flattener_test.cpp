@@ -13,6 +13,7 @@
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/flatten_test_util.h"
 #include "quadrix/lang/reader.h"
+#include "quadrix/util/parallel.h"
 
 namespace quadrix {
 namespace {
@@ -752,6 +753,62 @@ TEST(FlattenNames, HalfSpaceNamesOffChangesNothingButThoseNames) {
         EXPECT_EQ(named->solids[i].name, plain->solids[i].name);
         EXPECT_EQ(std::memcmp(&named->solids[i].bounds, &plain->solids[i].bounds, sizeof(Box3)), 0);
     }
+}
+
+// A scene big enough for the literal cache to be made alongside the walk (LiteralCacheBuilder,
+// at least kMinHalfSpaces half-spaces: 6,000 ellipsoids and 3,000 capped cylinders) flattens to
+// the same bits as inline (a SerialScope: no second thread), boxes, window and device map.
+TEST(FlattenBounds, TheCacheMadeAlongsideTheWalkGivesTheInlineScene) {
+    if (AvailableProcessors() < 2)
+        GTEST_SKIP() << "one processor: the literal cache is not made alongside the walk here";
+    scene::Scene s;
+    for (int i = 0; i < 6000; ++i) {
+        const double x = (i % 80) * 3.0, y = (i / 80) * 3.0;
+        const Quadric e = Quadric::FromCoefficients({1, 2, 3, 0.2, 0.1, 0, 0, 0, 0, -1})
+                              .Transformed(Transform::Translate({x, y, 0.5 * (i % 7)}) *
+                                           Transform::Rotate(2, i % 90));
+        AddBody(s.top, "e", {AddQuadric(s.top, "q", e.k)});
+    }
+    const Quadric cyl = Quadric::FromCoefficients({1, 1, 0, 0, 0, 0, 0, 0, 0, -0.25});
+    for (int i = 0; i < 3000; ++i) {
+        const Transform t = Transform::Translate({(i % 60) * 4.0, -20 - (i / 60) * 4.0, 0}) *
+                            Transform::Rotate(0, 10 + i % 50);
+        AddBody(s.top, "c",
+                {AddQuadric(s.top, "k", cyl.Transformed(t).k),
+                 AddPlane(s.top, "t", Plane{0, 0, 1, -2}.Transformed(t)),
+                 AddPlane(s.top, "b", Plane{0, 0, -1, 0}.Transformed(t))});
+    }
+    FlattenOptions o;
+    o.width = 640;
+    o.height = 480;
+    Diagnostics d1, d2;
+    const std::optional<FlatScene> alongside = Flatten(s, o, d1);
+    std::optional<FlatScene> inlined;
+    {
+        SerialScope serial;
+        inlined = Flatten(s, o, d2);
+    }
+    ASSERT_TRUE(alongside && inlined);
+    EXPECT_EQ(std::memcmp(&alongside->projection.deviceFromWorld.Matrix().m,
+                          &inlined->projection.deviceFromWorld.Matrix().m, sizeof(Mat4::m)),
+              0);
+    ASSERT_EQ(alongside->bodies.size(), 9000u);
+    ASSERT_EQ(inlined->bodies.size(), 9000u);
+    for (std::size_t b = 0; b < 9000; ++b)
+        ASSERT_EQ(
+            std::memcmp(&alongside->bodies[b].bounds, &inlined->bodies[b].bounds, sizeof(Box3)), 0)
+            << b;
+    ASSERT_EQ(alongside->halfSpaces.size(), inlined->halfSpaces.size());
+    for (std::size_t h = 0; h < alongside->halfSpaces.size(); ++h)
+        ASSERT_EQ(std::memcmp(&alongside->halfSpaces[h].quadric, &inlined->halfSpaces[h].quadric,
+                              sizeof(Quadric)),
+                  0)
+            << h;
+    ASSERT_EQ(alongside->solids.size(), inlined->solids.size());
+    for (std::size_t i = 0; i < alongside->solids.size(); ++i)
+        ASSERT_EQ(
+            std::memcmp(&alongside->solids[i].bounds, &inlined->solids[i].bounds, sizeof(Box3)), 0)
+            << i;
 }
 
 // The same with CSG solids (two rods and a ball in a union, 45 of them by translation): the

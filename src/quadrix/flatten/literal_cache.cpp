@@ -74,6 +74,7 @@ LiteralCacheBuilder::~LiteralCacheBuilder() { Stop(); }
 void LiteralCacheBuilder::Started(const std::vector<FlatHalfSpace>& halfSpaces,
                                   std::size_t expected) {
     if (thread_.joinable() || expected < kMinHalfSpaces || halfSpaces.capacity() >= kEnd) return;
+    ended_.store(false, std::memory_order_relaxed);
     base_ = halfSpaces.data();
     appended_ = halfSpaces.size();
     state_.store(static_cast<std::uint32_t>(appended_), std::memory_order_relaxed);
@@ -131,14 +132,15 @@ void LiteralCacheBuilder::Work() {
     for (;;) {
         const std::size_t n = seen & ~(kStop | kEnd);
         for (; done_ < n; ++done_) {
-            if (state_.load(std::memory_order_relaxed) & kStop) return;
+            if (state_.load(std::memory_order_relaxed) & kStop) break;
             const FlatHalfSpace& h = base_[done_];
             if (h.IsQuadric()) MakeEntry(h, entries_.emplace_back());
         }
-        if (seen & (kStop | kEnd)) return;
+        if (done_ < n || (seen & (kStop | kEnd))) break;
         state_.wait(seen, std::memory_order_acquire);
         seen = state_.load(std::memory_order_acquire);
     }
+    ended_.store(true, std::memory_order_release);
 }
 
 LiteralCache LiteralCacheBuilder::Finish(std::span<const FlatHalfSpace> halfSpaces) {
@@ -149,6 +151,7 @@ LiteralCache LiteralCacheBuilder::Finish(std::span<const FlatHalfSpace> halfSpac
     const std::size_t done = std::min(done_, halfSpaces.size());
     for (std::size_t i = 0; i < done; ++i) quadrics += halfSpaces[i].IsQuadric();
     const bool kept = quadrics == entries_.size();
+    madeAlongside_ = kept ? quadrics : 0;
     LiteralCache c =
         Slots(halfSpaces, kept ? std::move(entries_) : std::vector<LiteralCache::Entry>{});
     const std::size_t from = kept ? done : 0;

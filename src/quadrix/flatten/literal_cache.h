@@ -82,6 +82,11 @@ class LiteralCacheBuilder final : public HalfSpaceObserver {
     // stopped, the entries it has not made made in parallel (util/parallel.h).
     LiteralCache Finish(std::span<const FlatHalfSpace> halfSpaces);
 
+    // For tests: whether the thread has ended (after Finished, once it has made every entry), and
+    // how many of the last Finish's entries it had made.
+    bool ThreadEnded() const { return ended_.load(std::memory_order_acquire); }
+    std::size_t MadeAlongside() const { return madeAlongside_; }
+
   private:
     void Stop();
     void Work();
@@ -98,6 +103,8 @@ class LiteralCacheBuilder final : public HalfSpaceObserver {
     // for the quadrics among them (reserved at Started, so the thread never reallocates).
     std::size_t done_ = 0;
     std::vector<LiteralCache::Entry> entries_;
+    std::atomic<bool> ended_{false};
+    std::size_t madeAlongside_ = 0;
 };
 
 }  // namespace quadrix

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "quadrix/flatten/bounds_test_bodies.h"
@@ -152,7 +154,17 @@ TEST(LiteralCacheBuilder, MakesBuildsEntriesWhileTheWalkAppends) {
             if (mode == 1 && i == n / 3) break;  // a walk that fails part-way
         }
         if (mode != 1) builder.Finished();
+        if (mode == 0) {
+            // The thread ends once it has made every entry (at idle priority it may wait for
+            // a processor while others are busy: up to 30 s).
+            for (int wait = 0; wait < 6000 && !builder.ThreadEnded(); ++wait)
+                std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            ASSERT_TRUE(builder.ThreadEnded());
+        }
         ExpectSameCache(builder.Finish(hs), hs);
+        if (mode == 0) {
+            EXPECT_EQ(builder.MadeAlongside(), 2 * n / 3);  // every quadric's entry
+        }
     }
     // Too few half-spaces for a thread: Finish makes them all, the same.
     std::vector<FlatHalfSpace> few = MixedHalfSpaces(300, 300);
