@@ -59,9 +59,11 @@ struct LiteralCache {
 
 // Builds a LiteralCache over the half-spaces a walk appends to one array, from a thread started by
 // Started while the walk goes on (hierarchy.h HalfSpaceObserver). The thread reads only
-// array[0, n) for the n of the last Appended, through the array's address at Started: the walk
-// calls Growing before the array would move, which stops the thread. Not thread-safe otherwise:
-// every member is called by the walk's thread.
+// array[0, n) for the n last published to it (every 64 appends, and all of them at Finished),
+// through the array's address at Started: the walk calls Growing before the array would move,
+// which stops the thread. The thread runs at idle priority (SCHED_IDLE: it takes only a
+// processor nothing else wants) and is raised to normal when it is waited for. Not thread-safe
+// otherwise: every member is called by the walk's thread.
 class LiteralCacheBuilder final : public HalfSpaceObserver {
   public:
     // Half-spaces a walk must be expected to append for the thread to be started (below that,
