@@ -245,14 +245,7 @@ void QuadricBatchPixel(const RayHalfSpace& hs, bool complemented, std::int32_t t
     };
     auto clip = [&](const Interval& v) {
         Candidate c{lo[p], hi[p], loId[p], hiId[p]};
-        if (!(c.lo > v.lo)) {
-            c.lo = v.lo;
-            c.loId = v.loId;
-        }
-        if (!(c.hi <= v.hi)) {
-            c.hi = v.hi;
-            c.hiId = v.hiId;
-        }
+        ClipOne(c, v);
         return c;
     };
     auto keep = [&](const Candidate& c) {

@@ -125,8 +125,10 @@ void ClipTo(IntervalList& list, const Interval& window);
 // ClipTo's rules for one interval v of a list against the window w, in place: it opens at the
 // later start, w's on a tie, and closes at the earlier end, v's on a tie. False when what is left
 // is a point or nothing (v is then to be dropped). The bodies of the engines' tracers keep their
-// set as one such interval while each literal gives one piece.
-inline bool ClipOne(Interval& v, const Interval& w) {
+// set as one such interval while each literal gives one piece; the batched quadric lanes clip
+// their running interval (64-bit ids) by the same rules. V and W: anything with lo, hi, loId, hiId.
+template <class V, class W>
+inline bool ClipOne(V& v, const W& w) {
     if (!(v.lo > w.lo)) {
         v.lo = w.lo;
         v.loId = w.loId;
