@@ -73,6 +73,13 @@ class BoxTree {
 
     // The slab test of one box against a segment (used by the tree and by its callers).
     static bool SegmentHitsBox(const Box3& b, const Vec3& p, const Vec3& d, double s0, double s1);
+    // The slab test of a box against every segment p + s·d, s in [s0', s1], of one direction
+    // whose start p lies in the box [pLo, pHi] and s0' >= s0: false only when SegmentHitsBox
+    // gives false for each of them. Each slab's bounds are those SegmentHitsBox computes at the
+    // extreme starts (a rounded difference and a rounded quotient are monotone), so the latest
+    // entry is bounded below and the earliest exit above for every start at once.
+    static bool SegmentsMayHitBox(const Box3& b, const Vec3& pLo, const Vec3& pHi, const Vec3& d,
+                                  double s0, double s1);
 
     // The cells of a uniform grid over the plane of two axes (a column grid's x and y, a view
     // grid's u and v): cell i along the first axis covers [x0 + i / invX, x0 + (i + 1) / invX),
@@ -202,6 +209,30 @@ class BoxTree {
         if (s0 > s1) return false;
     }
     return true;
+}
+
+inline bool BoxTree::SegmentsMayHitBox(const Box3& b, const Vec3& pLo, const Vec3& pHi,
+                                       const Vec3& d, double s0, double s1) {
+    bool bounded = false;  // SegmentHitsBox compares its bounds only after a slab with d[k] != 0
+    for (int k = 0; k < 3; ++k) {
+        const double lo = b.lo[k], hi = b.hi[k];
+        // SegmentHitsBox may pass a NaN or inverted box; starts not finite are not looked at.
+        if (!(lo <= hi) || !(pLo[k] <= pHi[k]) || !std::isfinite(pLo[k]) || !std::isfinite(pHi[k]))
+            return true;
+        if (d[k] == 0) {
+            if (pHi[k] < lo || pLo[k] > hi) return false;  // every start outside the slab
+            continue;
+        }
+        // d > 0: a start's entry (lo − p)/d is at least (lo − pHi)/d, its exit (hi − p)/d at
+        // most (hi − pLo)/d; d < 0: its entry (hi − p)/d at least (hi − pLo)/d, its exit
+        // (lo − p)/d at most (lo − pHi)/d.
+        const double enter = d[k] > 0 ? (lo - pHi[k]) / d[k] : (hi - pLo[k]) / d[k];
+        const double leave = d[k] > 0 ? (hi - pLo[k]) / d[k] : (lo - pHi[k]) / d[k];
+        s0 = enter > s0 ? enter : s0;
+        s1 = leave < s1 ? leave : s1;
+        bounded = true;
+    }
+    return !bounded || !(s0 > s1);
 }
 
 template <class Visit>

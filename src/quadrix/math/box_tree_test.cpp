@@ -249,3 +249,50 @@ TEST(BoxTree, ASegmentQueryStopsWhenAVisitSaysSo) {
 
 }  // namespace
 }  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// The slab test of a box of starts (SegmentsMayHitBox) is false only where SegmentHitsBox is
+// false from every start in it and every later first parameter: random boxes (unbounded, empty
+// and NaN ones among them), boxes of starts (points and flat ones), directions with zero
+// components and of either sign; the starts tried are the corners, the centre and random points,
+// and the first parameters s0 and beyond. It culls too: most boxes far from the starts.
+TEST(BoxTree, SegmentsMayHitBoxPassesEveryStartThatHits) {
+    std::mt19937 rng(2026);
+    const std::vector<Box3> boxes = RandomBoxes(400, rng);
+    std::uniform_real_distribution<double> u(-100, 100), unit(0, 1), spread(0, 8);
+    int culled = 0, tested = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        Vec3 lo{u(rng), u(rng), u(rng)}, hi = lo;
+        for (int k = 0; k < 3; ++k)
+            if (trial % 3 != 0) hi[k] = lo[k] + (trial % 3 == 1 && k == 1 ? 0.0 : spread(rng));
+        Vec3 d{u(rng), u(rng), u(rng)};
+        if (trial % 5 == 1) d.x = 0;
+        if (trial % 7 == 2) d.y = 0;
+        if (trial % 11 == 3) d = {0, 0, u(rng)};
+        const double s0 = trial % 2 ? 1e-6 : 0.25;
+        const double s1 = trial % 4 == 0 ? HUGE_VAL : 0.5 + 2 * unit(rng);
+        std::vector<Vec3> starts;
+        for (int c = 0; c < 8; ++c)
+            starts.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+        starts.push_back(0.5 * (lo + hi));
+        for (int r = 0; r < 24; ++r)
+            starts.push_back({lo.x + unit(rng) * (hi.x - lo.x), lo.y + unit(rng) * (hi.y - lo.y),
+                              lo.z + unit(rng) * (hi.z - lo.z)});
+        for (const Box3& b : boxes) {
+            ++tested;
+            const bool may = BoxTree::SegmentsMayHitBox(b, lo, hi, d, s0, s1);
+            culled += !may;
+            if (may) continue;
+            for (const Vec3& p : starts)
+                for (double later : {s0, s0 * 1.5, s0 + 0.1})
+                    ASSERT_FALSE(BoxTree::SegmentHitsBox(b, p, d, later, s1))
+                        << "trial " << trial << ": a start the box of starts culled hits";
+        }
+    }
+    EXPECT_GT(culled, tested / 2) << "most boxes lie away from the starts and their segments";
+}
+
+}  // namespace
+}  // namespace quadrix

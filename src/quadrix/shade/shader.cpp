@@ -169,7 +169,7 @@ ShadowOrigin PixelShader::OriginOf(std::int32_t surface, std::int32_t body) cons
 
 scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int32_t body,
                              double depth, const Vec3& normal, const scene::Color& background,
-                             MaterialCache* cache) const {
+                             MaterialCache* cache, const ShadowReach* reach) const {
     if (surface == Frame::kNone) return background;
     Vec3 n = normal;
     if (model_ == ShadingModel::kFast) {
@@ -184,7 +184,9 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     // The world point only tells DeviceShadowRay which side of the eye plane p is on; under
     // a parallel view (an affine map, needPoint_ may be false) any point gives the same.
     const auto blocked = [&](std::size_t k, const Incident& in) {
-        if (fixedRay_[k]) return shadowTester_->Blocked(p, *fixedRay_[k], origin);
+        if (fixedRay_[k])
+            return shadowTester_->Blocked(p, *fixedRay_[k], origin,
+                                          reach ? reach->light[k] : ShadowTester::kReachAll);
         const scene::Light& l = scene_.lights[k];
         const Vec4 light =
             l.kind == scene::Light::Kind::kParallel ? Vec4(in.toLight, 0.0) : Vec4(l.position, 1.0);
@@ -196,8 +198,28 @@ scene::Color PixelShader::At(double x, double y, std::int32_t surface, std::int3
     return Lit(surface, body, n, point, background, cache, inShadow);
 }
 
+void PixelShader::Reach(const Frame& frame, int y, int x0, int x1, ShadowReach& reach) const {
+    reach.light.assign(fixedRay_.size(), ShadowTester::kReachAll);
+    if (!shadowTester_) return;
+    // The starts of the run's rays: the pixel centres with the depths of the covered ones.
+    const std::size_t row = frame.Index(0, y);
+    double zLo = HUGE_VAL, zHi = -HUGE_VAL;
+    for (int x = x0; x < x1; ++x) {
+        const std::size_t i = row + static_cast<std::size_t>(x);
+        if (frame.surface[i] == Frame::kNone) continue;
+        const double z = frame.depth[i];
+        zLo = z < zLo ? z : zLo;
+        zHi = z > zHi ? z : zHi;
+    }
+    if (!(zLo <= zHi)) return;  // nothing covered: no rays
+    const Vec3 lo{x0 + 0.5, y + 0.5, zLo}, hi{x1 - 0.5, y + 0.5, zHi};
+    for (std::size_t k = 0; k < fixedRay_.size(); ++k)
+        if (fixedRay_[k]) reach.light[k] = shadowTester_->MayMeet(lo, hi, *fixedRay_[k]);
+}
+
 std::uint64_t PixelShader::ShadowMask(double x, double y, std::int32_t surface, std::int32_t body,
-                                      double depth, const Vec3& normal) const {
+                                      double depth, const Vec3& normal,
+                                      const ShadowReach* reach) const {
     // The lights PhongAt asks (phong.cpp): not ambient, lighting the normal's side; all of them
     // fixed here (LocalShading), each with its device ray.
     const Vec3 p{x, y, depth};
@@ -207,7 +229,9 @@ std::uint64_t PixelShader::ShadowMask(double x, double y, std::int32_t surface, 
         const Incident& in = fixedLight_[k];
         if (in.ambient) continue;
         if (!(Dot(normal, in.toLight) > 0)) continue;
-        if (shadowTester_->Blocked(p, *fixedRay_[k], origin)) mask |= std::uint64_t{1} << k;
+        if (shadowTester_->Blocked(p, *fixedRay_[k], origin,
+                                   reach ? reach->light[k] : ShadowTester::kReachAll))
+            mask |= std::uint64_t{1} << k;
     }
     return mask;
 }
@@ -310,7 +334,10 @@ void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
     PackedNormal lastNormal, decoded;
     Vec3 n = decoded;  // the normal of `decoded`'s bits, decoded once per run of them
     std::uint64_t lastMask = 0;
+    PixelShader::ShadowReach reach;
     for (int x = 0; x < width; ++x) {
+        if (shadows && x % PixelShader::kReachRun == 0)
+            shader.Reach(frame, y, x, std::min(width, x + PixelShader::kReachRun), reach);
         const std::int32_t s = surface[x];
         const PixelBytes* bytes = &back;
         if (s != Frame::kNone) {
@@ -320,7 +347,7 @@ void ShadeRowLocal(const PixelShader& shader, const Frame& frame, int y,
                 n = decoded;
             }
             const std::uint64_t mask =
-                shadows ? shader.ShadowMask(x + 0.5, y + 0.5, s, b, depth[x], n) : 0;
+                shadows ? shader.ShadowMask(x + 0.5, y + 0.5, s, b, depth[x], n, &reach) : 0;
             if (s != lastSurface || b != lastBody || !(normal[x] == lastNormal) ||
                 mask != lastMask) {
                 lastSurface = s;
@@ -388,11 +415,15 @@ Image ShadeRowKinds(const Frame& frame, const FlatScene& scene, const ShadeOptio
                 ShadeRowLocal(shader, frame, y, background, image, cache, options.shadows);
                 continue;
             }
+            PixelShader::ShadowReach reach;
             for (int x = 0; x < frame.width; ++x) {
+                if (options.shadows && x % PixelShader::kReachRun == 0)
+                    shader.Reach(frame, y, x, std::min(frame.width, x + PixelShader::kReachRun),
+                                 reach);
                 const std::size_t i = frame.Index(x, y);
                 const scene::Color c =
                     shader.At(x + 0.5, y + 0.5, frame.surface[i], frame.body[i], frame.depth[i],
-                              frame.normal[i], background, &cache);
+                              frame.normal[i], background, &cache, &reach);
                 StoreColor(image, x, y, c);  // the floats too when options.linear made them
             }
         }

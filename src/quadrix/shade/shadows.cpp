@@ -219,6 +219,34 @@ ShadowTester::ShadowTester(const FlatScene& scene, bool spatialIndex,
             }
         }
     }
+    if (scene.nodes.size() <= kReachNodes) {
+        leavesOf_.assign(scene.bodies.size(), 0);
+        for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+            const FlatCsgNode& node = scene.nodes[n];
+            if (node.isLeaf && node.body >= 0 &&
+                static_cast<std::size_t>(node.body) < scene.bodies.size())
+                leavesOf_[static_cast<std::size_t>(node.body)] |= std::uint64_t{1} << n;
+        }
+        // The leaves reached from a root through unions, intersections and differences' first
+        // children only (a node reached by two paths counts when either is such a path).
+        std::vector<std::int32_t> positive;
+        for (const FlatSolid& solid : scene.solids) positive.push_back(solid.root);
+        std::uint64_t seen = 0;
+        while (!positive.empty()) {
+            const auto n = static_cast<std::size_t>(positive.back());
+            positive.pop_back();
+            if (n >= scene.nodes.size() || (seen >> n & 1)) continue;
+            seen |= std::uint64_t{1} << n;
+            const FlatCsgNode& node = scene.nodes[n];
+            if (node.isLeaf) {
+                positiveLeaves_ |= std::uint64_t{1} << n;
+            } else if (node.op == scene::CsgOp::kDifference) {
+                if (!node.children.empty()) positive.push_back(node.children[0]);
+            } else {
+                for (int c : node.children) positive.push_back(c);
+            }
+        }
+    }
     std::vector<std::pair<std::int32_t, int>> stack;
     for (const FlatSolid& solid : scene.solids) stack.emplace_back(solid.root, 0);
     while (!stack.empty()) {
@@ -238,7 +266,7 @@ void ShadowTester::Wide(const FlatCsgNode& node, std::int32_t wide, const Vec3& 
     const bool union_ = node.op == scene::CsgOp::kUnion;
     Query(static_cast<std::size_t>(wide) + 1, walk.view, p, d, s0, s1, [&](std::int32_t i) {
         const int c = node.children[from + static_cast<std::size_t>(i)];
-        if (!NodeHits(c, p, d, s0, s1)) return false;
+        if (!NodeHits(c, p, d, s0, s1, walk)) return false;
         Node(c, p, d, s0, s1, slots, k + 1, anyHit && union_, walk);
         Fold(node.op, slots, k);
         // A union asked only whether it meets the segment is answered by its first child that
@@ -284,6 +312,35 @@ void ShadowTester::BodyGeneric(int body, const Vec3& p, const Vec3& d, double s0
     }
 }
 
+bool ShadowTester::OriginLiteralMeets(int body, int halfSpace, const Vec3& p, const Vec3& d,
+                                      double s0, double s1) const {
+    // The literal cut to [s0, s1] as Body's loop cuts (the same comparisons).
+    for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(body)].literals) {
+        if (l.halfSpace != halfSpace) continue;
+        const FlatHalfSpace& h = scene_.halfSpaces[static_cast<std::size_t>(halfSpace)];
+        if (h.IsQuartic()) return true;
+        ++tRayLiterals;
+        const LinePolynomial q = OnLine(h, p, d);
+        double pieceLo, pieceHi;
+        if (h.isPlane && PlanePiece(q, l.complemented, pieceLo, pieceHi)) {
+            if (!(pieceLo < pieceHi)) return false;
+            const double lo = pieceLo >= s0 ? pieceLo : s0;
+            const double hi = s1 <= pieceHi ? s1 : pieceHi;
+            return lo < hi;
+        }
+        Pieces set;
+        LiteralPieces(q, l.complemented, set);
+        bool meets = false;
+        for (int j = 0; j < set.n; ++j) {
+            const double lo = set.lo[j] >= s0 ? set.lo[j] : s0;
+            const double hi = s1 <= set.hi[j] ? s1 : set.hi[j];
+            meets |= lo < hi;
+        }
+        return meets;
+    }
+    return true;  // not a literal of the body: no answer from it
+}
+
 // BodyGeneric's fold while the set is one interval [lo, hi] (a convex body, and most others on a
 // short segment): each literal's Pieces cut it by the rules of IntersectionOfOne (the later start,
 // the earlier end; empty unless lo < hi), with no list made. A literal that splits it in two, or
@@ -294,38 +351,9 @@ void ShadowTester::Body(int body, const Vec3& p, const Vec3& d, double s0, doubl
                         std::vector<IntervalList*>& slots, std::size_t k, int first) const {
     const std::vector<FlatLiteral>& literals =
         scene_.bodies[static_cast<std::size_t>(body)].literals;
-    if (first >= 0) {
-        // The literal of the surface the segment starts on, alone, cut to [s0, s1] as the loop
-        // below cuts (the same comparisons): empty there, the body is empty (file comment).
-        for (const FlatLiteral& l : literals) {
-            if (l.halfSpace != first) continue;
-            const FlatHalfSpace& h = scene_.halfSpaces[static_cast<std::size_t>(first)];
-            if (h.IsQuartic()) break;
-            ++tRayLiterals;
-            const LinePolynomial q = OnLine(h, p, d);
-            bool meets = false;
-            double pieceLo, pieceHi;
-            if (h.isPlane && PlanePiece(q, l.complemented, pieceLo, pieceHi)) {
-                if (pieceLo < pieceHi) {
-                    const double lo = pieceLo >= s0 ? pieceLo : s0;
-                    const double hi = s1 <= pieceHi ? s1 : pieceHi;
-                    meets = lo < hi;
-                }
-            } else {
-                Pieces set;
-                LiteralPieces(q, l.complemented, set);
-                for (int j = 0; j < set.n; ++j) {
-                    const double lo = set.lo[j] >= s0 ? set.lo[j] : s0;
-                    const double hi = s1 <= set.hi[j] ? s1 : set.hi[j];
-                    meets |= lo < hi;
-                }
-            }
-            if (!meets) {
-                slots[k]->clear();
-                return;
-            }
-            break;
-        }
+    if (first >= 0 && !OriginLiteralMeets(body, first, p, d, s0, s1)) {
+        slots[k]->clear();  // empty there: the body is empty (file comment)
+        return;
     }
     double lo = s0, hi = s1;
     std::size_t i = 0;
@@ -409,7 +437,7 @@ double ShadowTester::PastOrigin(const Vec3& p, const Vec3& d, double s0, double 
     // the same comparisons of the same roots (shadows.h). The answer on (s0, s1) is the same. A
     // leaf whose box the segment misses is not taken in (as there), whatever its literals say.
     const std::size_t b = static_cast<std::size_t>(walk.origin.body);
-    if (!NodeHits(leafOf_[b], p, d, s0, s1)) return s0;
+    if (!NodeHits(leafOf_[b], p, d, s0, s1, walk)) return s0;
     Body(walk.origin.body, p, d, s0, s1, slots, k + 1, walk.origin.halfSpace);
     const IntervalList& in = *slots[k + 1];
     if (in.empty() || !(in.begin()->lo <= s0)) return s0;
@@ -448,7 +476,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
         slots[k]->clear();
         if (node.op == scene::CsgOp::kDifference) {
             const int c = node.children[0];
-            if (!NodeHits(c, p, d, s0, s1)) return;
+            if (!NodeHits(c, p, d, s0, s1, walk)) return;
             Node(c, p, d, s0, s1, slots, k, false, walk);
             if (slots[k]->empty()) return;
         }
@@ -460,7 +488,7 @@ void ShadowTester::Node(int n, const Vec3& p, const Vec3& d, double s0, double s
     for (int c : node.children) {
         // A child whose box the segment misses is ∅ on it (boxes are conservative), which is all
         // that matters here: the answer only looks at (s0, s1).
-        const bool misses = !NodeHits(c, p, d, s0, s1);
+        const bool misses = !NodeHits(c, p, d, s0, s1, walk);
         if (first) {
             first = false;
             if (!misses) Node(c, p, d, s0, s1, slots, k, anyHit && union_, walk);
@@ -491,19 +519,19 @@ void ShadowTester::DistributedDifference(int n, const Vec3& p, const Vec3& d, do
     // the minuend's box is usually the same box (a difference is bounded by its minuend), and
     // then so is the answer.
     const bool sameBox = node.bounds.lo == minuend.bounds.lo && node.bounds.hi == minuend.bounds.hi;
-    if (!sameBox && !NodeHits(m, p, d, s0, s1)) return;
+    if (!sameBox && !NodeHits(m, p, d, s0, s1, walk)) return;
     bool haveSubtrahends = false;
     // Operand c of the minuend's union: its set in slots[k + 1]; the subtrahends' union, made
     // the first time an operand meets the segment, in slots[k]; true (the difference's set, not
     // empty, left in slots[k]) when c − subtrahends meets the segment.
     auto operand = [&](int c) {
-        if (!NodeHits(c, p, d, s0, s1)) return false;
+        if (!NodeHits(c, p, d, s0, s1, walk)) return false;
         Node(c, p, d, s0, s1, slots, k + 1, false, walk);
         if (slots[k + 1]->empty()) return false;
         if (!haveSubtrahends) {
             haveSubtrahends = true;
             auto subtrahend = [&](int b) {
-                if (!NodeHits(b, p, d, s0, s1)) return false;
+                if (!NodeHits(b, p, d, s0, s1, walk)) return false;
                 Node(b, p, d, s0, s1, slots, k + 2, false, walk);
                 Union(*slots[k], *slots[k + 2], *slots[k + 3]);
                 std::swap(slots[k], slots[k + 3]);
@@ -545,18 +573,34 @@ int ShadowTester::AddDirection(const Vec3& d) {
     return static_cast<int>(views_.size()) - 1;
 }
 
-bool ShadowTester::NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1) const {
+bool ShadowTester::NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1,
+                            const Walk& walk) const {
+    // A node without its bit in the reach: no segment of the run meets its box (MayMeet).
+    if ((walk.reach >> (static_cast<unsigned>(n) & 63) & 1) == 0) return false;
     // The slab test, not the view's looser one: a node the segment misses is never evaluated
     // (its literals could give a rounding-level sliver there). The view's test as a first filter
     // saved nothing measurable on the machined part (docs/performance.md).
     return HitsBox(scene_.nodes[static_cast<std::size_t>(n)].bounds, p, d, s0, s1);
 }
 
+std::uint64_t ShadowTester::MayMeet(const Vec3& lo, const Vec3& hi, const DeviceRay& ray) const {
+    if (leavesOf_.empty() || !(ray.length > 0)) return kReachAll;
+    // Blocked's earliest start: (1e-4 + 1024 · DepthRounding(z)) / |d| >= 1e-4 / |d| (a rounded
+    // sum of 1e-4 and a non-negative number is at least 1e-4, and the quotient is monotone).
+    const double s0 = 1e-4 / ray.length;
+    std::uint64_t reach = 0;
+    for (std::size_t n = 0; n < scene_.nodes.size(); ++n)
+        if (BoxTree::SegmentsMayHitBox(scene_.nodes[n].bounds, lo, hi, ray.d, s0, ray.sMax))
+            reach |= std::uint64_t{1} << n;
+    return reach;
+}
+
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {
     return Blocked(p, DeviceRay{d, sMax, Length(d)});
 }
 
-bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrigin& origin) const {
+bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrigin& origin,
+                           std::uint64_t reach) const {
     const Vec3& d = ray.d;
     const double sMax = ray.sMax;
     const double len = ray.length;
@@ -566,15 +610,22 @@ bool ShadowTester::Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrig
     // that a point rounded into its own solid does not shadow itself unless the light grazes
     // the surface within about 0.06 degrees. The start is then 0.015 pixel out at |z| = 256.
     const double s0 = (1e-4 + 1024 * DepthRounding(p.z)) / len;
+    // No body but the origin's may be met where it adds to a solid (Reach, shadows.h): where its
+    // literal of the surface alone misses the segment, its set does, and so does every solid's.
+    if (reach != kReachAll && origin.body >= 0 && origin.halfSpace >= 0 &&
+        (reach & positiveLeaves_ & ~leavesOf_[static_cast<std::size_t>(origin.body)]) == 0 &&
+        !OriginLiteralMeets(origin.body, origin.halfSpace, p, d, s0, sMax))
+        return false;
     std::vector<IntervalList*>& slots =
         ThreadScratch(static_cast<std::size_t>(maxDepth_) + 6).slots;
     // The trees' views along d serve a half-line of their direction (AddDirection).
     Walk walk;
     walk.view = ray.view >= 0 && sMax == HUGE_VAL ? ray.view : -1;
     walk.origin = origin;
+    walk.reach = reach;
     auto solidBlocks = [&](std::int32_t i) {
         const FlatSolid& solid = scene_.solids[static_cast<std::size_t>(i)];
-        if (!NodeHits(solid.root, p, d, s0, sMax)) return false;
+        if (!NodeHits(solid.root, p, d, s0, sMax, walk)) return false;
         Node(solid.root, p, d, s0, sMax, slots, 0, true, walk);
         for (const Interval& in : *slots[0])
             if (in.hi > s0 && in.lo < sMax) return true;

@@ -59,6 +59,7 @@
 // the eye) cast shadows.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -116,8 +117,26 @@ class ShadowTester {
     // ε = 1e-4 + 1024 · DepthRounding(p.z) pixels (shadows.cpp).
     bool Blocked(const Vec3& p, const Vec3& d, double sMax) const;
     // The same for a DeviceRay (its length already computed), starting on `origin`'s surface
-    // (the same answer as without it; fewer literals evaluated).
-    bool Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrigin& origin = {}) const;
+    // (the same answer as without it; fewer literals evaluated). `reach`: MayMeet's answer for a
+    // set of starts that holds p, along this ray (the same answer; see Reach).
+    bool Blocked(const Vec3& p, const DeviceRay& ray, const ShadowOrigin& origin = {},
+                 std::uint64_t reach = kReachAll) const;
+
+    // Reach: the shadow rays of one direction from a run of pixels (a parallel light under a
+    // parallel view: every ray is the same DeviceRay) pass near few of a small scene's CSG nodes.
+    // For a scene of at most kReachNodes nodes, MayMeet(lo, hi, ray) sets bit n unless no ray
+    // from a start in the box [lo, hi] meets node n's box by Blocked's slab test
+    // (BoxTree::SegmentsMayHitBox, from the earliest start Blocked uses, 1e-4 pixel). Blocked
+    // given that mask takes a node without its bit as missed without testing it: the answer is
+    // the same. And where no leaf but those of the origin's body has its bit, every other body
+    // is ∅ on the ray, so the solids' sets are ∅ as soon as the origin body's is: a ray from a
+    // lit face is then answered by that body's literal of the face alone, in Body, without a
+    // walk of the trees. Leaves inside a difference's subtrahends do not count: with every
+    // leaf outside them ∅, each node is ∅ (∪ and ∩ of ∅, and ∅ − Y). kReachAll (every bit)
+    // for a larger scene or another kind of ray.
+    static constexpr std::uint64_t kReachAll = ~std::uint64_t{0};
+    static constexpr std::size_t kReachNodes = 64;
+    std::uint64_t MayMeet(const Vec3& lo, const Vec3& hi, const DeviceRay& ray) const;
 
     // The set of s where a half-space literal holds on the line (exposed for tests).
     static IntervalList LiteralOnLine(const FlatHalfSpace& h, bool complemented, const Vec3& p,
@@ -135,9 +154,17 @@ class ShadowTester {
     struct Walk {
         int view = -1;
         ShadowOrigin origin;
+        std::uint64_t reach = kReachAll;  // MayMeet's mask (bit n & 63 of node n)
     };
-    // Whether the segment meets CSG node n's box by the slab test (false: n is ∅ on it).
-    bool NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1) const;
+    // Whether the segment meets CSG node n's box by the slab test (false: n is ∅ on it), or
+    // false at once when n's bit is not in walk.reach.
+    bool NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1,
+                  const Walk& walk) const;
+    // Whether the literal of `halfSpace` in `body` meets p + s·d for some s in [s0, s1] as Body
+    // cuts it (false: the body's set misses the segment); true also when the body has no such
+    // literal or it is quartic (no answer from it alone).
+    bool OriginLiteralMeets(int body, int halfSpace, const Vec3& p, const Vec3& d, double s0,
+                            double s1) const;
     // BodyOnSegment into *slots[k] (slots k+1.. scratch), without and with the one-interval path.
     // `first`: a half-space whose literal in the body is tried first, alone (-1: none).
     void Body(int body, const Vec3& p, const Vec3& d, double s0, double s1,
@@ -194,6 +221,11 @@ class ShadowTester {
     // Per body: the difference node of which it is a subtrahend leaf (a child other than the
     // first), else -1, and that leaf (PastOrigin).
     std::vector<std::int32_t> subtrahendOf_, leafOf_;
+    // With at most kReachNodes nodes (else empty / 0): per body, the mask of the leaves of that
+    // body; and the mask of the leaves in a positive place: reached from a solid's root through
+    // unions, intersections and the first children of differences, never a subtrahend.
+    std::vector<std::uint64_t> leavesOf_;
+    std::uint64_t positiveLeaves_ = 0;
     // AddDirection's views: views_[id][tree], trees numbered as Query numbers them.
     std::vector<std::vector<BoxTree::HalfLineView>> views_;
 };

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -14,6 +15,7 @@
 
 #include "quadrix/math/quadratic.h"
 #include "quadrix/pipeline/render_context.h"
+#include "quadrix/shade/lighting.h"
 #include "quadrix/shade/shader.h"
 #include "quadrix/util/ray_work.h"
 #include "test_util.h"
@@ -582,6 +584,102 @@ TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
             }
         }
     }
+}
+
+}  // namespace
+}  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// The reach of a run of pixels (ShadowTester::MayMeet) changes no answer of Blocked: over the
+// machined part at 160 × 120 with its key light and a second parallel light, every covered
+// pixel's ray toward a light its surface faces (the rays the shader asks) with its run's mask
+// (runs of 1, 7, 32 and 160 pixels) gives Blocked's answer without one. Most runs' masks leave
+// nodes out, and the rays answered by their origin body alone evaluate no more literals than the
+// walk did.
+TEST(ShadowReach, ARunsMaskGivesTheAnswerOfEveryRay) {
+    RenderContext ctx(1);
+    Frame frame;
+    ASSERT_TRUE(testing::RenderToFrame(ctx, "examples/machined_part.uq", 160, 120, frame));
+    FlatScene flat = ctx.Flat();
+    ASSERT_LE(flat.nodes.size(), ShadowTester::kReachNodes);
+    scene::Light side;
+    side.kind = scene::Light::Kind::kParallel;
+    side.direction = Normalize(Vec3{-1, 0.3, -0.4});
+    flat.lights.push_back(side);
+    ShadowTester tester(flat);
+    const Mat4 deviceFromWorld = flat.projection.deviceFromWorld.Matrix();
+    const std::uint64_t all =
+        flat.nodes.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << flat.nodes.size()) - 1;
+    int lights = 0;
+    for (const scene::Light& l : flat.lights) {
+        if (l.kind != scene::Light::Kind::kParallel) continue;
+        ++lights;
+        DeviceRay ray =
+            DeviceShadowRay(deviceFromWorld, Vec4(IncidentLight(l, {}).toLight, 0.0), {}, {});
+        ASSERT_GT(ray.length, 0);
+        ASSERT_EQ(ray.sMax, HUGE_VAL);
+        ray.view = tester.AddDirection(ray.d);
+        const Vec3 toLight = IncidentLight(l, {}).toLight;
+        for (int run : {1, 7, 32, 160}) {
+            int rays = 0, blocked = 0, runs = 0, pruned = 0;
+            std::uint64_t literalsWith = 0, literalsWithout = 0;
+            for (int y = 0; y < frame.height; ++y)
+                for (int x0 = 0; x0 < frame.width; x0 += run) {
+                    const int x1 = std::min(frame.width, x0 + run);
+                    double zLo = HUGE_VAL, zHi = -HUGE_VAL;
+                    for (int x = x0; x < x1; ++x) {
+                        const std::size_t i = frame.Index(x, y);
+                        if (frame.surface[i] == Frame::kNone) continue;
+                        zLo = std::min(zLo, static_cast<double>(frame.depth[i]));
+                        zHi = std::max(zHi, static_cast<double>(frame.depth[i]));
+                    }
+                    if (!(zLo <= zHi)) continue;
+                    const std::uint64_t reach =
+                        tester.MayMeet({x0 + 0.5, y + 0.5, zLo}, {x1 - 0.5, y + 0.5, zHi}, ray);
+                    ++runs;
+                    pruned += (reach & all) != all;
+                    for (int x = x0; x < x1; ++x) {
+                        const std::size_t i = frame.Index(x, y);
+                        if (frame.surface[i] == Frame::kNone) continue;
+                        if (!(Dot(Vec3(frame.normal[i]), toLight) > 0)) continue;
+                        const Vec3 p{x + 0.5, y + 0.5, frame.depth[i]};
+                        const ShadowOrigin origin{frame.body[i], frame.surface[i]};
+                        std::uint64_t before = tRayLiterals;
+                        const bool with = tester.Blocked(p, ray, origin, reach);
+                        literalsWith += tRayLiterals - before;
+                        before = tRayLiterals;
+                        const bool without = tester.Blocked(p, ray, origin);
+                        literalsWithout += tRayLiterals - before;
+                        ASSERT_EQ(with, without) << "light " << lights << ", runs of " << run
+                                                 << ", pixel (" << x << ", " << y << ")";
+                        ++rays;
+                        blocked += with;
+                    }
+                }
+            EXPECT_GT(blocked, 20) << "light " << lights << ", runs of " << run;
+            EXPECT_LT(blocked, rays - 1000) << "light " << lights << ", runs of " << run;
+            if (run <= 32) {
+                EXPECT_GT(2 * pruned, runs) << "light " << lights << ", runs of " << run;
+                EXPECT_LE(literalsWith, literalsWithout)
+                    << "light " << lights << ", runs of " << run;
+            }
+        }
+    }
+    EXPECT_EQ(lights, 2);
+}
+
+// A scene of more nodes than a mask has bits gets kReachAll: no pruning, the walk as before.
+TEST(ShadowReach, AScenePastSixtyFourNodesHasNoReach) {
+    FlatScene s = Spheres({0, 0, 0}, 1, {5, 0, 0}, 1);
+    while (s.nodes.size() <= ShadowTester::kReachNodes) s.nodes.push_back(s.nodes[0]);
+    const ShadowTester tester(s);
+    const DeviceRay ray{{0, 0, 1}, HUGE_VAL, 1};
+    EXPECT_EQ(tester.MayMeet({-9, -9, -9}, {-8, -8, -8}, ray), ShadowTester::kReachAll);
+    const FlatScene small = Spheres({0, 0, 0}, 1, {5, 0, 0}, 1);
+    const ShadowTester smallTester(small);
+    EXPECT_NE(smallTester.MayMeet({-9, -9, -9}, {-8, -8, -8}, ray), ShadowTester::kReachAll);
 }
 
 }  // namespace
