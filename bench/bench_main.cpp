@@ -666,6 +666,7 @@ int main(int argc, char** argv) {
         TwoCylinders('-'),
         TwoCylinders('&'),
         FromFile("stack_of_bundles", sourceDir + "/examples/stack_of_bundles.uq"),
+        FromFile("quartics", sourceDir + "/examples/quartics.uq"),
         MiteredKnot(36),
         SpheresMinusCylinder(100),
         SpheresMinusCylinder(1000),

@@ -589,10 +589,41 @@ std::uint64_t ShadowTester::MayMeet(const Vec3& lo, const Vec3& hi, const Device
     // sum of 1e-4 and a non-negative number is at least 1e-4, and the quotient is monotone).
     const double s0 = 1e-4 / ray.length;
     std::uint64_t reach = 0;
-    for (std::size_t n = 0; n < scene_.nodes.size(); ++n)
-        if (BoxTree::SegmentsMayHitBox(scene_.nodes[n].bounds, lo, hi, ray.d, s0, ray.sMax))
-            reach |= std::uint64_t{1} << n;
+    for (std::size_t n = 0; n < scene_.nodes.size(); ++n) {
+        const FlatCsgNode& node = scene_.nodes[n];
+        if (!BoxTree::SegmentsMayHitBox(node.bounds, lo, hi, ray.d, s0, ray.sMax)) continue;
+        if (node.isLeaf && node.body >= 0 &&
+            static_cast<std::size_t>(node.body) < scene_.bodies.size() &&
+            BodyBehindAPlane(node.body, lo, hi, ray.d))
+            continue;
+        reach |= std::uint64_t{1} << n;
+    }
     return reach;
+}
+
+bool ShadowTester::BodyBehindAPlane(int body, const Vec3& lo, const Vec3& hi, const Vec3& d) const {
+    for (const FlatLiteral& l : scene_.bodies[static_cast<std::size_t>(body)].literals) {
+        const FlatHalfSpace& h = scene_.halfSpaces[static_cast<std::size_t>(l.halfSpace)];
+        if (!h.isPlane || h.IsQuartic()) continue;
+        const Plane& pl = h.plane;
+        // OnLine's coefficients: h (the same for every start, d being the run's) and c = P(p).
+        // P's rounded value is monotone in each coordinate (a rounded product by a fixed
+        // coefficient and a rounded sum are), so its least and greatest values over the starts
+        // are those at two corners of the box, chosen by the coefficients' signs.
+        const double lineH = OnLine(h, lo, d).h;
+        const Vec3 low{pl.a >= 0 ? lo.x : hi.x, pl.b >= 0 ? lo.y : hi.y, pl.c >= 0 ? lo.z : hi.z};
+        const Vec3 high{pl.a >= 0 ? hi.x : lo.x, pl.b >= 0 ? hi.y : lo.y, pl.c >= 0 ? hi.z : lo.z};
+        const double cLo = pl.Evaluate(low), cHi = pl.Evaluate(high);
+        // PlanePiece's range, so that it, not LiteralPieces, takes every start's polynomial.
+        const double ah = std::fabs(lineH);
+        if (!(ah >= 0x1p-200 && ah <= 0x1p200 && std::fabs(cLo) <= 0x1p200 &&
+              std::fabs(cHi) <= 0x1p200))
+            continue;
+        // Its piece is (−∞, root], root = −c / 2h < 0 < s0: where the line leaves the set (h > 0
+        // for the literal, h < 0 for its complement) from a start outside it (c > 0, c < 0).
+        if (!l.complemented ? lineH > 0 && cLo > 0 : lineH < 0 && cHi < 0) return true;
+    }
+    return false;
 }
 
 bool ShadowTester::Blocked(const Vec3& p, const Vec3& d, double sMax) const {

@@ -126,7 +126,9 @@ class ShadowTester {
     // parallel view: every ray is the same DeviceRay) pass near few of a small scene's CSG nodes.
     // For a scene of at most kReachNodes nodes, MayMeet(lo, hi, ray) sets bit n unless no ray
     // from a start in the box [lo, hi] meets node n's box by Blocked's slab test
-    // (BoxTree::SegmentsMayHitBox, from the earliest start Blocked uses, 1e-4 pixel). Blocked
+    // (BoxTree::SegmentsMayHitBox, from the earliest start Blocked uses, 1e-4 pixel), nor a
+    // leaf whose body has a plane every such ray starts outside of and leaves
+    // (BodyBehindAPlane: Body finds the body ∅ on each of them). Blocked
     // given that mask takes a node without its bit as missed without testing it: the answer is
     // the same. And where no leaf but those of the origin's body has its bit, every other body
     // is ∅ on the ray, so the solids' sets are ∅ as soon as the origin body's is: a ray from a
@@ -160,6 +162,11 @@ class ShadowTester {
     // false at once when n's bit is not in walk.reach.
     bool NodeHits(int n, const Vec3& p, const Vec3& d, double s0, double s1,
                   const Walk& walk) const;
+    // MayMeet's second test for a leaf: whether a plane literal of `body` has every segment
+    // p + s·d, s > 0, from a start p in [lo, hi] outside its set and leaving it (or parallel to
+    // it), as Body computes that literal's piece (PlanePiece: the root −c / 2h below 0, the
+    // piece below it): then Body finds the body ∅ on each of those segments.
+    bool BodyBehindAPlane(int body, const Vec3& lo, const Vec3& hi, const Vec3& d) const;
     // Whether the literal of `halfSpace` in `body` meets p + s·d for some s in [s0, s1] as Body
     // cuts it (false: the body's set misses the segment); true also when the body has no such
     // literal or it is quartic (no answer from it alone).

@@ -684,3 +684,62 @@ TEST(ShadowReach, AScenePastSixtyFourNodesHasNoReach) {
 
 }  // namespace
 }  // namespace quadrix
+
+namespace quadrix {
+namespace {
+
+// MayMeet's second test (ShadowTester::BodyBehindAPlane) leaves out a leaf whose box the rays
+// meet when one of its body's planes has every start outside it and every ray leaving it: a slab
+// 0 <= y <= 1 and a half-space y >= 5 (a complemented literal), both with boxes that hold every
+// start; starts at 2 <= y <= 3. Going up the rays leave the slab (its bit cleared) but not the
+// half-space; going down the reverse; along x (parallel to both planes) neither is left out.
+// Blocked gives the same answers with the mask as without it.
+TEST(ShadowReach, ALeafBehindOneOfItsPlanesIsLeftOut) {
+    FlatScene s;
+    auto plane = [&](double b, double d) {
+        FlatHalfSpace h;
+        h.isPlane = true;
+        h.plane = {0, b, 0, d};
+        s.halfSpaces.push_back(h);
+        return static_cast<int>(s.halfSpaces.size()) - 1;
+    };
+    const int top = plane(1, -1), bottom = plane(-1, 0), high = plane(1, -5);
+    FlatBody slab, above;
+    slab.literals = {{top, false}, {bottom, false}};  // y <= 1, y >= 0
+    above.literals = {{high, true}};                  // not y <= 5
+    s.bodies = {slab, above};
+    for (int k = 0; k < 2; ++k) {
+        FlatCsgNode leaf;
+        leaf.body = k;
+        leaf.bounds = {{-1e9, -1e9, -1e9}, {1e9, 1e9, 1e9}};
+        s.nodes.push_back(leaf);
+    }
+    FlatCsgNode both;
+    both.isLeaf = false;
+    both.op = scene::CsgOp::kUnion;
+    both.children = {0, 1};
+    both.bounds = {{-1e9, -1e9, -1e9}, {1e9, 1e9, 1e9}};
+    s.nodes.push_back(both);
+    s.solids.push_back(FlatSolid{});
+    s.solids.back().root = 2;
+    const ShadowTester tester(s);
+    const Vec3 lo{0, 2, 0}, hi{1, 3, 1};
+    auto reachAlong = [&](const Vec3& d) {
+        const DeviceRay ray{d, HUGE_VAL, Length(d)};
+        const std::uint64_t reach = tester.MayMeet(lo, hi, ray);
+        for (double x : {0.0, 0.5, 1.0})
+            for (double y : {2.0, 2.5, 3.0})
+                for (double z : {0.0, 1.0}) {
+                    const Vec3 p{x, y, z};
+                    EXPECT_EQ(tester.Blocked(p, ray, {}, reach), tester.Blocked(p, ray, {}));
+                }
+        return reach & 7;
+    };
+    EXPECT_EQ(reachAlong({0, 1, 0}), 6u) << "up: the slab left out";
+    EXPECT_EQ(reachAlong({0, -1, 0}), 5u) << "down: the half-space above left out";
+    EXPECT_EQ(reachAlong({1, 0, 0}), 7u) << "along the planes: neither";
+    EXPECT_EQ(reachAlong({0.3, 1, -0.2}), 6u);
+}
+
+}  // namespace
+}  // namespace quadrix
