@@ -164,10 +164,11 @@ BenchScene FromFile(const std::string& name, const std::string& path) {
     std::stringstream ss;
     ss << in.rdbuf();
     s.text = ss.str();
-    // Primitive count: statements starting with plane/quadric (approximate for files).
+    // Primitive count: statements starting with plane, quadric or solid (one primitive of the
+    // language's library: a torus, a box, …); approximate for files (a word in a comment counts).
     std::istringstream lines(s.text);
     std::string word;
-    while (lines >> word) s.primitives += word == "plane" || word == "quadric";
+    while (lines >> word) s.primitives += word == "plane" || word == "quadric" || word == "solid";
     return s;
 }
 
