@@ -537,6 +537,20 @@ view v dop .9 1.1 -1.3;
 namespace quadrix {
 namespace {
 
+// The machined part at 160 × 120 (its Frame and flat scene), and a second parallel light from
+// the left whose shadows fall where the key light's do not: the scene of the tests below.
+void MachinedPart(RenderContext& ctx, Frame& frame, FlatScene& flat) {
+    ASSERT_TRUE(testing::RenderToFrame(ctx, "examples/machined_part.uq", 160, 120, frame));
+    flat = ctx.Flat();
+}
+scene::Light SideLight() {
+    scene::Light side;
+    side.kind = scene::Light::Kind::kParallel;
+    side.direction = Normalize(Vec3{-1, 0.3, -0.4});
+    side.intensity = 0.4;
+    return side;
+}
+
 // 8-bit shading with shadows under a parallel view and parallel lights repeats a pixel's bytes
 // where its (surface, body), normal and blocked lights repeat the previous pixel's (shader.cpp
 // ShadeRowLocal): the bytes must be those of shading every pixel, which the linear
@@ -544,16 +558,10 @@ namespace {
 TEST(ShadeShadows, EightBitRunsWithShadowsGiveTheBytesOfShadingEveryPixel) {
     RenderContext ctx(1);
     Frame frame;
-    ASSERT_TRUE(testing::RenderToFrame(ctx, "examples/machined_part.uq", 160, 120, frame));
-    FlatScene flat = ctx.Flat();
+    FlatScene flat;
+    ASSERT_NO_FATAL_FAILURE(MachinedPart(ctx, frame, flat));
     for (int lights = 1; lights <= 2; ++lights) {
-        if (lights == 2) {
-            scene::Light side;
-            side.kind = scene::Light::Kind::kParallel;
-            side.direction = Normalize(Vec3{-1, 0.3, -0.4});
-            side.intensity = 0.4;
-            flat.lights.push_back(side);
-        }
+        if (lights == 2) flat.lights.push_back(SideLight());
         {
             ShadeOptions o;
             o.shadows = true;
@@ -601,13 +609,10 @@ namespace {
 TEST(ShadowReach, ARunsMaskGivesTheAnswerOfEveryRay) {
     RenderContext ctx(1);
     Frame frame;
-    ASSERT_TRUE(testing::RenderToFrame(ctx, "examples/machined_part.uq", 160, 120, frame));
-    FlatScene flat = ctx.Flat();
+    FlatScene flat;
+    ASSERT_NO_FATAL_FAILURE(MachinedPart(ctx, frame, flat));
     ASSERT_LE(flat.nodes.size(), ShadowTester::kReachNodes);
-    scene::Light side;
-    side.kind = scene::Light::Kind::kParallel;
-    side.direction = Normalize(Vec3{-1, 0.3, -0.4});
-    flat.lights.push_back(side);
+    flat.lights.push_back(SideLight());
     ShadowTester tester(flat);
     const Mat4 deviceFromWorld = flat.projection.deviceFromWorld.Matrix();
     const std::uint64_t all =
