@@ -184,6 +184,29 @@ TEST(ImportBrlcad, PlacementsOfOnePrimitiveAreSharedAndNamedByIndex) {
     EXPECT_FALSE(Inside(im->scene, "r", Q(5, 0, 0)));
 }
 
+TEST(ImportBrlcad, ManyPlacementsEachUsedTwiceAreOneBodyEach) {
+    // 300 placements of one sphere, each written twice (the second time with -0 for 0): the
+    // leaf table grows past its first size several times and still finds every placement.
+    std::string tree = "{l s {1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1}}";
+    for (int twice = 0; twice < 2; ++twice)
+        for (int i = 0; i < 300; ++i)
+            tree = fmt::format("{{u {} {{l s {{1 0 0 {}  0 1 0 {}  0 0 1 0  0 0 0 1}}}}}}", tree,
+                               3 * (i + 1), twice ? "-0" : "0");
+    std::string text =
+        "title {t}\nunits mm\nput {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n"
+        "put {r} comb region yes tree " +
+        tree + "\n";
+    auto im = Import(text, {{"r"}, false});
+    ASSERT_TRUE(im->ok) << AllMessages(im->diags);
+    ASSERT_EQ(im->scene.top.bodies.size(), 301u);
+    ASSERT_EQ(im->scene.top.halfSpaces.size(), 301u);
+    EXPECT_EQ(im->scene.top.halfSpaces[300].id, "s.300");
+    for (int i = 0; i <= 300; i += 50) {
+        EXPECT_TRUE(Inside(im->scene, "r", Q(3 * i, 0, 0))) << i;
+        EXPECT_FALSE(Inside(im->scene, "r", Q(3 * i + 1.5, 0, 0))) << i;
+    }
+}
+
 TEST(ImportBrlcad, RegionBooleansAboveRegionsAreDistributed) {
     // FORMAT.md §5.2: group-level (R1 ∪ R2) − R3 → (R1 − R3) ∪ (R2 − R3), named after R1, R2.
     std::string text =

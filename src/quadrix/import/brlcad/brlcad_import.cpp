@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <cstring>
 #include <set>
-#include <unordered_map>
 
 #include "quadrix/import/brlcad/primitives.h"
 #include "quadrix/import/brlcad/readers.h"
@@ -41,7 +40,7 @@ bool IsNotASolid(const std::string& type) {
 
 struct Expr {
     bool leaf = true;
-    std::vector<int> bodies;  // leaf: union of these scene bodies
+    int firstBody = 0, bodyCount = 0;  // leaf: union of scene bodies [firstBody, +bodyCount)
     scene::CsgOp op = scene::CsgOp::kUnion;
     int left = -1, right = -1;
     Box3 box;
@@ -94,6 +93,7 @@ class Converter {
         Census();
         if (!CheckCycles()) return false;
         std::vector<std::string> tops = TopObjects();
+        Reserve(tops);
         std::vector<Term> terms;
         for (const std::string& name : tops) {
             auto t = Terms(name, Mat4::Identity(), {}, 0, nullptr);
@@ -157,6 +157,63 @@ class Converter {
             }
         }
         return true;
+    }
+
+    // Room in the lists the walk appends to, from an upper bound of what it reaches: every leaf
+    // node of every combination on every path, each primitive with its bodies and half-spaces
+    // (the leaf cache and skipped regions make the walk reach less). Bounds beyond the caps
+    // (a DAG reused along many paths) are not reserved: the lists grow as they would.
+    void Reserve(const std::vector<std::string>& tops) {
+        constexpr double kCapBodies = 1 << 20, kCapHalfSpaces = 4 << 20;
+        std::vector<Reach> memo(db_.combinations.size());
+        std::vector<char> known(db_.combinations.size(), 0);
+        Reach total;
+        for (const std::string& name : tops) {
+            auto it = db_.objects.find(name);
+            if (it != db_.objects.end()) total += ReachOf(it->second, memo, known, 0);
+            if (total.bodies > kCapBodies || total.halfSpaces > kCapHalfSpaces) return;
+        }
+        scene_.top.bodies.reserve(scene_.top.bodies.size() + std::size_t(total.bodies));
+        scene_.top.halfSpaces.reserve(scene_.top.halfSpaces.size() + std::size_t(total.halfSpaces));
+        exprs_.reserve(std::size_t(2 * total.leaves));
+        leafCache_.Reserve(std::size_t(total.leaves));
+    }
+
+    struct Reach {
+        double leaves = 0, bodies = 0, halfSpaces = 0;
+        Reach& operator+=(const Reach& o) {
+            leaves += o.leaves;
+            bodies += o.bodies;
+            halfSpaces += o.halfSpaces;
+            return *this;
+        }
+    };
+
+    // Cycles are refused before (CheckCycles); nesting deeper than the walk allows counts as
+    // nothing more (the walk stops there with an error).
+    Reach ReachOf(std::pair<bool, int> object, std::vector<Reach>& memo, std::vector<char>& known,
+                  int depth) {
+        Reach r;
+        if (!object.first) {
+            const Primitive& p = db_.primitives[object.second];
+            if (!converted_[object.second]) converted_[object.second] = ConvertPrimitive(p);
+            r.leaves = 1;
+            for (const ShapeBody& sb : converted_[object.second]->shape.bodies) {
+                r.bodies += 1;
+                r.halfSpaces += double(sb.size());
+            }
+            return r;
+        }
+        const auto ci = static_cast<std::size_t>(object.second);
+        if (known[ci] || depth > kMaxDepth) return memo[ci];
+        for (const TreeNode& n : db_.combinations[ci].nodes) {
+            if (n.op != TreeNode::Op::kLeaf) continue;
+            auto it = db_.objects.find(n.name);
+            if (it != db_.objects.end()) r += ReachOf(it->second, memo, known, depth + 1);
+        }
+        memo[ci] = r;
+        known[ci] = 1;
+        return r;
     }
 
     std::vector<std::string> TopObjects() {
@@ -300,7 +357,8 @@ class Converter {
         std::array<double, 17> key{};
         for (int i = 0; i < 16; ++i) key[i] = total.m[i / 4][i % 4];
         key[16] = primIndex;
-        if (auto it = leafCache_.find(key); it != leafCache_.end()) return it->second;
+        const std::size_t hash = LeafKeyHash{}(key);
+        if (const int* found = leafCache_.Find(key, hash)) return *found;
         const std::optional<Transform>& t = TransformOf(total);
         if (!t) {
             diags_.Error(refLoc, fmt::format("the matrices on the path to '{}' cannot be inverted: "
@@ -337,11 +395,11 @@ class Converter {
                     {static_cast<int>(scene_.top.halfSpaces.size()), h.complement});
                 scene_.top.halfSpaces.push_back(std::move(hs));
             }
-            e.bodies.push_back(static_cast<int>(scene_.top.bodies.size()));
+            if (e.bodyCount++ == 0) e.firstBody = static_cast<int>(scene_.top.bodies.size());
             scene_.top.bodies.push_back(std::move(body));
         }
         int idx = AddExpr(std::move(e));
-        leafCache_[key] = idx;
+        if (idx >= 0) leafCache_.Insert(key, hash, idx);
         return idx;
     }
 
@@ -545,7 +603,7 @@ class Converter {
         };
         if (e.leaf) {
             int root = -1;
-            for (int b : e.bodies) {
+            for (int b = e.firstBody; b < e.firstBody + e.bodyCount; ++b) {
                 scene::CsgNode leaf;
                 leaf.isLeaf = true;
                 leaf.ref = {scene::SolidRef::Kind::kBody, b};
@@ -575,7 +633,19 @@ class Converter {
         return add(n);
     }
 
+    // LinearFromSrgb(v / 255), from a table for 0..255 (the same values; a model has thousands
+    // of regions and a handful of colours).
+    double Linear(int v) {
+        if (v < 0 || v > 255) return LinearFromSrgb(v / 255.0);
+        if (linear_.empty()) {
+            linear_.resize(256);
+            for (int i = 0; i < 256; ++i) linear_[std::size_t(i)] = LinearFromSrgb(i / 255.0);
+        }
+        return linear_[std::size_t(v)];
+    }
+
     void Emit(const std::vector<Term>& terms) {
+        scene_.top.csgs.reserve(scene_.top.csgs.size() + terms.size());
         std::map<std::string, int> used;
         for (const Term& t : terms) {
             scene::Csg csg;
@@ -584,9 +654,8 @@ class Converter {
             csg.loc = t.loc;
             // rt's colors are display (sRGB) values: decoded to linear light (math/srgb.h).
             if (t.rgb)
-                csg.color = scene::Color{LinearFromSrgb((*t.rgb)[0] / 255.0),
-                                         LinearFromSrgb((*t.rgb)[1] / 255.0),
-                                         LinearFromSrgb((*t.rgb)[2] / 255.0)};
+                csg.color =
+                    scene::Color{Linear((*t.rgb)[0]), Linear((*t.rgb)[1]), Linear((*t.rgb)[2])};
             csg.finish = ShaderFinish(t.shader);
             csg.root = EmitNode(csg, t.expr);
             if (aborted_) return;
@@ -669,7 +738,55 @@ class Converter {
             return static_cast<std::size_t>(h);
         }
     };
-    std::unordered_map<LeafKey, int, LeafKeyHash> leafCache_;
+    // Open addressing, linear probing, a power-of-two table at most half full: one array, no
+    // node per entry (a model's leaves are mostly distinct placements: one insert each).
+    class LeafTable {
+      public:
+        const int* Find(const LeafKey& k, std::size_t hash) const {
+            if (slots_.empty()) return nullptr;
+            for (std::size_t i = hash & mask_;; i = (i + 1) & mask_) {
+                const Slot& s = slots_[i];
+                if (s.expr < 0) return nullptr;
+                if (s.hash == hash && keys_[static_cast<std::size_t>(s.key)] == k) return &s.expr;
+            }
+        }
+        void Insert(const LeafKey& k, std::size_t hash, int expr) {
+            if (2 * (keys_.size() + 1) > slots_.size()) Rehash(2 * (keys_.size() + 1));
+            Place({hash, expr, static_cast<int>(keys_.size())});
+            keys_.push_back(k);
+        }
+        void Reserve(std::size_t n) {
+            keys_.reserve(n);
+            if (2 * n > slots_.size()) Rehash(2 * n);
+        }
+
+      private:
+        struct Slot {
+            std::size_t hash = 0;
+            int expr = -1;  // -1: empty
+            int key = -1;   // into keys_
+        };
+        void Place(const Slot& s) {
+            std::size_t i = s.hash & mask_;
+            while (slots_[i].expr >= 0) i = (i + 1) & mask_;
+            slots_[i] = s;
+        }
+        // A table of the least power of two >= max(64, n) slots.
+        void Rehash(std::size_t n) {
+            std::size_t size = 64;
+            while (size < n) size *= 2;
+            std::vector<Slot> old = std::move(slots_);
+            slots_.assign(size, Slot{});
+            mask_ = size - 1;
+            for (const Slot& s : old)
+                if (s.expr >= 0) Place(s);
+        }
+        std::vector<Slot> slots_;
+        std::vector<LeafKey> keys_;  // in insertion order
+        std::size_t mask_ = 0;
+    };
+    LeafTable leafCache_;
+    std::vector<double> linear_;                             // Linear's table, made on first use
     Mat4 lastTotal_;                                         // TransformOf's last matrix
     std::optional<std::optional<Transform>> lastTransform_;  // and its transform, once made
     std::string refParent_;
