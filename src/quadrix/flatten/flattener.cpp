@@ -1579,6 +1579,7 @@ std::optional<WorldScene> FlattenWorld(const scene::Scene& scene, Diagnostics& d
     HierarchyLimits limits;
     limits.clipLiteralsPerBody = kMostClipLiteralsPerBody;
     limits.keepExtentPieces = true;
+    limits.keepHalfSpaceLocs = true;
     if (!FlattenHierarchy(scene, Transform{}, limits, world.flat, world.hierarchy, diags))
         return std::nullopt;
     return world;

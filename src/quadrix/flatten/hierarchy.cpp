@@ -159,10 +159,13 @@ class Counter {
         }
         state = 1;
         Counts c;
-        // Iterative walk over the expression's nodes (a long chain must not recurse).
-        std::vector<int> stack{csg.root};
+        // Iterative walk over the expression's nodes (a long chain must not recurse), on the
+        // shared stack above the entries of the walks this one is nested in.
+        std::vector<int>& stack = stack_;
+        const std::size_t base = stack.size();
+        stack.push_back(csg.root);
         std::size_t visited = 0;
-        while (!stack.empty() && ok_) {
+        while (stack.size() > base && ok_) {
             int n = stack.back();
             stack.pop_back();
             if (n < 0 || n >= int(csg.nodes.size()) || ++visited > csg.nodes.size()) {
@@ -177,6 +180,7 @@ class Counter {
                 stack.push_back(node.left);
             }
         }
+        stack.resize(base);
         state = 2;
         csgCounts_[key + 1][index] = c;
         return c;
@@ -190,6 +194,7 @@ class Counter {
     std::vector<Counts> defCounts_;
     std::vector<std::vector<int>> csgState_;
     std::vector<std::vector<Counts>> csgCounts_;
+    std::vector<int> stack_;  // Csg's walks (one allocation for all)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -252,7 +257,8 @@ class Walker {
           observer_(observer),
           clipLiterals_(limits.clipLiteralsPerBody),
           halfSpaceNames_(limits.halfSpaceNames),
-          keepExtentPieces_(limits.keepExtentPieces) {}
+          keepExtentPieces_(limits.keepExtentPieces),
+          keepHalfSpaceLocs_(limits.keepHalfSpaceLocs) {}
 
     bool Run(const Transform& targetFromWorld) {
         worldFromTarget_ = targetFromWorld.Inverted();
@@ -694,7 +700,6 @@ class Walker {
         }
         if (keepExtentPieces_) result_.bodyExtents.push_back(extent);
         out_.bodies.push_back(std::move(fb));
-        result_.bodyLocs.push_back(body.loc);
         FlatCsgNode leaf;
         leaf.isLeaf = true;
         leaf.body = static_cast<int>(out_.bodies.size()) - 1;
@@ -709,7 +714,13 @@ class Walker {
         }
         if (si.hsMap[local] >= 0) return si.hsMap[local];
         const scene::HalfSpace& hs = si.scope->halfSpaces[local];
-        FlatHalfSpace f;
+        if (observer_ && out_.halfSpaces.size() == out_.halfSpaces.capacity()) {
+            observer_->Growing();
+            observer_ = nullptr;
+        }
+        // Made in place, past the size the observer was told (it reads none of it before
+        // Appended), and taken back if it fails.
+        FlatHalfSpace& f = out_.halfSpaces.emplace_back();
         f.isPlane = hs.kind == scene::HalfSpace::Kind::kPlane;
         bool finite;
         // Rescaled before and after the transform (coefficient_scale.h). A quartic keeps its
@@ -738,15 +749,11 @@ class Walker {
             Fail(hs.loc, fmt::format("half-space '{}' has non-finite coefficients after its "
                                      "transforms and the view transformation",
                                      Joined(si.path, hs.id)));
+            out_.halfSpaces.pop_back();
             return -1;
         }
-        if (observer_ && out_.halfSpaces.size() == out_.halfSpaces.capacity()) {
-            observer_->Growing();
-            observer_ = nullptr;
-        }
-        out_.halfSpaces.push_back(std::move(f));
         if (observer_) observer_->Appended(out_.halfSpaces.size());
-        result_.halfSpaceLocs.push_back(hs.loc);
+        if (keepHalfSpaceLocs_) result_.halfSpaceLocs.push_back(hs.loc);
         si.hsMap[local] = static_cast<int>(out_.halfSpaces.size()) - 1;
         return si.hsMap[local];
     }
@@ -761,10 +768,11 @@ class Walker {
     int currentSolid_ = -1;
     std::uint64_t nextSerial_ = 0;
     std::vector<std::unique_ptr<ScopeInst>> scopes_;  // operand instance copies being expanded
-    std::deque<std::string> paths_;  // Term::path strings (a deque: they stay where they are)
-    int clipLiterals_ = 0;           // HierarchyLimits::clipLiteralsPerBody
-    bool halfSpaceNames_ = true;     // HierarchyLimits::halfSpaceNames
-    bool keepExtentPieces_ = false;  // HierarchyLimits::keepExtentPieces
+    std::deque<std::string> paths_;   // Term::path strings (a deque: they stay where they are)
+    int clipLiterals_ = 0;            // HierarchyLimits::clipLiteralsPerBody
+    bool halfSpaceNames_ = true;      // HierarchyLimits::halfSpaceNames
+    bool keepExtentPieces_ = false;   // HierarchyLimits::keepExtentPieces
+    bool keepHalfSpaceLocs_ = false;  // HierarchyLimits::keepHalfSpaceLocs
 };
 
 }  // namespace
@@ -814,9 +822,9 @@ bool FlattenHierarchy(const scene::Scene& scene, const Transform& targetFromWorl
     const auto nHalf = static_cast<std::size_t>(halfSpaces);
     const auto nBody = static_cast<std::size_t>(total.bodies);
     lang::ReserveAdvised(out.halfSpaces, out.halfSpaces.size() + nHalf);
-    lang::ReserveAdvised(result.halfSpaceLocs, result.halfSpaceLocs.size() + nHalf);
+    if (limits.keepHalfSpaceLocs)
+        lang::ReserveAdvised(result.halfSpaceLocs, result.halfSpaceLocs.size() + nHalf);
     lang::ReserveAdvised(out.bodies, out.bodies.size() + nBody);
-    lang::ReserveAdvised(result.bodyLocs, result.bodyLocs.size() + nBody);
     if (limits.keepExtentPieces)
         lang::ReserveAdvised(result.bodyExtents, result.bodyExtents.size() + nBody);
     lang::ReserveAdvised(out.nodes, out.nodes.size() + 2 * nBody);

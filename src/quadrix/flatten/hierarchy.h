@@ -48,15 +48,18 @@ struct HierarchyLimits {
     bool keepExtentPieces = false;
     // FlatHalfSpace::name made (flattener.h FlattenOptions::halfSpaceNames).
     bool halfSpaceNames = true;
+    // HierarchyResult::halfSpaceLocs made: for the world stage, whose half-spaces are mapped
+    // again for every view (a one-shot walk reports a half-space's error as it maps it).
+    bool keepHalfSpaceLocs = false;
 };
 
 inline constexpr int kMaxNesting = 256;
 
 struct HierarchyResult {
-    std::vector<SourceLoc> bodyLocs;   // per FlatBody: its body statement
     std::vector<SourceLoc> solidLocs;  // per FlatSolid: its body or csg statement
     std::vector<bool> solidIsCsg;      // per FlatSolid: drawn from a csg statement
-    // Per FlatHalfSpace appended by the walk: its half-space statement.
+    // With HierarchyLimits::keepHalfSpaceLocs, per FlatHalfSpace appended by the walk: its
+    // half-space statement.
     std::vector<SourceLoc> halfSpaceLocs;
     // With HierarchyLimits::keepExtentPieces, per FlatBody: its extent (scene::Body::extent)
     // mapped to the target space, the pieces extentPieces[begin, end); empty where the body has
