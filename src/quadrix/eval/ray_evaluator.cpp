@@ -8,7 +8,7 @@
 namespace quadrix::eval {
 
 RayEvaluator::RayEvaluator(const FlatScene& scene) : scene_(scene) {
-    // The same re-centring points as raycast (its SceneTables::ReferencePoints), so the two
+    // The same re-centring points as raycast (its SceneTables::ReferencePoint), so the two
     // engines solve bit-identical quadratics.
     Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
     halfSpaces_.reserve(scene.halfSpaces.size());

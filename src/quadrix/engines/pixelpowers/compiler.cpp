@@ -10,7 +10,7 @@
 namespace quadrix::pixelpowers {
 
 Vec3 RaycastReferencePoint(const FlatScene& scene, std::size_t h) {
-    // Same rule as raycast's SceneTables::ReferencePoints.
+    // Same rule as raycast's SceneTables::ReferencePoint.
     Vec3 anchor{std::round(0.5 * scene.width), std::round(0.5 * scene.height), 0};
     const FlatHalfSpace& hs = scene.halfSpaces[h];
     return hs.isPlane ? anchor : eval::RayHalfSpace::Centre(hs.quadric).value_or(anchor);

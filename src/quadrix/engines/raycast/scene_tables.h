@@ -49,9 +49,10 @@ struct SceneTables {
     explicit SceneTables(const FlatScene& scene);
 
     // Re-centring points for the quadrics (ray_literal.h): the quadric's own centre when it has
-    // one (RayHalfSpace::Centre), else the image centre at depth 0. They depend on nothing but the
-    // half-space, so bounds (culling) cannot change a single bit of the result.
-    static std::vector<Vec3> ReferencePoints(const FlatScene& scene);
+    // one (RayHalfSpace::Centre), else the image centre at depth 0 (ReferenceAnchor). They depend
+    // on nothing but the half-space, so bounds (culling) cannot change a single bit of the result.
+    static Vec3 ReferenceAnchor(const FlatScene& scene);
+    static Vec3 ReferencePoint(const FlatHalfSpace& hs, const Vec3& anchor);
 
     const Tag& TagOf(std::int32_t tag) const { return tags[static_cast<std::size_t>(tag)]; }
 
