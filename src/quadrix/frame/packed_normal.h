@@ -91,7 +91,9 @@ struct PackedNormal {
     }
     static double Unsnorm(std::uint32_t h) {
         const auto s = static_cast<std::int16_t>(static_cast<std::uint16_t>(h));
-        return std::fmax(static_cast<double>(s) / 32767.0, -1.0);
+        // std::fmax(v, -1.0) without the library call (v is never NaN).
+        const double v = static_cast<double>(s) / 32767.0;
+        return v < -1.0 ? -1.0 : v;
     }
 };
 

@@ -297,11 +297,16 @@ bool ValidAaSamples(int samples) {
 }
 
 std::vector<SubPixel> SamplePositions(int samples, int i, int j) {
+    SamplePositionList list;
+    SamplePositionsInto(samples, i, j, list);
+    return {list.at.begin(), list.at.begin() + list.n};
+}
+
+void SamplePositionsInto(int samples, int i, int j, SamplePositionList& out) {
     int k = 1;
     while (k * k < samples) ++k;
     const int n = k * k;
-    std::vector<SubPixel> out;
-    out.reserve(static_cast<std::size_t>(n));
+    out.n = 0;
     const std::uint64_t seed =
         Mix((static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) ^
             static_cast<std::uint32_t>(j));
@@ -315,8 +320,8 @@ std::vector<SubPixel> SamplePositions(int samples, int i, int j) {
     // once; likewise for rows: a Latin square on the n × n fine grid.
     for (int b = 0; b < k; ++b)
         for (int a = 0; a < k; ++a)
-            out.push_back({(a * k + col[a][b] + 0.5) / n, (b * k + row[b][a] + 0.5) / n});
-    return out;
+            out.at[static_cast<std::size_t>(out.n++)] = {(a * k + col[a][b] + 0.5) / n,
+                                                         (b * k + row[b][a] + 0.5) / n};
 }
 
 AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
@@ -386,6 +391,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     auto squares = [&](int k0, int k1, raycast::SampleScratch& scratch) {
         std::size_t local = 0;
         auto edge = [&](int x, int y) { return (edges[frame.Index(x, y)] & kEdgePixel) != 0; };
+        SamplePositionList positions;
         // Pixel (x, y)'s samples, shaded and filtered into the image; false once the budget is
         // spent.
         auto resample = [&](int x, int y, const scene::Color& background) {
@@ -394,7 +400,9 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             ++local;
             double r = 0, g = 0, b = 0, wsum = 0;
             const double hint = DepthHint(frame, x, y);
-            for (const SubPixel& s : SamplePositions(options.aaSamples, x, y)) {
+            SamplePositionsInto(options.aaSamples, x, y, positions);
+            for (int p = 0; p < positions.n; ++p) {
+                const SubPixel& s = positions.at[static_cast<std::size_t>(p)];
                 const double px = x + s.u, py = y + s.v;
                 const raycast::Sample hit = tracer.Trace(px, py, scratch, hint);
                 const scene::Color c =

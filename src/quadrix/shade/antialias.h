@@ -34,6 +34,7 @@
 // Interior pixels are not resampled: their value is the one Shade() gave them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -63,6 +64,13 @@ struct SubPixel {
     double u, v;
 };
 std::vector<SubPixel> SamplePositions(int samples, int i, int j);
+// The same positions in a caller's list, without an allocation (the anti-aliasing asks for them
+// once per edge pixel): out.at[0, out.n). samples <= 64.
+struct SamplePositionList {
+    std::array<SubPixel, 64> at{};
+    int n = 0;
+};
+void SamplePositionsInto(int samples, int i, int j, SamplePositionList& out);
 
 // Whether `samples` is a level --aa accepts (0 or 1 = off, 4, 16, 64).
 bool ValidAaSamples(int samples);
