@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <set>
 
 #include "quadrix/import/brlcad/primitives.h"
@@ -162,9 +163,11 @@ class Converter {
     // Room in the lists the walk appends to, from an upper bound of what it reaches: every leaf
     // node of every combination on every path, each primitive with its bodies and half-spaces
     // (the leaf cache and skipped regions make the walk reach less). Bounds beyond the caps
-    // (a DAG reused along many paths) are not reserved: the lists grow as they would.
+    // (a DAG reused along many paths may give far more than the walk makes: at most about
+    // 50 + 200 MB of address space are reserved ahead) are not reserved, nor is anything when
+    // the reservation fails: the lists then grow as they would.
     void Reserve(const std::vector<std::string>& tops) {
-        constexpr double kCapBodies = 1 << 20, kCapHalfSpaces = 4 << 20;
+        constexpr double kCapBodies = 1 << 18, kCapHalfSpaces = 1 << 20;
         std::vector<Reach> memo(db_.combinations.size());
         std::vector<char> known(db_.combinations.size(), 0);
         Reach total;
@@ -173,10 +176,14 @@ class Converter {
             if (it != db_.objects.end()) total += ReachOf(it->second, memo, known, 0);
             if (total.bodies > kCapBodies || total.halfSpaces > kCapHalfSpaces) return;
         }
-        scene_.top.bodies.reserve(scene_.top.bodies.size() + std::size_t(total.bodies));
-        scene_.top.halfSpaces.reserve(scene_.top.halfSpaces.size() + std::size_t(total.halfSpaces));
-        exprs_.reserve(std::size_t(2 * total.leaves));
-        leafCache_.Reserve(std::size_t(total.leaves));
+        try {
+            scene_.top.bodies.reserve(scene_.top.bodies.size() + std::size_t(total.bodies));
+            scene_.top.halfSpaces.reserve(scene_.top.halfSpaces.size() +
+                                          std::size_t(total.halfSpaces));
+            exprs_.reserve(std::size_t(2 * total.leaves));
+            leafCache_.Reserve(std::size_t(total.leaves));
+        } catch (const std::bad_alloc&) {
+        }
     }
 
     struct Reach {
