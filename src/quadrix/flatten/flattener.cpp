@@ -38,7 +38,6 @@
 #include <functional>
 #include <optional>
 #include <span>
-#include <unordered_map>
 
 #include "quadrix/flatten/bounds.h"
 #include "quadrix/flatten/coefficient_scale.h"
@@ -49,6 +48,7 @@
 #include "quadrix/lang/big_arrays.h"
 #include "quadrix/math/round_scaled.h"
 #include "quadrix/scene/light_rig.h"
+#include "quadrix/util/hash_slots.h"
 #include "quadrix/util/parallel.h"
 
 namespace quadrix {
@@ -382,25 +382,32 @@ class FlattenerImpl {
     // before it). A body named by several CSG operands (the drill of ∪(sphereᵢ − drill)) is one
     // FlatBody per reference over the same half-spaces, and a body's box is a pure function of
     // its literals: it is computed once per distinct list and copied, which changes no bit.
-    // Lists are matched by a hash and then compared; a hash collision only leaves two bodies
-    // distinct.
+    // Lists are matched by a hash and then compared (HashSlots: each earlier list under the same
+    // hash is a candidate).
     static std::vector<std::size_t> FirstWithSameLiterals(const FlatScene& flat) {
         const std::size_t n = flat.bodies.size();
         std::vector<std::size_t> first(n);
-        std::unordered_map<std::uint64_t, std::size_t> byHash;
-        byHash.reserve(n);
+        HashSlots byHash(n);
         for (std::size_t i = 0; i < n; ++i) {
+            const auto& b = flat.bodies[i].literals;
             std::uint64_t h = 1469598103934665603ull;
-            for (const FlatLiteral& l : flat.bodies[i].literals)
+            for (const FlatLiteral& l : b)
                 h = (h ^ (static_cast<std::uint64_t>(l.halfSpace) * 2 + l.complemented)) *
                     1099511628211ull;
-            auto [it, inserted] = byHash.emplace(h, i);
-            const auto& a = flat.bodies[it->second].literals;
-            const auto& b = flat.bodies[i].literals;
-            bool same = !inserted && a.size() == b.size();
-            for (std::size_t k = 0; same && k < a.size(); ++k)
-                same = a[k].halfSpace == b[k].halfSpace && a[k].complemented == b[k].complemented;
-            first[i] = same ? it->second : i;
+            const int found = byHash.Find(h, [&](int j) {
+                const auto& a = flat.bodies[static_cast<std::size_t>(j)].literals;
+                if (a.size() != b.size()) return false;
+                for (std::size_t k = 0; k < a.size(); ++k)
+                    if (a[k].halfSpace != b[k].halfSpace || a[k].complemented != b[k].complemented)
+                        return false;
+                return true;
+            });
+            if (found >= 0) {
+                first[i] = static_cast<std::size_t>(found);
+            } else {
+                first[i] = i;
+                byHash.Insert(h, static_cast<int>(i));
+            }
         }
         return first;
     }
@@ -721,10 +728,15 @@ class FlattenerImpl {
         // same candidates as in body order (a matched body never becomes a candidate, and one
         // past the first kCandidates never is one), so the result is the same.
         constexpr std::size_t kCandidates = 4;
-        auto match = [&](std::size_t i, const std::vector<std::size_t>& bucket) {
+        // A group's candidates (HashSlots holds the index of each key's group).
+        struct Group {
+            std::size_t size = 0;
+            std::size_t at[kCandidates];
+        };
+        auto match = [&](std::size_t i, const Group& group) {
             const auto& lits = flat_.bodies[i].literals;
-            for (std::size_t c = 0; c < bucket.size() && c < kCandidates; ++c) {
-                const std::size_t j = bucket[c];
+            for (std::size_t c = 0; c < group.size; ++c) {
+                const std::size_t j = group.at[c];
                 const auto& lj = flat_.bodies[j].literals;
                 bool same = lj.size() == lits.size();
                 for (std::size_t l = 0; same && l < lits.size(); ++l) {
@@ -742,22 +754,30 @@ class FlattenerImpl {
                 }
             }
         };
-        std::unordered_map<std::uint64_t, std::vector<std::size_t>> byHash;
-        std::vector<std::pair<std::size_t, const std::vector<std::size_t>*>> later;
+        HashSlots byKey(n);
+        std::vector<Group> groups;
+        std::vector<std::pair<std::size_t, int>> later;  // (body, its group)
         for (std::size_t i = 0; i < n; ++i) {
             if (!keyed[i]) continue;
-            std::vector<std::size_t>& bucket = byHash[keys[i]];
-            if (bucket.size() >= kCandidates) {
-                later.push_back({i, &bucket});  // (unordered_map nodes do not move)
+            int g = byKey.Find(keys[i], [](int) { return true; });
+            if (g < 0) {
+                g = static_cast<int>(groups.size());
+                groups.emplace_back();
+                byKey.Insert(keys[i], g);
+            }
+            Group& group = groups[static_cast<std::size_t>(g)];
+            if (group.size >= kCandidates) {
+                later.push_back({i, g});
                 continue;
             }
-            match(i, bucket);
-            if (r.ref[i] == i) bucket.push_back(i);
+            match(i, group);
+            if (r.ref[i] == i) group.at[group.size++] = i;
         }
         ParallelFor(tbb::blocked_range<std::size_t>(0, later.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t k = range.begin(); k < range.end(); ++k)
-                            match(later[k].first, *later[k].second);
+                            match(later[k].first,
+                                  groups[static_cast<std::size_t>(later[k].second)]);
                     });
         return r;
     }

@@ -15,6 +15,7 @@
 #include "quadrix/import/brlcad/readers.h"
 #include "quadrix/import/model_space.h"
 #include "quadrix/math/srgb.h"
+#include "quadrix/util/hash_slots.h"
 
 namespace quadrix::import {
 
@@ -745,52 +746,29 @@ class Converter {
             return static_cast<std::size_t>(h);
         }
     };
-    // Open addressing, linear probing, a power-of-two table at most half full: one array, no
-    // node per entry (a model's leaves are mostly distinct placements: one insert each).
+    // The placements already converted (HashSlots: one array, no node per entry; a model's
+    // leaves are mostly distinct placements, one insert each), keys in insertion order.
     class LeafTable {
       public:
         const int* Find(const LeafKey& k, std::size_t hash) const {
-            if (slots_.empty()) return nullptr;
-            for (std::size_t i = hash & mask_;; i = (i + 1) & mask_) {
-                const Slot& s = slots_[i];
-                if (s.expr < 0) return nullptr;
-                if (s.hash == hash && keys_[static_cast<std::size_t>(s.key)] == k) return &s.expr;
-            }
+            const int at = slots_.Find(hash, [&](int i) { return keys_[std::size_t(i)] == k; });
+            return at < 0 ? nullptr : &exprs_[std::size_t(at)];
         }
         void Insert(const LeafKey& k, std::size_t hash, int expr) {
-            if (2 * (keys_.size() + 1) > slots_.size()) Rehash(2 * (keys_.size() + 1));
-            Place({hash, expr, static_cast<int>(keys_.size())});
+            slots_.Insert(hash, static_cast<int>(keys_.size()));
             keys_.push_back(k);
+            exprs_.push_back(expr);
         }
         void Reserve(std::size_t n) {
             keys_.reserve(n);
-            if (2 * n > slots_.size()) Rehash(2 * n);
+            exprs_.reserve(n);
+            slots_.Reserve(n);
         }
 
       private:
-        struct Slot {
-            std::size_t hash = 0;
-            int expr = -1;  // -1: empty
-            int key = -1;   // into keys_
-        };
-        void Place(const Slot& s) {
-            std::size_t i = s.hash & mask_;
-            while (slots_[i].expr >= 0) i = (i + 1) & mask_;
-            slots_[i] = s;
-        }
-        // A table of the least power of two >= max(64, n) slots.
-        void Rehash(std::size_t n) {
-            std::size_t size = 64;
-            while (size < n) size *= 2;
-            std::vector<Slot> old = std::move(slots_);
-            slots_.assign(size, Slot{});
-            mask_ = size - 1;
-            for (const Slot& s : old)
-                if (s.expr >= 0) Place(s);
-        }
-        std::vector<Slot> slots_;
-        std::vector<LeafKey> keys_;  // in insertion order
-        std::size_t mask_ = 0;
+        HashSlots slots_;
+        std::vector<LeafKey> keys_;
+        std::vector<int> exprs_;
     };
     LeafTable leafCache_;
     std::vector<double> linear_;                             // Linear's table, made on first use
