@@ -9,10 +9,10 @@
 //   int first = slots.Find(h, [&](int v) { return Same(items[v], item); });
 //   if (first < 0) slots.Insert(h, index);
 //
-// Values are non-negative ints (indices). The table doubles when half full; Find visits the
-// values under a hash in the order they were inserted only as far as probing goes, so callers
-// must not depend on which of two EQUAL items is found: insert an item only when Find found none
-// equal to it, and then there is one.
+// Values are non-negative ints (indices). The table doubles when it would be more than half full.
+// Find tries the values stored under the hash in probe order, which need not be the order of
+// insertion: callers insert an item only when Find found none equal to it, so that no two stored
+// items are equal and the answer does not depend on that order.
 #pragma once
 
 #include <cstddef>
