@@ -24,7 +24,8 @@ TEST(HashSlots, ItemsUnderOneHashAreToldApartByTheCallersTest) {
     HashSlots slots;
     for (int i = 0; i < 4; ++i) slots.Insert(7, i);  // every item under one hash
     for (int i = 0; i < 4; ++i) {
-        const int found = slots.Find(7, [&](int v) { return items[std::size_t(v)] == items[std::size_t(i)]; });
+        const int found =
+            slots.Find(7, [&](int v) { return items[std::size_t(v)] == items[std::size_t(i)]; });
         EXPECT_EQ(found, i);
     }
     EXPECT_EQ(slots.Find(7, [&](int v) { return items[std::size_t(v)] == "e"; }), -1);
