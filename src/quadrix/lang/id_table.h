@@ -16,6 +16,9 @@
 //
 // idOf must be consistent with the values stored: idOf(v) is the id under which v was set, for
 // as long as v is in the table (the reader only appends objects, so their ids never change).
+//
+// util/hash_slots.h is the general form (64-bit hashes from the caller, spread by a mix) used by
+// the flattener and the BRL-CAD converter; this one keeps the placement its own Hash needs.
 #pragma once
 
 #include <cstddef>

@@ -13,6 +13,12 @@
 // Find tries the values stored under the hash in probe order, which need not be the order of
 // insertion: callers insert an item only when Find found none equal to it, so that no two stored
 // items are equal and the answer does not depend on that order.
+//
+// lang::IdTable (lang/id_table.h) is the same scheme specialised for the reader's ids: 8-byte
+// slots of 32-bit hashes placed by their low bits, which its hash keeps in the order of numbered
+// ids (q0, q1, ...) so that reading a big scene touches the table a cache line at a time. That
+// placement needs its own hash; here any 64-bit hash is spread by a multiplicative mix. The two
+// are kept apart for that reason, not by accident.
 #pragma once
 
 #include <cstddef>
