@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
+#include "quadrix/shade/edge_pixels.h"
 #include "quadrix/shade/row_shading.h"
 #include "quadrix/shade/shade_budget.h"
 #include "quadrix/util/parallel.h"
@@ -54,223 +55,6 @@ double Mitchell1(double x) {
 
 double Clamp01(double v) { return v > 0 ? (v < 1 ? v : 1.0) : 0.0; }
 
-// Whether row y gets its edge bits: a shaded row (row_shading.h; every row when `rows` is empty).
-bool Shaded(const std::vector<std::uint8_t>& rows, int y) {
-    return rows.empty() || rows[static_cast<std::size_t>(y)] == kRowShaded;
-}
-// Whether the pair of rows (y, y + 1) touches a shaded row.
-bool PairShaded(const std::vector<std::uint8_t>& rows, int y) {
-    return Shaded(rows, y) || Shaded(rows, y + 1);
-}
-// Whether row y is read at all (shaded, or in the halo around shaded rows).
-bool Read(const std::vector<std::uint8_t>& rows, int y) {
-    return rows.empty() || rows[static_cast<std::size_t>(y)] != 0;
-}
-
-// The luminance of the shaded image's rows, for the test of shading jumps
-// (FindEdgesAndShadingJumps), computed a row at a time into a small per-thread cache (a whole image
-// of doubles was 7.4 MB of fresh memory at 1280×720). Rows that are not read (row_shading.h) have
-// luminance 0.
-class RowLuminance {
-  public:
-    // Inactive (no jumps to find) without an image or with one of another size than the Frame.
-    RowLuminance(const Frame& f, const Image* image, const std::vector<std::uint8_t>& rows)
-        : f_(f), image_(image), rows_(rows) {
-        if (image && (image->width != f.width || image->height != f.height)) image_ = nullptr;
-        if (!image_) return;
-        linear_ = image_->linear.size() == image_->pixels.size();
-        // 8-bit samples: the products 0.2126 · (v / 255) and so on, once per byte value; their
-        // sums, in the same order, are the luminances the samples give (the same doubles).
-        for (int v = 0; v < 256; ++v) {
-            const double unit = v / 255.0;
-            weighted_[0][v] = 0.2126 * unit;
-            weighted_[1][v] = 0.7152 * unit;
-            weighted_[2][v] = 0.0722 * unit;
-        }
-    }
-    bool Active() const { return image_ != nullptr; }
-
-    // Row y's values, kept in one of four slots (row y in slot y mod 4): the four rows a pair of
-    // rows (y, y + 1) looks at, y − 1 ... y + 2, never evict one another.
-    struct Cache {
-        std::array<int, 4> row = {-1, -1, -1, -1};
-        std::array<std::vector<double>, 4> values;
-    };
-    const double* Row(int y, Cache& cache) const {
-        const auto slot = static_cast<std::size_t>(y & 3);
-        std::vector<double>& out = cache.values[slot];
-        out.resize(static_cast<std::size_t>(f_.width));
-        if (cache.row[slot] == y) return out.data();
-        cache.row[slot] = y;
-        if (!Read(rows_, y)) {
-            std::fill(out.begin(), out.end(), 0.0);
-            return out.data();
-        }
-        const auto ch = static_cast<std::size_t>(image_->channels);
-        const std::size_t first = f_.Index(0, y) * ch;
-        if (linear_) {
-            const float* v = image_->linear.data() + first;
-            for (std::size_t x = 0; x < out.size(); ++x, v += ch)
-                out[x] = ch >= 3 ? 0.2126 * static_cast<double>(v[0]) +
-                                       0.7152 * static_cast<double>(v[1]) +
-                                       0.0722 * static_cast<double>(v[2])
-                                 : static_cast<double>(v[0]);
-        } else {
-            const std::uint8_t* v = image_->pixels.data() + first;
-            for (std::size_t x = 0; x < out.size(); ++x, v += ch)
-                out[x] = ch >= 3 ? weighted_[0][v[0]] + weighted_[1][v[1]] + weighted_[2][v[2]]
-                                 : v[0] / 255.0;
-        }
-        return out.data();
-    }
-
-  private:
-    const Frame& f_;
-    const Image* image_;
-    const std::vector<std::uint8_t>& rows_;
-    bool linear_ = false;
-    double weighted_[3][256] = {};
-};
-
-// The Frame's arrays as the pair tests read them.
-struct EdgeArrays {
-    const std::int32_t* surface;
-    const std::int32_t* body;
-    const PackedNormal* normal;
-    const float* depth;
-    std::uint8_t* e;
-};
-
-// The test of one pair of 4-neighbours (a, b) (antialias.h, 1.): a2 is the pixel beyond a and b2
-// the one beyond b on the same line; hasA2 / hasB2 are false where there is none (at the image's
-// border the definition takes a2 = a, b2 = b, whose slope counts for nothing). la, lb, la2, lb2:
-// their luminances, read only when `jumps`.
-//
-// An edge separates them when their surface, body or solid differ, when their normals differ by
-// more than kCreaseDegrees, or when their depths jump. The solids need no test of their own: a
-// pixel's solid is a function of its body (Frame::Solid), so two pixels of one body are of one
-// solid. Both pixels of a separated pair get kEdgePixel, and the nearer one kEdgeLine (an exact
-// tie, other ids at the same depth: a). Otherwise, with `jumps`, a pair on one surface of one body
-// whose luminance jumps gets kEdgePixel.
-inline void PairTest(const EdgeArrays f, std::size_t a, std::size_t b, std::size_t a2,
-                     std::size_t b2, bool hasA2, bool hasB2, bool jumps, double la, double lb,
-                     double la2, double lb2, double cosLimit) {
-    const std::int32_t sa = f.surface[a];
-    bool separated = sa != f.surface[b] || f.body[a] != f.body[b];
-    if (!separated) {
-        if (sa == Frame::kNone) return;  // both background: no edge, no shading
-        if (PackedNormal::AngleExceeds(f.normal[a], f.normal[b], cosLimit)) {
-            separated = true;
-        } else {
-            const double za = f.depth[a], zb = f.depth[b];
-            double slope = 0;
-            if (hasA2 && f.surface[a2] == sa) slope = std::max(slope, std::fabs(za - f.depth[a2]));
-            if (hasB2 && f.surface[b2] == sa) slope = std::max(slope, std::fabs(f.depth[b2] - zb));
-            // The Frame's depths are floats (frame.h): a step below a few of their ulps is
-            // rounding.
-            separated = std::fabs(zb - za) > 4 * slope + 1e-6 * (1 + std::fabs(za));
-        }
-    }
-    if (separated) {
-        f.e[a] |= kEdgePixel;
-        f.e[b] |= kEdgePixel;
-        f.e[f.depth[b] < f.depth[a] ? b : a] |= kEdgeLine;
-        return;
-    }
-    // Not separated: one surface of one body (or both background, returned above).
-    if (!jumps || sa < 0) return;
-    const double d = std::fabs(lb - la);
-    const double slope = std::max(std::fabs(la - la2), std::fabs(lb2 - lb));
-    if (d > 4 * slope + 1.0 / 255) {
-        f.e[a] |= kEdgePixel;
-        f.e[b] |= kEdgePixel;
-    }
-}
-
-// The horizontal pairs of the row starting at pixel r, and the vertical pairs of the rows starting
-// at ra and rb (ra2, rb2: the rows beyond them), w pixels wide; l*: the rows' luminances. Every
-// argument by value: the result's bytes are chars, which may alias anything the loop reads
-// through memory, so nothing it needs is left there.
-void HorizontalPairs(const EdgeArrays f, const std::size_t r, const std::size_t w, const double* l,
-                     const bool jumps, const double cosLimit) {
-    for (std::size_t x = 0; x + 1 < w; ++x) {
-        const bool hasA2 = x > 0, hasB2 = x + 2 < w;
-        const std::size_t xa2 = hasA2 ? x - 1 : x, xb2 = hasB2 ? x + 2 : x + 1;
-        PairTest(f, r + x, r + x + 1, r + xa2, r + xb2, hasA2, hasB2, jumps, l[x], l[x + 1], l[xa2],
-                 l[xb2], cosLimit);
-    }
-}
-void VerticalPairs(const EdgeArrays f, const std::size_t ra, const std::size_t rb,
-                   const std::size_t ra2, const std::size_t rb2, const bool hasA2, const bool hasB2,
-                   const std::size_t w, const double* la, const double* lb, const double* la2,
-                   const double* lb2, const bool jumps, const double cosLimit) {
-    for (std::size_t x = 0; x < w; ++x)
-        PairTest(f, ra + x, rb + x, ra2 + x, rb2 + x, hasA2, hasB2, jumps, la[x], lb[x], la2[x],
-                 lb2[x], cosLimit);
-}
-
-// The edge bits of the shaded rows of `rows` (the bits of the other rows are incomplete): the
-// pairs of 4-neighbours an edge separates (PairTest) and, when `jumps` is active, those of
-// one surface of one body whose brightness jumps (a shadow's boundary: the jump test of depths on
-// luminance, with a floor of one 8-bit level).
-//
-// A pair (a, b) comes with a2, the pixel beyond a, and b2, the one beyond b, on the same line (a
-// and b themselves at the image's border), and writes only its own two pixels. Each pixel's bits
-// are an OR over its pairs: the same for any order and thread count. The rows are swept in bands
-// of kBand rows in parallel, each band's horizontal pairs and the vertical pairs within it row by
-// row (each row's luminance made once); then the vertical pairs that straddle two bands, which
-// no two threads share.
-std::vector<std::uint8_t> EdgesOn(const Frame& f, const RowLuminance& jumps,
-                                  const std::vector<std::uint8_t>& rows) {
-    constexpr int kBand = 16;
-    const int w = f.width, h = f.height;
-    std::vector<std::uint8_t> e(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-    const EdgeArrays arrays{f.surface.data(), f.body.data(), f.normal.data(), f.depth.data(),
-                            e.data()};
-    static const double kCos = std::cos(kCreaseDegrees * std::numbers::pi / 180);
-    const double cosLimit = kCos;
-    const bool active = jumps.Active();
-    const std::vector<double> none(static_cast<std::size_t>(w), 0.0);
-    auto luminance = [&](int y, RowLuminance::Cache& cache) {
-        return active ? jumps.Row(y, cache) : none.data();
-    };
-    const auto uw = static_cast<std::size_t>(w);
-    auto horizontal = [&](int y, RowLuminance::Cache& cache) {
-        if (!Shaded(rows, y)) return;
-        HorizontalPairs(arrays, f.Index(0, y), uw, luminance(y, cache), active, cosLimit);
-    };
-    auto vertical = [&](int y, RowLuminance::Cache& cache) {  // the pairs of rows (y, y + 1)
-        if (!PairShaded(rows, y)) return;
-        const bool hasA2 = y > 0, hasB2 = y + 2 < h;
-        const int ya2 = hasA2 ? y - 1 : y, yb2 = hasB2 ? y + 2 : y + 1;
-        const double* la2 = luminance(ya2, cache);
-        const double* la = luminance(y, cache);
-        const double* lb = luminance(y + 1, cache);
-        const double* lb2 = luminance(yb2, cache);
-        VerticalPairs(arrays, f.Index(0, y), f.Index(0, y + 1), f.Index(0, ya2), f.Index(0, yb2),
-                      hasA2, hasB2, uw, la, lb, la2, lb2, active, cosLimit);
-    };
-    const int bands = (h + kBand - 1) / kBand;
-    ParallelFor(0, bands, [&](int band) {
-        RowLuminance::Cache cache;
-        const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
-        for (int y = y0; y < y1; ++y) {
-            horizontal(y, cache);
-            if (y + 1 < y1) vertical(y, cache);
-        }
-    });
-    ParallelFor(1, bands, [&](int band) {
-        RowLuminance::Cache cache;
-        vertical(band * kBand - 1, cache);
-    });
-    return e;
-}
-
-// FindEdges on the shaded rows of `rows`.
-std::vector<std::uint8_t> FindEdgesOn(const Frame& f, const std::vector<std::uint8_t>& rows) {
-    return EdgesOn(f, RowLuminance(f, nullptr, rows), rows);
-}
-
 // Where the samples of pixel (x, y) probably see something: just past the deepest surface of the
 // pixel and its eight neighbours (+inf when none is covered). Only a first guess for the sample
 // tracer's depth windows; the samples do not depend on it.
@@ -286,10 +70,10 @@ double DepthHint(const Frame& f, int x, int y) {
 
 }  // namespace
 
-std::vector<std::uint8_t> FindEdges(const Frame& frame) { return FindEdgesOn(frame, {}); }
+std::vector<std::uint8_t> FindEdges(const Frame& frame) { return EdgePixels(frame, nullptr, {}); }
 
 std::vector<std::uint8_t> FindEdgesAndShadingJumps(const Frame& frame, const Image& image) {
-    return EdgesOn(frame, RowLuminance(frame, &image, {}), {});
+    return EdgePixels(frame, &image, {});
 }
 
 bool ValidAaSamples(int samples) {
@@ -337,14 +121,13 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     if (options.aaSamples < 2 || frame.width == 0 || frame.height == 0) return stats;
     const auto t0 = std::chrono::steady_clock::now();
     // With shadows, the pairs whose shading jumps too (a shadow's boundary) in the same pass.
-    std::vector<std::uint8_t> edges =
-        EdgesOn(frame, RowLuminance(frame, options.shadows ? &image : nullptr, rows), rows);
+    std::vector<std::uint8_t> edges = EdgePixels(frame, options.shadows ? &image : nullptr, rows);
     // Keep away from freeform surfaces: no point tracer for them.
     const auto firstFreeform = static_cast<std::int32_t>(scene.halfSpaces.size());
     if (!scene.freeforms.empty()) {
         std::vector<std::uint8_t> near(edges.size(), 0);
         for (int y = 0; y < frame.height; ++y) {
-            if (!Read(rows, y)) continue;
+            if (!RowRead(rows, y)) continue;
             for (int x = 0; x < frame.width; ++x)
                 if (frame.surface[frame.Index(x, y)] >= firstFreeform)
                     for (int dy = -1; dy <= 1; ++dy)
@@ -423,7 +206,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             const int y1 = std::min(frame.height, y0 + kRegion);
             int xlo = x1, xhi = x0 - 1, ylo = y1, yhi = y0 - 1;
             for (int y = y0; y < y1; ++y) {
-                if (!Shaded(rows, y)) continue;
+                if (!RowShaded(rows, y)) continue;
                 for (int x = x0; x < x1; ++x)
                     if (edge(x, y)) {
                         xlo = std::min(xlo, x);
@@ -438,7 +221,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                               static_cast<double>(ylo), static_cast<double>(yhi + 1)},
                              scratch);
             for (int y = ylo; y <= yhi; ++y) {
-                if (!Shaded(rows, y)) continue;
+                if (!RowShaded(rows, y)) continue;
                 const scene::Color background = shader.Background(y, frame.height);
                 for (int x = xlo; x <= xhi; ++x)
                     if (edge(x, y) && !resample(x, y, background)) return false;
@@ -478,10 +261,10 @@ std::size_t DrawEdgeLines(const Frame& frame, const ShadeOptions& options, Image
 
 std::size_t DrawEdgeLinesRowKinds(const Frame& frame, const ShadeOptions& options, Image& image,
                                   const std::vector<std::uint8_t>& rows) {
-    const std::vector<std::uint8_t> edges = FindEdgesOn(frame, rows);
+    const std::vector<std::uint8_t> edges = EdgePixels(frame, nullptr, rows);
     std::size_t n = 0;
     for (int y = 0; y < frame.height; ++y)
-        for (int x = 0; x < frame.width && Shaded(rows, y); ++x)
+        for (int x = 0; x < frame.width && RowShaded(rows, y); ++x)
             if (edges[frame.Index(x, y)] & kEdgeLine) {
                 StoreColor(image, x, y, options.edgeColor);
                 ++n;

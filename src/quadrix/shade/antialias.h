@@ -5,12 +5,12 @@
 //    their surface, body or solid ids differ (silhouettes against the background or another
 //    solid, intersection curves, creases between half-spaces), or, on one surface, their normals
 //    differ by more than kCreaseDegrees (a sheet seen behind another sheet of the same quadric),
-//    or their depths jump: |z_q − z_p| > 4·max(|z_p − z_p'|, |z_q' − z_q|) + 1e-9·(1 + |z|) where
-//    p' and q' are the next pixels outward along the same line (a discontinuity, not a steep
-//    slope). Both pixels of such a pair are edge pixels. A straight edge crossing a pixel's square
-//    always separates its centre from a 4-neighbour's (the edge is at distance < ½·√2 from the
-//    centre, and some axis neighbour lies at signed distance ≥ max(|nx|, |ny|) ≥ ½·√2 across
-//    the edge's normal n), so only features thinner than a pixel that touch no centre are missed.
+//    or their depths jump (a discontinuity, not a steep slope: the test of edge_pixels.h, against
+//    4 times the slope to the next pixels outward along the same line). Both pixels of such a
+//    pair are edge pixels. A straight edge crossing a pixel's square always separates its centre
+//    from a 4-neighbour's (the edge is at distance < ½·√2 from the centre, and some axis
+//    neighbour lies at signed distance ≥ max(|nx|, |ny|) ≥ ½·√2 across the edge's normal n), so
+//    only features thinner than a pixel that touch no centre are missed.
 //    With shadows on, a pair on one surface of one body whose shaded brightness jumps (the same
 //    test on luminance, with a floor of one 8-bit level) is a pair of edge pixels too: a shadow's
 //    boundary is not an edge of the Frame, but its samples are exact like any other (shadow rays
@@ -43,16 +43,13 @@
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
 #include "quadrix/io/image.h"
+#include "quadrix/shade/edge_pixels.h"
 #include "quadrix/shade/shader.h"
 
 namespace quadrix {
 
-constexpr double kCreaseDegrees = 20;
-
-// Per pixel: bit kEdgePixel when an edge separates it from a 4-neighbour, bit kEdgeLine when it is
-// also the nearer pixel of such a pair (the one-pixel line of DrawEdgeLines; a covered pixel next
-// to the background is the nearer one).
-constexpr std::uint8_t kEdgePixel = 1, kEdgeLine = 2;
+// kCreaseDegrees, kEdgePixel and kEdgeLine: edge_pixels.h (the one-pixel line of DrawEdgeLines is
+// the kEdgeLine pixels).
 std::vector<std::uint8_t> FindEdges(const Frame& frame);
 // FindEdges, plus kEdgePixel on the pairs of 4-neighbours of one surface and body whose
 // brightness in the shaded `image` (of the Frame's size) jumps: shadow boundaries (see the file

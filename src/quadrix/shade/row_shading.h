@@ -38,6 +38,15 @@ constexpr int kShadeHaloRows = 2;
 constexpr std::uint8_t kRowShaded = 2, kRowHalo = 1;
 std::vector<std::uint8_t> RowKinds(const std::vector<RowSpan>& spans, int height);
 
+// Whether row y of `rows` (from RowKinds; empty: every row) is shaded.
+inline bool RowShaded(const std::vector<std::uint8_t>& rows, int y) {
+    return rows.empty() || rows[static_cast<std::size_t>(y)] == kRowShaded;
+}
+// Whether row y is read at all (shaded, or in the halo around shaded rows).
+inline bool RowRead(const std::vector<std::uint8_t>& rows, int y) {
+    return rows.empty() || rows[static_cast<std::size_t>(y)] != 0;
+}
+
 // What RenderContext::Shade does (Shade, then Antialias when options.aaSamples > 1, then
 // HatchSection when options.hatch, then DrawEdgeLines when options.edges), on the rows of `spans`
 // only. options must not ask for the fast model.
