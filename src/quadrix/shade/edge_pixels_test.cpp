@@ -16,8 +16,8 @@ namespace {
 
 // The code of a unit normal at polar angle theta, azimuth phi.
 PackedNormal Direction(double theta, double phi) {
-    return PackedNormal(Vec3{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                             std::cos(theta)});
+    return PackedNormal(
+        Vec3{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
 }
 
 // A code whose halves are those of n moved by (du, dv) units (kept off -32768, kZero's half).
@@ -44,8 +44,8 @@ TEST(EdgePixels, NearCodesNeverMakeACrease) {
     double largest = 0;
     std::size_t creasesBeyond = 0;
     for (int i = 0; i < 400000; ++i) {
-        const PackedNormal a = Direction(std::acos(1 - 2 * unit(rng)), 2 * std::numbers::pi *
-                                                                           unit(rng));
+        const PackedNormal a =
+            Direction(std::acos(1 - 2 * unit(rng)), 2 * std::numbers::pi * unit(rng));
         int du = offset(rng);
         int dv = offset(rng);
         if (i % 2 == 0) {  // on the bound: |du| + |dv| = kNearNormalCodes
@@ -82,16 +82,18 @@ RandomPicture MakeRandomPicture(int w, int h, bool linear, std::uint64_t seed) {
     RandomPicture r{Frame(w, h), Image(w, h, 3)};
     Frame& f = r.frame;
     f.bodySolid = {0, 1, 2};
-    // Patches: cells of 7 × 5 pixels, each background or one of three surfaces.
+    // Patches: cells of cw × 5 pixels (cw from 3 to 40: runs of background longer and shorter
+    // than EdgePixels skips at once), each background (half of them) or one of three surfaces.
+    const int cw = 3 + static_cast<int>(seed % 38);
     std::vector<int> cellSurface;
-    for (int k = 0; k < (w / 7 + 1) * (h / 5 + 1); ++k)
-        cellSurface.push_back(static_cast<int>(unit(rng) * 4) - 1);
+    for (int k = 0; k < (w / cw + 1) * (h / 5 + 1); ++k)
+        cellSurface.push_back(unit(rng) < 0.5 ? -1 : static_cast<int>(unit(rng) * 3));
     const PackedNormal base[3] = {Direction(0.3, 0.2), Direction(1.6, 2.0), Direction(2.8, 4.0)};
     if (linear) r.image.linear.assign(r.image.pixels.size(), 0.0f);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const std::size_t i = f.Index(x, y);
-            const int s = cellSurface[static_cast<std::size_t>((y / 5) * (w / 7 + 1) + x / 7)];
+            const int s = cellSurface[static_cast<std::size_t>((y / 5) * (w / cw + 1) + x / cw)];
             if (s < 0) continue;  // background as the Frame starts
             f.surface[i] = s;
             f.body[i] = unit(rng) < 0.02 ? (s + 1) % 3 : s;
@@ -129,8 +131,8 @@ std::vector<std::uint8_t> Definition(const Frame& f, const Image* image) {
     std::vector<std::uint8_t> e(f.surface.size(), 0);
     auto pair = [&](std::size_t a, std::size_t b, std::size_t a2, std::size_t b2, bool hasA2,
                     bool hasB2) {
-        const std::uint8_t c = EdgePairCode(f, a, b, a2, b2, hasA2, hasB2, image != nullptr,
-                                            lum[a], lum[b], lum[a2], lum[b2]);
+        const std::uint8_t c = EdgePairCode(f, a, b, a2, b2, hasA2, hasB2, image != nullptr, lum[a],
+                                            lum[b], lum[a2], lum[b2]);
         e[a] |= c & 3;
         e[b] |= (c & 1) | ((c >> 1) & 2);
     };
@@ -151,10 +153,11 @@ std::vector<std::uint8_t> Definition(const Frame& f, const Image* image) {
 // not compared (their bits are incomplete by design).
 TEST(EdgePixels, EqualTheDefinitionPairByPair) {
     std::size_t edges = 0, creases = 0;
-    for (const auto& [w, h] : {std::pair{1, 1}, {2, 3}, {3, 2}, {5, 17}, {67, 53}, {130, 33}})
-        for (int mode = 0; mode < 3; ++mode) {
-            const RandomPicture r = MakeRandomPicture(w, h, mode == 2, 1000 * w + h + mode);
-            const Image* image = mode == 0 ? nullptr : &r.image;
+    for (const auto& [w, h] :
+         {std::pair{1, 1}, {2, 3}, {3, 2}, {5, 17}, {17, 4}, {67, 53}, {130, 33}, {257, 40}})
+        for (int mode = 0; mode < 6; ++mode) {
+            const RandomPicture r = MakeRandomPicture(w, h, mode % 3 == 2, 1000 * w + h + mode);
+            const Image* image = mode % 3 == 0 ? nullptr : &r.image;
             const std::vector<std::uint8_t> expected = Definition(r.frame, image);
             const std::vector<std::uint8_t> got = EdgePixels(r.frame, image, {});
             ASSERT_EQ(got.size(), expected.size());
@@ -180,7 +183,7 @@ TEST(EdgePixels, EqualTheDefinitionPairByPair) {
     const double cosLimit = std::cos(kCreaseDegrees * std::numbers::pi / 180);
     for (std::size_t k = 0; k + 1 < f.surface.size(); ++k)
         creases += f.surface[k] >= 0 && f.surface[k] == f.surface[k + 1] &&
-                       PackedNormal::AngleExceeds(f.normal[k], f.normal[k + 1], cosLimit);
+                   PackedNormal::AngleExceeds(f.normal[k], f.normal[k + 1], cosLimit);
     EXPECT_GT(edges, 500u);
     EXPECT_GT(creases, 20u);
 }
