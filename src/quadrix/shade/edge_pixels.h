@@ -45,15 +45,16 @@ constexpr double kCreaseDegrees = 20;
 // covered pixel next to the background is the nearer one).
 constexpr std::uint8_t kEdgePixel = 1, kEdgeLine = 2;
 
-// Two normals' codes (PackedNormal) neither kZero whose halves differ by δ = |Δu| + |Δv| <=
-// kNearNormalCodes units of 1/32767 make an angle below 6.3 degrees, so no crease: the pair test
-// answers them without decoding. Why: the octahedral map (packed_normal.h) is continuous and
-// piecewise linear, each piece moving a point of the octahedron |x|+|y|+|z| = 1 by at most
-// 2·(|du| + |dv|) (in L1, so also in length), and every such point is at least 1/√3 from the
-// origin; so |p − q| <= 2δ/32767 <= 0.0626 and sin ∠(p, q) <= √3 · 0.0626 = 0.108, far from
-// sin 20° = 0.342 whatever the rounding of AngleExceeds' products.
-constexpr int kNearNormalCodes = 1024;
-static_assert(kCreaseDegrees >= 10, "kNearNormalCodes assumes a crease angle well above 6.3°");
+// Two normals' codes (PackedNormal), neither kZero, whose halves differ by δ = |Δu| + |Δv| <=
+// kNearNormalCodes units of 1/32767 make an angle of at most asin(2√3 · δ / 32767) = 18.95
+// degrees, so no crease: the pair test answers them without decoding (four divisions). Why: the
+// octahedral map (packed_normal.h) is continuous and piecewise linear, each piece moving a point
+// of the octahedron |x|+|y|+|z| = 1 by at most 2·(|du| + |dv|) (in L1, so also in length), and
+// every such point p is at least 1/√3 from the origin; so |p − q| <= 2δ/32767 = 0.1875, which is
+// less than |p| (the angle is acute), and sin ∠(p, q) <= |p − q| / |p| <= 0.3248 < sin 20°. The
+// squares of the cosines differ by 1.3 %, far more than the rounding of AngleExceeds' products.
+constexpr int kNearNormalCodes = 3072;
+static_assert(kCreaseDegrees >= 19.5, "kNearNormalCodes assumes a crease angle above 18.95°");
 
 // The bits of every pixel of `frame`, on the rows `rows` marks kRowShaded (row_shading.h; every
 // row when empty: the bits of the other rows are incomplete). `image`: the shaded picture whose

@@ -33,9 +33,9 @@ PackedNormal Moved(PackedNormal n, int du, int dv) {
 
 // Codes whose halves differ by at most kNearNormalCodes never make a crease: random directions
 // over the whole sphere (both halves of the octahedral square, across its fold), each moved by
-// random offsets up to the bound and exactly on it. The largest angle met is below the 6.3
-// degrees the bound's argument gives (edge_pixels.h), and larger offsets do reach a crease (so
-// the test would see a bound that is too large).
+// random offsets up to the bound and exactly on it. The largest angle met is below the bound's
+// argument's asin(2√3 · kNearNormalCodes / 32767) (edge_pixels.h), and larger offsets do reach a
+// crease (so the test would see a bound that is too large).
 TEST(EdgePixels, NearCodesNeverMakeACrease) {
     std::mt19937_64 rng(20261207);
     std::uniform_real_distribution<double> unit(0, 1);
@@ -61,10 +61,13 @@ TEST(EdgePixels, NearCodesNeverMakeACrease) {
         const Vec3 p = a, q = b;
         const double dot = p.x * q.x + p.y * q.y + p.z * q.z;
         largest = std::max(largest, std::acos(std::min(1.0, dot)) * 180 / std::numbers::pi);
-        creasesBeyond += PackedNormal::AngleExceeds(a, Moved(a, 8 * du, 8 * dv), cosLimit);
+        creasesBeyond += PackedNormal::AngleExceeds(a, Moved(a, 3 * du, 3 * dv), cosLimit);
     }
-    EXPECT_LT(largest, 6.3);
-    EXPECT_GT(largest, 2.0);
+    const double bound =
+        std::asin(2 * std::sqrt(3.0) * kNearNormalCodes / 32767) * 180 / std::numbers::pi;
+    EXPECT_LT(largest, bound);
+    EXPECT_LT(bound, kCreaseDegrees);
+    EXPECT_GT(largest, bound / 3);
     EXPECT_GT(creasesBeyond, 1000u);
 }
 
