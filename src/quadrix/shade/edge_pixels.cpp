@@ -174,6 +174,84 @@ constexpr std::size_t kSkip = 16;
     return any == 0;
 }
 
+// kSkip consecutive pairs of one line (pair k: a + k, b + k, with a2 + k and b2 + k beyond them).
+struct Block {
+    std::size_t a, b, a2, b2;
+};
+
+// Whether every pair of the block is smooth: its pixels and the two beyond them on one surface
+// (covered), the pair's two of one body, and its normals' codes equal or within kNearNormalCodes
+// of each other, neither kZero (no crease). Such a pair's test is its depth test (both slope terms
+// count: the pixels beyond exist and are on the surface) and, with jumps, its luminance test.
+// Integer operations over the block, which the compiler vectorises.
+[[gnu::always_inline]] inline bool Smooth(const EdgeArrays f, const Block k) {
+    std::int32_t bad = 0;
+    for (std::size_t i = 0; i < kSkip; ++i) {
+        const std::int32_t s = f.surface[k.a + i];
+        bad |= (s ^ f.surface[k.b + i]) | (s ^ f.surface[k.a2 + i]) | (s ^ f.surface[k.b2 + i]) |
+               (f.body[k.a + i] ^ f.body[k.b + i]) | (s >> 31);  // s < 0: kNone
+        const auto p = static_cast<std::int32_t>(f.normal[k.a + i].bits);
+        const auto q = static_cast<std::int32_t>(f.normal[k.b + i].bits);
+        const std::int32_t du = (p >> 16) - (q >> 16);
+        const std::int32_t dv = ((p << 16) >> 16) - ((q << 16) >> 16);
+        const std::int32_t delta = (du < 0 ? -du : du) + (dv < 0 ? -dv : dv);
+        bad |= static_cast<std::int32_t>(delta > kNearNormalCodes) |
+               static_cast<std::int32_t>(p == static_cast<std::int32_t>(PackedNormal::kZero)) |
+               static_cast<std::int32_t>(q == static_cast<std::int32_t>(PackedNormal::kZero));
+    }
+    return bad == 0;
+}
+
+// The depth tests of a smooth block (PairCode's, both slope terms present): whether any of its
+// pairs is separated. Without a branch, so the compiler vectorises it; built for AVX2 and the
+// baseline (util/cpu_features.h: the same IEEE operations in the same order either way).
+[[gnu::always_inline]] inline bool AnyDepthJumpBody(const float* za, const float* zb,
+                                                    const float* za2, const float* zb2) {
+    std::int32_t any = 0;
+    for (std::size_t i = 0; i < kSkip; ++i) {
+        const double a = za[i], b = zb[i];
+        const double ta = std::fabs(a - za2[i]), tb = std::fabs(static_cast<double>(zb2[i]) - b);
+        double slope = 0.0 < ta ? ta : 0.0;  // std::max(0.0, ta)
+        slope = slope < tb ? tb : slope;     // std::max(slope, tb)
+        any |= static_cast<std::int32_t>(std::fabs(b - a) > 4 * slope + 1e-6 * (1 + std::fabs(a)));
+    }
+    return any != 0;
+}
+QUADRIX_AVX2 bool AnyDepthJumpAvx2(const float* za, const float* zb, const float* za2,
+                                   const float* zb2) {
+    return AnyDepthJumpBody(za, zb, za2, zb2);
+}
+bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, const float* zb2) {
+    return AnyDepthJumpBody(za, zb, za2, zb2);
+}
+
+// The bits of a block of pairs: a smooth block without a depth jump gets only its luminance jumps
+// (PairCode's last test); any other block goes pair by pair. false when the caller must test the
+// pairs one by one.
+[[gnu::always_inline]] inline bool SmoothBlock(const EdgeArrays f, const Block k, const bool jumps,
+                                               const double* la, const double* lb,
+                                               const double* la2, const double* lb2) {
+    // Where the block's ends are not on one surface (small features), say so at once.
+    const std::int32_t s = f.surface[k.a];
+    if (s != f.surface[k.a + kSkip - 1] || s != f.surface[k.b] || s != f.surface[k.b + kSkip - 1] ||
+        !Smooth(f, k))
+        return false;
+    const float* z = f.depth;
+    if (gCpuHasAvx2 ? AnyDepthJumpAvx2(z + k.a, z + k.b, z + k.a2, z + k.b2)
+                    : AnyDepthJumpBaseline(z + k.a, z + k.b, z + k.a2, z + k.b2))
+        return false;
+    if (!jumps) return true;
+    for (std::size_t i = 0; i < kSkip; ++i) {
+        const double d = std::fabs(lb[i] - la[i]);
+        const double slope = std::max(std::fabs(la[i] - la2[i]), std::fabs(lb2[i] - lb[i]));
+        if (d > 4 * slope + 1.0 / 255) {
+            f.e[k.a + i] |= kEdgePixel;
+            f.e[k.b + i] |= kEdgePixel;
+        }
+    }
+    return true;
+}
+
 // The horizontal pairs of the row starting at pixel r, and the vertical pairs of the rows starting
 // at ra and rb (ra2, rb2: the rows beyond them), w pixels wide; l*: the rows' luminances. Every
 // argument by value: the result's bytes are chars, which may alias anything the loop reads
@@ -183,6 +261,13 @@ void HorizontalPairs(const EdgeArrays f, const std::size_t r, const std::size_t 
     for (std::size_t x = 0; x + 1 < w; ++x) {
         // Pairs x ... x + kSkip − 1 join pixels x ... x + kSkip.
         if (x % kSkip == 0 && x + kSkip < w && Background(f, r + x, kSkip + 1)) {
+            x += kSkip - 1;
+            continue;
+        }
+        // Pairs x ... x + kSkip − 1 with the pixels x − 1 and x + kSkip + 1 beyond them.
+        if (x % kSkip == 0 && x > 0 && x + kSkip + 1 < w &&
+            SmoothBlock(f, {r + x, r + x + 1, r + x - 1, r + x + 2}, jumps, l + x, l + x + 1,
+                        l + x - 1, l + x + 2)) {
             x += kSkip - 1;
             continue;
         }
@@ -197,8 +282,11 @@ void VerticalPairs(const EdgeArrays f, const std::size_t ra, const std::size_t r
                    const std::size_t w, const double* la, const double* lb, const double* la2,
                    const double* lb2, const bool jumps) {
     for (std::size_t x = 0; x < w; ++x) {
-        if (x % kSkip == 0 && x + kSkip <= w && Background(f, ra + x, kSkip) &&
-            Background(f, rb + x, kSkip)) {
+        if (x % kSkip == 0 && x + kSkip <= w &&
+            ((Background(f, ra + x, kSkip) && Background(f, rb + x, kSkip)) ||
+             (hasA2 && hasB2 &&
+              SmoothBlock(f, {ra + x, rb + x, ra2 + x, rb2 + x}, jumps, la + x, lb + x, la2 + x,
+                          lb2 + x)))) {
             x += kSkip - 1;
             continue;
         }

@@ -74,12 +74,14 @@ TEST(EdgePixels, NearCodesNeverMakeACrease) {
 // A random Frame with the features the pair test tells apart: background, a few surfaces and
 // bodies in patches, normals near each other (offsets below and above kNearNormalCodes, across the
 // octahedral fold), some far apart and some kZero on covered pixels; depths on planes with steps,
-// exact ties and single-pixel spikes; an image whose brightness jumps.
+// exact ties and single-pixel spikes; an image whose brightness jumps. A `smooth` picture has
+// wider cells and few of those features, so that runs of pairs on one surface with near normals and
+// no depth jump (EdgePixels' blocks of smooth pairs) are common, with a jump here and there.
 struct RandomPicture {
     Frame frame;
     Image image;
 };
-RandomPicture MakeRandomPicture(int w, int h, bool linear, std::uint64_t seed) {
+RandomPicture MakeRandomPicture(int w, int h, bool linear, bool smooth, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0, 1);
     RandomPicture r{Frame(w, h), Image(w, h, 3)};
@@ -87,7 +89,9 @@ RandomPicture MakeRandomPicture(int w, int h, bool linear, std::uint64_t seed) {
     f.bodySolid = {0, 1, 2};
     // Patches: cells of cw × 5 pixels (cw from 3 to 40: runs of background longer and shorter
     // than EdgePixels skips at once), each background (half of them) or one of three surfaces.
-    const int cw = 3 + static_cast<int>(seed % 38);
+    const int cw = (smooth ? 17 : 3) + static_cast<int>(seed % 38);
+    // The odds of the features that are not smooth.
+    const double rare = smooth ? 0.1 : 1;
     std::vector<int> cellSurface;
     for (int k = 0; k < (w / cw + 1) * (h / 5 + 1); ++k)
         cellSurface.push_back(unit(rng) < 0.5 ? -1 : static_cast<int>(unit(rng) * 3));
@@ -99,14 +103,15 @@ RandomPicture MakeRandomPicture(int w, int h, bool linear, std::uint64_t seed) {
             const int s = cellSurface[static_cast<std::size_t>((y / 5) * (w / cw + 1) + x / cw)];
             if (s < 0) continue;  // background as the Frame starts
             f.surface[i] = s;
-            f.body[i] = unit(rng) < 0.02 ? (s + 1) % 3 : s;
+            f.body[i] = unit(rng) < 0.02 * rare ? (s + 1) % 3 : s;
             const double roll = unit(rng);
-            const int spread = roll < 0.6 ? 300 : (roll < 0.9 ? 3000 : 30000);
+            const int spread = roll < 1 - 0.4 * rare ? 300 : (roll < 1 - 0.1 * rare ? 3000 : 30000);
             std::uniform_int_distribution<int> off(-spread, spread);
-            f.normal[i] = unit(rng) < 0.01 ? PackedNormal() : Moved(base[s], off(rng), off(rng));
+            f.normal[i] =
+                unit(rng) < 0.01 * rare ? PackedNormal() : Moved(base[s], off(rng), off(rng));
             double z = 10 + s + 0.01 * x + 0.02 * y + (x > w / 2 ? 0.5 : 0.0);
-            if (unit(rng) < 0.01) z += 0.2;
-            if (unit(rng) < 0.05) z = 10 + s;  // ties with other pixels
+            if (unit(rng) < 0.01 * rare) z += 0.2;
+            if (unit(rng) < 0.05 * rare) z = 10 + s;  // ties with other pixels
             f.depth[i] = static_cast<float>(z);
             for (int c = 0; c < 3; ++c) {
                 const double v = (unit(rng) < 0.05 ? 0.1 : 0.7) + 0.002 * x;
@@ -159,7 +164,8 @@ TEST(EdgePixels, EqualTheDefinitionPairByPair) {
     for (const auto& [w, h] :
          {std::pair{1, 1}, {2, 3}, {3, 2}, {5, 17}, {17, 4}, {67, 53}, {130, 33}, {257, 40}})
         for (int mode = 0; mode < 6; ++mode) {
-            const RandomPicture r = MakeRandomPicture(w, h, mode % 3 == 2, 1000 * w + h + mode);
+            const RandomPicture r =
+                MakeRandomPicture(w, h, mode % 3 == 2, mode >= 3, 1000 * w + h + mode);
             const Image* image = mode % 3 == 0 ? nullptr : &r.image;
             const std::vector<std::uint8_t> expected = Definition(r.frame, image);
             const std::vector<std::uint8_t> got = EdgePixels(r.frame, image, {});
@@ -181,7 +187,7 @@ TEST(EdgePixels, EqualTheDefinitionPairByPair) {
         }
     // The pictures have edges of every kind: count the creases between codes that differ by
     // more than the short-cut's bound on one surface.
-    const RandomPicture r = MakeRandomPicture(67, 53, false, 7);
+    const RandomPicture r = MakeRandomPicture(67, 53, false, false, 7);
     const Frame& f = r.frame;
     const double cosLimit = std::cos(kCreaseDegrees * std::numbers::pi / 180);
     for (std::size_t k = 0; k + 1 < f.surface.size(); ++k)
