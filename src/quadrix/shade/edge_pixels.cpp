@@ -217,6 +217,26 @@ struct Block {
     }
     return any != 0;
 }
+// Whether any pair of a smooth block has a luminance jump (PairCode's last test), the same way.
+[[gnu::always_inline]] inline bool AnyLuminanceJumpBody(const double* la, const double* lb,
+                                                        const double* la2, const double* lb2) {
+    std::int32_t any = 0;
+    for (std::size_t i = 0; i < kSkip; ++i) {
+        const double d = std::fabs(lb[i] - la[i]);
+        const double ea = std::fabs(la[i] - la2[i]), eb = std::fabs(lb2[i] - lb[i]);
+        const double slope = ea < eb ? eb : ea;  // std::max(ea, eb)
+        any |= static_cast<std::int32_t>(d > 4 * slope + 1.0 / 255);
+    }
+    return any != 0;
+}
+QUADRIX_AVX2 bool AnyLuminanceJumpAvx2(const double* la, const double* lb, const double* la2,
+                                       const double* lb2) {
+    return AnyLuminanceJumpBody(la, lb, la2, lb2);
+}
+bool AnyLuminanceJumpBaseline(const double* la, const double* lb, const double* la2,
+                              const double* lb2) {
+    return AnyLuminanceJumpBody(la, lb, la2, lb2);
+}
 QUADRIX_AVX2 bool AnyDepthJumpAvx2(const float* za, const float* zb, const float* za2,
                                    const float* zb2) {
     return AnyDepthJumpBody(za, zb, za2, zb2);
@@ -240,7 +260,9 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
     if (gCpuHasAvx2 ? AnyDepthJumpAvx2(z + k.a, z + k.b, z + k.a2, z + k.b2)
                     : AnyDepthJumpBaseline(z + k.a, z + k.b, z + k.a2, z + k.b2))
         return false;
-    if (!jumps) return true;
+    if (!jumps || !(gCpuHasAvx2 ? AnyLuminanceJumpAvx2(la, lb, la2, lb2)
+                                : AnyLuminanceJumpBaseline(la, lb, la2, lb2)))
+        return true;
     for (std::size_t i = 0; i < kSkip; ++i) {
         const double d = std::fabs(lb[i] - la[i]);
         const double slope = std::max(std::fabs(la[i] - la2[i]), std::fabs(lb2[i] - lb[i]));

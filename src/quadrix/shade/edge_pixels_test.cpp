@@ -114,7 +114,7 @@ RandomPicture MakeRandomPicture(int w, int h, bool linear, bool smooth, std::uin
             if (unit(rng) < 0.05 * rare) z = 10 + s;  // ties with other pixels
             f.depth[i] = static_cast<float>(z);
             for (int c = 0; c < 3; ++c) {
-                const double v = (unit(rng) < 0.05 ? 0.1 : 0.7) + 0.002 * x;
+                const double v = (unit(rng) < 0.05 ? 0.1 : 0.7) + 0.002 * (x % 100);  // <= 0.898
                 r.image.pixels[i * 3 + static_cast<std::size_t>(c)] =
                     static_cast<std::uint8_t>(v * 255);
                 if (linear) r.image.linear[i * 3 + static_cast<std::size_t>(c)] = float(v);
