@@ -245,9 +245,9 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
     return AnyDepthJumpBody(za, zb, za2, zb2);
 }
 
-// The bits of a block of pairs: a smooth block without a depth jump gets only its luminance jumps
-// (PairCode's last test); any other block goes pair by pair. false when the caller must test the
-// pairs one by one.
+// The bits of a block of pairs whose pixels beyond exist: those of a smooth block without a depth
+// jump are its luminance jumps (PairCode's last test); true when they are written, false when the
+// caller must test the pairs one by one (any other block).
 [[gnu::always_inline]] inline bool SmoothBlock(const EdgeArrays f, const Block k, const bool jumps,
                                                const double* la, const double* lb,
                                                const double* la2, const double* lb2) {
@@ -263,14 +263,9 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
     if (!jumps || !(gCpuHasAvx2 ? AnyLuminanceJumpAvx2(la, lb, la2, lb2)
                                 : AnyLuminanceJumpBaseline(la, lb, la2, lb2)))
         return true;
-    for (std::size_t i = 0; i < kSkip; ++i) {
-        const double d = std::fabs(lb[i] - la[i]);
-        const double slope = std::max(std::fabs(la[i] - la2[i]), std::fabs(lb2[i] - lb[i]));
-        if (d > 4 * slope + 1.0 / 255) {
-            f.e[k.a + i] |= kEdgePixel;
-            f.e[k.b + i] |= kEdgePixel;
-        }
-    }
+    for (std::size_t i = 0; i < kSkip; ++i)  // a jump somewhere: the pairs' own tests
+        PairTest(f, k.a + i, k.b + i, k.a2 + i, k.b2 + i, true, true, jumps, la[i], lb[i], la2[i],
+                 lb2[i]);
     return true;
 }
 

@@ -21,13 +21,16 @@
 // How: the rows are swept in bands of 16 in parallel, each band's horizontal pairs and the
 // vertical pairs within it row by row (each row's luminance made once, into a small per-thread
 // cache); then the vertical pairs that straddle two bands, which no two threads share. A pair
-// writes only its own two pixels. The crease test answers the codes of nearby directions without
-// decoding them (kNearNormalCodes); EdgePixels.* tests the whole against the definition written
+// writes only its own two pixels. Along a line, a run of 16 pairs is first looked at whole: all
+// background, it has no bits; all smooth (one surface and body, the pixels beyond on it too, no
+// crease), its depth and luminance tests run in branch-free passes the compiler vectorises (AVX2
+// and baseline builds, util/cpu_features.h); otherwise, and where one of those tests fires, its
+// pairs are tested one by one. The crease test answers the codes of nearby directions without
+// decoding them (kNearNormalCodes). EdgePixels.* tests the whole against the definition written
 // pair by pair (EdgePairCode) on random Frames.
 //
-// (A branch-free pass over every pair, vectorised for AVX2, was tried and was slower: the pairs
-// of two background pixels, half of a typical picture, cost the scalar test two comparisons;
-// docs/performance.md.)
+// (A branch-free pass over every pair was tried and was slower: the pairs of two background
+// pixels, half of a typical picture, cost the scalar test two comparisons; docs/performance.md.)
 #pragma once
 
 #include <cstdint>
