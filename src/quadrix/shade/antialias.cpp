@@ -4,12 +4,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <thread>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
