@@ -115,10 +115,11 @@ PictureDefaults PictureRequest(const RenderArgs& args) {
 
 // The end of a one-shot render whose outputs are all committed: the process exits here, so the
 // destructors of the Frame (40 MB at 1280×720), the image, the scene and the thread pool do not
-// run (5–6 ms of freeing, issue 24). Nothing is lost: the outputs are renamed into place and
-// fsynced, no temporary file is pending (the signal-cleanup table is empty, so its handlers have
-// nothing to do), and the standard streams are flushed here. Under AddressSanitizer the process
-// returns normally, so that LeakSanitizer still checks the render path at exit.
+// run (5–6 ms of freeing, issue 24). Nothing is lost: the outputs are renamed into place (and
+// fsynced with QUADRIX_FSYNC=1), no temporary file is pending (the signal-cleanup table is
+// empty, so its handlers have nothing to do), and the standard streams are flushed here. Under
+// AddressSanitizer the process returns normally, so that LeakSanitizer still checks the render path
+// at exit.
 #if defined(__SANITIZE_ADDRESS__)
 #define QUADRIX_RENDER_FAST_EXIT 0
 #elif defined(__has_feature)

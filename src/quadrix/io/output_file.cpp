@@ -53,6 +53,17 @@ bool WasRead(const struct stat& st) {
     return false;
 }
 
+// ---- Durability (QUADRIX_FSYNC) ----------------------------------------------------------------
+
+// -1: not decided yet (read from the environment on first use), 0 off, 1 on.
+std::atomic<int> gSync{-1};
+std::atomic<long> gSyncCount{0};
+
+int CountedSync(int fd) {
+    gSyncCount.fetch_add(1, std::memory_order_relaxed);
+    return fsync(fd);
+}
+
 // ---- The temporary files the signal handlers remove -------------------------------------------
 
 // A fixed table, so that the handler touches no allocator and no lock: a slot is free (0),
@@ -333,7 +344,7 @@ std::string OutputFile::Finish() {
     bad = bad || std::fflush(file_) != 0;
     const int fd = fileno(file_);
     bad = bad || fchmod(fd, static_cast<mode_t>(mode_)) != 0;
-    bad = bad || fsync(fd) != 0;
+    bad = bad || (OutputSync() && CountedSync(fd) != 0);
     const int savedErrno = errno;
     const bool closeFailed = std::fclose(file_) != 0;
     file_ = nullptr;
@@ -373,14 +384,32 @@ std::string OutputFile::Rename() {
         return error_ = Refuse(path_, std::strerror(errno));
     committed_ = true;
     UnregisterTemporary(slot_);
-    // Make the rename itself durable.
-    int dir = open(DirectoryOf(target_).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dir >= 0) {
-        fsync(dir);
-        close(dir);
+    if (OutputSync()) {  // the rename itself durable
+        int dir = open(DirectoryOf(target_).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (dir >= 0) {
+            CountedSync(dir);
+            close(dir);
+        }
     }
     return {};
 }
+
+bool OutputSyncFromEnvironment(const char* value) {
+    return value != nullptr && *value != '\0' && std::strcmp(value, "0") != 0;
+}
+
+bool OutputSync() {
+    int s = gSync.load(std::memory_order_relaxed);
+    if (s < 0) {
+        s = OutputSyncFromEnvironment(std::getenv("QUADRIX_FSYNC")) ? 1 : 0;
+        gSync.store(s, std::memory_order_relaxed);
+    }
+    return s == 1;
+}
+
+void SetOutputSync(bool sync) { gSync.store(sync ? 1 : 0, std::memory_order_relaxed); }
+
+long OutputSyncCount() { return gSyncCount.load(std::memory_order_relaxed); }
 
 std::string OutputFile::Commit() {
     if (auto e = Finish(); !e.empty()) return e;

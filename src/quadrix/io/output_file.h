@@ -10,8 +10,15 @@
 //     same device and inode, see NoteInputFile) nor one of the inputs named to CheckOutputPaths.
 //  2. Create the temporary file with mkstemp (O_EXCL, an unguessable name, mode 0600) in the
 //     target's directory, so the rename below stays within one file system.
-//  3. Write, fflush, fchmod to the mode of the existing target (else 0666 minus the umask), fsync.
-//  4. Check the target again and rename the temporary file over it; fsync the directory.
+//  3. Write, fflush, fchmod to the mode of the existing target (else 0666 minus the umask).
+//  4. Check the target again and rename the temporary file over it.
+//
+// Steps 1–4 make an output whole or absent whatever happens to this process. Durability across a
+// power loss or a kernel crash (the file's data and the rename on the disk before the command
+// ends) is asked for with QUADRIX_FSYNC=1 (OutputSync): then the file is fsynced before the
+// rename and its directory after it. Off by default, as for other renderers' and image tools'
+// outputs, which can be made again: the two fsyncs were 1–6 ms of every command (at 64×64 half
+// of the whole process; docs/performance.md).
 //
 // Until the rename, the temporary file's path sits in a fixed table that the SIGINT/SIGTERM/SIGHUP
 // handlers (installed with the first OutputFile, only where the signal's disposition is the
@@ -62,10 +69,10 @@ class OutputFile {
     std::FILE* stream() { return file_; }
     void Write(std::string_view bytes);
 
-    // Flushes, syncs and renames into place; empty string on success, else a one-line message
-    // and the temporary file is gone.
+    // Flushes, syncs (when OutputSync) and renames into place; empty string on success, else a
+    // one-line message and the temporary file is gone.
     std::string Commit();
-    // Flushes and syncs without renaming (the first half of Commit; CommitAll runs it on every
+    // Flushes (and syncs) without renaming (the first half of Commit; CommitAll runs it on every
     // file before renaming any).
     std::string Finish();
 
@@ -92,6 +99,15 @@ std::string CommitAll(const std::vector<OutputFile*>& files);
 // Writes `contents` to `path` through an OutputFile; "-" writes to standard output. Empty string
 // on success, else a one-line message (and no file is left behind).
 std::string WriteOutputFile(const std::string& path, std::string_view contents);
+
+// Whether Commit fsyncs each file and its directory (see the file comment): QUADRIX_FSYNC in the
+// environment when the process first asks (OutputSyncFromEnvironment), unless SetOutputSync
+// chose. OutputSyncCount: the fsyncs made so far by this process (tests).
+bool OutputSync();
+void SetOutputSync(bool sync);
+long OutputSyncCount();
+// QUADRIX_FSYNC's value: unset, empty or "0" is off; anything else is on.
+bool OutputSyncFromEnvironment(const char* value);
 
 // Unlinks every temporary output file in the making. Async-signal-safe (for a signal handler
 // that ends the process, e.g. the time limit's).
