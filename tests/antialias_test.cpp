@@ -479,6 +479,64 @@ TEST(Antialias, InteriorPixelsAreNotResampled) {
     EXPECT_LT(edgePixels, 160u * 120u / 4);
 }
 
+// The anti-aliasing pass against its definition (antialias.h), with shadows: every pixel that
+// FindEdgesAndShadingJumps marks is the box-filtered mean of its samples, each traced alone by
+// SampleTracer (no region, no depth hint) and shaded alone by PixelShader::At (no material
+// cache, no reach), bit for bit, bytes and floats; every other pixel is Shade's. The pass traces
+// a square's samples together and shades them with the reach of their box
+// (PixelShader::ReachOfBox): this checks that none of that changes a colour. The machined part
+// under its own lights and a low side light, whose shadows fall across the holes.
+TEST(Antialias, WithShadowsEqualsItsDefinition) {
+    PipelineResult r = RenderFile("examples/machined_part.uq", 160, 120);
+    scene::Light side;
+    side.kind = scene::Light::Kind::kParallel;
+    side.direction = {-1, .35, .2};
+    side.intensity = .5;
+    r.flat.lights.push_back(side);
+    for (int samples : {4, 16}) {
+        ShadeOptions so;
+        so.shadows = true;
+        so.aaSamples = samples;
+        const Image plain = Shade(r.frame, r.flat, so);
+        Image aa = plain;
+        const AntialiasStats st = Antialias(r.frame, r.flat, so, aa);
+        const std::vector<std::uint8_t> edges = FindEdgesAndShadingJumps(r.frame, plain);
+        const PixelShader shader(r.frame, r.flat, so);
+        const raycast::SampleTracer tracer(r.flat);
+        Image expected = plain;
+        std::size_t edgePixels = 0, shadowed = 0;
+        for (int j = 0; j < r.frame.height; ++j)
+            for (int i = 0; i < r.frame.width; ++i) {
+                if (!(edges[r.frame.Index(i, j)] & kEdgePixel)) continue;
+                ++edgePixels;
+                const scene::Color background = shader.Background(j, r.frame.height);
+                double red = 0, green = 0, blue = 0;
+                const std::vector<SubPixel> at = SamplePositions(samples, i, j);
+                for (const SubPixel& s : at) {
+                    const raycast::Sample hit = tracer.Trace(i + s.u, j + s.v);
+                    const scene::Color c = shader.At(i + s.u, j + s.v, hit.surface, hit.body,
+                                                     hit.depth, hit.normal, background);
+                    red += std::clamp(c.r, 0.0, 1.0);
+                    green += std::clamp(c.g, 0.0, 1.0);
+                    blue += std::clamp(c.b, 0.0, 1.0);
+                    if (hit.Covered() && shader.ShadowMask(i + s.u, j + s.v, hit.surface, hit.body,
+                                                           hit.depth, hit.normal) != 0)
+                        ++shadowed;
+                }
+                const double n = static_cast<double>(at.size());
+                StoreColor(expected, i, j, {red / n, green / n, blue / n});
+            }
+        EXPECT_EQ(st.edgePixels, edgePixels) << samples;
+        EXPECT_GT(edgePixels, 1000u) << samples;
+        EXPECT_GT(shadowed, 500u) << samples;  // samples with a light blocked
+        ASSERT_EQ(aa.pixels.size(), expected.pixels.size());
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < aa.pixels.size(); ++k)
+            differ += aa.pixels[k] != expected.pixels[k] || aa.linear[k] != expected.linear[k];
+        EXPECT_EQ(differ, 0u) << samples << " samples";
+    }
+}
+
 // An 8-bit output (ShadeOptions::linear false) reads only the bytes: the anti-aliasing and the
 // edge lines then write the bytes alone and make no Image::linear, and the bytes are those of the
 // run that keeps the floats (shadow boundaries included: their test reads the bytes or floats

@@ -149,13 +149,6 @@ scene::Color PixelShader::Background(int y, int height) const {
     return BackgroundAt(scene_, options_, y, height);
 }
 
-struct PixelShader::MaterialCache {
-    std::int32_t surface = Frame::kNone - 1, body = Frame::kNone - 1;
-    scene::Finish finish;
-    Reflectance reflectance;
-    scene::Color base;
-};
-
 ShadowOrigin PixelShader::OriginOf(std::int32_t surface, std::int32_t body) const {
     // The surface the ray starts on (shadows.h: its literal is tried first); none for a
     // freeform surface's pixel (its id is past the half-spaces: no literal to try).
@@ -212,7 +205,12 @@ void PixelShader::Reach(const Frame& frame, int y, int x0, int x1, ShadowReach& 
         zHi = z > zHi ? z : zHi;
     }
     if (!(zLo <= zHi)) return;  // nothing covered: no rays
-    const Vec3 lo{x0 + 0.5, y + 0.5, zLo}, hi{x1 - 0.5, y + 0.5, zHi};
+    ReachOfBox({x0 + 0.5, y + 0.5, zLo}, {x1 - 0.5, y + 0.5, zHi}, reach);
+}
+
+void PixelShader::ReachOfBox(const Vec3& lo, const Vec3& hi, ShadowReach& reach) const {
+    reach.light.assign(fixedRay_.size(), ShadowTester::kReachAll);
+    if (!shadowTester_ || !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return;
     for (std::size_t k = 0; k < fixedRay_.size(); ++k)
         if (fixedRay_[k]) reach.light[k] = shadowTester_->MayMeet(lo, hi, *fixedRay_[k]);
 }

@@ -96,8 +96,13 @@ class PixelShader {
                 std::shared_ptr<const WideNodeTrees> wide = nullptr);
     // What At() looks up per (surface, body) — finish, reflectance, colour — kept between calls
     // by a caller that shades runs of pixels (a row mostly repeats its neighbour's surface). One
-    // per thread; defined in shader.cpp.
-    struct MaterialCache;
+    // per thread.
+    struct MaterialCache {
+        std::int32_t surface = Frame::kNone - 1, body = Frame::kNone - 1;
+        scene::Finish finish;
+        Reflectance reflectance;
+        scene::Color base;
+    };
     // The reach of each light's shadow rays from a run of pixels (ShadowTester::MayMeet), made by
     // Reach for the pixels x0 .. x1 − 1 of row y and passed to At and ShadowMask for them: the
     // same answers, fewer boxes tested (shadows.h). Lights without one ray for every pixel (point
@@ -106,6 +111,9 @@ class PixelShader {
         std::vector<std::uint64_t> light;
     };
     void Reach(const Frame& frame, int y, int x0, int x1, ShadowReach& reach) const;
+    // The same for rays that start anywhere in the device box [lo, hi] (the anti-aliasing pass:
+    // the visible points of a square's samples). An empty box (lo > hi) leaves kReachAll.
+    void ReachOfBox(const Vec3& lo, const Vec3& hi, ShadowReach& reach) const;
     // Pixels per run of Reach in the shading loops. 16, 64 and 128 shaded the machined part at
     // 1280 × 720 on one thread within the noise (±1 ms of about 25 ms) of 32.
     static constexpr int kReachRun = 32;
