@@ -6,13 +6,13 @@
 namespace quadrix::eval {
 namespace {
 
-constexpr double kInf = HUGE_VAL;
+constexpr double kInfinite = HUGE_VAL;
 // Deeper trees are treated as empty: a guard against malformed (cyclic) node graphs, far beyond
 // any tree a scene produces (the Flattener merges chains of one operator into n-ary nodes).
 constexpr int kMaxDepth = 10000;
 
 Rect RectOf(const Box3& b) { return {b.lo.x, b.hi.x, b.lo.y, b.hi.y}; }
-double ZloOf(const Box3& b) { return std::isnan(b.lo.z) ? -kInf : b.lo.z; }
+double ZloOf(const Box3& b) { return std::isnan(b.lo.z) ? -kInfinite : b.lo.z; }
 
 Rect Intersect(const Rect& a, const Rect& b) {
     return {std::max(a.x0, b.x0), std::min(a.x1, b.x1), std::max(a.y0, b.y0), std::min(a.y1, b.y1)};
@@ -202,7 +202,7 @@ bool SolidLess(const ProgSolid& a, const ProgSolid& b) {
 void BuildProgram(const FlatScene& scene, CsgProgram& out) {
     out.Clear();
     std::vector<std::int32_t> stack;
-    const Rect everywhere{-kInf, kInf, -kInf, kInf};
+    const Rect everywhere{-kInfinite, kInfinite, -kInfinite, kInfinite};
     SceneSource src{scene};
     for (std::size_t s = 0; s < scene.solids.size(); ++s) {
         const FlatSolid& solid = scene.solids[s];

@@ -10,6 +10,7 @@
 #include <functional>
 #include <thread>
 
+#include "quadrix/engines/raycast/sample_batch.h"
 #include "quadrix/engines/raycast/sample_tracer.h"
 #include "quadrix/shade/edge_pixels.h"
 #include "quadrix/shade/row_shading.h"
@@ -65,6 +66,14 @@ double DepthHint(const Frame& f, int x, int y) {
         }
     return deepest == -HUGE_VAL ? HUGE_VAL : deepest + 2 + 1e-6 * std::fabs(deepest);
 }
+
+// One thread's state for the samples: the batcher's and the tracer's.
+struct SampleThread {
+    SampleThread(const raycast::SampleBatcher& batcher, const raycast::SampleTracer& tracer)
+        : batch(batcher), trace(tracer) {}
+    raycast::SampleBatcher::Scratch batch;
+    raycast::SampleScratch trace;
+};
 
 }  // namespace
 
@@ -141,6 +150,9 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     if (!wide && options.spatialIndex)  // one build for the shader's shadow rays and the tracer
         wide = WideNodeTrees::Shared(scene, true);
     const PixelShader shader(frame, scene, options, wide);
+    // The edge pixels go by squares of kRegion × kRegion pixels, in bands of kRegion rows (below).
+    constexpr int kRegion = 8;
+    const raycast::SampleBatcher batcher(scene, frame.width, frame.height, kRegion);
     const raycast::SampleTracer tracer(scene, options.spatialIndex, wide);
     // The unquantised values only when the output wants them (ShadeOptions::linear; an 8-bit
     // file reads the bytes): 11 MB of floats at 1280×720 otherwise made and filled for nothing.
@@ -158,60 +170,41 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                        static_cast<std::uint64_t>(frame.width) *
                            static_cast<std::uint64_t>(frame.height) *
                            static_cast<std::uint64_t>(side * side));
-    // The edge pixels go by squares of kRegion × kRegion pixels: the samples of a square's edge
-    // pixels lie in the rectangle around them, on which the tracer reduces each body it meets
-    // once (SampleTracer::SetRegion; the samples are the same as pixel by pixel).
-    constexpr int kRegion = 8;
+    // The edge pixels go by squares of kRegion × kRegion pixels, in bands of kRegion rows: the
+    // samples of a square's edge pixels are traced together, in batches of at most
+    // SampleBatcher::kMaxPoints, by the engine's sub-tile path (raycast/sample_batch.h: the
+    // program pruned to the band, then to the square, the bodies reduced there), then shaded.
+    // Where the square's program has a wide node (SampleBatcher::SetSquare) they are traced one
+    // by one by SampleTracer instead, its bodies reduced on the square (SetRegion) and its depth
+    // windows started from the nearby pixels' depth (DepthHint). Both give the exact samples,
+    // the same bits (the SampleBatch tests): only the time differs.
     const int bands = (frame.height + kRegion - 1) / kRegion;
-    // One scratch per thread, kept across its tasks (a region holds per-body state for the whole
-    // scene).
-    PerThread<raycast::SampleScratch> scratches(std::cref(tracer));
+    // One scratch per thread, kept across its tasks.
+    PerThread<SampleThread> scratches(std::cref(batcher), std::cref(tracer));
     // The squares k0 .. k1 − 1 (row by row: square k is in band k / across) with `scratch` (one
     // thread's).
     const int across = (frame.width + kRegion - 1) / kRegion;
-    auto squares = [&](int k0, int k1, raycast::SampleScratch& scratch) {
+    auto squares = [&](int k0, int k1, SampleThread& scratch) {
         std::size_t local = 0;
         auto edge = [&](int x, int y) { return (edges[frame.Index(x, y)] & kEdgePixel) != 0; };
         SamplePositionList positions;
         // A square's samples are traced first, all of them, then shaded: the shadow rays from
         // their visible points take the reach of the box around those points
         // (PixelShader::ReachOfBox; the same colours, fewer boxes and literals tested).
-        struct Traced {
-            SubPixel at;
-            raycast::Sample hit;
-        };
-        std::vector<Traced> traced;
+        std::vector<SubPixel> at;
+        std::vector<double> xs, ys;
+        std::vector<raycast::Sample> hits;
         PixelShader::ShadowReach reach;
         PixelShader::MaterialCache cache;
-        // Pixel (x, y)'s samples traced into `traced`, the box [lo, hi] grown by their visible
-        // points; false once the budget is spent.
-        Vec3 lo, hi;
-        auto trace = [&](int x, int y) {
-            if (budget.Exhausted()) return false;
-            const std::uint64_t work = tRayLiterals;
-            const double hint = DepthHint(frame, x, y);
-            SamplePositionsInto(options.aaSamples, x, y, positions);
-            for (int p = 0; p < positions.n; ++p) {
-                const SubPixel& s = positions.at[static_cast<std::size_t>(p)];
-                const double px = x + s.u, py = y + s.v;
-                traced.push_back({s, tracer.Trace(px, py, scratch, hint)});
-                const raycast::Sample& hit = traced.back().hit;
-                if (!hit.Covered()) continue;
-                lo = {std::min(lo.x, px), std::min(lo.y, py), std::min(lo.z, hit.depth)};
-                hi = {std::max(hi.x, px), std::max(hi.y, py), std::max(hi.z, hit.depth)};
-            }
-            budget.Spend(tRayLiterals - work);
-            return true;
-        };
-        // Pixel (x, y)'s samples, from traced[t] on, shaded and filtered into the image.
+        // Pixel (x, y)'s samples, from at[t] and hits[t] on, shaded and filtered into the image.
         auto resample = [&](int x, int y, const scene::Color& background, std::size_t& t) {
             if (budget.Exhausted()) return false;
             const std::uint64_t work = tRayLiterals;
             ++local;
             double r = 0, g = 0, b = 0, wsum = 0;
             for (int p = 0; p < positions.n; ++p, ++t) {
-                const SubPixel& s = traced[t].at;
-                const raycast::Sample& hit = traced[t].hit;
+                const SubPixel& s = at[t];
+                const raycast::Sample& hit = hits[t];
                 const scene::Color c = shader.At(x + s.u, y + s.v, hit.surface, hit.body, hit.depth,
                                                  hit.normal, background, &cache, &reach);
                 const double wgt =
@@ -225,6 +218,7 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
             budget.Spend(tRayLiterals - work);
             return true;
         };
+        int band = -1;
         auto square = [&](int x0, int y0) {
             const int x1 = std::min(frame.width, x0 + kRegion);
             const int y1 = std::min(frame.height, y0 + kRegion);
@@ -240,17 +234,57 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
                     }
             }
             if (xhi < xlo) return true;
+            if (budget.Exhausted()) return false;
             // Sample positions are x + u, y + v with u, v in (0, 1).
-            tracer.SetRegion({static_cast<double>(xlo), static_cast<double>(xhi + 1),
-                              static_cast<double>(ylo), static_cast<double>(yhi + 1)},
-                             scratch);
-            traced.clear();
-            lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
-            hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+            if (y0 / kRegion != band) {
+                band = y0 / kRegion;
+                batcher.SetBand(band, scratch.batch);
+            }
+            const eval::Rect region{static_cast<double>(xlo), static_cast<double>(xhi + 1),
+                                    static_cast<double>(ylo), static_cast<double>(yhi + 1)};
+            const bool wideHere = batcher.SetSquare(region, scratch.batch);
+            if (wideHere) tracer.SetRegion(region, scratch.trace);
+            at.clear();
+            xs.clear();
+            ys.clear();
             for (int y = ylo; y <= yhi; ++y) {
                 if (!RowShaded(rows, y)) continue;
-                for (int x = xlo; x <= xhi; ++x)
-                    if (edge(x, y) && !trace(x, y)) return false;
+                for (int x = xlo; x <= xhi; ++x) {
+                    if (!edge(x, y)) continue;
+                    SamplePositionsInto(options.aaSamples, x, y, positions);
+                    for (int p = 0; p < positions.n; ++p) {
+                        const SubPixel& s = positions.at[static_cast<std::size_t>(p)];
+                        at.push_back(s);
+                        xs.push_back(x + s.u);
+                        ys.push_back(y + s.v);
+                    }
+                }
+            }
+            // Traced in batches (or one by one); the box of their visible points for the shadows'
+            // reach.
+            hits.resize(at.size());
+            const std::uint64_t work = tRayLiterals;
+            if (wideHere) {
+                double hint = HUGE_VAL;
+                for (std::size_t t = 0; t < at.size(); ++t) {
+                    if (t % static_cast<std::size_t>(positions.n) == 0)  // a pixel's first sample
+                        hint = DepthHint(frame, static_cast<int>(std::floor(xs[t])),
+                                         static_cast<int>(std::floor(ys[t])));
+                    hits[t] = tracer.Trace(xs[t], ys[t], scratch.trace, hint);
+                }
+            } else {
+                for (std::size_t b = 0; b < at.size(); b += raycast::SampleBatcher::kMaxPoints) {
+                    const auto n = static_cast<int>(
+                        std::min<std::size_t>(raycast::SampleBatcher::kMaxPoints, at.size() - b));
+                    batcher.Trace(xs.data() + b, ys.data() + b, n, hits.data() + b, scratch.batch);
+                }
+            }
+            budget.Spend(tRayLiterals - work);
+            Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+            for (std::size_t t = 0; t < hits.size(); ++t) {
+                if (!hits[t].Covered()) continue;
+                lo = {std::min(lo.x, xs[t]), std::min(lo.y, ys[t]), std::min(lo.z, hits[t].depth)};
+                hi = {std::max(hi.x, xs[t]), std::max(hi.y, ys[t]), std::max(hi.z, hits[t].depth)};
             }
             shader.ReachOfBox(lo, hi, reach);
             std::size_t t = 0;
@@ -264,12 +298,12 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
         };
         for (int k = k0; k < k1; ++k)
             if (!square(k % across * kRegion, k / across * kRegion)) break;
-        tracer.ClearRegion(scratch);
+        tracer.ClearRegion(scratch.trace);
         count += local;
     };
     if (options.aaHelperThread && SerialLoopsOnThisThread() && bands >= 2) {
         // A square at a time, to this thread or the helper, whichever is free first.
-        raycast::SampleScratch helperScratch(tracer);
+        SampleThread helperScratch(batcher, tracer);
         const std::thread::id self = std::this_thread::get_id();
         OnTwoThreads(bands * across, [&](int k) {
             squares(k, k + 1,

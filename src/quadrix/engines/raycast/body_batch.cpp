@@ -108,16 +108,23 @@ void BatchLiteral(const SceneTables& tables, Counters& counters, const double* x
 
 void BodyBatches::WantIfHalfCovered(std::int32_t node, const Rect& xy) {
     if (nodeBatch_[static_cast<std::size_t>(node)] != kNoBatchWanted || !settings_.batch) return;
-    int nx = 0, ny = 0;
-    for (int i = 0; i < tileW_; ++i) {
-        const double x = tileX0_ + i + 0.5;
-        nx += x >= xy.x0 && x <= xy.x1;
+    int covered = 0;  // of the pixels (points)
+    if (grid_) {
+        int nx = 0, ny = 0;
+        for (int i = 0; i < tileW_; ++i) {
+            const double x = tileX0_ + i + 0.5;
+            nx += x >= xy.x0 && x <= xy.x1;
+        }
+        for (int j = 0; j < tileH_; ++j) {
+            const double y = tileY0_ + j + 0.5;
+            ny += y >= xy.y0 && y <= xy.y1;
+        }
+        covered = nx * ny;
+    } else {
+        for (int p = 0; p < tileW_; ++p)
+            covered += xs_[p] >= xy.x0 && xs_[p] <= xy.x1 && ys_[p] >= xy.y0 && ys_[p] <= xy.y1;
     }
-    for (int j = 0; j < tileH_; ++j) {
-        const double y = tileY0_ + j + 0.5;
-        ny += y >= xy.y0 && y <= xy.y1;
-    }
-    if (2 * nx * ny < tileW_ * tileH_) return;
+    if (2 * covered < tileW_ * tileH_) return;
     // (Room for its batch now: Trace may compute it even if compiling the kernel fails.)
     nodeBatch_[static_cast<std::size_t>(node)] = kNoBatch;
     batchOn_ = true;

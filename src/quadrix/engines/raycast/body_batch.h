@@ -45,6 +45,12 @@ class BodyBatches {
     // Called by RenderTile before the pixels of a sub-tile [x0, x1) × [y0, y1): the bodies whose
     // bounds cover the whole sub-tile are wanted (batched when first needed).
     void Start(const CsgProgram& program, int x0, int y0, int x1, int y1);
+    // The same for n <= kLanePixels points (xs[p], ys[p]) of the closed rectangle r that are not
+    // pixel centres (the anti-aliasing's samples, sample_batch.h): pixel p is point p. Nothing
+    // here depends on the points forming a grid; only which bodies are batched (a policy) looks
+    // at them.
+    void StartAt(const CsgProgram& program, const Rect& r, const double* xs, const double* ys,
+                 int n);
 
     // Some body of the sub-tile may have a batch (and batch=on).
     bool On() const { return batchOn_; }
@@ -85,7 +91,7 @@ class BodyBatches {
         return h;
     }
 
-    // The current pixel, row-major in the sub-tile.
+    // The current pixel, row-major in the sub-tile (Start's pixels only).
     void SetPixel(int i, int j) {
         pixel_ = static_cast<std::size_t>((j - tileY0_) * tileW_ + (i - tileX0_));
     }
@@ -99,6 +105,8 @@ class BodyBatches {
   private:
     // The batch of the body of program node `node` (Find): its index.
     std::int32_t Compute(std::int32_t node);
+    // Start's and StartAt's shared part: the bodies whose bounds contain r are wanted.
+    inline void WantCovering(const CsgProgram& program, const Rect& r);
 
     const SceneTables& tables_;
     const Settings settings_;
@@ -114,21 +122,16 @@ class BodyBatches {
     std::size_t pixel_ = 0;          // the current pixel, row-major in the sub-tile
     std::int32_t singleSolid_ = -1;  // the solid of SingleBodyBatch's body
     double xs_[kLanePixels] = {}, ys_[kLanePixels] = {};
+    bool grid_ = true;  // Start's pixel centres (else StartAt's points)
 };
 
-// Per sub-tile (tiling.cpp), so defined here.
-inline void BodyBatches::Start(const CsgProgram& program, int x0, int y0, int x1, int y1) {
-    tileX0_ = x0;
-    tileY0_ = y0;
-    tileW_ = x1 - x0;
-    tileH_ = y1 - y0;
+inline void BodyBatches::WantCovering(const CsgProgram& program, const Rect& r) {
     batchesUsed_ = 0;
     extraBatches_ = 0;
     nodeBatch_.assign(program.nodes.size(), kNoBatchWanted);
     // Only bodies whose bounds cover the whole sub-tile are batched: they are likely wanted at
     // most of its pixels (a small body in a big union — spheres — is evaluated where needed
     // only).
-    const Rect r = {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5};
     std::size_t wanted = 0;
     for (std::size_t n = 0; n < program.nodes.size(); ++n) {
         const ProgNode& node = program.nodes[n];
@@ -141,11 +144,34 @@ inline void BodyBatches::Start(const CsgProgram& program, int x0, int y0, int x1
     batchOn_ = wanted > 0 && settings_.batch;
     bodyBatchesWanted_ = wanted;
     if (batches_.size() < wanted) batches_.resize(wanted);
+}
+
+// Per sub-tile (tiling.cpp), so defined here.
+inline void BodyBatches::Start(const CsgProgram& program, int x0, int y0, int x1, int y1) {
+    tileX0_ = x0;
+    tileY0_ = y0;
+    tileW_ = x1 - x0;
+    tileH_ = y1 - y0;
+    grid_ = true;
+    WantCovering(program, {x0 + 0.5, x1 - 0.5, y0 + 0.5, y1 - 0.5});
     for (int j = 0; j < tileH_; ++j)
         for (int i = 0; i < tileW_; ++i) {
             xs_[j * tileW_ + i] = x0 + i + 0.5;
             ys_[j * tileW_ + i] = y0 + j + 0.5;
         }
+}
+
+inline void BodyBatches::StartAt(const CsgProgram& program, const Rect& r, const double* xs,
+                                 const double* ys, int n) {
+    tileX0_ = tileY0_ = 0;
+    tileW_ = n;
+    tileH_ = 1;
+    grid_ = false;
+    WantCovering(program, r);
+    for (int p = 0; p < n; ++p) {
+        xs_[p] = xs[p];
+        ys_[p] = ys[p];
+    }
 }
 
 }  // namespace quadrix::raycast
