@@ -17,9 +17,11 @@
 //    from each sample's own point).
 //    Pixels near freeform surfaces (drawn by isocurves, which cannot be traced at a point) are
 //    left as they are.
-// 2. Samples. An edge pixel (i, j) is re-rendered at N sub-pixel positions (i + u, j + v) by the
-//    exact ray tracer of engine raycast (engines/raycast/sample_tracer.h) and each sample is
-//    shaded like a pixel (PixelShader). Positions are stratified: N = k² (4, 16, 64), one sample
+// 2. Samples. An edge pixel (i, j) is re-rendered at N sub-pixel positions (i + u, j + v) by
+//    engine raycast, exactly: the samples of the edge pixels of an 8 × 8 square together by the
+//    engine's sub-tile path (engines/raycast/sample_batch.h), or one by one by its sample tracer
+//    (sample_tracer.h, the definition of a sample) where the square holds a wide union; each
+//    sample is shaded like a pixel (PixelShader). Positions are stratified: N = k² (4, 16, 64), one sample
 //    in each of the k × k cells and, within the cells, one in each of the N columns and N rows of
 //    the fine grid (a Latin square, "multi-jittered" in Chiu, Shirley and Wang's terms; here the
 //    sample sits at the centre of its fine cell). The fine-column order inside each coarse column

@@ -1,7 +1,9 @@
 // Engine `raycast` at arbitrary points of the image plane: the visible point of the ray through a
-// device position (x, y) that need not be a pixel centre, for the anti-aliasing pass
-// (shade/antialias.h), which traces a few sub-pixel samples of the pixels where the Frame shows an
-// edge, and for tests that compare a sample with the engine's pixel.
+// device position (x, y) that need not be a pixel centre. It is the definition of a sample: the
+// anti-aliasing pass (shade/antialias.h), which traces a few sub-pixel samples of the pixels where
+// the Frame shows an edge, takes its samples from the engine's sub-tile path (sample_batch.h,
+// tested equal to this tracer) and from this tracer where a square of them holds a wide union
+// (its depth windows below are faster there); tests compare a sample with the engine's pixel.
 //
 // Same definitions as the engine (raycast.h, trace.h), evaluated the simplest way: the ray
 // x(t) = (x, y, t) meets each literal in the set LiteralOnRay gives (eval/ray_literal.h, from the
