@@ -21,12 +21,12 @@
 //    engine raycast, exactly: the samples of the edge pixels of an 8 × 8 square together by the
 //    engine's sub-tile path (engines/raycast/sample_batch.h), or one by one by its sample tracer
 //    (sample_tracer.h, the definition of a sample) where the square holds a wide union; each
-//    sample is shaded like a pixel (PixelShader). Positions are stratified: N = k² (4, 16, 64), one sample
-//    in each of the k × k cells and, within the cells, one in each of the N columns and N rows of
-//    the fine grid (a Latin square, "multi-jittered" in Chiu, Shirley and Wang's terms; here the
-//    sample sits at the centre of its fine cell). The fine-column order inside each coarse column
-//    and the fine-row order inside each coarse row are permutations drawn per pixel from a hash
-//    of (i, j), so the picture is deterministic and edges at any angle see no regular pattern.
+//    sample is shaded like a pixel (PixelShader). Positions are stratified: N = k² (4, 16, 64), one
+//    sample in each of the k × k cells and, within the cells, one in each of the N columns and N
+//    rows of the fine grid (a Latin square, "multi-jittered" in Chiu, Shirley and Wang's terms;
+//    here the sample sits at the centre of its fine cell). The fine-column order inside each coarse
+//    column and the fine-row order inside each coarse row are permutations drawn per pixel from a
+//    hash of (i, j), so the picture is deterministic and edges at any angle see no regular pattern.
 //    An axis-aligned edge is resolved to 1/N of a pixel.
 // 3. Filter. Box (the mean of the samples: the pixel's area coverage) or Mitchell–Netravali
 //    (B = C = ⅓) weights of each sample's offset from the pixel centre, the filter truncated to

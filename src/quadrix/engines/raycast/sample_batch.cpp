@@ -43,13 +43,13 @@ void SampleBatcher::SetBand(int band, Scratch& s) const {
     const auto last = static_cast<int>(bands_.Bins()) - 1;
     band = std::clamp(band, 0, last);
     s.bandRect = BandRect(band);
-    PruneProgram(full_, bands_, static_cast<std::size_t>(band), s.bandRect, s.band,
-                 s.worker.stack);
+    PruneProgram(full_, bands_, static_cast<std::size_t>(band), s.bandRect, s.band, s.worker.stack);
     std::vector<Rect>& squares = s.worker.subTileRects;
     squares.clear();
     for (int x0 = 0; x0 < width_; x0 += side_)
-        squares.push_back({static_cast<double>(x0), static_cast<double>(std::min(width_, x0 + side_)),
-                           s.bandRect.y0, s.bandRect.y1});
+        squares.push_back({static_cast<double>(x0),
+                           static_cast<double>(std::min(width_, x0 + side_)), s.bandRect.y0,
+                           s.bandRect.y1});
     BinProgram(s.band, squares, true, s.bins);
 }
 
@@ -57,8 +57,8 @@ bool SampleBatcher::SetSquare(const Rect& r, Scratch& s) const {
     // The square that holds r: its bin lists every operand that may meet it, so the program
     // pruned from it is the one pruned from the whole band (csg_program.h ProgramBins).
     const std::size_t nb = s.bins.Bins();
-    const auto k = static_cast<std::size_t>(std::clamp(
-        std::floor(r.x0 / side_), 0.0, static_cast<double>(nb - 1)));
+    const auto k = static_cast<std::size_t>(
+        std::clamp(std::floor(r.x0 / side_), 0.0, static_cast<double>(nb - 1)));
     s.square = r;
     s.bin = k;
     s.prepared = false;
@@ -101,7 +101,7 @@ void SampleBatcher::Trace(const double* xs, const double* ys, int n, Sample* out
     w.tracer.SetCuts(program);
     w.reduction.PrepareTile(program, r);
     if (w.reduction.AllEmpty(program, r)) return;
-    // DrawSubTilePixels' rule (tiling.cpp), point by point.
+    // A sub-tile's rule (worker.h SubTileHit), point by point.
     w.batches.StartAt(program, r, xs, ys, n);
     const BodyBatch* single = w.batches.SingleBodyBatch(program, r);
     const bool kernel = !single && w.kernel.Compile(program, r);
@@ -110,21 +110,8 @@ void SampleBatcher::Trace(const double* xs, const double* ys, int n, Sample* out
     for (int p = 0; p < n; ++p) {
         const double x = xs[p], y = ys[p];
         w.batches.SetPixelIndex(static_cast<std::size_t>(p));
-        Hit hit;
-        const std::uint8_t state = single ? single->state[p] : BodyBatch::kScalar;
-        if (state == BodyBatch::kEmpty) {
-            // nothing visible
-        } else if (state == BodyBatch::kOne) {
-            hit = w.batches.FirstVisibleOfOne(*single, static_cast<std::size_t>(p));
-        } else if (state == BodyBatch::kCut) {
-            if (single->lo[p] < single->hi[p])
-                hit = w.batches.FirstVisibleOfOne(*single, static_cast<std::size_t>(p));
-            if (!(hit.t < single->cut[p])) hit = w.tracer.Trace(program, x, y);
-        } else if (kernel) {
-            hit = kernelHits[p];
-        } else {
-            hit = w.tracer.Trace(program, x, y);
-        }
+        const Hit hit = SubTileHit(w, program, single, kernel ? kernelHits : nullptr,
+                                   static_cast<std::size_t>(p), x, y);
         if (hit.tag < 0) continue;
         // SampleTracer::Trace's Sample of the same visible point.
         const Tag& tag = tables_.TagOf(hit.tag);

@@ -52,12 +52,12 @@ class SampleBatcher {
       private:
         friend class SampleBatcher;
         Worker worker;
-        CsgProgram band;      // the program pruned to the band (SetBand)
-        ProgramBins bins;     // band's, over the squares
-        Rect bandRect;           // the band
-        Rect square;             // SetSquare's rectangle
-        std::size_t bin = 0;     // the band's square (bin) that holds it
-        bool prepared = false;   // the program pruned to it, its bodies reduced (Prepare)
+        CsgProgram band;        // the program pruned to the band (SetBand)
+        ProgramBins bins;       // band's, over the squares
+        Rect bandRect;          // the band
+        Rect square;            // SetSquare's rectangle
+        std::size_t bin = 0;    // the band's square (bin) that holds it
+        bool prepared = false;  // the program pruned to it, its bodies reduced (Prepare)
     };
 
     // The next points lie in band `band`: [0, width] × [band·side, (band + 1)·side].

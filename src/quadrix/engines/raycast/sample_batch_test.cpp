@@ -51,8 +51,10 @@ void CompareOnScene(const FlatScene& scene, int w, int h, const std::string& nam
                                static_cast<double>(y0), static_cast<double>(y1)},
                               scratch);
             for (int kind = 0; kind < 4; ++kind) {
-                const int n = kind == 0 ? 1 : kind == 1 ? 8 : kind == 2 ? SampleBatcher::kMaxPoints
-                                                                         : 16;
+                const int n = kind == 0   ? 1
+                              : kind == 1 ? 8
+                              : kind == 2 ? SampleBatcher::kMaxPoints
+                                          : 16;
                 const double cx = x0 + unit(rng) * (x1 - x0), cy = y0 + unit(rng) * (y1 - y0);
                 const double rowY = y0 + unit(rng) * (y1 - y0);
                 for (int p = 0; p < n; ++p) {
@@ -91,8 +93,7 @@ TEST(SampleBatch, EqualsSampleTracerOnEveryExample) {
         for (const auto& e :
              std::filesystem::directory_iterator(std::string(QUADRIX_SOURCE_DIR) + "/" + dir))
             // (*_tubes.uq hold definitions only, drawn by the gallery scene that reads them.)
-            if (e.path().extension() == ".uq" &&
-                !e.path().stem().string().ends_with("_tubes"))
+            if (e.path().extension() == ".uq" && !e.path().stem().string().ends_with("_tubes"))
                 files.push_back(e.path().string());
     std::sort(files.begin(), files.end());
     ASSERT_GE(files.size(), 12u);

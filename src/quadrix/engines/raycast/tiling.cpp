@@ -29,8 +29,7 @@ void WriteHit(const FlatScene& scene, const SceneTables& tables, const Hit& hit,
 }
 
 // The pixels of a sub-tile [sx, ex) × [sy, ey) whose program is w.subTileProgram, after the
-// reductions and proofs: each by the first of these that applies — the sub-tile's single body
-// (its batch), the sub-tile's kernel, Trace.
+// reductions and proofs: each by SubTileHit's rule (worker.h).
 void DrawSubTilePixels(const FlatScene& scene, const SceneTables& tables, int sx, int sy, int ex,
                        int ey, Worker& w, const PixelRows& out) {
     const Rect r = Centres(sx, sy, ex, ey);
@@ -44,24 +43,10 @@ void DrawSubTilePixels(const FlatScene& scene, const SceneTables& tables, int sx
     if (kernel) w.kernel.RunTile(kernelHits);
     for (int j = sy; j < ey; ++j) {
         for (int i = sx; i < ex; ++i) {
-            double x = i + 0.5, y = j + 0.5;
+            const double x = i + 0.5, y = j + 0.5;
             w.batches.SetPixel(i, j);
-            const std::size_t p = w.batches.Pixel();
-            Hit hit;
-            const std::uint8_t state = single ? single->state[p] : BodyBatch::kScalar;
-            if (state == BodyBatch::kEmpty) {
-                // background
-            } else if (state == BodyBatch::kOne) {
-                hit = w.batches.FirstVisibleOfOne(*single, p);
-            } else if (state == BodyBatch::kCut) {
-                // The first interval is exact below the cut; beyond it, trace.
-                if (single->lo[p] < single->hi[p]) hit = w.batches.FirstVisibleOfOne(*single, p);
-                if (!(hit.t < single->cut[p])) hit = w.tracer.Trace(w.subTileProgram, x, y);
-            } else if (kernel) {
-                hit = kernelHits[p];
-            } else {
-                hit = w.tracer.Trace(w.subTileProgram, x, y);
-            }
+            const Hit hit = SubTileHit(w, w.subTileProgram, single, kernel ? kernelHits : nullptr,
+                                       w.batches.Pixel(), x, y);
             WriteHit(scene, tables, hit, i, j, x, y, out, w.counters);
         }
     }

@@ -46,4 +46,25 @@ class Worker {
     TileBuffer tile;
 };
 
+// The visible point of pixel p at (x, y) of a sub-tile whose program is `program`, by the first of
+// these that applies (tiling.cpp DrawSubTilePixels; also the samples of sample_batch.h): the
+// sub-tile's single body (`single`: its batch; kScalar pixels, and kCut pixels with nothing
+// visible below the cut, are traced), the sub-tile's kernel (`kernelHits`, or null when it was
+// not compiled), Trace. The current pixel (BodyBatches::SetPixel/SetPixelIndex) is p.
+inline Hit SubTileHit(Worker& w, const CsgProgram& program, const BodyBatch* single,
+                      const Hit* kernelHits, std::size_t p, double x, double y) {
+    const std::uint8_t state = single ? single->state[p] : BodyBatch::kScalar;
+    if (state == BodyBatch::kEmpty) return {};
+    if (state == BodyBatch::kOne) return w.batches.FirstVisibleOfOne(*single, p);
+    if (state == BodyBatch::kCut) {
+        // The first interval is exact below the cut; beyond it, trace.
+        Hit hit;
+        if (single->lo[p] < single->hi[p]) hit = w.batches.FirstVisibleOfOne(*single, p);
+        if (!(hit.t < single->cut[p])) hit = w.tracer.Trace(program, x, y);
+        return hit;
+    }
+    if (kernelHits) return kernelHits[p];
+    return w.tracer.Trace(program, x, y);
+}
+
 }  // namespace quadrix::raycast
