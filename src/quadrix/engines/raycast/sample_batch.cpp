@@ -14,6 +14,18 @@ std::uint64_t Literals(const Counters& c) {
     return c.literals.planes + c.literals.quadrics + c.literals.quartics;
 }
 
+// Whether bin k of `bins` holds more than SampleBatcher::kWideOperands operands of one binned
+// node.
+bool WideBin(const ProgramBins& bins, std::size_t k) {
+    const std::size_t nb = bins.Bins();
+    const std::size_t binned = bins.starts.size() / (nb + 1);
+    for (std::size_t b = 0; b < binned; ++b) {
+        const std::int32_t* starts = bins.starts.data() + b * (nb + 1);
+        if (starts[k + 1] - starts[k] > SampleBatcher::kWideOperands) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 SampleBatcher::SampleBatcher(const FlatScene& scene, int width, int height, int side,
@@ -41,9 +53,18 @@ SampleBatcher::Scratch::Scratch(const SampleBatcher& batcher)
 
 void SampleBatcher::SetBand(int band, Scratch& s) const {
     const auto last = static_cast<int>(bands_.Bins()) - 1;
-    band = std::clamp(band, 0, last);
-    s.bandRect = BandRect(band);
-    PruneProgram(full_, bands_, static_cast<std::size_t>(band), s.bandRect, s.band, s.worker.stack);
+    s.bandIndex = std::clamp(band, 0, last);
+    s.bandRect = BandRect(s.bandIndex);
+    s.bandReady = s.prepared = false;
+    // A band with a wide node (the full program's bins count its operands there) has its squares
+    // traced by SampleTracer (SetSquare): it is pruned and binned only if Trace is called.
+    s.bandWide = WideBin(bands_, static_cast<std::size_t>(s.bandIndex));
+    if (!s.bandWide) PrepareBand(s);
+}
+
+void SampleBatcher::PrepareBand(Scratch& s) const {
+    PruneProgram(full_, bands_, static_cast<std::size_t>(s.bandIndex), s.bandRect, s.band,
+                 s.worker.stack);
     std::vector<Rect>& squares = s.worker.subTileRects;
     squares.clear();
     for (int x0 = 0; x0 < width_; x0 += side_)
@@ -51,29 +72,26 @@ void SampleBatcher::SetBand(int band, Scratch& s) const {
                            static_cast<double>(std::min(width_, x0 + side_)), s.bandRect.y0,
                            s.bandRect.y1});
     BinProgram(s.band, squares, true, s.bins);
+    s.bandReady = true;
 }
 
 bool SampleBatcher::SetSquare(const Rect& r, Scratch& s) const {
     // The square that holds r: its bin lists every operand that may meet it, so the program
     // pruned from it is the one pruned from the whole band (csg_program.h ProgramBins).
-    const std::size_t nb = s.bins.Bins();
-    const auto k = static_cast<std::size_t>(
-        std::clamp(std::floor(r.x0 / side_), 0.0, static_cast<double>(nb - 1)));
+    const int squares = (width_ + side_ - 1) / side_;
+    s.bin = static_cast<std::size_t>(
+        std::clamp(std::floor(r.x0 / side_), 0.0, static_cast<double>(squares - 1)));
     s.square = r;
-    s.bin = k;
     s.prepared = false;
-    // A wide node: one of the band's binned nodes with more operands in this square's bin than
-    // ProgramBins::kBinnedOperands (read from the bins, before anything is pruned).
-    const auto binned = s.bins.starts.size() / (nb + 1);
-    for (std::size_t b = 0; b < binned; ++b) {
-        const std::int32_t* starts = s.bins.starts.data() + b * (nb + 1);
-        if (starts[k + 1] - starts[k] > ProgramBins::kBinnedOperands) return true;
-    }
+    // A wide node in the band, or in this square's bin of the band's program (read from the
+    // bins, before anything is pruned).
+    if (s.bandWide || WideBin(s.bins, s.bin)) return true;
     Prepare(s);
     return false;
 }
 
 void SampleBatcher::Prepare(Scratch& s) const {
+    if (!s.bandReady) PrepareBand(s);
     Worker& w = s.worker;
     PruneProgram(s.band, s.bins, s.bin, s.square, w.tileProgram, w.stack);
     w.reduction.PrepareStrip(w.tileProgram, s.square);

@@ -38,6 +38,9 @@ namespace quadrix::raycast {
 class SampleBatcher {
   public:
     static constexpr int kMaxPoints = kLanePixels;
+    // A node of more operands than this in a band or square makes it "wide" (SetSquare). The
+    // machined part's difference has 9 subtrahends; a cluster of spheres, hundreds.
+    static constexpr std::int32_t kWideOperands = 32;
 
     // For points of the image [0, width] × [0, height], which is cut into bands of `side` rows
     // and each band into squares `side` wide (the last ones shorter). The whole program is binned
@@ -52,22 +55,24 @@ class SampleBatcher {
       private:
         friend class SampleBatcher;
         Worker worker;
-        CsgProgram band;        // the program pruned to the band (SetBand)
-        ProgramBins bins;       // band's, over the squares
-        Rect bandRect;          // the band
-        Rect square;            // SetSquare's rectangle
-        std::size_t bin = 0;    // the band's square (bin) that holds it
-        bool prepared = false;  // the program pruned to it, its bodies reduced (Prepare)
+        int bandIndex = 0;       // SetBand's band
+        Rect bandRect;           // ... its rectangle
+        bool bandWide = false;   // ... holds a wide node (SetBand)
+        bool bandReady = false;  // `band` and `bins` made (PrepareBand)
+        CsgProgram band;         // the program pruned to the band
+        ProgramBins bins;        // band's, over the squares
+        Rect square;             // SetSquare's rectangle
+        std::size_t bin = 0;     // the band's square (bin) that holds it
+        bool prepared = false;   // the program pruned to it, its bodies reduced (Prepare)
     };
 
     // The next points lie in band `band`: [0, width] × [band·side, (band + 1)·side].
     void SetBand(int band, Scratch& s) const;
     // ... and in the closed rectangle `r`, inside one of the band's squares. Returns whether the
     // program there has a wide node (a union, or a difference's subtrahends, of more than
-    // ProgramBins::kBinnedOperands operands, as the band's bins count them for the square): the
-    // kernel does not take it, and SampleTracer's depth windows trace such a cluster (10,000
-    // spheres) faster than Trace's cuts do here. The program is then pruned to r and its bodies
-    // reduced only if Trace is called.
+    // kWideOperands operands, as the bins count them for the band or, else, for the square): the kernel does not take it, and SampleTracer's depth windows trace such a
+    // cluster (10,000 spheres) faster than Trace's cuts do here. The band and the square are then
+    // pruned, and the square's bodies reduced, only if Trace is called.
     bool SetSquare(const Rect& r, Scratch& s) const;
     // out[p] = the visible point of the ray through (xs[p], ys[p]), p < n <= kMaxPoints, every
     // point inside the square. Adds the literals it evaluates to tRayLiterals (util/ray_work.h).
@@ -75,6 +80,9 @@ class SampleBatcher {
 
   private:
     Rect BandRect(int band) const;
+    // The program pruned to the band and binned over its squares (SetBand, or Prepare in a wide
+    // band).
+    void PrepareBand(Scratch& s) const;
     // The program pruned to the square and its bodies reduced there (SetSquare, or the first
     // Trace after a SetSquare that found a wide node).
     void Prepare(Scratch& s) const;

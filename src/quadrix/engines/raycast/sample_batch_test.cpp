@@ -29,17 +29,18 @@ bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // Every square of side `side` of a w × h image, band by band as the anti-aliasing pass goes: a
 // few batches of random points in each (a batch of one point, of a row of points, of up to
-// kMaxPoints points spread over the square, and of points crowded near one spot). `covered`:
-// the number of covered samples compared.
+// kMaxPoints points spread over the square, and of points crowded near one spot), traced by the
+// batcher whether or not SetSquare found a wide node there. `covered`: the number of covered
+// samples compared; `wide`: the squares SetSquare said hold a wide node.
 void CompareOnScene(const FlatScene& scene, int w, int h, const std::string& name, int side,
-                    int& covered) {
+                    int& covered, int& wide) {
     const SampleBatcher batcher(scene, w, h, side);
     SampleBatcher::Scratch scratch(batcher);
     const SampleTracer tracer(scene);
     SampleScratch tracerScratch(tracer);
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    covered = 0;
+    covered = wide = 0;
     double xs[SampleBatcher::kMaxPoints], ys[SampleBatcher::kMaxPoints];
     Sample got[SampleBatcher::kMaxPoints];
     for (int y0 = 0; y0 < h; y0 += side) {
@@ -47,9 +48,9 @@ void CompareOnScene(const FlatScene& scene, int w, int h, const std::string& nam
         batcher.SetBand(y0 / side, scratch);
         for (int x0 = 0; x0 < w; x0 += side) {
             const int x1 = std::min(w, x0 + side);
-            batcher.SetSquare({static_cast<double>(x0), static_cast<double>(x1),
-                               static_cast<double>(y0), static_cast<double>(y1)},
-                              scratch);
+            wide += batcher.SetSquare({static_cast<double>(x0), static_cast<double>(x1),
+                                       static_cast<double>(y0), static_cast<double>(y1)},
+                                      scratch);
             for (int kind = 0; kind < 4; ++kind) {
                 const int n = kind == 0   ? 1
                               : kind == 1 ? 8
@@ -103,10 +104,11 @@ TEST(SampleBatch, EqualsSampleTracerOnEveryExample) {
         po.width = 96;
         po.height = 72;
         const FlatScene scene = Load(po);
-        int covered = 0;
-        CompareOnScene(scene, 96, 72, f, 8, covered);
+        int covered = 0, wide = 0;
+        CompareOnScene(scene, 96, 72, f, 8, covered, wide);
         if (HasFatalFailure()) return;
         EXPECT_GT(covered, 100) << f;
+        EXPECT_EQ(wide, 0) << f;  // no union of more than kWideOperands operands
     }
 }
 
@@ -138,10 +140,14 @@ TEST(SampleBatch, EqualsSampleTracerUnderPerspectiveAndOnBigUnions) {
         po.height = 90;
         const FlatScene scene = Load(po);
         ASSERT_FALSE(scene.solids.empty()) << k;
-        int covered = 0;
-        CompareOnScene(scene, 120, 90, "scene " + std::to_string(k), 8, covered);
+        int covered = 0, wide = 0;
+        CompareOnScene(scene, 120, 90, "scene " + std::to_string(k), 8, covered, wide);
         if (HasFatalFailure()) return;
         EXPECT_GT(covered, 1000) << k;
+        if (k == 1) {  // the spheres: squares of both kinds
+            EXPECT_GT(wide, 20) << k;
+            EXPECT_LT(wide, 15 * 12) << k;
+        }
         ++k;
     }
 }
