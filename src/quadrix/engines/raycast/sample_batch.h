@@ -70,9 +70,10 @@ class SampleBatcher {
     void SetBand(int band, Scratch& s) const;
     // ... and in the closed rectangle `r`, inside one of the band's squares. Returns whether the
     // program there has a wide node (a union, or a difference's subtrahends, of more than
-    // kWideOperands operands, as the bins count them for the band or, else, for the square): the kernel does not take it, and SampleTracer's depth windows trace such a
-    // cluster (10,000 spheres) faster than Trace's cuts do here. The band and the square are then
-    // pruned, and the square's bodies reduced, only if Trace is called.
+    // kWideOperands operands, as the bins count them for the band or, else, for the square): the
+    // kernel does not take it, and SampleTracer's depth windows trace such a cluster (10,000
+    // spheres) faster than Trace's cuts do here. The band and the square are then pruned, and the
+    // square's bodies reduced, only if Trace is called.
     bool SetSquare(const Rect& r, Scratch& s) const;
     // out[p] = the visible point of the ray through (xs[p], ys[p]), p < n <= kMaxPoints, every
     // point inside the square. Adds the literals it evaluates to tRayLiterals (util/ray_work.h).
