@@ -9,7 +9,8 @@
 //      PrepareStrip/PrepareTile), on the band and square rectangles that contain r first;
 //   3. the bodies are batched over the points (body_batch.h StartAt), and the batch is drawn as a
 //      sub-tile: from the one body it reduces to, else by the kernel's lanes (kernel.h), else by
-//      Trace per point (trace.h) — DrawSubTilePixels' rule, point by point.
+//      Trace per point (trace.h) — a sub-tile pixel's rule (worker.h SubTileHit), point by
+//      point.
 // Every proof of steps 1–3 is made on a rectangle, by bounds linear in (x, y) or by
 // ClassifyQuadric's bound over the whole rectangle, never at pixel centres alone; the lanes and
 // Trace take each point's own (x, y). So a point's visible point is the exact one, what
@@ -25,7 +26,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
 #include "quadrix/engines/raycast/scene_tables.h"
