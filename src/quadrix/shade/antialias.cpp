@@ -152,8 +152,9 @@ AntialiasStats AntialiasRowKinds(const Frame& frame, const FlatScene& scene,
     const PixelShader shader(frame, scene, options, wide);
     // The edge pixels go by squares of kRegion × kRegion pixels, in bands of kRegion rows (below).
     constexpr int kRegion = 8;
-    const raycast::SampleBatcher batcher(scene, frame.width, frame.height, kRegion);
     const raycast::SampleTracer tracer(scene, options.spatialIndex, wide);
+    const raycast::SampleBatcher batcher(scene, tracer.Tables(), frame.width, frame.height,
+                                         kRegion);
     // The unquantised values only when the output wants them (ShadeOptions::linear; an 8-bit
     // file reads the bytes): 11 MB of floats at 1280×720 otherwise made and filled for nothing.
     if (options.linear && image.linear.size() != image.pixels.size()) {

@@ -28,11 +28,11 @@ bool WideBin(const ProgramBins& bins, std::size_t k) {
 
 }  // namespace
 
-SampleBatcher::SampleBatcher(const FlatScene& scene, int width, int height, int side,
-                             Settings settings)
+SampleBatcher::SampleBatcher(const FlatScene& scene, const SceneTables& tables, int width,
+                             int height, int side, Settings settings)
     : scene_(scene),
       settings_(settings),
-      tables_(scene),
+      tables_(tables),
       width_(std::max(width, 1)),
       height_(std::max(height, 1)),
       side_(std::max(side, 1)) {

@@ -45,7 +45,9 @@ class SampleBatcher {
     // For points of the image [0, width] × [0, height], which is cut into bands of `side` rows
     // and each band into squares `side` wide (the last ones shorter). The whole program is binned
     // over the bands once here.
-    SampleBatcher(const FlatScene& scene, int width, int height, int side, Settings settings = {});
+    // `tables`: the scene's (SampleTracer::Tables), kept alive by the caller.
+    SampleBatcher(const FlatScene& scene, const SceneTables& tables, int width, int height,
+                  int side, Settings settings = {});
 
     // One per thread: the engine's per-thread state (worker.h) and the band's program.
     class Scratch {
@@ -90,7 +92,7 @@ class SampleBatcher {
 
     const FlatScene& scene_;
     Settings settings_;
-    SceneTables tables_;
+    const SceneTables& tables_;
     CsgProgram full_;
     int width_, height_, side_;
     ProgramBins bands_;  // full_'s, over the bands

@@ -34,9 +34,9 @@ bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 // samples compared; `wide`: the squares SetSquare said hold a wide node.
 void CompareOnScene(const FlatScene& scene, int w, int h, const std::string& name, int side,
                     int& covered, int& wide) {
-    const SampleBatcher batcher(scene, w, h, side);
-    SampleBatcher::Scratch scratch(batcher);
     const SampleTracer tracer(scene);
+    const SampleBatcher batcher(scene, tracer.Tables(), w, h, side);
+    SampleBatcher::Scratch scratch(batcher);
     SampleScratch tracerScratch(tracer);
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> unit(0.0, 1.0);

@@ -135,6 +135,8 @@ class SampleTracer {
     void SetRegion(const Rect& r, SampleScratch& scratch) const;
     void ClearRegion(SampleScratch& scratch) const;
     int MaxDepth() const { return maxDepth_; }
+    // The engine's tables of the scene (shared with SampleBatcher, sample_batch.h).
+    const SceneTables& Tables() const { return tables_; }
     // Nodes with more children than this get a box tree over them.
     static constexpr std::size_t kWideNode = WideNodeTrees::kWideNode;
 
