@@ -147,6 +147,10 @@ BoxTree::BoxTree(const std::vector<Box3>& boxes, bool index) : count_(boxes.size
     order_.reserve(items.size());
     if (items.size() >= kGridItems) BuildGrid(boxes, items);
     Build(0, items, 0, items.size(), boxes, centres);
+    if (items.size() >= kGridItems) {
+        placed_.reserve(order_.size());
+        for (std::int32_t k : order_) placed_.push_back(boxes[static_cast<std::size_t>(k)]);
+    }
 }
 
 void BoxTree::BuildGrid(const std::vector<Box3>& boxes, const std::vector<std::int32_t>& items) {
@@ -190,6 +194,11 @@ BoxTree::HalfLineView BoxTree::ViewAlong(const Vec3& d) const {
     view.v = Normalize(Cross(view.w, view.u));
     view.nodes.resize(nodes_.size());
     for (std::size_t i = 0; i < nodes_.size(); ++i) view.nodes[i] = view.Project(nodes_[i].box);
+    view.items.reserve(placed_.size());
+    for (const Box3& b : placed_) {
+        const HalfLineView::Extent x = view.Project(b);
+        view.items.push_back({Down(x.uLo), Up(x.uHi), Down(x.vLo), Up(x.vHi), Up(x.wHi)});
+    }
     if (order_.size() >= kGridItems) BuildViewGrid(view);
     return view;
 }

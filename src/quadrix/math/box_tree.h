@@ -149,6 +149,23 @@ class BoxTree {
             std::vector<std::int32_t> loose;
         };
         std::vector<Grid> grid;  // one, or none
+        // A tree of at least kGridItems items: each item's own extent, by its place in the
+        // leaves (order_), rounded outward to floats. HalfLine tests it before it visits the
+        // item: a leaf of four spheres spreads over about four times the area of each, and a
+        // half-line through a leaf's extent used to visit all four, for the caller's slab test
+        // to reject three (10,000 spheres: 7.6 visits a shadow ray, 1.7 of them hits). The
+        // test is Meets' on the item's extent: looser than the slab test, never tighter.
+        struct ItemExtent {
+            float uLo, uHi, vLo, vHi, wHi;
+        };
+        std::vector<ItemExtent> items;  // empty: every item of a visited leaf is visited
+        bool ItemMeets(std::size_t place, const Probe& q) const {
+            if (items.empty()) return true;
+            const ItemExtent& e = items[place];
+            // Written so that a NaN extent culls nothing.
+            return !(q.uHi < e.uLo || q.uLo > e.uHi || q.vHi < e.vLo || q.vLo > e.vHi ||
+                     q.wLo > e.wHi);
+        }
     };
     HalfLineView ViewAlong(const Vec3& d) const;
     // Calls visit(k) for the items whose box the half-line p + s·d, s >= 0, may meet (d the
@@ -185,6 +202,9 @@ class BoxTree {
     std::vector<std::int32_t> order_;     // the items of the leaves
     std::vector<std::int32_t> always_;    // items whose boxes are never culled
     std::vector<ColumnGrid> grid_;        // the column grid: one, or none (fewer items)
+    // With at least kGridItems items: the items' boxes by their place in order_, for the views'
+    // item extents (HalfLineView::items).
+    std::vector<Box3> placed_;
     static constexpr int kMaxDepth = 64;  // the median split gives depth <= log2(n) + 1
 };
 
@@ -279,7 +299,9 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
             auto leaf = [&](std::int32_t l) {
                 const Node& n = nodes_[static_cast<std::size_t>(l)];
                 for (std::int32_t k = n.first; k < n.first + n.count; ++k)
-                    if (visit(order_[static_cast<std::size_t>(k)])) return true;
+                    if (view.ItemMeets(static_cast<std::size_t>(k), q) &&
+                        visit(order_[static_cast<std::size_t>(k)]))
+                        return true;
                 return false;
             };
             for (std::int32_t l : g.loose)
@@ -315,7 +337,9 @@ bool BoxTree::HalfLine(const HalfLineView& view, const Vec3& p, Visit&& visit) c
             continue;
         }
         for (std::int32_t k = n.first; k < n.first + n.count; ++k)
-            if (visit(order_[static_cast<std::size_t>(k)])) return true;
+            if (view.ItemMeets(static_cast<std::size_t>(k), q) &&
+                visit(order_[static_cast<std::size_t>(k)]))
+                return true;
     }
     return false;
 }
