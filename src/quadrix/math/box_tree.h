@@ -198,10 +198,10 @@ class BoxTree {
                const std::vector<Box3>& boxes, const std::vector<Vec3>& centres);
 
     std::size_t count_ = 0;
-    std::vector<Node> nodes_;             // nodes_[0] is the root (when any item is bounded)
-    std::vector<std::int32_t> order_;     // the items of the leaves
-    std::vector<std::int32_t> always_;    // items whose boxes are never culled
-    std::vector<ColumnGrid> grid_;        // the column grid: one, or none (fewer items)
+    std::vector<Node> nodes_;           // nodes_[0] is the root (when any item is bounded)
+    std::vector<std::int32_t> order_;   // the items of the leaves
+    std::vector<std::int32_t> always_;  // items whose boxes are never culled
+    std::vector<ColumnGrid> grid_;      // the column grid: one, or none (fewer items)
     // With at least kGridItems items: the items' boxes by their place in order_, for the views'
     // item extents (HalfLineView::items).
     std::vector<Box3> placed_;
