@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "quadrix/engines/registry.h"
 #include "quadrix/io/exr.h"
 #include "quadrix/math/srgb.h"
+#include "quadrix/pipeline/output.h"
 #include "quadrix/pipeline/render_context.h"
 #include "test_util.h"
 
@@ -192,6 +194,41 @@ TEST(OutputFormats, Png16IsSixteenBitsAndAgreesWithEightBits) {
             distinct16 += lo != 0 && lo != hi;  // not merely an 8-bit value scaled up
         }
     EXPECT_GT(distinct16, 100);
+}
+
+// A picture alone is written after the Frame's memory is freed for the encoder (render_command.cpp,
+// pipeline/output.h NeedsFrame); with a Frame dump or statistics the Frame is kept. The same
+// bytes either way, at a size whose Frame arrays are mappings of their own (2 MiB and more).
+TEST(OutputFormats, APictureIsTheSameWhetherTheFrameIsKeptOrFreed) {
+    OutputRequest png, dump, exr, qxf;
+    png.image = "a.png";
+    dump.image = "a.png";
+    dump.dumpFrame = "a.qxf";
+    exr.image = "a.ppm";
+    exr.exr = "a.exr";
+    qxf.image = "a.qxf";
+    EXPECT_FALSE(NeedsFrame(png));
+    EXPECT_TRUE(NeedsFrame(dump));
+    EXPECT_TRUE(NeedsFrame(exr));
+    EXPECT_TRUE(NeedsFrame(qxf));
+
+    TempDir dir;
+    const std::string part = SourcePath("examples/machined_part.uq");
+    const std::string size = " --size 1280x720 -o ";
+    ASSERT_EQ(Quadrix("render " + part + size + dir.File("freed.png")).exitCode, 0);
+    ASSERT_EQ(Quadrix("render " + part + size + dir.File("dumped.png") + " --dump-frame " +
+                      dir.File("f.qxf"))
+                  .exitCode,
+              0);
+    ASSERT_EQ(Quadrix("render " + part + size + dir.File("stats.png") + " --stats").exitCode, 0);
+    auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::string freed = bytes(dir.File("freed.png"));
+    EXPECT_GT(freed.size(), 10000u);
+    EXPECT_EQ(freed, bytes(dir.File("dumped.png")));
+    EXPECT_EQ(freed, bytes(dir.File("stats.png")));
 }
 
 // --stats --json for every registered engine: one valid JSON object on standard output with the

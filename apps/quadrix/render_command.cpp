@@ -318,6 +318,10 @@ int RunRender(const RenderArgs& args) {
         if (!image) image = ctx.Shade(frame, so);
         MarkPhase("shade");
     }
+    // A picture alone is written from the Image: the Frame's memory goes back now, and the
+    // encoder's buffers are made in its pages, already faulted in, instead of fresh ones (a
+    // fresh page costs far more than the write on these virtual machines: docs/performance.md).
+    if (image && !NeedsFrame(outputs) && !args.stats) frame = Frame{};
     std::string error;  // the encoders' parallel loops on the context's threads (--threads)
     ctx.InArena([&] { error = WriteOutputs(outputs, frame, image ? &*image : nullptr); });
     MarkPhase("write");

@@ -28,16 +28,24 @@ std::mutex keptMutex;
 KeptMapping kept[kKeptSlots];
 std::size_t keptTotal = 0;
 
+// A kept mapping of exactly `len` bytes, else the start of the shortest longer one, whose rest
+// is unmapped (lengths are whole huge pages, so the start stays aligned): a picture's encoder
+// then writes into pages the freed Frame had already faulted in (render_command.cpp releases
+// the Frame before the write when nothing there reads it), not into fresh ones.
 void* TakeKept(std::size_t len) {
     std::lock_guard lock(keptMutex);
+    KeptMapping* best = nullptr;
     for (KeptMapping& k : kept) {
-        if (!k.p || k.length != len) continue;
-        void* p = k.p;
-        k = {};
-        keptTotal -= len;
-        return p;
+        if (!k.p || k.length < len) continue;
+        if (!best || k.length < best->length) best = &k;
+        if (k.length == len) break;
     }
-    return nullptr;
+    if (!best) return nullptr;
+    void* p = best->p;
+    if (best->length > len) munmap(static_cast<char*>(p) + len, best->length - len);
+    keptTotal -= best->length;
+    *best = {};
+    return p;
 }
 
 bool Keep(void* p, std::size_t len) {
@@ -82,6 +90,16 @@ void* AllocateFrameBytes(std::size_t bytes) {
 
 void FreeFrameBytes(void* p, std::size_t bytes) {
     if (p && !Keep(p, RoundUp(bytes))) munmap(p, RoundUp(bytes));
+}
+
+void ReleaseKeptFrameBytes() {
+    std::lock_guard lock(keptMutex);
+    for (KeptMapping& k : kept)
+        if (k.p) {
+            munmap(k.p, k.length);
+            k = {};
+        }
+    keptTotal = 0;
 }
 
 namespace {

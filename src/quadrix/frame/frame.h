@@ -27,8 +27,13 @@ namespace quadrix {
 // madvise(MADV_HUGEPAGE): where transparent huge pages are enabled for madvise (Debian's
 // default), a fresh 1280×720 Frame is faulted in 20 pages of 2 MiB instead of about 10,000 of
 // 4 KiB (issue 24: writing a fresh Frame costs 12 ms in small pages, 4 ms in huge ones).
+//
+// Freed mappings of up to 32 MiB are kept (96 MiB in all) for the next allocation: one of the
+// same length, else the start of the shortest longer one (its rest unmapped), so that memory the
+// process has already faulted in serves again (frame.cpp). ReleaseKeptFrameBytes unmaps them.
 void* AllocateFrameBytes(std::size_t bytes);
 void FreeFrameBytes(void* p, std::size_t bytes);
+void ReleaseKeptFrameBytes();
 constexpr std::size_t kFrameHugeBytes = std::size_t{2} << 20;
 
 template <class T>

@@ -1,11 +1,53 @@
 #include "quadrix/frame/frame.h"
 
 #include <gtest/gtest.h>
+#include <sys/mman.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 
 namespace quadrix {
 namespace {
+
+// Whether the page at p is mapped (msync fails with ENOMEM where nothing is).
+bool Mapped(const void* p) {
+    return msync(const_cast<void*>(p), 4096, MS_ASYNC) == 0 || errno != ENOMEM;
+}
+
+constexpr std::size_t kMiB = std::size_t{1} << 20;
+
+// A freed mapping serves the next allocation of its length with the pages it had (written
+// before: the same bytes are there), a shorter one with its start (the rest unmapped), and an
+// exact length is preferred to a longer one.
+TEST(FrameMemory, FreedMappingsServeLaterAllocations) {
+    ReleaseKeptFrameBytes();
+    auto* a = static_cast<unsigned char*>(AllocateFrameBytes(25 * kMiB));  // 26 MiB mapped
+    std::memset(a, 0x5a, 25 * kMiB);
+    FreeFrameBytes(a, 25 * kMiB);
+    auto* b = static_cast<unsigned char*>(AllocateFrameBytes(26 * kMiB));
+    EXPECT_EQ(b, a);
+    EXPECT_EQ(b[25 * kMiB - 1], 0x5a) << "the same pages";
+    FreeFrameBytes(b, 26 * kMiB);
+    // 4 MiB taken from the 26 MiB one: its start, and the other 22 MiB unmapped.
+    auto* c = static_cast<unsigned char*>(AllocateFrameBytes(3 * kMiB));
+    EXPECT_EQ(c, a);
+    EXPECT_EQ(c[0], 0x5a);
+    EXPECT_TRUE(Mapped(c + 4 * kMiB - 4096));
+    EXPECT_FALSE(Mapped(c + 4 * kMiB));
+    EXPECT_FALSE(Mapped(c + 26 * kMiB - 4096));
+    // Two freed mappings, 4 and 8 MiB: a 4 MiB request takes the 4 MiB one, then 8 the other.
+    auto* d = static_cast<unsigned char*>(AllocateFrameBytes(8 * kMiB));
+    FreeFrameBytes(d, 8 * kMiB);
+    FreeFrameBytes(c, 4 * kMiB);
+    EXPECT_EQ(AllocateFrameBytes(4 * kMiB), c);
+    EXPECT_EQ(AllocateFrameBytes(8 * kMiB), d);
+    FreeFrameBytes(c, 4 * kMiB);
+    FreeFrameBytes(d, 8 * kMiB);
+    ReleaseKeptFrameBytes();
+    EXPECT_FALSE(Mapped(c));
+    EXPECT_FALSE(Mapped(d));
+}
 
 TEST(Frame, APixelIsSixteenBytes) {
     Frame f(4, 3);

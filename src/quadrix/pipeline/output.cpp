@@ -89,6 +89,14 @@ bool NeedsLinear(const OutputRequest& request) {
            (format == ImageFormat::kPng && request.png.bitDepth == 16);
 }
 
+bool NeedsFrame(const OutputRequest& request) {
+    ImageFormat format;
+    PnmKind pnm;
+    if (!OutputFormat(request, format, pnm)) return true;
+    return !request.dumpFrame.empty() || !request.exr.empty() ||
+           format == ImageFormat::kFrameDump || format == ImageFormat::kExr;
+}
+
 std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const Image* image) {
     if (auto e = CheckOutputs(request); !e.empty()) return e;
     ImageFormat format;

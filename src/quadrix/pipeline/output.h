@@ -34,6 +34,10 @@ bool NeedsImage(const OutputRequest& request);
 // Whether the outputs keep the unquantised shading (ShadeOptions::linear): a 16-bit PNG or an
 // OpenEXR picture; 8-bit files are encoded from the 8-bit pixels.
 bool NeedsLinear(const OutputRequest& request);
+// Whether writing the outputs reads the Frame: a .qxf dump or an OpenEXR file (its depth, normal
+// and id layers). A picture alone is written from the Image, and its caller may free the Frame
+// first (its memory then serves the encoder: frame.h AllocateFrameBytes).
+bool NeedsFrame(const OutputRequest& request);
 // Writes every output (atomically, each). Error message or empty.
 std::string WriteOutputs(const OutputRequest& request, const Frame& frame, const Image* image);
 
