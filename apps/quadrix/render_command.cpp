@@ -1,19 +1,14 @@
 #include <fmt/format.h>
-#include <pthread.h>
-#include <sched.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "commands.h"
 #include "quadrix/batch/run.h"
 #include "quadrix/engines/registry.h"
-#include "quadrix/frame/frame.h"
 #include "quadrix/io/bounded_read.h"
 #include "quadrix/io/output_file.h"
 #include "quadrix/io/phase_times.h"
@@ -25,7 +20,6 @@
 #include "quadrix/pipeline/section_plane.h"
 #include "quadrix/pipeline/stats_report.h"
 #include "quadrix/shade/shader.h"
-#include "quadrix/util/parallel.h"
 
 namespace quadrix::cli {
 
@@ -273,29 +267,6 @@ int RunRender(const RenderArgs& args) {
         return RunAnimation(args, po, engine, so, PictureRequest(args), outputs);
     }
 
-    // The Frame's and the image's memory faulted in on the other processor while this one reads
-    // and flattens, stopped when the render begins (frame.h PrefaultFrameMemory). Not for the
-    // MPI renders (a rank's Frame is mostly untouched), nor with --threads 1.
-    struct Prefault {
-        std::atomic<bool> stop{false};
-        std::thread thread;
-        void Finish() {
-            if (!thread.joinable()) return;
-            stop = true;
-            thread.join();
-        }
-        ~Prefault() { Finish(); }  // an early return (an error) stops it too
-    } prefault;
-    if (!args.sortFirst && !args.sortLast && args.threads != 1 && AvailableProcessors() >= 2)
-        prefault.thread = std::thread([&prefault, w = po.width, h = po.height] {
-#if defined(__linux__)
-            // Idle priority, as the flattener's literal cache (flatten/literal_cache.h): it takes
-            // only a processor the read, the flatten and oneTBB's workers leave idle.
-            sched_param idle{};
-            pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
-#endif
-            PrefaultFrameMemory(w, h, &prefault.stop);
-        });
     RenderContext ctx(args.threads);
     ctx.NameHalfSpaces(false);  // a picture, and messages about solids and bodies
     Frame frame;
@@ -325,7 +296,6 @@ int RunRender(const RenderArgs& args) {
     }
     // With --sort-first the ranks shade their own rows (batch/sort_first.h): `image` comes back.
     std::optional<Image> image;
-    prefault.Finish();
     ok = ok && RenderMaybeShared(args, outputs, ctx, engine, NeedsImage(outputs) ? &so : nullptr,
                                  frame, image, report, diags, writer);
     MarkPhase("render");

@@ -2,11 +2,8 @@
 
 #include <sys/mman.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cstdint>
 #include <mutex>
-#include <new>
 
 namespace quadrix {
 
@@ -93,49 +90,6 @@ void* AllocateFrameBytes(std::size_t bytes) {
 
 void FreeFrameBytes(void* p, std::size_t bytes) {
     if (p && !Keep(p, RoundUp(bytes))) munmap(p, RoundUp(bytes));
-}
-
-std::size_t PrefaultFrameMemory(int width, int height, const std::atomic<bool>* stop) {
-    if (width <= 0 || height <= 0) return 0;
-    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    if (n > (std::size_t{1} << 40)) return 0;
-    // The Frame's depth, normal, surface and body (4 bytes a pixel each), then the image's bytes.
-    const std::size_t sizes[] = {4 * n, 4 * n, 4 * n, 4 * n, 3 * n};
-    void* made[5] = {};
-    std::size_t bytes[5] = {};
-    int count = 0;
-    for (std::size_t size : sizes) {
-        if (size < kFrameHugeBytes || RoundUp(size) > kKeptBytes) continue;
-        try {
-            made[count] = AllocateFrameBytes(size);  // mapped, nothing touched yet
-        } catch (const std::bad_alloc&) {
-            break;  // the render will ask (and say so) itself
-        }
-        bytes[count++] = size;
-    }
-    // Huge page by huge page, in the order the render first writes them: the Frame's arrays from
-    // the top rows down, side by side, then the image. One write per 4 KiB page (one fault for a
-    // huge page; each of its small pages where the kernel gave none). The contents of a Frame's
-    // memory are unspecified. Stopped between huge pages when asked.
-    auto touch = [&](int k, std::size_t at) {
-        auto* c = static_cast<volatile unsigned char*>(made[k]);
-        const std::size_t end = std::min(bytes[k], at + kHugePage);
-        for (std::size_t i = at; i < end; i += 4096) c[i] = 0;
-    };
-    auto stopped = [&] { return stop && stop->load(std::memory_order_relaxed); };
-    const int frameArrays = count > 0 && bytes[count - 1] == 3 * n ? count - 1 : count;
-    for (std::size_t at = 0; at < 4 * n && !stopped(); at += kHugePage)
-        for (int k = 0; k < frameArrays && !stopped(); ++k) touch(k, at);
-    for (int k = frameArrays; k < count; ++k)
-        for (std::size_t at = 0; at < bytes[k] && !stopped(); at += kHugePage) touch(k, at);
-    std::size_t kept = 0;
-    for (int i = 0; i < count; ++i) {
-        if (Keep(made[i], RoundUp(bytes[i])))
-            kept += RoundUp(bytes[i]);
-        else
-            munmap(made[i], RoundUp(bytes[i]));
-    }
-    return kept;
 }
 
 void ReleaseKeptFrameBytes() {

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -35,16 +34,6 @@ namespace quadrix {
 void* AllocateFrameBytes(std::size_t bytes);
 void FreeFrameBytes(void* p, std::size_t bytes);
 void ReleaseKeptFrameBytes();
-// Faults in, ahead of use, the mappings a width × height Frame (its four arrays) and an RGB image
-// of that size will ask for, and keeps them (above) for those allocations. A one-shot render runs
-// it on an otherwise idle processor while it reads and flattens the scene, and sets *stop when
-// it is about to render (render_command.cpp): the mappings are then kept as far as they were
-// faulted in (within a huge page), and the render writes the rest itself. The first touch of
-// fresh memory, about 1 ms a MiB on the virtual machines Quadrix is measured on when they have
-// been idle a second (docs/performance.md), is then partly or wholly off the render's path.
-// Only arrays of 2 MiB to 32 MiB (smaller ones come from the heap, larger ones are not kept);
-// returns the bytes kept. Thread-safe, as the allocations are.
-std::size_t PrefaultFrameMemory(int width, int height, const std::atomic<bool>* stop = nullptr);
 constexpr std::size_t kFrameHugeBytes = std::size_t{2} << 20;
 
 template <class T>

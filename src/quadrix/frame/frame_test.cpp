@@ -3,11 +3,9 @@
 #include <gtest/gtest.h>
 #include <sys/mman.h>
 
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <vector>
 
 namespace quadrix {
 namespace {
@@ -49,46 +47,6 @@ TEST(FrameMemory, FreedMappingsServeLaterAllocations) {
     ReleaseKeptFrameBytes();
     EXPECT_FALSE(Mapped(c));
     EXPECT_FALSE(Mapped(d));
-}
-
-// The share of the pages of [p, p + bytes) that are resident (mincore).
-double Resident(const void* p, std::size_t bytes) {
-    const std::size_t page = 4096, n = (bytes + page - 1) / page;
-    std::vector<unsigned char> v(n);
-    if (mincore(const_cast<void*>(p), bytes, v.data()) != 0) return -1;
-    std::size_t in = 0;
-    for (unsigned char c : v) in += c & 1;
-    return static_cast<double>(in) / static_cast<double>(n);
-}
-
-// PrefaultFrameMemory faults in the mappings a Frame and an RGB image of a size will take: a
-// Frame sized afterwards (ResizeForOverwrite: nothing written) finds its pages resident, where
-// one sized without it finds fresh, untouched ones.
-TEST(FrameMemory, APrefaultedFrameFindsItsPagesResident) {
-    ReleaseKeptFrameBytes();
-    EXPECT_EQ(PrefaultFrameMemory(64, 64), 0u);            // the heap's sizes
-    EXPECT_EQ(PrefaultFrameMemory(4000, 3000), 0u);        // not kept: 48 MB arrays
-    EXPECT_EQ(PrefaultFrameMemory(1280, 720), 20 * kMiB);  // 4 arrays and the image, 4 MiB each
-    {
-        Frame f;
-        f.ResizeForOverwrite(1280, 720);
-        EXPECT_EQ(Resident(f.depth.data(), f.depth.size() * sizeof(float)), 1.0);
-        EXPECT_EQ(Resident(f.body.data(), f.body.size() * sizeof(std::int32_t)), 1.0);
-    }
-    ReleaseKeptFrameBytes();
-    {
-        Frame g;
-        g.ResizeForOverwrite(1280, 720);
-        EXPECT_LT(Resident(g.depth.data(), g.depth.size() * sizeof(float)), 0.5);
-    }
-    // Stopped before it began: the mappings are kept as they are, untouched.
-    ReleaseKeptFrameBytes();
-    const std::atomic<bool> stop{true};
-    EXPECT_EQ(PrefaultFrameMemory(1280, 720, &stop), 20 * kMiB);
-    Frame h;
-    h.ResizeForOverwrite(1280, 720);
-    EXPECT_LT(Resident(h.depth.data(), h.depth.size() * sizeof(float)), 0.5);
-    ReleaseKeptFrameBytes();
 }
 
 TEST(Frame, APixelIsSixteenBytes) {
