@@ -484,8 +484,8 @@ std::string PhaseTable(const std::vector<Row>& rows, const std::string& machine)
         "\n## Whole process, phase by phase (`quadrix render … -o x.png`, picture defaults, "
         "median ms)\n\nMachine: {}. start-up = spawn → main (exec, dynamic loader, static "
         "initialisers); cli = main → the render command; shade includes anti-aliasing and "
-        "shadows; write = temporary file, fsync, rename; exit = the last mark → reaped (io/"
-        "phase_times.h).\n\n| scene | size |",
+        "shadows; write = temporary file and rename (fsync only with QUADRIX_FSYNC=1); exit = "
+        "the last mark → reaped (io/phase_times.h).\n\n| scene | size |",
         machine);
     for (const std::string& ph : kPhases) out += " " + ph + " |";
     out += " sum | process |\n|---|---|";
