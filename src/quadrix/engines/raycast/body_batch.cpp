@@ -140,7 +140,7 @@ const BodyBatch* BodyBatches::SingleBodyBatch(const CsgProgram& program, const R
         return nullptr;
     const std::int32_t node = reduction_.SingleBody(program, solid.root, r);
     if (node < 0 || !Wanted(node)) return nullptr;
-    if (tables_.BodyVoid(
+    if (tables_->BodyVoid(
             static_cast<std::size_t>(program.nodes[static_cast<std::size_t>(node)].first)))
         return nullptr;
     singleSolid_ = solid.solid;
@@ -172,7 +172,7 @@ std::int32_t BodyBatches::Compute(std::int32_t node) {
     const auto [begin, end] = reduction_.NodeTags(static_cast<std::size_t>(node));
     const std::int32_t* const tileTags = reduction_.TileTags();
     for (std::int32_t k = begin; k < end; ++k)
-        BatchLiteral(tables_, counters_, xs_, ys_, tileTags[k], n, out, flag, bad);
+        BatchLiteral(*tables_, counters_, xs_, ys_, tileTags[k], n, out, flag, bad);
     for (int p = 0; p < n; ++p)
         out.state[p] = flag[p] == kBatchScalar || bad[p] != 0 ? BodyBatch::kScalar
                        : flag[p] == kBatchDead                ? BodyBatch::kEmpty

@@ -40,7 +40,12 @@ class BodyBatches {
 
     BodyBatches(const SceneTables& tables, Settings settings, const TileReduction& reduction,
                 Counters& counters)
-        : tables_(tables), settings_(settings), reduction_(reduction), counters_(counters) {}
+        : tables_(&tables), settings_(settings), reduction_(reduction), counters_(counters) {}
+    // For another render (worker.h Worker::Bind).
+    void Bind(const SceneTables& tables, Settings settings) {
+        tables_ = &tables;
+        settings_ = settings;
+    }
 
     // Called by RenderTile before the pixels of a sub-tile [x0, x1) × [y0, y1): the bodies whose
     // bounds cover the whole sub-tile are wanted (batched when first needed).
@@ -85,8 +90,8 @@ class BodyBatches {
         Hit h;
         double t;
         std::int32_t tag;
-        if (tables_.VisibleEnd(batch.lo[p], static_cast<std::int32_t>(batch.loId[p]), batch.hi[p],
-                               static_cast<std::int32_t>(batch.hiId[p]), t, tag))
+        if (tables_->VisibleEnd(batch.lo[p], static_cast<std::int32_t>(batch.loId[p]), batch.hi[p],
+                                static_cast<std::int32_t>(batch.hiId[p]), t, tag))
             h = {t, tag, singleSolid_};
         return h;
     }
@@ -108,8 +113,8 @@ class BodyBatches {
     // Start's and StartAt's shared part: the bodies whose bounds contain r are wanted.
     inline void WantCovering(const CsgProgram& program, const Rect& r);
 
-    const SceneTables& tables_;
-    const Settings settings_;
+    const SceneTables* tables_;  // Bind
+    Settings settings_;
     const TileReduction& reduction_;
     Counters& counters_;
     std::vector<BodyBatch> batches_;

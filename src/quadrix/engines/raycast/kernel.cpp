@@ -42,7 +42,7 @@ inline int Kernel::Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int&
     if (reduction_.NodeEmpty(static_cast<std::size_t>(n))) return 0;
     if (node.kind == NodeKind::kBody) {
         // EvaluateBody gives ∅ for these at every pixel.
-        if (tables_.BodyVoid(static_cast<std::size_t>(node.first))) return 0;
+        if (tables_->BodyVoid(static_cast<std::size_t>(node.first))) return 0;
         code_.push_back({NodeKind::kBody, n, node.xy});
         ++bodies;
         batches_.WantIfHalfCovered(n, node.xy);
@@ -212,8 +212,8 @@ inline void Kernel::MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int
         double t = HUGE_VAL;
         std::int32_t tag = -1;
         if (l.n[p])  // (t stays +inf when neither end is visible)
-            tables_.VisibleEnd(l.lo[p], static_cast<std::int32_t>(l.loId[p]), l.hi[p],
-                               static_cast<std::int32_t>(l.hiId[p]), t, tag);
+            tables_->VisibleEnd(l.lo[p], static_cast<std::int32_t>(l.loId[p]), l.hi[p],
+                                static_cast<std::int32_t>(l.hiId[p]), t, tag);
         if (!(t < l.cut[p])) {
             // Nothing visible below the cut: exact only without one.
             if (l.cut[p] != HUGE_VAL) over[p] = 1;

@@ -38,12 +38,17 @@ class Kernel {
   public:
     Kernel(const SceneTables& tables, Settings settings, const TileReduction& reduction,
            BodyBatches& batches, Tracer& tracer, Counters& counters)
-        : tables_(tables),
+        : tables_(&tables),
           settings_(settings),
           reduction_(reduction),
           batches_(batches),
           tracer_(tracer),
           counters_(counters) {}
+    // For another render (worker.h Worker::Bind).
+    void Bind(const SceneTables& tables, Settings settings) {
+        tables_ = &tables;
+        settings_ = settings;
+    }
 
     // Compiles the sub-tile program (after BodyBatches::Start and Tracer::SetCuts); false when it
     // cannot be compiled (kernel=off, depth cuts, more than kMaxBodies bodies, an operator whose
@@ -88,8 +93,8 @@ class Kernel {
     // combined into hits by Trace's rule.
     inline void MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int64_t* over) const;
 
-    const SceneTables& tables_;
-    const Settings settings_;
+    const SceneTables* tables_;  // Bind
+    Settings settings_;
     const TileReduction& reduction_;
     BodyBatches& batches_;
     Tracer& tracer_;

@@ -8,10 +8,10 @@
 //  2. The scene's solids become one CsgProgram (csg_program.h), sorted by nearest depth.
 //  3. Tiling (tiling.h): the image is cut into 256×256 blocks, 256×8 tiles and 8×8 sub-tiles,
 //     run in parallel (oneTBB, nested parallel_for, in the arena of the caller: Engine::Render
-//     makes one of RenderOptions::threads when it is > 0), one Worker per thread (worker.h).
-//     Each level prunes its parent's program against its pixel centres, so a sub-tile sees only
-//     the solids and leaves whose bounds reach it, and pruning a 10,000-leaf union costs one walk
-//     per block rather than one per sub-tile.
+//     makes one of RenderOptions::threads when it is > 0), one Worker per thread (worker.h), kept
+//     by the engine from render to render (worker_pool.h). Each level prunes its parent's program
+//     against its pixel centres, so a sub-tile sees only the solids and leaves whose bounds reach
+//     it, and pruning a 10,000-leaf union costs one walk per block rather than one per sub-tile.
 //  4. Per sub-tile, before any pixel (tile_reduction.h): its bodies' literals are reduced
 //     (planes that cannot bound a body there dropped, bodies proved empty; once per tile, then
 //     per sub-tile: PrepareStrip, PrepareTile), and the sub-tile is filled as background or as
@@ -53,7 +53,7 @@
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/engines/raycast/settings.h"
 #include "quadrix/engines/raycast/tiling.h"
-#include "quadrix/engines/raycast/worker.h"
+#include "quadrix/engines/raycast/worker_pool.h"
 #include "quadrix/util/parallel.h"
 
 namespace quadrix {
@@ -113,7 +113,7 @@ class RaycastEngine final : public Engine {
         int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
         constexpr int kTilesX = kBlock / kTileW, kTilesY = kBlock / kTileH;
         const Settings settings = ReadSettings(options);
-        PerThread<Worker> workers(&tables, full.maxDepth, settings);
+        RenderWorkers workers(pool_, &tables, full.maxDepth, settings);
         // A region (sort-first): the blocks and tiles outside it are skipped (Engine::Render
         // makes their pixels background); those inside are the same rectangles, pruned the same
         // way, as in a render of the whole picture, so their pixels are the same bits.
@@ -198,6 +198,9 @@ class RaycastEngine final : public Engine {
         counters.AppendTo(stats.counters);
         return stats;
     }
+
+  private:
+    WorkerPool pool_;  // the Workers, kept from render to render (worker_pool.h)
 };
 
 }  // namespace

@@ -140,7 +140,7 @@ bool Dominated(const std::vector<PlaneBound>& bounds, std::size_t i, const Candi
 
 void TileReduction::PrepareStrip(const CsgProgram& program, const Rect& r) {
     ++stripStamp_;
-    if (stripBody_.size() < tables_.bodyValid.size()) stripBody_.resize(tables_.bodyValid.size());
+    if (stripBody_.size() < tables_->bodyValid.size()) stripBody_.resize(tables_->bodyValid.size());
     stripTags_.clear();
     for (const ProgNode& node : program.nodes) {
         if (node.kind != NodeKind::kBody) continue;
@@ -152,10 +152,10 @@ void TileReduction::PrepareStrip(const CsgProgram& program, const Rect& r) {
         // own literal there (the same proofs on a smaller rectangle; the frame is the same
         // either way, tile_reduction.h). A body the strip would prove empty is then proved so
         // on each of its sub-tiles instead.
-        if (tables_.BodyTagCount(body) == 1) continue;
+        if (tables_->BodyTagCount(body) == 1) continue;
         const auto begin = static_cast<std::int32_t>(stripTags_.size());
         const bool empty =
-            ReduceBody(tables_.BodyTags(body), tables_.BodyTagCount(body), r, stripTags_);
+            ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r, stripTags_);
         sb = {begin, static_cast<std::int32_t>(stripTags_.size()), empty, stripStamp_};
     }
 }
@@ -169,7 +169,7 @@ void TileReduction::PrepareTile(const CsgProgram& program, const Rect& r) {
         if (node.kind != NodeKind::kBody) continue;
         const auto body = static_cast<std::size_t>(node.first);
         const auto begin = static_cast<std::int32_t>(tileTags_.size());
-        const auto all = static_cast<std::int32_t>(tables_.BodyTagCount(body));
+        const auto all = static_cast<std::int32_t>(tables_->BodyTagCount(body));
         bool empty;
         if (body < stripBody_.size() && stripBody_[body].stamp == stripStamp_) {
             const StripBody& sb = stripBody_[body];
@@ -177,7 +177,7 @@ void TileReduction::PrepareTile(const CsgProgram& program, const Rect& r) {
                 sb.empty || ReduceBody(stripTags_.data() + sb.begin,
                                        static_cast<std::size_t>(sb.end - sb.begin), r, tileTags_);
         } else {
-            empty = ReduceBody(tables_.BodyTags(body), tables_.BodyTagCount(body), r, tileTags_);
+            empty = ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r, tileTags_);
         }
         if (empty) {
             tileTags_.resize(static_cast<std::size_t>(begin));
@@ -193,7 +193,7 @@ void TileReduction::PrepareTile(const CsgProgram& program, const Rect& r) {
 
 inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
                                       std::vector<std::int32_t>& out) {
-    const bool bodyEmptyByQuadric = CornerBounds(tables_, settings_.tileCull, tags, n, r, bounds_);
+    const bool bodyEmptyByQuadric = CornerBounds(*tables_, settings_.tileCull, tags, n, r, bounds_);
     // Empty everywhere: a near bound beyond a far bound at the four corners (margin as below)
     // stays beyond it on the whole rectangle, so no ray of the sub-tile meets the body, and
     // Evaluate takes it as ∅ without evaluating it (exactly what the body's literals would give:
@@ -221,8 +221,8 @@ inline std::int32_t TileReduction::FlatNearPlane(std::int32_t bodyNode, const Re
     double nearR[4] = {0, 0, 0, 0};
     for (std::int32_t i = begin; i < end; ++i) {
         const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        const Tag& t = tables_->TagOf(tag);
+        const RayHalfSpace& hs = tables_->halfSpaces[static_cast<std::size_t>(t.halfSpace)];
         if (!hs.isPlane || !std::isfinite(hs.c) || hs.c == 0) return -1;
         if ((hs.c > 0) != t.complemented) continue;  // a far bound: checked below
         if (nearTag >= 0 || !t.opaque) return -1;
@@ -235,8 +235,8 @@ inline std::int32_t TileReduction::FlatNearPlane(std::int32_t bodyNode, const Re
     if (nearTag < 0) return -1;
     for (std::int32_t i = begin; i < end; ++i) {
         const std::int32_t tag = tileTags_[static_cast<std::size_t>(i)];
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        const Tag& t = tables_->TagOf(tag);
+        const RayHalfSpace& hs = tables_->halfSpaces[static_cast<std::size_t>(t.halfSpace)];
         if ((hs.c > 0) == t.complemented) continue;  // the near bound
         for (int k = 0; k < 4; ++k) {
             const double far = -(hs.px * cx[k] + hs.py * cy[k] + hs.pd) / hs.c;
@@ -268,13 +268,13 @@ bool TileReduction::TryFlatFill(const CsgProgram& program, const Rect& r, int x0
     const std::int32_t bodyNode = SingleBody(program, solid.root, r);
     if (bodyNode < 0) return false;
     const ProgNode& node = program.nodes[static_cast<std::size_t>(bodyNode)];
-    if (tables_.BodyVoid(static_cast<std::size_t>(node.first))) return false;
+    if (tables_->BodyVoid(static_cast<std::size_t>(node.first))) return false;
     const std::int32_t nearTag = FlatNearPlane(bodyNode, r);
     if (nearTag < 0) return false;
-    const Tag& near = tables_.TagOf(nearTag);
+    const Tag& near = tables_->TagOf(nearTag);
     const auto hsIndex = static_cast<std::size_t>(near.halfSpace);
-    const RayHalfSpace& hs = tables_.halfSpaces[hsIndex];
-    const PackedNormal normal = tables_.packedPlaneNormal[hsIndex];
+    const RayHalfSpace& hs = tables_->halfSpaces[hsIndex];
+    const PackedNormal normal = tables_->packedPlaneNormal[hsIndex];
     for (int j = y0; j < y1; ++j) {
         const double y = j + 0.5;
         std::size_t k = out.Index(x0, j);

@@ -47,7 +47,13 @@ struct PlaneBound {
 class TileReduction {
   public:
     TileReduction(const SceneTables& tables, Settings settings, Counters& counters)
-        : tables_(tables), settings_(settings), counters_(counters) {}
+        : tables_(&tables), settings_(settings), counters_(counters) {}
+    // For another render (worker.h Worker::Bind): its tables and settings. Nothing else is kept
+    // from one tile to the next but scratch.
+    void Bind(const SceneTables& tables, Settings settings) {
+        tables_ = &tables;
+        settings_ = settings;
+    }
 
     // Once per tile: ReduceBody on the tile's rectangle for the bodies of its program.
     void PrepareStrip(const CsgProgram& program, const Rect& r);
@@ -105,8 +111,8 @@ class TileReduction {
     // TryFlatFill's plane test (tile_reduction.cpp): the near plane's tag, or −1.
     inline std::int32_t FlatNearPlane(std::int32_t bodyNode, const Rect& r) const;
 
-    const SceneTables& tables_;
-    const Settings settings_;
+    const SceneTables* tables_;  // Bind
+    Settings settings_;
     Counters& counters_;
     std::vector<PlaneBound> bounds_;  // ReduceBody scratch
     std::vector<StripBody> stripBody_;

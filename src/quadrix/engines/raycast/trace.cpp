@@ -7,8 +7,18 @@ namespace quadrix::raycast {
 
 Tracer::Tracer(const SceneTables& tables, int maxDepth, const TileReduction& reduction,
                BodyBatches& batches, Counters& counters)
-    : tables_(tables), reduction_(reduction), batches_(batches), counters_(counters) {
-    lists_.resize(static_cast<std::size_t>(maxDepth) + 3);
+    : tables_(&tables), reduction_(reduction), batches_(batches), counters_(counters) {
+    Bind(tables, maxDepth);
+}
+
+void Tracer::Bind(const SceneTables& tables, int maxDepth) {
+    tables_ = &tables;
+    // The slots are some order of the lists (a pixel's evaluation swaps them); more lists move
+    // them all, so the slots are made again.
+    const auto needed = static_cast<std::size_t>(maxDepth) + 3;
+    if (lists_.size() >= needed) return;
+    lists_.resize(needed);
+    slots_.clear();
     for (IntervalList& l : lists_) slots_.push_back(&l);
 }
 
@@ -194,9 +204,9 @@ void Tracer::EvaluateBody(std::int32_t body, std::int32_t node, double x, double
     ++counters_.bodies;
     IntervalList& result = *slots_[slot];
     result.clear();  // a body without literals is empty
-    if (!tables_.bodyValid[static_cast<std::size_t>(body)]) return;
-    if (tables_.bodyFirstTag[static_cast<std::size_t>(body)] ==
-        tables_.bodyFirstTag[static_cast<std::size_t>(body) + 1])
+    if (!tables_->bodyValid[static_cast<std::size_t>(body)]) return;
+    if (tables_->bodyFirstTag[static_cast<std::size_t>(body)] ==
+        tables_->bodyFirstTag[static_cast<std::size_t>(body) + 1])
         return;
     if (batches_.On()) {
         if (const BodyBatch* batch = batches_.Find(node)) {
@@ -216,8 +226,8 @@ void Tracer::EvaluateBody(std::int32_t body, std::int32_t node, double x, double
     Interval run{-HUGE_VAL, HUGE_VAL, Interval::kNoId, Interval::kNoId};
     for (const std::int32_t* it = tileTags + begin; it != tagsEnd; ++it) {
         const std::int32_t tag = *it;
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        const Tag& t = tables_->TagOf(tag);
+        const RayHalfSpace& hs = tables_->halfSpaces[static_cast<std::size_t>(t.halfSpace)];
         Interval w;
         if (hs.isPlane) {
             // LiteralOnRay's plane case, inline: c t + e <= 0 (or its closed complement).
@@ -267,8 +277,8 @@ inline void Tracer::EvaluateBodyLists(const Interval& run, const RaySet& set,
     }
     for (const std::int32_t* it = next; it != last; ++it) {
         const std::int32_t tag = *it;
-        const Tag& t = tables_.TagOf(tag);
-        const RayHalfSpace& hs = tables_.halfSpaces[static_cast<std::size_t>(t.halfSpace)];
+        const Tag& t = tables_->TagOf(tag);
+        const RayHalfSpace& hs = tables_->halfSpaces[static_cast<std::size_t>(t.halfSpace)];
         RaySet s = LiteralOnRay(hs, t.complemented, x, y, tag, counters_.literals);
         IntervalList& out = *slots_[slot];
         if (s.count == 0) {

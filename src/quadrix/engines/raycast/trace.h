@@ -37,6 +37,9 @@ class Tracer {
     // `maxDepth`: the deepest node of the programs traced (CsgProgram::maxDepth).
     Tracer(const SceneTables& tables, int maxDepth, const TileReduction& reduction,
            BodyBatches& batches, Counters& counters);
+    // For another render (worker.h Worker::Bind): its tables, and room for programs `maxDepth`
+    // deep (the lists kept are never fewer).
+    void Bind(const SceneTables& tables, int maxDepth);
 
     // Cut levels for a sub-tile program: the 8th, 32nd, 128th and 512th nearest leaf depths
     // (zlo) when the program has more leaves than that, then +inf.
@@ -57,7 +60,7 @@ class Tracer {
     // The first finite endpoint on an opaque surface.
     bool FirstVisible(const IntervalList& list, double& t, std::int32_t& tag) const {
         for (const Interval& v : list)
-            if (tables_.VisibleEnd(v.lo, v.loId, v.hi, v.hiId, t, tag)) return true;
+            if (tables_->VisibleEnd(v.lo, v.loId, v.hi, v.hiId, t, tag)) return true;
         return false;
     }
 
@@ -81,7 +84,7 @@ class Tracer {
         l.Append(v.lo, v.loId, v.hi, v.hiId);
     }
 
-    const SceneTables& tables_;
+    const SceneTables* tables_;  // Bind
     const TileReduction& reduction_;
     BodyBatches& batches_;
     Counters& counters_;

@@ -2,8 +2,8 @@
 // programs of the current tile and sub-tile, the counters, and the phases of a sub-tile, each
 // owning its own state — tile reduction (tile_reduction.h), body batches (body_batch.h), the
 // scalar path (trace.h) and kernels (kernel.h) — plus the tile's staging copy (pixel_rows.h).
-// A Worker is made in place per thread (PerThread, util/parallel.h) and never copied: its
-// phases refer to each other and to its counters.
+// A Worker is made in place per thread and kept from render to render (worker_pool.h), never
+// copied: its phases refer to each other and to its counters.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +32,18 @@ class Worker {
           kernel(*tables, settings, reduction, batches, tracer, counters) {}
     Worker(const Worker&) = delete;
     Worker& operator=(const Worker&) = delete;
+
+    // For another render (worker_pool.h): its tables, deepest node and settings; the counters
+    // start from zero and no budget is set. The scratch, grown to what earlier renders needed,
+    // is kept: nothing in it carries from one tile to the next (tiling.h).
+    void Bind(const SceneTables* tables, int maxDepth, Settings settings) {
+        reduction.Bind(*tables, settings);
+        batches.Bind(*tables, settings);
+        tracer.Bind(*tables, maxDepth);
+        kernel.Bind(*tables, settings);
+        counters = Counters{};
+        budget = nullptr;
+    }
 
     WorkBudget* budget = nullptr;  // the render's (work_budget.h), shared by the workers
     CsgProgram tileProgram, subTileProgram;
