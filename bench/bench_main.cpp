@@ -934,25 +934,38 @@ int main(int argc, char** argv) {
             };
             for (int i = 0; i < rounds; ++i) {
                 if (i < reps) {
-                    ProcessRun q =
-                        Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png},
-                              phaseLog, {"QUADRIX_PHASE_TIMES=1"});
-                    if (q.exitCode == 0) {
+                    auto runQuadrix = [&] {
+                        ProcessRun q =
+                            Spawn({quadrixBin, "render", scenePath, "--size", sizeArg, "-o", png},
+                                  phaseLog, {"QUADRIX_PHASE_TIMES=1"});
+                        if (q.exitCode != 0) return;
                         qMs.push_back(q.seconds * 1e3);
                         row.quadrixPeakMiB = std::max(row.quadrixPeakMiB, q.peakMiB);
                         const std::vector<double> ph = ParsePhases(phaseLog, q);
                         for (std::size_t k = 0; k < ph.size(); ++k) phases[k].push_back(ph[k]);
-                    }
-                    if (!baselineBin.empty()) {
+                    };
+                    auto runBaseline = [&] {
                         ProcessRun b =
                             Spawn({baselineBin, "render", scenePath, "--size", sizeArg, "-o", png},
                                   phaseLog, {"QUADRIX_PHASE_TIMES=1"});
-                        if (b.exitCode == 0) {
-                            baseMs.push_back(b.seconds * 1e3);
-                            const std::vector<double> ph = ParsePhases(phaseLog, b);
-                            for (std::size_t k = 0; k < ph.size(); ++k)
-                                basePhases[k].push_back(ph[k]);
-                        }
+                        if (b.exitCode != 0) return;
+                        baseMs.push_back(b.seconds * 1e3);
+                        const std::vector<double> ph = ParsePhases(phaseLog, b);
+                        for (std::size_t k = 0; k < ph.size(); ++k) basePhases[k].push_back(ph[k]);
+                    };
+                    // The two binaries take turns at going first, so that neither is always the
+                    // run after POV-Ray's: with the build always first, the 2026-12-07 11:56
+                    // suite had it slower than the baseline in most rows, shade phases included,
+                    // though the shading code was the same; the same binary twice after POV-Ray
+                    // was slower first in 4 rounds of 6.
+                    if (baselineBin.empty()) {
+                        runQuadrix();
+                    } else if (i % 2 == 0) {
+                        runQuadrix();
+                        runBaseline();
+                    } else {
+                        runBaseline();
+                        runQuadrix();
                     }
                     if (row.defaultAa) {
                         ProcessRun plain = Spawn({quadrixBin, "render", scenePath, "--size",
