@@ -1,5 +1,5 @@
-// Helpers shared by the engine tests (test code only): render a FlatScene with a named engine and
-// engine options, and read a counter from the RenderStats an engine reports.
+// Helpers shared by the engine tests (test code only): a FlatScene from scene text, render it with
+// a named engine and engine options, and read a counter from the RenderStats an engine reports.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -11,8 +11,27 @@
 #include "quadrix/engines/engine.h"
 #include "quadrix/flatten/flat_scene.h"
 #include "quadrix/frame/frame.h"
+#include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::testing_util {
+
+// The flat scene of the scene text `text` at w × h pixels (a test failure when it does not read
+// and flatten).
+inline FlatScene FlatFromText(const std::string& text, int w, int h) {
+    PipelineOptions po;
+    po.sceneText = text;
+    po.width = w;
+    po.height = h;
+    PipelineResult pr;
+    Diagnostics diags;
+    EXPECT_TRUE(ReadAndFlatten(po, pr, diags)) << text;
+    return pr.flat;
+}
+
+// Scene text that includes examples/`name` of the source tree.
+inline std::string IncludeExample(const std::string& name) {
+    return "include \"" + std::string(QUADRIX_SOURCE_DIR) + "/examples/" + name + "\";\n";
+}
 
 // The Frame of `scene` drawn by the engine named `engine` with options `opts` (which the engine
 // must accept); its statistics into `stats` when given.

@@ -11,28 +11,14 @@
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/flatten/test_scene_builder.h"
 #include "quadrix/frame/compare.h"
-#include "quadrix/pipeline/pipeline.h"
 
 namespace quadrix::raycast {
 namespace {
 
 using testing_util::Counter;
+using testing_util::FlatFromText;
+using testing_util::IncludeExample;
 using testing_util::RenderWith;
-
-FlatScene Load(const std::string& text, int w, int h) {
-    PipelineOptions po;
-    po.sceneText = text;
-    po.width = w;
-    po.height = h;
-    PipelineResult pr;
-    Diagnostics diags;
-    EXPECT_TRUE(ReadAndFlatten(po, pr, diags));
-    return pr.flat;
-}
-
-std::string Include(const std::string& example) {
-    return "include \"" + std::string(QUADRIX_SOURCE_DIR) + "/examples/" + example + "\";\n";
-}
 
 Frame Render(const FlatScene& scene, const std::string& batch, const std::string& cull,
              RenderStats* stats = nullptr, const std::string& kernel = "on") {
@@ -42,18 +28,18 @@ Frame Render(const FlatScene& scene, const std::string& batch, const std::string
 
 TEST(RaycastOptions, SpeedOptionsChangeNoBit) {
     const std::vector<std::string> scenes = {
-        Include("machined_part.uq"),
-        Include("stack_of_bundles.uq"),
-        Include("cylinder_minus_cylinder.uq"),
-        Include("gallery/gear.uq"),
-        Include("gallery/clover_knot.uq"),
+        IncludeExample("machined_part.uq"),
+        IncludeExample("stack_of_bundles.uq"),
+        IncludeExample("cylinder_minus_cylinder.uq"),
+        IncludeExample("gallery/gear.uq"),
+        IncludeExample("gallery/clover_knot.uq"),
         // The machined part in perspective, close enough for strong foreshortening.
-        Include("machined_part.uq") +
+        IncludeExample("machined_part.uq") +
             "view close vrp 0 10 0 cop 40 70 -90 =r whh 40 fbp -200 200;\n",
     };
     double flat = 0, empty = 0, batched = 0, kernel = 0;
     for (const std::string& text : scenes) {
-        const FlatScene scene = Load(text, 301, 217);  // not a multiple of the tile sizes
+        const FlatScene scene = FlatFromText(text, 301, 217);  // not a multiple of the tile sizes
         RenderStats on;
         const Frame reference = Render(scene, "on", "on", &on);
         ASSERT_GT(reference.CoveredCount(), 1000u) << text;

@@ -14,26 +14,13 @@
 #include "quadrix/engines/raycast/raycast.h"
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/frame/compare.h"
-#include "quadrix/pipeline/pipeline.h"
 #include "quadrix/util/parallel.h"
 
 namespace quadrix::raycast {
 namespace {
 
-FlatScene LoadScene(const std::string& text, int w, int h) {
-    PipelineOptions po;
-    po.sceneText = text;
-    po.width = w;
-    po.height = h;
-    PipelineResult pr;
-    Diagnostics diags;
-    EXPECT_TRUE(ReadAndFlatten(po, pr, diags)) << text;
-    return pr.flat;
-}
-
-std::string ExampleText(const std::string& example) {
-    return "include \"" + std::string(QUADRIX_SOURCE_DIR) + "/examples/" + example + "\";\n";
-}
+using testing_util::FlatFromText;
+using testing_util::IncludeExample;
 
 RenderOptions ThreadsAndSpeed(const std::string& batch, const std::string& kernel) {
     RenderOptions o;
@@ -51,20 +38,20 @@ TEST(RaycastWorkers, OneEngineGivesEachRenderTheFrameAndCountersOfAFreshEngine) 
     // Small and deep programs in turn (the Workers' lists grow and are then more than needed),
     // sizes that are not multiples of the tiles, and the speed options switched between renders.
     const std::vector<Case> cases = {
-        {ExampleText("machined_part.uq"), 301, 217},
-        {ExampleText("gallery/clover_knot.uq"), 200, 150},
-        {ExampleText("gallery/hilbert3.uq"), 220, 220},
-        {ExampleText("stack_of_bundles.uq"), 333, 250, "off", "on"},
-        {ExampleText("machined_part.uq") +
+        {IncludeExample("machined_part.uq"), 301, 217},
+        {IncludeExample("gallery/clover_knot.uq"), 200, 150},
+        {IncludeExample("gallery/hilbert3.uq"), 220, 220},
+        {IncludeExample("stack_of_bundles.uq"), 333, 250, "off", "on"},
+        {IncludeExample("machined_part.uq") +
              "view close vrp 0 10 0 cop 40 70 -90 =r whh 40 fbp -200 200;\n",
          257, 263, "on", "off"},
-        {ExampleText("gallery/gear.uq"), 240, 180},
-        {ExampleText("machined_part.uq"), 301, 217},
+        {IncludeExample("gallery/gear.uq"), 240, 180},
+        {IncludeExample("machined_part.uq"), 301, 217},
     };
     std::unique_ptr<Engine> kept = MakeRaycastEngine();
     for (int round = 0; round < 2; ++round)
         for (const Case& c : cases) {
-            const FlatScene scene = LoadScene(c.text, c.w, c.h);
+            const FlatScene scene = FlatFromText(c.text, c.w, c.h);
             const RenderOptions o = ThreadsAndSpeed(c.batch, c.kernel);
             Frame fresh, again;
             const RenderStats freshStats = MakeRaycastEngine()->Render(scene, o, fresh);
@@ -78,7 +65,7 @@ TEST(RaycastWorkers, OneEngineGivesEachRenderTheFrameAndCountersOfAFreshEngine) 
 }
 
 TEST(RaycastWorkers, ARenderFindingThePoolHeldOrRunningInlineHasWorkersOfItsOwn) {
-    const FlatScene scene = LoadScene(ExampleText("machined_part.uq"), 64, 48);
+    const FlatScene scene = FlatFromText(IncludeExample("machined_part.uq"), 64, 48);
     const SceneTables tables(scene);
     WorkerPool pool;
     Worker* pooled = nullptr;
