@@ -481,8 +481,8 @@ std::string RayIndexTable(const std::vector<BenchScene>& scenes, const std::stri
 
 // Issue 24 item 5: the raycast frame on one thread and on two (warm, in process): the machined
 // part and the 10,000 spheres at 1280×720 and 1920×1080. The one-thread frames run on CPU 0 and
-// on CPU 1 in turn (this thread pinned to each): the two virtual CPUs of these machines are not
-// always equally fast (one took 18 ms a frame while the other took 13, docs/performance.md), so
+// on CPU 1 in turn (on a helper thread pinned to each): the two virtual CPUs of these machines are
+// not always equally fast (one took 18 ms a frame while the other took 13, docs/performance.md), so
 // the two-thread frame is also compared with the best two threads could do at the CPUs' own
 // speeds, 1 / (1/t₀ + 1/t₁). The three take turns, a few frames at a time, so that they see
 // the same minutes. The frames are the same bits (the engine's tests); only the time differs.
@@ -494,8 +494,8 @@ std::string ThreadsTable(const std::vector<BenchScene>& scenes, const std::strin
     cpu_set_t all;
     if (sched_getaffinity(0, sizeof all, &all) != 0 || !CPU_ISSET(0, &all) || !CPU_ISSET(1, &all))
         return out + "Not measured: this process may not run on CPUs 0 and 1.\n";
-    // Frames in runs of kRun after one untimed (back to back, as a viewer's or a batch's are):
-    // `run(frame times)`.
+    // One run: an untimed frame, then kRun frames back to back (as a viewer's or a batch's are),
+    // their times appended to `ms`.
     constexpr int kRun = 4;
     auto timedRun = [](RenderContext& ctx, Frame& frame, std::vector<double>& ms) {
         if (RenderMs(ctx, EngineRequest{}, frame) < 0) return false;
@@ -531,7 +531,13 @@ std::string ThreadsTable(const std::vector<BenchScene>& scenes, const std::strin
             bool ok = true;
             for (int i = 0; ok && i < std::max(1, reps / kRun); ++i)
                 ok = runOnCpu(0, one, a, ms0) && runOnCpu(1, one, a, ms1) && timedRun(two, b, ms2);
-            if (!ok) continue;
+            if (!ok) {
+                out += fmt::format(
+                    "| {} | {}×{} | not measured (a frame or the pinning failed) "
+                    "| | | | |\n",
+                    scene.name, size.w, size.h);
+                continue;
+            }
             const double t0 = Median(ms0), t1 = Median(ms1), t2 = Median(ms2);
             auto cell = [](const std::vector<double>& ms) {
                 return fmt::format("{:.2f} / {:.2f}", *std::min_element(ms.begin(), ms.end()),
