@@ -125,6 +125,11 @@ void BodyBatches::WantIfHalfCovered(std::int32_t node, const Rect& xy) {
             covered += xs_[p] >= xy.x0 && xs_[p] <= xy.x1 && ys_[p] >= xy.y0 && ys_[p] <= xy.y1;
     }
     if (2 * covered < tileW_ * tileH_) return;
+    Want(node);
+}
+
+void BodyBatches::Want(std::int32_t node) {
+    if (nodeBatch_[static_cast<std::size_t>(node)] != kNoBatchWanted || !settings_.batch) return;
     // (Room for its batch now: Trace may compute it even if compiling the kernel fails.)
     nodeBatch_[static_cast<std::size_t>(node)] = kNoBatch;
     batchOn_ = true;

@@ -76,6 +76,8 @@ class BodyBatches {
     // stay in the kernel's lanes. Smaller ones (a sphere of a big union) are evaluated only where
     // needed.
     void WantIfHalfCovered(std::int32_t node, const Rect& xy);
+    // The body of program node n wanted whatever its bounds cover (the kernel under a depth cut).
+    void Want(std::int32_t node);
 
     // The batch of the body the sub-tile program reduces to (TileReduction::SingleBody) when
     // there is one and batches are on; every pixel of the sub-tile then sees exactly that body's

@@ -38,7 +38,9 @@ namespace quadrix::raycast {
     X(kernelPixels, "kernel_pixels", "pixels drawn by it")                                    \
     X(kernelScalarBodies, "kernel_scalar_bodies",                                             \
       "kernel bodies that fell back to the scalar path")                                      \
-    X(kernelScalarPixels, "kernel_scalar_pixels", "pixels of those fallbacks")
+    X(kernelScalarPixels, "kernel_scalar_pixels", "pixels of those fallbacks")                \
+    X(kernelCutTiles, "kernel_cut_sub_tiles",                                                 \
+      "kernel sub-tiles of a big union, drawn to its first depth cut")
 
 // Ids of every counter the engine reports, in the report's order: the scene's size, the list
 // above, then the literal evaluations by kind.

@@ -17,7 +17,9 @@ static_assert(BodyBatch::kScalar == 2);
 }  // namespace
 
 bool Kernel::Compile(const CsgProgram& program, const Rect& r) {
-    if (!settings_.kernel || !tracer_.Uncut()) return false;
+    if (!settings_.kernel) return false;
+    // With depth cuts, the tree of Trace's first pass (kernel.h).
+    cut_ = tracer_.FirstCut();
     program_ = &program;
     code_.clear();
     solids_.clear();
@@ -34,18 +36,25 @@ bool Kernel::Compile(const CsgProgram& program, const Rect& r) {
     stack_.clear();
     for (IntervalList& l : lists_) stack_.push_back(&l);
     ++counters_.kernelTiles;
+    if (cut_ != HUGE_VAL) ++counters_.kernelCutTiles;
     return true;
 }
 
 inline int Kernel::Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies) {
     const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
-    if (reduction_.NodeEmpty(static_cast<std::size_t>(n))) return 0;
+    // ∅ at every pixel, as Trace's Evaluate takes it: proved empty on the sub-tile, or cut.
+    if (reduction_.NodeEmpty(static_cast<std::size_t>(n)) || node.zlo >= cut_) return 0;
     if (node.kind == NodeKind::kBody) {
         // EvaluateBody gives ∅ for these at every pixel.
         if (tables_->BodyVoid(static_cast<std::size_t>(node.first))) return 0;
         code_.push_back({NodeKind::kBody, n, node.xy});
         ++bodies;
-        batches_.WantIfHalfCovered(n, node.xy);
+        // Under a cut every body is batched: the few nearest bodies of a big union (spheres a
+        // few pixels wide) would otherwise send their pixels to Trace.
+        if (cut_ == HUGE_VAL)
+            batches_.WantIfHalfCovered(n, node.xy);
+        else
+            batches_.Want(n);
         return 1;
     }
     if (!(node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1))
@@ -165,10 +174,15 @@ void Kernel::RunTile(Hit* hits) {
     }
     const double* xs = batches_.Xs();
     const double* ys = batches_.Ys();
+    if (cut_ != HUGE_VAL)
+        for (int p = 0; p < np; ++p) over[p] |= !(hits[p].t < cut_);  // nothing visible below it
     for (int p = 0; p < np; ++p) {
         if (!over[p]) continue;
         batches_.SetPixelIndex(static_cast<std::size_t>(p));
         hits[p] = Run(xs[p], ys[p]);
+        // Run's lists are the cut tree's: exact below the cut, Trace's passes beyond it.
+        if (cut_ != HUGE_VAL && !(hits[p].t < cut_))
+            hits[p] = tracer_.Trace(*program_, xs[p], ys[p]);
         ++counters_.kernelScalarPixels;
     }
     counters_.kernelPixels += static_cast<std::uint64_t>(np);
@@ -214,9 +228,11 @@ inline void Kernel::MergeLanes(const KernelSolid& s, int np, Hit* hits, std::int
         if (l.n[p])  // (t stays +inf when neither end is visible)
             tables_->VisibleEnd(l.lo[p], static_cast<std::int32_t>(l.loId[p]), l.hi[p],
                                 static_cast<std::int32_t>(l.hiId[p]), t, tag);
-        if (!(t < l.cut[p])) {
-            // Nothing visible below the cut: exact only without one.
-            if (l.cut[p] != HUGE_VAL) over[p] = 1;
+        if (!(t < l.cut[p] && t < cut_)) {
+            // Nothing visible below the lane's cut: exact only without one below the kernel's
+            // (a solid with nothing below the kernel's own cut adds no hit there; RunTile sends
+            // the pixels left with none below it to Run and Trace).
+            if (l.cut[p] < cut_) over[p] = 1;
             continue;
         }
         Hit& best = hits[p];

@@ -18,6 +18,7 @@
 // to the lower solid index).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -51,8 +52,11 @@ class Kernel {
     }
 
     // Compiles the sub-tile program (after BodyBatches::Start and Tracer::SetCuts); false when it
-    // cannot be compiled (kernel=off, depth cuts, more than kMaxBodies bodies, an operator whose
-    // bounds do not contain r).
+    // cannot be compiled (kernel=off, more than kMaxBodies bodies, an operator whose bounds do
+    // not contain r). With depth cuts (a program of more than 8 leaves: a big union), the code is
+    // that of Trace's first pass, the tree with the nodes whose zlo is not below the first cut
+    // taken as ∅ (at most 8 bodies by the cut's choice): its first visible point below the cut
+    // is the pixel's (the depth-cut rule, trace.h), and the pixels with none below it are traced.
     bool Compile(const CsgProgram& program, const Rect& r);
 
     // The kernel's visible point of the current pixel (BodyBatches::SetPixel) at (x, y).
@@ -100,6 +104,7 @@ class Kernel {
     Tracer& tracer_;
     Counters& counters_;
     const CsgProgram* program_ = nullptr;  // the sub-tile program compiled
+    double cut_ = HUGE_VAL;                // Tracer::FirstCut of the program compiled
     std::vector<KernelOp> code_;
     std::vector<KernelSolid> solids_;
     std::vector<IntervalList> lists_;

@@ -401,6 +401,51 @@ TEST(RaycastCsg, BoundsCullingChangesNoBit) {
     EXPECT_GT(CounterOrFail(unculled, "tile_bodies_empty"), 1000.0);
 }
 
+// A big union's sub-tiles (more than 8 leaves: depth cuts) go to the kernel with the tree of
+// Trace's first pass; its pixels with nothing visible before the first cut are traced. Bit for
+// bit what kernel=off (Trace alone) draws, with both ways taken.
+// A union of shells (a sphere minus a smaller one, as one body: two intervals where a ray passes
+// the hole) as well: their batches are exact only below a per-pixel cut of their own.
+FlatScene DenseShells(int w, int h, int count, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    TestSceneBuilder b(w, h);
+    std::vector<int> leaves;
+    Box3 all;
+    for (int k = 0; k < count; ++k) {
+        const Vec3 c{w * u(rng), h * u(rng), 100 + 50 * u(rng)};
+        const double r = 3 + 6 * u(rng);
+        const Box3 box = SphereBounds(c, r);
+        const int body =
+            b.AddBody({{b.AddSphere(c, r), false}, {b.AddSphere(c, 0.6 * r), true}}, box);
+        leaves.push_back(b.AddLeaf(body, box));
+        all.Extend(box);
+    }
+    b.AddSolid(b.AddNode(CsgOp::kUnion, leaves, all), all);
+    return b.scene();
+}
+
+TEST(RaycastCsg, KernelsUnderADepthCutMatchTraceBitForBit) {
+    for (std::uint64_t seed : {11u, 12u}) {
+        // Dense: 900 spheres of 2-8 pixels over 180 × 100, so most sub-tiles meet more than 8;
+        // and 700 shells.
+        const FlatScene scenes[] = {ManySpheres(180, 100, 900, seed).scene(),
+                                    DenseShells(180, 100, 700, seed)};
+        for (const FlatScene& scene : scenes) {
+            RenderOptions on, off;
+            off.engineOptions = {{"kernel", "off"}};
+            Frame a, c;
+            const RenderStats stats = MakeRaycastEngine()->Render(scene, on, a);
+            MakeRaycastEngine()->Render(scene, off, c);
+            EXPECT_EQ(FirstBitDifference(a, c), "") << "seed " << seed;
+            EXPECT_GT(a.CoveredCount(), 12000u);
+            EXPECT_GT(CounterOrFail(stats, "kernel_cut_sub_tiles"), 100);
+            // Pixels went past the first cut (traced from the kernel's sub-tiles or beside them).
+            EXPECT_GT(CounterOrFail(stats, "depth_cut_retries"), 50);
+        }
+    }
+}
+
 TEST(RaycastCsg, ThreadCountChangesNoBit) {
     TestSceneBuilder b = ManySpheres(280, 130, 200, 8);  // not a multiple of the tile sizes
     Frame one = Render(b.scene(), 1), two = Render(b.scene(), 2), all = Render(b.scene(), 0);
@@ -429,14 +474,17 @@ TEST(RaycastCsg, ExactDepthTiesKeepTheLowerSolidIndex) {
 
 TEST(RaycastCsg, NearestSolidWinsAndDepthOrderStopsEarly) {
     // 50 sphere solids one behind the other, each larger than the image: solid 0 covers every
-    // pixel nearer than solid 1 can start, so each pixel evaluates one solid and stops.
+    // pixel nearer than solid 1 can start, so each pixel evaluates one solid and stops. (Trace's
+    // rule: kernel=off, since the kernel draws these sub-tiles to their first depth cut.)
     TestSceneBuilder b(32, 32);
     for (int k = 0; k < 50; ++k) {
         Vec3 c{16, 16, 100 + 30.0 * k};
         b.AddSolidOfBody(b.AddBody({{b.AddSphere(c, 40), false}}, SphereBounds(c, 40)));
     }
-    RenderStats stats;
-    Frame f = Render(b.scene(), 0, &stats);
+    RenderOptions options;
+    options.engineOptions = {{"kernel", "off"}};
+    Frame f;
+    const RenderStats stats = MakeRaycastEngine()->Render(b.scene(), options, f);
     ASSERT_EQ(f.CoveredCount(), 32u * 32u);
     for (std::size_t k = 0; k < f.body.size(); ++k) ASSERT_EQ(f.Solid(k), 0);
     EXPECT_EQ(CounterOrFail(stats, "depth_early_outs"), 32 * 32);

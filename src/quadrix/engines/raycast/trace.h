@@ -46,6 +46,9 @@ class Tracer {
     void SetCuts(const CsgProgram& program);
     // No depth cut but +inf (at most 8 leaves): Trace evaluates each solid's whole tree.
     bool Uncut() const { return cuts_.size() == 1; }
+    // The first cut level (+inf when Uncut): Trace's first pass evaluates the tree with the nodes
+    // whose zlo is not below it taken as ∅.
+    double FirstCut() const { return cuts_.front(); }
 
     // The visible point of the pixel (x, y): per solid in order of nearest depth, its first
     // opaque endpoint.
