@@ -142,8 +142,10 @@ inline void BodyBatches::WantCovering(const CsgProgram& program, const Rect& r) 
     std::size_t wanted = 0;
     for (std::size_t n = 0; n < program.nodes.size(); ++n) {
         const ProgNode& node = program.nodes[n];
-        if (node.kind != NodeKind::kBody || reduction_.NodeEmpty(n)) continue;
-        if (node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1) {
+        if (node.kind != NodeKind::kBody) continue;
+        // (Bounds first: only the covering bodies are reduced here, tile_reduction.h.)
+        if (node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1 &&
+            !reduction_.NodeEmpty(n)) {
             nodeBatch_[n] = kNoBatch;
             ++wanted;
         }

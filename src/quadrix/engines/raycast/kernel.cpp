@@ -43,7 +43,8 @@ bool Kernel::Compile(const CsgProgram& program, const Rect& r) {
 inline int Kernel::Emit(const CsgProgram& p, std::int32_t n, const Rect& r, int& bodies) {
     const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
     // ∅ at every pixel, as Trace's Evaluate takes it: proved empty on the sub-tile, or cut.
-    if (reduction_.NodeEmpty(static_cast<std::size_t>(n)) || node.zlo >= cut_) return 0;
+    // (The cut first: the reduction of a cut body is then never made, tile_reduction.h.)
+    if (node.zlo >= cut_ || reduction_.NodeEmpty(static_cast<std::size_t>(n))) return 0;
     if (node.kind == NodeKind::kBody) {
         // EvaluateBody gives ∅ for these at every pixel.
         if (tables_->BodyVoid(static_cast<std::size_t>(node.first))) return 0;

@@ -154,68 +154,77 @@ void TileReduction::PrepareStrip(const CsgProgram& program, const Rect& r) {
         // on each of its sub-tiles instead.
         if (tables_->BodyTagCount(body) == 1) continue;
         const auto begin = static_cast<std::int32_t>(stripTags_.size());
-        const bool empty =
-            ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r, stripTags_);
+        const bool empty = ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r,
+                                      stripTags_, bounds_);
         sb = {begin, static_cast<std::int32_t>(stripTags_.size()), empty, stripStamp_};
     }
 }
 
 void TileReduction::PrepareTile(const CsgProgram& program, const Rect& r) {
+    tileProgram_ = &program;
+    tileRect_ = r;
     tileTags_.clear();
     nodeTags_.assign(program.nodes.size(), {0, 0});
-    nodeEmpty_.assign(program.nodes.size(), false);
-    for (std::size_t n = 0; n < program.nodes.size(); ++n) {
-        const ProgNode& node = program.nodes[n];
-        if (node.kind != NodeKind::kBody) continue;
-        const auto body = static_cast<std::size_t>(node.first);
-        const auto begin = static_cast<std::int32_t>(tileTags_.size());
-        const auto all = static_cast<std::int32_t>(tables_->BodyTagCount(body));
-        bool empty;
-        if (body < stripBody_.size() && stripBody_[body].stamp == stripStamp_) {
-            const StripBody& sb = stripBody_[body];
-            empty =
-                sb.empty || ReduceBody(stripTags_.data() + sb.begin,
-                                       static_cast<std::size_t>(sb.end - sb.begin), r, tileTags_);
-        } else {
-            empty = ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r, tileTags_);
-        }
-        if (empty) {
-            tileTags_.resize(static_cast<std::size_t>(begin));
-            nodeEmpty_[n] = true;
-            ++counters_.emptyBodies;
-            nodeTags_[n] = {begin, begin};
-            continue;
-        }
-        nodeTags_[n] = {begin, static_cast<std::int32_t>(tileTags_.size())};
-        counters_.prunedLiterals += static_cast<std::uint64_t>(all - (nodeTags_[n].second - begin));
+    nodeState_.assign(program.nodes.size(), kUnknown);
+    // A small program (no depth cut: at most 8 bodies, trace.h) is used whole: reduced at once,
+    // without a test per question.
+    if (program.nodes.size() <= kEagerNodes)
+        for (std::size_t n = 0; n < program.nodes.size(); ++n) ReduceNode(n);
+}
+
+std::uint8_t TileReduction::ReduceNode(std::size_t n) const {
+    const ProgNode& node = tileProgram_->nodes[n];
+    if (node.kind != NodeKind::kBody) return nodeState_[n] = kKept;
+    const auto body = static_cast<std::size_t>(node.first);
+    const auto begin = static_cast<std::int32_t>(tileTags_.size());
+    const auto all = static_cast<std::int32_t>(tables_->BodyTagCount(body));
+    bool empty;
+    if (body < stripBody_.size() && stripBody_[body].stamp == stripStamp_) {
+        const StripBody& sb = stripBody_[body];
+        empty = sb.empty || ReduceBody(stripTags_.data() + sb.begin,
+                                       static_cast<std::size_t>(sb.end - sb.begin), tileRect_,
+                                       tileTags_, tileBounds_);
+    } else {
+        empty = ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), tileRect_,
+                           tileTags_, tileBounds_);
     }
+    if (empty) {
+        tileTags_.resize(static_cast<std::size_t>(begin));
+        ++counters_.emptyBodies;
+        nodeTags_[n] = {begin, begin};
+        return nodeState_[n] = kEmpty;
+    }
+    nodeTags_[n] = {begin, static_cast<std::int32_t>(tileTags_.size())};
+    counters_.prunedLiterals += static_cast<std::uint64_t>(all - (nodeTags_[n].second - begin));
+    return nodeState_[n] = kKept;
 }
 
 inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
-                                      std::vector<std::int32_t>& out) {
-    const bool bodyEmptyByQuadric = CornerBounds(*tables_, settings_.tileCull, tags, n, r, bounds_);
+                                      std::vector<std::int32_t>& out,
+                                      std::vector<PlaneBound>& bounds) const {
+    const bool bodyEmptyByQuadric = CornerBounds(*tables_, settings_.tileCull, tags, n, r, bounds);
     // Empty everywhere: a near bound beyond a far bound at the four corners (margin as below)
     // stays beyond it on the whole rectangle, so no ray of the sub-tile meets the body, and
     // Evaluate takes it as ∅ without evaluating it (exactly what the body's literals would give:
     // an empty set, and ∅ is an exact identity of every operator).
-    const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds_));
+    const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds));
     if (empty) return true;
-    const Candidates c = bounds_.size() > kExactPairs ? TightestAtCorners(bounds_) : Candidates{};
-    for (std::size_t i = 0; i < bounds_.size(); ++i)
-        if (!Dominated(bounds_, i, c)) out.push_back(bounds_[i].tag);
+    const Candidates c = bounds.size() > kExactPairs ? TightestAtCorners(bounds) : Candidates{};
+    for (std::size_t i = 0; i < bounds.size(); ++i)
+        if (!Dominated(bounds, i, c)) out.push_back(bounds[i].tag);
     return false;
 }
 
 bool TileReduction::ReduceLiterals(const std::int32_t* tags, std::size_t n, const Rect& r,
                                    std::vector<std::int32_t>& out) {
-    return ReduceBody(tags, n, r, out);
+    return ReduceBody(tags, n, r, out, bounds_);
 }
 
 // TryFlatFill's plane test for the body of program node bodyNode on r: the tag of the one opaque
 // near plane that every kept far plane lies beyond by a margin at the four corner centres, or −1
 // when the body's kept literals are not such planes.
 inline std::int32_t TileReduction::FlatNearPlane(std::int32_t bodyNode, const Rect& r) const {
-    const auto [begin, end] = nodeTags_[static_cast<std::size_t>(bodyNode)];
+    const auto [begin, end] = NodeTags(static_cast<std::size_t>(bodyNode));
     const double cx[4] = {r.x0, r.x1, r.x0, r.x1}, cy[4] = {r.y0, r.y0, r.y1, r.y1};
     std::int32_t nearTag = -1;
     double nearR[4] = {0, 0, 0, 0};
@@ -296,7 +305,7 @@ bool TileReduction::TryFlatFill(const CsgProgram& program, const Rect& r, int x0
 
 std::int32_t TileReduction::SingleBody(const CsgProgram& p, std::int32_t n, const Rect& r) const {
     const ProgNode& node = p.nodes[static_cast<std::size_t>(n)];
-    if (nodeEmpty_[static_cast<std::size_t>(n)]) return kEmptyNode;
+    if (NodeEmpty(static_cast<std::size_t>(n))) return kEmptyNode;
     if (!(node.xy.x0 <= r.x0 && node.xy.x1 >= r.x1 && node.xy.y0 <= r.y0 && node.xy.y1 >= r.y1))
         return -1;
     if (node.kind == NodeKind::kBody) return n;

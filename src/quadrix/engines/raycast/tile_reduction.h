@@ -57,7 +57,11 @@ class TileReduction {
 
     // Once per tile: ReduceBody on the tile's rectangle for the bodies of its program.
     void PrepareStrip(const CsgProgram& program, const Rect& r);
-    // Once per sub-tile: each body of the sub-tile program from the strip's literals.
+    // Once per sub-tile: each body of the sub-tile program from the strip's literals, reduced
+    // when first asked for (NodeTags, NodeEmpty): a big union's sub-tile drawn to its first depth
+    // cut (kernel.h) asks only for its nearest bodies, unless a pixel is traced past the cut. The
+    // answers do not depend on when they are made. `program` must stay as it is until the next
+    // PrepareTile.
     void PrepareTile(const CsgProgram& program, const Rect& r);
 
     // The same reduction for one body on any rectangle r of the image plane (the sample tracer's
@@ -72,9 +76,16 @@ class TileReduction {
     // PrepareTile's result per node of the sub-tile program: a body's kept literals are
     // TileTags()[NodeTags(n).first, NodeTags(n).second); NodeEmpty(n): a body empty on every ray
     // of the sub-tile.
-    std::pair<std::int32_t, std::int32_t> NodeTags(std::size_t n) const { return nodeTags_[n]; }
+    // (TileTags may move when a later body is reduced: take it after NodeTags.)
+    std::pair<std::int32_t, std::int32_t> NodeTags(std::size_t n) const {
+        Reduce(n);
+        return nodeTags_[n];
+    }
     const std::int32_t* TileTags() const { return tileTags_.data(); }
-    bool NodeEmpty(std::size_t n) const { return nodeEmpty_[n]; }
+    bool NodeEmpty(std::size_t n) const {
+        const std::uint8_t state = nodeState_[n];
+        return (state != kUnknown ? state : ReduceNode(n)) == kEmpty;
+    }
 
     // Flat sub-tiles: writes the pixels of [x0, x1) × [y0, y1) when the sub-tile is provably one
     // plane (see tile_reduction.cpp); false, nothing written, otherwise.
@@ -106,8 +117,16 @@ class TileReduction {
     // (a body's literals in its order, or a subsequence of them already reduced on a rectangle
     // containing r) that may bound the body somewhere in r, and returns true (with nothing
     // appended) when the body is provably empty on every ray of r.
+    // `bounds` is scratch.
     inline bool ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
-                           std::vector<std::int32_t>& out);
+                           std::vector<std::int32_t>& out, std::vector<PlaneBound>& bounds) const;
+    // PrepareTile's work for program node n, once (nothing for an operator node): its state.
+    static constexpr std::uint8_t kUnknown = 0, kKept = 1, kEmpty = 2;
+    static constexpr std::size_t kEagerNodes = 16;  // PrepareTile reduces smaller programs whole
+    void Reduce(std::size_t n) const {
+        if (nodeState_[n] == kUnknown) ReduceNode(n);
+    }
+    std::uint8_t ReduceNode(std::size_t n) const;
     // TryFlatFill's plane test (tile_reduction.cpp): the near plane's tag, or −1.
     inline std::int32_t FlatNearPlane(std::int32_t bodyNode, const Rect& r) const;
 
@@ -118,9 +137,15 @@ class TileReduction {
     std::vector<StripBody> stripBody_;
     std::vector<std::int32_t> stripTags_;
     std::uint32_t stripStamp_ = 0;
-    std::vector<std::int32_t> tileTags_;
-    std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
-    std::vector<bool> nodeEmpty_;  // per program node: a body empty on every ray of the sub-tile
+    // PrepareTile's results, made as they are asked for (Reduce): a cache, hence mutable.
+    const CsgProgram* tileProgram_ = nullptr;
+    Rect tileRect_;
+    mutable std::vector<PlaneBound> tileBounds_;  // ReduceNode's scratch
+    mutable std::vector<std::int32_t> tileTags_;
+    mutable std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
+    // Per program node: kEmpty for a body empty on every ray of the sub-tile, kKept for the
+    // others, kUnknown until reduced.
+    mutable std::vector<std::uint8_t> nodeState_;
 };
 
 // Per sub-tile (tiling.cpp), so defined here.
