@@ -347,8 +347,10 @@ TEST(RaycastCsg, KernelsMatchTraceBitForBitOnRandomScenes) {
 // ----------------------------------------------------------------------------------
 
 // Many small spheres in one union, minus a tilted cylinder, next to separate solids: bounds are
-// computed by hand (exact for spheres, Everything() for the unbounded cylinder).
-TestSceneBuilder ManySpheres(int w, int h, int count, std::uint64_t seed) {
+// computed by hand (exact for spheres, Everything() for the unbounded cylinder). `shells`: each
+// sphere of the union hollow (minus a concentric one of 0.6 its radius, in the same body: two
+// intervals where a ray passes the hole).
+TestSceneBuilder ManySpheres(int w, int h, int count, std::uint64_t seed, bool shells = false) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     TestSceneBuilder b(w, h);
@@ -358,7 +360,9 @@ TestSceneBuilder ManySpheres(int w, int h, int count, std::uint64_t seed) {
         Vec3 c{w * u(rng), h * u(rng), 100 + 50 * u(rng)};
         double r = 2 + 6 * u(rng);
         Box3 box = SphereBounds(c, r);
-        leaves.push_back(b.AddLeaf(b.AddBody({{b.AddSphere(c, r), false}}, box), box));
+        std::vector<std::pair<int, bool>> literals{{b.AddSphere(c, r), false}};
+        if (shells) literals.push_back({b.AddSphere(c, 0.6 * r), true});
+        leaves.push_back(b.AddLeaf(b.AddBody(literals, box), box));
         all.Extend(box);
     }
     int u1 = b.AddNode(CsgOp::kUnion, leaves, all);
@@ -404,33 +408,12 @@ TEST(RaycastCsg, BoundsCullingChangesNoBit) {
 // A big union's sub-tiles (more than 8 leaves: depth cuts) go to the kernel with the tree of
 // Trace's first pass; its pixels with nothing visible before the first cut are traced. Bit for
 // bit what kernel=off (Trace alone) draws, with both ways taken.
-// A union of shells (a sphere minus a smaller one, as one body: two intervals where a ray passes
-// the hole) as well: their batches are exact only below a per-pixel cut of their own.
-FlatScene DenseShells(int w, int h, int count, std::uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0, 1);
-    TestSceneBuilder b(w, h);
-    std::vector<int> leaves;
-    Box3 all;
-    for (int k = 0; k < count; ++k) {
-        const Vec3 c{w * u(rng), h * u(rng), 100 + 50 * u(rng)};
-        const double r = 3 + 6 * u(rng);
-        const Box3 box = SphereBounds(c, r);
-        const int body =
-            b.AddBody({{b.AddSphere(c, r), false}, {b.AddSphere(c, 0.6 * r), true}}, box);
-        leaves.push_back(b.AddLeaf(body, box));
-        all.Extend(box);
-    }
-    b.AddSolid(b.AddNode(CsgOp::kUnion, leaves, all), all);
-    return b.scene();
-}
-
 TEST(RaycastCsg, KernelsUnderADepthCutMatchTraceBitForBit) {
     for (std::uint64_t seed : {11u, 12u}) {
         // Dense: 900 spheres of 2-8 pixels over 180 × 100, so most sub-tiles meet more than 8;
-        // and 700 shells.
+        // and as many shells.
         const FlatScene scenes[] = {ManySpheres(180, 100, 900, seed).scene(),
-                                    DenseShells(180, 100, 700, seed)};
+                                    ManySpheres(180, 100, 900, seed, true).scene()};
         for (const FlatScene& scene : scenes) {
             RenderOptions on, off;
             off.engineOptions = {{"kernel", "off"}};
