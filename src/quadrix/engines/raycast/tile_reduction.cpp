@@ -166,8 +166,8 @@ void TileReduction::PrepareTile(const CsgProgram& program, const Rect& r) {
     tileTags_.clear();
     nodeTags_.assign(program.nodes.size(), {0, 0});
     nodeState_.assign(program.nodes.size(), kUnknown);
-    // A small program (no depth cut: at most 8 bodies, trace.h) is used whole: reduced at once,
-    // without a test per question.
+    // A small program (at most kEagerNodes nodes) has nearly every body asked for: reduced at
+    // once, without a test per question.
     if (program.nodes.size() <= kEagerNodes)
         for (std::size_t n = 0; n < program.nodes.size(); ++n) ReduceNode(n);
 }
