@@ -154,8 +154,8 @@ void TileReduction::PrepareStrip(const CsgProgram& program, const Rect& r) {
         // on each of its sub-tiles instead.
         if (tables_->BodyTagCount(body) == 1) continue;
         const auto begin = static_cast<std::int32_t>(stripTags_.size());
-        const bool empty = ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r,
-                                      stripTags_, bounds_);
+        const bool empty =
+            ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), r, stripTags_);
         sb = {begin, static_cast<std::int32_t>(stripTags_.size()), empty, stripStamp_};
     }
 }
@@ -181,12 +181,12 @@ std::uint8_t TileReduction::ReduceNode(std::size_t n) const {
     bool empty;
     if (body < stripBody_.size() && stripBody_[body].stamp == stripStamp_) {
         const StripBody& sb = stripBody_[body];
-        empty = sb.empty || ReduceBody(stripTags_.data() + sb.begin,
-                                       static_cast<std::size_t>(sb.end - sb.begin), tileRect_,
-                                       tileTags_, tileBounds_);
+        empty = sb.empty ||
+                ReduceBody(stripTags_.data() + sb.begin,
+                           static_cast<std::size_t>(sb.end - sb.begin), tileRect_, tileTags_);
     } else {
-        empty = ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), tileRect_,
-                           tileTags_, tileBounds_);
+        empty =
+            ReduceBody(tables_->BodyTags(body), tables_->BodyTagCount(body), tileRect_, tileTags_);
     }
     if (empty) {
         tileTags_.resize(static_cast<std::size_t>(begin));
@@ -200,24 +200,23 @@ std::uint8_t TileReduction::ReduceNode(std::size_t n) const {
 }
 
 inline bool TileReduction::ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
-                                      std::vector<std::int32_t>& out,
-                                      std::vector<PlaneBound>& bounds) const {
-    const bool bodyEmptyByQuadric = CornerBounds(*tables_, settings_.tileCull, tags, n, r, bounds);
+                                      std::vector<std::int32_t>& out) const {
+    const bool bodyEmptyByQuadric = CornerBounds(*tables_, settings_.tileCull, tags, n, r, bounds_);
     // Empty everywhere: a near bound beyond a far bound at the four corners (margin as below)
     // stays beyond it on the whole rectangle, so no ray of the sub-tile meets the body, and
     // Evaluate takes it as ∅ without evaluating it (exactly what the body's literals would give:
     // an empty set, and ∅ is an exact identity of every operator).
-    const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds));
+    const bool empty = bodyEmptyByQuadric || (settings_.tileCull && NearBeyondFar(bounds_));
     if (empty) return true;
-    const Candidates c = bounds.size() > kExactPairs ? TightestAtCorners(bounds) : Candidates{};
-    for (std::size_t i = 0; i < bounds.size(); ++i)
-        if (!Dominated(bounds, i, c)) out.push_back(bounds[i].tag);
+    const Candidates c = bounds_.size() > kExactPairs ? TightestAtCorners(bounds_) : Candidates{};
+    for (std::size_t i = 0; i < bounds_.size(); ++i)
+        if (!Dominated(bounds_, i, c)) out.push_back(bounds_[i].tag);
     return false;
 }
 
 bool TileReduction::ReduceLiterals(const std::int32_t* tags, std::size_t n, const Rect& r,
                                    std::vector<std::int32_t>& out) {
-    return ReduceBody(tags, n, r, out, bounds_);
+    return ReduceBody(tags, n, r, out);
 }
 
 // TryFlatFill's plane test for the body of program node bodyNode on r: the tag of the one opaque

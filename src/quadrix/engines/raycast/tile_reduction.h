@@ -117,9 +117,8 @@ class TileReduction {
     // (a body's literals in its order, or a subsequence of them already reduced on a rectangle
     // containing r) that may bound the body somewhere in r, and returns true (with nothing
     // appended) when the body is provably empty on every ray of r.
-    // `bounds` is scratch.
     inline bool ReduceBody(const std::int32_t* tags, std::size_t n, const Rect& r,
-                           std::vector<std::int32_t>& out, std::vector<PlaneBound>& bounds) const;
+                           std::vector<std::int32_t>& out) const;
     // PrepareTile's work for program node n, once (nothing for an operator node): its state.
     static constexpr std::uint8_t kUnknown = 0, kKept = 1, kEmpty = 2;
     static constexpr std::size_t kEagerNodes = 16;  // PrepareTile reduces smaller programs whole
@@ -133,14 +132,13 @@ class TileReduction {
     const SceneTables* tables_;  // Bind
     Settings settings_;
     Counters& counters_;
-    std::vector<PlaneBound> bounds_;  // ReduceBody scratch
+    mutable std::vector<PlaneBound> bounds_;  // ReduceBody scratch (also under ReduceNode)
     std::vector<StripBody> stripBody_;
     std::vector<std::int32_t> stripTags_;
     std::uint32_t stripStamp_ = 0;
     // PrepareTile's results, made as they are asked for (Reduce): a cache, hence mutable.
     const CsgProgram* tileProgram_ = nullptr;
     Rect tileRect_;
-    mutable std::vector<PlaneBound> tileBounds_;  // ReduceNode's scratch
     mutable std::vector<std::int32_t> tileTags_;
     mutable std::vector<std::pair<std::int32_t, std::int32_t>> nodeTags_;  // per program node
     // Per program node: kEmpty for a body empty on every ray of the sub-tile, kKept for the
