@@ -9,23 +9,32 @@
 namespace quadrix::raycast {
 namespace {
 
-// The pixel (i, j) with centre (x, y) from its visible point (background when there is none).
-void WriteHit(const FlatScene& scene, const SceneTables& tables, const Hit& hit, int i, int j,
-              double x, double y, const PixelRows& out, Counters& counters) {
-    const std::size_t k = out.Index(i, j);
+// The pixel k with centre (x, y) from its visible point (background when there is none). Its
+// normal, where it is on a quadric, is left to `normals`: WriteHit adds the point, returning its
+// lane, or -1 when it wrote the normal itself (a plane's, a quartic's, or the background's).
+int WriteHit(const FlatScene& scene, const SceneTables& tables, const Hit& hit, std::size_t k,
+             double x, double y, const PixelRows& out, Counters& counters,
+             QuadricNormals& normals) {
     if (hit.tag < 0) {
         out.SetBackground(k);
-        return;
+        return -1;
     }
     ++counters.covered;
     const Tag& tag = tables.TagOf(hit.tag);
     out.depth[k] = static_cast<float>(hit.t);
-    const auto hsIndex = static_cast<std::size_t>(tag.halfSpace);
-    out.normal[k] = tables.constantNormal[hsIndex]
-                        ? tables.packedPlaneNormal[hsIndex]
-                        : PackedNormal(scene.WorldNormal(tag.halfSpace, {x, y, hit.t}));
     out.surface[k] = tag.halfSpace;
     out.body[k] = tag.body;
+    const auto hsIndex = static_cast<std::size_t>(tag.halfSpace);
+    if (tables.constantNormal[hsIndex]) {
+        out.normal[k] = tables.packedPlaneNormal[hsIndex];
+        return -1;
+    }
+    const FlatHalfSpace& hs = scene.halfSpaces[hsIndex];
+    if (!hs.IsQuadric()) {
+        out.normal[k] = PackedNormal(scene.WorldNormal(tag.halfSpace, {x, y, hit.t}));
+        return -1;
+    }
+    return normals.Add(hs.quadric, x, y, hit.t);
 }
 
 // The pixels of a sub-tile [sx, ex) × [sy, ey) whose program is w.subTileProgram, after the
@@ -41,14 +50,37 @@ void DrawSubTilePixels(const FlatScene& scene, const SceneTables& tables, int sx
     const bool kernel = !single && w.kernel.Compile(w.subTileProgram, r);
     Hit kernelHits[kLanePixels];
     if (kernel) w.kernel.RunTile(kernelHits);
+    // The normals on quadrics are made together once the sub-tile's hits are written
+    // (quadric_normals.h): pixelOf[lane] is the lane's pixel, tagOf[lane] its hit's tag.
+    QuadricNormals& normals = w.normals;
+    normals.Clear();
+    std::size_t pixelOf[QuadricNormals::kCapacity];
+    std::int32_t tagOf[QuadricNormals::kCapacity];
     for (int j = sy; j < ey; ++j) {
         for (int i = sx; i < ex; ++i) {
             const double x = i + 0.5, y = j + 0.5;
             w.batches.SetPixel(i, j);
             const Hit hit = SubTileHit(w, w.subTileProgram, single, kernel ? kernelHits : nullptr,
                                        w.batches.Pixel(), x, y);
-            WriteHit(scene, tables, hit, i, j, x, y, out, w.counters);
+            const std::size_t k = out.Index(i, j);
+            const int lane = WriteHit(scene, tables, hit, k, x, y, out, w.counters, normals);
+            if (lane >= 0) {
+                pixelOf[lane] = k;
+                tagOf[lane] = hit.tag;
+            }
         }
+    }
+    if (normals.Size() == 0) return;
+    normals.Pack(scene.projection.deviceFromWorld.Matrix());
+    for (int lane = 0; lane < normals.Size(); ++lane) {
+        const std::size_t k = pixelOf[lane];
+        if (!normals.NeedsScalar(lane)) {
+            out.normal[k].bits = normals.Code(lane);
+            continue;
+        }
+        const double x = normals.X(lane), y = normals.Y(lane), t = normals.Z(lane);
+        out.normal[k] =
+            PackedNormal(scene.WorldNormal(tables.TagOf(tagOf[lane]).halfSpace, {x, y, t}));
     }
 }
 

@@ -14,6 +14,7 @@
 #include "quadrix/engines/raycast/eval_names.h"
 #include "quadrix/engines/raycast/kernel.h"
 #include "quadrix/engines/raycast/pixel_rows.h"
+#include "quadrix/engines/raycast/quadric_normals.h"
 #include "quadrix/engines/raycast/scene_tables.h"
 #include "quadrix/engines/raycast/settings.h"
 #include "quadrix/engines/raycast/tile_reduction.h"
@@ -56,6 +57,7 @@ class Worker {
     Tracer tracer;
     Kernel kernel;
     TileBuffer tile;
+    QuadricNormals normals;  // a sub-tile's normals on quadrics (tiling.cpp)
 };
 
 // The visible point of pixel p at (x, y) of a sub-tile whose program is `program`, by the first of
