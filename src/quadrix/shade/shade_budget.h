@@ -49,6 +49,7 @@ class ShadeBudget {
 
     bool Exhausted() const { return exhausted_.load(std::memory_order_relaxed); }
     void Spend(std::uint64_t literals) {
+        if (literals == 0) return;  // nothing to add: no atomic operation
         if (used_.fetch_add(literals, std::memory_order_relaxed) + literals > limit_)
             exhausted_.store(true, std::memory_order_relaxed);
     }
