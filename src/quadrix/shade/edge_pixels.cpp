@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "quadrix/frame/packed_normal.h"
@@ -247,7 +249,7 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
 
 // The bits of a block of pairs whose pixels beyond exist: those of a smooth block without a depth
 // jump are its luminance jumps (PairCode's last test); true when they are written, false when the
-// caller must test the pairs one by one (any other block).
+// caller must look at the pairs (any other block: BlockPairs).
 [[gnu::always_inline]] inline bool SmoothBlock(const EdgeArrays f, const Block k, const bool jumps,
                                                const double* la, const double* lb,
                                                const double* la2, const double* lb2) {
@@ -269,6 +271,101 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
     return true;
 }
 
+// Per pair of a block whose pixels beyond exist: 1 where PairCode may be non-zero, 0 where it is
+// 0 for sure. A pair is smooth when its pixels and the two beyond them are on one surface
+// (covered), its two are of one body, and its normals' codes are equal or within
+// kNearNormalCodes of each other, neither kZero (no crease); a smooth pair's code is its depth
+// test (both slope terms count: the pixels beyond exist and are on the surface) and, with jumps
+// and no depth jump, its luminance test. So a pair may have bits when it is not smooth, or its
+// depth jumps, or (with jumps) its luminance does. Three branch-free passes over the block,
+// which the compiler vectorises (built for AVX2 and the baseline, util/cpu_features.h: the same
+// IEEE operations in the same order either way). For the blocks SmoothBlock does not settle: a
+// block with one edge pixel in it has its other pairs answered here, not tested one by one.
+[[gnu::always_inline]] inline void MayHaveBitsBody(const EdgeArrays f, const Block k,
+                                                   const bool jumps, const double* la,
+                                                   const double* lb, const double* la2,
+                                                   const double* lb2, std::uint8_t* need) {
+    std::uint8_t rough[kSkip], depth[kSkip], lum[kSkip];
+    for (std::size_t i = 0; i < kSkip; ++i) {
+        const std::int32_t s = f.surface[k.a + i];
+        std::int32_t bad = (s ^ f.surface[k.b + i]) | (s ^ f.surface[k.a2 + i]) |
+                           (s ^ f.surface[k.b2 + i]) | (f.body[k.a + i] ^ f.body[k.b + i]) |
+                           (s >> 31);  // s < 0: kNone
+        const auto p = static_cast<std::int32_t>(f.normal[k.a + i].bits);
+        const auto q = static_cast<std::int32_t>(f.normal[k.b + i].bits);
+        const std::int32_t du = (p >> 16) - (q >> 16);
+        const std::int32_t dv = ((p << 16) >> 16) - ((q << 16) >> 16);
+        const std::int32_t delta = (du < 0 ? -du : du) + (dv < 0 ? -dv : dv);
+        bad |= static_cast<std::int32_t>(delta > kNearNormalCodes) |
+               static_cast<std::int32_t>(p == static_cast<std::int32_t>(PackedNormal::kZero)) |
+               static_cast<std::int32_t>(q == static_cast<std::int32_t>(PackedNormal::kZero));
+        rough[i] = bad != 0;
+    }
+    const float* za = f.depth + k.a;
+    const float* zb = f.depth + k.b;
+    const float* za2 = f.depth + k.a2;
+    const float* zb2 = f.depth + k.b2;
+    for (std::size_t i = 0; i < kSkip; ++i) {
+        const double a = za[i], b = zb[i];
+        const double ta = std::fabs(a - za2[i]), tb = std::fabs(static_cast<double>(zb2[i]) - b);
+        double slope = 0.0 < ta ? ta : 0.0;  // std::max(0.0, ta)
+        slope = slope < tb ? tb : slope;     // std::max(slope, tb)
+        depth[i] = std::fabs(b - a) > 4 * slope + 1e-6 * (1 + std::fabs(a));
+    }
+    for (std::size_t i = 0; i < kSkip; ++i) lum[i] = 0;
+    if (jumps) {
+        for (std::size_t i = 0; i < kSkip; ++i) {
+            const double d = std::fabs(lb[i] - la[i]);
+            const double ea = std::fabs(la[i] - la2[i]), eb = std::fabs(lb2[i] - lb[i]);
+            const double slope = ea < eb ? eb : ea;  // std::max(ea, eb)
+            lum[i] = d > 4 * slope + 1.0 / 255;
+        }
+    }
+    for (std::size_t i = 0; i < kSkip; ++i)
+        need[i] = static_cast<std::uint8_t>(rough[i] | depth[i] | lum[i]);
+}
+QUADRIX_AVX2 void MayHaveBitsAvx2(const EdgeArrays f, const Block k, const bool jumps,
+                                  const double* la, const double* lb, const double* la2,
+                                  const double* lb2, std::uint8_t* need) {
+    MayHaveBitsBody(f, k, jumps, la, lb, la2, lb2, need);
+}
+void MayHaveBitsBaseline(const EdgeArrays f, const Block k, const bool jumps, const double* la,
+                         const double* lb, const double* la2, const double* lb2,
+                         std::uint8_t* need) {
+    MayHaveBitsBody(f, k, jumps, la, lb, la2, lb2, need);
+}
+
+// The bits of a block of pairs whose pixels beyond exist that SmoothBlock did not settle: only the
+// pairs that may have bits (MayHaveBits) are tested, one by one (PairTest, the definition).
+[[gnu::always_inline]] inline void BlockPairs(const EdgeArrays f, const Block k, const bool jumps,
+                                              const double* la, const double* lb, const double* la2,
+                                              const double* lb2) {
+    alignas(16) std::uint8_t need[kSkip];
+    if (gCpuHasAvx2)
+        MayHaveBitsAvx2(f, k, jumps, la, lb, la2, lb2, need);
+    else
+        MayHaveBitsBaseline(f, k, jumps, la, lb, la2, lb2, need);
+    static_assert(kSkip == 16, "the flags are read as two 64-bit words");
+    if constexpr (std::endian::native != std::endian::little) {
+        for (std::size_t i = 0; i < kSkip; ++i)
+            if (need[i])
+                PairTest(f, k.a + i, k.b + i, k.a2 + i, k.b2 + i, true, true, jumps, la[i], lb[i],
+                         la2[i], lb2[i]);
+        return;
+    }
+    for (std::size_t half = 0; half < 2; ++half) {
+        std::uint64_t v;
+        std::memcpy(&v, need + 8 * half, 8);
+        while (v != 0) {  // the flags are 0 or 1: bit 8j is pair 8·half + j's (little-endian)
+            const auto j = static_cast<std::size_t>(std::countr_zero(v) / 8);
+            v &= v - 1;
+            const std::size_t i = 8 * half + j;
+            PairTest(f, k.a + i, k.b + i, k.a2 + i, k.b2 + i, true, true, jumps, la[i], lb[i],
+                     la2[i], lb2[i]);
+        }
+    }
+}
+
 // The horizontal pairs of the row starting at pixel r, and the vertical pairs of the rows starting
 // at ra and rb (ra2, rb2: the rows beyond them), w pixels wide; l*: the rows' luminances. Every
 // argument by value: the result's bytes are chars, which may alias anything the loop reads
@@ -282,9 +379,10 @@ void HorizontalPairs(const EdgeArrays f, const std::size_t r, const std::size_t 
             continue;
         }
         // Pairs x ... x + kSkip − 1 with the pixels x − 1 and x + kSkip + 1 beyond them.
-        if (x % kSkip == 0 && x > 0 && x + kSkip + 1 < w &&
-            SmoothBlock(f, {r + x, r + x + 1, r + x - 1, r + x + 2}, jumps, l + x, l + x + 1,
-                        l + x - 1, l + x + 2)) {
+        if (x % kSkip == 0 && x > 0 && x + kSkip + 1 < w) {
+            const Block k{r + x, r + x + 1, r + x - 1, r + x + 2};
+            if (!SmoothBlock(f, k, jumps, l + x, l + x + 1, l + x - 1, l + x + 2))
+                BlockPairs(f, k, jumps, l + x, l + x + 1, l + x - 1, l + x + 2);
             x += kSkip - 1;
             continue;
         }
@@ -299,13 +397,18 @@ void VerticalPairs(const EdgeArrays f, const std::size_t ra, const std::size_t r
                    const std::size_t w, const double* la, const double* lb, const double* la2,
                    const double* lb2, const bool jumps) {
     for (std::size_t x = 0; x < w; ++x) {
-        if (x % kSkip == 0 && x + kSkip <= w &&
-            ((Background(f, ra + x, kSkip) && Background(f, rb + x, kSkip)) ||
-             (hasA2 && hasB2 &&
-              SmoothBlock(f, {ra + x, rb + x, ra2 + x, rb2 + x}, jumps, la + x, lb + x, la2 + x,
-                          lb2 + x)))) {
-            x += kSkip - 1;
-            continue;
+        if (x % kSkip == 0 && x + kSkip <= w) {
+            if (Background(f, ra + x, kSkip) && Background(f, rb + x, kSkip)) {
+                x += kSkip - 1;
+                continue;
+            }
+            if (hasA2 && hasB2) {
+                const Block k{ra + x, rb + x, ra2 + x, rb2 + x};
+                if (!SmoothBlock(f, k, jumps, la + x, lb + x, la2 + x, lb2 + x))
+                    BlockPairs(f, k, jumps, la + x, lb + x, la2 + x, lb2 + x);
+                x += kSkip - 1;
+                continue;
+            }
         }
         PairTest(f, ra + x, rb + x, ra2 + x, rb2 + x, hasA2, hasB2, jumps, la[x], lb[x], la2[x],
                  lb2[x]);

@@ -24,10 +24,12 @@
 // writes only its own two pixels. Along a line, a run of 16 pairs is first looked at whole: all
 // background, it has no bits; all smooth (one surface and body, the pixels beyond on it too, no
 // crease), its depth and luminance tests run in branch-free passes the compiler vectorises (AVX2
-// and baseline builds, util/cpu_features.h); otherwise, and where one of those tests fires, its
-// pairs are tested one by one. The crease test answers the codes of nearby directions without
-// decoding them (kNearNormalCodes). EdgePixels.* tests the whole against the definition written
-// pair by pair (EdgePairCode) on random Frames.
+// and baseline builds, util/cpu_features.h); otherwise, or where one of those tests fires, the
+// same passes made pair by pair (MayHaveBits) leave to the pair-by-pair test only the pairs that
+// are not smooth or whose test fires (a run with one edge pixel in it used to test all 16). The
+// crease test answers the codes of nearby directions without decoding them (kNearNormalCodes).
+// EdgePixels.* tests the whole against the definition written pair by pair (EdgePairCode) on random
+// Frames.
 //
 // (A branch-free pass over every pair was tried and was slower: the pairs of two background
 // pixels, half of a typical picture, cost the scalar test two comparisons; docs/performance.md.)
