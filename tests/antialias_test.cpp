@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
 
 #include "quadrix/engines/raycast/sample_tracer.h"
@@ -170,6 +171,47 @@ TEST(Antialias, SamplePositionsAreALatinSquareOfCells) {
         EXPECT_EQ(SamplePositions(n, 3, 4)[1].u, SamplePositions(n, 3, 4)[1].u);
     }
     EXPECT_NE(SamplePositions(16, 3, 4)[0].u, SamplePositions(16, 4, 3)[0].u);
+}
+
+// The positions are those of the plain statement of the pattern (splitmix64's finaliser, Fisher–
+// Yates with 64-bit remainders, quotients by n), which SamplePositionsInto computes with
+// constant divisors, a table of salts and products by 1/n: the same doubles, bit for bit, at
+// every sample count (9 and 36 too, whose n is not a power of two).
+TEST(Antialias, SamplePositionsEqualThePlainStatementOfThePattern) {
+    const auto mix = [](std::uint64_t z) {
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return z ^ (z >> 31);
+    };
+    const auto permutation = [&](int k, std::uint64_t seed, int* out) {
+        for (int i = 0; i < k; ++i) out[i] = i;
+        for (int i = k - 1; i > 0; --i) {
+            seed = mix(seed + 0x9e3779b97f4a7c15ULL);
+            std::swap(out[i], out[seed % static_cast<std::uint64_t>(i + 1)]);
+        }
+    };
+    for (int n : {4, 9, 16, 36, 64}) {
+        const int k = static_cast<int>(std::lround(std::sqrt(n)));
+        for (int pixel = 0; pixel < 200; ++pixel) {
+            const int i = pixel * 37 - 900, j = pixel * 11 + 5;
+            const std::uint64_t seed =
+                mix((static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) ^
+                    static_cast<std::uint32_t>(j));
+            int col[8][8], row[8][8];
+            for (int a = 0; a < k; ++a) {
+                permutation(k, seed ^ mix(2 * static_cast<std::uint64_t>(a) + 1), col[a]);
+                permutation(k, seed ^ mix(2 * static_cast<std::uint64_t>(a) + 2), row[a]);
+            }
+            const std::vector<SubPixel> got = SamplePositions(n, i, j);
+            ASSERT_EQ(got.size(), static_cast<std::size_t>(n));
+            std::size_t t = 0;
+            for (int b = 0; b < k; ++b)
+                for (int a = 0; a < k; ++a, ++t) {
+                    EXPECT_EQ(got[t].u, (a * k + col[a][b] + 0.5) / n) << n << " " << pixel;
+                    EXPECT_EQ(got[t].v, (b * k + row[b][a] + 0.5) / n) << n << " " << pixel;
+                }
+        }
+    }
 }
 
 // At pixel centres the sample tracer is the engine: same ids, same depth, same normal.

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <chrono>
@@ -24,10 +25,33 @@ namespace quadrix {
 
 namespace {
 
-std::uint64_t Mix(std::uint64_t z) {  // splitmix64's finaliser
+constexpr std::uint64_t Mix(std::uint64_t z) {  // splitmix64's finaliser
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
+}
+
+// seed % m for 2 <= m <= 8 (Permutation's draws), by constant divisors: the compiler makes each a
+// multiplication or a mask instead of a 64-bit division (the same remainder).
+std::uint64_t Remainder(std::uint64_t seed, int m) {
+    switch (m) {
+        case 2:
+            return seed % 2;
+        case 3:
+            return seed % 3;
+        case 4:
+            return seed % 4;
+        case 5:
+            return seed % 5;
+        case 6:
+            return seed % 6;
+        case 7:
+            return seed % 7;
+        case 8:
+            return seed % 8;
+        default:
+            return seed % static_cast<std::uint64_t>(m);
+    }
 }
 
 // A permutation of 0..k-1 drawn from `seed` (Fisher–Yates).
@@ -35,10 +59,18 @@ void Permutation(int k, std::uint64_t seed, int* out) {
     for (int i = 0; i < k; ++i) out[i] = i;
     for (int i = k - 1; i > 0; --i) {
         seed = Mix(seed + 0x9e3779b97f4a7c15ULL);
-        const int j = static_cast<int>(seed % static_cast<std::uint64_t>(i + 1));
+        const int j = static_cast<int>(Remainder(seed, i + 1));
         std::swap(out[i], out[j]);
     }
 }
+
+// Mix(c) for c = 1 .. 16: the salts of SamplePositionsInto's permutations (2a + 1, 2a + 2 for
+// a < 8), made at compile time.
+constexpr std::array<std::uint64_t, 17> kSalts = [] {
+    std::array<std::uint64_t, 17> t{};
+    for (std::uint64_t c = 1; c <= 16; ++c) t[c] = Mix(c);
+    return t;
+}();
 
 // Mitchell–Netravali cubic, B = C = 1/3, at |x| (support 2).
 double Mitchell1(double x) {
@@ -105,16 +137,22 @@ void SamplePositionsInto(int samples, int i, int j, SamplePositionList& out) {
             static_cast<std::uint32_t>(j));
     int col[8][8], row[8][8];  // k <= 8
     for (int a = 0; a < k; ++a) {
-        Permutation(k, seed ^ Mix(2 * static_cast<std::uint64_t>(a) + 1), col[a]);
-        Permutation(k, seed ^ Mix(2 * static_cast<std::uint64_t>(a) + 2), row[a]);
+        Permutation(k, seed ^ kSalts[static_cast<std::size_t>(2 * a + 1)], col[a]);
+        Permutation(k, seed ^ kSalts[static_cast<std::size_t>(2 * a + 2)], row[a]);
     }
     // Cell (a, b) (column a, row b): fine column a·k + col[a][b], fine row b·k + row[b][a]. For a
     // fixed a, col[a][·] is a permutation, so coarse column a uses each of its k fine columns
-    // once; likewise for rows: a Latin square on the n × n fine grid.
+    // once; likewise for rows: a Latin square on the n × n fine grid. Where n is a power of two
+    // (4, 16, 64: ValidAaSamples) the product by 1/n is the quotient by n, exactly.
+    const bool powerOfTwo = (n & (n - 1)) == 0;
+    const double inverse = 1.0 / n;
+    const auto fine = [&](int cell) {
+        return powerOfTwo ? (cell + 0.5) * inverse : (cell + 0.5) / n;
+    };
     for (int b = 0; b < k; ++b)
         for (int a = 0; a < k; ++a)
-            out.at[static_cast<std::size_t>(out.n++)] = {(a * k + col[a][b] + 0.5) / n,
-                                                         (b * k + row[b][a] + 0.5) / n};
+            out.at[static_cast<std::size_t>(out.n++)] = {fine(a * k + col[a][b]),
+                                                         fine(b * k + row[b][a])};
 }
 
 AntialiasStats Antialias(const Frame& frame, const FlatScene& scene, const ShadeOptions& options,
