@@ -181,54 +181,65 @@ struct Block {
     std::size_t a, b, a2, b2;
 };
 
-// Whether every pair of the block is smooth: its pixels and the two beyond them on one surface
-// (covered), the pair's two of one body, and its normals' codes equal or within kNearNormalCodes
-// of each other, neither kZero (no crease). Such a pair's test is its depth test (both slope terms
-// count: the pixels beyond exist and are on the surface) and, with jumps, its luminance test.
-// Integer operations over the block, which the compiler vectorises.
+// Pair i of a block is smooth when its pixels and the two beyond them are on one surface
+// (covered), the pair's two are of one body, and its normals' codes are equal or within
+// kNearNormalCodes of each other, neither kZero (no crease). Such a pair's test is its depth test
+// (both slope terms count: the pixels beyond exist and are on the surface) and, with jumps, its
+// luminance test. Rough: non-zero when pair i is not smooth. Integer operations only, so that
+// the loops over a block that use it vectorise.
+[[gnu::always_inline]] inline std::int32_t Rough(const EdgeArrays f, const Block k, std::size_t i) {
+    const std::int32_t s = f.surface[k.a + i];
+    std::int32_t bad = (s ^ f.surface[k.b + i]) | (s ^ f.surface[k.a2 + i]) |
+                       (s ^ f.surface[k.b2 + i]) | (f.body[k.a + i] ^ f.body[k.b + i]) |
+                       (s >> 31);  // s < 0: kNone
+    const auto p = static_cast<std::int32_t>(f.normal[k.a + i].bits);
+    const auto q = static_cast<std::int32_t>(f.normal[k.b + i].bits);
+    const std::int32_t du = (p >> 16) - (q >> 16);
+    const std::int32_t dv = ((p << 16) >> 16) - ((q << 16) >> 16);
+    const std::int32_t delta = (du < 0 ? -du : du) + (dv < 0 ? -dv : dv);
+    bad |= static_cast<std::int32_t>(delta > kNearNormalCodes) |
+           static_cast<std::int32_t>(p == static_cast<std::int32_t>(PackedNormal::kZero)) |
+           static_cast<std::int32_t>(q == static_cast<std::int32_t>(PackedNormal::kZero));
+    return bad;
+}
+// A smooth pair's depth test (PairCode's, both slope terms present) and luminance test (its
+// last), without a branch.
+[[gnu::always_inline]] inline bool DepthJumps(double a, double b, double a2, double b2) {
+    const double ta = std::fabs(a - a2), tb = std::fabs(b2 - b);
+    double slope = 0.0 < ta ? ta : 0.0;  // std::max(0.0, ta)
+    slope = slope < tb ? tb : slope;     // std::max(slope, tb)
+    return std::fabs(b - a) > 4 * slope + 1e-6 * (1 + std::fabs(a));
+}
+[[gnu::always_inline]] inline bool LuminanceJumps(double la, double lb, double la2, double lb2) {
+    const double d = std::fabs(lb - la);
+    const double ea = std::fabs(la - la2), eb = std::fabs(lb2 - lb);
+    const double slope = ea < eb ? eb : ea;  // std::max(ea, eb)
+    return d > 4 * slope + 1.0 / 255;
+}
+
+// Whether every pair of the block is smooth.
 [[gnu::always_inline]] inline bool Smooth(const EdgeArrays f, const Block k) {
     std::int32_t bad = 0;
-    for (std::size_t i = 0; i < kSkip; ++i) {
-        const std::int32_t s = f.surface[k.a + i];
-        bad |= (s ^ f.surface[k.b + i]) | (s ^ f.surface[k.a2 + i]) | (s ^ f.surface[k.b2 + i]) |
-               (f.body[k.a + i] ^ f.body[k.b + i]) | (s >> 31);  // s < 0: kNone
-        const auto p = static_cast<std::int32_t>(f.normal[k.a + i].bits);
-        const auto q = static_cast<std::int32_t>(f.normal[k.b + i].bits);
-        const std::int32_t du = (p >> 16) - (q >> 16);
-        const std::int32_t dv = ((p << 16) >> 16) - ((q << 16) >> 16);
-        const std::int32_t delta = (du < 0 ? -du : du) + (dv < 0 ? -dv : dv);
-        bad |= static_cast<std::int32_t>(delta > kNearNormalCodes) |
-               static_cast<std::int32_t>(p == static_cast<std::int32_t>(PackedNormal::kZero)) |
-               static_cast<std::int32_t>(q == static_cast<std::int32_t>(PackedNormal::kZero));
-    }
+    for (std::size_t i = 0; i < kSkip; ++i) bad |= Rough(f, k, i);
     return bad == 0;
 }
 
-// The depth tests of a smooth block (PairCode's, both slope terms present): whether any of its
-// pairs is separated. Without a branch, so the compiler vectorises it; built for AVX2 and the
-// baseline (util/cpu_features.h: the same IEEE operations in the same order either way).
+// Whether any pair of a smooth block is separated by its depth test. Without a branch, so the
+// compiler vectorises it; built for AVX2 and the baseline (util/cpu_features.h: the same IEEE
+// operations in the same order either way).
 [[gnu::always_inline]] inline bool AnyDepthJumpBody(const float* za, const float* zb,
                                                     const float* za2, const float* zb2) {
     std::int32_t any = 0;
-    for (std::size_t i = 0; i < kSkip; ++i) {
-        const double a = za[i], b = zb[i];
-        const double ta = std::fabs(a - za2[i]), tb = std::fabs(static_cast<double>(zb2[i]) - b);
-        double slope = 0.0 < ta ? ta : 0.0;  // std::max(0.0, ta)
-        slope = slope < tb ? tb : slope;     // std::max(slope, tb)
-        any |= static_cast<std::int32_t>(std::fabs(b - a) > 4 * slope + 1e-6 * (1 + std::fabs(a)));
-    }
+    for (std::size_t i = 0; i < kSkip; ++i)
+        any |= static_cast<std::int32_t>(DepthJumps(za[i], zb[i], za2[i], zb2[i]));
     return any != 0;
 }
-// Whether any pair of a smooth block has a luminance jump (PairCode's last test), the same way.
+// Whether any pair of a smooth block has a luminance jump, the same way.
 [[gnu::always_inline]] inline bool AnyLuminanceJumpBody(const double* la, const double* lb,
                                                         const double* la2, const double* lb2) {
     std::int32_t any = 0;
-    for (std::size_t i = 0; i < kSkip; ++i) {
-        const double d = std::fabs(lb[i] - la[i]);
-        const double ea = std::fabs(la[i] - la2[i]), eb = std::fabs(lb2[i] - lb[i]);
-        const double slope = ea < eb ? eb : ea;  // std::max(ea, eb)
-        any |= static_cast<std::int32_t>(d > 4 * slope + 1.0 / 255);
-    }
+    for (std::size_t i = 0; i < kSkip; ++i)
+        any |= static_cast<std::int32_t>(LuminanceJumps(la[i], lb[i], la2[i], lb2[i]));
     return any != 0;
 }
 QUADRIX_AVX2 bool AnyLuminanceJumpAvx2(const double* la, const double* lb, const double* la2,
@@ -272,55 +283,25 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
 }
 
 // Per pair of a block whose pixels beyond exist: 1 where PairCode may be non-zero, 0 where it is
-// 0 for sure. A pair is smooth when its pixels and the two beyond them are on one surface
-// (covered), its two are of one body, and its normals' codes are equal or within
-// kNearNormalCodes of each other, neither kZero (no crease); a smooth pair's code is its depth
-// test (both slope terms count: the pixels beyond exist and are on the surface) and, with jumps
-// and no depth jump, its luminance test. So a pair may have bits when it is not smooth, or its
-// depth jumps, or (with jumps) its luminance does. Three branch-free passes over the block,
-// which the compiler vectorises (built for AVX2 and the baseline, util/cpu_features.h: the same
-// IEEE operations in the same order either way). For the blocks SmoothBlock does not settle: a
-// block with one edge pixel in it has its other pairs answered here, not tested one by one.
+// 0 for sure. A smooth pair's code is its depth test and, with jumps and no depth jump, its
+// luminance test (Rough), so a pair may have bits when it is rough, or its depth jumps, or (with
+// jumps) its luminance does. Branch-free passes over the block, which the compiler vectorises
+// (built for AVX2 and the baseline, util/cpu_features.h). For the blocks SmoothBlock does not
+// settle: a block with one edge pixel in it has its other pairs answered here, not tested one by
+// one.
 [[gnu::always_inline]] inline void MayHaveBitsBody(const EdgeArrays f, const Block k,
                                                    const bool jumps, const double* la,
                                                    const double* lb, const double* la2,
                                                    const double* lb2, std::uint8_t* need) {
     std::uint8_t rough[kSkip], depth[kSkip], lum[kSkip];
-    for (std::size_t i = 0; i < kSkip; ++i) {
-        const std::int32_t s = f.surface[k.a + i];
-        std::int32_t bad = (s ^ f.surface[k.b + i]) | (s ^ f.surface[k.a2 + i]) |
-                           (s ^ f.surface[k.b2 + i]) | (f.body[k.a + i] ^ f.body[k.b + i]) |
-                           (s >> 31);  // s < 0: kNone
-        const auto p = static_cast<std::int32_t>(f.normal[k.a + i].bits);
-        const auto q = static_cast<std::int32_t>(f.normal[k.b + i].bits);
-        const std::int32_t du = (p >> 16) - (q >> 16);
-        const std::int32_t dv = ((p << 16) >> 16) - ((q << 16) >> 16);
-        const std::int32_t delta = (du < 0 ? -du : du) + (dv < 0 ? -dv : dv);
-        bad |= static_cast<std::int32_t>(delta > kNearNormalCodes) |
-               static_cast<std::int32_t>(p == static_cast<std::int32_t>(PackedNormal::kZero)) |
-               static_cast<std::int32_t>(q == static_cast<std::int32_t>(PackedNormal::kZero));
-        rough[i] = bad != 0;
-    }
-    const float* za = f.depth + k.a;
-    const float* zb = f.depth + k.b;
-    const float* za2 = f.depth + k.a2;
-    const float* zb2 = f.depth + k.b2;
-    for (std::size_t i = 0; i < kSkip; ++i) {
-        const double a = za[i], b = zb[i];
-        const double ta = std::fabs(a - za2[i]), tb = std::fabs(static_cast<double>(zb2[i]) - b);
-        double slope = 0.0 < ta ? ta : 0.0;  // std::max(0.0, ta)
-        slope = slope < tb ? tb : slope;     // std::max(slope, tb)
-        depth[i] = std::fabs(b - a) > 4 * slope + 1e-6 * (1 + std::fabs(a));
-    }
+    for (std::size_t i = 0; i < kSkip; ++i) rough[i] = Rough(f, k, i) != 0;
+    const float* z = f.depth;
+    for (std::size_t i = 0; i < kSkip; ++i)
+        depth[i] = DepthJumps(z[k.a + i], z[k.b + i], z[k.a2 + i], z[k.b2 + i]);
     for (std::size_t i = 0; i < kSkip; ++i) lum[i] = 0;
-    if (jumps) {
-        for (std::size_t i = 0; i < kSkip; ++i) {
-            const double d = std::fabs(lb[i] - la[i]);
-            const double ea = std::fabs(la[i] - la2[i]), eb = std::fabs(lb2[i] - lb[i]);
-            const double slope = ea < eb ? eb : ea;  // std::max(ea, eb)
-            lum[i] = d > 4 * slope + 1.0 / 255;
-        }
-    }
+    if (jumps)
+        for (std::size_t i = 0; i < kSkip; ++i)
+            lum[i] = LuminanceJumps(la[i], lb[i], la2[i], lb2[i]);
     for (std::size_t i = 0; i < kSkip; ++i)
         need[i] = static_cast<std::uint8_t>(rough[i] | depth[i] | lum[i]);
 }
