@@ -52,6 +52,7 @@ void DrawSubTilePixels(const FlatScene& scene, const SceneTables& tables, int sx
     if (kernel) w.kernel.RunTile(kernelHits);
     // The normals on quadrics are made together once the sub-tile's hits are written
     // (quadric_normals.h): pixelOf[lane] is the lane's pixel, tagOf[lane] its hit's tag.
+    static_assert(QuadricNormals::kCapacity >= kLanePixels, "a lane for every pixel");
     QuadricNormals& normals = w.normals;
     normals.Clear();
     std::size_t pixelOf[QuadricNormals::kCapacity];
