@@ -85,7 +85,9 @@ struct Steps {
         const double fu = (1 - std::fabs(v)) * (u < 0 ? -1.0 : 1.0);
         const double fv = (1 - std::fabs(u)) * (v < 0 ? -1.0 : 1.0);
         const bool fold = uz < 0;
-        const double eu = fold ? fu : u, ev = fold ? fv : v;
+        // A lane left to the scalar path packs 0 instead of what may be a NaN or an infinity
+        // here (their conversion to an integer is undefined behaviour).
+        const double eu = ok ? (fold ? fu : u) : 0.0, ev = ok ? (fold ? fv : v) : 0.0;
         code[k] = Snorm(eu) << 16 | Snorm(ev);
         scalar[k] = ok ? 0 : 1;
     }
