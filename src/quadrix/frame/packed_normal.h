@@ -76,7 +76,9 @@ struct PackedNormal {
                            (q.x * q.x + q.y * q.y + q.z * q.z);
     }
 
-  private:
+    // The 16 bits of one half of a code: t (finite) clamped to [-1, 1], times 32767, rounded to
+    // the nearest integer (ties to even). Public for the raycast engine's lanes, which pack many
+    // normals at once (engines/raycast/quadric_normals.h) and must give Encode's bits.
     static std::uint32_t Snorm(double t) {
         // std::nearbyint (round to nearest, ties to even) without its library call: the
         // baseline x86-64 has no rounding instruction, and this runs for every pixel of a curved
@@ -89,6 +91,8 @@ struct PackedNormal {
         const double q = (c + kRound) - kRound;
         return static_cast<std::uint16_t>(static_cast<std::int16_t>(q));
     }
+
+  private:
     static double Unsnorm(std::uint32_t h) {
         const auto s = static_cast<std::int16_t>(static_cast<std::uint16_t>(h));
         // std::fmax(v, -1.0) without the library call (v is never NaN).

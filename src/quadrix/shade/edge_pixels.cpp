@@ -258,9 +258,8 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
     return AnyDepthJumpBody(za, zb, za2, zb2);
 }
 
-// The bits of a block of pairs whose pixels beyond exist: those of a smooth block without a depth
-// jump are its luminance jumps (PairCode's last test); true when they are written, false when the
-// caller must look at the pairs (any other block: BlockPairs).
+// Whether a block of pairs whose pixels beyond exist has no bits: all smooth, with no depth jump
+// and (with jumps) no luminance jump. false: the caller looks at the pairs (BlockPairs).
 [[gnu::always_inline]] inline bool SmoothBlock(const EdgeArrays f, const Block k, const bool jumps,
                                                const double* la, const double* lb,
                                                const double* la2, const double* lb2) {
@@ -273,13 +272,9 @@ bool AnyDepthJumpBaseline(const float* za, const float* zb, const float* za2, co
     if (gCpuHasAvx2 ? AnyDepthJumpAvx2(z + k.a, z + k.b, z + k.a2, z + k.b2)
                     : AnyDepthJumpBaseline(z + k.a, z + k.b, z + k.a2, z + k.b2))
         return false;
-    if (!jumps || !(gCpuHasAvx2 ? AnyLuminanceJumpAvx2(la, lb, la2, lb2)
-                                : AnyLuminanceJumpBaseline(la, lb, la2, lb2)))
-        return true;
-    for (std::size_t i = 0; i < kSkip; ++i)  // a jump somewhere: the pairs' own tests
-        PairTest(f, k.a + i, k.b + i, k.a2 + i, k.b2 + i, true, true, jumps, la[i], lb[i], la2[i],
-                 lb2[i]);
-    return true;
+    // A luminance jump somewhere: BlockPairs tests the pairs that jump.
+    return !jumps || !(gCpuHasAvx2 ? AnyLuminanceJumpAvx2(la, lb, la2, lb2)
+                                   : AnyLuminanceJumpBaseline(la, lb, la2, lb2));
 }
 
 // Per pair of a block whose pixels beyond exist: 1 where PairCode may be non-zero, 0 where it is

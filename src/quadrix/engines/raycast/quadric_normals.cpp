@@ -1,29 +1,23 @@
 #include "quadrix/engines/raycast/quadric_normals.h"
 
 #include <cmath>
+#include <limits>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
 
+#include "quadrix/frame/packed_normal.h"
+#include "quadrix/math/vec.h"
 #include "quadrix/util/cpu_features.h"
 
 namespace quadrix::raycast {
 namespace {
 
 constexpr int kLanes = QuadricNormals::kCapacity;
-// Normalize's safe range (math/vec.h vec_detail::kSafeLo, kSafeHi).
-constexpr double kSafeLo = 1e-280, kSafeHi = 1e280;
-// PackedNormal's rounding constant (packed_normal.h Snorm): 1.5 · 2^52.
-constexpr double kRound = 6755399441055744.0;
-constexpr double kMaxFinite = 1.7976931348623157e308;
-
-// The 16 bits PackedNormal::Snorm gives t (t finite).
-[[gnu::always_inline]] inline std::uint32_t Snorm(double t) {
-    const double c = (t < -1.0 ? -1.0 : (t > 1.0 ? 1.0 : t)) * 32767.0;
-    const double q = (c + kRound) - kRound;
-    return static_cast<std::uint32_t>(static_cast<std::int32_t>(q)) & 0xffffu;
-}
+// Normalize's safe range of the squared length (math/vec.h).
+constexpr double kSafeLo = vec_detail::kSafeLo, kSafeHi = vec_detail::kSafeHi;
+constexpr double kMaxFinite = std::numeric_limits<double>::max();
 
 // Pack's loops for n lanes. The steps and their order are FlatScene::WorldNormal's, then
 // Normalize's safe branch, then PackedNormal::Encode's (see the header).
@@ -88,7 +82,7 @@ struct Steps {
         // A lane left to the scalar path packs 0 instead of what may be a NaN or an infinity
         // here (their conversion to an integer is undefined behaviour).
         const double eu = ok ? (fold ? fu : u) : 0.0, ev = ok ? (fold ? fv : v) : 0.0;
-        code[k] = Snorm(eu) << 16 | Snorm(ev);
+        code[k] = PackedNormal::Snorm(eu) << 16 | PackedNormal::Snorm(ev);
         scalar[k] = ok ? 0 : 1;
     }
 }

@@ -4,9 +4,11 @@
 //
 // A lane's code is bit for bit PackedNormal(scene.WorldNormal(hs, p)) (flat_scene.cpp,
 // packed_normal.h): the same IEEE operations in the same order, their branches written as
-// selects of values computed in every lane, in loops the compiler vectorises (built for AVX2 and
-// the baseline, util/cpu_features.h; the square roots by intrinsics, which -fmath-errno keeps
-// the compiler from vectorising). A lane whose normal falls outside Normalize's safe range
+// selects of values computed in every lane, in three passes built for AVX2 and the baseline
+// (util/cpu_features.h): the gradients and pull-backs, which the compiler vectorises; the square
+// roots, by intrinsics (-fmath-errno keeps the compiler from vectorising std::sqrt); the
+// divisions and the packing, which GCC leaves scalar ("control flow in loop": its selects are
+// not if-converted under -ftrapping-math). A lane whose normal falls outside Normalize's safe range
 // (math/vec.h: a squared length below 1e-280 or above 1e280, or not finite) has no code here:
 // NeedsScalar says so, and the caller packs it one at a time as before.
 #pragma once
