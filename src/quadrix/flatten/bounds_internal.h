@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "quadrix/flatten/bounds.h"
+#include "quadrix/math/symmetric_eigen.h"
 
 namespace quadrix::bounds_detail {
 
@@ -36,6 +37,14 @@ struct InsideEigen {
 };
 
 InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented, InsideEigen* eigen = nullptr);
+
+// MakeInsideFn in steps, for a caller that decomposes several quadrics' A at once
+// (SymmetricEigenLanes: the literal cache). Unbounded is the function without its eigenvalue
+// bounds; when NeedsEigen, Bound takes SymmetricEigen's results for its A (else null). The result
+// is MakeInsideFn's bit for bit.
+InsideFn MakeInsideFnUnbounded(const FlatHalfSpace& hs, bool complemented);
+bool NeedsEigen(const InsideFn& f);
+void Bound(InsideFn& f, const SymmetricEigenResult* decomposition, InsideEigen* eigen);
 
 // The extent of the uncomplemented quadric's set about the origin when its normalised A is
 // positive definite beyond rounding (eigenvalues above 1e-14 of the largest): |c| + sqrt(R/λmin)

@@ -10,13 +10,25 @@ namespace quadrix::bounds_detail {
 
 namespace {
 
-// Eigenvalue bounds widened by the Gershgorin remainder and a rounding allowance relative to
-// ‖A‖ (Jacobi is backward stable: a few ulps of ‖A‖ per sweep).
-void ComputeEigenBounds(InsideFn& f, InsideEigen* eigen) {
+double FrobeniusOf(const InsideFn& f) {
     double frob = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) frob += f.a[i][j] * f.a[i][j];
-    frob = std::sqrt(frob);
+    return std::sqrt(frob);
+}
+
+}  // namespace
+
+bool NeedsEigen(const InsideFn& f) {
+    const double frob = FrobeniusOf(f);
+    return !f.isPlane && frob != 0 && std::isfinite(frob);
+}
+
+// Eigenvalue bounds widened by the Gershgorin remainder and a rounding allowance relative to
+// ‖A‖ (Jacobi is backward stable: a few ulps of ‖A‖ per sweep).
+void Bound(InsideFn& f, const SymmetricEigenResult* d, InsideEigen* eigen) {
+    if (f.isPlane) return;
+    const double frob = FrobeniusOf(f);
     if (frob == 0) {
         f.lamMin = f.lamMax = 0;
         return;
@@ -26,24 +38,31 @@ void ComputeEigenBounds(InsideFn& f, InsideEigen* eigen) {
         f.lamMax = kInf;
         return;
     }
-    double vals[3], vecs[3][3], off;
-    SymmetricEigen(f.a, vals, vecs, off);
+    SymmetricEigenResult own;
+    if (d == nullptr) {
+        SymmetricEigen(f.a, own.vals, own.vecs, own.offDiagonal);
+        d = &own;
+    }
     if (eigen) {
         eigen->ok = true;
         for (int i = 0; i < 3; ++i) {
-            eigen->vals[i] = vals[i];
-            for (int j = 0; j < 3; ++j) eigen->vecs[i][j] = vecs[i][j];
+            eigen->vals[i] = d->vals[i];
+            for (int j = 0; j < 3; ++j) eigen->vecs[i][j] = d->vecs[i][j];
         }
     }
-    double safety = 64 * kEps * frob + off;
-    f.lamMin = vals[0] - safety;
-    f.lamMax = vals[2] + safety;
+    double safety = 64 * kEps * frob + d->offDiagonal;
+    f.lamMin = d->vals[0] - safety;
+    f.lamMax = d->vals[2] + safety;
 }
-
-}  // namespace
 
 InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented, InsideEigen* eigen) {
     if (eigen) *eigen = InsideEigen{};
+    InsideFn f = MakeInsideFnUnbounded(hs, complemented);
+    Bound(f, nullptr, eigen);
+    return f;
+}
+
+InsideFn MakeInsideFnUnbounded(const FlatHalfSpace& hs, bool complemented) {
     InsideFn f;
     double sign = complemented ? -1.0 : 1.0;
     if (hs.IsQuartic()) {
@@ -80,7 +99,6 @@ InsideFn MakeInsideFn(const FlatHalfSpace& hs, bool complemented, InsideEigen* e
     f.b[1] = q.H() * s;
     f.b[2] = q.J() * s;
     f.k = q.K() * s;
-    ComputeEigenBounds(f, eigen);
     return f;
 }
 

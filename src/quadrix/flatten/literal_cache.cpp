@@ -18,12 +18,47 @@ namespace quadrix {
 
 namespace {
 
-void MakeEntry(const FlatHalfSpace& h, LiteralCache::Entry& e) {
-    bounds_detail::InsideEigen eigen;
-    e.fn = bounds_detail::MakeInsideFn(h, false, &eigen);
-    e.box = bounds_detail::AnalyticBox(e.fn, &e.centre, &e.hasCentre);
-    e.extent = bounds_detail::QuadricExtent(e.fn, eigen);
+// The entries of up to kEigenLanes quadrics, their A decomposed together (SymmetricEigenLanes):
+// each entry is MakeInsideFn's, AnalyticBox's and QuadricExtent's for its half-space.
+void MakeEntries(int n, const FlatHalfSpace* const h[], LiteralCache::Entry* const e[]) {
+    namespace bd = bounds_detail;
+    const double(*a[kEigenLanes])[3] = {};
+    int lane[kEigenLanes];
+    int lanes = 0;
+    for (int k = 0; k < n; ++k) {
+        e[k]->fn = bd::MakeInsideFnUnbounded(*h[k], false);
+        lane[k] = bd::NeedsEigen(e[k]->fn) ? lanes++ : -1;
+        if (lane[k] >= 0) a[lane[k]] = e[k]->fn.a;
+    }
+    SymmetricEigenResult d[kEigenLanes];
+    SymmetricEigenLanes(lanes, a, d);
+    for (int k = 0; k < n; ++k) {
+        LiteralCache::Entry& entry = *e[k];
+        bd::InsideEigen eigen;
+        bd::Bound(entry.fn, lane[k] >= 0 ? &d[lane[k]] : nullptr, &eigen);
+        entry.box = bd::AnalyticBox(entry.fn, &entry.centre, &entry.hasCentre);
+        entry.extent = bd::QuadricExtent(entry.fn, eigen);
+    }
 }
+
+// Collects quadrics and makes their entries kEigenLanes at a time.
+class EntryBatch {
+  public:
+    void Add(const FlatHalfSpace& h, LiteralCache::Entry& e) {
+        h_[n_] = &h;
+        e_[n_] = &e;
+        if (++n_ == kEigenLanes) Flush();
+    }
+    void Flush() {
+        MakeEntries(n_, h_, e_);
+        n_ = 0;
+    }
+
+  private:
+    const FlatHalfSpace* h_[kEigenLanes];
+    LiteralCache::Entry* e_[kEigenLanes];
+    int n_ = 0;
+};
 
 // c over halfSpaces with its slots numbered, entries holding at least the made ones: the entries
 // of the quadrics from half-space `from` on, made in parallel.
@@ -31,10 +66,12 @@ void MakeEntriesFrom(std::span<const FlatHalfSpace> halfSpaces, std::size_t from
     if (from >= halfSpaces.size()) return;
     ParallelFor(tbb::blocked_range<std::size_t>(from, halfSpaces.size(), 512),
                 [&](const tbb::blocked_range<std::size_t>& r) {
+                    EntryBatch batch;
                     for (std::size_t i = r.begin(); i < r.end(); ++i)
                         if (c.slot[i] >= 0)
-                            MakeEntry(halfSpaces[i],
+                            batch.Add(halfSpaces[i],
                                       c.entries[static_cast<std::size_t>(c.slot[i])]);
+                    batch.Flush();
                 });
 }
 
@@ -131,10 +168,17 @@ void LiteralCacheBuilder::Work() {
     std::uint32_t seen = state_.load(std::memory_order_acquire);
     for (;;) {
         const std::size_t n = seen & ~(kStop | kEnd);
-        for (; done_ < n; ++done_) {
-            if (state_.load(std::memory_order_relaxed) & kStop) break;
-            const FlatHalfSpace& h = base_[done_];
-            if (h.IsQuadric()) MakeEntry(h, entries_.emplace_back());
+        // Up to kEigenLanes quadrics at a time (entries_ never reallocates: reserved at
+        // Started), done_ past the last of them.
+        while (done_ < n && !(state_.load(std::memory_order_relaxed) & kStop)) {
+            EntryBatch batch;
+            for (int quadrics = 0; done_ < n && quadrics < kEigenLanes; ++done_) {
+                const FlatHalfSpace& h = base_[done_];
+                if (!h.IsQuadric()) continue;
+                batch.Add(h, entries_.emplace_back());
+                ++quadrics;
+            }
+            batch.Flush();
         }
         if (done_ < n || (seen & (kStop | kEnd))) break;
         state_.wait(seen, std::memory_order_acquire);

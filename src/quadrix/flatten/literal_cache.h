@@ -15,6 +15,9 @@
 // to device space). Literals of other half-spaces, complemented ones, planes and quartics are
 // computed as before.
 //
+// Entries are made kEigenLanes quadrics at a time, their A decomposed together
+// (SymmetricEigenLanes: the same bits as one at a time, about half the time).
+//
 // LiteralCacheBuilder makes the same entries while the walk of a big scene appends the
 // half-spaces (FlattenHierarchy's HalfSpaceObserver): the walk is serial, and the entries of the
 // half-spaces it has finished are made meanwhile on a thread of their own, on the processor the
