@@ -297,56 +297,74 @@ class FlattenerImpl {
         FlatScene& flat = flat_;
         const WorldScene& world = *world_;
         const std::size_t nWorld = world.flat.halfSpaces.size();
-        flat.halfSpaces.reserve(nClip + nWorld);
+        const auto clip = static_cast<std::size_t>(nClip);
+        // Each half-space, body and node on its own (copies and maps of the kept world stage,
+        // each a function of its own element): in parallel, in arrays sized first.
+        flat.halfSpaces.resize(clip + nWorld);
+        std::vector<char> finite(nWorld, 1);
+        ParallelFor(tbb::blocked_range<std::size_t>(0, nWorld, 512),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                            FlatHalfSpace& h = flat.halfSpaces[clip + i];
+                            h = world.flat.halfSpaces[i];
+                            if (h.IsQuartic()) {
+                                h.TransformBy(view_.provFromWorld);
+                                finite[i] = h.quartic->AllFinite();
+                            } else if (h.isPlane) {
+                                h.plane = h.plane.Transformed(view_.provFromWorld);
+                                RescaleCoefficients(h.plane);
+                                finite[i] = h.plane.AllFinite();
+                            } else {
+                                h.quadric = h.quadric.Transformed(view_.provFromWorld);
+                                RescaleCoefficients(h.quadric);
+                                finite[i] = h.quadric.AllFinite();
+                            }
+                        }
+                    });
+        // The first half-space that overflows is the one named.
         for (std::size_t i = 0; i < nWorld; ++i) {
-            flat.halfSpaces.push_back(world.flat.halfSpaces[i]);
-            FlatHalfSpace& h = flat.halfSpaces.back();
-            bool finite;
-            if (h.IsQuartic()) {
-                h.TransformBy(view_.provFromWorld);
-                finite = h.quartic->AllFinite();
-            } else if (h.isPlane) {
-                h.plane = h.plane.Transformed(view_.provFromWorld);
-                RescaleCoefficients(h.plane);
-                finite = h.plane.AllFinite();
-            } else {
-                h.quadric = h.quadric.Transformed(view_.provFromWorld);
-                RescaleCoefficients(h.quadric);
-                finite = h.quadric.AllFinite();
-            }
-            if (!finite) {
-                diags_.Error(i < world.hierarchy.halfSpaceLocs.size()
-                                 ? world.hierarchy.halfSpaceLocs[i]
-                                 : SourceLoc{},
-                             fmt::format("half-space '{}' has non-finite coefficients after its "
-                                         "transforms and the view transformation",
-                                         h.name));
-                return false;
-            }
+            if (finite[i]) continue;
+            diags_.Error(
+                i < world.hierarchy.halfSpaceLocs.size() ? world.hierarchy.halfSpaceLocs[i]
+                                                         : SourceLoc{},
+                fmt::format("half-space '{}' has non-finite coefficients after its transforms and "
+                            "the view transformation",
+                            flat.halfSpaces[clip + i].name));
+            return false;
         }
-        flat.bodies = world.flat.bodies;
-        flat.nodes = world.flat.nodes;
+        // The bodies' boxes from their extents (FlattenHierarchy), in provisional space where
+        // the map there is affine (parallel views).
+        const Mat4& m = view_.provFromWorld.Matrix();
+        const std::size_t nBodies = world.flat.bodies.size();
+        const bool affine = IsAffine(m) && world.hierarchy.bodyExtents.size() == nBodies;
+        flat.bodies.resize(nBodies);
+        ParallelFor(tbb::blocked_range<std::size_t>(0, nBodies, 512),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                            FlatBody& b = flat.bodies[i];
+                            b = world.flat.bodies[i];
+                            Box3 box = Box3::Everything();
+                            if (affine) {
+                                const HierarchyResult::ExtentRange& range =
+                                    world.hierarchy.bodyExtents[i];
+                                if (range.begin != range.end) box = Box3{};
+                                for (std::uint32_t k = range.begin; k < range.end; ++k)
+                                    box.Extend(PieceBox(world.hierarchy.extentPieces[k], m));
+                            }
+                            b.bounds = box;
+                            for (FlatLiteral& l : b.literals) l.halfSpace += nClip;
+                        }
+                    });
+        flat.nodes.resize(world.flat.nodes.size());
+        ParallelFor(tbb::blocked_range<std::size_t>(0, flat.nodes.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            flat.nodes[i] = world.flat.nodes[i];
+                    });
         flat.solids = world.flat.solids;
         flat.freeforms = world.flat.freeforms;
         hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
         hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
-        // The bodies' boxes from their extents (FlattenHierarchy), in provisional space where
-        // the map there is affine (parallel views).
-        const Mat4& m = view_.provFromWorld.Matrix();
-        const bool affine = IsAffine(m) && world.hierarchy.bodyExtents.size() == flat.bodies.size();
-        for (std::size_t i = 0; i < flat.bodies.size(); ++i) {
-            Box3 box = Box3::Everything();
-            if (affine) {
-                const HierarchyResult::ExtentRange& range = world.hierarchy.bodyExtents[i];
-                if (range.begin != range.end) box = Box3{};
-                for (std::uint32_t k = range.begin; k < range.end; ++k)
-                    box.Extend(PieceBox(world.hierarchy.extentPieces[k], m));
-            }
-            flat.bodies[i].bounds = box;
-        }
-        if (nClip > 0)
-            for (FlatBody& b : flat.bodies)
-                for (FlatLiteral& l : b.literals) l.halfSpace += nClip;
         return true;
     }
 
