@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "quadrix/flatten/bottom_up.h"
 #include "quadrix/flatten/bounds_internal.h"
 #include "quadrix/flatten/literal_cache.h"
 #include "quadrix/math/symmetric_eigen.h"
@@ -429,10 +430,10 @@ Box3 TreeNodeBounds(const FlatCsgNode& node, const Box3& leafBody,
 
 std::vector<Box3> TreeBounds(const FlatScene& scene, const std::vector<Box3>& bodyBoxes) {
     std::vector<Box3> out(scene.nodes.size());
-    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+    BottomUp(scene, [&](std::size_t i) {
         const FlatCsgNode& node = scene.nodes[i];
         out[i] = TreeNodeBounds(node, node.isLeaf ? bodyBoxes[node.body] : Box3{}, out);
-    }
+    });
     return out;
 }
 

@@ -804,7 +804,11 @@ class FlattenerImpl {
     // empty box where the pad exceeds it): between them lies the body's own box.
     std::vector<Box3> PaddedBoxes(bool grow) const {
         std::vector<Box3> out(boxes_.box.size());
-        for (std::size_t i = 0; i < out.size(); ++i) out[i] = PaddedBox(i, grow);
+        ParallelFor(tbb::blocked_range<std::size_t>(0, out.size(), 2048),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            out[i] = PaddedBox(i, grow);
+                    });
         return out;
     }
     Box3 PaddedBox(std::size_t i, bool grow) const {
@@ -904,10 +908,13 @@ class FlattenerImpl {
     void SettleCulling(const WindowFit& fit, const BoundsOptions& bo) {
         const std::vector<Box3> grown = PaddedBoxes(true), shrunk = PaddedBoxes(false);
         std::vector<Box3> devGrown(grown.size()), devShrunk(shrunk.size());
-        for (std::size_t i = 0; i < grown.size(); ++i) {
-            devGrown[i] = MapBox(fit, grown[i]);
-            devShrunk[i] = MapBox(fit, shrunk[i]);
-        }
+        ParallelFor(tbb::blocked_range<std::size_t>(0, grown.size(), 2048),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                            devGrown[i] = MapBox(fit, grown[i]);
+                            devShrunk[i] = MapBox(fit, shrunk[i]);
+                        }
+                    });
         const std::vector<Box3> g = TreeBounds(flat_, devGrown), h = TreeBounds(flat_, devShrunk);
         const Box3 image{{0, 0, -kInf}, {double(flat_.width), double(flat_.height), kInf}};
         std::vector<std::size_t> unsure;

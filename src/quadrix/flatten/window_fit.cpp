@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "quadrix/flatten/bottom_up.h"
+
 namespace quadrix {
 
 namespace {
@@ -92,11 +94,11 @@ std::vector<Box3> FitTreeBounds(const FlatScene& scene, const std::vector<Box3>&
                                 const std::vector<Box3>& nodeBoxes, double farDepth,
                                 double nearDepth) {
     std::vector<Box3> fit(scene.nodes.size());
-    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+    BottomUp(scene, [&](std::size_t i) {
         const FlatCsgNode& node = scene.nodes[i];
         fit[i] = FitNodeBounds(node, nodeBoxes[i], node.isLeaf ? bodyBoxes[node.body] : Box3{}, fit,
                                farDepth, nearDepth);
-    }
+    });
     return fit;
 }
 
