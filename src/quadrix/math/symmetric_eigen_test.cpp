@@ -16,6 +16,23 @@
 namespace quadrix {
 namespace {
 
+// a = R diag(λ) Rᵀ for R the rotation of a random unit quaternion.
+void WithSpectrum(const double lam[3], std::mt19937& rng, double a[3][3]) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    double q[4] = {u(rng), u(rng), u(rng), u(rng)};
+    const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (double& c : q) c /= n;
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            a[i][j] = 0;
+            for (int k = 0; k < 3; ++k) a[i][j] += r[i][k] * lam[k] * r[j][k];
+        }
+}
+
 // A = R diag(λ) Rᵀ for a random rotation R: the solver returns λ ascending, A v = λ v for each
 // column, and the columns orthonormal.
 TEST(SymmetricEigen, RecoversAKnownSpectrum) {
@@ -24,19 +41,8 @@ TEST(SymmetricEigen, RecoversAKnownSpectrum) {
     for (int trial = 0; trial < 200; ++trial) {
         double lam[3] = {u(rng) * 10, u(rng), u(rng) * 1e-3};
         if (trial % 5 == 0) lam[1] = lam[0];  // a repeated eigenvalue
-        // Rotation from a random unit quaternion.
-        double q[4] = {u(rng), u(rng), u(rng), u(rng)};
-        const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        for (double& c : q) c /= n;
-        const double w = q[0], x = q[1], y = q[2], z = q[3];
-        const double r[3][3] = {
-            {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-        double a[3][3] = {};
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                for (int k = 0; k < 3; ++k) a[i][j] += r[i][k] * lam[k] * r[j][k];
+        double a[3][3];
+        WithSpectrum(lam, rng, a);
         double vals[3], vecs[3][3], off = -1;
         SymmetricEigen(a, vals, vecs, off);
         double sorted[3] = {lam[0], lam[1], lam[2]};
@@ -87,17 +93,7 @@ std::vector<std::array<double, 9>> EigenCases() {
             double lam[3] = {u(rng) * 10, u(rng), u(rng) * 1e-3};
             if (kind == 1) lam[1] = lam[0];
             if (kind == 2) lam[2] = 0;
-            double q[4] = {u(rng), u(rng), u(rng), u(rng)};
-            const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-            for (double& c : q) c /= n;
-            const double w = q[0], x = q[1], y = q[2], z = q[3];
-            const double r[3][3] = {
-                {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j)
-                    for (int k = 0; k < 3; ++k) a[i][j] += r[i][k] * lam[k] * r[j][k];
+            WithSpectrum(lam, rng, a);
         } else {
             const double scale = std::pow(10.0, std::floor(u(rng) * 20));
             for (int i = 0; i < 3; ++i)
