@@ -141,8 +141,12 @@ class FlattenerImpl {
   public:
     // `world`: the kept world stage (FlattenView), or null for a one-shot Flatten.
     FlattenerImpl(const scene::Scene& scene, const FlattenOptions& options, Diagnostics& diags,
-                  const WorldScene* world)
-        : scene_(scene), options_(options), diags_(diags), world_(world) {}
+                  const WorldScene* world, FlatScene recycle = {})
+        : scene_(scene),
+          options_(options),
+          diags_(diags),
+          world_(world),
+          recycle_(std::move(recycle)) {}
 
     std::optional<FlatScene> Run() {
         if (!CheckOptions()) return std::nullopt;
@@ -299,8 +303,12 @@ class FlattenerImpl {
         const std::size_t nWorld = world.flat.halfSpaces.size();
         const auto clip = static_cast<std::size_t>(nClip);
         // Each half-space, body and node on its own (copies and maps of the kept world stage,
-        // each a function of its own element): in parallel, in arrays sized first.
-        flat.halfSpaces.resize(clip + nWorld);
+        // each a function of its own element): in parallel, in arrays sized first, over the
+        // elements of the recycled scene where there is one (FlattenView).
+        std::vector<FlatHalfSpace> halfSpaces = std::move(recycle_.halfSpaces);
+        halfSpaces.resize(clip + nWorld);
+        for (std::size_t k = 0; k < clip; ++k) halfSpaces[k] = std::move(flat.halfSpaces[k]);
+        flat.halfSpaces.swap(halfSpaces);
         std::vector<char> finite(nWorld, 1);
         ParallelFor(tbb::blocked_range<std::size_t>(0, nWorld, 512),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -337,6 +345,7 @@ class FlattenerImpl {
         const Mat4& m = view_.provFromWorld.Matrix();
         const std::size_t nBodies = world.flat.bodies.size();
         const bool affine = IsAffine(m) && world.hierarchy.bodyExtents.size() == nBodies;
+        flat.bodies = std::move(recycle_.bodies);
         flat.bodies.resize(nBodies);
         ParallelFor(tbb::blocked_range<std::size_t>(0, nBodies, 512),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -355,14 +364,17 @@ class FlattenerImpl {
                             for (FlatLiteral& l : b.literals) l.halfSpace += nClip;
                         }
                     });
+        flat.nodes = std::move(recycle_.nodes);
         flat.nodes.resize(world.flat.nodes.size());
         ParallelFor(tbb::blocked_range<std::size_t>(0, flat.nodes.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i < r.end(); ++i)
                             flat.nodes[i] = world.flat.nodes[i];
                     });
+        flat.solids = std::move(recycle_.solids);
         flat.solids = world.flat.solids;
         flat.freeforms = world.flat.freeforms;
+        recycle_ = FlatScene{};
         hierarchy_.solidLocs = world.hierarchy.solidLocs;  // what the messages use
         hierarchy_.solidIsCsg = world.hierarchy.solidIsCsg;
         return true;
@@ -1607,6 +1619,7 @@ class FlattenerImpl {
     // The planes cutting every body (view_.finalClips, then the section plane), provisional space.
     std::vector<Plane> finalPlanes_;
     FlatScene flat_;
+    FlatScene recycle_;  // FlattenView's: its arrays' elements assigned over (PlaceWorld)
     HierarchyResult hierarchy_;
     std::vector<std::string> freeformNames_;  // fit boxes past the solids
     std::vector<char> eyeInside_;             // per solid (FindSolidsAroundEye)
@@ -1631,8 +1644,9 @@ std::optional<WorldScene> FlattenWorld(const scene::Scene& scene, Diagnostics& d
 }
 
 std::optional<FlatScene> FlattenView(const scene::Scene& scene, const WorldScene& world,
-                                     const FlattenOptions& options, Diagnostics& diags) {
-    return FlattenerImpl(scene, options, diags, &world).Run();
+                                     const FlattenOptions& options, Diagnostics& diags,
+                                     FlatScene recycle) {
+    return FlattenerImpl(scene, options, diags, &world, std::move(recycle)).Run();
 }
 
 std::optional<FlatScene> Flatten(const scene::Scene& scene, const FlattenOptions& options,

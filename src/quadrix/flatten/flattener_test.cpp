@@ -1012,5 +1012,92 @@ TEST(FlattenHierarchy, SameSceneOnOneThreadAndOnTwo) {
     }
 }
 
+// Every field FlattenView makes, compared by its bits.
+void ExpectSameFlatScenes(const FlatScene& a, const FlatScene& b) {
+    auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+    ASSERT_EQ(a.halfSpaces.size(), b.halfSpaces.size());
+    for (std::size_t h = 0; h < a.halfSpaces.size(); ++h) {
+        const FlatHalfSpace& x = a.halfSpaces[h];
+        const FlatHalfSpace& y = b.halfSpaces[h];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.isPlane, y.isPlane);
+        EXPECT_EQ(x.transparent, y.transparent);
+        EXPECT_EQ(x.isClip, y.isClip);
+        EXPECT_TRUE(x.isPlane ? same(x.plane, y.plane) : same(x.quadric, y.quadric)) << h;
+    }
+    ASSERT_EQ(a.bodies.size(), b.bodies.size());
+    for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+        const FlatBody& x = a.bodies[k];
+        const FlatBody& y = b.bodies[k];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.solid, y.solid);
+        EXPECT_TRUE(same(x.bounds, y.bounds)) << k;
+        EXPECT_TRUE(same(x.color, y.color)) << k;
+        ASSERT_EQ(x.literals.size(), y.literals.size());
+        for (std::size_t l = 0; l < x.literals.size(); ++l) {
+            EXPECT_EQ(x.literals[l].halfSpace, y.literals[l].halfSpace);
+            EXPECT_EQ(x.literals[l].complemented, y.literals[l].complemented);
+        }
+    }
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    for (std::size_t n = 0; n < a.nodes.size(); ++n) {
+        EXPECT_EQ(a.nodes[n].isLeaf, b.nodes[n].isLeaf);
+        EXPECT_EQ(a.nodes[n].body, b.nodes[n].body);
+        EXPECT_EQ(a.nodes[n].op, b.nodes[n].op);
+        EXPECT_EQ(a.nodes[n].children, b.nodes[n].children);
+        EXPECT_TRUE(same(a.nodes[n].bounds, b.nodes[n].bounds)) << n;
+    }
+    ASSERT_EQ(a.solids.size(), b.solids.size());
+    for (std::size_t s = 0; s < a.solids.size(); ++s) {
+        EXPECT_EQ(a.solids[s].root, b.solids[s].root);
+        EXPECT_EQ(a.solids[s].name, b.solids[s].name);
+        EXPECT_TRUE(same(a.solids[s].bounds, b.solids[s].bounds)) << s;
+    }
+    EXPECT_TRUE(same(a.projection.deviceFromWorld, b.projection.deviceFromWorld));
+    EXPECT_EQ(a.sectionHalfSpace, b.sectionHalfSpace);
+}
+
+// A view made over a recycled flat scene (the previous view's, as the render context passes it)
+// is the one made afresh: bigger and smaller recycled scenes, with and without a section plane
+// (one more shared half-space before the world's).
+TEST(FlattenView, OverARecycledSceneIsTheSameAsAfresh) {
+    scene::Scene small, big;
+    for (int i = 0; i < 6; ++i) {
+        const int q =
+            AddSphere(small.top, fmt::format("s{}", i), {2.0 * i, 0.5 * i, 0}, 1 + 0.1 * i);
+        const int p = AddPlane(small.top, fmt::format("p{}", i), {0, 1, 0.2, -0.3 * i});
+        AddBody(small.top, fmt::format("b{}", i), {q, i % 2 ? ~p : p});
+    }
+    for (int i = 0; i < 40; ++i) {
+        const int q = AddSphere(big.top, fmt::format("t{}", i), {0.5 * i, 1, 2}, 0.7);
+        AddBody(big.top, fmt::format("c{}", i), {q});
+    }
+    Diagnostics diags;
+    const std::optional<WorldScene> world = FlattenWorld(small, diags);
+    const std::optional<WorldScene> bigWorld = FlattenWorld(big, diags);
+    ASSERT_TRUE(world && bigWorld);
+    FlattenOptions views[2];
+    views[0].width = 320;
+    views[0].height = 200;
+    views[1] = views[0];
+    views[1].section = Plane{0.2, 0, 1, -0.5};
+    for (const FlattenOptions& o : views) {
+        const std::optional<FlatScene> fresh = FlattenView(small, *world, o, diags);
+        ASSERT_TRUE(fresh);
+        for (const std::optional<WorldScene>* other : {&world, &bigWorld}) {
+            for (const FlattenOptions& previous : views) {
+                std::optional<FlatScene> old =
+                    FlattenView(other == &world ? small : big, **other, previous, diags);
+                ASSERT_TRUE(old);
+                const std::optional<FlatScene> again =
+                    FlattenView(small, *world, o, diags, std::move(*old));
+                ASSERT_TRUE(again);
+                ExpectSameFlatScenes(*fresh, *again);
+            }
+        }
+    }
+    EXPECT_FALSE(diags.HasErrors());
+}
+
 }  // namespace
 }  // namespace quadrix

@@ -194,6 +194,7 @@ bool RenderContext::Read(const InputRequest& request, Diagnostics& diags) {
     scene_ = scene::Scene{};
     inputs_ = InputReport{};
     flatValid_ = worldValid_ = flattenedOnce_ = rtLights_ = false;
+    spare_ = FlatScene{};
     if (request.paths.empty()) {
         lang::ReadOptions ro;
         ro.clock = request.clock;
@@ -377,12 +378,17 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
             world_ = std::move(*world);
             worldValid_ = true;
         }
-        flat = FlattenView(scene_, world_, fo, diags);
+        flat = FlattenView(scene_, world_, fo, diags, std::move(spare_));
+        spare_ = FlatScene{};
     };
     // Under the loop arena even for a cancellable context (the flatten is not cancelled).
     arena_->Run(Inline(), false, flatten);
     flattenSeconds = SecondsSince(t0);
     if (worldFailed || !flat || diags.ErrorCount() != errorsBefore) return false;
+    if (worldValid_)
+        spare_ = std::move(flat_);  // for the next view (FlattenView)
+    else
+        spare_ = FlatScene{};
     flat_ = std::move(*flat);
     {
         const std::lock_guard<std::mutex> lock(wideMutex_);

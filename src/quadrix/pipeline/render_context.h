@@ -250,6 +250,9 @@ class RenderContext {
     mutable std::mutex wideMutex_;
     mutable std::shared_ptr<const WideNodeTrees> wideTrees_;
     WorldScene world_;  // the kept world stage, valid with worldValid_
+    // The flat scene of the view before flat_'s, kept while the world stage is: the next
+    // FlattenView assigns over its elements instead of freeing them and making new ones.
+    FlatScene spare_;
     bool worldValid_ = false, lastReusedWorld_ = false;
     bool flattenedOnce_ = false;  // the scene was flattened for one view (one-shot)
     bool halfSpaceNames_ = true;  // NameHalfSpaces
