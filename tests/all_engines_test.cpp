@@ -25,6 +25,7 @@
 
 #include "quadrix/engines/registry.h"
 #include "quadrix/eval/ray_evaluator.h"
+#include "quadrix/flatten/flatten_test_util.h"
 #include "quadrix/frame/compare.h"
 #include "quadrix/pipeline/render_context.h"
 #include "test_util.h"
@@ -415,26 +416,7 @@ TEST(RenderContextComposition, WorldStageIsKeptAcrossViews) {
         }
         ASSERT_TRUE(fresh.Flatten(views[i], diags));
         EXPECT_EQ(fresh.LastFlattenReusedWorld(), false);
-        const FlatScene& a = ctx.Flat();
-        const FlatScene& b = fresh.Flat();
-        ASSERT_EQ(a.halfSpaces.size(), b.halfSpaces.size());
-        ASSERT_EQ(a.bodies.size(), b.bodies.size());
-        for (std::size_t h = 0; h < a.halfSpaces.size(); ++h) {
-            const FlatHalfSpace& x = a.halfSpaces[h];
-            const FlatHalfSpace& y = b.halfSpaces[h];
-            ASSERT_EQ(x.isPlane, y.isPlane);
-            ASSERT_EQ(x.name, y.name);
-            if (x.isPlane)
-                EXPECT_EQ(std::memcmp(&x.plane, &y.plane, sizeof x.plane), 0) << x.name;
-            else
-                EXPECT_EQ(std::memcmp(&x.quadric, &y.quadric, sizeof x.quadric), 0) << x.name;
-        }
-        for (std::size_t k = 0; k < a.bodies.size(); ++k) {
-            EXPECT_EQ(std::memcmp(&a.bodies[k].bounds, &b.bodies[k].bounds, sizeof(Box3)), 0);
-            ASSERT_EQ(a.bodies[k].literals.size(), b.bodies[k].literals.size());
-            for (std::size_t l = 0; l < a.bodies[k].literals.size(); ++l)
-                EXPECT_EQ(a.bodies[k].literals[l].halfSpace, b.bodies[k].literals[l].halfSpace);
-        }
+        flatten_test::ExpectSameFlatScenes(ctx.Flat(), fresh.Flat());
         Frame oneShot;
         ASSERT_TRUE(fresh.Render(Request("raycast"), oneShot, report, diags));
         EXPECT_EQ(FirstBitDifference(kept, oneShot), "");

@@ -1,13 +1,17 @@
 // Helpers for the Flatten* tests: scenes built programmatically (the language reader is not
-// needed), in the shape the reader produces.
+// needed), in the shape the reader produces, and a comparison of flat scenes.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <array>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "quadrix/flatten/flat_scene.h"
 #include "quadrix/scene/scene.h"
 
 namespace quadrix::flatten_test {
@@ -115,6 +119,52 @@ inline int AddCsg(scene::Scope& s, const std::string& id, CsgBuilder b, int root
     }
     s.csgs.push_back(b.csg);
     return static_cast<int>(s.csgs.size()) - 1;
+}
+
+// Two flat scenes with the same half-spaces, bodies, nodes, solids and projection: every field a
+// flatten makes, coefficients and boxes compared by their bits.
+inline void ExpectSameFlatScenes(const FlatScene& a, const FlatScene& b) {
+    auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+    ASSERT_EQ(a.halfSpaces.size(), b.halfSpaces.size());
+    for (std::size_t h = 0; h < a.halfSpaces.size(); ++h) {
+        const FlatHalfSpace& x = a.halfSpaces[h];
+        const FlatHalfSpace& y = b.halfSpaces[h];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.isPlane, y.isPlane);
+        EXPECT_EQ(x.transparent, y.transparent);
+        EXPECT_EQ(x.isClip, y.isClip);
+        EXPECT_TRUE(x.isPlane ? same(x.plane, y.plane) : same(x.quadric, y.quadric)) << h;
+    }
+    ASSERT_EQ(a.bodies.size(), b.bodies.size());
+    for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+        const FlatBody& x = a.bodies[k];
+        const FlatBody& y = b.bodies[k];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.solid, y.solid);
+        EXPECT_TRUE(same(x.bounds, y.bounds)) << k;
+        EXPECT_TRUE(same(x.color, y.color)) << k;
+        ASSERT_EQ(x.literals.size(), y.literals.size());
+        for (std::size_t l = 0; l < x.literals.size(); ++l) {
+            EXPECT_EQ(x.literals[l].halfSpace, y.literals[l].halfSpace);
+            EXPECT_EQ(x.literals[l].complemented, y.literals[l].complemented);
+        }
+    }
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    for (std::size_t n = 0; n < a.nodes.size(); ++n) {
+        EXPECT_EQ(a.nodes[n].isLeaf, b.nodes[n].isLeaf);
+        EXPECT_EQ(a.nodes[n].body, b.nodes[n].body);
+        EXPECT_EQ(a.nodes[n].op, b.nodes[n].op);
+        EXPECT_EQ(a.nodes[n].children, b.nodes[n].children);
+        EXPECT_TRUE(same(a.nodes[n].bounds, b.nodes[n].bounds)) << n;
+    }
+    ASSERT_EQ(a.solids.size(), b.solids.size());
+    for (std::size_t s = 0; s < a.solids.size(); ++s) {
+        EXPECT_EQ(a.solids[s].root, b.solids[s].root);
+        EXPECT_EQ(a.solids[s].name, b.solids[s].name);
+        EXPECT_TRUE(same(a.solids[s].bounds, b.solids[s].bounds)) << s;
+    }
+    EXPECT_TRUE(same(a.projection.deviceFromWorld, b.projection.deviceFromWorld));
+    EXPECT_EQ(a.sectionHalfSpace, b.sectionHalfSpace);
 }
 
 }  // namespace quadrix::flatten_test
