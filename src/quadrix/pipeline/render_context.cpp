@@ -379,7 +379,6 @@ bool RenderContext::Flatten(const ViewRequest& view, Diagnostics& diags) {
             worldValid_ = true;
         }
         flat = FlattenView(scene_, world_, fo, diags, std::move(spare_));
-        spare_ = FlatScene{};
     };
     // Under the loop arena even for a cancellable context (the flatten is not cancelled).
     arena_->Run(Inline(), false, flatten);
