@@ -18,6 +18,14 @@
 
 namespace quadrix {
 
+#if QUADRIX_HEAP_HUGE_PAGES
+namespace {
+// Kept (UseHugePagesForTheHeap); volatile, or the compiler drops a block that is never read and
+// the call that made it.
+void* volatile heapFiller = nullptr;
+}  // namespace
+#endif
+
 bool UseHugePagesForTheHeap(std::size_t reserve) {
 #if QUADRIX_HEAP_HUGE_PAGES
     constexpr std::uintptr_t kHuge = kHugePageBytes;
@@ -36,15 +44,29 @@ bool UseHugePagesForTheHeap(std::size_t reserve) {
     // pad); freed, it goes back to the top, which then reaches the end of the new region. Later
     // growth takes the usual pad again.
     mallopt(M_TOP_PAD, size);
-    void* probe = std::malloc(256 << 10);
+    constexpr std::uintptr_t kProbe = 256 << 10;
+    void* probe = std::malloc(kProbe);
     const auto lo = reinterpret_cast<std::uintptr_t>(probe);
     std::free(probe);
     mallopt(M_TOP_PAD, 128 << 10);
     if (!probe) return false;
+    // The advised range begins at the first 2 MiB page the probe did not touch: malloc wrote the
+    // header of the top that followed it, and a 2 MiB page with a 4 KiB page in it stays in 4 KiB
+    // pages (512 faults).
     const auto hi = reinterpret_cast<std::uintptr_t>(sbrk(0));
-    const std::uintptr_t start = (lo + kHuge - 1) & ~(kHuge - 1), end = hi & ~(kHuge - 1);
+    const std::uintptr_t start = (lo + kProbe + 64 + kHuge - 1) & ~(kHuge - 1),
+                         end = hi & ~(kHuge - 1);
     if (hi == static_cast<std::uintptr_t>(-1) || end <= start) return false;
-    return madvise(reinterpret_cast<void*>(start), end - start, MADV_HUGEPAGE) == 0;
+    if (madvise(reinterpret_cast<void*>(start), end - start, MADV_HUGEPAGE) != 0) return false;
+    // The heap's top begins below `start`, in memory that cannot be in huge pages (the heap's
+    // first pages or the probe's share its 2 MiB page): what the program allocated next would
+    // fill it 4 KiB at a time, up to 512 faults a process as the heap's address falls. One block,
+    // kept and never touched, fills it instead, so that the next blocks begin in the advised range.
+    heapFiller = std::malloc(start - lo + 64);
+    // Every thread made from now on allocates from this heap (M_ARENA_MAX 1) instead of an arena
+    // of its own, whose memory grows in 4 KiB pages (header).
+    mallopt(M_ARENA_MAX, 1);
+    return true;
 #else
     (void)reserve;
     return false;

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "quadrix/util/sanitizers.h"
 
@@ -89,6 +90,47 @@ TEST(HeapHugePages, AllocationsOfMegabytesComeFromTheHeapInHugePages) {
     std::memset(q, 2, kBytes);
     EXPECT_LT(MinorFaults() - again, 16);
     std::free(q);
+}
+
+// The next blocks come from the advised range, not from the rest of the 2 MiB page in which the
+// heap's top began (whose 4 KiB pages would each fault): a block of 1 MiB, larger than any free
+// one left by the program's start, is advised from its first byte.
+TEST(HeapHugePages, TheNextBlocksBeginInTheAdvisedRange) {
+    if (std::string why = WhyNot(); !why.empty()) GTEST_SKIP() << why;
+    ASSERT_TRUE(UseHugePagesForTheHeap(std::size_t{64} << 20));
+    char* p = static_cast<char*>(std::malloc(std::size_t{1} << 20));
+    ASSERT_NE(p, nullptr);
+    EXPECT_NE(VmFlagsOf(p).find(" hg "), std::string::npos) << VmFlagsOf(p);
+    std::free(p);
+}
+
+// A thread started afterwards allocates from the same heap (M_ARENA_MAX 1): its blocks lie below
+// the break, in the advised range, not in an arena of its own (a mapping of glibc's elsewhere).
+TEST(HeapHugePages, OtherThreadsAllocateFromTheSameHeap) {
+    if (std::string why = WhyNot(); !why.empty()) GTEST_SKIP() << why;
+    ASSERT_TRUE(UseHugePagesForTheHeap(std::size_t{64} << 20));
+    constexpr std::size_t kBytes = std::size_t{1} << 20;
+    void* own = std::malloc(kBytes);
+    ASSERT_NE(own, nullptr);
+    void* block = nullptr;
+    void* small = nullptr;
+    std::thread([&] {
+        block = std::malloc(kBytes);
+        small = std::malloc(4000);  // past the thread's small-block cache
+    }).join();
+    ASSERT_NE(block, nullptr);
+    ASSERT_NE(small, nullptr);
+    const auto brk = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    const auto heapLo = reinterpret_cast<std::uintptr_t>(own) - (std::uintptr_t{64} << 20);
+    for (void* p : {block, small}) {
+        const auto a = reinterpret_cast<std::uintptr_t>(p);
+        EXPECT_LE(a + 4000, brk) << p;
+        EXPECT_GE(a, heapLo) << p;
+    }
+    EXPECT_NE(VmFlagsOf(static_cast<char*>(block) + kBytes / 2).find(" hg "), std::string::npos);
+    std::free(small);
+    std::free(block);
+    std::free(own);
 }
 
 TEST(HeapHugePages, UnderAnAddressSpaceLimitTheHeapIsLeftAsItIs) {
