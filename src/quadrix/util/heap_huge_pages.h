@@ -27,7 +27,8 @@
 // the render phase, 19 with the shared heap, and the render phase took 34.1 / 35.6 ms against
 // 25.6 / 28.4 (min / median, 21 alternating processes; docs/performance.md, twenty-sixth
 // session). Small allocations do not contend for the shared heap's lock (each thread keeps its
-// own cache of them, glibc's tcache); the machined part's whole process took the same time.
+// own cache of them, glibc's tcache); the machined part's whole process took no longer (50.8
+// against 52.9 ms, and 82.1 against 84.5 ms of CPU, medians).
 //
 // Nothing happens (false) where the C library is not glibc, under AddressSanitizer (its own
 // allocator), under an address-space or data limit (the reservation would count against it), or
