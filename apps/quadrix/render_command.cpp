@@ -20,6 +20,7 @@
 #include "quadrix/pipeline/section_plane.h"
 #include "quadrix/pipeline/stats_report.h"
 #include "quadrix/shade/shader.h"
+#include "quadrix/util/heap_huge_pages.h"
 
 namespace quadrix::cli {
 
@@ -267,6 +268,9 @@ int RunRender(const RenderArgs& args) {
         return RunAnimation(args, po, engine, so, PictureRequest(args), outputs);
     }
 
+    // One picture: the threads share the heap in huge pages (util/heap_huge_pages.h; an
+    // animation's frames keep the threads' own arenas).
+    ShareTheHeapWithLaterThreads();
     RenderContext ctx(args.threads);
     ctx.NameHalfSpaces(false);  // a picture, and messages about solids and bodies
     Frame frame;

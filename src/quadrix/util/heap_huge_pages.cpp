@@ -23,6 +23,7 @@ namespace {
 // Kept (UseHugePagesForTheHeap); volatile, or the compiler drops a block that is never read and
 // the call that made it.
 void* volatile heapFiller = nullptr;
+bool heapInHugePages = false;  // UseHugePagesForTheHeap has succeeded
 }  // namespace
 #endif
 
@@ -63,12 +64,18 @@ bool UseHugePagesForTheHeap(std::size_t reserve) {
     // fill it 4 KiB at a time, up to 512 faults a process as the heap's address falls. One block,
     // kept and never touched, fills it instead, so that the next blocks begin in the advised range.
     heapFiller = std::malloc(start - lo + 64);
-    // Every thread made from now on allocates from this heap (M_ARENA_MAX 1) instead of an arena
-    // of its own, whose memory grows in 4 KiB pages (header).
-    mallopt(M_ARENA_MAX, 1);
+    heapInHugePages = true;
     return true;
 #else
     (void)reserve;
+    return false;
+#endif
+}
+
+bool ShareTheHeapWithLaterThreads() {
+#if QUADRIX_HEAP_HUGE_PAGES
+    return heapInHugePages && mallopt(M_ARENA_MAX, 1) == 1;
+#else
     return false;
 #endif
 }

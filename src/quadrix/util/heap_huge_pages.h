@@ -20,16 +20,6 @@
 // address fell. The machined part at 64 x 64 took 445 faults, 325 with it; at 1280 x 720 615-805,
 // 437.)
 //
-// Threads started afterwards share that heap (M_ARENA_MAX 1) instead of each taking an arena of
-// its own: glibc maps such an arena in 64 MiB and grows it a few pages at a time, so a thread's
-// memory comes in 4 KiB pages. The raycast engine's second thread builds each tile's CSG
-// programs in its own memory: for the 20,211-body helicopter at 1280 x 720 that was 862 faults in
-// the render phase, 19 with the shared heap, and the render phase took 34.1 / 35.6 ms against
-// 25.6 / 28.4 (min / median, 21 alternating processes; docs/performance.md, twenty-sixth
-// session). Small allocations do not contend for the shared heap's lock (each thread keeps its
-// own cache of them, glibc's tcache); the machined part's whole process took no longer (50.8
-// against 52.9 ms, and 82.1 against 84.5 ms of CPU, medians).
-//
 // Nothing happens (false) where the C library is not glibc, under AddressSanitizer (its own
 // allocator), under an address-space or data limit (the reservation would count against it), or
 // when the kernel refuses; allocations behave as before then. `reserve`: 4 MiB to 512 MiB.
@@ -40,5 +30,19 @@
 namespace quadrix {
 
 bool UseHugePagesForTheHeap(std::size_t reserve);
+
+// For a program about to do one short job on several threads (`quadrix render` of one picture):
+// the threads it starts from now on allocate from the heap UseHugePagesForTheHeap set up
+// (M_ARENA_MAX 1) instead of each taking an arena of its own, which glibc maps in 64 MiB and
+// makes writable a few pages at a time, so in 4 KiB pages, each a fault. The raycast engine's
+// second thread builds each tile's CSG programs in its own memory: for the 20,211-body helicopter
+// at 1280 x 720 that was 862 faults in the render phase, 19 in the shared heap, and the render
+// phase took 35.9 / 38.5 ms against 26.8 / 31.8 (min / median of 21 alternating processes). But
+// threads that go on working share the heap's lock and its cache lines: 12 turntable frames of the
+// machined part in one process took 3.5 % longer (449 -> 460-469 ms, CPU 851 -> 882-896 ms),
+// so animations, batches and the viewer keep the threads' own arenas (docs/performance.md,
+// twenty-sixth session). False, and nothing done, when the heap is not in huge pages. Call it
+// before the threads exist: glibc gives a thread its arena at its first allocation.
+bool ShareTheHeapWithLaterThreads();
 
 }  // namespace quadrix

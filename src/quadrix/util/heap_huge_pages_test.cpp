@@ -104,11 +104,13 @@ TEST(HeapHugePages, TheNextBlocksBeginInTheAdvisedRange) {
     std::free(p);
 }
 
-// A thread started afterwards allocates from the same heap (M_ARENA_MAX 1): its blocks lie below
-// the break, in the advised range, not in an arena of its own (a mapping of glibc's elsewhere).
-TEST(HeapHugePages, OtherThreadsAllocateFromTheSameHeap) {
+// Told to, a thread started afterwards allocates from the same heap (M_ARENA_MAX 1): its blocks
+// lie below the break, in the advised range, not in an arena of its own (a mapping of glibc's
+// elsewhere).
+TEST(HeapHugePages, LaterThreadsShareTheHeapWhenTold) {
     if (std::string why = WhyNot(); !why.empty()) GTEST_SKIP() << why;
     ASSERT_TRUE(UseHugePagesForTheHeap(std::size_t{64} << 20));
+    ASSERT_TRUE(ShareTheHeapWithLaterThreads());
     constexpr std::size_t kBytes = std::size_t{1} << 20;
     void* own = std::malloc(kBytes);
     ASSERT_NE(own, nullptr);
